@@ -1,0 +1,67 @@
+# coatcontact: the two commands a user types are `make figures` (default) and `make test`.
+# Both install missing Debian packages first (scripts/install-deps.sh), then configure and
+# build a Release tree in build/.
+BUILD      ?= build
+JOBS       ?= 2
+CMAKE_ARGS ?=
+CLI        := $(BUILD)/bin/coatcontact
+
+.PHONY: all figures test bench clean deps build fuzz fit-example
+
+all: figures
+
+deps:
+	@bash scripts/install-deps.sh
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+bench: deps
+	COATCONTACT_EXTRAS=1 bash scripts/install-deps.sh
+	cmake -S . -B $(BUILD) -DCOATCONTACT_BUILD_BENCH=ON
+	cmake --build $(BUILD) -j $(JOBS)
+	bash bench/run.sh $(BUILD)
+
+clean:
+	rm -rf $(BUILD)
+
+# Figures: data by the CLI, plots by gnuplot (parameters in data/figures.conf).
+include gnuplot/figures.mk
+
+# Fuzzing (issue 7): libFuzzer + ASan/UBSan on the value parsers and the data file reader, in
+# a separate clang tree (Fortran stays gfortran); only the fuzz targets are built. New corpus
+# entries go to $(FUZZ_BUILD)/corpus, crash reproducers to $(FUZZ_BUILD)/artifacts.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+fuzz:
+	COATCONTACT_EXTRAS=1 bash scripts/install-deps.sh
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_Fortran_COMPILER=gfortran \
+	  -DCOATCONTACT_BUILD_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_parsers fuzz_data_file
+	@for f in parsers data_file; do \
+	  mkdir -p $(FUZZ_BUILD)/corpus/$$f $(FUZZ_BUILD)/artifacts/$$f || exit 1; \
+	  echo "== fuzz_$$f for $(FUZZ_SECONDS) s"; \
+	  $(FUZZ_BUILD)/fuzz/fuzz_$$f -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/$$f/ \
+	    $(FUZZ_BUILD)/corpus/$$f tests/fuzz/corpus_$$f || exit 1; \
+	done
+
+# Fit example (issue 6): fit w and t to both example data sets in data/ and plot data, fit and
+# residuals into $(BUILD)/figures/fit_example.png (gnuplot/fit_example.gp).
+FIT_MODEL := --radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --free w,t --start t=40um
+fit-example: build
+	@mkdir -p $(BUILD)/figures
+	$(CLI) fit data/example_a_F.tsv --columns a,F $(FIT_MODEL) \
+	  --output $(BUILD)/figures/fit_a_F.tsv --curve $(BUILD)/figures/curve_a_F.tsv
+	$(CLI) fit data/example_delta_F.tsv --columns delta,F $(FIT_MODEL) \
+	  --output $(BUILD)/figures/fit_delta_F.tsv --curve $(BUILD)/figures/curve_delta_F.tsv
+	gnuplot -e "gpdir='gnuplot'; dir='$(BUILD)/figures'; outfile='$(BUILD)/figures/fit_example.png.tmp'; fmt='png'" \
+	  gnuplot/fit_example.gp && mv $(BUILD)/figures/fit_example.png.tmp $(BUILD)/figures/fit_example.png
+	@echo "wrote $(BUILD)/figures/fit_example.png"

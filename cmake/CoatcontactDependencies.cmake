@@ -1,0 +1,10 @@
+# Imported targets for every external dependency (no global flag variables).
+find_package(GSL REQUIRED)                # GSL::gsl, GSL::gslcblas
+find_package(LAPACK REQUIRED)             # LAPACK::LAPACK
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)      # PkgConfig::FFTW3
+pkg_check_modules(LAPACKE REQUIRED IMPORTED_TARGET lapacke)  # PkgConfig::LAPACKE
+find_package(OpenMP COMPONENTS CXX)       # OpenMP::OpenMP_CXX (optional)
+
+# The Fortran interface file fftw3.f03 ships with libfftw3-dev in the include dir.
+find_path(FFTW3_FORTRAN_INCLUDE_DIR fftw3.f03 HINTS ${FFTW3_INCLUDE_DIRS} PATHS /usr/include REQUIRED)

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian packages coatcontact needs, only those that are missing.
+# Uses apt-get, through sudo when not root. Does nothing when all are present.
+set -euo pipefail
+
+packages=(
+  gfortran g++ cmake make pkg-config
+  libgsl-dev liblapack-dev liblapacke-dev libblas-dev libfftw3-dev
+  gnuplot-nox python3
+)
+# Optional extras for `make bench` and `make fuzz`; installed when asked for.
+if [ "${COATCONTACT_EXTRAS:-0}" = 1 ]; then
+  packages+=(libbenchmark-dev clang libclang-rt-14-dev)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing missing Debian packages: ${missing[*]}"
+if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
