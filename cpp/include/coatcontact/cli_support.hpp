@@ -1,0 +1,139 @@
+// Support for the `coatcontact` command-line program: option parsing, value parsers,
+// atomic output files and TSV formatting. Every parser throws InputError with a message
+// that names the option, the offending value and what is allowed.
+#pragma once
+#include <cstdio>
+#include <functional>
+#include <iosfwd>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/errors.hpp"
+#include "coatcontact/materials.hpp"
+
+namespace coatcontact::cli {
+
+// ---- value parsers ---------------------------------------------------------------
+
+// Conventions shared by every parser below:
+//  - Locale-independent (std::from_chars). Decimal notation only: "1", "-2.5", "1e-3", "+3".
+//    Hex floats, "nan", "inf", an empty string and any trailing text are rejected, and so is a
+//    value that overflows a double. Leading and trailing blanks (space, tab) around the whole
+//    text and around each comma-separated item are ignored ("1, 2" == "1,2").
+//  - A unit suffix is case-sensitive and follows the number directly or after exactly one
+//    space: "2MPa", "2 MPa". No suffix means SI.
+
+// A finite floating-point number, the whole string (no trailing text). `option` names the
+// option in messages, e.g. "--tol".
+double parse_number(const std::string& text, const std::string& option);
+
+// "v1,v2,..." (comma-separated numbers) or "MIN:MAX:N" (N log-spaced points, 0 < MIN <= MAX,
+// N >= 1 integer; N = 1 requires MIN == MAX). Empty lists and empty items are rejected.
+std::vector<double> parse_list(const std::string& text, const std::string& option);
+
+// Physical quantity with an optional unit suffix; returns SI.
+//   kPressure: Pa kPa MPa GPa     kLength: m mm um µm nm     kEnergy: J/m2 mJ/m2
+//   kForce:    N mN uN µN nN
+// A bare number is SI. The value (after conversion to SI) must be finite and > 0.
+enum class Quantity { kPressure, kLength, kEnergy, kForce };
+double parse_quantity(const std::string& text, Quantity kind, const std::string& option);
+
+// The unit tables behind parse_quantity (also used for "# units:" lines of data files).
+struct UnitInfo {
+  Quantity kind;
+  double to_si;  // SI value of one unit
+};
+// The unit spelled exactly `unit` ("um", "MPa", ...), or nullopt if there is none.
+std::optional<UnitInfo> find_unit(const std::string& unit);
+// "pressure", "length", "energy per area", "force".
+const char* quantity_name(Quantity kind);
+// The allowed spellings of `kind`, e.g. "Pa kPa MPa GPa".
+std::string unit_list(Quantity kind);
+
+// "E,nu" with E > 0 (unit suffix allowed, as a pressure) and -1 < nu <= 0.5.
+Material parse_material(const std::string& text, const std::string& option);
+// "E,nu" or "rigid".
+Substrate parse_substrate(const std::string& text, const std::string& option);
+
+// ---- arguments -------------------------------------------------------------------
+
+struct OptionSpec {
+  std::string name;         // "--film"
+  std::string value_name;   // "E1,nu1" (empty: a flag without a value)
+  std::string help;         // one line
+  bool required = false;
+};
+
+// Parses `--name value`, `--name=value`, flags and positionals against a spec.
+// Unknown options, missing values, repeated options and missing required options throw
+// InputError. `--help`/`-h` is always accepted (then required options are not enforced).
+// A value may start with '-' only when a digit (or ".digit") follows, i.e. a negative number;
+// any other argument starting with '-' after an option that takes a value is reported as a
+// missing value. `--` ends the options: everything after it is positional.
+class Arguments {
+ public:
+  Arguments(const std::vector<std::string>& args, const std::vector<OptionSpec>& spec,
+            std::size_t max_positionals = 0);
+  bool help() const { return help_; }
+  bool has(const std::string& name) const;
+  std::optional<std::string> get(const std::string& name) const;
+  std::string require(const std::string& name) const;  // InputError if absent
+  const std::vector<std::string>& positionals() const { return positionals_; }
+
+ private:
+  bool help_ = false;
+  std::map<std::string, std::string> values_;
+  std::vector<std::string> positionals_;
+};
+
+// Usage text of a subcommand: synopsis line, description, then one line per option.
+std::string usage(const std::string& command, const std::string& synopsis,
+                  const std::string& description, const std::vector<OptionSpec>& spec);
+
+// ---- output ----------------------------------------------------------------------
+
+// Output to stdout (empty path) or to a file written atomically: the data go to a temporary
+// file in the same folder, renamed over `path` by commit(). If commit() is never called
+// (error, exception) the temporary file is removed; it is also removed if the process gets
+// SIGINT or SIGTERM. A missing or unwritable folder throws InputError naming the path.
+// The temporary file is "<path>.tmp.XXXXXX"; the committed file gets mode 0666 & ~umask.
+// Signal cleanup: the first file Output installs SIGINT/SIGTERM handlers (only where the
+// action is still the default) that unlink every pending temporary file, then re-raise the
+// signal with the default action. At most 64 files are protected at once (more still work,
+// without signal cleanup).
+class Output {
+ public:
+  explicit Output(const std::string& path);
+  ~Output();
+  Output(const Output&) = delete;
+  Output& operator=(const Output&) = delete;
+  std::ostream& stream();
+  void commit();  // throws InputError on a write/rename failure
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// A number for a TSV column: "%.17g". Throws NumericalError (naming `column`) if not finite,
+// so no NaN/inf is ever printed as a result.
+std::string format_value(double value, const std::string& column);
+
+// Writes "# key: value" header lines and the "# columns: a\tb\t..." line.
+void write_header(std::ostream& out, const std::vector<std::pair<std::string, std::string>>& items,
+                  const std::vector<std::string>& columns);
+// Writes one TSV row (values formatted by format_value).
+void write_row(std::ostream& out, const std::vector<double>& values,
+               const std::vector<std::string>& columns);
+
+// Runs a subcommand body, mapping exceptions to exit codes and one-line messages on stderr:
+//   InputError -> "coatcontact <command>: error: <message>", exit 2
+//   NumericalError -> "coatcontact <command>: numerical failure: <message>", exit 3
+//   any other std::exception -> exit 3 as well (reported, never silent).
+int run_guarded(const std::string& command, const std::function<int()>& body);
+
+}  // namespace coatcontact::cli

@@ -1,0 +1,182 @@
+// C++ view of the layered-substrate kernel (THEORY.md sections 3-4): surface compliance C(q),
+// and the table of H(u) = int_0^inf [C(q)-1] cos(qu) dq and H1(u) = int_0^u H for one
+// material pair. Thin header-only wrapper over the C interface cc_kernel.h (Fortran library);
+// status codes become exceptions: bad constants -> InputError, numerical -> NumericalError.
+#pragma once
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "coatcontact/cc_kernel.h"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/materials.hpp"
+
+namespace coatcontact {
+
+namespace kernel_detail {
+
+inline std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+// Throws the exception matching a cc_status (no-op for CC_OK). `context` names the call.
+inline void check_status(int status, const Material& film, const Substrate& substrate,
+                         const std::string& context) {
+  switch (status) {
+    case CC_OK:
+      return;
+    case CC_ERR_FILM_MODULUS:
+      throw InputError(context + ": film Young's modulus E1 = " + number_text(film.youngs_modulus) +
+                       " is not allowed (must be finite and > 0)");
+    case CC_ERR_FILM_POISSON:
+      throw InputError(context + ": film Poisson ratio nu1 = " + number_text(film.poisson_ratio) +
+                       " is not allowed (must be in (-1, 0.5])");
+    case CC_ERR_SUBSTRATE_MODULUS:
+      throw InputError(context + ": substrate Young's modulus E0 = " +
+                       number_text(substrate.material.youngs_modulus) +
+                       " is not allowed (must be finite and > 0)");
+    case CC_ERR_SUBSTRATE_POISSON:
+      throw InputError(context + ": substrate Poisson ratio nu0 = " +
+                       number_text(substrate.material.poisson_ratio) +
+                       " is not allowed (must be in (-1, 0.5])");
+    case CC_ERR_ARGUMENT:
+      throw InputError(context + ": " + cc_status_message(status));
+    default:
+      throw NumericalError(context + ": " + cc_status_message(status));
+  }
+}
+
+inline int rigid_flag(const Substrate& substrate) { return substrate.rigid ? 1 : 0; }
+
+inline int checked_size(std::size_t n, const std::string& context) {
+  if (n > static_cast<std::size_t>(1) << 30) throw InputError(context + ": array too long");
+  return static_cast<int>(n);
+}
+
+}  // namespace kernel_detail
+
+// C(q) at each q >= 0 (InputError for negative or non-finite q or bad constants).
+inline std::vector<double> compliance(const Material& film, const Substrate& substrate,
+                                      const std::vector<double>& q) {
+  std::vector<double> c(q.size());
+  const auto& s = substrate.material;
+  kernel_detail::check_status(
+      cc_compliance(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus, s.poisson_ratio,
+                    kernel_detail::rigid_flag(substrate),
+                    kernel_detail::checked_size(q.size(), "compliance"), q.data(), c.data()),
+      film, substrate, "compliance");
+  return c;
+}
+
+inline double compliance(const Material& film, const Substrate& substrate, double q) {
+  return compliance(film, substrate, std::vector<double>{q}).front();
+}
+
+// C(q) - 1, accurate where C is close to 1.
+inline std::vector<double> compliance_minus_one(const Material& film, const Substrate& substrate,
+                                                const std::vector<double>& q) {
+  std::vector<double> c(q.size());
+  const auto& s = substrate.material;
+  kernel_detail::check_status(
+      cc_compliance_minus_one(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
+                              s.poisson_ratio, kernel_detail::rigid_flag(substrate),
+                              kernel_detail::checked_size(q.size(), "compliance_minus_one"),
+                              q.data(), c.data()),
+      film, substrate, "compliance_minus_one");
+  return c;
+}
+
+// Taylor coefficients f_k = f^(k)(0)/k!, k = 0..order (<= 15), of f = C - 1.
+inline std::vector<double> compliance_taylor(const Material& film, const Substrate& substrate,
+                                             int order) {
+  if (order < 0 || order > 15) throw InputError("compliance_taylor: order must be in [0, 15]");
+  std::vector<double> f(static_cast<std::size_t>(order) + 1);
+  const auto& s = substrate.material;
+  kernel_detail::check_status(
+      cc_compliance_taylor(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
+                           s.poisson_ratio, kernel_detail::rigid_flag(substrate), order, f.data()),
+      film, substrate, "compliance_taylor");
+  return f;
+}
+
+struct KernelTableInfo {
+  double u_max = 0.0;          // tabulated range [0, u_max] (asymptotic series beyond)
+  double du = 0.0;             // table step
+  double c_zero = 0.0;         // C(0) = E1*/E0*
+  double half_integral = 0.0;  // int_0^inf H du = (pi/2)(C(0) - 1)
+  double abs_accuracy = 0.0;   // estimated max |H - H_exact|
+  double max_abs_h = 0.0;      // max |H|
+};
+
+// H(u) and H1(u) for one material pair; built once (a few ms), then read-only and safe to
+// evaluate from several threads. Movable, not copyable.
+class KernelTable {
+ public:
+  KernelTable(const Material& film, const Substrate& substrate) {
+    cc_kernel_table* raw = nullptr;
+    int status = CC_OK;
+    {
+      // FFTW's planner is not thread-safe: serialize table creation in this process.
+      static std::mutex planner_mutex;
+      std::lock_guard<std::mutex> lock(planner_mutex);
+      const auto& s = substrate.material;
+      status = cc_kernel_table_create(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
+                                      s.poisson_ratio, kernel_detail::rigid_flag(substrate), &raw);
+    }
+    kernel_detail::check_status(status, film, substrate, "kernel table");
+    table_.reset(raw);
+  }
+
+  // h[i] = H(u[i]), h1[i] = H1(u[i]) (h1 may be null).
+  void eval(const double* u, std::size_t n, double* h, double* h1 = nullptr) const {
+    const int status = cc_kernel_table_eval(table_.get(), kernel_detail::checked_size(n, "H(u)"),
+                                            u, h, h1);
+    if (status == CC_ERR_ARGUMENT) throw InputError("kernel H(u): u must be finite");
+    if (status != CC_OK) throw NumericalError(std::string("kernel H(u): ") + cc_status_message(status));
+  }
+  void eval(const std::vector<double>& u, std::vector<double>& h, std::vector<double>& h1) const {
+    h.resize(u.size());
+    h1.resize(u.size());
+    eval(u.data(), u.size(), h.data(), h1.data());
+  }
+  void eval(const std::vector<double>& u, std::vector<double>& h) const {
+    h.resize(u.size());
+    eval(u.data(), u.size(), h.data(), nullptr);
+  }
+  double h(double u) const {
+    double value = 0.0;
+    eval(&u, 1, &value, nullptr);
+    return value;
+  }
+  double h1(double u) const {
+    double value = 0.0;
+    double antiderivative = 0.0;
+    eval(&u, 1, &value, &antiderivative);
+    return antiderivative;
+  }
+
+  KernelTableInfo info() const {
+    KernelTableInfo i;
+    cc_kernel_table_info(table_.get(), &i.u_max, &i.du, &i.c_zero, &i.half_integral,
+                         &i.abs_accuracy);
+    cc_kernel_table_scale(table_.get(), &i.max_abs_h, nullptr);
+    return i;
+  }
+
+  const cc_kernel_table* raw() const { return table_.get(); }
+
+ private:
+  struct Deleter {
+    void operator()(cc_kernel_table* t) const { cc_kernel_table_destroy(t); }
+  };
+  std::unique_ptr<cc_kernel_table, Deleter> table_;
+};
+
+}  // namespace coatcontact

@@ -1,0 +1,529 @@
+// Value parsers, argument parsing, TSV formatting and run_guarded of the coatcontact CLI.
+// (Atomic output files are in output.cpp.)
+#include "coatcontact/cli_support.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include "number_text.hpp"
+
+namespace coatcontact {
+namespace detail {
+
+std::string_view trim_blanks(std::string_view text) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+  while (!text.empty() && blank(text.front())) text.remove_prefix(1);
+  while (!text.empty() && blank(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+NumberStatus parse_decimal(std::string_view text, double& value) {
+  if (text.empty()) return NumberStatus::kNotNumber;
+  // from_chars takes no '+'; accept one in front of a digit or '.' (not "+-1", not "++1").
+  if (text.front() == '+') {
+    text.remove_prefix(1);
+    if (text.empty() || text.front() == '+' || text.front() == '-') return NumberStatus::kNotNumber;
+  }
+  // Only the characters of decimal notation: rules out "nan", "inf", "0x1p3" up front, so the
+  // message can say which of the two it was.
+  for (char c : text) {
+    const bool decimal = (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' ||
+                         c == '+' || c == '-';
+    if (!decimal) {
+      std::string lower;
+      for (char d : text) lower.push_back(static_cast<char>(d >= 'A' && d <= 'Z' ? d - 'A' + 'a' : d));
+      if (!lower.empty() && lower.front() == '-') lower.erase(0, 1);
+      if (lower == "nan" || lower == "inf" || lower == "infinity" || lower.rfind("nan(", 0) == 0) {
+        return NumberStatus::kNotFinite;
+      }
+      return NumberStatus::kNotNumber;
+    }
+  }
+  double parsed = 0.0;
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  const auto result = std::from_chars(first, last, parsed, std::chars_format::general);
+  if (result.ec == std::errc::invalid_argument) return NumberStatus::kNotNumber;
+  if (result.ptr != last) return NumberStatus::kNotNumber;
+  if (result.ec == std::errc::result_out_of_range) return NumberStatus::kOutOfRange;
+  if (!std::isfinite(parsed)) return NumberStatus::kOutOfRange;
+  value = parsed;
+  return NumberStatus::kOk;
+}
+
+std::string quote(std::string_view text) {
+  constexpr std::size_t kMaxShown = 60;
+  std::string out = "'";
+  const std::size_t shown = std::min(text.size(), kMaxShown);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    // Printable ASCII and UTF-8 bytes (so "µm" stays readable); control bytes escaped.
+    if ((c >= 0x20 && c < 0x7f) || c >= 0x80) {
+      out.push_back(static_cast<char>(c));
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    }
+  }
+  if (text.size() > kMaxShown) out += "...";
+  out += "'";
+  return out;
+}
+
+std::string number_string(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace detail
+
+namespace cli {
+namespace {
+
+using detail::NumberStatus;
+using detail::quote;
+using detail::trim_blanks;
+
+constexpr std::size_t kMaxListPoints = 1000000;  // N of MIN:MAX:N and items of a list
+constexpr const char* kListExpected = "expected comma-separated numbers or MIN:MAX:N";
+
+[[noreturn]] void fail(const std::string& option, const std::string& message) {
+  throw InputError(option + ": " + message);
+}
+
+// Message tail for a number that did not parse, e.g. "'abc' is not a number".
+std::string number_problem(NumberStatus status, std::string_view text) {
+  switch (status) {
+    case NumberStatus::kNotFinite:
+      return quote(text) + " is not a finite number";
+    case NumberStatus::kOutOfRange:
+      return quote(text) + " is outside the range of a double";
+    default:
+      return text.empty() ? std::string("empty value") : quote(text) + " is not a number";
+  }
+}
+
+struct UnitRow {
+  const char* spelling;
+  Quantity kind;
+  double to_si;
+};
+
+// Case-sensitive SI spellings; µ is accepted as U+00B5 (micro sign) and U+03BC (Greek mu).
+constexpr UnitRow kUnits[] = {
+    {"Pa", Quantity::kPressure, 1.0},       {"kPa", Quantity::kPressure, 1e3},
+    {"MPa", Quantity::kPressure, 1e6},      {"GPa", Quantity::kPressure, 1e9},
+    {"m", Quantity::kLength, 1.0},          {"mm", Quantity::kLength, 1e-3},
+    {"um", Quantity::kLength, 1e-6},        {"\xc2\xb5m", Quantity::kLength, 1e-6},
+    {"\xce\xbcm", Quantity::kLength, 1e-6}, {"nm", Quantity::kLength, 1e-9},
+    {"J/m2", Quantity::kEnergy, 1.0},       {"mJ/m2", Quantity::kEnergy, 1e-3},
+    {"N", Quantity::kForce, 1.0},           {"mN", Quantity::kForce, 1e-3},
+    {"uN", Quantity::kForce, 1e-6},         {"\xc2\xb5N", Quantity::kForce, 1e-6},
+    {"\xce\xbcN", Quantity::kForce, 1e-6},  {"nN", Quantity::kForce, 1e-9},
+};
+
+// Number with optional unit -> SI value > 0. `what` names the value ("length",
+// "Young's modulus").
+double parse_quantity_impl(std::string_view raw, Quantity kind, const std::string& option,
+                           const std::string& what) {
+  const std::string_view text = trim_blanks(raw);
+  const std::string expected = "expected a number with an optional unit (" + unit_list(kind) + ")";
+  if (text.empty()) fail(option, "empty " + what + "; " + expected);
+  // The number is the longest prefix of decimal-notation characters. No unit starts with
+  // 'e' or 'E', so "2e3MPa" splits as "2e3" + "MPa".
+  std::size_t split = 0;
+  while (split < text.size()) {
+    const char c = text[split];
+    if (!((c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-')) break;
+    ++split;
+  }
+  const std::string_view number = text.substr(0, split);
+  std::string_view unit = text.substr(split);
+  if (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);  // "2 MPa": one space
+
+  double value = 0.0;
+  const NumberStatus status = detail::parse_decimal(number, value);
+  if (status != NumberStatus::kOk) {
+    if (number.empty() || status == NumberStatus::kNotNumber) {
+      // Report nan/inf spelled as the whole text, otherwise "not a number".
+      double ignored = 0.0;
+      const NumberStatus whole = detail::parse_decimal(text, ignored);
+      if (whole == NumberStatus::kNotFinite) {
+        fail(option, what + " " + quote(text) + " is not a finite number; " + expected);
+      }
+      fail(option, what + " " + quote(text) + " is not a number; " + expected);
+    }
+    fail(option, what + " " + number_problem(status, text) + "; " + expected);
+  }
+  double factor = 1.0;
+  if (!unit.empty()) {
+    const auto info = find_unit(std::string(unit));
+    if (!info || info->kind != kind) {
+      fail(option, "unknown " + std::string(quantity_name(kind)) + " unit " + quote(unit) + " in " +
+                       quote(text) + "; allowed units: " + unit_list(kind));
+    }
+    factor = info->to_si;
+  }
+  if (!(value > 0.0)) fail(option, what + " " + quote(text) + " must be > 0");
+  const double si = value * factor;
+  if (!std::isfinite(si)) fail(option, what + " " + quote(text) + " is too large");
+  if (!(si > 0.0)) fail(option, what + " " + quote(text) + " is too small to represent");
+  return si;
+}
+
+// "E,nu" -> material; E as a pressure.
+Material parse_material_impl(std::string_view text, const std::string& option) {
+  const std::string expected = "expected E,nu (Young's modulus, Poisson ratio), e.g. 2MPa,0.3";
+  const std::size_t comma = text.find(',');
+  if (trim_blanks(text).empty()) fail(option, "empty value; " + expected);
+  if (comma == std::string_view::npos || text.find(',', comma + 1) != std::string_view::npos) {
+    fail(option, quote(text) + " is not two comma-separated values; " + expected);
+  }
+  Material material;
+  material.youngs_modulus =
+      parse_quantity_impl(text.substr(0, comma), Quantity::kPressure, option, "Young's modulus");
+  const std::string_view nu_text = trim_blanks(text.substr(comma + 1));
+  double nu = 0.0;
+  const NumberStatus status = detail::parse_decimal(nu_text, nu);
+  if (status != NumberStatus::kOk) {
+    fail(option, "Poisson ratio " + number_problem(status, nu_text) + "; " + expected);
+  }
+  if (!(nu > -1.0 && nu <= 0.5)) {
+    fail(option, "Poisson ratio " + std::string(nu_text) + " is outside the allowed range (-1, 0.5]");
+  }
+  material.poisson_ratio = nu;
+  if (!std::isfinite(material.reduced_modulus())) {
+    fail(option, "Young's modulus " + quote(trim_blanks(text.substr(0, comma))) + " is too large");
+  }
+  return material;
+}
+
+bool looks_like_negative_number(const std::string& arg) {
+  if (arg.size() < 2 || arg[0] != '-') return false;
+  if (arg[1] >= '0' && arg[1] <= '9') return true;
+  return arg.size() >= 3 && arg[1] == '.' && arg[2] >= '0' && arg[2] <= '9';
+}
+
+bool looks_like_option(const std::string& arg) {
+  return arg.size() >= 2 && arg[0] == '-' && !looks_like_negative_number(arg);
+}
+
+const OptionSpec* find_option(const std::vector<OptionSpec>& spec, const std::string& name) {
+  for (const auto& option : spec) {
+    if (option.name == name) return &option;
+  }
+  return nullptr;
+}
+
+std::string one_line(const std::string& text) {
+  std::string out = text;
+  std::replace(out.begin(), out.end(), '\n', ' ');
+  std::replace(out.begin(), out.end(), '\r', ' ');
+  return out;
+}
+
+}  // namespace
+
+// ---- value parsers ---------------------------------------------------------------
+
+double parse_number(const std::string& text, const std::string& option) {
+  const std::string_view trimmed = trim_blanks(text);
+  double value = 0.0;
+  const NumberStatus status = detail::parse_decimal(trimmed, value);
+  if (status != NumberStatus::kOk) {
+    fail(option, number_problem(status, trimmed) + "; expected a finite decimal number");
+  }
+  return value;
+}
+
+std::vector<double> parse_list(const std::string& text, const std::string& option) {
+  const std::string_view whole = trim_blanks(text);
+  if (whole.empty()) fail(option, std::string("empty value; ") + kListExpected);
+
+  if (whole.find(':') != std::string_view::npos) {
+    std::vector<std::string_view> parts;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t colon = whole.find(':', start);
+      parts.push_back(trim_blanks(whole.substr(start, colon == std::string_view::npos ? colon : colon - start)));
+      if (colon == std::string_view::npos) break;
+      start = colon + 1;
+    }
+    if (parts.size() != 3) fail(option, quote(whole) + " is not MIN:MAX:N; " + kListExpected);
+    double bounds[2] = {0.0, 0.0};
+    const char* names[2] = {"MIN", "MAX"};
+    for (int i = 0; i < 2; ++i) {
+      const NumberStatus status = detail::parse_decimal(parts[i], bounds[i]);
+      if (status != NumberStatus::kOk) {
+        fail(option, std::string(names[i]) + " " + (parts[i].empty() ? std::string("is empty") : number_problem(status, parts[i])) +
+                         " in " + quote(whole) + "; " + kListExpected);
+      }
+    }
+    const double min = bounds[0];
+    const double max = bounds[1];
+    // N: plain decimal digits, 1..kMaxListPoints (refuse absurd allocations).
+    const std::string_view n_text = parts[2];
+    std::size_t count = 0;
+    bool n_ok = !n_text.empty() && n_text.size() <= 7;
+    for (char c : n_text) {
+      if (c < '0' || c > '9') n_ok = false;
+    }
+    if (n_ok) {
+      for (char c : n_text) count = count * 10 + static_cast<std::size_t>(c - '0');
+      n_ok = count >= 1 && count <= kMaxListPoints;
+    }
+    if (!n_ok) {
+      fail(option, "N " + quote(n_text) + " in " + quote(whole) + " must be an integer from 1 to " +
+                       std::to_string(kMaxListPoints));
+    }
+    if (!(min > 0.0) || !(max > 0.0)) {
+      fail(option, "MIN and MAX of " + quote(whole) + " must be > 0 (the points are log-spaced)");
+    }
+    if (min > max) fail(option, "MIN " + std::string(parts[0]) + " is larger than MAX " + std::string(parts[1]) + " in " + quote(whole));
+    if (count == 1 && min != max) {
+      fail(option, "N = 1 in " + quote(whole) + " needs MIN == MAX (one point)");
+    }
+    std::vector<double> values(count);
+    // Base 10 so that decades land exactly (pow(10, integer) is exact): 0.01:100:5 gives 1, not
+    // 1.0000000000000009.
+    const double log_min = std::log10(min);
+    const double log_max = std::log10(max);
+    for (std::size_t i = 0; i < count; ++i) {
+      const double t = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
+      // Clamp: pow(10, log10(x)) may round outside [min, max] by an ulp.
+      values[i] = std::clamp(std::pow(10.0, log_min + t * (log_max - log_min)), min, max);
+    }
+    values.front() = min;  // the end points exactly as given
+    values.back() = max;
+    return values;
+  }
+
+  std::vector<double> values;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = whole.find(',', start);
+    const std::string_view item =
+        trim_blanks(whole.substr(start, comma == std::string_view::npos ? comma : comma - start));
+    if (item.empty()) fail(option, quote(whole) + " has an empty item; " + kListExpected);
+    double value = 0.0;
+    const NumberStatus status = detail::parse_decimal(item, value);
+    if (status != NumberStatus::kOk) {
+      fail(option, "item " + number_problem(status, item) + " in " + quote(whole) + "; " + kListExpected);
+    }
+    if (values.size() >= kMaxListPoints) {
+      fail(option, "more than " + std::to_string(kMaxListPoints) + " items");
+    }
+    values.push_back(value);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return values;
+}
+
+const char* quantity_name(Quantity kind) {
+  switch (kind) {
+    case Quantity::kPressure: return "pressure";
+    case Quantity::kLength: return "length";
+    case Quantity::kEnergy: return "energy per area";
+    case Quantity::kForce: return "force";
+  }
+  return "quantity";
+}
+
+std::string unit_list(Quantity kind) {
+  switch (kind) {
+    case Quantity::kPressure: return "Pa kPa MPa GPa";
+    case Quantity::kLength: return "m mm um \xc2\xb5m nm";
+    case Quantity::kEnergy: return "J/m2 mJ/m2";
+    case Quantity::kForce: return "N mN uN \xc2\xb5N nN";
+  }
+  return "";
+}
+
+std::optional<UnitInfo> find_unit(const std::string& unit) {
+  for (const auto& row : kUnits) {
+    if (unit == row.spelling) return UnitInfo{row.kind, row.to_si};
+  }
+  return std::nullopt;
+}
+
+double parse_quantity(const std::string& text, Quantity kind, const std::string& option) {
+  return parse_quantity_impl(text, kind, option, quantity_name(kind));
+}
+
+Material parse_material(const std::string& text, const std::string& option) {
+  return parse_material_impl(trim_blanks(text), option);
+}
+
+Substrate parse_substrate(const std::string& text, const std::string& option) {
+  const std::string_view trimmed = trim_blanks(text);
+  Substrate substrate;
+  if (trimmed == "rigid") {
+    substrate.rigid = true;
+    return substrate;
+  }
+  if (trimmed.find(',') == std::string_view::npos && !trimmed.empty()) {
+    fail(option, quote(trimmed) + " is neither E,nu nor 'rigid'");
+  }
+  substrate.material = parse_material_impl(trimmed, option);
+  return substrate;
+}
+
+// ---- arguments -------------------------------------------------------------------
+
+Arguments::Arguments(const std::vector<std::string>& args, const std::vector<OptionSpec>& spec,
+                     std::size_t max_positionals) {
+  // --help anywhere (before "--") wins over every other problem: the user asked for usage.
+  for (const auto& arg : args) {
+    if (arg == "--") break;
+    if (arg == "--help" || arg == "-h") {
+      help_ = true;
+      return;
+    }
+  }
+  bool options_ended = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (options_ended || !looks_like_option(arg)) {
+      if (positionals_.size() >= max_positionals) {
+        throw InputError(max_positionals == 0
+                             ? "unexpected argument " + quote(arg) + " (this command takes only options; see --help)"
+                             : "unexpected argument " + quote(arg) + " (at most " +
+                                   std::to_string(max_positionals) + " arguments; see --help)");
+      }
+      positionals_.push_back(arg);
+      continue;
+    }
+    if (arg == "--") {
+      options_ended = true;
+      continue;
+    }
+    const std::size_t equals = arg.find('=');
+    const std::string name = arg.substr(0, equals);
+    const OptionSpec* option = arg.rfind("--", 0) == 0 ? find_option(spec, name) : nullptr;
+    if (option == nullptr) throw InputError("unknown option " + name + " (see --help)");
+    if (values_.count(name) != 0) throw InputError("option " + name + " is given more than once");
+    if (option->value_name.empty()) {
+      if (equals != std::string::npos) throw InputError("option " + name + " takes no value");
+      values_[name] = "";
+      continue;
+    }
+    std::string value;
+    if (equals != std::string::npos) {
+      value = arg.substr(equals + 1);
+    } else if (i + 1 < args.size() && !looks_like_option(args[i + 1])) {
+      value = args[++i];
+    } else {
+      throw InputError("option " + name + " needs a value (" + option->value_name + ")");
+    }
+    if (trim_blanks(value).empty()) {
+      throw InputError("option " + name + " has an empty value; expected " + option->value_name);
+    }
+    values_[name] = value;
+  }
+  for (const auto& option : spec) {
+    if (option.required && values_.count(option.name) == 0) {
+      throw InputError("missing required option " + option.name +
+                       (option.value_name.empty() ? "" : " " + option.value_name) + " (see --help)");
+    }
+  }
+}
+
+bool Arguments::has(const std::string& name) const { return values_.count(name) != 0; }
+
+std::optional<std::string> Arguments::get(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::string Arguments::require(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) throw InputError("missing required option " + name + " (see --help)");
+  return it->second;
+}
+
+std::string usage(const std::string& command, const std::string& synopsis,
+                  const std::string& description, const std::vector<OptionSpec>& spec) {
+  std::ostringstream out;
+  out << "usage: coatcontact " << command << (synopsis.empty() ? "" : " ") << synopsis << "\n\n"
+      << description << "\n\noptions:\n";
+  std::vector<std::pair<std::string, std::string>> rows;
+  for (const auto& option : spec) {
+    std::string left = option.name + (option.value_name.empty() ? "" : " " + option.value_name);
+    rows.emplace_back(left, option.help + (option.required ? " (required)" : ""));
+  }
+  rows.emplace_back("-h, --help", "show this help and exit");
+  std::size_t width = 0;
+  for (const auto& row : rows) width = std::max(width, row.first.size());
+  for (const auto& row : rows) {
+    out << "  " << row.first << std::string(width - row.first.size() + 2, ' ') << row.second << "\n";
+  }
+  return out.str();
+}
+
+// ---- TSV formatting --------------------------------------------------------------
+
+std::string format_value(double value, const std::string& column) {
+  if (!std::isfinite(value)) {
+    throw NumericalError("column '" + column + "': result is " + detail::number_string(value) +
+                         " (not finite)");
+  }
+  return detail::number_string(value);  // to_chars(general, 17) == "%.17g", any locale
+}
+
+void write_header(std::ostream& out, const std::vector<std::pair<std::string, std::string>>& items,
+                  const std::vector<std::string>& columns) {
+  for (const auto& item : items) out << "# " << one_line(item.first) << ": " << one_line(item.second) << "\n";
+  out << "# columns:";
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i == 0 ? " " : "\t") << one_line(columns[i]);
+  out << "\n";
+}
+
+void write_row(std::ostream& out, const std::vector<double>& values,
+               const std::vector<std::string>& columns) {
+  if (values.size() != columns.size()) {
+    throw std::logic_error("write_row: " + std::to_string(values.size()) + " values for " +
+                           std::to_string(columns.size()) + " columns");
+  }
+  std::string line;  // format all first: a NumericalError leaves no partial row
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i != 0) line += '\t';
+    line += format_value(values[i], columns[i]);
+  }
+  line += '\n';
+  out << line;
+}
+
+int run_guarded(const std::string& command, const std::function<int()>& body) {
+  const std::string prefix = "coatcontact " + command + ": ";
+  try {
+    return body();
+  } catch (const InputError& error) {
+    std::cerr << prefix << "error: " << error.what() << "\n";
+    return kExitUsage;
+  } catch (const NumericalError& error) {
+    std::cerr << prefix << "numerical failure: " << error.what() << "\n";
+    return kExitNumerical;
+  } catch (const std::exception& error) {
+    std::cerr << prefix << "internal error: " << error.what() << "\n";
+    return kExitNumerical;
+  } catch (...) {
+    std::cerr << prefix << "internal error: unknown exception\n";
+    return kExitNumerical;
+  }
+}
+
+}  // namespace cli
+}  // namespace coatcontact

@@ -1,0 +1,24 @@
+// Internal helpers of coatcontact_support shared by the parsers and the data file reader
+// (not a public header).
+#pragma once
+#include <string>
+#include <string_view>
+
+namespace coatcontact::detail {
+
+enum class NumberStatus { kOk, kNotNumber, kNotFinite, kOutOfRange };
+
+// Strict, locale-independent decimal number occupying all of `text` (no blanks, no hex,
+// no nan/inf; an optional leading '+' is accepted). `value` is set only on kOk.
+NumberStatus parse_decimal(std::string_view text, double& value);
+
+// `text` without leading and trailing spaces and tabs.
+std::string_view trim_blanks(std::string_view text);
+
+// `text` in single quotes for a message: non-printable bytes as \xNN, cut after 60 bytes.
+std::string quote(std::string_view text);
+
+// "%.17g" of `value`, locale-independent (for messages).
+std::string number_string(double value);
+
+}  // namespace coatcontact::detail

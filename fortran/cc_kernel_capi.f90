@@ -1,0 +1,223 @@
+! bind(C) shim: the C interface declared in include/coatcontact/cc_kernel.h. Validates every
+! argument (moduli, Poisson ratios, lengths, null pointers, q) and returns status codes;
+! the physics lives in kernels/ and in cc_kernel_tables.
+module cc_kernel_capi
+  use, intrinsic :: iso_c_binding
+  use cc_elastic_constants, only: dp, material_pair, make_material_pair, CC_OK, CC_ERR_ARGUMENT, &
+                                  CC_ERR_ALLOCATION
+  use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
+  use cc_kernel_tables, only: kernel_table, build_kernel_table, evaluate_kernel_table
+  implicit none
+  private
+  ! The Fortran names carry a capi_ prefix, and no module is named like a binding label:
+  ! gfortran 12 silently resolved calls into a module `cc_compliance` to the bind(C) label
+  ! "cc_compliance".
+
+  integer, parameter :: message_length = 96
+  character(kind=c_char, len=message_length), target, save :: messages(0:9) = [ &
+    character(kind=c_char, len=message_length) :: &
+    "success" // c_null_char, &
+    "film Young's modulus must be finite and > 0" // c_null_char, &
+    "film Poisson ratio must be finite and in (-1, 0.5]" // c_null_char, &
+    "substrate Young's modulus must be finite and > 0" // c_null_char, &
+    "substrate Poisson ratio must be finite and in (-1, 0.5]" // c_null_char, &
+    "bad argument (array length, negative or non-finite q or u, null pointer, order)" // c_null_char, &
+    "FFTW could not plan the transform" // c_null_char, &
+    "out of memory" // c_null_char, &
+    "the kernel table could not reach its accuracy target" // c_null_char, &
+    "unknown status code" // c_null_char]
+
+contains
+
+  function capi_status_message(status) result(message) bind(C, name="cc_status_message")
+    integer(c_int), value :: status
+    type(c_ptr) :: message
+    if (status >= 0 .and. status <= 8) then
+      message = c_loc(messages(status))
+    else
+      message = c_loc(messages(9))
+    end if
+  end function capi_status_message
+
+  subroutine pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, status)
+    real(c_double), intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), intent(in) :: substrate_rigid
+    type(material_pair), intent(out) :: pair
+    integer, intent(out) :: status
+    call make_material_pair(real(e1, dp), real(nu1, dp), real(e0, dp), real(nu0, dp), &
+                            substrate_rigid /= 0, pair, status)
+  end subroutine pair_from_c
+
+  integer(c_int) function capi_compliance(e1, nu1, e0, nu0, substrate_rigid, n, q, c) &
+      result(status) bind(C, name="cc_compliance")
+    real(c_double), value :: e1, nu1, e0, nu0
+    integer(c_int), value :: substrate_rigid, n
+    type(c_ptr), value :: q, c
+    type(material_pair) :: pair
+    real(c_double), pointer :: qs(:), cs(:)
+    integer :: s
+    call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) return
+    status = CC_ERR_ARGUMENT
+    if (n < 0) return
+    if (n == 0) then
+      status = CC_OK
+      return
+    end if
+    if (.not. c_associated(q) .or. .not. c_associated(c)) return
+    call c_f_pointer(q, qs, [n])
+    call c_f_pointer(c, cs, [n])
+    call compliance(pair, qs, cs, s)
+    status = int(s, c_int)
+  end function capi_compliance
+
+  integer(c_int) function capi_compliance_minus_one(e1, nu1, e0, nu0, substrate_rigid, n, q, c) &
+      result(status) bind(C, name="cc_compliance_minus_one")
+    real(c_double), value :: e1, nu1, e0, nu0
+    integer(c_int), value :: substrate_rigid, n
+    type(c_ptr), value :: q, c
+    type(material_pair) :: pair
+    real(c_double), pointer :: qs(:), cs(:)
+    integer :: s
+    call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) return
+    status = CC_ERR_ARGUMENT
+    if (n < 0) return
+    if (n == 0) then
+      status = CC_OK
+      return
+    end if
+    if (.not. c_associated(q) .or. .not. c_associated(c)) return
+    call c_f_pointer(q, qs, [n])
+    call c_f_pointer(c, cs, [n])
+    call compliance_minus_one(pair, qs, cs, s)
+    status = int(s, c_int)
+  end function capi_compliance_minus_one
+
+  integer(c_int) function capi_compliance_taylor(e1, nu1, e0, nu0, substrate_rigid, order, &
+      coefficients) result(status) bind(C, name="cc_compliance_taylor")
+    real(c_double), value :: e1, nu1, e0, nu0
+    integer(c_int), value :: substrate_rigid, order
+    type(c_ptr), value :: coefficients
+    type(material_pair) :: pair
+    real(c_double), pointer :: cs(:)
+    integer :: s
+    call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) return
+    status = CC_ERR_ARGUMENT
+    if (order < 0 .or. order > max_taylor_order .or. .not. c_associated(coefficients)) return
+    call c_f_pointer(coefficients, cs, [order + 1])
+    call compliance_taylor(pair, int(order), cs, s)
+    status = int(s, c_int)
+  end function capi_compliance_taylor
+
+  integer(c_int) function capi_kernel_table_create(e1, nu1, e0, nu0, substrate_rigid, table) &
+      result(status) bind(C, name="cc_kernel_table_create")
+    real(c_double), value :: e1, nu1, e0, nu0
+    integer(c_int), value :: substrate_rigid
+    type(c_ptr), value :: table                   ! cc_kernel_table **
+    type(c_ptr), pointer :: handle
+    type(kernel_table), pointer :: t
+    type(material_pair) :: pair
+    integer :: s, ierr
+    status = CC_ERR_ARGUMENT
+    if (.not. c_associated(table)) return
+    call c_f_pointer(table, handle)
+    handle = c_null_ptr
+    call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) return
+    allocate(t, stat=ierr)
+    if (ierr /= 0) then
+      status = CC_ERR_ALLOCATION
+      return
+    end if
+    call build_kernel_table(pair, t, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) then
+      deallocate(t)
+      return
+    end if
+    handle = c_loc(t)
+  end function capi_kernel_table_create
+
+  subroutine capi_kernel_table_destroy(table) bind(C, name="cc_kernel_table_destroy")
+    type(c_ptr), value :: table
+    type(kernel_table), pointer :: t
+    if (.not. c_associated(table)) return
+    call c_f_pointer(table, t)
+    deallocate(t)
+  end subroutine capi_kernel_table_destroy
+
+  integer(c_int) function capi_kernel_table_eval(table, n, u, h, h1) result(status) &
+      bind(C, name="cc_kernel_table_eval")
+    type(c_ptr), value :: table, u, h, h1
+    integer(c_int), value :: n
+    type(kernel_table), pointer :: t
+    real(c_double), pointer :: us(:), hs(:), h1s(:)
+    real(dp), allocatable :: scratch(:)
+    integer :: i
+    status = CC_ERR_ARGUMENT
+    if (.not. c_associated(table) .or. n < 0) return
+    if (n == 0) then
+      status = CC_OK
+      return
+    end if
+    if (.not. c_associated(u) .or. .not. c_associated(h)) return
+    call c_f_pointer(table, t)
+    call c_f_pointer(u, us, [n])
+    call c_f_pointer(h, hs, [n])
+    do i = 1, n
+      if (us(i) /= us(i) .or. abs(us(i)) > huge(1.0_dp)) return   ! NaN or infinite
+    end do
+    if (c_associated(h1)) then
+      call c_f_pointer(h1, h1s, [n])
+      call evaluate_kernel_table(t, us, hs, h1s)
+    else
+      allocate(scratch(n))
+      call evaluate_kernel_table(t, us, hs, scratch)
+    end if
+    status = CC_OK
+  end function capi_kernel_table_eval
+
+  integer(c_int) function capi_kernel_table_info(table, u_max, du, c_zero, half_integral, &
+      abs_accuracy) result(status) bind(C, name="cc_kernel_table_info")
+    type(c_ptr), value :: table, u_max, du, c_zero, half_integral, abs_accuracy
+    type(kernel_table), pointer :: t
+    status = CC_ERR_ARGUMENT
+    if (.not. c_associated(table)) return
+    call c_f_pointer(table, t)
+    call store(u_max, t%u_max)
+    call store(du, t%du)
+    call store(c_zero, t%c_zero)
+    call store(half_integral, t%half_integral)
+    call store(abs_accuracy, t%abs_accuracy)
+    status = CC_OK
+  end function capi_kernel_table_info
+
+  integer(c_int) function capi_kernel_table_scale(table, max_abs_h, decay_rate) result(status) &
+      bind(C, name="cc_kernel_table_scale")
+    type(c_ptr), value :: table, max_abs_h, decay_rate
+    type(kernel_table), pointer :: t
+    status = CC_ERR_ARGUMENT
+    if (.not. c_associated(table)) return
+    call c_f_pointer(table, t)
+    call store(max_abs_h, t%max_abs_h)
+    call store(decay_rate, t%decay_rate)
+    status = CC_OK
+  end function capi_kernel_table_scale
+
+  ! *target = value unless target is NULL.
+  subroutine store(target, value)
+    type(c_ptr), intent(in) :: target
+    real(dp), intent(in) :: value
+    real(c_double), pointer :: p
+    if (.not. c_associated(target)) return
+    call c_f_pointer(target, p)
+    p = value
+  end subroutine store
+
+end module cc_kernel_capi

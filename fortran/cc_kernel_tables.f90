@@ -1,0 +1,427 @@
+! Tables of the kernel H(u) = int_0^inf f(q) cos(qu) dq, f = C - 1 (THEORY.md section 4), and of
+! its antiderivative H1(u) = int_0^u H = int_0^inf f(q) sin(qu)/q dq, for one material pair.
+!
+! Method. The trapezoid rule in q (one FFTW DCT-I for H, one DST-I for H1) is limited by
+! aliasing, and the aliasing comes from the kink of the even extension of f at q = 0 (odd
+! Taylor terms f_1, f_3, ...; they also make H decay only like u^-2). We subtract
+!   s(q) = exp(-b q) (c0 + c1 q + c3 q^3 + c5 q^5),
+! whose value and first, third and fifth derivatives at 0 match those of f, and whose
+! transforms are analytic:
+!   int_0^inf q^n e^{-bq} cos(qu) dq = n! Re (b - iu)^-(n+1)
+!   int_0^inf q^(n-1) e^{-bq} sin(qu) dq = (n-1)! Im (b - iu)^-n,   int_0^inf e^{-bq} sin(qu)/q dq = atan(u/b).
+! The remainder r = f - s has r(0) = r'(0) = r'''(0) = r^(5)(0) = 0, so the even extension of r
+! and the odd extension of r/q are smooth through C^6 and the aliasing error is
+! ~ 7! |r_7| / (P - u)^8 with period P = 2 pi / dq (negligible). H and H1 are tabulated on
+! [0, u_max] with step du and interpolated with 12-point Lagrange stencils (H is analytic in
+! |Im u| < 2 because f ~ q^2 exp(-2q)); beyond u_max the asymptotic series
+!   H  ~ sum_k (-1)^(k+1) (2k+1)! f_(2k+1) / u^(2k+2)
+!   H1 ~ (pi/2) f_0 + sum_k (-1)^k (2k)! f_(2k+1) / u^(2k+1)
+! (integration by parts at q = 0; f_k = f^(k)(0)/k!) is used.
+!
+! Stiff films (E1*/E0* >~ 10) add a difficulty: D(q) has a real zero at q = -q0 with
+! q0 ~ 0.5 E0*/E1* (5e-5 for a ratio 1e4), a pole of f with a small residue R that makes the
+! Taylor radius at 0 tiny (f_k ~ R/q0^(k+1)) although f is smooth on [0, inf). A grid with
+! dq > q0 cannot resolve it, and the 1/u asymptotics only start at u >> 1/q0. So the pole is
+! removed first, with a damping factor and an analytic transform:
+!   p(q) = R exp(-2q) / (q + q0),   int_0^inf p cos(qu) dq = R Re J,
+!   int_0^inf p sin(qu)/q dq = (R/q0) (atan(u/2) - Im J),   J = exp(w q0) E1(w q0), w = 2 - iu,
+! and everything above (Taylor matching by s, asymptotics) applies to f - p, whose Taylor
+! coefficients come from the stable deflation of the series of M and D by (q + q0).
+module cc_kernel_tables
+  use, intrinsic :: iso_c_binding
+  use cc_elastic_constants, only: dp, material_pair, CC_OK, CC_ERR_FFT, CC_ERR_ALLOCATION, &
+                                  CC_ERR_ACCURACY, MODEL_HOMOGENEOUS
+  use cc_compliance_models, only: compliance_minus_one, compliance_taylor, compliance_series, &
+                                  max_taylor_order
+  use cc_power_series, only: series_value, series_slope, series_deflate, series_quotient, &
+                             series_product, exp_series
+  use cc_exponential_integral, only: scaled_e1
+  implicit none
+  private
+  include 'fftw3.f03'
+
+  real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
+
+  ! Grid: N = 2^17 trapezoid panels, period P = 2 pi / dq = 4 u_max, so dq = 6.1e-4,
+  ! q_max = N dq = 80.4 (f ~ q^2 e^{-2q} and s ~ q^5 e^{-bq}, b >= 1, are below 1e-25 there),
+  ! du = pi / (N dq) = P / (2N) = 0.0390625 (exact in binary).
+  integer, parameter :: n_panels = 2**17
+  real(dp), parameter :: u_table = 2560.0_dp
+  real(dp), parameter :: period = 4.0_dp * u_table
+  integer, parameter :: stencil = 12                     ! Lagrange points
+  integer, parameter :: stencil_left = stencil / 2 - 1   ! nodes i-5 .. i+6 around [i, i+1]
+  ! Barycentric weights 1 / prod_{l /= j} (j - l) of the nodes 0 .. stencil-1.
+  real(dp), parameter :: factorial(0:stencil - 1) = [1.0_dp, 1.0_dp, 2.0_dp, 6.0_dp, 24.0_dp, &
+      120.0_dp, 720.0_dp, 5040.0_dp, 40320.0_dp, 362880.0_dp, 3628800.0_dp, 39916800.0_dp]
+  integer :: j_
+  real(dp), parameter :: lagrange_weight(0:stencil - 1) = &
+      [((-1.0_dp)**(stencil - 1 - j_) / (factorial(j_) * factorial(stencil - 1 - j_)), j_ = 0, stencil - 1)]
+  ! Poles closer to 0 than this are removed analytically; the damping rate of p(q).
+  real(dp), parameter :: pole_threshold = 0.05_dp
+  real(dp), parameter :: pole_damping = 2.0_dp
+  ! Order of the internal series used for the pole removal (D and M are entire: the terms
+  ! at order 40 are ~ 4^40/40! relative, negligible).
+  integer, parameter :: long_order = 40
+  ! Target of the issue: |H - H_exact| <= 1e-10 max|H|.
+  real(dp), parameter :: relative_target = 1.0e-10_dp
+
+  type, public :: kernel_table
+    real(dp) :: du = 0.0_dp
+    real(dp) :: u_max = 0.0_dp            ! tabulated range [0, u_max]; asymptotics beyond
+    real(dp) :: c_zero = 1.0_dp
+    real(dp) :: half_integral = 0.0_dp    ! int_0^inf H = (pi/2) f_0
+    real(dp) :: abs_accuracy = 0.0_dp     ! estimated max |H - H_exact| (also bounds H1's)
+    real(dp) :: max_abs_h = 0.0_dp
+    real(dp) :: decay_rate = 0.0_dp       ! b of s(q) (diagnostic)
+    real(dp) :: taylor(0:max_taylor_order) = 0.0_dp   ! of f - p (= f without a pole)
+    real(dp) :: pole_q0 = 1.0_dp          ! pole of f at q = -pole_q0 (removed when residue /= 0)
+    real(dp) :: pole_residue = 0.0_dp
+    integer :: n_nodes = 0
+    real(dp), allocatable :: h(:)         ! H(k du),  k = 0 .. n_nodes-1
+    real(dp), allocatable :: h1(:)        ! H1(k du)
+  end type kernel_table
+
+  public :: build_kernel_table, evaluate_kernel_table
+
+contains
+
+  ! Coefficients c0, c1, c3, c5 of s(q) for decay rate b: match s_k = f_k for k = 0, 1, 3, 5
+  ! (s_k = sum_j c_j (-b)^(k-j)/(k-j)!, a triangular system).
+  pure function subtraction_coefficients(f, b) result(c)
+    real(dp), intent(in) :: f(0:), b
+    real(dp) :: c(0:5)
+    c = 0.0_dp
+    c(0) = f(0)
+    c(1) = f(1) + b * c(0)
+    c(3) = f(3) + b**3 * c(0) / 6.0_dp - b**2 * c(1) / 2.0_dp
+    c(5) = f(5) + b**5 * c(0) / 120.0_dp - b**4 * c(1) / 24.0_dp - b**2 * c(3) / 2.0_dp
+  end function subtraction_coefficients
+
+  ! Taylor coefficient k of s(q).
+  pure real(dp) function subtraction_taylor(c, b, k) result(sk)
+    real(dp), intent(in) :: c(0:5), b
+    integer, intent(in) :: k
+    integer :: j
+    sk = 0.0_dp
+    do j = 0, min(k, 5)
+      if (j == 2 .or. j == 4) cycle
+      sk = sk + c(j) * (-b)**(k - j) / gamma(real(k - j + 1, dp))
+    end do
+  end function subtraction_taylor
+
+  elemental real(dp) function subtraction_value(c0, c1, c3, c5, b, q) result(s)
+    real(dp), intent(in) :: c0, c1, c3, c5, b, q
+    real(dp) :: q2
+    q2 = q * q
+    s = exp(-b * q) * (c0 + q * (c1 + q2 * (c3 + q2 * c5)))
+  end function subtraction_value
+
+  ! Taylor coefficients of s for decay rate b, and the estimated table error it leads to:
+  ! aliasing of the unmatched odd terms k >= 7 plus rounding in r = f - p - s.
+  pure real(dp) function subtraction_error(r_taylor, b, s_max) result(err)
+    real(dp), intent(in) :: r_taylor(0:), b, s_max
+    real(dp) :: c(0:5), distance
+    integer :: k
+    c = subtraction_coefficients(r_taylor, b)
+    distance = period - u_table
+    err = 16.0_dp * epsilon(1.0_dp) * s_max
+    do k = 7, max_taylor_order, 2
+      err = err + 4.0_dp * gamma(real(k + 1, dp)) &
+            * abs(r_taylor(k) - subtraction_taylor(c, b, k)) / distance**(k + 1)
+    end do
+  end function subtraction_error
+
+  ! Decay rate b of s among 1, sqrt(2), 2, ..., 512: the one with the smallest estimated
+  ! error (a small b makes s wide and, for a Taylor radius << 1, huge; a large b enlarges
+  ! the unmatched r_7).
+  subroutine choose_decay_rate(pair, table, r_taylor, b)
+    type(material_pair), intent(in) :: pair
+    type(kernel_table), intent(in) :: table
+    real(dp), intent(in) :: r_taylor(0:)
+    real(dp), intent(out) :: b
+    integer, parameter :: n_probe = 240
+    real(dp) :: q(n_probe), fq(n_probe), c(0:5), s_max, best, trial, err
+    integer :: i, j, status
+
+    do i = 1, n_probe
+      q(i) = 1.0e-5_dp * (6.0e6_dp)**(real(i - 1, dp) / real(n_probe - 1, dp))
+    end do
+    call compliance_minus_one(pair, q, fq, status)
+    fq = fq - pole_value(table, q)
+    best = huge(1.0_dp)
+    b = 1.0_dp
+    do j = 0, 18
+      trial = 2.0_dp**(0.5_dp * real(j, dp))
+      c = subtraction_coefficients(r_taylor, trial)
+      s_max = max(maxval(abs(subtraction_value(c(0), c(1), c(3), c(5), trial, q))), &
+                  maxval(abs(fq)))
+      err = subtraction_error(r_taylor, trial, s_max)
+      if (err < best) then
+        best = err
+        b = trial
+      end if
+    end do
+  end subroutine choose_decay_rate
+
+  elemental real(dp) function pole_value(table, q) result(p)
+    type(kernel_table), intent(in) :: table
+    real(dp), intent(in) :: q
+    p = 0.0_dp
+    if (table%pole_residue /= 0.0_dp) &
+      p = table%pole_residue * exp(-pole_damping * q) / (q + table%pole_q0)
+  end function pole_value
+
+  ! Analytic transforms of p (zero when no pole is removed).
+  elemental subroutine pole_transforms(table, u, h, h1)
+    type(kernel_table), intent(in) :: table
+    real(dp), intent(in) :: u
+    real(dp), intent(out) :: h, h1
+    complex(dp) :: j
+    h = 0.0_dp
+    h1 = 0.0_dp
+    if (table%pole_residue == 0.0_dp) return
+    j = scaled_e1(cmplx(pole_damping, -u, dp) * table%pole_q0)
+    h = table%pole_residue * real(j, dp)
+    h1 = table%pole_residue / table%pole_q0 * (atan(u / pole_damping) - aimag(j))
+  end subroutine pole_transforms
+
+  ! Looks for a real zero -q0 of D with 0 < q0 < pole_threshold (Newton on the series of D
+  ! from -D(0)/D'(0)); if found, stores q0 and the residue R = M(-q0)/D'(-q0) of f and
+  ! returns the Taylor coefficients of f - p; else those of f.
+  subroutine remove_near_pole(pair, table, r_taylor)
+    type(material_pair), intent(in) :: pair
+    type(kernel_table), intent(inout) :: table
+    real(dp), intent(out) :: r_taylor(0:max_taylor_order)
+    real(dp), dimension(0:long_order) :: mser, dser, dred, nred, quotient
+    real(dp) :: q, step, residue
+    integer :: it, status
+    logical :: converged
+
+    call compliance_taylor(pair, max_taylor_order, r_taylor, status)
+    table%pole_residue = 0.0_dp
+    call compliance_series(pair, long_order, mser, dser)
+    if (dser(1) <= 0.0_dp .or. dser(0) <= 0.0_dp) return
+    q = -dser(0) / dser(1)
+    if (q < -pole_threshold) return
+    converged = .false.
+    do it = 1, 60
+      step = series_value(dser, q) / series_slope(dser, q)
+      q = q - step
+      if (abs(step) <= 4.0_dp * epsilon(1.0_dp) * abs(q)) then
+        converged = .true.
+        exit
+      end if
+    end do
+    if (.not. converged .or. q >= 0.0_dp .or. q < -pole_threshold) return
+    table%pole_q0 = -q
+    dred = series_deflate(dser, table%pole_q0)                 ! D / (q + q0)
+    ! residue of f at -q0 is M(-q0)/D'(-q0) = M(-q0)/Dtilde(-q0); p's is R exp(2 q0)
+    residue = series_value(mser, q) / series_value(dred, q) * exp(pole_damping * q)
+    table%pole_residue = residue
+    ! f - p = [M - R exp(-2q) D/(q+q0)] / D = Ntilde / Dtilde with both deflated by (q + q0)
+    nred = series_deflate(mser - residue * series_product(exp_series(-pole_damping, long_order), &
+                                                        dred), table%pole_q0)
+    quotient = series_quotient(nred, dred)
+    r_taylor = quotient(0:max_taylor_order)
+  end subroutine remove_near_pole
+
+  ! Builds the table for a validated pair. Not safe to call concurrently with other FFTW
+  ! planning (FFTW's planner is not thread-safe); evaluation is.
+  subroutine build_kernel_table(pair, table, status)
+    type(material_pair), intent(in) :: pair
+    type(kernel_table), intent(out) :: table
+    integer, intent(out) :: status
+
+    real(c_double), allocatable :: work_in(:), work_out(:)
+    real(dp), allocatable :: q(:), r(:), fq(:)
+    real(dp) :: f(0:max_taylor_order), rt(0:max_taylor_order), c(0:5), b, dq, du
+    real(dp) :: alias_h, alias_h1, rounding_h, rounding_h1, interp_h, interp_h1, tail, strip
+    real(dp) :: cauchy_bound, lebesgue, distance, rk, hs, h1s, hp, h1p, u
+    complex(dp) :: z, zk
+    type(c_ptr) :: plan
+    integer :: n, k, j, ierr
+
+    status = CC_OK
+    n = n_panels
+    dq = 2.0_dp * pi / period
+    du = pi / (real(n, dp) * dq)
+    table%du = du
+    table%u_max = u_table
+    table%n_nodes = nint(u_table / du) + stencil + 1
+    call compliance_taylor(pair, max_taylor_order, f, status)
+    if (status /= CC_OK) return
+    table%c_zero = 1.0_dp + f(0)
+    table%half_integral = 0.5_dp * pi * f(0)
+
+    allocate(table%h(0:table%n_nodes - 1), table%h1(0:table%n_nodes - 1), stat=ierr)
+    if (ierr /= 0) then
+      status = CC_ERR_ALLOCATION
+      return
+    end if
+    table%h = 0.0_dp
+    table%h1 = 0.0_dp
+    if (pair%model == MODEL_HOMOGENEOUS) return      ! f = 0 exactly: H = H1 = 0
+
+    call remove_near_pole(pair, table, rt)
+    table%taylor = rt
+    call choose_decay_rate(pair, table, rt, b)
+    table%decay_rate = b
+    c = subtraction_coefficients(rt, b)
+
+    allocate(q(0:n), r(0:n), fq(0:n), work_in(0:n), work_out(0:n), stat=ierr)
+    if (ierr /= 0) then
+      status = CC_ERR_ALLOCATION
+      return
+    end if
+    q = [(real(j, dp) * dq, j = 0, n)]
+    call compliance_minus_one(pair, q, fq, status)
+    if (status /= CC_OK) return
+    r = fq - pole_value(table, q) - subtraction_value(c(0), c(1), c(3), c(5), b, q)
+    r(0) = 0.0_dp                                     ! exact by construction
+
+    ! H_r(k du) = (dq/2) DCT-I(r)_k  (trapezoid rule, endpoints halved by REDFT00)
+    work_in = r
+    plan = fftw_plan_r2r_1d(int(n + 1, c_int), work_in, work_out, FFTW_REDFT00, FFTW_ESTIMATE)
+    if (.not. c_associated(plan)) then
+      status = CC_ERR_FFT
+      return
+    end if
+    work_in = r
+    call fftw_execute_r2r(plan, work_in, work_out)
+    call fftw_destroy_plan(plan)
+    table%h = 0.5_dp * dq * work_out(0:table%n_nodes - 1)
+
+    ! H1_r(k du) = (dq/2) DST-I(r/q)_(k-1): samples at q_1 .. q_(N-1) (r/q -> 0 at both ends)
+    work_in(0:n - 2) = r(1:n - 1) / q(1:n - 1)
+    plan = fftw_plan_r2r_1d(int(n - 1, c_int), work_in, work_out, FFTW_RODFT00, FFTW_ESTIMATE)
+    if (.not. c_associated(plan)) then
+      status = CC_ERR_FFT
+      return
+    end if
+    work_in(0:n - 2) = r(1:n - 1) / q(1:n - 1)
+    call fftw_execute_r2r(plan, work_in, work_out)
+    call fftw_destroy_plan(plan)
+    table%h1(0) = 0.0_dp
+    table%h1(1:table%n_nodes - 1) = 0.5_dp * dq * work_out(0:table%n_nodes - 2)
+
+    ! Add the analytic transforms of s and p.
+    do k = 0, table%n_nodes - 1
+      u = real(k, dp) * du
+      z = 1.0_dp / cmplx(b, -u, dp)                 ! 1/(b - iu)
+      zk = z
+      hs = c(0) * real(zk, dp)
+      h1s = c(0) * atan(u / b) + c(1) * aimag(zk)
+      zk = zk * z
+      hs = hs + c(1) * real(zk, dp)
+      zk = zk * z
+      h1s = h1s + 2.0_dp * c(3) * aimag(zk)
+      zk = zk * z
+      hs = hs + 6.0_dp * c(3) * real(zk, dp)
+      zk = zk * z
+      h1s = h1s + 24.0_dp * c(5) * aimag(zk)
+      zk = zk * z
+      hs = hs + 120.0_dp * c(5) * real(zk, dp)
+      call pole_transforms(table, u, hp, h1p)
+      table%h(k) = table%h(k) + hs + hp
+      table%h1(k) = table%h1(k) + h1s + h1p
+    end do
+    table%max_abs_h = maxval(abs(table%h))
+
+    ! ---- accuracy estimate --------------------------------------------------------------
+    ! Aliasing: the first unmatched odd Taylor terms r_k of r (k = 7, 9, ...) give
+    ! |H_r(v)| ~ k! |r_k| / v^(k+1) and |H1_r(v)| ~ (k-1)! |r_k| / v^k; the nearest alias of
+    ! u <= u_max is at distance >= P - u_max.
+    distance = period - u_table
+    alias_h = 0.0_dp
+    alias_h1 = 0.0_dp
+    do k = 7, max_taylor_order, 2
+      rk = abs(rt(k) - subtraction_taylor(c, b, k))
+      alias_h = alias_h + 4.0_dp * gamma(real(k + 1, dp)) * rk / distance**(k + 1)
+      alias_h1 = alias_h1 + 4.0_dp * gamma(real(k, dp)) * rk / distance**k
+    end do
+    ! Rounding in the samples (f - p - s) and the transforms.
+    rounding_h = 16.0_dp * epsilon(1.0_dp) * (dq * sum(abs(fq)) + maxval(abs(table%h)))
+    rounding_h1 = 16.0_dp * epsilon(1.0_dp) * (dq * sum(abs(r(1:n - 1) / q(1:n - 1))) &
+                  + maxval(abs(table%h1)))
+    ! Interpolation: |H(u + iy)| <= int |f| cosh(qy) dq =: M for |y| <= strip < 2, hence
+    ! |H^(m)|/m! <= M / strip^m and the error is <= M (du/strip)^m max_t prod |t - k|.
+    strip = 1.5_dp
+    cauchy_bound = dq * sum(abs(fq) * cosh(strip * q))
+    lebesgue = 1.0_dp
+    do k = -stencil_left, stencil - 1 - stencil_left
+      lebesgue = lebesgue * abs(0.5_dp - real(k, dp))
+    end do
+    interp_h = cauchy_bound * lebesgue * (du / strip)**stencil
+    interp_h1 = interp_h * strip / real(stencil, dp)
+    ! Asymptotic series beyond u_max: size of its last term.
+    tail = gamma(real(max_taylor_order + 1, dp)) * abs(rt(max_taylor_order)) &
+           / u_table**(max_taylor_order + 1)
+    table%abs_accuracy = alias_h + rounding_h + interp_h + tail
+    if (table%abs_accuracy > relative_target * table%max_abs_h .or. &
+        alias_h1 + rounding_h1 + interp_h1 + tail > relative_target * maxval(abs(table%h1))) &
+      status = CC_ERR_ACCURACY
+  end subroutine build_kernel_table
+
+  ! Table value at integer node index j (any sign): H even, H1 odd.
+  pure real(dp) function node_value(values, j, odd) result(v)
+    real(dp), intent(in) :: values(0:)
+    integer, intent(in) :: j
+    logical, intent(in) :: odd
+    if (j >= 0) then
+      v = values(j)
+    else if (odd) then
+      v = -values(-j)
+    else
+      v = values(-j)
+    end if
+  end function node_value
+
+  ! H(u) and H1(u) for any real u (thread-safe: reads the table only).
+  elemental subroutine evaluate_kernel_table(table, u, h, h1)
+    type(kernel_table), intent(in) :: table
+    real(dp), intent(in) :: u
+    real(dp), intent(out) :: h, h1
+    real(dp) :: v, t, ell, weight, sum_h, sum_h1, inv, inv2, term, fact
+    integer :: i, k, j
+
+    v = abs(u)
+    if (v <= table%u_max) then
+      t = v / table%du
+      i = int(t)
+      t = t - real(i, dp)
+      if (t == 0.0_dp) then
+        h = table%h(i)
+        h1 = table%h1(i)
+      else
+        ! first barycentric form on the nodes i + k, k = -5..6
+        ell = 1.0_dp
+        sum_h = 0.0_dp
+        sum_h1 = 0.0_dp
+        do k = -stencil_left, stencil - 1 - stencil_left
+          ell = ell * (t - real(k, dp))
+          j = k + stencil_left
+          weight = lagrange_weight(j) / (t - real(k, dp))
+          sum_h = sum_h + weight * node_value(table%h, i + k, .false.)
+          sum_h1 = sum_h1 + weight * node_value(table%h1, i + k, .true.)
+        end do
+        h = ell * sum_h
+        h1 = ell * sum_h1
+      end if
+    else
+      call pole_transforms(table, v, h, h1)
+      inv = 1.0_dp / v
+      inv2 = inv * inv
+      h1 = h1 + 0.5_dp * pi * table%taylor(0)
+      term = inv                                     ! 1/v^(2k+1)
+      fact = 1.0_dp                                  ! (2k)!
+      do k = 0, (max_taylor_order - 1) / 2
+        h1 = h1 + (-1.0_dp)**k * fact * table%taylor(2 * k + 1) * term
+        h = h - (-1.0_dp)**k * fact * real(2 * k + 1, dp) * table%taylor(2 * k + 1) * term * inv
+        term = term * inv2
+        fact = fact * real((2 * k + 1) * (2 * k + 2), dp)
+      end do
+    end if
+    if (u < 0.0_dp) h1 = -h1
+  end subroutine evaluate_kernel_table
+
+end module cc_kernel_tables

@@ -1,0 +1,76 @@
+/*
+ * coatcontact: C interface to the Fortran layered-substrate kernel.
+ *
+ * Physics: THEORY.md section 3 (surface compliance C(q) of a film of thickness t
+ * bonded to a substrate, q = k t) and section 4 (H(u) = int_0^inf [C(q)-1] cos(qu) dq).
+ * Implemented by fortran/cc_kernel_capi.f90 (bind(C) shim over the Fortran modules).
+ *
+ * Conventions: every function returns a status code (CC_OK = 0 on success);
+ * scalars are passed by value, arrays with an explicit length; nothing prints or stops.
+ * A substrate is rigid when substrate_rigid != 0 (then e0 and nu0 are ignored).
+ */
+#ifndef COATCONTACT_CC_KERNEL_H
+#define COATCONTACT_CC_KERNEL_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum cc_status {
+  CC_OK = 0,
+  CC_ERR_FILM_MODULUS = 1,        /* film Young's modulus not finite or <= 0 */
+  CC_ERR_FILM_POISSON = 2,        /* film Poisson ratio outside (-1, 0.5] or not finite */
+  CC_ERR_SUBSTRATE_MODULUS = 3,   /* substrate Young's modulus not finite or <= 0 */
+  CC_ERR_SUBSTRATE_POISSON = 4,   /* substrate Poisson ratio outside (-1, 0.5] */
+  CC_ERR_ARGUMENT = 5,            /* bad array length, negative or non-finite q, null pointer */
+  CC_ERR_FFT = 6,                 /* FFTW could not plan the transform */
+  CC_ERR_ALLOCATION = 7,          /* out of memory */
+  CC_ERR_ACCURACY = 8             /* the table could not reach its accuracy target */
+};
+
+/* Short English description of a status code (static string, never NULL). */
+const char *cc_status_message(int status);
+
+/* C(q) at n points q[i] >= 0 (THEORY.md section 3). */
+int cc_compliance(double e1, double nu1, double e0, double nu0, int substrate_rigid,
+                  int n, const double *q, double *c);
+
+/* C(q) - 1 at n points, computed without cancellation where C is close to 1. */
+int cc_compliance_minus_one(double e1, double nu1, double e0, double nu0, int substrate_rigid,
+                            int n, const double *q, double *c_minus_one);
+
+/* Taylor coefficients f_k = f^(k)(0)/k!, k = 0..order, of f(q) = C(q) - 1 at q = 0
+ * (order <= 15). f_0 = C(0) - 1 = E1* / E0* - 1. */
+int cc_compliance_taylor(double e1, double nu1, double e0, double nu0, int substrate_rigid,
+                         int order, double *coefficients);
+
+/* Opaque table of H(u) and of its antiderivative H1(u) = int_0^u H(v) dv for one material
+ * pair, built once (FFTW real-even/odd transforms with end corrections) and reused for
+ * every contact radius. Read-only after creation: safe to evaluate from several threads. */
+typedef struct cc_kernel_table cc_kernel_table;
+
+/* Not safe to call concurrently from several threads (FFTW's planner is not thread-safe);
+ * coatcontact::KernelTable serializes it. On failure *table is set to NULL. Takes a few ms. */
+int cc_kernel_table_create(double e1, double nu1, double e0, double nu0, int substrate_rigid,
+                           cc_kernel_table **table);
+void cc_kernel_table_destroy(cc_kernel_table *table);
+
+/* H(u[i]) and H1(u[i]) for any real u (H even, H1 odd); h1 may be NULL.
+ * Beyond the tabulated range the asymptotic expansion in 1/u^2 is used. */
+int cc_kernel_table_eval(const cc_kernel_table *table, int n, const double *u,
+                         double *h, double *h1);
+
+/* Facts about a table: the tabulated range [0, u_max], grid step du, C(0), the sum-rule
+ * value int_0^inf H du = (pi/2)(C(0)-1), and the estimated absolute accuracy of H. */
+int cc_kernel_table_info(const cc_kernel_table *table, double *u_max, double *du,
+                         double *c_zero, double *half_integral, double *abs_accuracy);
+
+/* (added) Scale of the table: max |H| over the tabulated range, and the decay rate b of the
+ * subtracted analytic part s(q) = exp(-bq)(c0 + c1 q + c3 q^3 + c5 q^5) (diagnostic).
+ * Null output pointers are skipped (also in cc_kernel_table_info). */
+int cc_kernel_table_scale(const cc_kernel_table *table, double *max_abs_h, double *decay_rate);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
