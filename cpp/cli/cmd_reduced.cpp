@@ -1,0 +1,88 @@
+// `coatcontact reduced`: the six reduced variables Π_s, Δ_s, Π_c, Δ_c, E_eq, Γ(1) of the
+// coated-substrate contact versus a/t (THEORY.md section 5; solver: docs/solver.md).
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/cli_support.hpp"
+#include "coatcontact/reduced.hpp"
+#include "commands.hpp"
+
+namespace coatcontact::cli {
+
+namespace {
+
+const std::vector<OptionSpec> kSpec = {
+    {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", true},
+    {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
+    {"--a-over-t", "LIST", "contact radius over film thickness: v1,v2,... or MIN:MAX:N (log-spaced)", true},
+    {"--tol", "T", "relative tolerance of every value, in [1e-13, 1e-1] (default 1e-8)", false},
+    {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},
+};
+
+const std::vector<std::string> kColumns = {"a_over_t", "Pi_s",   "Delta_s", "Pi_c",
+                                           "Delta_c",  "E_eq",   "Gamma1",  "error_estimate"};
+
+}  // namespace
+
+int run_reduced(const Args& args) {
+  return run_guarded("reduced", [&]() -> int {
+    const Arguments arguments(args, kSpec);
+    if (arguments.help()) {
+      std::cout << usage("reduced", "coatcontact reduced --film E1,nu1 --substrate E0,nu0|rigid "
+                                    "--a-over-t LIST [--tol T] [--output FILE]",
+                         "Reduced variables of the coated-substrate contact (Barthel & Perriot 2007):\n"
+                         "sphere Pi_s = 2 R F_H / (a^3 E1*), Delta_s = R delta_H / a^2; cone\n"
+                         "Pi_c = 4 tan(beta) F_H / (pi a^2 E1*), Delta_c = 2 tan(beta) delta_H / (pi a);\n"
+                         "flat punch E_eq = S / (2 a E1*) and edge value Gamma1 = Gamma(1).\n"
+                         "error_estimate bounds the largest relative error of the six values\n"
+                         "(<= tol; exit 3 if the tolerance cannot be met).",
+                         kSpec);
+      return kExitSuccess;
+    }
+    const Material film = parse_material(arguments.require("--film"), "--film");
+    const Substrate substrate = parse_substrate(arguments.require("--substrate"), "--substrate");
+    const std::vector<double> radii = parse_list(arguments.require("--a-over-t"), "--a-over-t");
+    double tolerance = kDefaultTolerance;
+    if (const auto text = arguments.get("--tol")) {
+      tolerance = parse_number(*text, "--tol");
+      if (!(tolerance >= kMinimumTolerance && tolerance <= kMaximumTolerance)) {
+        throw InputError("--tol: " + *text + " is outside the allowed range [1e-13, 1e-1]");
+      }
+    }
+    for (const double a : radii) {
+      if (!(a > 0.0) || !(a <= kMaximumAOverT)) {
+        throw InputError("--a-over-t: " + format_value(a, "a_over_t") +
+                         " is not allowed; every a/t must be > 0 and <= 1e8");
+      }
+    }
+    const ReducedSolver solver(film, substrate);
+    const std::vector<ReducedVariables> rows = solver.sweep(radii, tolerance);
+
+    Output output(arguments.get("--output").value_or(""));
+    std::ostream& out = output.stream();
+    std::vector<std::pair<std::string, std::string>> header = {
+        {"coatcontact reduced", "reduced variables of the coated-substrate contact (THEORY.md section 5)"},
+        {"film_E1", format_value(film.youngs_modulus, "film_E1")},
+        {"film_nu1", format_value(film.poisson_ratio, "film_nu1")},
+    };
+    if (substrate.rigid) {
+      header.emplace_back("substrate", "rigid");
+    } else {
+      header.emplace_back("substrate_E0", format_value(substrate.material.youngs_modulus, "substrate_E0"));
+      header.emplace_back("substrate_nu0", format_value(substrate.material.poisson_ratio, "substrate_nu0"));
+    }
+    header.emplace_back("E1*/E0*", format_value(modulus_ratio(film, substrate), "E1*/E0*"));
+    header.emplace_back("tolerance", format_value(tolerance, "tolerance"));
+    write_header(out, header, kColumns);
+    for (const ReducedVariables& v : rows) {
+      write_row(out, {v.a_over_t, v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1, v.error_estimate},
+                kColumns);
+    }
+    output.commit();
+    return kExitSuccess;
+  });
+}
+
+}  // namespace coatcontact::cli

@@ -1,0 +1,58 @@
+// Reduced variables of the coated-substrate contact (THEORY.md sections 4-5): for one
+// contact radius over film thickness a/t, solve the integral equation [EqEquilibriumCS]
+// for the flat punch, the sphere and the cone, and return
+//   Pi_s, Delta_s (sphere), Pi_c, Delta_c (cone), E_eq (flat-punch stiffness), Gamma1 (edge value).
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "coatcontact/materials.hpp"
+
+namespace coatcontact {
+
+struct ReducedVariables {
+  double a_over_t = 0.0;
+  double pi_s = 0.0;
+  double delta_s = 0.0;
+  double pi_c = 0.0;
+  double delta_c = 0.0;
+  double e_eq = 0.0;
+  double gamma1 = 0.0;
+  double error_estimate = 0.0;  // estimated max relative error over the six values
+  int unknowns = 0;             // size of the final linear system
+};
+
+// Allowed range of the relative tolerance of solve() and sweep().
+constexpr double kMinimumTolerance = 1e-13;
+constexpr double kMaximumTolerance = 1e-1;
+constexpr double kDefaultTolerance = 1e-8;
+// Largest a/t accepted (the film is then far thinner than the contact; the kernel table's
+// asymptotic range covers it).
+constexpr double kMaximumAOverT = 1e8;
+
+class ReducedSolver {
+ public:
+  // Builds the kernel table for this material pair once (InputError on bad constants).
+  ReducedSolver(const Material& film, const Substrate& substrate);
+  ~ReducedSolver();
+  ReducedSolver(ReducedSolver&&) noexcept;
+  ReducedSolver& operator=(ReducedSolver&&) noexcept;
+
+  // One contact radius. Refines until error_estimate <= tolerance; throws NumericalError
+  // if it cannot (never returns silently wrong numbers). InputError if a_over_t is not in
+  // (0, kMaximumAOverT] or tolerance not in [kMinimumTolerance, kMaximumTolerance].
+  ReducedVariables solve(double a_over_t, double tolerance = 1e-8) const;
+
+  // Many contact radii (may run in parallel); same errors as solve().
+  std::vector<ReducedVariables> sweep(const std::vector<double>& a_over_t,
+                                      double tolerance = 1e-8) const;
+
+  const Material& film() const;
+  const Substrate& substrate() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace coatcontact
