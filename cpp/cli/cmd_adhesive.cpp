@@ -1,0 +1,322 @@
+// Subcommands `adhesive`, `pulloff` and `sphere`: the adhesive sphere on a coated substrate
+// (THEORY.md section 5) in the Maugis normalization and in physical units.
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/adhesive.hpp"
+#include "coatcontact/cli_support.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/reduced.hpp"
+#include "commands.hpp"
+
+namespace coatcontact::cli {
+
+namespace {
+
+using Header = std::vector<std::pair<std::string, std::string>>;
+
+const char* const kNormalization =
+    "P = F/(pi w R), D = delta/(pi^2 w^2 R/E1*^2)^(1/3), a_bar = a/(pi w R^2/E1*)^(1/3), "
+    "eta = t/(pi w R^2/E1*)^(1/3) (THEORY.md section 5)";
+
+std::string num(double v) { return format_value(v, "header"); }
+
+std::string short_num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// The options every subcommand shares.
+std::vector<OptionSpec> material_options() {
+  return {
+      {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", true},
+      {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true},
+      {"--tol", "T",
+       "relative tolerance of the reduced variables from the solver (default " +
+           short_num(kDefaultAdhesiveTolerance) + ", allowed 1e-13..1e-1)",
+       false},
+      {"--output", "FILE", "write to FILE atomically instead of stdout", false},
+  };
+}
+
+double parse_tolerance(const Arguments& args) {
+  const auto text = args.get("--tol");
+  if (!text) return kDefaultAdhesiveTolerance;
+  const double tol = parse_number(*text, "--tol");
+  if (!(tol >= 1e-13 && tol <= 1e-1)) {
+    throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 1e-1)");
+  }
+  return tol;
+}
+
+std::vector<double> parse_positive_list(const std::string& text, const std::string& option) {
+  std::vector<double> values = parse_list(text, option);
+  for (double v : values) {
+    if (!(v > 0.0)) {
+      throw InputError(option + ": value " + num(v) + " in '" + text + "' not allowed (every value must be > 0)");
+    }
+  }
+  return values;
+}
+
+// Header lines describing the material pair and the reduced-variable table.
+void describe_materials(Header& h, const Material& film, const Substrate& substrate) {
+  h.emplace_back("film E1 [Pa]", num(film.youngs_modulus));
+  h.emplace_back("film nu1", num(film.poisson_ratio));
+  h.emplace_back("film E1* [Pa]", num(film.reduced_modulus()));
+  if (substrate.rigid) {
+    h.emplace_back("substrate", "rigid");
+    h.emplace_back("E1*/E0*", "0 (rigid substrate)");
+  } else {
+    h.emplace_back("substrate E0 [Pa]", num(substrate.material.youngs_modulus));
+    h.emplace_back("substrate nu0", num(substrate.material.poisson_ratio));
+    h.emplace_back("substrate E0* [Pa]", num(substrate.material.reduced_modulus()));
+    h.emplace_back("E1*/E0*", num(film.reduced_modulus() / substrate.material.reduced_modulus()));
+  }
+}
+
+void describe_table(Header& h, const AdhesiveModel& model, double tol) {
+  const ReducedTable& t = model.table();
+  h.emplace_back("reduced variables",
+                 "ReducedSolver at tolerance " + num(tol) +
+                     ", interpolated: piecewise Chebyshev series of ln X in ln(a/t), order " +
+                     std::to_string(t.options().order) + " per decade of a/t (halved where needed)");
+  h.emplace_back("solver evaluations", std::to_string(t.source_evaluations()));
+  h.emplace_back("interpolation segments", std::to_string(t.segments()));
+  h.emplace_back("interpolation error estimate (relative)", num(t.interpolation_error_estimate()));
+  h.emplace_back("solver error estimate (relative, max)", num(t.source_error_estimate()));
+}
+
+std::string join(const std::vector<double>& values) {
+  std::string s;
+  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? "," : "") + num(values[i]);
+  return s;
+}
+
+// Default a_bar range of the curves: both JKR limits of the pull-off, a_bar ~ 1 (film) and
+// a_bar ~ (E1*/E0*)^(1/3) (substrate), with the Hertz-like regime above.
+std::pair<double, double> default_a_bar_range(const Material& film, const Substrate& substrate) {
+  const double r = substrate.rigid ? 1.0 : std::cbrt(film.reduced_modulus() / substrate.material.reduced_modulus());
+  return {0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r)};
+}
+
+std::vector<double> log_spaced(double lo, double hi, std::size_t n) {
+  std::vector<double> v(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    v[k] = n == 1 ? lo : lo * std::pow(hi / lo, static_cast<double>(k) / static_cast<double>(n - 1));
+  }
+  if (n > 1) v.back() = hi;
+  return v;
+}
+
+void add_pulloff_warnings(Header& h, const Pulloff& p) {
+  for (const auto& w : p.warnings) h.emplace_back("warning", w);
+}
+
+}  // namespace
+
+// ---- coatcontact adhesive ---------------------------------------------------------
+
+int run_adhesive(const Args& raw) {
+  return run_guarded("adhesive", [&]() {
+    auto spec = material_options();
+    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3): v1,v2,... or MIN:MAX:N", true});
+    spec.insert(spec.begin() + 3, {"--a-bar", "LIST",
+                                   "contact radii a/(pi w R^2/E1*)^(1/3) (default 0.01:10:400 log-spaced, "
+                                   "widened to 0.01 min(1,r):10 max(1,r), r = (E1*/E0*)^(1/3))",
+                                   false});
+    const Arguments args(raw, spec);
+    if (args.help()) {
+      std::cout << usage("adhesive", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
+                         "Normalized adhesive sphere on a coated substrate: load P and penetration D versus\n"
+                         "contact radius a_bar, one block per eta (blocks separated by two blank lines).\n" +
+                             std::string(kNormalization),
+                         spec);
+      return 0;
+    }
+    const Material film = parse_material(args.require("--film"), "--film");
+    const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
+    const std::vector<double> etas = parse_positive_list(args.require("--eta"), "--eta");
+    const double tol = parse_tolerance(args);
+    std::vector<double> a_bar;
+    if (const auto text = args.get("--a-bar")) {
+      a_bar = parse_positive_list(*text, "--a-bar");
+    } else {
+      const auto [lo, hi] = default_a_bar_range(film, substrate);
+      a_bar = log_spaced(lo, hi, 400);
+    }
+    Output out(args.get("--output").value_or(""));
+
+    const ReducedSolver solver(film, substrate);
+    const AdhesiveModel model(solver, tol);
+    std::vector<std::vector<CurvePoint>> curves;
+    for (double eta : etas) curves.push_back(model.curve(eta, a_bar));
+
+    Header h{{"command", "adhesive"}};
+    describe_materials(h, film, substrate);
+    h.emplace_back("normalization", kNormalization);
+    h.emplace_back("eta", join(etas));
+    h.emplace_back("a_bar points", std::to_string(a_bar.size()));
+    describe_table(h, model, tol);
+    h.emplace_back("blocks", "one per eta in the order given, separated by two blank lines (gnuplot index)");
+    const std::vector<std::string> columns = {"eta", "a_bar", "a_over_t", "P", "D"};
+    std::ostream& os = out.stream();
+    write_header(os, h, columns);
+    for (std::size_t b = 0; b < curves.size(); ++b) {
+      if (b > 0) os << "\n\n";
+      for (const auto& p : curves[b]) write_row(os, {p.eta, p.a_bar, p.a_over_t, p.load, p.penetration}, columns);
+    }
+    out.commit();
+    return 0;
+  });
+}
+
+// ---- coatcontact pulloff ----------------------------------------------------------
+
+int run_pulloff(const Args& raw) {
+  return run_guarded("pulloff", [&]() {
+    auto spec = material_options();
+    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3): v1,v2,... or MIN:MAX:N", true});
+    const Arguments args(raw, spec);
+    if (args.help()) {
+      std::cout << usage("pulloff", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
+                         "Normalized pull-off of the adhesive sphere for each eta: under load control\n"
+                         "(minimum of P over a_bar) and under displacement control (minimum of D), with\n"
+                         "a_bar, P and D at each. Located by a root of dP/da_bar (dD/da_bar) after a Brent\n"
+                         "minimisation; a '# warning' header line flags several minima or none in range.\n" +
+                             std::string(kNormalization),
+                         spec);
+      return 0;
+    }
+    const Material film = parse_material(args.require("--film"), "--film");
+    const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
+    const std::vector<double> etas = parse_positive_list(args.require("--eta"), "--eta");
+    const double tol = parse_tolerance(args);
+    Output out(args.get("--output").value_or(""));
+
+    const ReducedSolver solver(film, substrate);
+    const AdhesiveModel model(solver, tol);
+    std::vector<Pulloff> results;
+    for (double eta : etas) results.push_back(model.pulloff(eta));
+
+    Header h{{"command", "pulloff"}};
+    describe_materials(h, film, substrate);
+    h.emplace_back("normalization", kNormalization);
+    h.emplace_back("eta", join(etas));
+    h.emplace_back("minima", "counted on a log grid of " +
+                                 std::to_string(model.pulloff_options().scan_points_per_decade) +
+                                 " points per decade of a_bar; the lowest is reported");
+    for (const auto& r : results) {
+      h.emplace_back("a_bar scan range, eta=" + num(r.eta),
+                     "[" + num(r.a_bar_scan_min) + ", " + num(r.a_bar_scan_max) + "]");
+    }
+    h.emplace_back("location", "Brent minimiser, then root of dP/da_bar (load) or dD/da_bar (displacement) "
+                               "on the interpolated curve to relative " +
+                                   short_num(model.pulloff_options().location_tolerance));
+    describe_table(h, model, tol);
+    for (const auto& r : results) add_pulloff_warnings(h, r);
+    const std::vector<std::string> columns = {"eta",   "P_load",     "a_bar_load", "D_load",
+                                              "P_disp", "a_bar_disp", "D_disp"};
+    std::ostream& os = out.stream();
+    write_header(os, h, columns);
+    for (const auto& r : results) {
+      write_row(os,
+                {r.eta, r.load_control.load, r.load_control.a_bar, r.load_control.penetration,
+                 r.displacement_control.load, r.displacement_control.a_bar, r.displacement_control.penetration},
+                columns);
+    }
+    out.commit();
+    return 0;
+  });
+}
+
+// ---- coatcontact sphere -----------------------------------------------------------
+
+int run_sphere(const Args& raw) {
+  return run_guarded("sphere", [&]() {
+    auto spec = material_options();
+    spec.insert(spec.begin(), {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", true});
+    spec.insert(spec.begin() + 1, {"--thickness", "t", "film thickness (m, or mm um nm)", true});
+    spec.insert(spec.begin() + 4, {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true});
+    spec.insert(spec.begin() + 5, {"--points", "N",
+                                   "number of contact radii, log-spaced over a_bar in [0.01 min(1,r), 10 max(1,r)], "
+                                   "r = (E1*/E0*)^(1/3) (default 400)",
+                                   false});
+    const Arguments args(raw, spec);
+    if (args.help()) {
+      std::cout << usage("sphere",
+                         "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w [options]",
+                         "Adhesive rigid sphere on a coated substrate in physical units: penetration and\n"
+                         "force versus contact radius, with the pull-off forces under load and displacement\n"
+                         "control in the header.",
+                         spec);
+      return 0;
+    }
+    const double radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
+    const double thickness = parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
+    const Material film = parse_material(args.require("--film"), "--film");
+    const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
+    const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
+    const double tol = parse_tolerance(args);
+    std::size_t points = 400;
+    if (const auto text = args.get("--points")) {
+      const double n = parse_number(*text, "--points");
+      if (!(n >= 2 && n <= 1e6 && n == std::floor(n))) {
+        throw InputError("--points: value '" + *text + "' not allowed (need an integer, 2 <= N <= 1000000)");
+      }
+      points = static_cast<std::size_t>(n);
+    }
+    Output out(args.get("--output").value_or(""));
+
+    const ReducedSolver solver(film, substrate);
+    const AdhesiveModel model(solver, tol);
+    const SphereContact sphere(model, radius, thickness, work);
+    const auto [lo, hi] = default_a_bar_range(film, substrate);
+    const std::vector<double> a_bar = log_spaced(lo, hi, points);
+    const std::vector<CurvePoint> curve = model.curve(sphere.eta(), a_bar);
+    const Pulloff& pulloff = sphere.pulloff();
+
+    Header h{{"command", "sphere"}};
+    h.emplace_back("sphere radius R [m]", num(radius));
+    h.emplace_back("film thickness t [m]", num(thickness));
+    h.emplace_back("work of adhesion w [J/m2]", num(work));
+    describe_materials(h, film, substrate);
+    h.emplace_back("length scale (pi w R^2/E1*)^(1/3) [m]", num(sphere.length_scale()));
+    h.emplace_back("penetration scale (pi^2 w^2 R/E1*^2)^(1/3) [m]", num(sphere.penetration_scale()));
+    h.emplace_back("force scale pi w R [N]", num(sphere.force_scale()));
+    h.emplace_back("eta = t/length scale", num(sphere.eta()));
+    h.emplace_back("pull-off force, load control [N]", num(sphere.pulloff_force_load()));
+    h.emplace_back("pull-off contact radius, load control [m]",
+                   num(pulloff.load_control.a_bar * sphere.length_scale()));
+    h.emplace_back("pull-off penetration, load control [m]",
+                   num(pulloff.load_control.penetration * sphere.penetration_scale()));
+    h.emplace_back("pull-off force, displacement control [N]", num(sphere.pulloff_force_disp()));
+    h.emplace_back("pull-off contact radius, displacement control [m]",
+                   num(pulloff.displacement_control.a_bar * sphere.length_scale()));
+    h.emplace_back("pull-off penetration, displacement control [m]",
+                   num(pulloff.displacement_control.penetration * sphere.penetration_scale()));
+    h.emplace_back("normalized pull-off P (load, displacement)",
+                   num(pulloff.load_control.load) + ", " + num(pulloff.displacement_control.load));
+    describe_table(h, model, tol);
+    add_pulloff_warnings(h, pulloff);
+    const std::vector<std::string> columns = {"a_m", "delta_m", "F_N"};
+    std::ostream& os = out.stream();
+    write_header(os, h, columns);
+    for (const auto& p : curve) {
+      write_row(os,
+                {p.a_bar * sphere.length_scale(), p.penetration * sphere.penetration_scale(),
+                 p.load * sphere.force_scale()},
+                columns);
+    }
+    out.commit();
+    return 0;
+  });
+}
+
+}  // namespace coatcontact::cli
