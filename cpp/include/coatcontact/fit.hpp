@@ -1,0 +1,126 @@
+// Least-squares fit of measured adhesive sphere-contact data (contact radius a and force F, or
+// penetration delta and force F) to the exact coated-substrate JKR model (THEORY.md section 5):
+//
+//   delta_fp = -sqrt(2 pi a w / E1*) / Gamma(1)                      [selfconsistenceInhom]
+//   F        = (a^3 E1* / (2R)) Pi_s(a/t) + 2 a E1* E_eq(a/t) delta_fp [EqForceCS]
+//   delta    = (a^2 / R) Delta_s(a/t) + delta_fp                      [EqPenetrationCS]
+//
+// Free parameters: any non-empty subset of {w, t, E1}; the others are fixed. The reduced
+// variables are solved on a lattice of a/t (fixed nodes per decade, so nodes are reused when t
+// moves) and interpolated by a natural cubic spline in log(a/t); the lattice is extended when
+// t or E1 move the range the data need, and re-solved when E1 changes (E1*/E0* changes).
+//
+// Residuals are in force, at the measured a (a,F data), or at the contact radius a* on the
+// model curve where delta(a*) equals the measured delta (delta,F data). a* lies on the stable
+// branch under displacement control: a* >= a_c, where a_c is the first minimum of delta(a)
+// (the displacement-controlled pull-off point). A measured delta below the model's minimum
+// delta(a_c) has no equilibrium on that branch; its residual is taken at a_c.
+// Standard errors are the usual linearized ones: s^2 = RSS/(n-p), covariance s^2 (J^T J)^-1.
+//
+// Errors: InputError for bad problems (n <= number of free parameters, a <= 0 in a,F data,
+// missing start values); NumericalError when the fit does not converge, a parameter runs out
+// of its physical range, the parameters are not identifiable from the data, or the model
+// does not describe the data (R^2 < kMinimumRSquared).
+#pragma once
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "coatcontact/materials.hpp"
+
+namespace coatcontact::fit {
+
+enum class DataKind { kRadiusForce, kPenetrationForce };  // (a, F) or (delta, F)
+enum class Branch { kAll, kLoading, kUnloading };
+
+struct Measurements {
+  DataKind kind = DataKind::kRadiusForce;
+  std::vector<double> abscissa;  // a [m] (> 0) or delta [m] (any sign)
+  std::vector<double> force;     // F [N], compressive positive (any sign)
+  std::vector<int> line_numbers;  // source lines (for messages and output); may be empty
+  std::size_t size() const { return force.size(); }
+};
+
+// Loading = the rows up to and including the (first) maximum of the abscissa, unloading = the
+// rows from that maximum on (so the turning point belongs to both). kAll returns `data`.
+Measurements select_branch(const Measurements& data, Branch branch);
+
+// Parameter indices.
+enum Parameter : int { kWork = 0, kThickness = 1, kFilmModulus = 2 };
+constexpr int kParameterCount = 3;
+const char* parameter_name(int parameter);  // "w", "t", "E1"
+
+struct Problem {
+  double sphere_radius = 0.0;  // R [m]
+  Material film;               // E1 (start value if free, else fixed), nu1
+  Substrate substrate;
+  double thickness = 0.0;  // t [m] (start value if free, else fixed)
+  double work = 0.0;       // w [J/m2] (start value if free, else fixed)
+  std::array<bool, kParameterCount> free{{true, false, false}};
+  double solver_tolerance = 1e-8;  // ReducedSolver tolerance for the lattice
+  int nodes_per_decade = 24;       // lattice density in a/t
+  int max_iterations = 200;
+};
+
+// Below this coefficient of determination the fit is refused as "the model does not describe
+// the data" (e.g. a fit of pure noise): the model must explain at least half of the variance of
+// the measured forces about their mean.
+constexpr double kMinimumRSquared = 0.5;
+// Column-scaled condition number of the Jacobian above which parameters count as not
+// identifiable from the data.
+constexpr double kMaximumCondition = 1e10;
+
+struct Result {
+  std::array<double, kParameterCount> value{};           // fitted or fixed values
+  std::array<double, kParameterCount> standard_error{};  // 0 for fixed parameters
+  std::array<bool, kParameterCount> free{};
+  // Correlation coefficients between parameters (1 on the diagonal, 0 for fixed ones).
+  std::array<std::array<double, kParameterCount>, kParameterCount> correlation{};
+  std::size_t points = 0;
+  int free_count = 0;
+  double residual_norm = 0.0;   // sqrt(RSS) [N]
+  double residual_sigma = 0.0;  // s = sqrt(RSS/(n-p)) [N]
+  double r_squared = 0.0;       // 1 - RSS / sum (F - mean F)^2
+  int iterations = 0;
+  bool converged = false;
+  std::string stop_reason;  // "small step", "small gradient", ...
+  // Per data point (same order as the input):
+  std::vector<double> model_radius;  // a at which the model is evaluated [m]
+  std::vector<double> model_penetration;  // delta of the model at that a [m]
+  std::vector<double> model_force;   // F of the model [N]
+  std::vector<double> residual;      // model - data [N]
+  std::vector<bool> clamped;         // delta data below the model's minimum delta
+  // Interpolation check at the solution: the model force recomputed with the reduced
+  // variables solved directly at each data point's a/t, max |F_exact - F_spline| over points
+  // (first order in the delta mismatch for delta,F data) [N].
+  double interpolation_error = 0.0;
+  double displacement_pulloff_radius = 0.0;  // a_c: first minimum of delta(a) [m]
+  double displacement_pulloff_penetration = 0.0;  // delta(a_c) [m]
+  double displacement_pulloff_force = 0.0;        // F(a_c) [N]
+  int lattice_nodes = 0;  // nodes of the a/t lattice at the end
+  // Loosest solver tolerance used for a node (the requested one, relaxed tenfold up to 1e-6
+  // where the solver cannot reach it, e.g. at large a/t).
+  double solver_tolerance = 0.0;
+  long solver_calls = 0;  // reduced-variable solves (all E1 values)
+  double seconds = 0.0;   // wall time of the fit
+};
+
+Result fit(const Measurements& data, const Problem& problem);
+
+// The model curve for fixed parameters (used by fit() and for plotting/tests).
+struct CurvePoint {
+  double radius = 0.0;       // a [m]
+  double penetration = 0.0;  // delta [m]
+  double force = 0.0;        // F [N]
+};
+
+// The exact model at contact radius a (reduced variables solved directly at a/t).
+CurvePoint exact_point(const Problem& problem, double radius);
+
+// `count` points log-spaced in a over [radius_min, radius_max], from the interpolated
+// lattice (the same model the fit uses).
+std::vector<CurvePoint> model_curve(const Problem& problem, double radius_min, double radius_max,
+                                    int count);
+
+}  // namespace coatcontact::fit

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# CLI tests of `coatcontact fit`: a successful run on the example data, and the failures that
+# must give a clear message and an exit code instead of a number:
+#   bad input (exit 2): malformed data line (file:line), negative contact radius (file:line),
+#     too few points (n <= free parameters), missing fixed value, unknown --free name;
+#   numerical (exit 3): a fit of pure noise (no adhesive-contact signal in the data).
+# Usage: test_fit_cli.sh COATCONTACT MAKE_SYNTHETIC_DATA DATA_DIR
+set -u
+cli=$1
+generator=$2
+data=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+model=(--radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22)
+
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+ok() { echo "ok   $*"; }
+
+# expect NAME CODE PATTERN -- command...: exit code CODE and stderr matching PATTERN (grep -E).
+expect() {
+  local name=$1 code=$2 pattern=$3
+  shift 4
+  "$@" >"$work/out" 2>"$work/err"
+  local got=$?
+  if [[ $got -ne $code ]]; then
+    fail "$name: exit $got, expected $code; stderr: $(cat "$work/err")"
+  elif [[ -n $pattern ]] && ! grep -Eq -- "$pattern" "$work/err"; then
+    fail "$name: stderr does not match /$pattern/: $(cat "$work/err")"
+  else
+    ok "$name (exit $got${pattern:+, message: $(head -c 200 "$work/err")})"
+  fi
+}
+
+# --- success: header with estimates and standard errors, a columns line, finite numbers ---
+expect "fit a,F" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um
+for key in "w_J_per_m2" "w_stderr_J_per_m2" "residual_norm_N" "iterations" "converged: yes" "columns: line"; do
+  grep -q "^# $key" "$work/out" || fail "fit a,F: no '# $key' header line"
+done
+rows=$(grep -vc '^#' "$work/out")
+[[ $rows -eq 80 ]] || fail "fit a,F: $rows data rows, expected 80"
+if grep -v '^#' "$work/out" | grep -Eiq 'nan|inf'; then fail "fit a,F: NaN/inf in the output"; fi
+expect "fit delta,F w,t to --output" 0 "" -- "$cli" fit "$data/example_delta_F.tsv" --columns delta,F \
+  "${model[@]}" --free w,t --start t=45um --output "$work/fit.tsv" --curve "$work/curve.tsv"
+grep -q "^# t_stderr_m" "$work/fit.tsv" || fail "fit delta,F: no t_stderr_m in the output file"
+grep -q "^# columns: a_m	delta_m	F_N" "$work/curve.tsv" || fail "fit delta,F: curve file has no columns line"
+grep -q "standard error" "$work/out" || fail "fit delta,F: no summary on stdout with --output"
+expect "--help" 0 "" -- "$cli" fit --help
+
+# --- bad input: exit 2 ---
+printf '# units: um mN\n100\t1.0\n120\tabc\n140\t2.0\n' >"$work/malformed.tsv"
+expect "malformed line" 2 "malformed.tsv:3:" -- "$cli" fit "$work/malformed.tsv" --columns a,F "${model[@]}" --thickness 50um
+printf '100e-6\t1e-3\n-120e-6\t2e-3\n140e-6\t3e-3\n' >"$work/negative.tsv"
+expect "negative contact radius" 2 "negative.tsv:2:" -- "$cli" fit "$work/negative.tsv" --columns a,F "${model[@]}" --thickness 50um
+printf '100e-6\t1e-3\n0\t2e-3\n140e-6\t3e-3\n' >"$work/zero.tsv"
+expect "zero contact radius" 2 "zero.tsv:2: contact radius must be > 0" -- "$cli" fit "$work/zero.tsv" --columns a,F "${model[@]}" --thickness 50um
+printf '# one point\n200e-6\t1e-3\n' >"$work/one.tsv"
+expect "too few points (1 for w)" 2 "1 data point for 1 free parameter" -- "$cli" fit "$work/one.tsv" --columns a,F "${model[@]}" --thickness 50um
+printf '200e-6\t1e-3\n300e-6\t2e-3\n' >"$work/two.tsv"
+expect "too few points (2 for w,t)" 2 "2 data points for 2 free parameters" -- "$cli" fit "$work/two.tsv" --columns a,F "${model[@]}" --free w,t --start t=50um
+expect "fixed t without --thickness" 2 "--thickness" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}"
+expect "unknown free parameter" 2 "--free: 'nu' is not a parameter" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um --free w,nu
+expect "bad --columns" 2 "--columns" -- "$cli" fit "$data/example_a_F.tsv" --columns x,y "${model[@]}" --thickness 50um
+expect "missing data file" 2 "nothere.tsv" -- "$cli" fit "$work/nothere.tsv" --columns a,F "${model[@]}" --thickness 50um
+expect "unit of the wrong kind" 2 "" -- bash -c "printf '# units: mN um\n1\t100\n2\t200\n' >'$work/units.tsv'; '$cli' fit '$work/units.tsv' --columns a,F ${model[*]} --thickness 50um"
+
+# --- numerical: a fit of pure noise, exit 3 with a message, never a number ---
+"$generator" --kind a,F --signal none --noise 1mN --seed 7 --output "$work/noise_a_F.tsv" || fail "generator (a,F noise)"
+expect "pure noise a,F (w)" 3 "does not describe|not determine|not identifiable|did not converge" -- \
+  "$cli" fit "$work/noise_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um
+[[ -s $work/out ]] && fail "pure noise a,F: something was written to stdout"
+expect "pure noise a,F (w,t)" 3 "does not describe|not determine|not identifiable|did not converge" -- \
+  "$cli" fit "$work/noise_a_F.tsv" --columns a,F "${model[@]}" --free w,t --start t=50um
+"$generator" --kind delta,F --signal none --noise 1mN --seed 8 --output "$work/noise_delta_F.tsv" || fail "generator (delta,F noise)"
+expect "pure noise delta,F (w)" 3 "does not describe|not determine|not identifiable|did not converge" -- \
+  "$cli" fit "$work/noise_delta_F.tsv" --columns delta,F "${model[@]}" --thickness 50um
+[[ -e $work/never.tsv ]] && fail "an output file was left behind"
+
+if [[ $failures -ne 0 ]]; then
+  echo "FAIL ($failures failures)"
+  exit 1
+fi
+echo "PASS"
