@@ -1,0 +1,19 @@
+// Subcommands of the `coatcontact` program. Each takes the arguments after its name and
+// returns the process exit code (0 success, 2 bad usage or input, 3 numerical failure).
+#pragma once
+#include <string>
+#include <vector>
+
+namespace coatcontact::cli {
+
+using Args = std::vector<std::string>;
+
+int run_kernel(const Args& args);    // cmd_kernel.cpp: C(q) and H(u) tables
+int run_fit(const Args& args);       // cmd_fit.cpp: least-squares fit of measured a,F / delta,F data
+int run_adhesive(const Args& args);  // cmd_adhesive.cpp: normalized P(a_bar), D(a_bar) curves
+int run_pulloff(const Args& args);   // cmd_adhesive.cpp: normalized pull-off per eta
+int run_sphere(const Args& args);    // cmd_adhesive.cpp: adhesive sphere in physical units
+int run_reduced(const Args& args);   // cmd_reduced.cpp: reduced variables Pi_s .. Gamma1 versus a/t
+// (further subcommands are declared here as they land)
+
+}  // namespace coatcontact::cli

@@ -1,0 +1,58 @@
+// coatcontact: command-line front end. Dispatches to one subcommand per file (cmd_*.cpp).
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+
+namespace {
+
+struct Command {
+  const char* name;
+  int (*run)(const coatcontact::cli::Args&);
+  const char* summary;
+};
+
+// One line per subcommand, in the order they are listed by --help.
+const Command kCommands[] = {
+    {"kernel", coatcontact::cli::run_kernel, "surface compliance C(q) and kernel H(u) of the coated substrate"},
+    {"reduced", coatcontact::cli::run_reduced, "reduced variables Pi_s, Delta_s, Pi_c, Delta_c, E_eq, Gamma1 versus a/t"},
+    {"fit", coatcontact::cli::run_fit, "fit w (and t, E1) to measured a,F or delta,F data"},
+    {"adhesive", coatcontact::cli::run_adhesive, "normalized adhesive sphere curves P(a_bar), D(a_bar) per eta"},
+    {"pulloff", coatcontact::cli::run_pulloff, "normalized pull-off (load and displacement control) per eta"},
+    {"sphere", coatcontact::cli::run_sphere, "adhesive sphere in physical units: a, delta, F and pull-off forces"},
+};
+
+void print_overview(std::ostream& out) {
+  out << "usage: coatcontact <command> [options]   (coatcontact <command> --help for details)\n\n"
+         "Adhesive (JKR) contact of a rigid sphere, cone or flat punch with an elastic film\n"
+         "bonded to an elastic or rigid substrate (Barthel & Perriot, J. Phys. D 40 (2007) 1059).\n\n"
+         "commands:\n";
+  for (const auto& c : kCommands) {
+    out << "  " << c.name << std::string(12 - std::strlen(c.name), ' ') << c.summary << "\n";
+  }
+  out << "\nexit codes: 0 success, 2 bad usage or input, 3 numerical failure\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    print_overview(std::cerr);
+    return 2;
+  }
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    print_overview(std::cout);
+    return 0;
+  }
+  for (const auto& c : kCommands) {
+    if (args[0] == c.name) {
+      return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
+    }
+  }
+  std::cerr << "coatcontact: error: unknown command '" << args[0]
+            << "' (run 'coatcontact --help' for the list)\n";
+  return 2;
+}
