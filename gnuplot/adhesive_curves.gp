@@ -1,0 +1,27 @@
+# Figures 5 and 7: normalized force P = F/(pi w R) versus normalized contact radius
+# a_bar = a/(pi w R^2/E1*)^(1/3) for several eta = t/(pi w R^2/E1*)^(1/3) (paper section 6.2,
+# [EqSolNormF]), with the JKR curve of a homogeneous film material and the two pull-off points.
+# Inputs: adhesive, pulloff, ratio, fignum, film_word, effect.
+
+W = 1000; H = 720
+load gpdir.'/style.gp'
+load gpdir.'/adhesive_data.gp'
+
+stats adhesive using (column(c_abar)) nooutput
+abar_max = STATS_max
+
+set title sprintf("Fig. %d — adhesive sphere on a %s: %s\n{/*0.85 %s}", fignum, film_word, \
+    materials_label(ratio), effect) font ',14'
+set xlabel 'ā = a / (π w R^2/E_1^*)^{1/3}   (normalized contact radius)'
+set ylabel 'P = F / (π w R)   (normalized force)'
+set xrange [0:abar_max]
+set yrange [(P_low < -1.8 ? 1.15 * P_low : -2.1):3]
+set xzeroaxis ls 32
+set key top left
+
+plot for [i = 1:n_eta] adhesive index (i - 1) using (column(c_abar)):(column(c_P)) \
+         with lines ls eta_ls(i) title eta_title(i), \
+     [a = 0.0001:abar_max] '+' using 1:(jkr_P($1)) with lines ls 31 title 'JKR, homogeneous (E_1^*)', \
+     pulloff using (column(c_al)):(column(c_pl)) with points ls 41 title 'pull-off, load control (min P)', \
+     pulloff using (column(c_ad)):(column(c_pd)) with points ls 42 title 'pull-off, displacement control (min D)'
+unset output

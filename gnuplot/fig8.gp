@@ -1,0 +1,52 @@
+# Figure 8 (beyond the paper): pull-off force versus eta = t/(pi w R^2/E1*)^(1/3) for several
+# film/substrate modulus ratios, under load control (left) and displacement control (right).
+# JKR limits of a homogeneous solid: -3/2 and -5/6 (THEORY.md §6); an elastic substrate
+# recovers them for eta -> 0 (substrate-dominated) and eta -> oo (film-dominated).
+# Inputs: files (one `coatcontact pulloff` output per ratio), ratios (same order).
+
+W = 1400; H = 640
+load gpdir.'/style.gp'
+
+n = words(files)
+f1 = word(files, 1)
+h = columns_of(f1)
+eval need('c_eta', h, 'eta', f1)
+eval need('c_pl', h, 'P_load', f1)
+eval need('c_pd', h, 'P_disp', f1)
+
+P_low = -1.5; P_high = -5.0/6
+eta_min = 1e300; eta_max = 0
+do for [k = 1:n] {
+    stats word(files, k) using (column(c_eta)):(column(c_pl)) nooutput
+    if (STATS_min_y < P_low) { P_low = STATS_min_y }
+    if (STATS_min_x < eta_min) { eta_min = STATS_min_x }
+    if (STATS_max_x > eta_max) { eta_max = STATS_max_x }
+    stats word(files, k) using (column(c_pd)) nooutput
+    if (STATS_max > P_high) { P_high = STATS_max }
+}
+P_span = P_high - P_low
+
+set multiplot layout 1, 2 title sprintf("Fig. 8 — pull-off force versus film thickness,  %s", nu_label) \
+    font ',14' margins 0.07, 0.97, 0.13, 0.86 spacing 0.08, 0
+set logscale x
+set xrange [eta_min:eta_max]
+set format x '10^{%L}'
+set xlabel 'η = t / (π w R^2/E_1^*)^{1/3}   (film thickness / adhesive length)'
+set ylabel 'pull-off force  P = F / (π w R)'
+set yrange [P_low - 0.08 * P_span : P_high + 0.08 * P_span]
+set key top right
+
+set title 'load control (lowest P on the P(ā) curve)'
+set label 1 'JKR  -3/2' at graph 0.98, first -1.5 offset 0, 0.7 right tc ls 31 front
+plot -1.5 ls 31 notitle, \
+     for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pl)) with lines \
+         ls ratio_ls(real(word(ratios, k))) title ratio_text(real(word(ratios, k)))
+unset label 1
+
+set title 'displacement control (lowest D on the P(D) curve)'
+set label 1 'JKR  -5/6' at first 2.0, first -5.0/6 offset 0, 0.7 left tc ls 31 front
+plot -5.0/6 ls 31 notitle, \
+     for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pd)) with lines \
+         ls ratio_ls(real(word(ratios, k))) title ratio_text(real(word(ratios, k)))
+unset multiplot
+unset output

@@ -1,0 +1,142 @@
+# The figure pipeline: data by the coatcontact CLI, plots by the gnuplot scripts next to
+# this file. Included by the top-level Makefile (`make figures`); also usable on its own
+# with an already-built CLI, e.g. (this is what tests/figures does):
+#
+#   make -f gnuplot/figures.mk figures-only CLI=build/bin/coatcontact \
+#        FIGURES_CONF=tests/figures/figures-test.conf DATA_DIR=/tmp/d FIG_DIR=/tmp/f
+#
+# Incremental: every dataset and figure has a parameter stamp $(DATA_DIR)/params/<name>.params
+# holding its exact command line. The stamps are rewritten on every run but only replaced
+# (new mtime) when their content changes, so a changed parameter in $(FIGURES_CONF) rebuilds
+# just the datasets and figures that use it, and a second run rebuilds nothing.
+# Atomic writes: the CLI's --output is atomic; gnuplot writes <file>.tmp, then mv.
+
+GNUPLOT_DIR := $(patsubst %/,%,$(dir $(lastword $(MAKEFILE_LIST))))
+
+BUILD        ?= build
+JOBS         ?= 2
+CLI          ?= $(BUILD)/bin/coatcontact
+GNUPLOT      ?= gnuplot
+FIGURES_CONF ?= data/figures.conf
+DATA_DIR     ?= $(BUILD)/data
+FIG_DIR      ?= $(BUILD)/figures
+PARAMS_DIR   := $(DATA_DIR)/params
+
+include $(FIGURES_CONF)
+
+# ---- datasets: name -> CLI arguments (CMD_<name>) ------------------------------------
+# Substrate E0 = 1, film E1 = ratio (see data/figures.conf).
+materials = --film $(1),$(NU_FILM) --substrate 1,$(NU_SUBSTRATE)
+
+REDUCED_RATIOS  := $(sort $(SOFT_RATIO) $(STIFF_RATIO) $(FIT_RATIOS))
+ADHESIVE_RATIOS := $(sort $(SOFT_RATIO) $(STIFF_RATIO))
+
+$(foreach r,$(REDUCED_RATIOS),$(eval \
+  CMD_reduced_E$(r) := reduced $(call materials,$(r)) --a-over-t $(REDUCED_A_OVER_T)))
+$(foreach r,$(ADHESIVE_RATIOS),$(eval \
+  CMD_adhesive_E$(r) := adhesive $(call materials,$(r)) --eta $(ETA) --a-bar $(A_BAR)))
+$(foreach r,$(PULLOFF_RATIOS),$(eval \
+  CMD_pulloff_E$(r) := pulloff $(call materials,$(r)) --eta $(PULLOFF_ETA)))
+# pull-off points on the curves of figs 5-7: the same eta set as the curves
+$(foreach r,$(ADHESIVE_RATIOS),$(eval \
+  CMD_pulloffeta_E$(r) := pulloff $(call materials,$(r)) --eta $(ETA)))
+CMD_fig2_curve  := reduced $(call materials,$(FIG2_RATIO)) --a-over-t $(FIG2_CURVE_A_OVER_T)
+CMD_fig2_points := reduced $(call materials,$(FIG2_RATIO)) \
+  --a-over-t $(FIG2_A_OVER_T),$(FIG2_A_OVER_T_NEXT)
+
+data = $(DATA_DIR)/$(1).tsv
+PULLOFF_FILES := $(foreach r,$(PULLOFF_RATIOS),$(call data,pulloff_E$(r)))
+
+# ---- figures: name -> gnuplot variables (GP_<name>) and datasets (DATA_<name>) ---------
+# The variables are passed with `gnuplot -e`; strings in single quotes.
+GP_common = gpdir='$(GNUPLOT_DIR)'; nu1=$(NU_FILM); nu0=$(NU_SUBSTRATE)
+
+DATA_fig1 :=
+GP_fig1    = $(GP_common)
+DATA_fig2  = $(call data,fig2_curve) $(call data,fig2_points)
+GP_fig2    = $(GP_common); ratio=$(FIG2_RATIO); eta=$(FIG2_ETA); \
+             curve='$(call data,fig2_curve)'; points='$(call data,fig2_points)'
+DATA_fig3  = $(call data,reduced_E$(SOFT_RATIO))
+GP_fig3    = $(GP_common); ratio=$(SOFT_RATIO); reduced='$(DATA_fig3)'
+DATA_fig4  = $(call data,reduced_E$(STIFF_RATIO))
+GP_fig4    = $(GP_common); ratio=$(STIFF_RATIO); reduced='$(DATA_fig4)'
+DATA_fig5  = $(call data,adhesive_E$(SOFT_RATIO)) $(call data,pulloffeta_E$(SOFT_RATIO))
+GP_fig5    = $(GP_common); ratio=$(SOFT_RATIO); adhesive='$(call data,adhesive_E$(SOFT_RATIO))'; \
+             pulloff='$(call data,pulloffeta_E$(SOFT_RATIO))'
+DATA_fig6  = $(call data,adhesive_E$(SOFT_RATIO)) $(call data,pulloffeta_E$(SOFT_RATIO))
+GP_fig6    = $(GP_common); ratio=$(SOFT_RATIO); adhesive='$(call data,adhesive_E$(SOFT_RATIO))'; \
+             pulloff='$(call data,pulloffeta_E$(SOFT_RATIO))'
+DATA_fig7  = $(call data,adhesive_E$(STIFF_RATIO)) $(call data,pulloffeta_E$(STIFF_RATIO))
+GP_fig7    = $(GP_common); ratio=$(STIFF_RATIO); adhesive='$(call data,adhesive_E$(STIFF_RATIO))'; \
+             pulloff='$(call data,pulloffeta_E$(STIFF_RATIO))'
+DATA_fig8  = $(PULLOFF_FILES)
+GP_fig8    = $(GP_common); ratios='$(PULLOFF_RATIOS)'; files='$(PULLOFF_FILES)'
+DATA_fig9  = $(foreach r,$(FIT_RATIOS),$(call data,reduced_E$(r)))
+GP_fig9    = $(GP_common); ratios='$(FIT_RATIOS)'; files='$(DATA_fig9)'
+
+FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9
+FIGURE_FILES := $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf)
+
+# Helper scripts loaded by the figure scripts.
+SCRIPTS_fig3 := $(GNUPLOT_DIR)/reduced_panels.gp
+SCRIPTS_fig4 := $(GNUPLOT_DIR)/reduced_panels.gp
+SCRIPTS_fig5 := $(GNUPLOT_DIR)/adhesive_data.gp $(GNUPLOT_DIR)/adhesive_curves.gp
+SCRIPTS_fig6 := $(GNUPLOT_DIR)/adhesive_data.gp
+SCRIPTS_fig7 := $(GNUPLOT_DIR)/adhesive_data.gp $(GNUPLOT_DIR)/adhesive_curves.gp
+SCRIPTS_fig9 := $(GNUPLOT_DIR)/eeq_models.gp
+
+$(foreach f,$(FIGURE_NAMES),$(eval \
+  $(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf: $(DATA_$(f)) $(SCRIPTS_$(f))))
+
+# ---- targets -------------------------------------------------------------------------
+.PHONY: figures figures-only figures-data figures-docs FORCE
+
+# `make figures`: build the CLI (top-level Makefile's `build`), then the figures with
+# $(JOBS) parallel jobs unless the caller already passed -j.
+figures: build
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
+
+figures-only: $(FIGURE_FILES)
+	@echo "figures: $(FIG_DIR)/fig{1..9}.png and .pdf   data: $(DATA_DIR)/*.tsv"
+	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
+
+figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
+
+# Maintainers: refresh the PNGs shown by docs/figures.md.
+figures-docs: figures-only
+	cp $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png) docs/figures/
+
+# ---- rules ---------------------------------------------------------------------------
+$(PARAMS_DIR) $(FIG_DIR):
+	@mkdir -p $@
+
+# Parameter stamp: replaced only when the command line it records changes.
+$(PARAMS_DIR)/%.params: $(FIGURES_CONF) FORCE | $(PARAMS_DIR)
+	@printf '%s\n' "$(CMD_$*)$(GP_$*)" > $@.tmp; \
+	 if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv -f $@.tmp $@; fi
+
+$(DATA_DIR)/%.tsv: $(PARAMS_DIR)/%.params $(CLI)
+	@echo "  data  $@"
+	@$(CLI) $(CMD_$*) --output $@
+
+# One gnuplot run per output format; fmt selects the terminal in style.gp.
+$(FIG_DIR)/%.png: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(FIG_DIR)
+	@echo "  plot  $@"
+	@$(GNUPLOT) -e "fmt='png'; outfile='$@.tmp'; $(GP_$*)" $< && mv -f $@.tmp $@ \
+	 || { rm -f $@.tmp; exit 1; }
+
+$(FIG_DIR)/%.pdf: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(FIG_DIR)
+	@echo "  plot  $@"
+	@$(GNUPLOT) -e "fmt='pdf'; outfile='$@.tmp'; $(GP_$*)" $< && mv -f $@.tmp $@ \
+	 || { rm -f $@.tmp; exit 1; }
+
+$(CLI):
+	@echo "figures: $(CLI) not found: build it first (make build, or pass CLI=...)"; exit 1
+
+FORCE:
+
+# Name every stamp explicitly so make treats none of them as an intermediate file.
+DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_points \
+  $(foreach r,$(ADHESIVE_RATIOS),adhesive_E$(r) pulloffeta_E$(r)) \
+  $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r))
+$(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):
