@@ -33,7 +33,7 @@ int run_kernel(const Args& args) {
     const Arguments arguments(args, kSpec);
     if (arguments.help()) {
       std::cout << usage("kernel",
-                         "coatcontact kernel --film E1,nu1 --substrate E0,nu0|rigid [--q LIST] "
+                         "--film E1,nu1 --substrate E0,nu0|rigid [--q LIST] "
                          "[--u LIST] [--output FILE]",
                          "Surface compliance C(q) of a film (thickness t) bonded to a substrate,\n"
                          "u_z(k) = 2 C(kt) p(k) / (E1* k), with q = k t; and the kernel\n"

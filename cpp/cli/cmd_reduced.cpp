@@ -30,7 +30,7 @@ int run_reduced(const Args& args) {
   return run_guarded("reduced", [&]() -> int {
     const Arguments arguments(args, kSpec);
     if (arguments.help()) {
-      std::cout << usage("reduced", "coatcontact reduced --film E1,nu1 --substrate E0,nu0|rigid "
+      std::cout << usage("reduced", "--film E1,nu1 --substrate E0,nu0|rigid "
                                     "--a-over-t LIST [--tol T] [--output FILE]",
                          "Reduced variables of the coated-substrate contact (Barthel & Perriot 2007):\n"
                          "sphere Pi_s = 2 R F_H / (a^3 E1*), Delta_s = R delta_H / a^2; cone\n"
