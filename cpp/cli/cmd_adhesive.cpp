@@ -24,7 +24,7 @@ const char* const kNormalization =
     "P = F/(pi w R), D = delta/(pi^2 w^2 R/E1*^2)^(1/3), a_bar = a/(pi w R^2/E1*)^(1/3), "
     "eta = t/(pi w R^2/E1*)^(1/3) (THEORY.md section 5)";
 
-std::string num(double v) { return format_value(v, "header"); }
+std::string num(double v) { return format_parameter(v, "header value"); }
 
 std::string short_num(double v) {
   std::ostringstream s;
@@ -66,21 +66,6 @@ std::vector<double> parse_positive_list(const std::string& text, const std::stri
 }
 
 // Header lines describing the material pair and the reduced-variable table.
-void describe_materials(Header& h, const Material& film, const Substrate& substrate) {
-  h.emplace_back("film E1 [Pa]", num(film.youngs_modulus));
-  h.emplace_back("film nu1", num(film.poisson_ratio));
-  h.emplace_back("film E1* [Pa]", num(film.reduced_modulus()));
-  if (substrate.rigid) {
-    h.emplace_back("substrate", "rigid");
-    h.emplace_back("E1*/E0*", "0 (rigid substrate)");
-  } else {
-    h.emplace_back("substrate E0 [Pa]", num(substrate.material.youngs_modulus));
-    h.emplace_back("substrate nu0", num(substrate.material.poisson_ratio));
-    h.emplace_back("substrate E0* [Pa]", num(substrate.material.reduced_modulus()));
-    h.emplace_back("E1*/E0*", num(film.reduced_modulus() / substrate.material.reduced_modulus()));
-  }
-}
-
 void describe_table(Header& h, const AdhesiveModel& model, double tol) {
   const ReducedTable& t = model.table();
   h.emplace_back("reduced variables",
@@ -159,7 +144,7 @@ int run_adhesive(const Args& raw) {
     for (double eta : etas) curves.push_back(model.curve(eta, a_bar));
 
     Header h{{"command", "adhesive"}};
-    describe_materials(h, film, substrate);
+    add_material_header(h, film, substrate);
     h.emplace_back("normalization", kNormalization);
     h.emplace_back("eta", join(etas));
     h.emplace_back("a_bar points", std::to_string(a_bar.size()));
@@ -206,7 +191,7 @@ int run_pulloff(const Args& raw) {
     for (double eta : etas) results.push_back(model.pulloff(eta));
 
     Header h{{"command", "pulloff"}};
-    describe_materials(h, film, substrate);
+    add_material_header(h, film, substrate);
     h.emplace_back("normalization", kNormalization);
     h.emplace_back("eta", join(etas));
     h.emplace_back("minima", "counted on a log grid of " +
@@ -286,7 +271,7 @@ int run_sphere(const Args& raw) {
     h.emplace_back("sphere radius R [m]", num(radius));
     h.emplace_back("film thickness t [m]", num(thickness));
     h.emplace_back("work of adhesion w [J/m2]", num(work));
-    describe_materials(h, film, substrate);
+    add_material_header(h, film, substrate);
     h.emplace_back("length scale (pi w R^2/E1*)^(1/3) [m]", num(sphere.length_scale()));
     h.emplace_back("penetration scale (pi^2 w^2 R/E1*^2)^(1/3) [m]", num(sphere.penetration_scale()));
     h.emplace_back("force scale pi w R [N]", num(sphere.force_scale()));

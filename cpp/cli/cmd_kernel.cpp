@@ -24,7 +24,7 @@ const std::vector<OptionSpec> kSpec = {
 // Default q list when neither --q nor --u is given.
 constexpr const char* kDefaultQ = "0.001:100:26";
 
-std::string text_of(double value) { return format_value(value, "parameter"); }
+std::string text_of(double value) { return format_parameter(value, "parameter"); }
 
 }  // namespace
 
@@ -67,19 +67,8 @@ int run_kernel(const Args& args) {
 
     std::vector<std::pair<std::string, std::string>> header = {
         {"coatcontact kernel", "THEORY.md sections 3-4"},
-        {"E1", text_of(film.youngs_modulus)},
-        {"nu1", text_of(film.poisson_ratio)},
     };
-    if (substrate.rigid) {
-      header.push_back({"substrate", "rigid"});
-    } else {
-      header.push_back({"E0", text_of(substrate.material.youngs_modulus)});
-      header.push_back({"nu0", text_of(substrate.material.poisson_ratio)});
-    }
-    const double ratio = substrate.rigid
-                             ? 0.0
-                             : film.reduced_modulus() / substrate.material.reduced_modulus();
-    header.push_back({"E1*/E0*", text_of(ratio)});
+    add_material_header(header, film, substrate);
 
     Output output(arguments.get("--output").value_or(""));
     std::ostream& out = output.stream();

@@ -64,17 +64,9 @@ int run_reduced(const Args& args) {
     std::ostream& out = output.stream();
     std::vector<std::pair<std::string, std::string>> header = {
         {"coatcontact reduced", "reduced variables of the coated-substrate contact (THEORY.md section 5)"},
-        {"film_E1", format_value(film.youngs_modulus, "film_E1")},
-        {"film_nu1", format_value(film.poisson_ratio, "film_nu1")},
     };
-    if (substrate.rigid) {
-      header.emplace_back("substrate", "rigid");
-    } else {
-      header.emplace_back("substrate_E0", format_value(substrate.material.youngs_modulus, "substrate_E0"));
-      header.emplace_back("substrate_nu0", format_value(substrate.material.poisson_ratio, "substrate_nu0"));
-    }
-    header.emplace_back("E1*/E0*", format_value(modulus_ratio(film, substrate), "E1*/E0*"));
-    header.emplace_back("tolerance", format_value(tolerance, "tolerance"));
+    add_material_header(header, film, substrate);
+    header.emplace_back("tolerance", format_parameter(tolerance, "tolerance"));
     write_header(out, header, kColumns);
     for (const ReducedVariables& v : rows) {
       write_row(out, {v.a_over_t, v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1, v.error_estimate},

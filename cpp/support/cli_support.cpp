@@ -475,6 +475,31 @@ std::string usage(const std::string& command, const std::string& synopsis,
 
 // ---- TSV formatting --------------------------------------------------------------
 
+std::string format_parameter(double value, const std::string& name) {
+  if (!std::isfinite(value)) {
+    throw NumericalError("parameter " + name + " is not a finite number");
+  }
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);  // shortest round trip
+  return std::string(buffer, result.ptr);
+}
+
+void add_material_header(std::vector<std::pair<std::string, std::string>>& items,
+                         const Material& film, const Substrate& substrate) {
+  items.emplace_back("film E1 [Pa]", format_parameter(film.youngs_modulus, "film E1"));
+  items.emplace_back("film nu1", format_parameter(film.poisson_ratio, "film nu1"));
+  items.emplace_back("film E1* [Pa]", format_parameter(film.reduced_modulus(), "film E1*"));
+  if (substrate.rigid) {
+    items.emplace_back("substrate", "rigid");
+  } else {
+    const Material& m = substrate.material;
+    items.emplace_back("substrate E0 [Pa]", format_parameter(m.youngs_modulus, "substrate E0"));
+    items.emplace_back("substrate nu0", format_parameter(m.poisson_ratio, "substrate nu0"));
+    items.emplace_back("substrate E0* [Pa]", format_parameter(m.reduced_modulus(), "substrate E0*"));
+  }
+  items.emplace_back("E1*/E0*", format_parameter(modulus_ratio(film, substrate), "E1*/E0*"));
+}
+
 std::string format_value(double value, const std::string& column) {
   if (!std::isfinite(value)) {
     throw NumericalError("column '" + column + "': result is " + detail::number_string(value) +

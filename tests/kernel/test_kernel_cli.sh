@@ -36,7 +36,7 @@ grep -q "missing" "$work/err" || fail "--output message does not name the path: 
 
 # A normal run: header lines, the columns line and tab-separated rows with C(0) = E1*/E0*.
 "$cli" kernel --film 0.1,0.25 --substrate 1,0.25 --q 0,1,100 --output "$work/c.tsv" || fail "normal run exit"
-grep -q "^# E1\*/E0\*: 0.10000000000000001$" "$work/c.tsv" || fail "ratio header missing"
+grep -q "^# E1\*/E0\*: 0.1$" "$work/c.tsv" || fail "ratio header missing"
 grep -q "^# columns: q	C$" "$work/c.tsv" || fail "columns line missing"
 [ "$(grep -vc '^#' "$work/c.tsv")" -eq 3 ] || fail "expected 3 data rows"
 awk -F'\t' '!/^#/ && NF != 2 {bad=1} END {exit bad}' "$work/c.tsv" || fail "rows are not 2 tab-separated columns"

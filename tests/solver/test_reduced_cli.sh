@@ -15,7 +15,7 @@ grep -q -- "--a-over-t" "$tmp/help" || fail "--help lists --a-over-t"
   || fail "homogeneous run exits 0"
 grep -q '^# columns: a_over_t	Pi_s	Delta_s	Pi_c	Delta_c	E_eq	Gamma1	error_estimate$' "$tmp/hom.tsv" \
   || fail "columns line"
-for key in film_E1 film_nu1 substrate_E0 substrate_nu0 tolerance; do
+for key in "film E1 \[Pa\]" "film nu1" "substrate E0 \[Pa\]" "substrate nu0" tolerance; do
   grep -q "^# $key: " "$tmp/hom.tsv" || fail "header names $key"
 done
 awk -F'\t' '!/^#/ { n++;

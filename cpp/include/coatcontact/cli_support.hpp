@@ -123,6 +123,16 @@ class Output {
 // so no NaN/inf is ever printed as a result.
 std::string format_value(double value, const std::string& column);
 
+// Shortest decimal text that reads back to the same double ("0.1", not "0.10000000000000001"):
+// for parameters echoed in header lines. Throws NumericalError (naming `name`) if not finite.
+std::string format_parameter(double value, const std::string& name);
+
+// The header lines describing the film and the substrate, the same in every subcommand:
+// "film E1 [Pa]", "film nu1", "film E1* [Pa]", then "substrate: rigid" or "substrate E0 [Pa]",
+// "substrate nu0", "substrate E0* [Pa]", and "E1*/E0*" (0 for a rigid substrate).
+void add_material_header(std::vector<std::pair<std::string, std::string>>& items,
+                         const Material& film, const Substrate& substrate);
+
 // Writes "# key: value" header lines and the "# columns: a\tb\t..." line.
 void write_header(std::ostream& out, const std::vector<std::pair<std::string, std::string>>& items,
                   const std::vector<std::string>& columns);
