@@ -133,6 +133,15 @@ constexpr UnitRow kUnits[] = {
     {"\xce\xbcN", Quantity::kForce, 1e-6},  {"nN", Quantity::kForce, 1e-9},
 };
 
+}  // namespace
+
+double to_si(double value, double unit_to_si) {
+  // 1e-3, 1e-6, 1e-9 are not exact doubles, but their inverses round to exact integers.
+  return unit_to_si < 1.0 ? value / std::round(1.0 / unit_to_si) : value * unit_to_si;
+}
+
+namespace {
+
 // Number with optional unit -> SI value > 0. `what` names the value ("length",
 // "Young's modulus").
 double parse_quantity_impl(std::string_view raw, Quantity kind, const std::string& option,
@@ -176,7 +185,7 @@ double parse_quantity_impl(std::string_view raw, Quantity kind, const std::strin
     factor = info->to_si;
   }
   if (!(value > 0.0)) fail(option, what + " " + quote(text) + " must be > 0");
-  const double si = value * factor;
+  const double si = to_si(value, factor);
   if (!std::isfinite(si)) fail(option, what + " " + quote(text) + " is too large");
   if (!(si > 0.0)) fail(option, what + " " + quote(text) + " is too small to represent");
   return si;

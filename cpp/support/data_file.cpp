@@ -209,7 +209,7 @@ class Reader {
     if (factors_.empty()) return;
     for (std::size_t c = 0; c < columns_; ++c) {
       for (std::size_t r = 0; r < table_.rows(); ++r) {
-        const double si = table_.columns[c][r] * factors_[c];
+        const double si = cli::to_si(table_.columns[c][r], factors_[c]);
         if (!std::isfinite(si)) {
           fail(table_.line_numbers[r], column_label(c) + ": value " + detail::number_string(table_.columns[c][r]) +
                                            " " + table_.units[c] + " is too large in SI units");

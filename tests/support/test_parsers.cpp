@@ -162,6 +162,11 @@ void test_parse_quantity() {
 
   CHECK(find_unit("um").has_value() && find_unit("um")->kind == Quantity::kLength);
   CHECK(find_unit("mN").has_value() && find_unit("mN")->to_si == 1e-3);
+  // regression_unit_prefix_rounding: "50um" gave 4.9999999999999996e-05 (50 * 1e-6 rounds
+  // twice); dividing by the exact power of ten gives the double nearest to 5e-5.
+  CHECK(parse_quantity("50um", Quantity::kLength, "--thickness") == 5e-5);
+  CHECK(parse_quantity("3nm", Quantity::kLength, "--thickness") == 3e-9);
+  CHECK(parse_quantity("40mJ/m2", Quantity::kEnergy, "--work") == 0.04);
   CHECK(!find_unit("UM").has_value() && !find_unit("").has_value());
 }
 

@@ -47,6 +47,9 @@ struct UnitInfo {
   Quantity kind;
   double to_si;  // SI value of one unit
 };
+// value * to_si, correctly rounded for the decimal prefixes: sub-units divide by the exact
+// power of ten (50 um -> 5e-05, not 4.9999999999999996e-05).
+double to_si(double value, double unit_to_si);
 // The unit spelled exactly `unit` ("um", "MPa", ...), or nullopt if there is none.
 std::optional<UnitInfo> find_unit(const std::string& unit);
 // "pressure", "length", "energy per area", "force".
