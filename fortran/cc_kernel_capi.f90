@@ -6,7 +6,8 @@ module cc_kernel_capi
   use cc_elastic_constants, only: dp, material_pair, make_material_pair, CC_OK, CC_ERR_ARGUMENT, &
                                   CC_ERR_ALLOCATION
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
-  use cc_kernel_tables, only: kernel_table, build_kernel_table, evaluate_kernel_table
+  use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
+                              n_grid_variants
   implicit none
   private
   ! The Fortran names carry a capi_ prefix, and no module is named like a binding label:
@@ -119,6 +120,28 @@ contains
     real(c_double), value :: e1, nu1, e0, nu0
     integer(c_int), value :: substrate_rigid
     type(c_ptr), value :: table                   ! cc_kernel_table **
+    status = create_table(e1, nu1, e0, nu0, substrate_rigid, 0, table)
+  end function capi_kernel_table_create
+
+  integer(c_int) function capi_kernel_table_create_ex(e1, nu1, e0, nu0, substrate_rigid, &
+      grid_variant, table) result(status) bind(C, name="cc_kernel_table_create_ex")
+    real(c_double), value :: e1, nu1, e0, nu0
+    integer(c_int), value :: substrate_rigid, grid_variant
+    type(c_ptr), value :: table                   ! cc_kernel_table **
+    status = create_table(e1, nu1, e0, nu0, substrate_rigid, int(grid_variant), table)
+  end function capi_kernel_table_create_ex
+
+  integer(c_int) function capi_kernel_grid_variants() result(count) &
+      bind(C, name="cc_kernel_grid_variants")
+    count = int(n_grid_variants, c_int)
+  end function capi_kernel_grid_variants
+
+  integer(c_int) function create_table(e1, nu1, e0, nu0, substrate_rigid, variant, table) &
+      result(status)
+    real(c_double), intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), intent(in) :: substrate_rigid
+    integer, intent(in) :: variant
+    type(c_ptr), intent(in) :: table
     type(c_ptr), pointer :: handle
     type(kernel_table), pointer :: t
     type(material_pair) :: pair
@@ -130,19 +153,21 @@ contains
     call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
     status = int(s, c_int)
     if (s /= CC_OK) return
+    status = CC_ERR_ARGUMENT
+    if (variant < 0 .or. variant >= n_grid_variants) return
     allocate(t, stat=ierr)
     if (ierr /= 0) then
       status = CC_ERR_ALLOCATION
       return
     end if
-    call build_kernel_table(pair, t, s)
+    call build_kernel_table_variant(pair, variant, t, s)
     status = int(s, c_int)
     if (s /= CC_OK) then
       deallocate(t)
       return
     end if
     handle = c_loc(t)
-  end function capi_kernel_table_create
+  end function create_table
 
   subroutine capi_kernel_table_destroy(table) bind(C, name="cc_kernel_table_destroy")
     type(c_ptr), value :: table

@@ -12,7 +12,8 @@
 ! The remainder r = f - s has r(0) = r'(0) = r'''(0) = r^(5)(0) = 0, so the even extension of r
 ! and the odd extension of r/q are smooth through C^6 and the aliasing error is
 ! ~ 7! |r_7| / (P - u)^8 with period P = 2 pi / dq (negligible). H and H1 are tabulated on
-! [0, u_max] with step du and interpolated with 12-point Lagrange stencils (H is analytic in
+! [0, u_max] with step du and interpolated with 12-point Lagrange stencils (variant 0; the
+! independent grid variants, see grid_parameters, use others) (H is analytic in
 ! |Im u| < 2 because f ~ q^2 exp(-2q)); beyond u_max the asymptotic series
 !   H  ~ sum_k (-1)^(k+1) (2k+1)! f_(2k+1) / u^(2k+2)
 !   H1 ~ (pi/2) f_0 + sum_k (-1)^k (2k)! f_(2k+1) / u^(2k+1)
@@ -42,20 +43,15 @@ module cc_kernel_tables
 
   real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
 
-  ! Grid: N = 2^17 trapezoid panels, period P = 2 pi / dq = 4 u_max, so dq = 6.1e-4,
-  ! q_max = N dq = 80.4 (f ~ q^2 e^{-2q} and s ~ q^5 e^{-bq}, b >= 1, are below 1e-25 there),
-  ! du = pi / (N dq) = P / (2N) = 0.0390625 (exact in binary).
-  integer, parameter :: n_panels = 2**17
-  real(dp), parameter :: u_table = 2560.0_dp
-  real(dp), parameter :: period = 4.0_dp * u_table
-  integer, parameter :: stencil = 12                     ! Lagrange points
-  integer, parameter :: stencil_left = stencil / 2 - 1   ! nodes i-5 .. i+6 around [i, i+1]
-  ! Barycentric weights 1 / prod_{l /= j} (j - l) of the nodes 0 .. stencil-1.
-  real(dp), parameter :: factorial(0:stencil - 1) = [1.0_dp, 1.0_dp, 2.0_dp, 6.0_dp, 24.0_dp, &
-      120.0_dp, 720.0_dp, 5040.0_dp, 40320.0_dp, 362880.0_dp, 3628800.0_dp, 39916800.0_dp]
-  integer :: j_
-  real(dp), parameter :: lagrange_weight(0:stencil - 1) = &
-      [((-1.0_dp)**(stencil - 1 - j_) / (factorial(j_) * factorial(stencil - 1 - j_)), j_ = 0, stencil - 1)]
+  ! Grid of variant 0 (cc_kernel_table_create): N = 2^17 trapezoid panels, period
+  ! P = 2 pi / dq = 4 u_max, so dq = 6.1e-4, q_max = N dq = 80.4 (f ~ q^2 e^{-2q} and
+  ! s ~ q^5 e^{-bq}, b >= 1, are below 1e-25 there), du = pi / (N dq) = P / (2N) = 0.0390625
+  ! (exact in binary). Variants 1 to 3 (grid_parameters) are independent tables of the
+  ! same H for a-posteriori estimates of the table's effect on its users: other N, period,
+  ! u-step and range, and another Lagrange stencil, so that their interpolation, FFT
+  ! rounding and aliasing errors differ from variant 0's.
+  integer, parameter, public :: n_grid_variants = 4
+  integer, parameter :: max_stencil = 16
   ! Poles closer to 0 than this are removed analytically; the damping rate of p(q).
   real(dp), parameter :: pole_threshold = 0.05_dp
   real(dp), parameter :: pole_damping = 2.0_dp
@@ -77,13 +73,55 @@ module cc_kernel_tables
     real(dp) :: pole_q0 = 1.0_dp          ! pole of f at q = -pole_q0 (removed when residue /= 0)
     real(dp) :: pole_residue = 0.0_dp
     integer :: n_nodes = 0
+    integer :: grid_variant = 0
+    integer :: stencil = 12                ! Lagrange points of the interpolation
+    integer :: stencil_left = 5            ! the stencil of [i, i+1] is i-left .. i-left+stencil-1
+    real(dp) :: lagrange_weight(0:max_stencil - 1) = 0.0_dp   ! 1 / prod_{l /= j} (j - l)
     real(dp), allocatable :: h(:)         ! H(k du),  k = 0 .. n_nodes-1
     real(dp), allocatable :: h1(:)        ! H1(k du)
   end type kernel_table
 
-  public :: build_kernel_table, evaluate_kernel_table
+  public :: build_kernel_table, build_kernel_table_variant, evaluate_kernel_table
 
 contains
+
+  ! Grid of a table variant: N trapezoid panels, tabulated range [0, u_max] (asymptotic
+  ! series beyond), period P = 2 pi / dq (du = P / (2N), q_max = N dq = pi / du), and the
+  ! Lagrange stencil. Every variant keeps q_max >= 70 (f - p - s below 1e-25 there), the
+  ! nearest alias >= 2.3 u_max away and u_max >= 2000 (a/t = 1000 needs u <= 2000). Variants
+  ! 1 to 3 interpolate with 13-14 points: their estimated accuracy is ~10x better than
+  ! variant 0's, so that a difference from them measures variant 0's error.
+  pure subroutine grid_parameters(variant, n, u_max, period, stencil, stencil_left)
+    integer, intent(in) :: variant
+    integer, intent(out) :: n, stencil, stencil_left
+    real(dp), intent(out) :: u_max, period
+    select case (variant)
+    case (1)      ! du = 0.04028, q_max = 78.0; 14 points shifted right (i-5 .. i+8)
+      n = 3 * 2**15
+      u_max = 2400.0_dp
+      period = 3.3_dp * u_max
+      stencil = 14
+      stencil_left = 5
+    case (2)      ! du = 0.03571, q_max = 88.0; 14 points, shifted left (i-7 .. i+6)
+      n = 5 * 2**15
+      u_max = 2600.0_dp
+      period = 4.5_dp * u_max
+      stencil = 14
+      stencil_left = 7
+    case (3)      ! du = 0.02886, q_max = 108.9; 13 points (i-6 .. i+6)
+      n = 9 * 2**14
+      u_max = 2300.0_dp
+      period = 3.7_dp * u_max
+      stencil = 13
+      stencil_left = 6
+    case default  ! 0: du = 0.0390625, q_max = 80.4; 12 points centred (i-5 .. i+6)
+      n = 2**17
+      u_max = 2560.0_dp
+      period = 4.0_dp * u_max
+      stencil = 12
+      stencil_left = 5
+    end select
+  end subroutine grid_parameters
 
   ! Coefficients c0, c1, c3, c5 of s(q) for decay rate b: match s_k = f_k for k = 0, 1, 3, 5
   ! (s_k = sum_j c_j (-b)^(k-j)/(k-j)!, a triangular system).
@@ -118,12 +156,11 @@ contains
 
   ! Taylor coefficients of s for decay rate b, and the estimated table error it leads to:
   ! aliasing of the unmatched odd terms k >= 7 plus rounding in r = f - p - s.
-  pure real(dp) function subtraction_error(r_taylor, b, s_max) result(err)
-    real(dp), intent(in) :: r_taylor(0:), b, s_max
-    real(dp) :: c(0:5), distance
+  pure real(dp) function subtraction_error(r_taylor, b, s_max, distance) result(err)
+    real(dp), intent(in) :: r_taylor(0:), b, s_max, distance   ! distance: P - u_max
+    real(dp) :: c(0:5)
     integer :: k
     c = subtraction_coefficients(r_taylor, b)
-    distance = period - u_table
     err = 16.0_dp * epsilon(1.0_dp) * s_max
     do k = 7, max_taylor_order, 2
       err = err + 4.0_dp * gamma(real(k + 1, dp)) &
@@ -134,10 +171,10 @@ contains
   ! Decay rate b of s among 1, sqrt(2), 2, ..., 512: the one with the smallest estimated
   ! error (a small b makes s wide and, for a Taylor radius << 1, huge; a large b enlarges
   ! the unmatched r_7).
-  subroutine choose_decay_rate(pair, table, r_taylor, b)
+  subroutine choose_decay_rate(pair, table, r_taylor, distance, b)
     type(material_pair), intent(in) :: pair
     type(kernel_table), intent(in) :: table
-    real(dp), intent(in) :: r_taylor(0:)
+    real(dp), intent(in) :: r_taylor(0:), distance
     real(dp), intent(out) :: b
     integer, parameter :: n_probe = 240
     real(dp) :: q(n_probe), fq(n_probe), c(0:5), s_max, best, trial, err
@@ -155,7 +192,7 @@ contains
       c = subtraction_coefficients(r_taylor, trial)
       s_max = max(maxval(abs(subtraction_value(c(0), c(1), c(3), c(5), trial, q))), &
                   maxval(abs(fq)))
-      err = subtraction_error(r_taylor, trial, s_max)
+      err = subtraction_error(r_taylor, trial, s_max, distance)
       if (err < best) then
         best = err
         b = trial
@@ -225,10 +262,19 @@ contains
     r_taylor = quotient(0:max_taylor_order)
   end subroutine remove_near_pole
 
-  ! Builds the table for a validated pair. Not safe to call concurrently with other FFTW
-  ! planning (FFTW's planner is not thread-safe); evaluation is.
+  ! Builds the table (grid variant 0) for a validated pair. Not safe to call concurrently
+  ! with other FFTW planning (FFTW's planner is not thread-safe); evaluation is.
   subroutine build_kernel_table(pair, table, status)
     type(material_pair), intent(in) :: pair
+    type(kernel_table), intent(out) :: table
+    integer, intent(out) :: status
+    call build_kernel_table_variant(pair, 0, table, status)
+  end subroutine build_kernel_table
+
+  ! The same on the grid of `variant` (0 .. n_grid_variants - 1, see grid_parameters).
+  subroutine build_kernel_table_variant(pair, variant, table, status)
+    type(material_pair), intent(in) :: pair
+    integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
 
@@ -239,10 +285,18 @@ contains
     real(dp) :: cauchy_bound, lebesgue, distance, rk, hs, h1s, hp, h1p, u
     complex(dp) :: z, zk
     type(c_ptr) :: plan
-    integer :: n, k, j, ierr
+    real(dp) :: u_table, period, t_probe, product
+    integer :: n, k, j, ierr, stencil, stencil_left, i_probe
 
     status = CC_OK
-    n = n_panels
+    call grid_parameters(variant, n, u_table, period, stencil, stencil_left)
+    table%grid_variant = variant
+    table%stencil = stencil
+    table%stencil_left = stencil_left
+    do j = 0, stencil - 1      ! barycentric weights (-1)^(s-1-j) / (j! (s-1-j)!)
+      table%lagrange_weight(j) = (-1.0_dp)**(stencil - 1 - j) &
+          / (gamma(real(j + 1, dp)) * gamma(real(stencil - j, dp)))
+    end do
     dq = 2.0_dp * pi / period
     du = pi / (real(n, dp) * dq)
     table%du = du
@@ -264,7 +318,7 @@ contains
 
     call remove_near_pole(pair, table, rt)
     table%taylor = rt
-    call choose_decay_rate(pair, table, rt, b)
+    call choose_decay_rate(pair, table, rt, period - u_table, b)
     table%decay_rate = b
     c = subtraction_coefficients(rt, b)
 
@@ -347,9 +401,15 @@ contains
     ! |H^(m)|/m! <= M / strip^m and the error is <= M (du/strip)^m max_t prod |t - k|.
     strip = 1.5_dp
     cauchy_bound = dq * sum(abs(fq) * cosh(strip * q))
-    lebesgue = 1.0_dp
-    do k = -stencil_left, stencil - 1 - stencil_left
-      lebesgue = lebesgue * abs(0.5_dp - real(k, dp))
+    ! max over t in [0, 1] of prod |t - k| (t = 1/2 for a centred stencil)
+    lebesgue = 0.0_dp
+    do i_probe = 0, 64
+      t_probe = real(i_probe, dp) / 64.0_dp
+      product = 1.0_dp
+      do k = -stencil_left, stencil - 1 - stencil_left
+        product = product * abs(t_probe - real(k, dp))
+      end do
+      lebesgue = max(lebesgue, product)
     end do
     interp_h = cauchy_bound * lebesgue * (du / strip)**stencil
     interp_h1 = interp_h * strip / real(stencil, dp)
@@ -360,7 +420,7 @@ contains
     if (table%abs_accuracy > relative_target * table%max_abs_h .or. &
         alias_h1 + rounding_h1 + interp_h1 + tail > relative_target * maxval(abs(table%h1))) &
       status = CC_ERR_ACCURACY
-  end subroutine build_kernel_table
+  end subroutine build_kernel_table_variant
 
   ! Table value at integer node index j (any sign): H even, H1 odd.
   pure real(dp) function node_value(values, j, odd) result(v)
@@ -397,10 +457,10 @@ contains
         ell = 1.0_dp
         sum_h = 0.0_dp
         sum_h1 = 0.0_dp
-        do k = -stencil_left, stencil - 1 - stencil_left
+        do k = -table%stencil_left, table%stencil - 1 - table%stencil_left
           ell = ell * (t - real(k, dp))
-          j = k + stencil_left
-          weight = lagrange_weight(j) / (t - real(k, dp))
+          j = k + table%stencil_left
+          weight = table%lagrange_weight(j) / (t - real(k, dp))
           sum_h = sum_h + weight * node_value(table%h, i + k, .false.)
           sum_h1 = sum_h1 + weight * node_value(table%h1, i + k, .true.)
         end do

@@ -2,8 +2,10 @@
 // table of the material pair, and the refinement loop of reduced_core.
 #include "coatcontact/reduced.hpp"
 
+#include <array>
 #include <cmath>
 #include <exception>
+#include <mutex>
 #include <sstream>
 #include <utility>
 
@@ -17,6 +19,26 @@ struct ReducedSolver::Impl {
   Material film;
   Substrate substrate;
   std::unique_ptr<detail::TableKernel> kernel;
+  // The same H on independent grids (variants 1 and 2), for the a-posteriori kernel-error
+  // estimate (docs/solver.md); built on first need (~20-50 ms each), only when the coherent
+  // bound is too large for the tolerance (rigid substrates, very soft films, large a/t).
+  std::once_flag independent_once;
+  std::array<std::unique_ptr<detail::TableKernel>, detail::kIndependentTables> independent;
+
+  const detail::KernelSource* independent_kernel(int index) {
+    std::call_once(independent_once, [this] {
+      try {
+        for (int k = 0; k < detail::kIndependentTables; ++k) {
+          independent[static_cast<std::size_t>(k)] =
+              std::make_unique<detail::TableKernel>(film, substrate, k + 1);
+        }
+      } catch (const NumericalError&) {
+        // No independent tables: the coherent bound stays the kernel term.
+        for (auto& table : independent) table.reset();
+      }
+    });
+    return independent[static_cast<std::size_t>(index)].get();
+  }
 };
 
 namespace {
@@ -60,15 +82,28 @@ const Substrate& ReducedSolver::substrate() const { return impl_->substrate; }
 
 ReducedVariables ReducedSolver::solve(double a_over_t, double tolerance) const {
   check_arguments(a_over_t, tolerance);
-  const detail::AdaptiveSolve solution = detail::solve_adaptive(*impl_->kernel, a_over_t, tolerance);
+  Impl* impl = impl_.get();
+  const detail::AdaptiveSolve solution = detail::solve_adaptive(
+      *impl->kernel, a_over_t, tolerance, [impl](int index) { return impl->independent_kernel(index); });
   if (!solution.converged) {
     std::ostringstream message;
     message.precision(3);
     message << "reduced variables at a/t = " << number(a_over_t) << ": the error estimate "
             << solution.error_estimate << " exceeds the tolerance " << tolerance
             << " (discretization " << solution.discretization_error << " at "
-            << solution.unknowns << " unknowns, kernel-table accuracy "
-            << solution.kernel_error << ", rounding " << solution.rounding_error << "; ";
+            << solution.unknowns << " unknowns, kernel-table accuracy ";
+    switch (solution.kernel_error_kind) {
+      case detail::KernelErrorKind::kCoherentBound:
+        message << solution.kernel_error << " (bound)";
+        break;
+      case detail::KernelErrorKind::kTwoTable:
+        message << solution.kernel_error << " (two-table estimate)";
+        break;
+      case detail::KernelErrorKind::kNotEvaluated:
+        message << "not evaluated (bound " << solution.kernel_bound << ")";
+        break;
+    }
+    message << ", rounding " << solution.rounding_error << "; ";
     if (solution.kernel_error + solution.rounding_error > tolerance) {
       message << "the last two do not shrink with refinement: use a larger tolerance)";
     } else {

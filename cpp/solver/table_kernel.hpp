@@ -11,7 +11,9 @@ class TableKernel : public KernelSource {
  public:
   // Builds the table of H for this material pair (THEORY.md section 4). InputError for
   // constants the kernel library rejects, NumericalError if the table cannot be built.
-  TableKernel(const Material& film, const Substrate& substrate);
+  // grid_variant: the table's grid (0 = default; 1, 2 = independent grids used to estimate
+  // the effect of the table's errors a posteriori, docs/solver.md).
+  TableKernel(const Material& film, const Substrate& substrate, int grid_variant = 0);
 
   void evaluate(std::size_t n, const double* u, double* h) const override;
   // C - 1 ~ q² e^{-2q}: H is analytic in |Im u| < 2 (THEORY.md section 4).

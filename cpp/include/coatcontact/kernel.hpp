@@ -119,7 +119,17 @@ struct KernelTableInfo {
 // evaluate from several threads. Movable, not copyable.
 class KernelTable {
  public:
-  KernelTable(const Material& film, const Substrate& substrate) {
+  KernelTable(const Material& film, const Substrate& substrate) : KernelTable(film, substrate, 0) {}
+
+  // (added) The table on grid variant `grid_variant` (0 = the default grid; see
+  // cc_kernel_table_create_ex): an independent computation of the same H, for a-posteriori
+  // estimates of the effect of the table's errors. InputError for a variant out of range.
+  KernelTable(const Material& film, const Substrate& substrate, int grid_variant) {
+    if (grid_variant < 0 || grid_variant >= cc_kernel_grid_variants()) {
+      throw InputError("kernel table: grid variant " + std::to_string(grid_variant) +
+                       " is not allowed (must be in [0, " +
+                       std::to_string(cc_kernel_grid_variants() - 1) + "])");
+    }
     cc_kernel_table* raw = nullptr;
     int status = CC_OK;
     {
@@ -127,8 +137,9 @@ class KernelTable {
       static std::mutex planner_mutex;
       std::lock_guard<std::mutex> lock(planner_mutex);
       const auto& s = substrate.material;
-      status = cc_kernel_table_create(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
-                                      s.poisson_ratio, kernel_detail::rigid_flag(substrate), &raw);
+      status = cc_kernel_table_create_ex(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
+                                         s.poisson_ratio, kernel_detail::rigid_flag(substrate),
+                                         grid_variant, &raw);
     }
     kernel_detail::check_status(status, film, substrate, "kernel table");
     table_.reset(raw);

@@ -55,6 +55,17 @@ int cc_kernel_table_create(double e1, double nu1, double e0, double nu0, int sub
                            cc_kernel_table **table);
 void cc_kernel_table_destroy(cc_kernel_table *table);
 
+/* (added) The same table built on an independent grid: grid_variant 0 is
+ * cc_kernel_table_create's grid; 1 .. cc_kernel_grid_variants()-1 use other q-steps, periods,
+ * u-steps, ranges and interpolation stencils, so that their numerical errors (interpolation,
+ * FFT rounding, aliasing) differ from variant 0's. Solving with two variants and comparing
+ * measures the effect of the table's errors on a result (docs/solver.md). Each variant meets
+ * the same accuracy target. CC_ERR_ARGUMENT for a variant out of range. */
+int cc_kernel_table_create_ex(double e1, double nu1, double e0, double nu0, int substrate_rigid,
+                              int grid_variant, cc_kernel_table **table);
+/* (added) Number of grid variants (4). */
+int cc_kernel_grid_variants(void);
+
 /* H(u[i]) and H1(u[i]) for any real u (H even, H1 odd); h1 may be NULL.
  * Beyond the tabulated range the asymptotic expansion in 1/u^2 is used. */
 int cc_kernel_table_eval(const cc_kernel_table *table, int n, const double *u,
