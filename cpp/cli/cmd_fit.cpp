@@ -337,8 +337,7 @@ int run_fit_body(const Args& args) {
     // The table went to a file: a short human-readable summary on stdout.
     std::cout << "coatcontact fit: " << result.points << " points (" << x_name << ",F), "
               << result.free_count << " free parameter" << (result.free_count == 1 ? "" : "s") << ", converged ("
-              << result.stop_reason << ") after " << result.iterations << " iterations in "
-              << short_number(result.seconds) << " s\n";
+              << result.stop_reason << ") after " << result.iterations << " iterations\n";
     for (int which = 0; which < fit::kParameterCount; ++which) {
       std::cout << "  " << fit::parameter_name(which) << (which == fit::kFilmModulus ? " = " : "  = ")
                 << short_number(result.value[which]) << " " << parameter_unit(which);

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Runs every command of a Markdown tutorial and checks the output it shows.
 
-Commands live in ```console blocks as lines `$ coatcontact ...`; the lines after a command (up
-to the next `$ ` line or the end of the block) are its shown output:
+Commands live in ```console blocks as lines `$ coatcontact ...` (a trailing `\\` continues a
+command on the next line); they run in a scratch folder that sees the repository's data/. The
+lines after a command (up to the next `$ ` line or the end of the block) are its shown output:
   - `# columns: ...` lines must equal the program's own `# columns:` line (tabs or spaces);
   - other `#` header lines are not compared (they hold error estimates that may differ in the
     last digits between machines);
@@ -34,6 +35,7 @@ TRUNCATION = "..."
 def parse_blocks(lines):
     """Yields (command_line_index, command, [output line indices]) for each console command."""
     in_block = False
+    continuing = False
     current = None
     for i, line in enumerate(lines):
         stripped = line.rstrip("\n")
@@ -47,10 +49,16 @@ def parse_blocks(lines):
             current = None
             in_block = False
             continue
+        if continuing:
+            # A command continued with a trailing backslash, as in a shell.
+            current = (current[0], current[1][:-1].rstrip() + " " + stripped.strip(), current[2])
+            continuing = stripped.endswith("\\")
+            continue
         if stripped.startswith("$ "):
             if current:
                 yield current
             current = (i, stripped[2:], [])
+            continuing = stripped.endswith("\\")
         elif current is not None:
             current[2].append(i)
         elif stripped.strip():
@@ -155,6 +163,11 @@ def main():
     failures = 0
     replacements = []
     with tempfile.TemporaryDirectory() as workdir:
+        # Commands run in a scratch folder (their --output files land there) that sees the
+        # repository's data/ folder, so the tutorial can use the example data sets.
+        repo_data = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(args.tutorial))), "data")
+        if os.path.isdir(repo_data):
+            os.symlink(repo_data, os.path.join(workdir, "data"))
         for index, command, out_idx in commands:
             shown = [lines[i] for i in out_idx]
             try:
