@@ -1,5 +1,6 @@
-! bind(C) shim: the C interface declared in include/coatcontact/cc_kernel.h. Validates every
-! argument (moduli, Poisson ratios, lengths, null pointers, q) and returns status codes;
+! bind(C) shim: the C interface declared in include/coatcontact/cc_kernel.h. Scalars by value,
+! arrays with explicit sizes, `intent` on every argument; validates every argument (moduli,
+! Poisson ratios, lengths, null handles, q and u) and returns status codes;
 ! the physics lives in kernels/ and in cc_kernel_tables.
 module cc_kernel_capi
   use, intrinsic :: iso_c_binding
@@ -31,7 +32,7 @@ module cc_kernel_capi
 contains
 
   function capi_status_message(status) result(message) bind(C, name="cc_status_message")
-    integer(c_int), value :: status
+    integer(c_int), value, intent(in) :: status
     type(c_ptr) :: message
     if (status >= 0 .and. status <= 8) then
       message = c_loc(messages(status))
@@ -51,83 +52,74 @@ contains
 
   integer(c_int) function capi_compliance(e1, nu1, e0, nu0, substrate_rigid, n, q, c) &
       result(status) bind(C, name="cc_compliance")
-    real(c_double), value :: e1, nu1, e0, nu0
-    integer(c_int), value :: substrate_rigid, n
-    type(c_ptr), value :: q, c
-    type(material_pair) :: pair
-    real(c_double), pointer :: qs(:), cs(:)
-    integer :: s
-    call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
-    status = int(s, c_int)
-    if (s /= CC_OK) return
-    status = CC_ERR_ARGUMENT
-    if (n < 0) return
-    if (n == 0) then
-      status = CC_OK
-      return
-    end if
-    if (.not. c_associated(q) .or. .not. c_associated(c)) return
-    call c_f_pointer(q, qs, [n])
-    call c_f_pointer(c, cs, [n])
-    call compliance(pair, qs, cs, s)
-    status = int(s, c_int)
+    real(c_double), value, intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), value, intent(in) :: substrate_rigid, n
+    real(c_double), intent(in) :: q(n)
+    real(c_double), intent(out) :: c(n)
+    status = compliance_at(e1, nu1, e0, nu0, substrate_rigid, n, q, c, .false.)
   end function capi_compliance
 
   integer(c_int) function capi_compliance_minus_one(e1, nu1, e0, nu0, substrate_rigid, n, q, c) &
       result(status) bind(C, name="cc_compliance_minus_one")
-    real(c_double), value :: e1, nu1, e0, nu0
-    integer(c_int), value :: substrate_rigid, n
-    type(c_ptr), value :: q, c
+    real(c_double), value, intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), value, intent(in) :: substrate_rigid, n
+    real(c_double), intent(in) :: q(n)
+    real(c_double), intent(out) :: c(n)
+    status = compliance_at(e1, nu1, e0, nu0, substrate_rigid, n, q, c, .true.)
+  end function capi_compliance_minus_one
+
+  ! C(q) or C(q) - 1 after validating the material pair and the length.
+  integer(c_int) function compliance_at(e1, nu1, e0, nu0, substrate_rigid, n, q, c, minus_one) &
+      result(status)
+    real(c_double), intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), intent(in) :: substrate_rigid, n
+    real(c_double), intent(in) :: q(n)
+    real(c_double), intent(out) :: c(n)
+    logical, intent(in) :: minus_one
     type(material_pair) :: pair
-    real(c_double), pointer :: qs(:), cs(:)
     integer :: s
     call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
     status = int(s, c_int)
     if (s /= CC_OK) return
     status = CC_ERR_ARGUMENT
     if (n < 0) return
-    if (n == 0) then
-      status = CC_OK
-      return
+    if (minus_one) then
+      call compliance_minus_one(pair, q, c, s)
+    else
+      call compliance(pair, q, c, s)
     end if
-    if (.not. c_associated(q) .or. .not. c_associated(c)) return
-    call c_f_pointer(q, qs, [n])
-    call c_f_pointer(c, cs, [n])
-    call compliance_minus_one(pair, qs, cs, s)
     status = int(s, c_int)
-  end function capi_compliance_minus_one
+  end function compliance_at
 
   integer(c_int) function capi_compliance_taylor(e1, nu1, e0, nu0, substrate_rigid, order, &
       coefficients) result(status) bind(C, name="cc_compliance_taylor")
-    real(c_double), value :: e1, nu1, e0, nu0
-    integer(c_int), value :: substrate_rigid, order
-    type(c_ptr), value :: coefficients
+    real(c_double), value, intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), value, intent(in) :: substrate_rigid, order
+    real(c_double), intent(out) :: coefficients(0:max(order, 0))
     type(material_pair) :: pair
-    real(c_double), pointer :: cs(:)
     integer :: s
     call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
     status = int(s, c_int)
     if (s /= CC_OK) return
     status = CC_ERR_ARGUMENT
-    if (order < 0 .or. order > max_taylor_order .or. .not. c_associated(coefficients)) return
-    call c_f_pointer(coefficients, cs, [order + 1])
-    call compliance_taylor(pair, int(order), cs, s)
+    if (order < 0 .or. order > max_taylor_order) return
+    call compliance_taylor(pair, int(order), coefficients, s)
     status = int(s, c_int)
   end function capi_compliance_taylor
 
   integer(c_int) function capi_kernel_table_create(e1, nu1, e0, nu0, substrate_rigid, table) &
       result(status) bind(C, name="cc_kernel_table_create")
-    real(c_double), value :: e1, nu1, e0, nu0
-    integer(c_int), value :: substrate_rigid
-    type(c_ptr), value :: table                   ! cc_kernel_table **
+    real(c_double), value, intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), value, intent(in) :: substrate_rigid
+    type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
     status = create_table(e1, nu1, e0, nu0, substrate_rigid, 0, table)
   end function capi_kernel_table_create
 
   integer(c_int) function capi_kernel_table_create_ex(e1, nu1, e0, nu0, substrate_rigid, &
       grid_variant, table) result(status) bind(C, name="cc_kernel_table_create_ex")
-    real(c_double), value :: e1, nu1, e0, nu0
-    integer(c_int), value :: substrate_rigid, grid_variant
-    type(c_ptr), value :: table                   ! cc_kernel_table **
+    real(c_double), value, intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), value, intent(in) :: substrate_rigid, grid_variant
+    type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
     status = create_table(e1, nu1, e0, nu0, substrate_rigid, int(grid_variant), table)
   end function capi_kernel_table_create_ex
 
@@ -170,7 +162,7 @@ contains
   end function create_table
 
   subroutine capi_kernel_table_destroy(table) bind(C, name="cc_kernel_table_destroy")
-    type(c_ptr), value :: table
+    type(c_ptr), value, intent(in) :: table
     type(kernel_table), pointer :: t
     if (.not. c_associated(table)) return
     call c_f_pointer(table, t)
@@ -179,38 +171,31 @@ contains
 
   integer(c_int) function capi_kernel_table_eval(table, n, u, h, h1) result(status) &
       bind(C, name="cc_kernel_table_eval")
-    type(c_ptr), value :: table, u, h, h1
-    integer(c_int), value :: n
+    type(c_ptr), value, intent(in) :: table
+    integer(c_int), value, intent(in) :: n
+    real(c_double), intent(in) :: u(n)
+    real(c_double), intent(out) :: h(n)
+    type(c_ptr), value, intent(in) :: h1           ! optional output: NULL or n doubles
     type(kernel_table), pointer :: t
-    real(c_double), pointer :: us(:), hs(:), h1s(:)
+    real(c_double), pointer :: h1s(:)
     real(dp), allocatable :: scratch(:)
-    integer :: i
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table) .or. n < 0) return
-    if (n == 0) then
-      status = CC_OK
-      return
-    end if
-    if (.not. c_associated(u) .or. .not. c_associated(h)) return
+    if (any(u /= u) .or. any(abs(u) > huge(1.0_dp))) return   ! NaN or infinite
     call c_f_pointer(table, t)
-    call c_f_pointer(u, us, [n])
-    call c_f_pointer(h, hs, [n])
-    do i = 1, n
-      if (us(i) /= us(i) .or. abs(us(i)) > huge(1.0_dp)) return   ! NaN or infinite
-    end do
     if (c_associated(h1)) then
       call c_f_pointer(h1, h1s, [n])
-      call evaluate_kernel_table(t, us, hs, h1s)
+      call evaluate_kernel_table(t, u, h, h1s)
     else
       allocate(scratch(n))
-      call evaluate_kernel_table(t, us, hs, scratch)
+      call evaluate_kernel_table(t, u, h, scratch)
     end if
     status = CC_OK
   end function capi_kernel_table_eval
 
   integer(c_int) function capi_kernel_table_info(table, u_max, du, c_zero, half_integral, &
       abs_accuracy) result(status) bind(C, name="cc_kernel_table_info")
-    type(c_ptr), value :: table, u_max, du, c_zero, half_integral, abs_accuracy
+    type(c_ptr), value, intent(in) :: table, u_max, du, c_zero, half_integral, abs_accuracy
     type(kernel_table), pointer :: t
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table)) return
@@ -225,7 +210,7 @@ contains
 
   integer(c_int) function capi_kernel_table_scale(table, max_abs_h, decay_rate) result(status) &
       bind(C, name="cc_kernel_table_scale")
-    type(c_ptr), value :: table, max_abs_h, decay_rate
+    type(c_ptr), value, intent(in) :: table, max_abs_h, decay_rate
     type(kernel_table), pointer :: t
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table)) return

@@ -102,7 +102,7 @@ figures-only: $(FIGURE_FILES)
 
 figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
 
-# Maintainers: refresh the PNGs shown by docs/figures.md.
+# Maintainers: refresh the PNGs shown by README.md (docs/figures/).
 figures-docs: figures-only
 	cp $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png) docs/figures/
 

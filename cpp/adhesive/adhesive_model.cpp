@@ -23,7 +23,7 @@
 
 #include "coatcontact/adhesive.hpp"
 #include "coatcontact/errors.hpp"
-#include "gsl_guard.hpp"
+#include "coatcontact/detail/gsl_handler_off.hpp"
 
 namespace coatcontact {
 

@@ -1,5 +1,6 @@
 // Nonlinear least-squares fit of adhesive sphere-contact data to the coated-substrate JKR model
 // (THEORY.md section 5). See fit.hpp for the model, the branch choice and the error policy.
+#include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/fit.hpp"
 
 #include <gsl/gsl_blas.h>
@@ -26,17 +27,7 @@
 namespace coatcontact::fit {
 namespace {
 
-// GSL reports errors by return codes here; its default handler would abort the process.
-class GslHandlerOff {
- public:
-  GslHandlerOff() : previous_(gsl_set_error_handler_off()) {}
-  ~GslHandlerOff() { gsl_set_error_handler(previous_); }
-  GslHandlerOff(const GslHandlerOff&) = delete;
-  GslHandlerOff& operator=(const GslHandlerOff&) = delete;
-
- private:
-  gsl_error_handler_t* previous_;
-};
+using detail::GslHandlerOff;  // GSL reports errors by return codes here, never aborts
 
 std::string show(double value) {
   char buffer[64];

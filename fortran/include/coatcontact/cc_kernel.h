@@ -6,7 +6,8 @@
  * Implemented by fortran/cc_kernel_capi.f90 (bind(C) shim over the Fortran modules).
  *
  * Conventions: every function returns a status code (CC_OK = 0 on success);
- * scalars are passed by value, arrays with an explicit length; nothing prints or stops.
+ * scalars are passed by value, arrays with an explicit length (the pointers must be valid for
+ * that many doubles; NULL only where a comment allows it); nothing prints or stops.
  * A substrate is rigid when substrate_rigid != 0 (then e0 and nu0 are ignored).
  */
 #ifndef COATCONTACT_CC_KERNEL_H
@@ -22,7 +23,7 @@ enum cc_status {
   CC_ERR_FILM_POISSON = 2,        /* film Poisson ratio outside (-1, 0.5] or not finite */
   CC_ERR_SUBSTRATE_MODULUS = 3,   /* substrate Young's modulus not finite or <= 0 */
   CC_ERR_SUBSTRATE_POISSON = 4,   /* substrate Poisson ratio outside (-1, 0.5] */
-  CC_ERR_ARGUMENT = 5,            /* bad array length, negative or non-finite q, null pointer */
+  CC_ERR_ARGUMENT = 5,            /* bad array length or order, negative or non-finite q or u, null handle */
   CC_ERR_FFT = 6,                 /* FFTW could not plan the transform */
   CC_ERR_ALLOCATION = 7,          /* out of memory */
   CC_ERR_ACCURACY = 8             /* the table could not reach its accuracy target */
