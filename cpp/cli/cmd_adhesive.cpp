@@ -55,14 +55,33 @@ double parse_tolerance(const Arguments& args) {
   return tol;
 }
 
-std::vector<double> parse_positive_list(const std::string& text, const std::string& option) {
+// Allowed range of eta and a_bar: six decades either side of the adhesive length. Beyond it
+// the contact is JKR with the film (eta large) or substrate (eta small) modulus, and a/t =
+// a_bar/eta would leave the solver's range.
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kScaledMin = 1e-6;
+constexpr double kScaledMax = 1e6;
+
+std::vector<double> parse_scaled_list(const std::string& text, const std::string& option) {
   std::vector<double> values = parse_list(text, option);
   for (double v : values) {
-    if (!(v > 0.0)) {
-      throw InputError(option + ": value " + num(v) + " in '" + text + "' not allowed (every value must be > 0)");
+    if (!(v >= kScaledMin && v <= kScaledMax)) {
+      throw InputError(option + ": value " + short_num(v) + " in '" + text + "' not allowed (every value must be in [" +
+                       short_num(kScaledMin) + ", " + short_num(kScaledMax) + "])");
     }
   }
   return values;
+}
+
+// Runs a model call; an InputError from inside (a derived a/t out of the solver's range) is
+// reported with the options that produced it.
+template <typename Call>
+auto with_options(const std::string& options, Call&& call) {
+  try {
+    return call();
+  } catch (const InputError& e) {
+    throw InputError(options + ": " + e.what());
+  }
 }
 
 // Header lines describing the material pair and the reduced-variable table.
@@ -111,9 +130,9 @@ void add_pulloff_warnings(Header& h, const Pulloff& p) {
 int run_adhesive(const Args& raw) {
   return run_guarded("adhesive", [&]() {
     auto spec = material_options();
-    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3): v1,v2,... or MIN:MAX:N", true});
+    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3), each in [1e-6, 1e6]: v1,v2,... or MIN:MAX:N", true});
     spec.insert(spec.begin() + 3, {"--a-bar", "LIST",
-                                   "contact radii a/(pi w R^2/E1*)^(1/3) (default 0.01:10:400 log-spaced, "
+                                   "contact radii a/(pi w R^2/E1*)^(1/3), each in [1e-6, 1e6] (default 0.01:10:400 log-spaced, "
                                    "widened to 0.01 min(1,r):10 max(1,r), r = (E1*/E0*)^(1/3))",
                                    false});
     const Arguments args(raw, spec);
@@ -127,11 +146,11 @@ int run_adhesive(const Args& raw) {
     }
     const Material film = parse_material(args.require("--film"), "--film");
     const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
-    const std::vector<double> etas = parse_positive_list(args.require("--eta"), "--eta");
+    const std::vector<double> etas = parse_scaled_list(args.require("--eta"), "--eta");
     const double tol = parse_tolerance(args);
     std::vector<double> a_bar;
     if (const auto text = args.get("--a-bar")) {
-      a_bar = parse_positive_list(*text, "--a-bar");
+      a_bar = parse_scaled_list(*text, "--a-bar");
     } else {
       const auto [lo, hi] = default_a_bar_range(film, substrate);
       a_bar = log_spaced(lo, hi, 400);
@@ -141,7 +160,9 @@ int run_adhesive(const Args& raw) {
     const ReducedSolver solver(film, substrate);
     const AdhesiveModel model(solver, tol);
     std::vector<std::vector<CurvePoint>> curves;
-    for (double eta : etas) curves.push_back(model.curve(eta, a_bar));
+    for (double eta : etas) {
+      curves.push_back(with_options("--eta " + num(eta) + " with --a-bar", [&] { return model.curve(eta, a_bar); }));
+    }
 
     Header h{{"command", "adhesive"}};
     add_material_header(h, film, substrate);
@@ -167,7 +188,7 @@ int run_adhesive(const Args& raw) {
 int run_pulloff(const Args& raw) {
   return run_guarded("pulloff", [&]() {
     auto spec = material_options();
-    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3): v1,v2,... or MIN:MAX:N", true});
+    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3), each in [1e-6, 1e6]: v1,v2,... or MIN:MAX:N", true});
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("pulloff", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
@@ -181,14 +202,16 @@ int run_pulloff(const Args& raw) {
     }
     const Material film = parse_material(args.require("--film"), "--film");
     const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
-    const std::vector<double> etas = parse_positive_list(args.require("--eta"), "--eta");
+    const std::vector<double> etas = parse_scaled_list(args.require("--eta"), "--eta");
     const double tol = parse_tolerance(args);
     Output out(args.get("--output").value_or(""));
 
     const ReducedSolver solver(film, substrate);
     const AdhesiveModel model(solver, tol);
     std::vector<Pulloff> results;
-    for (double eta : etas) results.push_back(model.pulloff(eta));
+    for (double eta : etas) {
+      results.push_back(with_options("--eta " + num(eta), [&] { return model.pulloff(eta); }));
+    }
 
     Header h{{"command", "pulloff"}};
     add_material_header(h, film, substrate);
@@ -261,6 +284,18 @@ int run_sphere(const Args& raw) {
 
     const ReducedSolver solver(film, substrate);
     const AdhesiveModel model(solver, tol);
+    // The Maugis scales must exist and put eta = t/length in the range the normalized
+    // commands accept; say which options to change when they do not.
+    const double length = std::cbrt(kPi * work * radius * radius / film.reduced_modulus());
+    if (!(std::isfinite(length) && length > 0.0)) {
+      throw InputError("--radius, --work, --film: the adhesive length (pi w R^2/E1*)^(1/3) = " + short_num(length) +
+                       " is not a finite positive number");
+    }
+    const double eta = thickness / length;
+    if (!(eta >= kScaledMin && eta <= kScaledMax)) {
+      throw InputError("--thickness (with --radius, --work, --film): eta = t/(pi w R^2/E1*)^(1/3) = " + short_num(eta) +
+                       " is outside the allowed range [" + short_num(kScaledMin) + ", " + short_num(kScaledMax) + "]");
+    }
     const SphereContact sphere(model, radius, thickness, work);
     const auto [lo, hi] = default_a_bar_range(film, substrate);
     const std::vector<double> a_bar = log_spaced(lo, hi, points);
