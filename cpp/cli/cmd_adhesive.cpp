@@ -123,14 +123,37 @@ void add_pulloff_warnings(Header& h, const Pulloff& p) {
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
 }
 
+// Options and inputs shared by `adhesive` and `pulloff`: the material pair, the eta list and
+// the solver tolerance.
+std::vector<OptionSpec> normalized_options() {
+  auto spec = material_options();
+  spec.insert(spec.begin() + 2, {"--eta", "LIST",
+                                 "film thickness over (pi w R^2/E1*)^(1/3), each in [1e-6, 1e6]: "
+                                 "v1,v2,... or MIN:MAX:N",
+                                 true});
+  return spec;
+}
+
+struct NormalizedInputs {
+  Material film;
+  Substrate substrate;
+  std::vector<double> etas;
+  double tol;
+};
+
+NormalizedInputs parse_normalized_inputs(const Arguments& args) {
+  return {parse_material(args.require("--film"), "--film"),
+          parse_substrate(args.require("--substrate"), "--substrate"),
+          parse_scaled_list(args.require("--eta"), "--eta"), parse_tolerance(args)};
+}
+
 }  // namespace
 
 // ---- coatcontact adhesive ---------------------------------------------------------
 
 int run_adhesive(const Args& raw) {
   return run_guarded("adhesive", [&]() {
-    auto spec = material_options();
-    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3), each in [1e-6, 1e6]: v1,v2,... or MIN:MAX:N", true});
+    auto spec = normalized_options();
     spec.insert(spec.begin() + 3, {"--a-bar", "LIST",
                                    "contact radii a/(pi w R^2/E1*)^(1/3), each in [1e-6, 1e6] (default 0.01:10:400 log-spaced, "
                                    "widened to 0.01 min(1,r):10 max(1,r), r = (E1*/E0*)^(1/3))",
@@ -144,10 +167,7 @@ int run_adhesive(const Args& raw) {
                          spec);
       return 0;
     }
-    const Material film = parse_material(args.require("--film"), "--film");
-    const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
-    const std::vector<double> etas = parse_scaled_list(args.require("--eta"), "--eta");
-    const double tol = parse_tolerance(args);
+    const auto [film, substrate, etas, tol] = parse_normalized_inputs(args);
     std::vector<double> a_bar;
     if (const auto text = args.get("--a-bar")) {
       a_bar = parse_scaled_list(*text, "--a-bar");
@@ -187,8 +207,7 @@ int run_adhesive(const Args& raw) {
 
 int run_pulloff(const Args& raw) {
   return run_guarded("pulloff", [&]() {
-    auto spec = material_options();
-    spec.insert(spec.begin() + 2, {"--eta", "LIST", "film thickness over (pi w R^2/E1*)^(1/3), each in [1e-6, 1e6]: v1,v2,... or MIN:MAX:N", true});
+    auto spec = normalized_options();
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("pulloff", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
@@ -200,10 +219,7 @@ int run_pulloff(const Args& raw) {
                          spec);
       return 0;
     }
-    const Material film = parse_material(args.require("--film"), "--film");
-    const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
-    const std::vector<double> etas = parse_scaled_list(args.require("--eta"), "--eta");
-    const double tol = parse_tolerance(args);
+    const auto [film, substrate, etas, tol] = parse_normalized_inputs(args);
     Output out(args.get("--output").value_or(""));
 
     const ReducedSolver solver(film, substrate);
