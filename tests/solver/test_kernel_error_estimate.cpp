@@ -25,6 +25,9 @@
 
 using namespace coatcontact;
 using coatcontact::test::check;
+using coatcontact::test::elastic;
+using coatcontact::test::material;
+using coatcontact::test::rigid;
 
 namespace {
 
@@ -34,25 +37,6 @@ constexpr double kTolerance = 1e-8;  // the default tolerance the issue asks for
 // h^6/140 |f^(7)|/|f'| <= 6.4e-11/140 * 4^6 = 2e-9 for f = ã E_eq ~ ã^4 (lubrication);
 // this tier covers it (the solver errors are propagated explicitly).
 constexpr double kDifferenceTruncationTier = 1e-8;
-
-Material material(double e, double nu) {
-  Material m;
-  m.youngs_modulus = e;
-  m.poisson_ratio = nu;
-  return m;
-}
-
-Substrate rigid() {
-  Substrate s;
-  s.rigid = true;
-  return s;
-}
-
-Substrate elastic(double e, double nu) {
-  Substrate s;
-  s.material = material(e, nu);
-  return s;
-}
 
 std::string str(double value) {
   char buffer[64];

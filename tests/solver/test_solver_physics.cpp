@@ -16,6 +16,9 @@
 
 using namespace coatcontact;
 using coatcontact::test::check;
+using coatcontact::test::elastic;
+using coatcontact::test::material;
+using coatcontact::test::rigid;
 using coatcontact::test::check_relative;
 
 namespace {
@@ -29,25 +32,6 @@ constexpr double kPi = 3.14159265358979323846;
 // solve whose own error is below 1e-11 (checked).
 constexpr double kHomogeneousTier = 1e-10;
 constexpr double kIdentityTier = 1e-6;
-
-Material material(double e, double nu) {
-  Material m;
-  m.youngs_modulus = e;
-  m.poisson_ratio = nu;
-  return m;
-}
-
-Substrate elastic(double e, double nu) {
-  Substrate s;
-  s.material = material(e, nu);
-  return s;
-}
-
-Substrate rigid() {
-  Substrate s;
-  s.rigid = true;
-  return s;
-}
 
 std::vector<double> log_space(double from, double to, int count) {
   std::vector<double> values;
