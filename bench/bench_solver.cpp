@@ -20,7 +20,7 @@ const coatcontact::ReducedSolver& soft_film_solver() {
     coatcontact::Substrate substrate;
     substrate.material.youngs_modulus = 1.0;
     substrate.material.poisson_ratio = 0.25;
-    return coatcontact::ReducedSolver(film, substrate);
+    return coatcontact::ReducedSolver(coatcontact::Stack::film_on(film, substrate));
   }();
   return solver;
 }
@@ -61,7 +61,7 @@ const coatcontact::ReducedSolver& incompressible_on_rigid_solver() {
     film.poisson_ratio = 0.5;
     coatcontact::Substrate substrate;
     substrate.rigid = true;
-    coatcontact::ReducedSolver s(film, substrate);
+    coatcontact::ReducedSolver s(coatcontact::Stack::film_on(film, substrate));
     s.solve(100.0, 1e-8);  // builds the independent tables
     return s;
   }();

@@ -39,6 +39,14 @@ module cc_kernel_tables
   use cc_exponential_integral, only: scaled_e1
   implicit none
   private
+
+  ! FFTW's planner (plan creation and destruction) is not thread-safe; execution is.
+  interface
+    subroutine cc_planner_lock() bind(C, name="cc_planner_lock")
+    end subroutine cc_planner_lock
+    subroutine cc_planner_unlock() bind(C, name="cc_planner_unlock")
+    end subroutine cc_planner_unlock
+  end interface
   include 'fftw3.f03'
 
   real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
@@ -81,7 +89,7 @@ module cc_kernel_tables
     real(dp), allocatable :: h1(:)        ! H1(k du)
   end type kernel_table
 
-  public :: build_kernel_table, build_kernel_table_variant, evaluate_kernel_table
+  public :: build_kernel_table_variant, evaluate_kernel_table
 
 contains
 
@@ -262,16 +270,9 @@ contains
     r_taylor = quotient(0:max_taylor_order)
   end subroutine remove_near_pole
 
-  ! Builds the table (grid variant 0) for a validated pair. Not safe to call concurrently
-  ! with other FFTW planning (FFTW's planner is not thread-safe); evaluation is.
-  subroutine build_kernel_table(pair, table, status)
-    type(material_pair), intent(in) :: pair
-    type(kernel_table), intent(out) :: table
-    integer, intent(out) :: status
-    call build_kernel_table_variant(pair, 0, table, status)
-  end subroutine build_kernel_table
-
-  ! The same on the grid of `variant` (0 .. n_grid_variants - 1, see grid_parameters).
+  ! Builds the table on the grid of `variant` (0 .. n_grid_variants - 1, see grid_parameters)
+  ! for a validated pair. FFTW planning is serialized by cc_planner_lock.c, so any number of
+  ! threads may build tables; evaluation is read-only.
   subroutine build_kernel_table_variant(pair, variant, table, status)
     type(material_pair), intent(in) :: pair
     integer, intent(in) :: variant
@@ -335,26 +336,34 @@ contains
 
     ! H_r(k du) = (dq/2) DCT-I(r)_k  (trapezoid rule, endpoints halved by REDFT00)
     work_in = r
+    call cc_planner_lock()
     plan = fftw_plan_r2r_1d(int(n + 1, c_int), work_in, work_out, FFTW_REDFT00, FFTW_ESTIMATE)
+    call cc_planner_unlock()
     if (.not. c_associated(plan)) then
       status = CC_ERR_FFT
       return
     end if
     work_in = r
     call fftw_execute_r2r(plan, work_in, work_out)
+    call cc_planner_lock()
     call fftw_destroy_plan(plan)
+    call cc_planner_unlock()
     table%h = 0.5_dp * dq * work_out(0:table%n_nodes - 1)
 
     ! H1_r(k du) = (dq/2) DST-I(r/q)_(k-1): samples at q_1 .. q_(N-1) (r/q -> 0 at both ends)
     work_in(0:n - 2) = r(1:n - 1) / q(1:n - 1)
+    call cc_planner_lock()
     plan = fftw_plan_r2r_1d(int(n - 1, c_int), work_in, work_out, FFTW_RODFT00, FFTW_ESTIMATE)
+    call cc_planner_unlock()
     if (.not. c_associated(plan)) then
       status = CC_ERR_FFT
       return
     end if
     work_in(0:n - 2) = r(1:n - 1) / q(1:n - 1)
     call fftw_execute_r2r(plan, work_in, work_out)
+    call cc_planner_lock()
     call fftw_destroy_plan(plan)
+    call cc_planner_unlock()
     table%h1(0) = 0.0_dp
     table%h1(1:table%n_nodes - 1) = 0.5_dp * dq * work_out(0:table%n_nodes - 2)
 

@@ -4,11 +4,10 @@
 ! the cancellation-free form of cc_layered_compliance keeps its relative accuracy.
 module cc_rigid_substrate_compliance
   use cc_elastic_constants, only: dp, material_pair
-  use cc_layered_compliance, only: layered_coefficients, finish_coefficients, &
-                                   layered_compliance, layered_compliance_minus_one
+  use cc_layered_compliance, only: layered_coefficients, finish_coefficients
   implicit none
   private
-  public :: rigid_substrate_coefficients, rigid_substrate_compliance
+  public :: rigid_substrate_coefficients
 
 contains
 
@@ -25,13 +24,5 @@ contains
     coef%omab = 0.0_dp                                      ! 1 - AB = 0 exactly
     call finish_coefficients(coef, 0.0_dp)
   end function rigid_substrate_coefficients
-
-  ! C(q) of a film with Poisson ratio nu1 on a rigid substrate.
-  elemental real(dp) function rigid_substrate_compliance(nu1, q) result(c)
-    real(dp), intent(in) :: nu1, q
-    type(material_pair) :: pair
-    pair%nu1 = nu1
-    c = layered_compliance(rigid_substrate_coefficients(pair), q)
-  end function rigid_substrate_compliance
 
 end module cc_rigid_substrate_compliance

@@ -8,7 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
@@ -49,25 +50,22 @@ double parse_tolerance(const Arguments& args) {
   const auto text = args.get("--tol");
   if (!text) return kDefaultAdhesiveTolerance;
   const double tol = parse_number(*text, "--tol");
-  if (!(tol >= 1e-13 && tol <= 1e-1)) {
-    throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 1e-1)");
+  try {
+    check_tolerance(tol);
+  } catch (const InputError&) {
+    throw InputError("--tol: value '" + *text + "' not allowed (need " + short_num(kMinimumTolerance) +
+                     " <= T <= " + short_num(kMaximumTolerance) + ")");
   }
   return tol;
 }
 
-// Allowed range of eta and a_bar: six decades either side of the adhesive length. Beyond it
-// the contact is JKR with the film (eta large) or substrate (eta small) modulus, and a/t =
-// a_bar/eta would leave the solver's range.
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kScaledMin = 1e-6;
-constexpr double kScaledMax = 1e6;
 
 std::vector<double> parse_scaled_list(const std::string& text, const std::string& option) {
   std::vector<double> values = parse_list(text, option);
   for (double v : values) {
-    if (!(v >= kScaledMin && v <= kScaledMax)) {
+    if (!(v >= kMinimumScaled && v <= kMaximumScaled)) {
       throw InputError(option + ": value " + short_num(v) + " in '" + text + "' not allowed (every value must be in [" +
-                       short_num(kScaledMin) + ", " + short_num(kScaledMax) + "])");
+                       short_num(kMinimumScaled) + ", " + short_num(kMaximumScaled) + "])");
     }
   }
   return values;
@@ -103,22 +101,6 @@ std::string join(const std::vector<double>& values) {
   return s;
 }
 
-// Default a_bar range of the curves: both JKR limits of the pull-off, a_bar ~ 1 (film) and
-// a_bar ~ (E1*/E0*)^(1/3) (substrate), with the Hertz-like regime above.
-std::pair<double, double> default_a_bar_range(const Material& film, const Substrate& substrate) {
-  const double r = substrate.rigid ? 1.0 : std::cbrt(film.reduced_modulus() / substrate.material.reduced_modulus());
-  return {0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r)};
-}
-
-std::vector<double> log_spaced(double lo, double hi, std::size_t n) {
-  std::vector<double> v(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    v[k] = n == 1 ? lo : lo * std::pow(hi / lo, static_cast<double>(k) / static_cast<double>(n - 1));
-  }
-  if (n > 1) v.back() = hi;
-  return v;
-}
-
 void add_pulloff_warnings(Header& h, const Pulloff& p) {
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
 }
@@ -135,16 +117,13 @@ std::vector<OptionSpec> normalized_options() {
 }
 
 struct NormalizedInputs {
-  Material film;
-  Substrate substrate;
+  Stack stack;
   std::vector<double> etas;
   double tol;
 };
 
 NormalizedInputs parse_normalized_inputs(const Arguments& args) {
-  return {parse_material(args.require("--film"), "--film"),
-          parse_substrate(args.require("--substrate"), "--substrate"),
-          parse_scaled_list(args.require("--eta"), "--eta"), parse_tolerance(args)};
+  return {parse_stack(args), parse_scaled_list(args.require("--eta"), "--eta"), parse_tolerance(args)};
 }
 
 }  // namespace
@@ -167,25 +146,24 @@ int run_adhesive(const Args& raw) {
                          spec);
       return 0;
     }
-    const auto [film, substrate, etas, tol] = parse_normalized_inputs(args);
+    const auto [stack, etas, tol] = parse_normalized_inputs(args);
     std::vector<double> a_bar;
-    if (const auto text = args.get("--a-bar")) {
-      a_bar = parse_scaled_list(*text, "--a-bar");
-    } else {
-      const auto [lo, hi] = default_a_bar_range(film, substrate);
-      a_bar = log_spaced(lo, hi, 400);
-    }
+    if (const auto text = args.get("--a-bar")) a_bar = parse_scaled_list(*text, "--a-bar");
     Output out(args.get("--output").value_or(""));
 
-    const ReducedSolver solver(film, substrate);
+    const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
+    if (a_bar.empty()) {
+      const auto [lo, hi] = model.default_curve_range();
+      a_bar = log_spaced(lo, hi, 400);
+    }
     std::vector<std::vector<CurvePoint>> curves;
     for (double eta : etas) {
       curves.push_back(with_options("--eta " + num(eta) + " with --a-bar", [&] { return model.curve(eta, a_bar); }));
     }
 
     Header h{{"command", "adhesive"}};
-    add_material_header(h, film, substrate);
+    add_material_header(h, stack);
     h.emplace_back("normalization", kNormalization);
     h.emplace_back("eta", join(etas));
     h.emplace_back("a_bar points", std::to_string(a_bar.size()));
@@ -219,10 +197,10 @@ int run_pulloff(const Args& raw) {
                          spec);
       return 0;
     }
-    const auto [film, substrate, etas, tol] = parse_normalized_inputs(args);
+    const auto [stack, etas, tol] = parse_normalized_inputs(args);
     Output out(args.get("--output").value_or(""));
 
-    const ReducedSolver solver(film, substrate);
+    const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
     std::vector<Pulloff> results;
     for (double eta : etas) {
@@ -230,7 +208,7 @@ int run_pulloff(const Args& raw) {
     }
 
     Header h{{"command", "pulloff"}};
-    add_material_header(h, film, substrate);
+    add_material_header(h, stack);
     h.emplace_back("normalization", kNormalization);
     h.emplace_back("eta", join(etas));
     h.emplace_back("minima", "counted on a log grid of " +
@@ -284,8 +262,7 @@ int run_sphere(const Args& raw) {
     }
     const double radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
     const double thickness = parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
-    const Material film = parse_material(args.require("--film"), "--film");
-    const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
+    const Stack stack = parse_stack(args);
     const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
     const double tol = parse_tolerance(args);
     std::size_t points = 400;
@@ -298,31 +275,20 @@ int run_sphere(const Args& raw) {
     }
     Output out(args.get("--output").value_or(""));
 
-    const ReducedSolver solver(film, substrate);
+    const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
     // The Maugis scales must exist and put eta = t/length in the range the normalized
     // commands accept; say which options to change when they do not.
-    const double length = std::cbrt(kPi * work * radius * radius / film.reduced_modulus());
-    if (!(std::isfinite(length) && length > 0.0)) {
-      throw InputError("--radius, --work, --film: the adhesive length (pi w R^2/E1*)^(1/3) = " + short_num(length) +
-                       " is not a finite positive number");
-    }
-    const double eta = thickness / length;
-    if (!(eta >= kScaledMin && eta <= kScaledMax)) {
-      throw InputError("--thickness (with --radius, --work, --film): eta = t/(pi w R^2/E1*)^(1/3) = " + short_num(eta) +
-                       " is outside the allowed range [" + short_num(kScaledMin) + ", " + short_num(kScaledMax) + "]");
-    }
-    const SphereContact sphere(model, radius, thickness, work);
-    const auto [lo, hi] = default_a_bar_range(film, substrate);
-    const std::vector<double> a_bar = log_spaced(lo, hi, points);
-    const std::vector<CurvePoint> curve = model.curve(sphere.eta(), a_bar);
+    const Contact sphere = with_options("--radius, --thickness, --work, --film",
+                                        [&] { return Contact(model, radius, thickness, work); });
+    const std::vector<Contact::Point> curve = sphere.default_curve(points);
     const Pulloff& pulloff = sphere.pulloff();
 
     Header h{{"command", "sphere"}};
     h.emplace_back("sphere radius R [m]", num(radius));
     h.emplace_back("film thickness t [m]", num(thickness));
     h.emplace_back("work of adhesion w [J/m2]", num(work));
-    add_material_header(h, film, substrate);
+    add_material_header(h, stack);
     h.emplace_back("length scale (pi w R^2/E1*)^(1/3) [m]", num(sphere.length_scale()));
     h.emplace_back("penetration scale (pi^2 w^2 R/E1*^2)^(1/3) [m]", num(sphere.penetration_scale()));
     h.emplace_back("force scale pi w R [N]", num(sphere.force_scale()));
@@ -344,12 +310,7 @@ int run_sphere(const Args& raw) {
     const std::vector<std::string> columns = {"a_m", "delta_m", "F_N"};
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (const auto& p : curve) {
-      write_row(os,
-                {p.a_bar * sphere.length_scale(), p.penetration * sphere.penetration_scale(),
-                 p.load * sphere.force_scale()},
-                columns);
-    }
+    for (const auto& p : curve) write_row(os, {p.radius, p.penetration, p.force}, columns);
     out.commit();
     return 0;
   });

@@ -43,8 +43,7 @@ int run_kernel(const Args& args) {
                          kSpec);
       return kExitSuccess;
     }
-    const Material film = parse_material(arguments.require("--film"), "--film");
-    const Substrate substrate = parse_substrate(arguments.require("--substrate"), "--substrate");
+    const Stack stack = parse_stack(arguments);
     std::vector<double> qs, us;
     const auto q_text = arguments.get("--q");
     const auto u_text = arguments.get("--u");
@@ -58,17 +57,17 @@ int run_kernel(const Args& args) {
     }
 
     // Compute everything before opening the output, so a failure leaves no file.
-    const std::vector<double> cs = qs.empty() ? std::vector<double>{} : compliance(film, substrate, qs);
+    const std::vector<double> cs = qs.empty() ? std::vector<double>{} : compliance(stack, qs);
     std::vector<double> hs;
     if (!us.empty()) {
-      const KernelTable table(film, substrate);
+      const KernelTable table(stack);
       table.eval(us, hs);
     }
 
     std::vector<std::pair<std::string, std::string>> header = {
         {"coatcontact kernel", "THEORY.md sections 3-4"},
     };
-    add_material_header(header, film, substrate);
+    add_material_header(header, stack);
 
     Output output(arguments.get("--output").value_or(""));
     std::ostream& out = output.stream();

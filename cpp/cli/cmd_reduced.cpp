@@ -41,8 +41,7 @@ int run_reduced(const Args& args) {
                          kSpec);
       return kExitSuccess;
     }
-    const Material film = parse_material(arguments.require("--film"), "--film");
-    const Substrate substrate = parse_substrate(arguments.require("--substrate"), "--substrate");
+    const Stack stack = parse_stack(arguments);
     const std::vector<double> radii = parse_list(arguments.require("--a-over-t"), "--a-over-t");
     double tolerance = kDefaultTolerance;
     if (const auto text = arguments.get("--tol")) {
@@ -57,7 +56,7 @@ int run_reduced(const Args& args) {
                          " is not allowed; every a/t must be > 0 and <= 1e8");
       }
     }
-    const ReducedSolver solver(film, substrate);
+    const ReducedSolver solver(stack);
     const std::vector<ReducedVariables> rows = solver.sweep(radii, tolerance);
 
     Output output(arguments.get("--output").value_or(""));
@@ -65,7 +64,7 @@ int run_reduced(const Args& args) {
     std::vector<std::pair<std::string, std::string>> header = {
         {"coatcontact reduced", "reduced variables of the coated-substrate contact (THEORY.md section 5)"},
     };
-    add_material_header(header, film, substrate);
+    add_material_header(header, stack);
     header.emplace_back("tolerance", format_parameter(tolerance, "tolerance"));
     write_header(out, header, kColumns);
     for (const ReducedVariables& v : rows) {

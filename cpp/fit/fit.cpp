@@ -63,7 +63,7 @@ struct Reduced {
 class Lattice {
  public:
   Lattice(const Material& film, const Substrate& substrate, int nodes_per_decade, double tolerance)
-      : solver_(film, substrate), per_decade_(nodes_per_decade), tolerance_(tolerance),
+      : solver_(Stack::film_on(film, substrate)), per_decade_(nodes_per_decade), tolerance_(tolerance),
         tolerance_used_(tolerance) {}
 
   // Makes the spline cover [lo, hi] (values of a/t), solving missing nodes.
@@ -672,8 +672,7 @@ Result fit(const Measurements& data, const Problem& problem) {
   if (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius)) {
     throw InputError("sphere radius must be > 0 (got " + show(problem.sphere_radius) + ")");
   }
-  validate(problem.film, "film");
-  validate(problem.substrate);
+  Stack::film_on(problem.film, problem.substrate);  // validates the constants
   if (!(problem.thickness > 0.0) || !std::isfinite(problem.thickness)) {
     throw InputError("film thickness must be > 0 (got " + show(problem.thickness) + ")");
   }
@@ -882,7 +881,7 @@ Result fit(const Measurements& data, const Problem& problem) {
 CurvePoint exact_point(const Problem& problem, double radius) {
   if (!(radius > 0.0) || !(problem.thickness > 0.0)) throw InputError("exact_point: a and t must be > 0");
   GslHandlerOff handler_off;
-  ReducedSolver solver(problem.film, problem.substrate);
+  ReducedSolver solver(Stack::film_on(problem.film, problem.substrate));
   const ReducedVariables v = solver.solve(radius / problem.thickness, problem.solver_tolerance);
   const Reduced r{v.pi_s, v.delta_s, v.e_eq, v.gamma1, 0.0, 0.0, 0.0, 0.0};
   const Parameters p{problem.work, problem.thickness, problem.film.youngs_modulus};

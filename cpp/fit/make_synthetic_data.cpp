@@ -35,7 +35,7 @@ std::vector<Point> exact_points(const ReducedSolver& solver, const std::vector<d
   std::vector<double> a_over_t;
   for (double a : radii) a_over_t.push_back(a / t);
   const std::vector<ReducedVariables> v = solver.sweep(a_over_t, tolerance);
-  const double E = solver.film().reduced_modulus();
+  const double E = solver.stack().reference_modulus();
   std::vector<Point> out;
   for (std::size_t i = 0; i < radii.size(); ++i) {
     const double a = radii[i];
@@ -103,7 +103,7 @@ int run(const std::vector<std::string>& args) {
   const unsigned long seed = static_cast<unsigned long>(seed_value);
   const double tolerance = 1e-9;  // the kernel table limits the solver to ~1e-10
 
-  const ReducedSolver solver(film, substrate);
+  const ReducedSolver solver(Stack::film_on(film, substrate));
   const double E = film.reduced_modulus();
   // Locate the turning points on a dense exact curve (they only set the sampled range):
   // a0 where F = 0 on the stable branch (jump into contact), the load-controlled pull-off

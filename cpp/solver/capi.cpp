@@ -49,11 +49,11 @@ coatcontact::Material material(double e, double nu) {
   return m;
 }
 
-coatcontact::Substrate substrate(double e0, double nu0, int rigid) {
+coatcontact::Stack film_stack(double e1, double nu1, double e0, double nu0, int rigid) {
   coatcontact::Substrate s;
   s.rigid = rigid != 0;
   s.material = material(e0, nu0);
-  return s;
+  return coatcontact::Stack::film_on(material(e1, nu1), s);
 }
 
 double tolerance_or_default(double tolerance) {
@@ -94,7 +94,7 @@ int cc_reduced_solver_create(double e1, double nu1, double e0, double nu0, int s
     if (solver == nullptr) throw coatcontact::InputError("null solver pointer");
     *solver = nullptr;
     *solver = new cc_reduced_solver{
-        coatcontact::ReducedSolver(material(e1, nu1), substrate(e0, nu0, substrate_rigid))};
+        coatcontact::ReducedSolver(film_stack(e1, nu1, e0, nu0, substrate_rigid))};
   });
 }
 
@@ -120,7 +120,7 @@ int cc_reduced_solve(double e1, double nu1, double e0, double nu0, int substrate
                      double a_over_t, double tolerance, double out[CC_REDUCED_COLUMNS]) {
   return guarded([&] {
     if (out == nullptr) throw coatcontact::InputError("null out pointer");
-    const coatcontact::ReducedSolver solver(material(e1, nu1), substrate(e0, nu0, substrate_rigid));
+    const coatcontact::ReducedSolver solver(film_stack(e1, nu1, e0, nu0, substrate_rigid));
     write_row(solver.solve(a_over_t, tolerance_or_default(tolerance)), out);
   });
 }
@@ -128,7 +128,7 @@ int cc_reduced_solve(double e1, double nu1, double e0, double nu0, int substrate
 int cc_reduced_sweep(double e1, double nu1, double e0, double nu0, int substrate_rigid, int n,
                      const double* a_over_t, double tolerance, double* out) {
   return guarded([&] {
-    const coatcontact::ReducedSolver solver(material(e1, nu1), substrate(e0, nu0, substrate_rigid));
+    const coatcontact::ReducedSolver solver(film_stack(e1, nu1, e0, nu0, substrate_rigid));
     sweep_into(solver, n, a_over_t, tolerance, out);
   });
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <utility>
 
+#include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "reduced_core.hpp"
 #include "table_kernel.hpp"
@@ -16,8 +17,8 @@
 namespace coatcontact {
 
 struct ReducedSolver::Impl {
-  Material film;
-  Substrate substrate;
+  explicit Impl(const Stack& s) : stack(s) {}
+  Stack stack;
   std::unique_ptr<detail::TableKernel> kernel;
   // The same H on independent grids (variants 1 and 2), for the a-posteriori kernel-error
   // estimate (docs/solver.md); built on first need (~20-50 ms each), only when the coherent
@@ -30,7 +31,7 @@ struct ReducedSolver::Impl {
       try {
         for (int k = 0; k < detail::kIndependentTables; ++k) {
           independent[static_cast<std::size_t>(k)] =
-              std::make_unique<detail::TableKernel>(film, substrate, k + 1);
+              std::make_unique<detail::TableKernel>(stack, k + 1);
         }
       } catch (const NumericalError&) {
         // No independent tables: the coherent bound stays the kernel term.
@@ -43,42 +44,35 @@ struct ReducedSolver::Impl {
 
 namespace {
 
-std::string number(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
+using detail::full_precision;
 
 void check_arguments(double a_over_t, double tolerance) {
   if (!std::isfinite(a_over_t) || !(a_over_t > 0.0) || !(a_over_t <= kMaximumAOverT)) {
-    throw InputError("a/t " + number(a_over_t) + " is not allowed; it must be > 0 and <= " +
-                     number(kMaximumAOverT));
+    throw InputError("a/t " + full_precision(a_over_t) + " is not allowed; it must be > 0 and <= " +
+                     full_precision(kMaximumAOverT));
   }
-  if (!std::isfinite(tolerance) || !(tolerance >= kMinimumTolerance) ||
-      !(tolerance <= kMaximumTolerance)) {
-    throw InputError("tolerance " + number(tolerance) + " is outside the allowed range [" +
-                     number(kMinimumTolerance) + ", " + number(kMaximumTolerance) + "]");
-  }
+  check_tolerance(tolerance);
 }
 
 }  // namespace
 
-ReducedSolver::ReducedSolver(const Material& film, const Substrate& substrate)
-    : impl_(std::make_unique<Impl>()) {
-  validate(film, "film");
-  validate(substrate);
-  impl_->film = film;
-  impl_->substrate = substrate;
-  impl_->kernel = std::make_unique<detail::TableKernel>(film, substrate);
+void check_tolerance(double tolerance) {
+  if (!std::isfinite(tolerance) || !(tolerance >= kMinimumTolerance) ||
+      !(tolerance <= kMaximumTolerance)) {
+    throw InputError("tolerance " + full_precision(tolerance) + " is outside the allowed range [" +
+                     full_precision(kMinimumTolerance) + ", " + full_precision(kMaximumTolerance) + "]");
+  }
+}
+
+ReducedSolver::ReducedSolver(const Stack& stack) : impl_(std::make_unique<Impl>(stack)) {
+  impl_->kernel = std::make_unique<detail::TableKernel>(impl_->stack);
 }
 
 ReducedSolver::~ReducedSolver() = default;
 ReducedSolver::ReducedSolver(ReducedSolver&&) noexcept = default;
 ReducedSolver& ReducedSolver::operator=(ReducedSolver&&) noexcept = default;
 
-const Material& ReducedSolver::film() const { return impl_->film; }
-const Substrate& ReducedSolver::substrate() const { return impl_->substrate; }
+const Stack& ReducedSolver::stack() const { return impl_->stack; }
 
 ReducedVariables ReducedSolver::solve(double a_over_t, double tolerance) const {
   check_arguments(a_over_t, tolerance);
@@ -88,7 +82,7 @@ ReducedVariables ReducedSolver::solve(double a_over_t, double tolerance) const {
   if (!solution.converged) {
     std::ostringstream message;
     message.precision(3);
-    message << "reduced variables at a/t = " << number(a_over_t) << ": the error estimate "
+    message << "reduced variables at a/t = " << full_precision(a_over_t) << ": the error estimate "
             << solution.error_estimate << " exceeds the tolerance " << tolerance
             << " (discretization " << solution.discretization_error << " at "
             << solution.unknowns << " unknowns, kernel-table accuracy ";

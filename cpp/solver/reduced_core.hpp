@@ -14,35 +14,18 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <vector>
+
+#include "kernel_source.hpp"
+#include "shape_solve.hpp"
 
 namespace coatcontact::detail {
-
-// The kernel H(u) = ∫_0^∞ [C(q) - 1] cos(q u) dq seen by the solver. Implementations:
-// the Fortran kernel table (production) and analytic kernels (tests).
-class KernelSource {
- public:
-  virtual ~KernelSource() = default;
-  // h[i] = H(u[i]) for any real u[i]. Must be safe to call concurrently.
-  virtual void evaluate(std::size_t n, const double* u, double* h) const = 0;
-  // H is analytic in the strip |Im u| < analytic_half_width() (2 for C - 1 ~ q² e^{-2q}).
-  virtual double analytic_half_width() const = 0;
-  // Bound on the absolute error of the H values returned by evaluate().
-  virtual double absolute_accuracy() const = 0;
-};
 
 // Order of the six outputs everywhere in the solver.
 enum ReducedIndex { kPiS = 0, kDeltaS, kPiC, kDeltaC, kEEq, kGamma1, kReducedCount };
 using ReducedValues = std::array<double, kReducedCount>;
 
-struct Discretization {
-  int nodes_per_panel = 14;        // p
-  double edge_panel = 1.0;         // length of the panel at the edge (units of t)
-  double growth = 1.0;             // panel k+1 length = growth * (distance of its outer end to ã)
-  double single_panel_limit = 2.0; // ã at or below this: one panel [0, ã]
-  double quadrature_accuracy = 1e-13;  // target relative accuracy of every matrix entry
-};
-
-// One solve at a fixed discretization.
+// One solve at a fixed discretization: the six reduced variables (sphere and cone).
 struct FixedSolve {
   ReducedValues values{};
   int unknowns = 0;

@@ -6,8 +6,8 @@
 
 namespace coatcontact::detail {
 
-TableKernel::TableKernel(const Material& film, const Substrate& substrate, int grid_variant)
-    : table_(film, substrate, grid_variant), info_(table_.info()) {}
+TableKernel::TableKernel(const Stack& stack, int grid_variant)
+    : table_(stack, grid_variant), info_(table_.info()) {}
 
 void TableKernel::evaluate(std::size_t n, const double* u, double* h) const {
   // Chunks keep the C interface's int lengths small; H1 goes to a per-thread buffer (a null

@@ -2,24 +2,23 @@
 // the solver's KernelSource (internal to coatcontact_solver).
 #pragma once
 #include "coatcontact/kernel.hpp"
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 #include "reduced_core.hpp"
 
 namespace coatcontact::detail {
 
 class TableKernel : public KernelSource {
  public:
-  // Builds the table of H for this material pair (THEORY.md section 4). InputError for
-  // constants the kernel library rejects, NumericalError if the table cannot be built.
+  // Builds the table of H for the stack (THEORY.md section 4). InputError for constants the
+  // kernel library rejects, NumericalError if the table cannot be built.
   // grid_variant: the table's grid (0 = default; 1, 2 = independent grids used to estimate
   // the effect of the table's errors a posteriori, docs/solver.md).
-  TableKernel(const Material& film, const Substrate& substrate, int grid_variant = 0);
+  explicit TableKernel(const Stack& stack, int grid_variant = 0);
 
   void evaluate(std::size_t n, const double* u, double* h) const override;
   // C - 1 ~ q² e^{-2q}: H is analytic in |Im u| < 2 (THEORY.md section 4).
   double analytic_half_width() const override { return 2.0; }
   double absolute_accuracy() const override { return info_.abs_accuracy; }
-  double c_zero() const { return info_.c_zero; }
 
  private:
   KernelTable table_;

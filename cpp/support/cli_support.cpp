@@ -463,6 +463,11 @@ std::string Arguments::require(const std::string& name) const {
   return it->second;
 }
 
+Stack parse_stack(const Arguments& args) {
+  return Stack::film_on(parse_material(args.require("--film"), "--film"),
+                        parse_substrate(args.require("--substrate"), "--substrate"));
+}
+
 std::string usage(const std::string& command, const std::string& synopsis,
                   const std::string& description, const std::vector<OptionSpec>& spec) {
   std::ostringstream out;
@@ -493,8 +498,9 @@ std::string format_parameter(double value, const std::string& name) {
   return std::string(buffer, result.ptr);
 }
 
-void add_material_header(std::vector<std::pair<std::string, std::string>>& items,
-                         const Material& film, const Substrate& substrate) {
+void add_material_header(std::vector<std::pair<std::string, std::string>>& items, const Stack& stack) {
+  const Material& film = stack.top();
+  const Substrate& substrate = stack.substrate();
   items.emplace_back("film E1 [Pa]", format_parameter(film.youngs_modulus, "film E1"));
   items.emplace_back("film nu1", format_parameter(film.poisson_ratio, "film nu1"));
   items.emplace_back("film E1* [Pa]", format_parameter(film.reduced_modulus(), "film E1*"));
@@ -506,7 +512,7 @@ void add_material_header(std::vector<std::pair<std::string, std::string>>& items
     items.emplace_back("substrate nu0", format_parameter(m.poisson_ratio, "substrate nu0"));
     items.emplace_back("substrate E0* [Pa]", format_parameter(m.reduced_modulus(), "substrate E0*"));
   }
-  items.emplace_back("E1*/E0*", format_parameter(modulus_ratio(film, substrate), "E1*/E0*"));
+  items.emplace_back("E1*/E0*", format_parameter(stack.modulus_ratio(), "E1*/E0*"));
 }
 
 std::string format_value(double value, const std::string& column) {

@@ -5,7 +5,8 @@
 #include <functional>
 #include <vector>
 
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
 
 namespace adhesive_test {
 
@@ -17,6 +18,7 @@ class HomogeneousSource final : public coatcontact::ReducedSource {
     film_.youngs_modulus = 1e9;
     film_.poisson_ratio = 0.25;
     substrate_.material = film_;
+    stack_ = coatcontact::Stack::film_on(film_, substrate_);
   }
   std::vector<coatcontact::ReducedVariables> evaluate(const std::vector<double>& a_over_t) const override {
     std::vector<coatcontact::ReducedVariables> out;
@@ -34,13 +36,13 @@ class HomogeneousSource final : public coatcontact::ReducedSource {
     ++calls;
     return out;
   }
-  const coatcontact::Material& film() const override { return film_; }
-  const coatcontact::Substrate& substrate() const override { return substrate_; }
+  const coatcontact::Stack& stack() const override { return stack_; }
   mutable int calls = 0;
 
  private:
   coatcontact::Material film_;
   coatcontact::Substrate substrate_;
+  coatcontact::Stack stack_ = coatcontact::Stack::film_on(film_, substrate_);
 };
 
 // A smooth function of x = a/t and its log-derivative d ln f / d ln x.
@@ -76,6 +78,7 @@ class SyntheticSource final : public coatcontact::ReducedSource {
     film_.poisson_ratio = 0.25;
     substrate_.material.youngs_modulus = 1e9 / modulus_ratio;
     substrate_.material.poisson_ratio = 0.25;
+    stack_ = coatcontact::Stack::film_on(film_, substrate_);
   }
   std::vector<coatcontact::ReducedVariables> evaluate(const std::vector<double>& a_over_t) const override {
     std::vector<coatcontact::ReducedVariables> out;
@@ -93,8 +96,7 @@ class SyntheticSource final : public coatcontact::ReducedSource {
     evaluations += a_over_t.size();
     return out;
   }
-  const coatcontact::Material& film() const override { return film_; }
-  const coatcontact::Substrate& substrate() const override { return substrate_; }
+  const coatcontact::Stack& stack() const override { return stack_; }
 
   // Exact normalized curve and derivatives from the analytic functions (reference).
   double load(double eta, double a_bar) const {
@@ -127,6 +129,7 @@ class SyntheticSource final : public coatcontact::ReducedSource {
   Smooth pi_s_, delta_s_, e_eq_, gamma1_;
   coatcontact::Material film_;
   coatcontact::Substrate substrate_;
+  coatcontact::Stack stack_ = coatcontact::Stack::film_on(film_, substrate_);
 };
 
 // Independent reference: zero of g in [lo, hi] by plain bisection (g(lo) < 0 < g(hi)).

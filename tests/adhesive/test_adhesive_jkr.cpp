@@ -3,7 +3,7 @@
 //   P = (4/3) a^3 - 2 sqrt(2) a^(3/2),  D = a^2 - sqrt(2) a^(1/2)
 // and the pull-offs P = -3/2 at a_bar = (9/8)^(1/3) (load control, dP/da = 0) and
 // P = -5/6, D = -3/4 at a_bar = 1/2 (displacement control, dD/da = 0).
-// Also: SphereContact in SI units against the dimensional JKR formulas, and the flags when the
+// Also: Contact in SI units against the dimensional JKR formulas, and the flags when the
 // scanned range holds no minimum.
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,8 @@
 #include <memory>
 
 #include "check.hpp"
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
 #include "coatcontact/errors.hpp"
 #include "stand_in_sources.hpp"
 
@@ -106,8 +107,8 @@ int main() {
   // delta = a^2/R - sqrt(2 pi w a/E*).
   {
     const double radius = 5e-6, thickness = 1e-6, work = 0.05;
-    const double e_star = source->film().reduced_modulus();
-    coatcontact::SphereContact sphere(model, radius, thickness, work);
+    const double e_star = source->stack().reference_modulus();
+    coatcontact::Contact sphere(model, radius, thickness, work);
     check_close(sphere.length_scale(), std::cbrt(M_PI * work * radius * radius / e_star), kMachineTier,
                 "Maugis length");
     for (double a : {1e-9, 1e-8, 5e-8, 2e-7}) {
@@ -137,8 +138,8 @@ int main() {
   check(throws_input([&] { model.point(1.0, -1.0); }), "a_bar < 0 rejected");
   check(throws_input([&] { model.curve(1.0, {}); }), "empty a_bar list rejected");
   check(throws_input([&] { model.pulloff(std::nan("")); }), "eta = NaN rejected");
-  check(throws_input([&] { coatcontact::SphereContact(model, 1.0, 0.0, 1.0); }), "t = 0 rejected");
-  check(throws_input([&] { coatcontact::SphereContact(model, 1.0, 1.0, -1.0); }), "w < 0 rejected");
-  check(throws_input([&] { coatcontact::SphereContact(model, 0.0, 1.0, 1.0); }), "R = 0 rejected");
+  check(throws_input([&] { coatcontact::Contact(model, 1.0, 0.0, 1.0); }), "t = 0 rejected");
+  check(throws_input([&] { coatcontact::Contact(model, 1.0, 1.0, -1.0); }), "w < 0 rejected");
+  check(throws_input([&] { coatcontact::Contact(model, 0.0, 1.0, 1.0); }), "R = 0 rejected");
   return finish("test_adhesive_jkr");
 }

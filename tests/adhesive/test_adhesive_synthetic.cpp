@@ -11,7 +11,8 @@
 #include <random>
 
 #include "check.hpp"
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
 #include "stand_in_sources.hpp"
 
 using namespace adhesive_test;

@@ -11,7 +11,8 @@
 #include <string>
 
 #include "check.hpp"
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
 
@@ -57,7 +58,7 @@ int main() {
 
   std::mt19937_64 rng(2024);
   for (const auto& c : cases) {
-    const coatcontact::ReducedSolver solver(c.film, c.substrate);
+    const coatcontact::ReducedSolver solver(coatcontact::Stack::film_on(c.film, c.substrate));
     coatcontact::SolverSource source(solver, kTolerance);
     coatcontact::ReducedTable table(source);
     // Decades of a/t from 1e-3 upwards, to 1e3 or to the first decade the solver cannot

@@ -14,7 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
 #include "coatcontact/reduced.hpp"
@@ -140,9 +141,9 @@ void test_coated_interpolation() {
   const double a_min = 20e-6;
   const double a_max = 400e-6;  // a/t <= 8: the adhesive table then stays below a/t = 10
   const auto curve = fit::model_curve(p, a_min, a_max, 13);
-  ReducedSolver solver(p.film, p.substrate);
+  ReducedSolver solver(Stack::film_on(p.film, p.substrate));
   AdhesiveModel adhesive(solver, 1e-8);
-  SphereContact contact(adhesive, p.sphere_radius, p.thickness, p.work);
+  Contact contact(adhesive, p.sphere_radius, p.thickness, p.work);
   double direct_error = 0.0;
   double adhesive_error = 0.0;
   for (std::size_t i = 1; i + 1 < curve.size(); ++i) {
@@ -154,7 +155,7 @@ void test_coated_interpolation() {
   }
   check_close(direct_error, 0.0, kInterpolationTier, "coated: spline model vs direct solve, max |dF|/max(|F|, pi w R)");
   check_close(adhesive_error, 0.0, kInterpolationTier,
-              "coated: fit model vs coatcontact_adhesive SphereContact, max |dF|/max(|F|, pi w R)");
+              "coated: fit model vs coatcontact_adhesive Contact, max |dF|/max(|F|, pi w R)");
 }
 
 void test_branches() {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "coatcontact/cli_support.hpp"
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 
 using namespace coatcontact;
 using namespace coatcontact::cli;

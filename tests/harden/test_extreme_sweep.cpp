@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "coatcontact/errors.hpp"
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 #include "coatcontact/reduced.hpp"
 
 using namespace coatcontact;
@@ -99,7 +99,7 @@ ReducedSolver make_solver(const Pair& p) {
     substrate.material.youngs_modulus =
         film.reduced_modulus() / p.ratio * (1.0 - p.nu0 * p.nu0);
   }
-  return ReducedSolver(film, substrate);
+  return ReducedSolver(Stack::film_on(film, substrate));
 }
 
 bool all_finite_positive(const ReducedVariables& v) {

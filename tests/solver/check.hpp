@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 
 namespace coatcontact::test {
 

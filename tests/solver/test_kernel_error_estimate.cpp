@@ -113,9 +113,9 @@ void test_reachability_and_third_table() {
       {"E1*/E0* = 1e-3, nu = 0.5", material(1e-3, 0.5), elastic(1.0, 0.5), {300, 1000}, 1000.0},
   };
   for (const Case& c : cases) {
-    const ReducedSolver solver(c.film, c.substrate);
-    const detail::TableKernel primary(c.film, c.substrate, 0), t1(c.film, c.substrate, 1),
-        t2(c.film, c.substrate, 2), third(c.film, c.substrate, 3);
+    const ReducedSolver solver(Stack::film_on(c.film, c.substrate));
+    const Stack stack = Stack::film_on(c.film, c.substrate);
+    const detail::TableKernel primary(stack, 0), t1(stack, 1), t2(stack, 2), third(stack, 3);
     for (double a : c.radii) check_case_radius(c, solver, primary, t1, t2, third, a);
   }
 }
@@ -163,7 +163,7 @@ void check_extrapolated_limit(const std::string& name, const std::vector<double>
 // Check "Winkler limit" (rigid, nu1 < 1/2): E_eq/(ã E_W) -> 1 from above, O(1/ã).
 void test_winkler_limit() {
   for (double nu : {0.0, 0.3}) {
-    const ReducedSolver solver(material(1.0, nu), rigid());
+    const ReducedSolver solver(Stack::film_on(material(1.0, nu), rigid()));
     const double winkler = kPi / 2.0 * (1 - nu) * (1 - nu) / (1 - 2 * nu);
     std::vector<double> ratio, estimate;
     double previous_excess = 0.0;
@@ -185,7 +185,7 @@ void test_winkler_limit() {
 
 // Check "lubrication limit" (rigid, nu1 = 1/2): E_eq/((3π/64) ã³) -> 1 from above, O(1/ã).
 void test_lubrication_limit() {
-  const ReducedSolver solver(material(1.0, 0.5), rigid());
+  const ReducedSolver solver(Stack::film_on(material(1.0, 0.5), rigid()));
   std::vector<double> ratio, estimate;
   double previous_excess = 0.0;
   for (double a : {12.5, 25.0, 50.0, 100.0, 200.0}) {
@@ -220,7 +220,7 @@ void test_identity_large_radius() {
   const double step = 0.02;
   const double coefficient[3] = {3.0 / 4.0, -3.0 / 20.0, 1.0 / 60.0};
   for (const Case& c : cases) {
-    const ReducedSolver solver(c.film, c.substrate);
+    const ReducedSolver solver(Stack::film_on(c.film, c.substrate));
     for (double a : c.radii) {
       std::vector<double> radii;
       for (int k = -3; k <= 3; ++k) radii.push_back(a * std::exp(k * step));

@@ -49,7 +49,7 @@ std::string str(double value) {
 
 // Check "homogeneous substrate": film = substrate gives exactly 8/3, 1, 2, 1, 1, 1.
 void test_homogeneous() {
-  const ReducedSolver solver(material(1.0, 0.3), elastic(1.0, 0.3));
+  const ReducedSolver solver(Stack::film_on(material(1.0, 0.3), elastic(1.0, 0.3)));
   double worst = 0.0;
   for (double a : log_space(1e-3, 1e3, 13)) {
     const ReducedVariables v = solver.solve(a);
@@ -85,7 +85,7 @@ void test_identity() {
   const double step = 0.05;
   const double coefficient[3] = {3.0 / 4.0, -3.0 / 20.0, 1.0 / 60.0};  // f'(0) ≈ Σ c_k (f(kh) - f(-kh))/h
   for (const Case& c : cases) {
-    const ReducedSolver solver(c.film, c.substrate);
+    const ReducedSolver solver(Stack::film_on(c.film, c.substrate));
     double worst = 0.0;
     for (double a : log_space(0.01, 100.0, 9)) {
       std::vector<double> radii;
@@ -110,7 +110,7 @@ void test_identity() {
 // acts on an interval of length ã).
 void test_small_radius_limit() {
   for (double ratio : {0.01, 10.0}) {
-    const ReducedSolver solver(material(ratio, 0.25), elastic(1.0, 0.25));
+    const ReducedSolver solver(Stack::film_on(material(ratio, 0.25), elastic(1.0, 0.25)));
     const ReducedVariables at_2 = solver.solve(1e-2), at_3 = solver.solve(1e-3);
     const double hom[6] = {8.0 / 3.0, 1.0, 2.0, 1.0, 1.0, 1.0};
     const double v2[6] = {at_2.pi_s, at_2.delta_s, at_2.pi_c, at_2.delta_c, at_2.e_eq, at_2.gamma1};
@@ -132,7 +132,7 @@ void test_small_radius_limit() {
 // deviations at ã = 1000 below the stated bounds and shrinking >= 4x from ã = 100 to 1000.
 void test_large_radius_limit() {
   for (double ratio : {0.1, 10.0}) {
-    const ReducedSolver solver(material(ratio, 0.25), elastic(1.0, 0.25));
+    const ReducedSolver solver(Stack::film_on(material(ratio, 0.25), elastic(1.0, 0.25)));
     const double s = 1.0 / ratio;  // E0*/E1*
     const ReducedVariables v100 = solver.solve(100.0), v1000 = solver.solve(1000.0);
     struct Limit {
@@ -160,7 +160,7 @@ void test_large_radius_limit() {
 // E_eq → (3π/64) ã³ from above.
 void test_rigid_limits() {
   for (double nu : {0.0, 0.25, 0.4}) {
-    const ReducedSolver solver(material(1.0, nu), rigid());
+    const ReducedSolver solver(Stack::film_on(material(1.0, nu), rigid()));
     const double winkler = kPi / 2.0 * (1 - nu) * (1 - nu) / (1 - 2 * nu);
     // The rigid substrate is ill-conditioned at large ã (C(0) = 0): tolerance 1e-6 here.
     const double d30 = std::abs(solver.solve(30.0, 1e-6).e_eq / (30.0 * winkler) - 1.0);
@@ -169,7 +169,7 @@ void test_rigid_limits() {
     check("Winkler limit approached O(1/a/t), nu1 " + str(nu), d300 < d30 / 5.0 && d300 < 0.05);
   }
   // The approach is O(1/ã): (ratio - 1) halves when ã doubles.
-  const ReducedSolver solver(material(1.0, 0.5), rigid());
+  const ReducedSolver solver(Stack::film_on(material(1.0, 0.5), rigid()));
   double previous = 0.0;
   for (double a : {5.0, 10.0, 20.0, 40.0}) {
     const double ratio = solver.solve(a, 1e-6).e_eq / (3.0 * kPi / 64.0 * a * a * a);
@@ -198,7 +198,7 @@ void test_finite_element_reference() {
       check("FE reference row parses: " + line, false);
       continue;
     }
-    const ReducedSolver solver(material(ratio, nu1), elastic(1.0, nu0));
+    const ReducedSolver solver(Stack::film_on(material(ratio, nu1), elastic(1.0, nu0)));
     const ReducedVariables v = solver.solve(a);
     const double difference = v.e_eq - e_eq;
     std::printf("FE check E1/E0 = %g, a/t = %g: solver %.10f, FE %.9f, difference %+.2e (FE error %.1e)\n",
@@ -222,7 +222,7 @@ void test_convergence() {
                         {material(1000.0, 0.0), elastic(1.0, 0.5)},
                         {material(1.0, 0.3), rigid()}};
   for (const Case& c : cases) {
-    const ReducedSolver solver(c.film, c.substrate);
+    const ReducedSolver solver(Stack::film_on(c.film, c.substrate));
     for (double a : {1e-3, 0.3, 3.0, 30.0, 300.0}) {
       for (double tolerance : {1e-5, 1e-8}) {
         ReducedVariables coarse, fine;
@@ -254,7 +254,7 @@ void test_convergence() {
 // Independent check of the whole pipeline with the real kernel: brute-force Nyström on a
 // fine uniform grid (no grading, no product integration) at moderate ã.
 void test_brute_force_with_table() {
-  const detail::TableKernel kernel(material(0.1, 0.25), elastic(1.0, 0.25));
+  const detail::TableKernel kernel(Stack::film_on(material(0.1, 0.25), elastic(1.0, 0.25)));
   for (double a : {0.5, 3.0, 12.0}) {
     const auto fine = test::brute_force(kernel, a, 0.2, 12);
     const auto coarse = test::brute_force(kernel, a, 0.4, 12);

@@ -41,7 +41,7 @@ void compare_perriot_barthel() {
     Substrate substrate;
     substrate.material.youngs_modulus = 1.0;
     substrate.material.poisson_ratio = 0.25;
-    const ReducedSolver solver(film, substrate);
+    const ReducedSolver solver(Stack::film_on(film, substrate));
     double worst = 0.0;
     for (double a : {0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0}) {
       const ReducedVariables v = solver.solve(a);
@@ -65,7 +65,7 @@ void compare_bottom_effect() {
   film.poisson_ratio = 0.5;
   Substrate substrate;
   substrate.rigid = true;
-  const ReducedSolver solver(film, substrate);
+  const ReducedSolver solver(Stack::film_on(film, substrate));
   for (double a : {0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0}) {
     const ReducedVariables v = solver.solve(a);
     const double ratio = 3.0 / 8.0 * v.pi_s / std::pow(v.delta_s, 1.5);

@@ -7,7 +7,7 @@
 
 #include "check.hpp"
 #include "coatcontact/cli_support.hpp"
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 
 using coatcontact::InputError;
 using coatcontact::Material;
@@ -232,9 +232,9 @@ void test_validate() {
   Substrate elastic;
   elastic.material.youngs_modulus = 10.0;
   elastic.material.poisson_ratio = 0.5;
-  CHECK(check::close(coatcontact::modulus_ratio(film, elastic), 0.075, kProductTier));
+  CHECK(check::close(coatcontact::Stack::film_on(film, elastic).modulus_ratio(), 0.075, kProductTier));
   elastic.rigid = true;
-  CHECK(coatcontact::modulus_ratio(film, elastic) == 0.0);
+  CHECK(coatcontact::Stack::film_on(film, elastic).modulus_ratio() == 0.0);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "coatcontact/errors.hpp"
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 
 namespace coatcontact::cli {
 
@@ -94,6 +94,9 @@ class Arguments {
 };
 
 // Usage text of a subcommand: synopsis line, description, then one line per option.
+// The stack of --film E1,nu1 and --substrate E0,nu0|rigid (both required).
+Stack parse_stack(const Arguments& args);
+
 std::string usage(const std::string& command, const std::string& synopsis,
                   const std::string& description, const std::vector<OptionSpec>& spec);
 
@@ -133,8 +136,7 @@ std::string format_parameter(double value, const std::string& name);
 // The header lines describing the film and the substrate, the same in every subcommand:
 // "film E1 [Pa]", "film nu1", "film E1* [Pa]", then "substrate: rigid" or "substrate E0 [Pa]",
 // "substrate nu0", "substrate E0* [Pa]", and "E1*/E0*" (0 for a rigid substrate).
-void add_material_header(std::vector<std::pair<std::string, std::string>>& items,
-                         const Material& film, const Substrate& substrate);
+void add_material_header(std::vector<std::pair<std::string, std::string>>& items, const Stack& stack);
 
 // Writes "# key: value" header lines and the "# columns: a\tb\t..." line.
 void write_header(std::ostream& out, const std::vector<std::pair<std::string, std::string>>& items,

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 
 namespace coatcontact::fit {
 

@@ -1,50 +1,46 @@
 // C++ view of the layered-substrate kernel (THEORY.md sections 3-4): surface compliance C(q),
 // and the table of H(u) = int_0^inf [C(q)-1] cos(qu) dq and H1(u) = int_0^u H for one
-// material pair. Thin header-only wrapper over the C interface cc_kernel.h (Fortran library);
+// Stack. Thin header-only wrapper over the C interface cc_kernel.h (Fortran library);
 // status codes become exceptions: bad constants -> InputError, numerical -> NumericalError.
 #pragma once
 #include <cmath>
 #include <cstddef>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "coatcontact/cc_kernel.h"
 #include "coatcontact/errors.hpp"
-#include "coatcontact/materials.hpp"
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/stack.hpp"
 
 namespace coatcontact {
 
 namespace kernel_detail {
 
-inline std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
+using detail::full_precision;
 
 // Throws the exception matching a cc_status (no-op for CC_OK). `context` names the call.
-inline void check_status(int status, const Material& film, const Substrate& substrate,
-                         const std::string& context) {
+inline void check_status(int status, const Stack& stack, const std::string& context) {
+  const Material& film = stack.top();
+  const Substrate& substrate = stack.substrate();
   switch (status) {
     case CC_OK:
       return;
     case CC_ERR_FILM_MODULUS:
-      throw InputError(context + ": film Young's modulus E1 = " + number_text(film.youngs_modulus) +
+      throw InputError(context + ": film Young's modulus E1 = " + full_precision(film.youngs_modulus) +
                        " is not allowed (must be finite and > 0)");
     case CC_ERR_FILM_POISSON:
-      throw InputError(context + ": film Poisson ratio nu1 = " + number_text(film.poisson_ratio) +
+      throw InputError(context + ": film Poisson ratio nu1 = " + full_precision(film.poisson_ratio) +
                        " is not allowed (must be in (-1, 0.5])");
     case CC_ERR_SUBSTRATE_MODULUS:
       throw InputError(context + ": substrate Young's modulus E0 = " +
-                       number_text(substrate.material.youngs_modulus) +
+                       full_precision(substrate.material.youngs_modulus) +
                        " is not allowed (must be finite and > 0)");
     case CC_ERR_SUBSTRATE_POISSON:
       throw InputError(context + ": substrate Poisson ratio nu0 = " +
-                       number_text(substrate.material.poisson_ratio) +
+                       full_precision(substrate.material.poisson_ratio) +
                        " is not allowed (must be in (-1, 0.5])");
     case CC_ERR_ARGUMENT:
       throw InputError(context + ": " + cc_status_message(status));
@@ -53,7 +49,17 @@ inline void check_status(int status, const Material& film, const Substrate& subs
   }
 }
 
-inline int rigid_flag(const Substrate& substrate) { return substrate.rigid ? 1 : 0; }
+// The one-layer kernel's scalar arguments (THEORY.md section 3).
+struct FilmPair {
+  double e1, nu1, e0, nu0;
+  int rigid;
+};
+inline FilmPair film_pair(const Stack& stack) {
+  const Material& film = stack.top();
+  const Material& base = stack.substrate().material;
+  return {film.youngs_modulus, film.poisson_ratio, base.youngs_modulus, base.poisson_ratio,
+          stack.substrate().rigid ? 1 : 0};
+}
 
 inline int checked_size(std::size_t n, const std::string& context) {
   if (n > static_cast<std::size_t>(1) << 30) throw InputError(context + ": array too long");
@@ -63,46 +69,40 @@ inline int checked_size(std::size_t n, const std::string& context) {
 }  // namespace kernel_detail
 
 // C(q) at each q >= 0 (InputError for negative or non-finite q or bad constants).
-inline std::vector<double> compliance(const Material& film, const Substrate& substrate,
-                                      const std::vector<double>& q) {
+inline std::vector<double> compliance(const Stack& stack, const std::vector<double>& q) {
   std::vector<double> c(q.size());
-  const auto& s = substrate.material;
+  const auto p = kernel_detail::film_pair(stack);
   kernel_detail::check_status(
-      cc_compliance(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus, s.poisson_ratio,
-                    kernel_detail::rigid_flag(substrate),
+      cc_compliance(p.e1, p.nu1, p.e0, p.nu0, p.rigid,
                     kernel_detail::checked_size(q.size(), "compliance"), q.data(), c.data()),
-      film, substrate, "compliance");
+      stack, "compliance");
   return c;
 }
 
-inline double compliance(const Material& film, const Substrate& substrate, double q) {
-  return compliance(film, substrate, std::vector<double>{q}).front();
+inline double compliance(const Stack& stack, double q) {
+  return compliance(stack, std::vector<double>{q}).front();
 }
 
 // C(q) - 1, accurate where C is close to 1.
-inline std::vector<double> compliance_minus_one(const Material& film, const Substrate& substrate,
-                                                const std::vector<double>& q) {
+inline std::vector<double> compliance_minus_one(const Stack& stack, const std::vector<double>& q) {
   std::vector<double> c(q.size());
-  const auto& s = substrate.material;
+  const auto p = kernel_detail::film_pair(stack);
   kernel_detail::check_status(
-      cc_compliance_minus_one(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
-                              s.poisson_ratio, kernel_detail::rigid_flag(substrate),
+      cc_compliance_minus_one(p.e1, p.nu1, p.e0, p.nu0, p.rigid,
                               kernel_detail::checked_size(q.size(), "compliance_minus_one"),
                               q.data(), c.data()),
-      film, substrate, "compliance_minus_one");
+      stack, "compliance_minus_one");
   return c;
 }
 
 // Taylor coefficients f_k = f^(k)(0)/k!, k = 0..order (<= 15), of f = C - 1.
-inline std::vector<double> compliance_taylor(const Material& film, const Substrate& substrate,
-                                             int order) {
+inline std::vector<double> compliance_taylor(const Stack& stack, int order) {
   if (order < 0 || order > 15) throw InputError("compliance_taylor: order must be in [0, 15]");
   std::vector<double> f(static_cast<std::size_t>(order) + 1);
-  const auto& s = substrate.material;
+  const auto p = kernel_detail::film_pair(stack);
   kernel_detail::check_status(
-      cc_compliance_taylor(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
-                           s.poisson_ratio, kernel_detail::rigid_flag(substrate), order, f.data()),
-      film, substrate, "compliance_taylor");
+      cc_compliance_taylor(p.e1, p.nu1, p.e0, p.nu0, p.rigid, order, f.data()), stack,
+      "compliance_taylor");
   return f;
 }
 
@@ -115,33 +115,24 @@ struct KernelTableInfo {
   double max_abs_h = 0.0;      // max |H|
 };
 
-// H(u) and H1(u) for one material pair; built once (a few ms), then read-only and safe to
+// H(u) and H1(u) for one stack; built once (a few ms), then read-only and safe to
 // evaluate from several threads. Movable, not copyable.
 class KernelTable {
  public:
-  KernelTable(const Material& film, const Substrate& substrate) : KernelTable(film, substrate, 0) {}
-
-  // (added) The table on grid variant `grid_variant` (0 = the default grid; see
-  // cc_kernel_table_create_ex): an independent computation of the same H, for a-posteriori
-  // estimates of the effect of the table's errors. InputError for a variant out of range.
-  KernelTable(const Material& film, const Substrate& substrate, int grid_variant) {
+  // `grid_variant` 0 is the default grid; the others (see cc_kernel_table_create_ex) compute
+  // the same H independently, for a-posteriori estimates of the effect of the table's errors.
+  // InputError for a variant out of range.
+  explicit KernelTable(const Stack& stack, int grid_variant = 0) {
     if (grid_variant < 0 || grid_variant >= cc_kernel_grid_variants()) {
       throw InputError("kernel table: grid variant " + std::to_string(grid_variant) +
                        " is not allowed (must be in [0, " +
                        std::to_string(cc_kernel_grid_variants() - 1) + "])");
     }
     cc_kernel_table* raw = nullptr;
-    int status = CC_OK;
-    {
-      // FFTW's planner is not thread-safe: serialize table creation in this process.
-      static std::mutex planner_mutex;
-      std::lock_guard<std::mutex> lock(planner_mutex);
-      const auto& s = substrate.material;
-      status = cc_kernel_table_create_ex(film.youngs_modulus, film.poisson_ratio, s.youngs_modulus,
-                                         s.poisson_ratio, kernel_detail::rigid_flag(substrate),
-                                         grid_variant, &raw);
-    }
-    kernel_detail::check_status(status, film, substrate, "kernel table");
+    const auto p = kernel_detail::film_pair(stack);
+    const int status =
+        cc_kernel_table_create_ex(p.e1, p.nu1, p.e0, p.nu0, p.rigid, grid_variant, &raw);
+    kernel_detail::check_status(status, stack, "kernel table");
     table_.reset(raw);
   }
 

@@ -1,12 +1,12 @@
 // Reduced variables of the coated-substrate contact (THEORY.md sections 4-5): for one
-// contact radius over film thickness a/t, solve the integral equation [EqEquilibriumCS]
+// contact radius over coating thickness a/t, solve the integral equation [EqEquilibriumCS]
 // for the flat punch, the sphere and the cone, and return
 //   Pi_s, Delta_s (sphere), Pi_c, Delta_c (cone), E_eq (flat-punch stiffness), Gamma1 (edge value).
 #pragma once
 #include <memory>
 #include <vector>
 
-#include "coatcontact/materials.hpp"
+#include "coatcontact/stack.hpp"
 
 namespace coatcontact {
 
@@ -30,10 +30,14 @@ constexpr double kDefaultTolerance = 1e-8;
 // asymptotic range covers it).
 constexpr double kMaximumAOverT = 1e8;
 
+// InputError naming the tolerance and its allowed range unless it lies in
+// [kMinimumTolerance, kMaximumTolerance] (the one check every layer uses).
+void check_tolerance(double tolerance);
+
 class ReducedSolver {
  public:
-  // Builds the kernel table for this material pair once (InputError on bad constants).
-  ReducedSolver(const Material& film, const Substrate& substrate);
+  // Builds the kernel table of the stack once (a few ms).
+  explicit ReducedSolver(const Stack& stack);
   ~ReducedSolver();
   ReducedSolver(ReducedSolver&&) noexcept;
   ReducedSolver& operator=(ReducedSolver&&) noexcept;
@@ -41,14 +45,13 @@ class ReducedSolver {
   // One contact radius. Refines until error_estimate <= tolerance; throws NumericalError
   // if it cannot (never returns silently wrong numbers). InputError if a_over_t is not in
   // (0, kMaximumAOverT] or tolerance not in [kMinimumTolerance, kMaximumTolerance].
-  ReducedVariables solve(double a_over_t, double tolerance = 1e-8) const;
+  ReducedVariables solve(double a_over_t, double tolerance = kDefaultTolerance) const;
 
   // Many contact radii (may run in parallel); same errors as solve().
   std::vector<ReducedVariables> sweep(const std::vector<double>& a_over_t,
-                                      double tolerance = 1e-8) const;
+                                      double tolerance = kDefaultTolerance) const;
 
-  const Material& film() const;
-  const Substrate& substrate() const;
+  const Stack& stack() const;
 
  private:
   struct Impl;

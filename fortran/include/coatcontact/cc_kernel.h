@@ -50,8 +50,8 @@ int cc_compliance_taylor(double e1, double nu1, double e0, double nu0, int subst
  * every contact radius. Read-only after creation: safe to evaluate from several threads. */
 typedef struct cc_kernel_table cc_kernel_table;
 
-/* Not safe to call concurrently from several threads (FFTW's planner is not thread-safe);
- * coatcontact::KernelTable serializes it. On failure *table is set to NULL. Takes a few ms. */
+/* Safe to call from several threads (FFTW planning is serialized inside the library).
+ * On failure *table is set to NULL. Takes a few ms. */
 int cc_kernel_table_create(double e1, double nu1, double e0, double nu0, int substrate_rigid,
                            cc_kernel_table **table);
 void cc_kernel_table_destroy(cc_kernel_table *table);

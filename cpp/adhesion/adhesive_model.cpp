@@ -21,7 +21,8 @@
 #include <memory>
 #include <sstream>
 
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
 
@@ -31,12 +32,7 @@ namespace {
 
 const double kSqrt2 = std::sqrt(2.0);
 
-std::string format_g(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+std::string format_g(double v) { return detail::full_precision(v); }
 
 void check_positive(double value, const std::string& what) {
   if (!(value > 0.0 && std::isfinite(value))) {
@@ -139,10 +135,28 @@ Located locate_minimum(const std::function<double(double)>& f, const std::functi
 
 }  // namespace
 
+CurvePoint JkrLaw::point(const ReducedPoint& r, double eta, double a_bar) const {
+  const double root_a = std::sqrt(a_bar);
+  const double a15 = a_bar * root_a;
+  const double e_over_g = r.e_eq / r.gamma1;
+  CurvePoint p;
+  p.eta = eta;
+  p.a_bar = a_bar;
+  p.a_over_t = r.a_over_t;
+  p.load = a_bar * a_bar * a_bar * r.pi_s / 2.0 - 2.0 * kSqrt2 * a15 * e_over_g;
+  p.penetration = a_bar * a_bar * r.delta_s - kSqrt2 * root_a / r.gamma1;
+  p.dload = a_bar * a_bar * r.pi_s / 2.0 * (3.0 + r.dlog_pi_s) -
+            2.0 * kSqrt2 * root_a * e_over_g * (1.5 + r.dlog_e_eq - r.dlog_gamma1);
+  p.dpenetration = a_bar * r.delta_s * (2.0 + r.dlog_delta_s) -
+                   kSqrt2 / (root_a * r.gamma1) * (0.5 - r.dlog_gamma1);
+  return p;
+}
+
 AdhesiveModel::AdhesiveModel(std::shared_ptr<const ReducedSource> source, TableOptions table,
-                             PulloffOptions pulloff)
-    : source_(std::move(source)), pulloff_options_(pulloff) {
+                             PulloffOptions pulloff, std::shared_ptr<const AdhesionLaw> law)
+    : source_(std::move(source)), law_(std::move(law)), pulloff_options_(pulloff) {
   if (!source_) throw InputError("AdhesiveModel needs a reduced-variable source");
+  if (!law_) law_ = std::make_shared<JkrLaw>();
   if (pulloff_options_.scan_points_per_decade < 4) {
     throw InputError("scan_points_per_decade must be >= 4");
   }
@@ -157,22 +171,12 @@ AdhesiveModel::~AdhesiveModel() = default;
 CurvePoint AdhesiveModel::point(double eta, double a_bar) const {
   check_positive(eta, "eta");
   check_positive(a_bar, "a_bar");
-  const double a_over_t = a_bar / eta;
-  const ReducedPoint r = table_->at(a_over_t);
-  const double root_a = std::sqrt(a_bar);
-  const double a15 = a_bar * root_a;
-  const double e_over_g = r.e_eq / r.gamma1;
-  CurvePoint p;
-  p.eta = eta;
-  p.a_bar = a_bar;
-  p.a_over_t = a_over_t;
-  p.load = a_bar * a_bar * a_bar * r.pi_s / 2.0 - 2.0 * kSqrt2 * a15 * e_over_g;
-  p.penetration = a_bar * a_bar * r.delta_s - kSqrt2 * root_a / r.gamma1;
-  p.dload = a_bar * a_bar * r.pi_s / 2.0 * (3.0 + r.dlog_pi_s) -
-            2.0 * kSqrt2 * root_a * e_over_g * (1.5 + r.dlog_e_eq - r.dlog_gamma1);
-  p.dpenetration = a_bar * r.delta_s * (2.0 + r.dlog_delta_s) -
-                   kSqrt2 / (root_a * r.gamma1) * (0.5 - r.dlog_gamma1);
-  return p;
+  return law_->point(table_->at(a_bar / eta), eta, a_bar);
+}
+
+std::pair<double, double> AdhesiveModel::default_curve_range() const {
+  const double r = stack().substrate_length_ratio();
+  return {0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r)};
 }
 
 std::vector<CurvePoint> AdhesiveModel::curve(double eta, const std::vector<double>& a_bar) const {
@@ -191,8 +195,7 @@ Pulloff AdhesiveModel::pulloff(double eta) const {
   check_positive(eta, "eta");
   Pulloff result;
   result.eta = eta;
-  double r = 1.0;
-  if (!substrate().rigid) r = std::cbrt(film().reduced_modulus() / substrate().material.reduced_modulus());
+  const double r = stack().substrate_length_ratio();
   double lo = pulloff_options_.a_bar_min > 0.0 ? pulloff_options_.a_bar_min : 1e-3 * std::min(1.0, r);
   double hi = pulloff_options_.a_bar_max > 0.0 ? pulloff_options_.a_bar_max : 10.0 * std::max(1.0, r);
   if (!(lo < hi && std::isfinite(hi))) {

@@ -24,7 +24,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "coatcontact/adhesive.hpp"
+#include "coatcontact/reduced_table.hpp"
+#include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
 
@@ -71,12 +72,7 @@ double cached_value(double x, void* params) {
   return (*c->values)[c->next++];
 }
 
-std::string format_g(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+std::string format_g(double v) { return detail::full_precision(v); }
 
 }  // namespace
 

@@ -1,0 +1,71 @@
+// Validation of the elastic constants and the derived moduli of a Stack (THEORY.md section 1).
+#include "coatcontact/stack.hpp"
+
+#include <cmath>
+
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/errors.hpp"
+
+namespace coatcontact {
+
+void validate(const Material& material, const std::string& what) {
+  const double e = material.youngs_modulus;
+  const double nu = material.poisson_ratio;
+  if (!std::isfinite(e) || !(e > 0.0)) {
+    throw InputError(what + ": Young's modulus " + detail::full_precision(e) +
+                     " is not allowed; it must be finite and > 0");
+  }
+  // nu = -1 would make E* = E/(1 - nu^2) infinite; nu > 0.5 is thermodynamically impossible.
+  if (!std::isfinite(nu) || !(nu > -1.0) || !(nu <= 0.5)) {
+    throw InputError(what + ": Poisson ratio " + detail::full_precision(nu) +
+                     " is outside the allowed range (-1, 0.5]");
+  }
+  if (!std::isfinite(material.reduced_modulus())) {
+    throw InputError(what + ": Young's modulus " + detail::full_precision(e) +
+                     " is too large (E/(1 - nu^2) overflows)");
+  }
+}
+
+void validate(const Substrate& substrate) {
+  if (!substrate.rigid) validate(substrate.material, "substrate");
+}
+
+Stack Stack::film_on(const Material& film, const Substrate& substrate) {
+  return Stack({Layer{1.0, film}}, substrate);
+}
+
+Stack::Stack(std::vector<Layer> layers, const Substrate& substrate, const Indenter& indenter)
+    : layers_(std::move(layers)), substrate_(substrate), indenter_(indenter) {
+  // The kernel evaluates one layer today (THEORY.md section 3); section 12 extends it.
+  if (layers_.size() != 1) {
+    throw InputError("stack: " + std::to_string(layers_.size()) +
+                     " layers given; exactly one layer (the film) is supported");
+  }
+  validate(layers_.front().material, "film");
+  const double h = layers_.front().thickness;
+  if (!(h > 0.0) || !std::isfinite(h)) {
+    throw InputError("film: thickness " + detail::full_precision(h) +
+                     " is not allowed; it must be finite and > 0");
+  }
+  validate(substrate_);
+  if (!indenter_.rigid) {
+    throw InputError("indenter: only a rigid indenter is supported");
+  }
+}
+
+double Stack::total_thickness() const {
+  double sum = 0.0;
+  for (const Layer& layer : layers_) sum += layer.thickness;
+  return sum;
+}
+
+double Stack::modulus_ratio() const {
+  if (substrate_.rigid) return 0.0;
+  return reference_modulus() / substrate_.material.reduced_modulus();
+}
+
+double Stack::substrate_length_ratio() const {
+  return substrate_.rigid ? 1.0 : std::cbrt(modulus_ratio());
+}
+
+}  // namespace coatcontact

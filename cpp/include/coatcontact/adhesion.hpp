@@ -1,0 +1,133 @@
+// Adhesive contact of a sphere on a coated substrate in the Maugis normalization
+// [EqSolNormF, EqSolNormD] (THEORY.md section 5): an adhesion law turns the reduced variables
+// at one contact radius into the normalized load P and penetration D; the model adds the
+// curves and the pull-off under load and displacement control.
+//
+// Normalization with the stack's reference modulus E* (the top layer's):
+//   a_bar = a / (pi w R^2/E*)^(1/3), eta = T / (pi w R^2/E*)^(1/3), P = F/(pi w R),
+//   D = delta / (pi^2 w^2 R/E*^2)^(1/3).
+//
+// Thread safety: AdhesiveModel fills its interpolation cache lazily from const member
+// functions; do not share one object between threads.
+#pragma once
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/reduced_table.hpp"
+
+namespace coatcontact {
+
+// Default solver tolerance for the interpolation nodes: the solver's own default. The pull-off
+// location inherits up to ~20-40x the relative error of the node values if that error were
+// random from node to node (measured with synthetic noise, see reduced_table.cpp); pass a
+// tighter tolerance where the solver can meet it.
+inline constexpr double kDefaultAdhesiveTolerance = kDefaultTolerance;
+
+// Range of eta and a_bar the normalized models accept: six decades either side of the
+// adhesive length. Beyond it the contact is JKR with the top layer's (eta large) or the
+// base's (eta small) modulus, and a/t = a_bar/eta would leave the solver's range.
+inline constexpr double kMinimumScaled = 1e-6;
+inline constexpr double kMaximumScaled = 1e6;
+
+
+// One point of the normalized curve: a_bar = eta a/t, P = F/(pi w R), D = delta/(pi^2 w^2 R/E1*^2)^(1/3).
+struct CurvePoint {
+  double eta = 0.0;
+  double a_bar = 0.0;
+  double a_over_t = 0.0;
+  double load = 0.0;         // P
+  double penetration = 0.0;  // D
+  double dload = 0.0;         // dP/da_bar
+  double dpenetration = 0.0;  // dD/da_bar
+};
+
+// Stationary points are counted on a log grid (PulloffOptions::scan_points_per_decade): two
+// minima closer than one grid cell would be counted as one.
+struct PulloffPoint {
+  double a_bar = 0.0;
+  double load = 0.0;         // P
+  double penetration = 0.0;  // D
+  bool interior = true;        // a stationary point inside the scanned range (else an end)
+  bool single_minimum = true;  // exactly one local minimum in the scanned range
+  int local_minima = 1;
+  // |a_bar from gsl_min_fminimizer_brent - a_bar from the root of the derivative| / a_bar:
+  // shows the ~sqrt(eps) limit of minimising values (diagnostic only; -1 if the minimiser
+  // could not be bracketed on the grid, e.g. a minimum in the first or last grid cell).
+  double minimiser_discrepancy = 0.0;
+};
+
+struct Pulloff {
+  double eta = 0.0;
+  PulloffPoint load_control;          // minimum of P over a_bar
+  PulloffPoint displacement_control;  // minimum of D over a_bar (P, D there)
+  double a_bar_scan_min = 0.0, a_bar_scan_max = 0.0;
+  std::vector<std::string> warnings;  // empty when both minima are single and interior
+};
+
+struct PulloffOptions {
+  // Scanned range of a_bar; <= 0 selects the default
+  //   [1e-3 min(1, r), 10 max(1, r)],  r = (E1*/E0*)^(1/3)  (r = 1 for a rigid substrate)
+  // which holds both JKR limits (pull-off at a_bar ~ (9/8)^(1/3) and (9/8)^(1/3) r).
+  double a_bar_min = 0.0;
+  double a_bar_max = 0.0;
+  int scan_points_per_decade = 32;  // grid on which the minima are counted and bracketed
+  double location_tolerance = 1e-12;  // relative, on the root of the derivative
+};
+
+// How the contact edge closes (JKR today; Maugis-Dugdale is THEORY.md section 13).
+class AdhesionLaw {
+ public:
+  virtual ~AdhesionLaw() = default;
+  // P, D and their a_bar derivatives at a_bar from the interpolated reduced variables at
+  // a/t = a_bar/eta.
+  virtual CurvePoint point(const ReducedPoint& reduced, double eta, double a_bar) const = 0;
+  virtual std::string name() const = 0;
+};
+
+// Infinitely thin interaction zone: the edge is a crack with energy release rate w
+// [selfconsistenceInhom], THEORY.md section 5.
+class JkrLaw final : public AdhesionLaw {
+ public:
+  CurvePoint point(const ReducedPoint& reduced, double eta, double a_bar) const override;
+  std::string name() const override { return "JKR"; }
+};
+
+class AdhesiveModel {
+ public:
+  // Reduced variables from the solver at `tolerance` (the solver must outlive the model).
+  explicit AdhesiveModel(const ReducedSolver& solver, double tolerance = kDefaultAdhesiveTolerance,
+                         TableOptions table = {}, PulloffOptions pulloff = {});
+  // Reduced variables from any source (shared ownership); the JKR law unless another is given.
+  explicit AdhesiveModel(std::shared_ptr<const ReducedSource> source, TableOptions table = {},
+                         PulloffOptions pulloff = {},
+                         std::shared_ptr<const AdhesionLaw> law = nullptr);
+  ~AdhesiveModel();
+  AdhesiveModel(const AdhesiveModel&) = delete;
+  AdhesiveModel& operator=(const AdhesiveModel&) = delete;
+
+  // P, D and their derivatives at a_bar for film thickness eta (both > 0, finite).
+  CurvePoint point(double eta, double a_bar) const;
+  std::vector<CurvePoint> curve(double eta, const std::vector<double>& a_bar) const;
+  // Pull-off under load and displacement control; NumericalError if it cannot be located.
+  Pulloff pulloff(double eta) const;
+
+  // Default a_bar range of a curve: both JKR limits of the pull-off, a_bar ~ 1 (top layer)
+  // and a_bar ~ (E*/E_base*)^(1/3) (base), and the Hertz-like regime above:
+  //   [0.01 min(1, r), 10 max(1, r)], r = stack().substrate_length_ratio().
+  std::pair<double, double> default_curve_range() const;
+
+  const ReducedTable& table() const { return *table_; }
+  const Stack& stack() const { return source_->stack(); }
+  const AdhesionLaw& law() const { return *law_; }
+  const PulloffOptions& pulloff_options() const { return pulloff_options_; }
+
+ private:
+  std::shared_ptr<const ReducedSource> source_;
+  std::shared_ptr<const AdhesionLaw> law_;
+  std::unique_ptr<ReducedTable> table_;
+  PulloffOptions pulloff_options_;
+};
+
+}  // namespace coatcontact

@@ -1,0 +1,65 @@
+// The elastic system of a contact problem (THEORY.md sections 1, 9, 12): the layers of the
+// coating, top first, on an elastic half-space or a rigid base, pressed by an indenter.
+// Every floor above the kernel receives a Stack, never loose moduli: the reference modulus
+// that makes P, D, a_bar, eta and the reduced variables dimensionless is the stack's.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace coatcontact {
+
+struct Material {
+  double youngs_modulus = 1.0;  // E [Pa] (or any consistent unit)
+  double poisson_ratio = 0.0;   // nu, allowed in (-1, 0.5]
+  // E* = E/(1 - nu^2), the plane-strain modulus.
+  double reduced_modulus() const { return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio); }
+};
+
+// The half-space below the coating.
+struct Substrate {
+  bool rigid = false;  // E0 = infinity; `material` is then ignored
+  Material material;
+};
+
+struct Layer {
+  double thickness = 1.0;  // any unit; only ratios to the total thickness enter C(q)
+  Material material;
+};
+
+// The indenter's elastic constants (rigid, the paper's case, is the only one implemented).
+struct Indenter {
+  bool rigid = true;
+  Material material;
+};
+
+class Stack {
+ public:
+  // A film bonded to `substrate` (the paper's system); the film thickness is the unit length.
+  static Stack film_on(const Material& film, const Substrate& substrate);
+  // Validates every constant (InputError naming the layer, the value and the allowed range).
+  Stack(std::vector<Layer> layers, const Substrate& substrate, const Indenter& indenter = {});
+
+  const std::vector<Layer>& layers() const { return layers_; }
+  const Material& top() const { return layers_.front().material; }
+  const Substrate& substrate() const { return substrate_; }
+  const Indenter& indenter() const { return indenter_; }
+  double total_thickness() const;
+  // The modulus of the normalization (THEORY.md section 5): the top layer's E*.
+  double reference_modulus() const { return top().reduced_modulus(); }
+  // C(0) = E_ref*/E_base* (0 for a rigid base).
+  double modulus_ratio() const;
+  // Length scale of the reduced-variable curves' default ranges: (C(0))^(1/3), 1 when rigid.
+  double substrate_length_ratio() const;
+
+ private:
+  std::vector<Layer> layers_;
+  Substrate substrate_;
+  Indenter indenter_;
+};
+
+// Throws InputError naming `what` ("film", "substrate") if E <= 0, E not finite,
+// or nu outside (-1, 0.5].
+void validate(const Material& material, const std::string& what);
+void validate(const Substrate& substrate);
+
+}  // namespace coatcontact

@@ -1,0 +1,40 @@
+// Indenter shapes as load cases of the solver (THEORY.md sections 2, 5 and 11): each gives
+// the right-hand side θ = -δ0(r) of the adhesionless problem inside the contact. The solver
+// turns any shape into its two reduced numbers (docs/solver.md):
+//   Δ = -γ_θ(ã)/γ_fp(ã)   (adhesionless penetration, δ_H = Δ δ0(a)),
+//   Π = 4 (Δ E_eq + (1/ã) ∫ γ_θ)   (adhesionless force over its homogeneous scale).
+// New shapes (power law, blunted cone, measured profile) implement this interface.
+#pragma once
+#include <string>
+
+namespace coatcontact {
+
+class Shape {
+ public:
+  virtual ~Shape() = default;
+  // θ at ξ = r/a in [0, 1], scaled so that θ(1) = -1 (δ0 divided by δ0(a)).
+  virtual double theta(double xi) const = 0;
+  // true: solve with θ directly (θ extends evenly and smoothly through r = 0);
+  // false: use only reciprocity (∫ γ_θ = ∫ θ γ_fp, γ_θ(ã) = θ(ã) - (1/π) ∫ θ w), which needs no
+  // accurate γ_θ — for a kink at the apex such as the cone's.
+  virtual bool smooth_at_apex() const = 0;
+  virtual std::string name() const = 0;
+};
+
+// Paraboloid z = r²/(2R): δ0 = r²/R, θ = -ξ² (Π_s, Δ_s).
+class SphereShape final : public Shape {
+ public:
+  double theta(double xi) const override { return -xi * xi; }
+  bool smooth_at_apex() const override { return true; }
+  std::string name() const override { return "sphere"; }
+};
+
+// Cone z = r/tan β: δ0 = (π/2) r/tan β, θ = -ξ (Π_c, Δ_c).
+class ConeShape final : public Shape {
+ public:
+  double theta(double xi) const override { return -xi; }
+  bool smooth_at_apex() const override { return false; }
+  std::string name() const override { return "cone"; }
+};
+
+}  // namespace coatcontact

@@ -1,0 +1,364 @@
+// Assembly and factorization of the reduced-variable solver's linear system
+// (THEORY.md section 4; the reduction to γ is derived in docs/solver.md).
+#include "factored_system.hpp"
+
+#include <lapacke.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/errors.hpp"
+
+namespace coatcontact::detail {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Safety factor in the quadrature error model: Gauss error ~ M ρ^{-2m} where M, the size of
+// H on the Bernstein ellipse, grows near the poles of H (order 3 for C - 1 ~ q² e^{-2q}).
+// The ellipse is taken through 0.8 of the strip half-width, where M stays below ~1e3 |H|.
+constexpr double kStripFraction = 0.8;
+constexpr double kQuadratureSafety = 1e3;
+
+std::string describe(double value) { return short_text(value); }
+
+// Panels graded geometrically toward the edge x = ã: the edge panel has length
+// `edge_panel`; each further panel is `growth` times the distance of its outer end from ã,
+// so every panel sees the edge singularities of γ (at ã ± 2i) under the same angle.
+std::vector<Panel> make_panels(double a, const Discretization& disc) {
+  if (a <= disc.single_panel_limit) return {Panel{0.0, a}};
+  std::vector<Panel> panels;
+  double inner = a - disc.edge_panel;
+  panels.push_back(Panel{inner, a});
+  for (;;) {
+    const double next = disc.growth * (a - inner);
+    // ~log2(ã) panels; the cap only guards against ã so large that a - 1 == a.
+    if (panels.size() > 200 || !(next > 0.0)) {
+      throw NumericalError("reduced solver: a/t = " + describe(a) + " is too large to grade");
+    }
+    // The innermost panel takes the rest when that is at most 1.5 regular lengths.
+    if (inner <= 1.5 * next) {
+      panels.push_back(Panel{0.0, inner});
+      break;
+    }
+    panels.push_back(Panel{inner - next, inner});
+    inner -= next;
+  }
+  std::reverse(panels.begin(), panels.end());
+  return panels;
+}
+
+// Bernstein-ellipse parameter of the point c + i*height seen from `panel`: an analytic
+// integrand whose nearest singularity is there is integrated by m-point Gauss with error
+// ~ ρ^{-2m}.
+double ellipse_rho(double c, double height, double mid, double half) {
+  const std::complex<double> z((c - mid) / half, height / half);
+  return std::abs(z + std::sqrt(z - 1.0) * std::sqrt(z + 1.0));
+}
+
+Layout make_layout(double a, const Discretization& disc) {
+  Layout layout;
+  layout.p = disc.nodes_per_panel;
+  layout.panels = make_panels(a, disc);
+  layout.rule = &gauss_rule(layout.p);
+  const int p = layout.p;
+  for (const Panel& panel : layout.panels) {
+    for (int k = 0; k < p; ++k) {
+      layout.x.push_back(panel.mid() + panel.half() * layout.rule->nodes[k]);
+      layout.w.push_back(panel.half() * layout.rule->weights[k]);
+    }
+  }
+  layout.from_moments.assign(static_cast<std::size_t>(p * p), 0.0);
+  std::vector<double> legendre(static_cast<std::size_t>(p));
+  for (int k = 0; k < p; ++k) {
+    legendre_values(layout.rule->nodes[k], p, legendre.data());
+    for (int n = 0; n < p; ++n) {
+      layout.from_moments[static_cast<std::size_t>(k * p + n)] =
+          layout.rule->weights[k] * (2.0 * n + 1.0) / 2.0 * legendre[static_cast<std::size_t>(n)];
+    }
+  }
+  return layout;
+}
+
+// Builds one row of the integral operator: row[j] = (1/π) ∫ ℓ_j(y) [H(x - y) + H(x + y)] dy
+// over all panels, ℓ_j the Lagrange basis function of node j on its panel. Both terms are
+// H(c - y) with c = x and c = -x (H is even). All H values of a row are evaluated in one
+// batch.
+class RowBuilder {
+ public:
+  RowBuilder(const KernelSource& kernel, const Layout& layout, const Discretization& disc)
+      : kernel_(kernel),
+        layout_(layout),
+        height_(kStripFraction * kernel.analytic_half_width()),
+        unit_(0.5 * kernel.analytic_half_width()),
+        log_budget_(std::log(kQuadratureSafety / disc.quadrature_accuracy)),
+        rho_needed_(std::exp(log_budget_ / (2.0 * layout.p))) {
+    moments_.resize(static_cast<std::size_t>(layout.p));
+    // P_n = a_n t P_{n-1} - b_n P_{n-2}, a_n = (2n-1)/n, b_n = (n-1)/n.
+    recurrence_a_.assign(static_cast<std::size_t>(layout.p) + 1, 0.0);
+    recurrence_b_.assign(static_cast<std::size_t>(layout.p) + 1, 0.0);
+    for (int n = 2; n <= layout.p; ++n) {
+      recurrence_a_[static_cast<std::size_t>(n)] = (2.0 * n - 1.0) / n;
+      recurrence_b_[static_cast<std::size_t>(n)] = (n - 1.0) / n;
+    }
+  }
+
+  // `h_minus`/`h_plus`, if given, hold H(x - x_j) and H(x + x_j) for every node j (the
+  // Nyström values, computed once for the symmetric pair (i, j)).
+  void build(double x, double* row, const double* h_minus = nullptr,
+             const double* h_plus = nullptr) {
+    tasks_.clear();
+    used_ = 0;
+    const std::size_t p = static_cast<std::size_t>(layout_.p);
+    for (std::size_t panel_index = 0; panel_index < layout_.panels.size(); ++panel_index) {
+      const Panel& panel = layout_.panels[panel_index];
+      for (const double c : {x, -x}) {
+        Task task;
+        task.panel = panel_index;
+        task.begin = used_;
+        task.product = !nystrom_accurate(c, panel);
+        const double* known = c == x ? h_minus : h_plus;
+        if (task.product) {
+          add_product_points(c, panel);
+        } else if (known != nullptr) {
+          task.known = known + panel_index * p;
+        } else {
+          // Nyström: the panel's own Gauss rule is accurate for γ(y) H(c - y).
+          for (std::size_t k = 0; k < p; ++k) {
+            append(c - layout_.x[panel_index * p + k], 0.0, layout_.w[panel_index * p + k]);
+          }
+        }
+        task.end = used_;
+        tasks_.push_back(task);
+      }
+    }
+    if (h_.size() < used_) h_.resize(used_);
+    if (scratch_.size() < 3 * used_) scratch_.resize(3 * used_);
+    kernel_.evaluate(used_, u_.data(), h_.data());
+    points_ += used_;
+
+    std::fill(row, row + layout_.x.size(), 0.0);
+    for (const Task& task : tasks_) {
+      double* block = row + task.panel * p;
+      if (task.known != nullptr) {
+        const double* w = &layout_.w[task.panel * p];
+        for (std::size_t k = 0; k < p; ++k) block[k] += w[k] * task.known[k] / kPi;
+        continue;
+      }
+      if (!task.product) {
+        for (std::size_t k = 0; k < p; ++k) {
+          block[k] += weight_[task.begin + k] * h_[task.begin + k] / kPi;
+        }
+        continue;
+      }
+      // Legendre moments μ_n = Σ_i w_i H_i P_n(t_i): recurrence in n with the points as the
+      // inner (vectorisable) loop.
+      const std::size_t count = task.end - task.begin;
+      const double* t = &t_[task.begin];
+      double* previous = &scratch_[0];
+      double* current = &scratch_[count];
+      double* wh = &scratch_[2 * count];
+      double m0 = 0.0, m1 = 0.0;
+      for (std::size_t i = 0; i < count; ++i) {
+        wh[i] = weight_[task.begin + i] * h_[task.begin + i];
+        previous[i] = 1.0;
+        current[i] = t[i];
+        m0 += wh[i];
+        m1 += wh[i] * t[i];
+      }
+      moments_[0] = m0;
+      if (p > 1) moments_[1] = m1;
+      for (std::size_t n = 2; n < p; ++n) {
+        const double alpha = recurrence_a_[n];
+        const double beta = recurrence_b_[n];
+        double sum = 0.0;
+        for (std::size_t i = 0; i < count; ++i) {
+          const double next = alpha * t[i] * current[i] - beta * previous[i];
+          previous[i] = next;  // swap via the pointer exchange below
+          sum += wh[i] * next;
+        }
+        std::swap(previous, current);
+        moments_[n] = sum;
+      }
+      for (std::size_t k = 0; k < p; ++k) {
+        const double* f = &layout_.from_moments[k * p];
+        double sum = 0.0;
+        for (std::size_t n = 0; n < p; ++n) sum += f[n] * moments_[n];
+        block[k] += sum / kPi;
+      }
+    }
+  }
+
+  // 2p ln ρ >= log budget, with a cheap sufficient test first: ρ of the real point c alone
+  // (outside the panel, z = 1 + d/half) is a lower bound of ρ for c + i height.
+  bool nystrom_accurate(double c, const Panel& panel) const {
+    const double d = std::abs(c - panel.mid()) - panel.half();
+    if (d > 0.0) {
+      const double z = 1.0 + d / panel.half();
+      if (z + std::sqrt(z * z - 1.0) >= rho_needed_) return true;
+    }
+    return ellipse_rho(c, height_, panel.mid(), panel.half()) >= rho_needed_;
+  }
+
+  // Kernel evaluations so far (cost statistics).
+  std::size_t points() const { return points_; }
+
+ private:
+  struct Task {
+    std::size_t panel = 0;
+    std::size_t begin = 0;
+    std::size_t end = 0;
+    bool product = false;
+    const double* known = nullptr;  // precomputed Nyström values
+  };
+
+  // Composite Gauss points for ∫_panel P_n(t(y)) H(c - y) dy: pieces graded away from c
+  // (length <= max(unit, distance to c)), each with enough points for the degree p - 1
+  // polynomial times H to reach the quadrature accuracy.
+  void append(double u, double t, double weight) {
+    if (used_ == u_.size()) {
+      const std::size_t size = std::max<std::size_t>(1024, 2 * used_);
+      u_.resize(size);
+      t_.resize(size);
+      weight_.resize(size);
+    }
+    u_[used_] = u;
+    t_[used_] = t;
+    weight_[used_] = weight;
+    ++used_;
+  }
+
+  void add_product_points(double c, const Panel& panel) {
+    if (c < panel.hi) walk(c, std::max(c, panel.lo), panel.hi, +1.0, panel);
+    if (c > panel.lo) walk(c, std::min(c, panel.hi), panel.lo, -1.0, panel);
+  }
+
+  void walk(double c, double start, double stop, double direction, const Panel& panel) {
+    double s = start;
+    while ((stop - s) * direction > 0.0) {
+      const double length = std::max(unit_, std::abs(s - c));
+      double e = s + direction * length;
+      if ((stop - e) * direction < 0.25 * length) e = stop;  // no slivers
+      add_piece(c, std::min(s, e), std::max(s, e), panel);
+      s = e;
+    }
+  }
+
+  void add_piece(double c, double lo, double hi, const Panel& panel) {
+    const double mid = 0.5 * (lo + hi);
+    const double half = 0.5 * (hi - lo);
+    const double rho = ellipse_rho(c, height_, mid, half);
+    int m = static_cast<int>(std::ceil(0.5 * (layout_.p - 1 + log_budget_ / std::log(rho))));
+    m = std::clamp(m, 2, kMaxGaussPoints);
+    const GaussRule& rule = gauss_rule(m);
+    for (int l = 0; l < m; ++l) {
+      const double y = mid + half * rule.nodes[static_cast<std::size_t>(l)];
+      append(c - y, (y - panel.mid()) / panel.half(), half * rule.weights[static_cast<std::size_t>(l)]);
+    }
+  }
+
+  const KernelSource& kernel_;
+  const Layout& layout_;
+  double height_;     // imaginary distance of the (shrunk) strip edge
+  double unit_;       // smallest piece length near c
+  double log_budget_; // ln(safety / quadrature accuracy)
+  double rho_needed_; // smallest ρ for which the panel's p-point Gauss rule is accurate
+  std::vector<Task> tasks_;
+  std::size_t used_ = 0;
+  std::size_t points_ = 0;
+  std::vector<double> u_, h_, t_, weight_, moments_, scratch_;
+  std::vector<double> recurrence_a_, recurrence_b_;
+};
+
+}  // namespace
+
+FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discretization& disc)
+    : a_(a), layout_(make_layout(a, disc)) {
+  const std::size_t n = layout_.x.size();
+  const lapack_int nn = static_cast<lapack_int>(n);
+  RowBuilder builder(kernel, layout_, disc);
+
+  // A = I + K (column-major), and the row of K at the edge x = ã for the edge values.
+  // H(x_i - x_j) and H(x_i + x_j) are symmetric in (i, j): evaluate each pair once.
+  std::vector<double> h_minus(n * n), h_plus(n * n);
+  {
+    std::vector<double> u, h;
+    u.reserve(n * (n + 1));
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i; j < n; ++j) {
+        u.push_back(layout_.x[i] - layout_.x[j]);
+        u.push_back(layout_.x[i] + layout_.x[j]);
+      }
+    }
+    h.resize(u.size());
+    kernel.evaluate(u.size(), u.data(), h.data());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i; j < n; ++j, k += 2) {
+        h_minus[i * n + j] = h_minus[j * n + i] = h[k];
+        h_plus[i * n + j] = h_plus[j * n + i] = h[k + 1];
+      }
+    }
+  }
+  lu_.resize(n * n);
+  std::vector<double> row(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    builder.build(layout_.x[i], row.data(), &h_minus[i * n], &h_plus[i * n]);
+    row[i] += 1.0;
+    for (std::size_t j = 0; j < n; ++j) lu_[i + j * n] = row[j];
+  }
+  edge_row_.resize(n);
+  builder.build(a, edge_row_.data());
+
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < n; ++j) sum += std::abs(lu_[i + j * n]);
+    norm_inf_ = std::max(norm_inf_, sum);
+  }
+  {
+    std::vector<double> u(2 * n), h(2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      u[i] = layout_.x[i] - a;
+      u[n + i] = layout_.x[i] + a;
+    }
+    kernel.evaluate(2 * n, u.data(), h.data());
+    edge_kernel_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) edge_kernel_[i] = h[i] + h[n + i];
+  }
+  kernel_evaluations_ = builder.points() + n * (n + 1) + 2 * n;
+
+  std::vector<lapack_int> pivots(n);
+  lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, nn, nn, lu_.data(), nn, pivots.data());
+  if (info != 0) {
+    throw NumericalError("reduced solver: singular linear system at a/t = " + describe(a) +
+                         " (dgetrf info " + std::to_string(info) + ")");
+  }
+  info = LAPACKE_dgecon(LAPACK_COL_MAJOR, 'I', nn, lu_.data(), nn, norm_inf_, &rcond_);
+  if (info != 0 || !(rcond_ > 0.0)) {
+    throw NumericalError("reduced solver: condition estimate failed at a/t = " + describe(a));
+  }
+  pivots_.assign(pivots.begin(), pivots.end());
+}
+
+void FactoredSystem::solve(double* columns, std::size_t count) const {
+  const lapack_int nn = static_cast<lapack_int>(size());
+  std::vector<lapack_int> pivots(pivots_.begin(), pivots_.end());
+  const lapack_int info = LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nn, static_cast<lapack_int>(count),
+                                         lu_.data(), nn, pivots.data(), columns, nn);
+  if (info != 0) {
+    throw NumericalError("reduced solver: dgetrs failed at a/t = " + describe(a_));
+  }
+}
+
+double FactoredSystem::edge_value(const double* gamma, double theta_at_edge) const {
+  double edge = theta_at_edge;
+  for (std::size_t j = 0; j < size(); ++j) edge -= edge_row_[j] * gamma[j];
+  return edge;
+}
+
+}  // namespace coatcontact::detail
