@@ -56,7 +56,7 @@ int cc_kernel_table_create(double e1, double nu1, double e0, double nu0, int sub
                            cc_kernel_table **table);
 void cc_kernel_table_destroy(cc_kernel_table *table);
 
-/* (added) The same table built on an independent grid: grid_variant 0 is
+/* The same table built on an independent grid: grid_variant 0 is
  * cc_kernel_table_create's grid; 1 .. cc_kernel_grid_variants()-1 use other q-steps, periods,
  * u-steps, ranges and interpolation stencils, so that their numerical errors (interpolation,
  * FFT rounding, aliasing) differ from variant 0's. Solving with two variants and comparing
@@ -64,7 +64,7 @@ void cc_kernel_table_destroy(cc_kernel_table *table);
  * the same accuracy target. CC_ERR_ARGUMENT for a variant out of range. */
 int cc_kernel_table_create_ex(double e1, double nu1, double e0, double nu0, int substrate_rigid,
                               int grid_variant, cc_kernel_table **table);
-/* (added) Number of grid variants (4). */
+/* Number of grid variants (4). */
 int cc_kernel_grid_variants(void);
 
 /* H(u[i]) and H1(u[i]) for any real u (H even, H1 odd); h1 may be NULL.
@@ -77,7 +77,7 @@ int cc_kernel_table_eval(const cc_kernel_table *table, int n, const double *u,
 int cc_kernel_table_info(const cc_kernel_table *table, double *u_max, double *du,
                          double *c_zero, double *half_integral, double *abs_accuracy);
 
-/* (added) Scale of the table: max |H| over the tabulated range, and the decay rate b of the
+/* Scale of the table: max |H| over the tabulated range, and the decay rate b of the
  * subtracted analytic part s(q) = exp(-bq)(c0 + c1 q + c3 q^3 + c5 q^5) (diagnostic).
  * Null output pointers are skipped (also in cc_kernel_table_info). */
 int cc_kernel_table_scale(const cc_kernel_table *table, double *max_abs_h, double *decay_rate);
