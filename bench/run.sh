@@ -1,17 +1,60 @@
 #!/usr/bin/env bash
-# Runs every benchmark executable bench_* in BUILD_DIR/bench (configure with
-# -DCOATCONTACT_BUILD_BENCH=ON). Usage: bench/run.sh BUILD_DIR [extra benchmark flags]
+# `make bench`: every bench_* executable in BUILD_DIR/bench (configure with
+# -DCOATCONTACT_BUILD_BENCH=ON), then whole-process timings of the CLI (bench/cli_timings.sh).
+# Results: BUILD_DIR/bench/results.tsv (one row per task: median, min, max over the runs, with
+# the machine and the commit) and BUILD_DIR/bench/<name>.json (the benchmark library's own
+# report, medians of 5 repetitions). Usage: bench/run.sh BUILD_DIR [extra benchmark flags]
 set -euo pipefail
 build="${1:?usage: bench/run.sh BUILD_DIR}"
 shift
+out="$build/bench"
+mkdir -p "$out"
+results="$out/results.tsv"
+tmp="$results.tmp.$$"
+trap 'rm -f "$tmp"' EXIT
+
+commit=$(git -C "$(dirname "$0")/.." describe --always --dirty 2>/dev/null || echo unknown)
+cpu=$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | sed 's/.*: //' || echo unknown)
+{
+  echo "# coatcontact benchmarks (make bench)"
+  echo "# commit: $commit"
+  echo "# machine: $(nproc) cores, $cpu"
+  echo "# date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+  echo "# columns: task	median_ms	min_ms	max_ms	runs	kind"
+} > "$tmp"
+
 found=0
 for exe in "$build"/bench/bench_*; do
   [ -x "$exe" ] && [ -f "$exe" ] || continue
   found=1
-  echo "== $(basename "$exe")"
-  "$exe" "$@"
+  name=$(basename "$exe")
+  echo "== $name"
+  "$exe" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+    --benchmark_out="$out/$name.json" --benchmark_out_format=json "$@"
+  # median rows of the library's report, in ms of real time
+  python3 - "$out/$name.json" >> "$tmp" <<'PY'
+import json, sys
+report = json.load(open(sys.argv[1]))
+unit = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
+rows = {}
+for b in report["benchmarks"]:
+    if b.get("run_type") != "aggregate":
+        continue
+    name = b["run_name"]
+    rows.setdefault(name, {})[b["aggregate_name"]] = b["real_time"] * unit[b["time_unit"]]
+    rows[name]["runs"] = b.get("repetitions", 0)
+for name, r in rows.items():
+    print(f"{name}\t{r.get('median', 0):.4g}\t\t\t{r['runs']}\tlibrary")
+PY
 done
 if [ "$found" -eq 0 ]; then
   echo "bench/run.sh: no bench_* executables in $build/bench (configure with -DCOATCONTACT_BUILD_BENCH=ON)" >&2
   exit 1
 fi
+
+echo "== CLI, whole process"
+bash "$(dirname "$0")/cli_timings.sh" "$build/bin/coatcontact" >> "$tmp"
+mv "$tmp" "$results"
+trap - EXIT
+echo "wrote $results"
+cat "$results"

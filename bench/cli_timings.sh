@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Whole-process wall times of the CLI tasks that the README's Speed section quotes: median,
+# min and max over RUNS runs (after one warm-up), as rows "task median min max runs cli".
+# Usage: bench/cli_timings.sh CLI [RUNS]
+set -euo pipefail
+cli="${1:?usage: bench/cli_timings.sh CLI [RUNS]}"
+runs="${2:-7}"
+
+time_task() {
+  local task="$1"
+  shift
+  "$@" > /dev/null  # warm-up (page cache, FFTW)
+  local times=()
+  for ((i = 0; i < runs; i++)); do
+    local start end
+    start=$(date +%s%N)
+    "$@" > /dev/null
+    end=$(date +%s%N)
+    times+=($(((end - start) / 1000)))
+  done
+  printf '%s\n' "${times[@]}" | sort -n | awk -v task="$task" -v n="$runs" '
+    { t[NR] = $1 / 1000.0 }
+    END { printf "%s\t%.4g\t%.4g\t%.4g\t%d\tcli\n", task, t[int((n + 1) / 2)], t[1], t[n], n }'
+}
+
+time_task "version (process start)" "$cli" --help
+time_task "one radius (reduced, a/t = 1)" \
+  "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 1
+time_task "200 radii (reduced, a/t 1e-3..1e4)" \
+  "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 0.001:10000:200
+time_task "pulloff, 100 eta" \
+  "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 0.01:100:100
+
+# make figures from a built tree, into a fresh folder each run (3 runs: ~3 s each)
+root="$(cd "$(dirname "$0")/.." && pwd)"
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+figures() {
+  rm -rf "$scratch/d" "$scratch/f"
+  make -s -C "$root" -f gnuplot/figures.mk figures-only CLI="$(realpath "$cli")" \
+    DATA_DIR="$scratch/d" FIG_DIR="$scratch/f" JOBS=2 > /dev/null 2>&1
+}
+runs=3 time_task "make figures (all data and plots, 2 jobs)" figures
