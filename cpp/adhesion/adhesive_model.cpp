@@ -12,6 +12,7 @@
 // by gsl_root_fsolver_brent on the derivative, which is computed analytically from the
 // interpolant and crosses zero linearly: this meets the relative location tolerance
 // (default 1e-12) on the interpolated curve.
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_min.h>
 #include <gsl/gsl_roots.h>
 

@@ -18,6 +18,7 @@
 // which locate the pull-off by a root of dP/da_bar; direct solves would need finite
 // differences of 1e-8-accurate values (derivative error ~1e-5 at best).
 #include <gsl/gsl_chebyshev.h>
+#include <gsl/gsl_errno.h>
 
 #include <algorithm>
 #include <array>

@@ -1,20 +1,18 @@
-// GSL calls in this library report errors through return codes; the default GSL handler
-// would abort the process. The guard switches the handler off for its lifetime and restores
-// the previous one (not thread-safe, like the rest of the GSL error-handler API).
+// GSL calls in this library report errors through return codes; GSL's default handler would
+// abort the host process. While any guard is alive the handler is off; the last guard to end
+// restores the handler that was installed before the first began. A process-wide counter
+// under a mutex makes nested guards and guards in several threads safe (GSL's handler is one
+// global pointer, so the host's own GSL calls in other threads also see it off meanwhile).
 #pragma once
-#include <gsl/gsl_errno.h>
 
 namespace coatcontact::detail {
 
 class GslHandlerOff {
  public:
-  GslHandlerOff() : previous_(gsl_set_error_handler_off()) {}
-  ~GslHandlerOff() { gsl_set_error_handler(previous_); }
+  GslHandlerOff();
+  ~GslHandlerOff();
   GslHandlerOff(const GslHandlerOff&) = delete;
   GslHandlerOff& operator=(const GslHandlerOff&) = delete;
-
- private:
-  gsl_error_handler_t* previous_;
 };
 
 }  // namespace coatcontact::detail
