@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
@@ -30,7 +31,7 @@ constexpr double kEvaluationsPerDecade = 25.0;
 
 double plan_table_work(const ReducedSolver& solver, double tolerance, double a_over_t_min,
                        double a_over_t_max, const std::string& options) {
-  double slowest = 0.0;
+  double total = 0.0, slowest = 0.0;
   for (double a : {a_over_t_min, a_over_t_max}) {
     const auto start = std::chrono::steady_clock::now();
     try {
@@ -43,13 +44,17 @@ double plan_table_work(const ReducedSolver& solver, double tolerance, double a_o
     } catch (const InputError& e) {
       throw InputError(options + ": " + e.what());
     }
-    slowest = std::max(slowest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    total += seconds;
+    slowest = std::max(slowest, seconds);
   }
   const double decades = std::max(1.0, std::ceil(std::log10(a_over_t_max / a_over_t_min)) + 1.0);
-  const double estimate = slowest * kEvaluationsPerDecade * decades;
+  // Mean of the two ends per node, nodes solved in parallel (ReducedSolver::sweep).
+  const double threads = std::max(1u, std::thread::hardware_concurrency());
+  const double estimate = 0.5 * total * kEvaluationsPerDecade * decades / threads;
   if (estimate > kMaxWorkSeconds) {
     throw InputError(options + ": estimated run time " + show(std::round(estimate)) + " s (" + show(decades) +
-                     " decades of a/t at " + show(slowest) + " s per solve) is over the limit of " +
+                     " decades of a/t, up to " + show(slowest) + " s per solve) is over the limit of " +
                      show(kMaxWorkSeconds) + " s; allowed: a larger --tol or a narrower range");
   }
   progress_set_estimate(estimate);
