@@ -13,6 +13,7 @@
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
+#include "checks.hpp"
 #include "commands.hpp"
 
 namespace coatcontact::cli {
@@ -157,6 +158,9 @@ int run_adhesive(const Args& raw) {
       const auto [lo, hi] = model.default_curve_range();
       a_bar = log_spaced(lo, hi, 400);
     }
+    plan_table_work(solver, tol, *std::min_element(a_bar.begin(), a_bar.end()) / *std::max_element(etas.begin(), etas.end()),
+                    *std::max_element(a_bar.begin(), a_bar.end()) / *std::min_element(etas.begin(), etas.end()),
+                    "--tol " + num(tol) + " with --eta and --a-bar");
     std::vector<std::vector<CurvePoint>> curves;
     for (double eta : etas) {
       curves.push_back(with_options("--eta " + num(eta) + " with --a-bar", [&] { return model.curve(eta, a_bar); }));
@@ -202,6 +206,9 @@ int run_pulloff(const Args& raw) {
 
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
+    const auto [scan_lo, scan_hi] = model.default_curve_range();  // pull-off scans from 0.1 scan_lo
+    plan_table_work(solver, tol, 0.1 * scan_lo / *std::max_element(etas.begin(), etas.end()),
+                    scan_hi / *std::min_element(etas.begin(), etas.end()), "--tol " + num(tol) + " with --eta");
     std::vector<Pulloff> results;
     for (double eta : etas) {
       results.push_back(with_options("--eta " + num(eta), [&] { return model.pulloff(eta); }));
@@ -247,8 +254,12 @@ int run_sphere(const Args& raw) {
     spec.insert(spec.begin() + 1, {"--thickness", "t", "film thickness (m, or mm um nm)", true});
     spec.insert(spec.begin() + 4, {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true});
     spec.insert(spec.begin() + 5, {"--points", "N",
-                                   "number of contact radii, log-spaced over a_bar in [0.01 min(1,r), 10 max(1,r)], "
-                                   "r = (E1*/E0*)^(1/3) (default 400)",
+                                   "number of contact radii, log-spaced over a_bar from 0.01 min(1,r) up to 10 max(1,r), "
+                                   "r = (E1*/E0*)^(1/3), ending before a > 0.1 R, delta > t or F/(pi a^2) > 0.1 E1* "
+                                   "(default 400)",
+                                   false});
+    spec.insert(spec.begin() + 6, {"--contact-radius", "LIST",
+                                   "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
                                    false});
     const Arguments args(raw, spec);
     if (args.help()) {
@@ -256,7 +267,9 @@ int run_sphere(const Args& raw) {
                          "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w [options]",
                          "Adhesive rigid sphere on a coated substrate in physical units: penetration and\n"
                          "force versus contact radius, with the pull-off forces under load and displacement\n"
-                         "control in the header.",
+                         "control in the header. F is compressive positive. '# warning:' header lines (also on\n"
+                         "stderr) flag a curve beyond the model: penetration above t, a above 0.1 R, mean\n"
+                         "pressure above 0.1 E1*.",
                          spec);
       return 0;
     }
@@ -281,8 +294,36 @@ int run_sphere(const Args& raw) {
     // commands accept; say which options to change when they do not.
     const Contact sphere = with_options("--radius, --thickness, --work, --film",
                                         [&] { return Contact(model, radius, thickness, work); });
-    const std::vector<Contact::Point> curve = sphere.default_curve(points);
+    const double length = sphere.length_scale();
+    const double eta = sphere.eta();
+    const auto [lo, hi] = model.default_curve_range();
+    std::vector<double> a_bar;
+    if (const auto text = args.get("--contact-radius")) {
+      if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
+      for (double a : parse_list(*text, "--contact-radius")) {
+        if (!(a / length >= kMinimumScaled && a / length <= kMaximumScaled)) {
+          throw InputError("--contact-radius: " + short_num(a) + " m is not allowed; every a must be in [" +
+                           short_num(kMinimumScaled * length) + ", " + short_num(kMaximumScaled * length) +
+                           "] m (1e-6 to 1e6 times the length scale)");
+        }
+        a_bar.push_back(a / length);
+      }
+    }
+    const double a_bar_min = a_bar.empty() ? lo : std::min(lo, *std::min_element(a_bar.begin(), a_bar.end()));
+    const double a_bar_max = a_bar.empty() ? hi : std::max(hi, *std::max_element(a_bar.begin(), a_bar.end()));
+    plan_table_work(solver, tol, 0.1 * a_bar_min / eta, a_bar_max / eta,
+                    "--tol " + num(tol) + " with --thickness, --radius, --work, --film");
+    const SphereLimits limits{radius, thickness, stack.reference_modulus()};
+    if (a_bar.empty()) a_bar = sphere_default_a_bar(model, sphere, limits, lo, hi, points);
+    const std::vector<CurvePoint> curve = model.curve(sphere.eta(), a_bar);
     const Pulloff& pulloff = sphere.pulloff();
+    std::vector<double> a_si, delta_si, force_si;
+    for (const auto& p : curve) {
+      a_si.push_back(p.a_bar * sphere.length_scale());
+      delta_si.push_back(p.penetration * sphere.penetration_scale());
+      force_si.push_back(p.load * sphere.force_scale());
+    }
+    const std::vector<std::string> warnings = sphere_physics_warnings(a_si, delta_si, force_si, limits);
 
     Header h{{"command", "sphere"}};
     h.emplace_back("sphere radius R [m]", num(radius));
@@ -307,10 +348,15 @@ int run_sphere(const Args& raw) {
                    num(pulloff.load_control.load) + ", " + num(pulloff.displacement_control.load));
     describe_table(h, model, tol);
     add_pulloff_warnings(h, pulloff);
+    progress_pause();
+    for (const auto& w : warnings) {
+      h.emplace_back("warning", w);
+      std::cerr << "coatcontact sphere: warning: " << w << "\n";
+    }
     const std::vector<std::string> columns = {"a_m", "delta_m", "F_N"};
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (const auto& p : curve) write_row(os, {p.radius, p.penetration, p.force}, columns);
+    for (std::size_t i = 0; i < curve.size(); ++i) write_row(os, {a_si[i], delta_si[i], force_si[i]}, columns);
     out.commit();
     return 0;
   });

@@ -18,6 +18,7 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "checks.hpp"
 #include "commands.hpp"
 
 namespace coatcontact::cli {
@@ -181,6 +182,9 @@ int run_fit_body(const Args& args) {
       reversed ? std::vector<std::optional<Quantity>>{Quantity::kForce, Quantity::kLength}
                : std::vector<std::optional<Quantity>>{Quantity::kLength, Quantity::kForce};
   const DataTable table = read_data_file(path, 2, nonnegative, kinds);
+  // Refuse a bad --output/--curve now (a device, the data file, each other), not after the fit.
+  check_output_paths({{"--output", arguments.get("--output").value_or("")},
+                      {"--curve", arguments.get("--curve").value_or("")}});
   fit::Measurements all;
   all.kind = kind;
   all.abscissa = table.columns[reversed ? 1 : 0];
@@ -225,6 +229,11 @@ int run_fit_body(const Args& args) {
     problem.film.youngs_modulus = *start[fit::kFilmModulus];
   }
   const double start_values[3] = {problem.work, problem.thickness, problem.film.youngs_modulus};
+  check_fit_start({columns, table.declared_columns, table.declared_columns_line, path, radius_data, data.abscissa,
+                   problem.work, problem.thickness, problem.film.youngs_modulus,
+                   free[fit::kWork] ? (start[fit::kWork] ? "--start w" : work ? "--work" : "--radius (with the data's most tensile force, the start value of w)") : "--work",
+                   free[fit::kThickness] && start[fit::kThickness] ? "--start t" : "--thickness",
+                   free[fit::kFilmModulus] && start[fit::kFilmModulus] ? "--start E1" : "--film"});
 
   const fit::Result result = fit::fit(data, problem);
 
@@ -307,7 +316,7 @@ int run_fit_body(const Args& args) {
     if (result.displacement_pulloff_radius > 0.0) a_lo = std::min(a_lo, result.displacement_pulloff_radius);
     a_lo *= radius_data ? 0.9 : 0.3;
     const std::vector<fit::CurvePoint> curve = fit::model_curve(fitted, a_lo, a_hi, 200);
-    curve_output = std::make_unique<Output>(*curve_path);
+    curve_output = std::make_unique<Output>(*curve_path, "--curve");
     auto curve_header = header;
     curve_header.emplace_back("curve", "fitted model, 200 points log-spaced in a");
     const std::vector<std::string> curve_columns{"a_m", "delta_m", "F_N"};

@@ -1,9 +1,12 @@
 // coatcontact: command-line front end. Dispatches to one subcommand per file (cmd_*.cpp).
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "coatcontact/cli_support.hpp"
 #include "commands.hpp"
 
 namespace {
@@ -32,13 +35,11 @@ void print_overview(std::ostream& out) {
   for (const auto& c : kCommands) {
     out << "  " << c.name << std::string(12 - std::strlen(c.name), ' ') << c.summary << "\n";
   }
-  out << "\nexit codes: 0 success, 2 bad usage or input, 3 numerical failure\n";
+  out << "\noptions: --version (print the version and exit), -h/--help\n"
+         "exit codes: 0 success, 2 bad usage or input, 3 numerical failure\n";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+int dispatch(const std::vector<std::string>& args) {
   if (args.empty()) {
     print_overview(std::cerr);
     return 2;
@@ -47,12 +48,36 @@ int main(int argc, char** argv) {
     print_overview(std::cout);
     return 0;
   }
+  if (args[0] == "--version") {
+    std::cout << "coatcontact " << coatcontact::cli::version_string() << "\n";
+    return 0;
+  }
   for (const auto& c : kCommands) {
     if (args[0] == c.name) {
       return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
     }
   }
-  std::cerr << "coatcontact: error: unknown command '" << args[0]
+  std::string shown = args[0].substr(0, 60);
+  if (shown.size() < args[0].size()) shown += "... (" + std::to_string(args[0].size()) + " characters)";
+  std::cerr << "coatcontact: error: unknown command '" << shown
             << "' (run 'coatcontact --help' for the list)\n";
   return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  coatcontact::cli::set_command_line(argc, argv);
+  const int code = dispatch(std::vector<std::string>(argv + 1, argv + argc));
+  // Help, version and summaries go to stdout directly: a failed write (a full disk, a closed
+  // pipe with SIGPIPE ignored) must not end in exit 0.
+  errno = 0;
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    const int error_number = errno;
+    std::cerr << "coatcontact: error: cannot write to standard output"
+              << (error_number != 0 ? std::string(": ") + std::strerror(error_number) : std::string()) << "\n";
+    return code == 0 ? 2 : code;
+  }
+  return code;
 }

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <iostream>
 #include <ostream>
 #include <set>
@@ -53,6 +54,7 @@ NumberStatus parse_decimal(std::string_view text, double& value) {
   if (result.ptr != last) return NumberStatus::kNotNumber;
   if (result.ec == std::errc::result_out_of_range) return NumberStatus::kOutOfRange;
   if (!std::isfinite(parsed)) return NumberStatus::kOutOfRange;
+  if (parsed != 0.0 && std::fabs(parsed) < std::numeric_limits<double>::min()) return NumberStatus::kSubnormal;
   value = parsed;
   return NumberStatus::kOk;
 }
@@ -96,6 +98,8 @@ using detail::quote;
 using detail::trim_blanks;
 
 constexpr std::size_t kMaxListPoints = 1000000;  // N of MIN:MAX:N and items of a list
+constexpr double kMinQuantity = 1e-100;  // SI, any quantity
+constexpr double kMaxQuantity = 1e100;
 constexpr const char* kListExpected = "expected comma-separated numbers or MIN:MAX:N";
 
 [[noreturn]] void fail(const std::string& option, const std::string& message) {
@@ -109,6 +113,8 @@ std::string number_problem(NumberStatus status, std::string_view text) {
       return quote(text) + " is not a finite number";
     case NumberStatus::kOutOfRange:
       return quote(text) + " is outside the range of a double";
+    case NumberStatus::kSubnormal:
+      return quote(text) + " is too small (nonzero values need a magnitude of at least 2.2250738585072014e-308)";
     default:
       return text.empty() ? std::string("empty value") : quote(text) + " is not a number";
   }
@@ -124,10 +130,13 @@ struct UnitRow {
 constexpr UnitRow kUnits[] = {
     {"Pa", Quantity::kPressure, 1.0},       {"kPa", Quantity::kPressure, 1e3},
     {"MPa", Quantity::kPressure, 1e6},      {"GPa", Quantity::kPressure, 1e9},
-    {"m", Quantity::kLength, 1.0},          {"mm", Quantity::kLength, 1e-3},
+    {"m", Quantity::kLength, 1.0},          {"cm", Quantity::kLength, 1e-2},
+    {"mm", Quantity::kLength, 1e-3},
     {"um", Quantity::kLength, 1e-6},        {"\xc2\xb5m", Quantity::kLength, 1e-6},
     {"\xce\xbcm", Quantity::kLength, 1e-6}, {"nm", Quantity::kLength, 1e-9},
     {"J/m2", Quantity::kEnergy, 1.0},       {"mJ/m2", Quantity::kEnergy, 1e-3},
+    {"J/m^2", Quantity::kEnergy, 1.0},      {"mJ/m^2", Quantity::kEnergy, 1e-3},
+    {"N/m", Quantity::kEnergy, 1.0},        {"mN/m", Quantity::kEnergy, 1e-3},
     {"N", Quantity::kForce, 1.0},           {"mN", Quantity::kForce, 1e-3},
     {"uN", Quantity::kForce, 1e-6},         {"\xc2\xb5N", Quantity::kForce, 1e-6},
     {"\xce\xbcN", Quantity::kForce, 1e-6},  {"nN", Quantity::kForce, 1e-9},
@@ -188,6 +197,11 @@ double parse_quantity_impl(std::string_view raw, Quantity kind, const std::strin
   const double si = to_si(value, factor);
   if (!std::isfinite(si)) fail(option, what + " " + quote(text) + " is too large");
   if (!(si > 0.0)) fail(option, what + " " + quote(text) + " is too small to represent");
+  // Far beyond any physical value, yet products and ratios of two such values stay normal
+  // doubles (E1*/E0*, w R^2/E1*): an extreme input is refused here, not met as inf or NaN later.
+  if (!(si >= kMinQuantity && si <= kMaxQuantity)) {
+    fail(option, what + " " + quote(text) + " is outside the allowed range [1e-100, 1e100] (SI units)");
+  }
   return si;
 }
 
@@ -233,6 +247,14 @@ const OptionSpec* find_option(const std::vector<OptionSpec>& spec, const std::st
     if (option.name == name) return &option;
   }
   return nullptr;
+}
+
+// An option name for a message: a very long unknown option is cut, not echoed whole.
+std::string option_text(const std::string& name) {
+  const std::string quoted = quote(name);  // control bytes escaped, cut after 60 bytes + "..."
+  std::string shown = quoted.substr(1, quoted.size() - 2);
+  if (shown.size() < name.size()) shown += " (" + std::to_string(name.size()) + " characters)";
+  return shown;
 }
 
 std::string one_line(const std::string& text) {
@@ -353,8 +375,8 @@ const char* quantity_name(Quantity kind) {
 std::string unit_list(Quantity kind) {
   switch (kind) {
     case Quantity::kPressure: return "Pa kPa MPa GPa";
-    case Quantity::kLength: return "m mm um \xc2\xb5m nm";
-    case Quantity::kEnergy: return "J/m2 mJ/m2";
+    case Quantity::kLength: return "m cm mm um \xc2\xb5m nm";
+    case Quantity::kEnergy: return "J/m2 mJ/m2 J/m^2 mJ/m^2 N/m mN/m";
     case Quantity::kForce: return "N mN uN \xc2\xb5N nN";
   }
   return "";
@@ -421,10 +443,10 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::vector<Opt
     const std::size_t equals = arg.find('=');
     const std::string name = arg.substr(0, equals);
     const OptionSpec* option = arg.rfind("--", 0) == 0 ? find_option(spec, name) : nullptr;
-    if (option == nullptr) throw InputError("unknown option " + name + " (see --help)");
-    if (values_.count(name) != 0) throw InputError("option " + name + " is given more than once");
+    if (option == nullptr) throw InputError("unknown option " + option_text(name) + " (see --help)");
+    if (values_.count(name) != 0) throw InputError("option " + option_text(name) + " is given more than once");
     if (option->value_name.empty()) {
-      if (equals != std::string::npos) throw InputError("option " + name + " takes no value");
+      if (equals != std::string::npos) throw InputError("option " + option_text(name) + " takes no value");
       values_[name] = "";
       continue;
     }
@@ -464,8 +486,10 @@ std::string Arguments::require(const std::string& name) const {
 }
 
 Stack parse_stack(const Arguments& args) {
-  return Stack::film_on(parse_material(args.require("--film"), "--film"),
-                        parse_substrate(args.require("--substrate"), "--substrate"));
+  // In the order of the synopsis, so the first bad option is the one named.
+  const Material film = parse_material(args.require("--film"), "--film");
+  const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
+  return Stack::film_on(film, substrate);
 }
 
 std::string usage(const std::string& command, const std::string& synopsis,
@@ -525,7 +549,18 @@ std::string format_value(double value, const std::string& column) {
 
 void write_header(std::ostream& out, const std::vector<std::pair<std::string, std::string>>& items,
                   const std::vector<std::string>& columns) {
-  for (const auto& item : items) out << "# " << one_line(item.first) << ": " << one_line(item.second) << "\n";
+  // The same first line in every output; a command's own "command" item gives way to it.
+  const bool have_command_line = !command_line().empty();
+  if (have_command_line) out << "# command: " << one_line(command_line()) << "\n";
+  for (const auto& item : items) {
+    if (have_command_line && item.first == "command") continue;
+    out << "# " << one_line(item.first) << ": " << one_line(item.second) << "\n";
+  }
+  // A force column in newtons ("F_N", "F_model_N") makes it an SI table: state the sign.
+  const bool si_force = std::any_of(columns.begin(), columns.end(), [](const std::string& c) {
+    return c.size() > 2 && c.front() == 'F' && c.compare(c.size() - 2, 2, "_N") == 0;
+  });
+  if (si_force) out << "# sign convention: F compressive positive (pushing the sphere into the film), tension negative\n";
   out << "# columns:";
   for (std::size_t i = 0; i < columns.size(); ++i) out << (i == 0 ? " " : "\t") << one_line(columns[i]);
   out << "\n";
@@ -548,15 +583,21 @@ void write_row(std::ostream& out, const std::vector<double>& values,
 
 int run_guarded(const std::string& command, const std::function<int()>& body) {
   const std::string prefix = "coatcontact " + command + ": ";
+  ProgressScope progress(command);
   try {
-    return body();
+    const int code = body();
+    progress_pause();
+    return code;
   } catch (const InputError& error) {
+    progress_pause();
     std::cerr << prefix << "error: " << error.what() << "\n";
     return kExitUsage;
   } catch (const NumericalError& error) {
+    progress_pause();
     std::cerr << prefix << "numerical failure: " << error.what() << "\n";
     return kExitNumerical;
   } catch (const std::exception& error) {
+    progress_pause();
     std::cerr << prefix << "internal error: " << error.what() << "\n";
     return kExitNumerical;
   } catch (...) {

@@ -116,7 +116,8 @@ class Reader {
     const bool first_content_line = !seen_content_;
     seen_content_ = true;
     if (first_content_line && numeric == 0 && !has_empty_field &&
-        !any_status(status, NumberStatus::kNotFinite) && !any_status(status, NumberStatus::kOutOfRange)) {
+        !any_status(status, NumberStatus::kNotFinite) && !any_status(status, NumberStatus::kOutOfRange) &&
+        !any_status(status, NumberStatus::kSubnormal)) {
       // Header: names only.
       if (fields.size() != columns_) {
         fail(line_number, "header has " + std::to_string(fields.size()) + " column names, expected " +
@@ -140,6 +141,9 @@ class Reader {
           fail(line_number, column_label(c) + ": " + quote(fields[c]) + " is outside the range of a double");
         case NumberStatus::kNotNumber:
           fail(line_number, column_label(c) + ": " + quote(fields[c]) + " is not a number");
+        case NumberStatus::kSubnormal:
+          fail(line_number, column_label(c) + ": " + quote(fields[c]) +
+                                " is too small (nonzero values need a magnitude of at least 2.2250738585072014e-308)");
       }
       if (!nonnegative_.empty() && nonnegative_[c] && values[c] < 0.0) {
         fail(line_number, column_label(c) + ": value " + std::string(fields[c]) + " must be >= 0");
@@ -159,9 +163,18 @@ class Reader {
     return false;
   }
 
-  // "# units: um mN" (after the '#').
+  // "# units: um mN" (after the '#'); "# columns: a F" is remembered (not enforced here).
   void read_comment(std::string_view comment, int line_number) {
     comment = trim_blanks(comment);
+    constexpr std::string_view kColumnsKey = "columns:";
+    if (comment.substr(0, kColumnsKey.size()) == kColumnsKey && table_.declared_columns.empty()) {
+      bool has_empty = false;
+      for (const auto name : split_fields(trim_blanks(comment.substr(kColumnsKey.size())), has_empty)) {
+        table_.declared_columns.emplace_back(name);
+      }
+      table_.declared_columns_line = line_number;
+      return;
+    }
     // "units:" in any letter case: a "# Units:" line silently ignored would leave um as m.
     constexpr std::string_view kKey = "units:";
     if (comment.size() < kKey.size()) return;
@@ -253,6 +266,7 @@ DataTable read_data_file(const std::string& path, std::size_t expected_columns,
   if (!in) throw InputError(path + ": cannot open data file: " + std::strerror(errno));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path + ": read error");
+  cli::register_input(path, "data file");  // no output of this command may replace it
   return read_data_text(text, path, expected_columns, nonnegative, kinds);
 }
 

@@ -6,7 +6,9 @@
 
 namespace coatcontact::detail {
 
-enum class NumberStatus { kOk, kNotNumber, kNotFinite, kOutOfRange };
+// kSubnormal: nonzero but below the smallest normal double (2.2e-308), where arithmetic
+// loses precision and 1/x overflows; refused rather than computed with.
+enum class NumberStatus { kOk, kNotNumber, kNotFinite, kOutOfRange, kSubnormal };
 
 // Strict, locale-independent decimal number occupying all of `text` (no blanks, no hex,
 // no nan/inf; an optional leading '+' is accepted). `value` is set only on kOk.

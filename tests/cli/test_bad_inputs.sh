@@ -89,6 +89,15 @@ check() {
 }
 mkdir -p "$work/files"
 missing_dir="$work/files/no-such-folder/out.tsv"
+# Issue 17: special targets live in their own folder (not $work/files, which must stay empty):
+# a FIFO, a dangling symlink and (as root) a character device made here with mknod; never the
+# system's /dev entries. (Same-file cases: test_regressions.sh fit_output_overwrites_data.)
+special="$work/special"
+mkdir -p "$special"
+mkfifo "$special/fifo"
+ln -s "$special/missing" "$special/dangling"
+have_device=0
+if [ "$(id -u)" -eq 0 ] && mknod -m 666 "$special/null" c 1 3 2>/dev/null; then have_device=1; fi
 
 trim() {
   local s="$1"
@@ -104,6 +113,10 @@ while IFS='|' read -r cmd option value expect; do
   option="$(trim "$option")"
   value="$(trim "$value")"
   expect="$(trim "$expect")"
+  case "$value" in @device*) [ $have_device -eq 1 ] || { echo "skip $cmd $option $value (mknod needs root)"; continue; } ;; esac
+  value="${value//@device/$special/null}"
+  value="${value//@fifo/$special/fifo}"
+  value="${value//@dangling/$special/dangling}"
   value="${value//@nodir/$missing_dir}"
   value="${value//@folder/$work}"
   expect="${expect//@nodir/$missing_dir}"
@@ -144,6 +157,40 @@ kernel   | --u         | @empty         | -
 kernel   | --output    | @empty         | -
 kernel   | --output    | @folder        | @folder
 kernel   | --bogus     | 1              | -
+# ---- issue 17: targets that are not regular files, or are an input / another output
+kernel   | --output    | @device        | is a character device
+kernel   | --output    | @fifo          | is a FIFO
+kernel   | --output    | @dangling      | symbolic link
+reduced  | --output    | @device        | not a regular file
+reduced  | --output    | @fifo          | not a regular file
+adhesive | --output    | @device        | -
+adhesive | --output    | @fifo          | -
+pulloff  | --output    | @device        | -
+pulloff  | --output    | @fifo          | -
+sphere   | --output    | @device        | -
+sphere   | --output    | @fifo          | -
+sphere   | --output    | @dangling      | -
+sphere   | --contact-radius | 1e-320    | -
+sphere   | --contact-radius | 1e300     | -
+fit      | --output    | @device        | -
+fit      | --output    | @fifo          | -
+fit      | --curve     | @device        | -
+fit      | --curve     | @fifo          | -
+fit      | --curve     | @dangling      | -
+kernel   | --u         | 1e-320         | -
+kernel   | --q         | 1e-310         | -
+kernel   | --film      | 1e308,0.25     | -
+kernel   | --substrate | 1e-308,0.25    | -
+reduced  | --a-over-t  | 1e-320         | -
+reduced  | --tol       | 1e-320         | -
+adhesive | --eta       | 1e-320         | -
+sphere   | --radius    | 1e-320         | -
+sphere   | --work      | 1e-320         | -
+fit      | --radius    | 1e-320         | -
+fit      | --thickness | 1e-320         | -
+fit      | --start     | w=1e-320       | --start w
+fit      | --start     | w=1e308        | --start w
+fit      | --work      | 1e-320         | -
 # ---- reduced (test_reduced_cli.sh has: --a-over-t -1, --tol 0.5, missing --substrate)
 reduced  | --film      | abc            | -
 reduced  | --film      | nan,0.3        | -

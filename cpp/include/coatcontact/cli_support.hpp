@@ -102,27 +102,74 @@ std::string usage(const std::string& command, const std::string& synopsis,
 
 // ---- output ----------------------------------------------------------------------
 
-// Output to stdout (empty path) or to a file written atomically: the data go to a temporary
-// file in the same folder, renamed over `path` by commit(). If commit() is never called
-// (error, exception) the temporary file is removed; it is also removed if the process gets
-// SIGINT or SIGTERM. A missing or unwritable folder throws InputError naming the path.
-// The temporary file is "<path>.tmp.XXXXXX"; the committed file gets mode 0666 & ~umask.
+// Output to stdout (empty path, "-" or /dev/stdout) or to a file written atomically: the data
+// go to a temporary file in the same folder, renamed over `path` by commit(). If commit() is
+// never called (error, exception) the temporary file is removed; it is also removed if the
+// process gets SIGINT or SIGTERM. The temporary file is "<path>.tmp.XXXXXX"; the committed
+// file gets mode 0666 & ~umask.
+// Safety (exit 2, InputError naming `option`, the path and what is allowed):
+//  - only regular files are replaced; an existing device, FIFO, socket or folder is refused,
+//    except /dev/null (a character device), which is written in place, never renamed over;
+//  - a symbolic link to a regular file replaces that file and keeps the link; a dangling
+//    link is refused;
+//  - a path that is (same device and inode, or same resolved name) an input registered with
+//    register_input() or the file of another live Output is refused.
+// All or none: while several Outputs are alive, commit() only completes the data; the last
+// commit() publishes all of them (stdout first, then the renames). An Output destroyed
+// without commit() cancels the others. Stdout is held in memory until then, so a failure
+// leaves nothing on stdout; a failed write of stdout is an InputError (exit 2).
 // Signal cleanup: the first file Output installs SIGINT/SIGTERM handlers (only where the
 // action is still the default) that unlink every pending temporary file, then re-raise the
 // signal with the default action. At most 64 files are protected at once (more still work,
 // without signal cleanup).
 class Output {
  public:
-  explicit Output(const std::string& path);
+  explicit Output(const std::string& path, const std::string& option = "--output");
   ~Output();
   Output(const Output&) = delete;
   Output& operator=(const Output&) = delete;
   std::ostream& stream();
   void commit();  // throws InputError on a write/rename failure
 
+  struct Impl;  // (public so that the output set in output.cpp can list them)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
+};
+
+// An input file of this command (e.g. "data file"): no Output may write to it.
+void register_input(const std::string& path, const std::string& what);
+// The checks of the Output constructor without creating anything, so a command can refuse a
+// bad target before a long computation. `outputs`: (option, path) pairs, also checked
+// against each other (empty path: stdout).
+void check_output_path(const std::string& path, const std::string& option);
+void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs);
+
+// ---- run context: command line, version, progress ---------------------------------
+
+// The command line as typed (program name without its folder, arguments shell-quoted); set
+// once by main(). write_header() puts it first in every header as "# command: ...".
+void set_command_line(int argc, const char* const* argv);
+const std::string& command_line();
+// "0.1.0" from the CMake project, plus " (git <describe>)" when built from a git checkout.
+std::string version_string();
+
+// A progress line on stderr for long work: "\r"-updated, only when stderr is a terminal, shown
+// once the command has run for 2 s. run_guarded() runs one per command; the body may set the
+// expected total (seconds, from a work estimate) and report steps done, which give the ETA.
+void progress_set_estimate(double seconds);
+void progress_step(std::size_t done, std::size_t total);
+void progress_pause();  // clears the line and stops it (before output or an error message)
+// Runs the progress line for its scope (run_guarded makes one per command).
+class ProgressScope {
+ public:
+  explicit ProgressScope(const std::string& command);
+  ~ProgressScope();
+  ProgressScope(const ProgressScope&) = delete;
+  ProgressScope& operator=(const ProgressScope&) = delete;
+
+ private:
+  bool owner_ = false;
 };
 
 // A number for a TSV column: "%.17g". Throws NumericalError (naming `column`) if not finite,

@@ -12,6 +12,9 @@
 //    (spellings of cli::find_unit; "-" or "1" for a dimensionless column). Values of a column
 //    with a unit are converted to SI;
 //  - CRLF line ends and a UTF-8 byte-order mark are accepted.
+//  - a comment line "# columns: a F" (as written by coatcontact itself) is kept in
+//    DataTable::declared_columns, so a caller can compare it with what it was told;
+// read_data_file registers the file as an input (cli::register_input): no output may replace it.
 // Every data line must have exactly `expected_columns` finite decimal numbers (no NaN/inf,
 // no hex). Any malformed line throws InputError "<file>:<line>: <what was wrong>"; nothing
 // partial is ever returned. Limits: 100 MB of text, 1e6 data rows, at least one data row.
@@ -30,6 +33,8 @@ struct DataTable {
   std::vector<std::string> column_names;     // from the header line; empty if there is none
   std::vector<std::vector<double>> columns;  // columns[c][row], SI if units were declared
   std::vector<std::string> units;            // as declared in "# units:"; empty if none
+  std::vector<std::string> declared_columns; // from a "# columns: a F" comment; empty if none
+  int declared_columns_line = 0;
   std::vector<int> line_numbers;             // 1-based source line of each row
   std::size_t rows() const { return line_numbers.size(); }
 };
