@@ -9,3 +9,12 @@ find_package(OpenMP COMPONENTS CXX)       # OpenMP::OpenMP_CXX (optional)
 
 # The Fortran interface file fftw3.f03 ships with libfftw3-dev in the include dir.
 find_path(FFTW3_FORTRAN_INCLUDE_DIR fftw3.f03 HINTS ${FFTW3_INCLUDE_DIRS} PATHS /usr/include REQUIRED)
+
+# The gfortran runtime, named for consumers of the static libraries and in coatcontact.pc.
+set(COATCONTACT_FORTRAN_RUNTIME "")
+foreach(cc_lib IN LISTS CMAKE_Fortran_IMPLICIT_LINK_LIBRARIES)
+  if(cc_lib MATCHES "^(gfortran|quadmath)$")
+    list(APPEND COATCONTACT_FORTRAN_RUNTIME ${cc_lib})
+  endif()
+endforeach()
+list(REMOVE_DUPLICATES COATCONTACT_FORTRAN_RUNTIME)

@@ -79,15 +79,6 @@ std::string quote(std::string_view text) {
   return out;
 }
 
-std::string number_string(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  const auto result =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
-  return std::string(buffer, result.ptr);
-}
-
 }  // namespace detail
 
 namespace cli {
