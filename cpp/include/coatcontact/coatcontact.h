@@ -11,7 +11,7 @@
  *
  * Every function returns a status code; on failure nothing is written to `out` except that
  * a sweep may have filled rows before the failing one, and cc_last_error_message() describes
- * the failure (per thread). Implemented in cpp/solver/capi.cpp.
+ * the failure (per thread). Implemented in cpp/capi/capi.cpp.
  */
 #ifndef COATCONTACT_COATCONTACT_H
 #define COATCONTACT_COATCONTACT_H

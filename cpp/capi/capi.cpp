@@ -1,4 +1,5 @@
-// C interface of the reduced-variable solver (cpp/include/coatcontact/coatcontact.h).
+// C interface of the reduced-variable solver (cpp/include/coatcontact/coatcontact.h), its own
+// floor above the C++ libraries so that it can grow to cover adhesion and fit.
 #include "coatcontact/coatcontact.h"
 
 #include <exception>
