@@ -1,17 +1,30 @@
 /*
- * coatcontact: C interface to the reduced-variable solver (THEORY.md section 5).
+ * coatcontact: the C interface of the library (stack, reduced solver, adhesive sphere,
+ * contact in SI units, fit). Language bindings bind to this header. Implemented in
+ * cpp/capi/capi.cpp (library coatcontact_capi).
  *
- * For a film (e1, nu1) bonded to a substrate (e0, nu0, or rigid when substrate_rigid != 0)
- * and a contact radius over film thickness a/t, the solver returns, in this order,
- *   out[0] a_over_t  out[1] Pi_s  out[2] Delta_s  out[3] Pi_c  out[4] Delta_c
- *   out[5] E_eq      out[6] Gamma1  out[7] error_estimate
- * (the same columns as `coatcontact reduced`). The error estimate is the solver's bound on the
- * largest relative error of the six values; it is <= tolerance whenever the status is
- * CC_REDUCED_OK. Tolerance 0 means the default 1e-8; otherwise it must be in [1e-13, 1e-1].
+ * Objects are opaque handles, created by cc_*_create and released by cc_*_destroy (NULL is
+ * accepted). A handle keeps alive what it was made from: a solver, model or contact may be
+ * destroyed in any order, and a stack may be destroyed once a solver was created from it.
  *
- * Every function returns a status code; on failure nothing is written to `out` except that
- * a sweep may have filled rows before the failing one, and cc_last_error_message() describes
- * the failure (per thread). Implemented in cpp/solver/capi.cpp.
+ * Status and errors. Every function except the destroyers returns a status: CC_OK,
+ * CC_INPUT_ERROR (a value outside its allowed range, a NULL pointer, an unsupported feature),
+ * CC_NUMERICAL_ERROR (the requested accuracy could not be met: never silently wrong numbers)
+ * or CC_INTERNAL_ERROR (out of memory, unexpected failure). On failure nothing is written
+ * through any output pointer (handles, arrays, structs keep their previous contents), and
+ * cc_last_error_message() says what went wrong; on success that message is "". No C++
+ * exception crosses this interface.
+ *
+ * Thread safety. The error message is per thread. A stack or a reduced solver may be used
+ * from several threads at once once created (they are read-only). An adhesive model and the
+ * contacts made from it fill an interpolation cache lazily: use a model, and every contact
+ * made from it, from one thread at a time. cc_fit builds everything it needs per call.
+ *
+ * Units and normalization (THEORY.md sections 1 and 5). Moduli in Pa (or any consistent
+ * unit), lengths in m, forces in N, compressive positive. The reference modulus E* of every
+ * normalization is the top layer's plane-strain modulus E/(1 - nu^2). With the sphere
+ * radius R, work of adhesion w and coating thickness t, the Maugis scales are
+ *   l = (pi w R^2/E*)^(1/3),  a = a_bar l,  t = eta l,  delta = D l^2/R,  F = P pi w R.
  */
 #ifndef COATCONTACT_COATCONTACT_H
 #define COATCONTACT_COATCONTACT_H
@@ -20,38 +33,148 @@
 extern "C" {
 #endif
 
-enum cc_reduced_status {
-  CC_REDUCED_OK = 0,
-  CC_REDUCED_INPUT_ERROR = 2,      /* bad material constant, a/t, tolerance, length or pointer */
-  CC_REDUCED_NUMERICAL_ERROR = 3,  /* the tolerance could not be met (never wrong numbers) */
-  CC_REDUCED_INTERNAL_ERROR = 4    /* out of memory or another unexpected failure */
+enum cc_status {
+  CC_OK = 0,
+  CC_INPUT_ERROR = 2,      /* same codes as the command line's exit status */
+  CC_NUMERICAL_ERROR = 3,
+  CC_INTERNAL_ERROR = 4
 };
 
-/* Number of doubles written per contact radius. */
-#define CC_REDUCED_COLUMNS 8
-
-/* Message of the last failure in the calling thread ("" if none); valid until the next call. */
+/* Message of the last failure in the calling thread ("" after a success); valid until the
+ * thread's next call into this interface. */
 const char *cc_last_error_message(void);
 
-/* One contact radius (builds the kernel table of the material pair each call: a few ms). */
-int cc_reduced_solve(double e1, double nu1, double e0, double nu0, int substrate_rigid,
-                     double a_over_t, double tolerance, double out[CC_REDUCED_COLUMNS]);
+/* ---- stack: the elastic system (THEORY.md sections 1, 9, 12) ----------------------------
+ *
+ * Layers are added top first; thicknesses are in any unit, only their ratios enter (the
+ * contact and the fit take the coating's total thickness in m). Supported today: one layer,
+ * bonded to the base (slip_below = 0), and a rigid indenter; anything else is CC_INPUT_ERROR
+ * (the layer list is ready for the multilayer kernel of section 12). Each setter checks its
+ * values at once with the library's rules and leaves the stack unchanged on failure; the
+ * whole stack is checked again when used (a layer and a substrate are required). A new
+ * stack has no layer, no substrate and a rigid indenter. */
+typedef struct cc_stack cc_stack;
 
-/* n contact radii; out has n * CC_REDUCED_COLUMNS doubles, row by row. */
-int cc_reduced_sweep(double e1, double nu1, double e0, double nu0, int substrate_rigid,
-                     int n, const double *a_over_t, double tolerance, double *out);
+int cc_stack_create(cc_stack **stack);
+void cc_stack_destroy(cc_stack *stack);
+/* slip_below != 0: the interface below this layer slides without friction (not supported). */
+int cc_stack_add_layer(cc_stack *stack, double thickness, double youngs_modulus,
+                       double poisson_ratio, int slip_below);
+int cc_stack_set_substrate(cc_stack *stack, double youngs_modulus, double poisson_ratio);
+int cc_stack_set_rigid_substrate(cc_stack *stack);
+/* An elastic indenter (THEORY.md section 9) is not supported yet: CC_INPUT_ERROR. */
+int cc_stack_set_indenter(cc_stack *stack, double youngs_modulus, double poisson_ratio);
+int cc_stack_set_rigid_indenter(cc_stack *stack);
+/* E* of the normalizations: the top layer's E/(1 - nu^2). */
+int cc_stack_reference_modulus(const cc_stack *stack, double *reference_modulus);
 
-/* A solver kept for many calls (the kernel table is built once). Thread-safe to use from
- * several threads once created. */
+/* ---- reduced solver (THEORY.md sections 4-5) --------------------------------------------
+ *
+ * For a contact radius over coating thickness a/t in (0, 1e8], one row of
+ * CC_REDUCED_COLUMNS doubles, the columns of `coatcontact reduced`:
+ *   0 a_over_t  1 Pi_s  2 Delta_s  3 Pi_c  4 Delta_c  5 E_eq  6 Gamma1  7 error_estimate
+ * The error estimate bounds the largest relative error of columns 1-6; it is <= tolerance
+ * whenever the status is CC_OK. Tolerance 0 means the default 1e-8; otherwise it must lie
+ * in [1e-13, 1e-1]. Creating a solver builds the stack's kernel table (a few ms). */
+#define CC_REDUCED_COLUMNS 8
 typedef struct cc_reduced_solver cc_reduced_solver;
 
-int cc_reduced_solver_create(double e1, double nu1, double e0, double nu0, int substrate_rigid,
-                             cc_reduced_solver **solver);
+int cc_reduced_solver_create(const cc_stack *stack, cc_reduced_solver **solver);
 void cc_reduced_solver_destroy(cc_reduced_solver *solver);
 int cc_reduced_solver_solve(const cc_reduced_solver *solver, double a_over_t, double tolerance,
                             double out[CC_REDUCED_COLUMNS]);
+/* n radii (may run in parallel); out has n * CC_REDUCED_COLUMNS doubles, row by row. */
 int cc_reduced_solver_sweep(const cc_reduced_solver *solver, int n, const double *a_over_t,
                             double tolerance, double *out);
+
+/* ---- adhesive sphere, normalized (THEORY.md section 5, [EqSolNormF, EqSolNormD]) ---------
+ *
+ * JKR contact of a rigid sphere: the reduced variables are solved at `tolerance` (0: the
+ * default 1e-8; else [1e-13, 1e-1]) on Chebyshev nodes and interpolated. eta and a_bar must
+ * lie in [1e-6, 1e6]. Not thread-safe (lazy cache, see above). */
+typedef struct cc_adhesive_model cc_adhesive_model;
+
+#define CC_CURVE_COLUMNS 4 /* a_bar, a_over_t = a_bar/eta, P, D */
+
+int cc_adhesive_model_create(const cc_reduced_solver *solver, double tolerance,
+                             cc_adhesive_model **model);
+void cc_adhesive_model_destroy(cc_adhesive_model *model);
+/* The default a_bar range of a curve, both JKR limits included:
+ * [0.01 min(1, r), 10 max(1, r)], r = (E* / E_base*)^(1/3) (1 for a rigid base). */
+int cc_adhesive_default_range(const cc_adhesive_model *model, double range[2]);
+/* n >= 1 points; out has n * CC_CURVE_COLUMNS doubles, row by row. */
+int cc_adhesive_curve(cc_adhesive_model *model, double eta, int n, const double *a_bar,
+                      double *out);
+
+/* Pull-off: the minimum of P over a_bar (load control) and of D (displacement control),
+ * searched over [1e-3 min(1, r), 10 max(1, r)]. Homogeneous limit: P = -3/2 and -5/6.
+ * out: 0 P_load  1 a_bar_load  2 D_load  3 P_disp  4 a_bar_disp  5 D_disp.
+ * flags (may be NULL) receives a bitmask of the warnings below, 0 when both minima are
+ * single and interior. */
+#define CC_PULLOFF_COLUMNS 6
+#define CC_PULLOFF_LOAD_SEVERAL_MINIMA 1 /* the lowest local minimum is reported */
+#define CC_PULLOFF_LOAD_NO_MINIMUM 2     /* no interior minimum: a range end is reported */
+#define CC_PULLOFF_DISP_SEVERAL_MINIMA 4
+#define CC_PULLOFF_DISP_NO_MINIMUM 8
+#define CC_PULLOFF_SCAN_TRUNCATED 16 /* solver failed at large a/t; a lower minimum may lie above */
+
+int cc_pulloff(cc_adhesive_model *model, double eta, double out[CC_PULLOFF_COLUMNS], int *flags);
+
+/* ---- contact in SI units (THEORY.md section 5) -------------------------------------------
+ *
+ * A sphere of radius R [m] on a coating of total thickness t [m] with work of adhesion
+ * w [J/m^2], all finite and > 0, with eta = t/l in [1e-6, 1e6]. A contact uses its model's
+ * cache: the model's thread rule applies to it. */
+typedef struct cc_contact cc_contact;
+
+#define CC_CONTACT_COLUMNS 3 /* a [m], delta [m], F [N] */
+
+int cc_contact_create(cc_adhesive_model *model, double sphere_radius, double thickness,
+                      double work_of_adhesion, cc_contact **contact);
+void cc_contact_destroy(cc_contact *contact);
+/* 0 l [m]  1 l^2/R [m]  2 pi w R [N]  3 eta */
+int cc_contact_scales(const cc_contact *contact, double out[4]);
+/* n >= 1 points log-spaced over the model's default a_bar range (the last one exactly at its
+ * end); out has n * CC_CONTACT_COLUMNS doubles, row by row. */
+int cc_contact_curve(cc_contact *contact, int n, double *out);
+/* The same columns at n given contact radii a [m]. */
+int cc_contact_at(cc_contact *contact, int n, const double *a, double *out);
+/* out: 0 F_load [N]  1 a_load [m]  2 delta_load [m]  3 F_disp  4 a_disp  5 delta_disp;
+ * flags as for cc_pulloff (may be NULL). */
+int cc_contact_pulloff(cc_contact *contact, double out[CC_PULLOFF_COLUMNS], int *flags);
+
+/* ---- fit of measured data (coatcontact/fit.hpp) -------------------------------------------
+ *
+ * Least squares of (a, F) or (delta, F) data against the model of the stack's top layer on
+ * its base; residuals in force. Free parameters: a non-empty mask of CC_FIT_FREE_*; the others
+ * are fixed at their start value (E1 is the stack's top-layer modulus). The solver tolerance
+ * of the fit's lattice is 1e-8. CC_NUMERICAL_ERROR when the fit does not converge, the
+ * parameters are not identifiable, or the model does not describe the data (R^2 < 0.5). */
+enum cc_fit_kind { CC_FIT_RADIUS_FORCE = 0, CC_FIT_PENETRATION_FORCE = 1 };
+enum cc_fit_parameter { CC_FIT_WORK = 0, CC_FIT_THICKNESS = 1, CC_FIT_FILM_MODULUS = 2 };
+#define CC_FIT_FREE_WORK (1u << CC_FIT_WORK)
+#define CC_FIT_FREE_THICKNESS (1u << CC_FIT_THICKNESS)
+#define CC_FIT_FREE_FILM_MODULUS (1u << CC_FIT_FILM_MODULUS)
+
+typedef struct cc_fit_result {
+  double value[3];          /* w [J/m^2], t [m], E1 [Pa], indexed by cc_fit_parameter */
+  double standard_error[3]; /* 0 for fixed parameters */
+  double correlation[9];    /* row-major 3 x 3; 1 on the diagonal, 0 for fixed parameters */
+  unsigned free_mask;
+  int points;
+  double residual_norm;  /* sqrt(RSS) [N] */
+  double residual_sigma; /* sqrt(RSS/(n - free parameters)) [N] */
+  double r_squared;
+  int iterations;
+  int converged;
+  /* The displacement-controlled pull-off of the fitted model: a_c [m], delta_c [m], F_c [N]. */
+  double displacement_pulloff[3];
+} cc_fit_result;
+
+/* x: a [m] (> 0) for CC_FIT_RADIUS_FORCE, delta [m] for CC_FIT_PENETRATION_FORCE; force [N]. */
+int cc_fit(const cc_stack *stack, int kind, int n, const double *x, const double *force,
+           double sphere_radius, double thickness_start, double work_start, unsigned free_mask,
+           cc_fit_result *out);
 
 #ifdef __cplusplus
 }

@@ -3,18 +3,26 @@
 
 #include "coatcontact/coatcontact.h"
 
-/* ---- the only call into the library's C API ---- */
+/* ---- the only calls into the library's C API ---- */
 /* Film E1 = 0.1, nu1 = 0.25 on substrate E0 = 1, nu0 = 0.25, a/t = 1, default tolerance. */
 static int solve_e_eq(double *e_eq) {
+  cc_stack *stack = NULL;
+  cc_reduced_solver *solver = NULL;
   double out[CC_REDUCED_COLUMNS];
-  const int status = cc_reduced_solve(0.1, 0.25, 1.0, 0.25, 0, 1.0, 0.0, out);
-  if (status == CC_REDUCED_OK) *e_eq = out[5]; /* out[5] is E_eq (coatcontact.h) */
+  int status = cc_stack_create(&stack);
+  if (status == CC_OK) status = cc_stack_add_layer(stack, 1.0, 0.1, 0.25, 0);
+  if (status == CC_OK) status = cc_stack_set_substrate(stack, 1.0, 0.25);
+  if (status == CC_OK) status = cc_reduced_solver_create(stack, &solver);
+  if (status == CC_OK) status = cc_reduced_solver_solve(solver, 1.0, 0.0, out);
+  if (status == CC_OK) *e_eq = out[5]; /* out[5] is E_eq (coatcontact.h) */
+  cc_reduced_solver_destroy(solver);
+  cc_stack_destroy(stack);
   return status;
 }
 
 int main(void) {
   double e_eq = 0.0;
-  if (solve_e_eq(&e_eq) != CC_REDUCED_OK) {
+  if (solve_e_eq(&e_eq) != CC_OK) {
     fprintf(stderr, "consumer_c: %s\n", cc_last_error_message());
     return 1;
   }

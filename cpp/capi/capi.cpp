@@ -1,0 +1,451 @@
+// The C interface (cpp/include/coatcontact/coatcontact.h) over the C++ floors. Every entry
+// point runs inside guarded(): exceptions become status codes, results are computed in full
+// before anything is written to the caller's memory.
+#include "coatcontact/coatcontact.h"
+
+#include <cstddef>
+#include <exception>
+#include <memory>
+#include <new>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/fit.hpp"
+#include "coatcontact/reduced.hpp"
+#include "coatcontact/stack.hpp"
+
+using coatcontact::InputError;
+
+// A stack under construction: checked piecewise by the setters, as a whole by build().
+struct cc_stack {
+  std::vector<coatcontact::Layer> layers;
+  bool has_substrate = false;
+  coatcontact::Substrate substrate;
+  coatcontact::Indenter indenter;  // rigid
+};
+
+// Handles share ownership of what they reference (the C++ objects keep plain references),
+// so a binding's garbage collector may destroy them in any order. Members are declared in
+// dependency order: the referencing object is destroyed first.
+struct cc_reduced_solver {
+  std::shared_ptr<const coatcontact::ReducedSolver> solver;
+};
+
+struct cc_adhesive_model {
+  std::shared_ptr<const coatcontact::ReducedSolver> solver;
+  std::shared_ptr<const coatcontact::AdhesiveModel> model;
+};
+
+struct cc_contact {
+  std::shared_ptr<const coatcontact::ReducedSolver> solver;
+  std::shared_ptr<const coatcontact::AdhesiveModel> model;
+  coatcontact::Contact contact;
+};
+
+namespace {
+
+thread_local std::string last_error;
+
+template <typename Body>
+int guarded(Body&& body) {
+  try {
+    last_error.clear();
+    body();
+    return CC_OK;
+  } catch (const coatcontact::InputError& e) {
+    last_error = e.what();
+    return CC_INPUT_ERROR;
+  } catch (const coatcontact::NumericalError& e) {
+    last_error = e.what();
+    return CC_NUMERICAL_ERROR;
+  } catch (const std::bad_alloc&) {
+    last_error = "out of memory";
+    return CC_INTERNAL_ERROR;
+  } catch (const std::exception& e) {
+    last_error = e.what();
+    return CC_INTERNAL_ERROR;
+  } catch (...) {
+    last_error = "unknown failure";
+    return CC_INTERNAL_ERROR;
+  }
+}
+
+void require(const void* pointer, const char* function, const char* argument) {
+  if (pointer == nullptr) {
+    throw InputError(std::string(function) + ": " + argument + " is NULL");
+  }
+}
+
+std::size_t count_of(int n, const char* function) {
+  if (n < 0) throw InputError(std::string(function) + ": n = " + std::to_string(n) + " is negative");
+  return static_cast<std::size_t>(n);
+}
+
+coatcontact::Material material(double e, double nu) {
+  coatcontact::Material m;
+  m.youngs_modulus = e;
+  m.poisson_ratio = nu;
+  return m;
+}
+
+coatcontact::Substrate rigid_base() {
+  coatcontact::Substrate s;
+  s.rigid = true;
+  return s;
+}
+
+// The Stack constructor holds the rules (layer count, constants, indenter): the setters
+// apply them to a trial stack so that they live in one place (THEORY.md section 12 lifts
+// the one-layer rule there).
+coatcontact::Stack build(const cc_stack& s) {
+  if (s.layers.empty()) throw InputError("stack: no layer; add one with cc_stack_add_layer");
+  if (!s.has_substrate) {
+    throw InputError("stack: no substrate; set one with cc_stack_set_substrate or cc_stack_set_rigid_substrate");
+  }
+  return coatcontact::Stack(s.layers, s.substrate, s.indenter);
+}
+
+double tolerance_or_default(double tolerance) {
+  return tolerance == 0.0 ? coatcontact::kDefaultTolerance : tolerance;
+}
+
+void write_row(const coatcontact::ReducedVariables& v, double* out) {
+  const double row[CC_REDUCED_COLUMNS] = {v.a_over_t, v.pi_s,  v.delta_s, v.pi_c,
+                                          v.delta_c,  v.e_eq, v.gamma1,  v.error_estimate};
+  for (int k = 0; k < CC_REDUCED_COLUMNS; ++k) out[k] = row[k];
+}
+
+// Warnings of a pull-off as CC_PULLOFF_* bits. AdhesiveModel::pulloff adds at most one
+// warning per control plus one for a truncated scan, so any surplus warning is that one.
+int pulloff_flags(const coatcontact::Pulloff& p) {
+  int flags = 0;
+  std::size_t per_control = 0;
+  const auto add = [&](const coatcontact::PulloffPoint& point, int several, int none) {
+    if (!point.interior) {
+      flags |= none;
+      ++per_control;
+    } else if (point.local_minima > 1) {
+      flags |= several;
+      ++per_control;
+    }
+  };
+  add(p.load_control, CC_PULLOFF_LOAD_SEVERAL_MINIMA, CC_PULLOFF_LOAD_NO_MINIMUM);
+  add(p.displacement_control, CC_PULLOFF_DISP_SEVERAL_MINIMA, CC_PULLOFF_DISP_NO_MINIMUM);
+  if (p.warnings.size() > per_control) flags |= CC_PULLOFF_SCAN_TRUNCATED;
+  return flags;
+}
+
+// n contact radii [m] -> rows a, delta, F of `contact`.
+std::vector<double> contact_rows(const coatcontact::Contact& contact, const std::vector<double>& a) {
+  std::vector<double> rows;
+  rows.reserve(a.size() * CC_CONTACT_COLUMNS);
+  for (double radius : a) {
+    rows.push_back(radius);
+    rows.push_back(contact.penetration(radius));
+    rows.push_back(contact.force(radius));
+  }
+  return rows;
+}
+
+void copy_out(const std::vector<double>& values, double* out) {
+  for (std::size_t k = 0; k < values.size(); ++k) out[k] = values[k];
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* cc_last_error_message(void) { return last_error.c_str(); }
+
+// ---- stack ------------------------------------------------------------------------------
+
+int cc_stack_create(cc_stack** stack) {
+  return guarded([&] {
+    require(stack, "cc_stack_create", "stack");
+    *stack = new cc_stack();
+  });
+}
+
+void cc_stack_destroy(cc_stack* stack) { delete stack; }
+
+int cc_stack_add_layer(cc_stack* stack, double thickness, double youngs_modulus, double poisson_ratio,
+                       int slip_below) {
+  return guarded([&] {
+    require(stack, "cc_stack_add_layer", "stack");
+    if (slip_below != 0) {
+      // THEORY.md section 12: a sliding interface needs its own transfer matrix, not written yet.
+      throw InputError("stack: layer " + std::to_string(stack->layers.size() + 1) +
+                       ": a sliding interface below a layer is not supported; only bonded layers (slip_below = 0)");
+    }
+    std::vector<coatcontact::Layer> layers = stack->layers;
+    layers.push_back(coatcontact::Layer{thickness, material(youngs_modulus, poisson_ratio)});
+    coatcontact::Stack(layers, rigid_base(), stack->indenter);  // the library's checks
+    stack->layers = std::move(layers);
+  });
+}
+
+int cc_stack_set_substrate(cc_stack* stack, double youngs_modulus, double poisson_ratio) {
+  return guarded([&] {
+    require(stack, "cc_stack_set_substrate", "stack");
+    coatcontact::Substrate substrate;
+    substrate.material = material(youngs_modulus, poisson_ratio);
+    coatcontact::validate(substrate);
+    stack->substrate = substrate;
+    stack->has_substrate = true;
+  });
+}
+
+int cc_stack_set_rigid_substrate(cc_stack* stack) {
+  return guarded([&] {
+    require(stack, "cc_stack_set_rigid_substrate", "stack");
+    stack->substrate = rigid_base();
+    stack->has_substrate = true;
+  });
+}
+
+int cc_stack_set_indenter(cc_stack* stack, double youngs_modulus, double poisson_ratio) {
+  return guarded([&] {
+    require(stack, "cc_stack_set_indenter", "stack");
+    coatcontact::Indenter indenter;
+    indenter.rigid = false;
+    indenter.material = material(youngs_modulus, poisson_ratio);
+    coatcontact::validate(indenter.material, "indenter");
+    // A placeholder layer on a rigid base: only the indenter rule can fail.
+    coatcontact::Stack({coatcontact::Layer{}}, rigid_base(), indenter);
+    stack->indenter = indenter;
+  });
+}
+
+int cc_stack_set_rigid_indenter(cc_stack* stack) {
+  return guarded([&] {
+    require(stack, "cc_stack_set_rigid_indenter", "stack");
+    stack->indenter = coatcontact::Indenter{};
+  });
+}
+
+int cc_stack_reference_modulus(const cc_stack* stack, double* reference_modulus) {
+  return guarded([&] {
+    require(stack, "cc_stack_reference_modulus", "stack");
+    require(reference_modulus, "cc_stack_reference_modulus", "reference_modulus");
+    *reference_modulus = build(*stack).reference_modulus();
+  });
+}
+
+// ---- reduced solver ---------------------------------------------------------------------
+
+int cc_reduced_solver_create(const cc_stack* stack, cc_reduced_solver** solver) {
+  return guarded([&] {
+    require(stack, "cc_reduced_solver_create", "stack");
+    require(solver, "cc_reduced_solver_create", "solver");
+    auto made = std::make_shared<const coatcontact::ReducedSolver>(build(*stack));
+    *solver = new cc_reduced_solver{std::move(made)};
+  });
+}
+
+void cc_reduced_solver_destroy(cc_reduced_solver* solver) { delete solver; }
+
+int cc_reduced_solver_solve(const cc_reduced_solver* solver, double a_over_t, double tolerance,
+                            double out[CC_REDUCED_COLUMNS]) {
+  return guarded([&] {
+    require(solver, "cc_reduced_solver_solve", "solver");
+    require(out, "cc_reduced_solver_solve", "out");
+    write_row(solver->solver->solve(a_over_t, tolerance_or_default(tolerance)), out);
+  });
+}
+
+int cc_reduced_solver_sweep(const cc_reduced_solver* solver, int n, const double* a_over_t,
+                            double tolerance, double* out) {
+  return guarded([&] {
+    require(solver, "cc_reduced_solver_sweep", "solver");
+    const std::size_t count = count_of(n, "cc_reduced_solver_sweep");
+    if (count == 0) return;
+    require(a_over_t, "cc_reduced_solver_sweep", "a_over_t");
+    require(out, "cc_reduced_solver_sweep", "out");
+    const auto rows = solver->solver->sweep(std::vector<double>(a_over_t, a_over_t + count),
+                                            tolerance_or_default(tolerance));
+    for (std::size_t i = 0; i < count; ++i) write_row(rows[i], out + CC_REDUCED_COLUMNS * i);
+  });
+}
+
+// ---- adhesive sphere, normalized --------------------------------------------------------
+
+int cc_adhesive_model_create(const cc_reduced_solver* solver, double tolerance, cc_adhesive_model** model) {
+  return guarded([&] {
+    require(solver, "cc_adhesive_model_create", "solver");
+    require(model, "cc_adhesive_model_create", "model");
+    const double tol = tolerance == 0.0 ? coatcontact::kDefaultAdhesiveTolerance : tolerance;
+    auto made = std::make_shared<const coatcontact::AdhesiveModel>(*solver->solver, tol);
+    *model = new cc_adhesive_model{solver->solver, std::move(made)};
+  });
+}
+
+void cc_adhesive_model_destroy(cc_adhesive_model* model) { delete model; }
+
+int cc_adhesive_default_range(const cc_adhesive_model* model, double range[2]) {
+  return guarded([&] {
+    require(model, "cc_adhesive_default_range", "model");
+    require(range, "cc_adhesive_default_range", "range");
+    const auto [lo, hi] = model->model->default_curve_range();
+    range[0] = lo;
+    range[1] = hi;
+  });
+}
+
+int cc_adhesive_curve(cc_adhesive_model* model, double eta, int n, const double* a_bar, double* out) {
+  return guarded([&] {
+    require(model, "cc_adhesive_curve", "model");
+    const std::size_t count = count_of(n, "cc_adhesive_curve");
+    require(a_bar, "cc_adhesive_curve", "a_bar");
+    require(out, "cc_adhesive_curve", "out");
+    const auto points = model->model->curve(eta, std::vector<double>(a_bar, a_bar + count));
+    std::vector<double> rows;
+    rows.reserve(count * CC_CURVE_COLUMNS);
+    for (const coatcontact::CurvePoint& p : points) {
+      rows.insert(rows.end(), {p.a_bar, p.a_over_t, p.load, p.penetration});
+    }
+    copy_out(rows, out);
+  });
+}
+
+int cc_pulloff(cc_adhesive_model* model, double eta, double out[CC_PULLOFF_COLUMNS], int* flags) {
+  return guarded([&] {
+    require(model, "cc_pulloff", "model");
+    require(out, "cc_pulloff", "out");
+    const coatcontact::Pulloff p = model->model->pulloff(eta);
+    const auto& l = p.load_control;
+    const auto& d = p.displacement_control;
+    copy_out({l.load, l.a_bar, l.penetration, d.load, d.a_bar, d.penetration}, out);
+    if (flags != nullptr) *flags = pulloff_flags(p);
+  });
+}
+
+// ---- contact in SI units ----------------------------------------------------------------
+
+int cc_contact_create(cc_adhesive_model* model, double sphere_radius, double thickness,
+                      double work_of_adhesion, cc_contact** contact) {
+  return guarded([&] {
+    require(model, "cc_contact_create", "model");
+    require(contact, "cc_contact_create", "contact");
+    *contact = new cc_contact{model->solver, model->model,
+                              coatcontact::Contact(*model->model, sphere_radius, thickness, work_of_adhesion)};
+  });
+}
+
+void cc_contact_destroy(cc_contact* contact) { delete contact; }
+
+int cc_contact_scales(const cc_contact* contact, double out[4]) {
+  return guarded([&] {
+    require(contact, "cc_contact_scales", "contact");
+    require(out, "cc_contact_scales", "out");
+    const coatcontact::Contact& c = contact->contact;
+    copy_out({c.length_scale(), c.penetration_scale(), c.force_scale(), c.eta()}, out);
+  });
+}
+
+int cc_contact_curve(cc_contact* contact, int n, double* out) {
+  return guarded([&] {
+    require(contact, "cc_contact_curve", "contact");
+    const std::size_t count = count_of(n, "cc_contact_curve");
+    if (count == 0) throw InputError("cc_contact_curve: n = 0; at least one point is needed");
+    require(out, "cc_contact_curve", "out");
+    std::vector<double> rows;
+    rows.reserve(count * CC_CONTACT_COLUMNS);
+    for (const auto& p : contact->contact.default_curve(count)) {
+      rows.insert(rows.end(), {p.radius, p.penetration, p.force});
+    }
+    copy_out(rows, out);
+  });
+}
+
+int cc_contact_at(cc_contact* contact, int n, const double* a, double* out) {
+  return guarded([&] {
+    require(contact, "cc_contact_at", "contact");
+    const std::size_t count = count_of(n, "cc_contact_at");
+    if (count == 0) return;
+    require(a, "cc_contact_at", "a");
+    require(out, "cc_contact_at", "out");
+    copy_out(contact_rows(contact->contact, std::vector<double>(a, a + count)), out);
+  });
+}
+
+int cc_contact_pulloff(cc_contact* contact, double out[CC_PULLOFF_COLUMNS], int* flags) {
+  return guarded([&] {
+    require(contact, "cc_contact_pulloff", "contact");
+    require(out, "cc_contact_pulloff", "out");
+    const coatcontact::Contact& c = contact->contact;
+    const coatcontact::Pulloff& p = c.pulloff();
+    const auto si = [&](const coatcontact::PulloffPoint& q) {
+      return std::vector<double>{q.load * c.force_scale(), q.a_bar * c.length_scale(),
+                                 q.penetration * c.penetration_scale()};
+    };
+    std::vector<double> rows = si(p.load_control);
+    const std::vector<double> disp = si(p.displacement_control);
+    rows.insert(rows.end(), disp.begin(), disp.end());
+    copy_out(rows, out);
+    if (flags != nullptr) *flags = pulloff_flags(p);
+  });
+}
+
+// ---- fit --------------------------------------------------------------------------------
+
+int cc_fit(const cc_stack* stack, int kind, int n, const double* x, const double* force,
+           double sphere_radius, double thickness_start, double work_start, unsigned free_mask,
+           cc_fit_result* out) {
+  namespace fit = coatcontact::fit;
+  return guarded([&] {
+    require(stack, "cc_fit", "stack");
+    require(x, "cc_fit", "x");
+    require(force, "cc_fit", "force");
+    require(out, "cc_fit", "out");
+    const std::size_t count = count_of(n, "cc_fit");
+    if (kind != CC_FIT_RADIUS_FORCE && kind != CC_FIT_PENETRATION_FORCE) {
+      throw InputError("cc_fit: kind = " + std::to_string(kind) +
+                       " is neither CC_FIT_RADIUS_FORCE (0) nor CC_FIT_PENETRATION_FORCE (1)");
+    }
+    const unsigned all = CC_FIT_FREE_WORK | CC_FIT_FREE_THICKNESS | CC_FIT_FREE_FILM_MODULUS;
+    if (free_mask == 0u || (free_mask & ~all) != 0u) {
+      throw InputError("cc_fit: free_mask = " + std::to_string(free_mask) +
+                       " must be a non-empty combination of CC_FIT_FREE_WORK, CC_FIT_FREE_THICKNESS, "
+                       "CC_FIT_FREE_FILM_MODULUS");
+    }
+    const coatcontact::Stack built = build(*stack);
+
+    fit::Measurements data;
+    data.kind = kind == CC_FIT_RADIUS_FORCE ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
+    data.abscissa.assign(x, x + count);
+    data.force.assign(force, force + count);
+
+    fit::Problem problem;
+    problem.sphere_radius = sphere_radius;
+    problem.film = built.top();
+    problem.substrate = built.substrate();
+    problem.thickness = thickness_start;
+    problem.work = work_start;
+    for (int k = 0; k < fit::kParameterCount; ++k) problem.free[k] = (free_mask >> k) & 1u;
+
+    const fit::Result r = fit::fit(data, problem);
+    cc_fit_result result{};
+    for (int i = 0; i < fit::kParameterCount; ++i) {
+      result.value[i] = r.value[i];
+      result.standard_error[i] = r.standard_error[i];
+      for (int j = 0; j < fit::kParameterCount; ++j) result.correlation[3 * i + j] = r.correlation[i][j];
+    }
+    result.free_mask = free_mask;
+    result.points = static_cast<int>(r.points);
+    result.residual_norm = r.residual_norm;
+    result.residual_sigma = r.residual_sigma;
+    result.r_squared = r.r_squared;
+    result.iterations = r.iterations;
+    result.converged = r.converged ? 1 : 0;
+    result.displacement_pulloff[0] = r.displacement_pulloff_radius;
+    result.displacement_pulloff[1] = r.displacement_pulloff_penetration;
+    result.displacement_pulloff[2] = r.displacement_pulloff_force;
+    *out = result;
+  });
+}
+
+}  // extern "C"
