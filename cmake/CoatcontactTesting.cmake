@@ -2,7 +2,8 @@
 #             [SOURCES src.. [LIBRARIES lib..]]     -> builds an executable test_<name>
 #             [COMMAND cmd args..]                   -> or runs a command (e.g. a script)
 #             [TIMEOUT seconds] [ENVIRONMENT VAR=value..])
-# One helper for every test so labels and timeouts are uniform.
+# One helper for every test so labels and timeouts are uniform; every test executable gets
+# tests/common (the assertion header check.hpp).
 function(cc_add_test)
   cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBRARIES;LABELS;COMMAND;ENVIRONMENT" ${ARGN})
   if(NOT T_NAME OR NOT T_LABELS)
@@ -11,6 +12,7 @@ function(cc_add_test)
   if(T_SOURCES)
     add_executable(test_${T_NAME} ${T_SOURCES})
     target_link_libraries(test_${T_NAME} PRIVATE ${T_LIBRARIES})
+    target_include_directories(test_${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
     target_compile_features(test_${T_NAME} PRIVATE cxx_std_17)
     cc_set_warnings(test_${T_NAME})
     if(T_COMMAND)

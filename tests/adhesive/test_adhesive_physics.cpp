@@ -1,8 +1,8 @@
 // Pull-off of the adhesive sphere on coated substrates with the real ReducedSolver
 // (THEORY.md section 6 checks):
-//  - "ã → ∞, elastic substrate ... pull-off P → -3/2 for η → 0 and η → ∞";
-//  - "Soft film (E1*/E0* < 1): pull-off force enhanced near η ≈ 1; stiff film: reduced";
-//  - "Rigid substrate, compressible film ... load-controlled pull-off P → -2 as η → 0".
+//  - item 4 (wide contact, elastic substrate): pull-off P → -3/2 for η → 0 and η → ∞;
+//  - item 7 (trends): soft film (E1*/E0* < 1) enhances the pull-off near η ≈ 1, stiff reduces;
+//  - item 5 (Winkler): rigid substrate, compressible film, load-controlled P → -2 as η → 0.
 // Also: the thin-film limit sits at the substrate JKR radius a_bar = (9/8)^(1/3) (E1*/E0*)^(1/3).
 #include <cmath>
 #include <cstdio>
@@ -16,7 +16,6 @@
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
 
-using namespace adhesive_test;
 using coatcontact::AdhesiveModel;
 
 namespace {
@@ -49,6 +48,7 @@ constexpr double kWinklerTier = 1e-2;
 }  // namespace
 
 int main() {
+  check::verbose = true;  // the log lists every measured error against its tier
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   const double nu = 0.25;
   for (double ratio : {0.1, 10.0}) {
@@ -61,45 +61,47 @@ int main() {
       try {
         po = model.pulloff(eta);
       } catch (const coatcontact::NumericalError& e) {
-        check(false, "pull-off" + at + " eta=" + g(eta) + ": " + e.what());
+        check::that(false, "pull-off" + at + " eta=" + g(eta) + ": " + e.what());
         continue;
       }
       std::printf("     %s eta=%-6g P_load %.10f (a_bar %.6f)  P_disp %.10f (a_bar %.6f) %s\n", at.c_str(), eta,
                   po.load_control.load, po.load_control.a_bar, po.displacement_control.load,
                   po.displacement_control.a_bar, po.warnings.empty() ? "" : "WARNINGS");
       for (const auto& w : po.warnings) std::printf("       warning: %s\n", w.c_str());
-      check(po.load_control.single_minimum && po.load_control.interior && po.displacement_control.single_minimum &&
-                po.displacement_control.interior,
-            "single interior minima" + at + " eta=" + g(eta));
+      check::that(po.load_control.single_minimum && po.load_control.interior &&
+                      po.displacement_control.single_minimum && po.displacement_control.interior,
+                  "single interior minima" + at + " eta=" + g(eta));
       if (eta == 1e-3 || eta == 1000.0) {
-        check_close(po.load_control.load, -1.5, kLimitTier, "P_load -> -3/2" + at + " eta=" + g(eta));
+        check::close(po.load_control.load, -1.5, kLimitTier, "P_load -> -3/2" + at + " eta=" + g(eta));
       }
       if (eta == 1e-3) {
-        check_close(po.load_control.a_bar, std::cbrt(9.0 / 8.0 * ratio), kLimitTier * 3,
-                    "thin film: a_bar -> substrate JKR (9/8 E1*/E0*)^(1/3)" + at);
+        check::close(po.load_control.a_bar, std::cbrt(9.0 / 8.0 * ratio), kLimitTier * 3,
+                     "thin film: a_bar -> substrate JKR (9/8 E1*/E0*)^(1/3)" + at, 1.0);
       }
       if (eta == 1.0) {
-        // Section 6 / figures 5, 7 (captions): soft film enhances, stiff film reduces.
+        // Section 6, item 7 / figures 5, 7 (captions): soft film enhances, stiff film reduces.
         if (ratio < 1) {
-          check(po.load_control.load < -1.5 - 0.05, "soft film enhances the pull-off at eta=1 (P < -1.55)");
+          check::that(po.load_control.load < -1.5 - 0.05,
+                      "soft film enhances the pull-off at eta=1 (P < -1.55)");
         } else {
-          check(po.load_control.load > -1.5 + 0.05, "stiff film reduces the pull-off at eta=1 (P > -1.45)");
+          check::that(po.load_control.load > -1.5 + 0.05,
+                      "stiff film reduces the pull-off at eta=1 (P > -1.45)");
         }
       }
       load_at[eta] = po.load_control.load;
     }
     // Both limits are approached monotonically over the last two decades.
     if (load_at.count(1e-3) && load_at.count(1e-2) && load_at.count(1e-1)) {
-      check(std::abs(load_at[1e-3] + 1.5) < std::abs(load_at[1e-2] + 1.5) &&
-                std::abs(load_at[1e-2] + 1.5) < std::abs(load_at[1e-1] + 1.5),
-            "thin films: |P_load + 3/2| decreases from eta=0.1 to 0.01 to 0.001" + at);
+      check::that(std::abs(load_at[1e-3] + 1.5) < std::abs(load_at[1e-2] + 1.5) &&
+                      std::abs(load_at[1e-2] + 1.5) < std::abs(load_at[1e-1] + 1.5),
+                  "thin films: |P_load + 3/2| decreases from eta=0.1 to 0.01 to 0.001" + at);
     }
-    check(std::abs(load_at[1000.0] + 1.5) < std::abs(load_at[100.0] + 1.5) &&
-              std::abs(load_at[100.0] + 1.5) < std::abs(load_at[10.0] + 1.5),
-          "thick films: |P_load + 3/2| decreases from eta=10 to 100 to 1000" + at);
+    check::that(std::abs(load_at[1000.0] + 1.5) < std::abs(load_at[100.0] + 1.5) &&
+                    std::abs(load_at[100.0] + 1.5) < std::abs(load_at[10.0] + 1.5),
+                "thick films: |P_load + 3/2| decreases from eta=10 to 100 to 1000" + at);
   }
 
-  // Rigid substrate, compressible film: Winkler limit (THEORY.md section 6: P -> -2).
+  // Rigid substrate, compressible film: Winkler limit (THEORY.md section 6, item 5: P -> -2).
   {
     coatcontact::Substrate rigid;
     rigid.rigid = true;
@@ -112,18 +114,18 @@ int main() {
       const auto p3 = model.pulloff(1e-3);
       std::printf("     rigid substrate nu1=0.25: P_load(1e-2) %.10f (a_bar %.6f)  P_load(1e-3) %.10f (a_bar %.6f)\n",
                   p2.load_control.load, p2.load_control.a_bar, p3.load_control.load, p3.load_control.a_bar);
-      check(std::abs(p3.load_control.load + 2) < std::abs(p2.load_control.load + 2),
-            "rigid substrate: P_load closer to -2 at eta=1e-3 than at 1e-2");
-      check_close(p3.load_control.load, -2.0, kWinklerTier, "rigid substrate: P_load(eta=1e-3) -> -2");
+      check::that(std::abs(p3.load_control.load + 2) < std::abs(p2.load_control.load + 2),
+                  "rigid substrate: P_load closer to -2 at eta=1e-3 than at 1e-2");
+      check::close(p3.load_control.load, -2.0, kWinklerTier, "rigid substrate: P_load(eta=1e-3) -> -2");
       // Winkler scaling of the pull-off radius: a_bar = eta^(1/4) sqrt(y*), y* = 2 sqrt(2/(pi k)),
       // k = (1-nu)^2/(1-2nu)  (from P = (pi k/4) y^2 - sqrt(2 pi k) y, y = eta^(3/2) (a/t)^2).
       const double k = (1 - nu) * (1 - nu) / (1 - 2 * nu);
       const double y = 2 * std::sqrt(2 / (M_PI * k));
-      check_close(p3.load_control.a_bar / (std::pow(1e-3, 0.25) * std::sqrt(y)), 1.0, kWinklerTier,
-                  "rigid substrate: Winkler pull-off radius at eta=1e-3");
+      check::close(p3.load_control.a_bar / (std::pow(1e-3, 0.25) * std::sqrt(y)), 1.0, kWinklerTier,
+                   "rigid substrate: Winkler pull-off radius at eta=1e-3");
     } catch (const coatcontact::NumericalError& e) {
-      check(false, std::string("rigid substrate pull-off: ") + e.what());
+      check::that(false, std::string("rigid substrate pull-off: ") + e.what());
     }
   }
-  return finish("test_adhesive_physics");
+  return check::exit_code();
 }

@@ -5,13 +5,13 @@
 // a/t in {1e-4, 1e-3, ..., 1e4}; the default tolerance 1e-8 (what the CLI uses).
 //
 // Every solve must either return finite, positive values with error_estimate <= tol that pass
-// the identity check of THEORY.md section 6 [EqGde1],
+// the identity check of THEORY.md section 6, item 1 [EqGde1],
 //     Gamma(1)^2 = d(a E_eq)/da,
 // with the derivative taken by an independent finite difference of the solver's own E_eq, or
-// throw NumericalError with a message (the CLI's exit 3). Failures of the second kind are
-// counted and printed (they are the documented limits, docs/limits.md), they do not fail the
-// test. The test fails on a wrong-but-returned value, a NaN/inf, a non-positive value, any
-// other exception, a crash or a hang (ctest TIMEOUT).
+// throw NumericalError with a message (the CLI's exit 3). Failures of the second kind are the
+// documented limits (docs/limits.md): only the known ones (kKnownFailures) are allowed, so a
+// regression that adds one fails the test. The test also fails on a wrong-but-returned value,
+// a NaN/inf, a non-positive value, any other exception, a crash or a hang (ctest TIMEOUT).
 //
 // Reduced workload (sanitizer builds): COATCONTACT_SWEEP_STRIDE=k keeps every k-th material
 // pair (k >= 1, default 1 = the whole grid); the log says how many pairs were skipped.
@@ -26,9 +26,10 @@
 #include <thread>
 #include <vector>
 
+#include "check.hpp"
 #include "coatcontact/errors.hpp"
-#include "coatcontact/stack.hpp"
 #include "coatcontact/reduced.hpp"
+#include "coatcontact/stack.hpp"
 
 using namespace coatcontact;
 
@@ -66,6 +67,22 @@ struct Pair {
   double nu1 = 0.0;
   double nu0 = 0.0;
 };
+
+// The points that may stop with NumericalError at the default tolerance (2 of 990): an
+// incompressible film on a rigid substrate beyond a/t ~ 280, where the condition number grows
+// like (a/t)^3 (lubrication limit; docs/limits.md).
+struct KnownFailure {
+  double ratio, nu1, a_over_t;
+};
+const KnownFailure kKnownFailures[] = {{0.0, 0.5, 1e3}, {0.0, 0.5, 1e4}};
+constexpr int kMaxNumericalFailures = sizeof kKnownFailures / sizeof kKnownFailures[0];
+
+bool is_known_failure(const Pair& p, double a_over_t) {
+  for (const KnownFailure& k : kKnownFailures) {
+    if (p.ratio == k.ratio && p.nu1 == k.nu1 && a_over_t == k.a_over_t) return true;
+  }
+  return false;
+}
 
 enum class Outcome { kOk, kNumericalError, kWrong, kUnchecked };
 
@@ -340,6 +357,7 @@ int main() {
       (fine ? nu_cell.first : nu_cell.second)++;
       char mark = '.';
       if (r.outcome == Outcome::kNumericalError) {
+        check::that(is_known_failure(pairs[i], kAOverT[j]), "NumericalError only at a known limit: " + where);
         const PointResult& again = retried[i][j];
         second.add(again, where);
         auto& loose_cell = by_ratio_loose[std::string(ratio_key) + "|" + radius_key(j)];
@@ -434,11 +452,9 @@ int main() {
   second.print(label);
   if (exceptions != 0) std::printf("  %d material pair(s) threw an unexpected exception\n", exceptions);
   const int wrong = first.wrong + second.wrong + exceptions;
-  if (wrong != 0) {
-    std::printf("test_extreme_sweep: FAILED (%d wrong values or unexpected errors)\n", wrong);
-    return 1;
-  }
-  std::printf("test_extreme_sweep: passed (no wrong value returned; NumericalError points are the "
-              "documented limits, docs/limits.md)\n");
-  return 0;
+  check::that(wrong == 0, std::to_string(wrong) + " wrong values or unexpected errors");
+  check::that(first.numerical <= kMaxNumericalFailures, std::to_string(first.numerical) +
+                                                            " NumericalError points at tol 1e-8, at most " +
+                                                            std::to_string(kMaxNumericalFailures) + " known");
+  return check::exit_code();
 }

@@ -10,15 +10,12 @@
 #include "reduced_core.hpp"
 
 using namespace coatcontact;
-using coatcontact::test::check;
-using coatcontact::test::check_relative;
 
 namespace {
 
-// Tiers. kMachineTier: a few hundred ulps (sums of ~100 rounded terms).
-// kBruteSelfTier: agreement of two brute-force resolutions (0.25 vs 0.5 panels, 12 points),
-// which bounds the reference's own error.
-constexpr double kMachineTier = 1e-13;
+namespace tier = check::tier;
+// Agreement of two brute-force resolutions (0.25 vs 0.5 panels, 12 points), which bounds the
+// reference's own error on these smooth analytic kernels.
 constexpr double kBruteSelfTier = 1e-12;
 
 const char* const kNames[] = {"Pi_s", "Delta_s", "Pi_c", "Delta_c", "E_eq", "Gamma1"};
@@ -31,22 +28,22 @@ void test_gauss_rules() {
       sum += rule.weights[static_cast<std::size_t>(k)];
       moment += rule.weights[static_cast<std::size_t>(k)] * std::pow(rule.nodes[static_cast<std::size_t>(k)], 2 * n - 2);
     }
-    check_relative("Gauss " + std::to_string(n) + " weights sum to 2", sum, 2.0, kMachineTier);
+    check::close(sum, 2.0, tier::kMachine, "Gauss " + std::to_string(n) + " weights sum to 2");
     // Exact for degree 2n - 1: ∫ x^(2n-2) = 2/(2n-1).
-    check_relative("Gauss " + std::to_string(n) + " degree 2n-2", moment, 2.0 / (2 * n - 1), 1e-12);
+    check::close(moment, 2.0 / (2 * n - 1), tier::kAmplified, "Gauss " + std::to_string(n) + " degree 2n-2");
   }
 }
 
-// H = 0: the homogeneous values 8/3, 1, 2, 1, 1, 1 exactly (THEORY.md section 6).
+// H = 0: the homogeneous values 8/3, 1, 2, 1, 1, 1 exactly (THEORY.md section 6, item 2).
 void test_zero_kernel() {
   const test::ZeroKernel kernel;
   const double expected[6] = {8.0 / 3.0, 1.0, 2.0, 1.0, 1.0, 1.0};
   for (double a : {1e-3, 0.5, 3.0, 50.0, 1000.0}) {
     const auto r = detail::solve_adaptive(kernel, a, 1e-8);
-    check("zero kernel converges at a/t " + std::to_string(a), r.converged);
+    check::that(r.converged, "zero kernel converges at a/t " + std::to_string(a));
     for (int i = 0; i < 6; ++i) {
-      check_relative(std::string("zero kernel ") + kNames[i] + " at a/t " + std::to_string(a),
-                     r.values[static_cast<std::size_t>(i)], expected[i], kMachineTier);
+      check::close(r.values[static_cast<std::size_t>(i)], expected[i], tier::kMachine,
+                   std::string("zero kernel ") + kNames[i] + " at a/t " + std::to_string(a));
     }
   }
 }
@@ -67,14 +64,14 @@ void test_against_brute_force() {
         const auto r = detail::solve_adaptive(*kernels[k], a, tolerance);
         const std::string where = std::string(names[k]) + " kernel, a/t " + std::to_string(a) +
                                   ", tol " + std::to_string(tolerance);
-        check(where + ": converged", r.converged);
-        check(where + ": estimate <= tolerance", r.error_estimate <= tolerance);
+        check::that(r.converged, where + ": converged");
+        check::below(r.error_estimate, tolerance, where + ": estimate <= tolerance");
         for (int i = 0; i < 6; ++i) {
           const auto idx = static_cast<std::size_t>(i);
-          check_relative(where + ": brute-force self-consistency " + kNames[i], coarse[idx],
-                         fine[idx], kBruteSelfTier);
-          check_relative(where + ": " + kNames[i] + " within tolerance", r.values[idx],
-                         fine[idx], tolerance + kBruteSelfTier);
+          check::close(coarse[idx], fine[idx], kBruteSelfTier,
+                       where + ": brute-force self-consistency " + kNames[i]);
+          check::close(r.values[idx], fine[idx], tolerance + kBruteSelfTier,
+                       where + ": " + kNames[i] + " within tolerance");
         }
       }
     }
@@ -88,7 +85,7 @@ void test_unknowns_independent_of_radius() {
   const auto large = detail::solve_adaptive(kernel, 1000.0, 1e-8);
   std::printf("unknowns at tol 1e-8: a/t 10 -> %d, a/t 1000 -> %d\n", small.unknowns, large.unknowns);
   // Geometric grading: panels grow like log2(a/t), so 100x the radius adds ~7 panels.
-  check("unknowns grow at most logarithmically", large.unknowns <= 3 * small.unknowns);
+  check::below(large.unknowns, 3 * small.unknowns, "unknowns grow at most logarithmically");
 }
 
 }  // namespace
@@ -98,5 +95,5 @@ int main() {
   test_zero_kernel();
   test_against_brute_force();
   test_unknowns_independent_of_radius();
-  return test::finish("test_solver_core");
+  return check::exit_code();
 }

@@ -12,26 +12,25 @@
 #include "check.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
+#include "materials.hpp"
 #include "table_kernel.hpp"
 
 using namespace coatcontact;
-using coatcontact::test::check;
 using coatcontact::test::elastic;
 using coatcontact::test::material;
 using coatcontact::test::rigid;
-using coatcontact::test::check_relative;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Tiers. kHomogeneousTier: the 1e-10 for the homogeneous values (H = 0 exactly, so the
-// solver is exact up to rounding). kIdentityTier: the 1e-6 for Γ(1)² = d(ã E_eq)/dã,
-// whose finite-difference derivative (6th order, step h = 0.05 in ln ã, solves at tol 1e-9)
-// carries ~h^6/140 |f^(7)| ~ 1e-10 truncation and <= 37 tol = 4e-8 from the solver errors. kBruteTier: solver at tol 1e-9 against a brute-force
-// solve whose own error is below 1e-11 (checked).
-constexpr double kHomogeneousTier = 1e-10;
-constexpr double kIdentityTier = 1e-6;
+namespace tier = check::tier;
+// Homogeneous values: H = 0 exactly, so the solver is exact up to rounding (tier::kMachine,
+// tighter than the 1e-10; measured 1.2e-15). Identity Γ(1)² = d(ã E_eq)/dã
+// (tier::kIdentityByDifferences, the 1e-6): the 6th-order difference (h = 0.05 in
+// ln ã, solves at tol 1e-9) carries ~h^6/140 |f^(7)| ~ 1e-10 truncation and <= 37 tol = 4e-8
+// from the solver errors. Brute force: the solver at tol 1e-9 against a reference whose own
+// error is below tier::kReference (checked).
 
 std::vector<double> log_space(double from, double to, int count) {
   std::vector<double> values;
@@ -47,7 +46,7 @@ std::string str(double value) {
   return buffer;
 }
 
-// Check "homogeneous substrate": film = substrate gives exactly 8/3, 1, 2, 1, 1, 1.
+// Check "homogeneous case" (THEORY.md section 6, item 2): film = substrate gives exactly 8/3, 1, 2, 1, 1, 1.
 void test_homogeneous() {
   const ReducedSolver solver(Stack::film_on(material(1.0, 0.3), elastic(1.0, 0.3)));
   double worst = 0.0;
@@ -56,16 +55,16 @@ void test_homogeneous() {
     const double values[6] = {v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1};
     const double expected[6] = {8.0 / 3.0, 1.0, 2.0, 1.0, 1.0, 1.0};
     for (int i = 0; i < 6; ++i) {
-      check_relative("homogeneous value " + std::to_string(i) + " at a/t " + str(a), values[i],
-                     expected[i], kHomogeneousTier);
+      check::close(values[i], expected[i], tier::kMachine,
+                   "homogeneous value " + std::to_string(i) + " at a/t " + str(a));
       worst = std::max(worst, std::abs(values[i] - expected[i]) / expected[i]);
     }
   }
   std::printf("homogeneous: worst relative deviation %.2e over a/t in [1e-3, 1e3]\n", worst);
 }
 
-// Check "identity [EqGde1]": Γ(1) = sqrt(d(ã E_eq)/dã), the derivative by 6th-order central
-// differences in s = ln ã (d/dã = e^{-s} d/ds), independent of the edge value.
+// Check "identity [EqGde1]" (section 6, item 1): Γ(1) = sqrt(d(ã E_eq)/dã), the derivative by 6th-order
+// central differences in s = ln ã (d/dã = e^{-s} d/ds), independent of the edge value.
 void test_identity() {
   struct Case {
     const char* name;
@@ -74,7 +73,7 @@ void test_identity() {
     double tolerance;
   };
   // The rigid substrate's kernel-accuracy bound exceeds 1e-9 near ã = 100: solve it at 1e-8
-  // (finite-difference error <= 37 tol = 4e-7, still below kIdentityTier).
+  // (finite-difference error <= 37 tol = 4e-7, still below tier::kIdentityByDifferences).
   const Case cases[] = {
       {"E1*/E0* = 0.01", material(0.01, 0.25), elastic(1.0, 0.25), 1e-9},
       {"E1*/E0* = 0.1", material(0.1, 0.25), elastic(1.0, 0.25), 1e-9},
@@ -97,8 +96,8 @@ void test_identity() {
       const double derivative = ds / a;
       const double gamma1 = rows[3].gamma1;
       const double identity = std::sqrt(derivative);
-      check_relative(std::string("identity Γ(1)² = d(ãE_eq)/dã, ") + c.name + ", a/t " + str(a),
-                     gamma1, identity, kIdentityTier);
+      check::close(gamma1, identity, tier::kIdentityByDifferences,
+                   std::string("identity Γ(1)² = d(ãE_eq)/dã, ") + c.name + ", a/t " + str(a));
       worst = std::max(worst, std::abs(gamma1 - identity) / identity);
     }
     std::printf("identity %-18s worst |Γ1 - sqrt(d(ãE)/dã)|/Γ1 = %.2e over a/t in [0.01, 100]\n",
@@ -106,8 +105,8 @@ void test_identity() {
   }
 }
 
-// Check "ã → 0": every variable tends to its homogeneous value, linearly in ã (the kernel
-// acts on an interval of length ã).
+// Check "thin contact, ã → 0" (section 6, item 3): every variable tends to its homogeneous value, linearly in
+// ã (the kernel acts on an interval of length ã).
 void test_small_radius_limit() {
   for (double ratio : {0.01, 10.0}) {
     const ReducedSolver solver(Stack::film_on(material(ratio, 0.25), elastic(1.0, 0.25)));
@@ -120,16 +119,16 @@ void test_small_radius_limit() {
       std::printf("a/t -> 0, E1*/E0* = %g, variable %d: deviation %.3e at 1e-2, %.3e at 1e-3\n", ratio, i, d2, d3);
       // At least linear approach: tenfold smaller radius, deviation >= 5x smaller (Δ, E_eq,
       // Γ1 are O(ã); in Π the O(ã) terms cancel and the approach is faster).
-      check("a/t -> 0 approach at least linear (variable " + std::to_string(i) + ", ratio " + str(ratio) + ")",
-            d3 < d2 / 5.0);
-      check("a/t -> 0 deviation at 1e-3 below 1e-2", d3 < 1e-2);
+      check::that(d3 < d2 / 5.0, "a/t -> 0 approach at least linear (variable " + std::to_string(i) +
+                                     ", ratio " + str(ratio) + ")");
+      check::that(d3 < 1e-2, "a/t -> 0 deviation at 1e-3 below 1e-2");
     }
   }
 }
 
-// Check "ã → ∞, elastic substrate": E_eq → E0*/E1*, Γ(1) → sqrt(E0*/E1*), Π_s → (8/3)E0*/E1*,
-// Δ_s → 1. The approach is O(1/ã) (the film is a layer of relative thickness 1/ã); checked as
-// deviations at ã = 1000 below the stated bounds and shrinking >= 4x from ã = 100 to 1000.
+// Check "wide contact, ã → ∞, elastic substrate" (section 6, item 4): E_eq → E0*/E1*, Γ(1) → sqrt(E0*/E1*),
+// Π_s → (8/3)E0*/E1*, Δ_s → 1. The approach is O(1/ã) (the film is a layer of relative thickness 1/ã);
+// checked as deviations at ã = 1000 below the stated bounds and shrinking >= 4x from ã = 100 to 1000.
 void test_large_radius_limit() {
   for (double ratio : {0.1, 10.0}) {
     const ReducedSolver solver(Stack::film_on(material(ratio, 0.25), elastic(1.0, 0.25)));
@@ -149,15 +148,17 @@ void test_large_radius_limit() {
       const double d100 = std::abs(l.at_100 / l.limit - 1.0), d1000 = std::abs(l.at_1000 / l.limit - 1.0);
       std::printf("a/t -> inf, E1*/E0* = %g, %s: deviation %.3e at 100, %.3e at 1000\n", ratio,
                   l.name, d100, d1000);
-      check(std::string("large a/t limit ") + l.name + " within bound, ratio " + str(ratio), d1000 < l.bound);
-      check(std::string("large a/t limit ") + l.name + " approached, ratio " + str(ratio), d1000 < d100 / 4.0);
+      check::that(d1000 < l.bound,
+                  std::string("large a/t limit ") + l.name + " within bound, ratio " + str(ratio));
+      check::that(d1000 < d100 / 4.0,
+                  std::string("large a/t limit ") + l.name + " approached, ratio " + str(ratio));
     }
   }
 }
 
-// Check "Winkler limit": rigid substrate, compressible film: E_eq/ã → (π/2)(1-ν1)²/(1-2ν1),
-// with O(1/ã) corrections. Check "lubrication limit": incompressible film on a rigid substrate,
-// E_eq → (3π/64) ã³ from above.
+// Check "Winkler limit" (section 6, item 5): rigid substrate, compressible film: E_eq/ã →
+// (π/2)(1-ν1)²/(1-2ν1), with O(1/ã) corrections. Check "lubrication limit" (item 6): incompressible film on a
+// rigid substrate, E_eq → (3π/64) ã³ from above.
 void test_rigid_limits() {
   for (double nu : {0.0, 0.25, 0.4}) {
     const ReducedSolver solver(Stack::film_on(material(1.0, nu), rigid()));
@@ -166,7 +167,7 @@ void test_rigid_limits() {
     const double d30 = std::abs(solver.solve(30.0, 1e-6).e_eq / (30.0 * winkler) - 1.0);
     const double d300 = std::abs(solver.solve(300.0, 1e-6).e_eq / (300.0 * winkler) - 1.0);
     std::printf("Winkler nu1 = %.2f: |E_eq/(ã E_W) - 1| = %.3e at 30, %.3e at 300\n", nu, d30, d300);
-    check("Winkler limit approached O(1/a/t), nu1 " + str(nu), d300 < d30 / 5.0 && d300 < 0.05);
+    check::that(d300 < d30 / 5.0 && d300 < 0.05, "Winkler limit approached O(1/a/t), nu1 " + str(nu));
   }
   // The approach is O(1/ã): (ratio - 1) halves when ã doubles.
   const ReducedSolver solver(Stack::film_on(material(1.0, 0.5), rigid()));
@@ -174,20 +175,20 @@ void test_rigid_limits() {
   for (double a : {5.0, 10.0, 20.0, 40.0}) {
     const double ratio = solver.solve(a, 1e-6).e_eq / (3.0 * kPi / 64.0 * a * a * a);
     std::printf("lubrication: E_eq / ((3π/64) ã³) = %.8f at a/t %g\n", ratio, a);
-    check("lubrication limit approached from above at a/t " + str(a), ratio > 1.0);
+    check::that(ratio > 1.0, "lubrication limit approached from above at a/t " + str(a));
     if (previous > 0.0 && a > 10.0) {
       const double shrink = (ratio - 1.0) / (previous - 1.0);
-      check("lubrication limit: O(1/a/t) approach at a/t " + str(a), shrink > 0.4 && shrink < 0.6);
+      check::that(shrink > 0.4 && shrink < 0.6, "lubrication limit: O(1/a/t) approach at a/t " + str(a));
     }
     previous = ratio;
   }
 }
 
-// Check "external check": the finite-element E_eq of data/fe_flat_punch.tsv within its
-// abs_error (rows give E1/E0 with nu0 = nu1, so E1*/E0* = E1/E0).
+// Check "external reference" (section 6, item 8): the finite-element E_eq of data/fe_flat_punch.tsv within
+// its abs_error (rows give E1/E0 with nu0 = nu1, so E1*/E0* = E1/E0).
 void test_finite_element_reference() {
   std::ifstream in(COATCONTACT_FE_REFERENCE);
-  check("FE reference file readable", bool(in));
+  check::that(bool(in), "FE reference file readable");
   std::string line;
   int rows = 0;
   while (std::getline(in, line)) {
@@ -195,7 +196,7 @@ void test_finite_element_reference() {
     std::istringstream fields(line);
     double ratio, nu1, nu0, a, e_eq, abs_error, seconds;
     if (!(fields >> ratio >> nu1 >> nu0 >> a >> e_eq >> abs_error >> seconds)) {
-      check("FE reference row parses: " + line, false);
+      check::that(false, "FE reference row parses: " + line);
       continue;
     }
     const ReducedSolver solver(Stack::film_on(material(ratio, nu1), elastic(1.0, nu0)));
@@ -203,15 +204,16 @@ void test_finite_element_reference() {
     const double difference = v.e_eq - e_eq;
     std::printf("FE check E1/E0 = %g, a/t = %g: solver %.10f, FE %.9f, difference %+.2e (FE error %.1e)\n",
                 ratio, a, v.e_eq, e_eq, difference, abs_error);
-    check("FE reference agreement E1/E0 " + str(ratio) + " a/t " + str(a),
-          std::abs(difference) <= abs_error + v.error_estimate * v.e_eq);
+    check::below(std::abs(difference), abs_error + v.error_estimate * v.e_eq,
+                 "FE reference agreement E1/E0 " + str(ratio) + " a/t " + str(a));
     ++rows;
   }
-  check("FE reference has 7 rows", rows == 7);
+  check::that(rows == 7, "FE reference has 7 rows");
 }
 
-// Check "convergence": halving the tolerance changes the results by less than the estimate
-// of the coarser solve says (the estimate is honest), over materials and radii.
+// Check "convergence" (not a section-6 item; the estimate of docs/solver.md): halving the tolerance changes
+// the results by less than the estimate of the coarser solve says (the estimate is honest), over materials
+// and radii.
 void test_convergence() {
   struct Case {
     Material film;
@@ -233,19 +235,19 @@ void test_convergence() {
           // Allowed only where the kernel-accuracy/rounding bound, which refinement cannot
           // reduce, exceeds the tolerance (large a/t, tight tolerance); the message says so.
           std::printf("convergence: a/t %g tol %g not reachable: %s\n", a, tolerance, e.what());
-          check("unreachable only at a/t >= 300, tol 1e-8, because of the kernel/rounding bound",
-                a >= 300.0 && tolerance < 1e-6 &&
-                    std::string(e.what()).find("do not shrink with refinement") != std::string::npos);
+          check::that(a >= 300.0 && tolerance < 1e-6 &&
+                          std::string(e.what()).find("do not shrink with refinement") != std::string::npos,
+                      "unreachable only at a/t >= 300, tol 1e-8, because of the kernel/rounding bound");
           continue;
         }
         const double x[6] = {coarse.pi_s, coarse.delta_s, coarse.pi_c, coarse.delta_c, coarse.e_eq, coarse.gamma1};
         const double y[6] = {fine.pi_s, fine.delta_s, fine.pi_c, fine.delta_c, fine.e_eq, fine.gamma1};
         double change = 0.0;
         for (int i = 0; i < 6; ++i) change = std::max(change, std::abs(x[i] - y[i]) / std::abs(y[i]));
-        check("convergence: estimate <= tolerance", coarse.error_estimate <= tolerance);
-        check("convergence: halving tol " + str(tolerance) + " at a/t " + str(a) +
-                  " changes results by less than the estimate",
-              change <= coarse.error_estimate + fine.error_estimate);
+        check::below(coarse.error_estimate, tolerance, "convergence: estimate <= tolerance");
+        check::below(change, coarse.error_estimate + fine.error_estimate,
+                     "convergence: halving tol " + str(tolerance) + " at a/t " + str(a) +
+                         " changes results by less than the estimate");
       }
     }
   }
@@ -258,11 +260,13 @@ void test_brute_force_with_table() {
   for (double a : {0.5, 3.0, 12.0}) {
     const auto fine = test::brute_force(kernel, a, 0.2, 12);
     const auto coarse = test::brute_force(kernel, a, 0.4, 12);
-    const auto r = detail::solve_adaptive(kernel, a, 1e-9);
+    const double tolerance = 1e-9;
+    const auto r = detail::solve_adaptive(kernel, a, tolerance);
     for (std::size_t i = 0; i < 6; ++i) {
-      check_relative("brute force self-consistency at a/t " + str(a), coarse[i], fine[i], 1e-11);
-      check_relative("solver vs brute force (real kernel) at a/t " + str(a) + ", variable " + std::to_string(i),
-                     r.values[i], fine[i], 1e-9 + 1e-11);
+      check::close(coarse[i], fine[i], tier::kReference, "brute force self-consistency at a/t " + str(a));
+      check::close(
+          r.values[i], fine[i], tolerance + tier::kReference,
+          "solver vs brute force (real kernel) at a/t " + str(a) + ", variable " + std::to_string(i));
     }
   }
 }
@@ -280,7 +284,7 @@ int main() {
   test_convergence();
   test_brute_force_with_table();
   } catch (const std::exception& e) {
-    check(std::string("unexpected exception: ") + e.what(), false);
+    check::that(false, std::string("unexpected exception: ") + e.what());
   }
-  return test::finish("test_solver_physics");
+  return check::exit_code();
 }

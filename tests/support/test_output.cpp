@@ -69,15 +69,18 @@ void test_commit_writes_file(const std::string& folder) {
   {
     Output out(path);
     out.stream() << "# columns: a\n1\n";
-    CHECK(!exists(path));  // nothing at the target before commit
-    CHECK(list_folder(folder).size() == 1);  // the temporary file
+    check::that(!exists(path), "!exists(path)");  // nothing at the target before commit
+    check::that(list_folder(folder).size() == 1, "list_folder(folder).size() == 1");  // the temporary file
     out.commit();
     out.commit();  // a second commit is harmless
   }
-  CHECK(read_all(path) == "# columns: a\n1\n");
-  CHECK(list_folder(folder).size() == 1);  // only the target, no temp left
+  check::that(read_all(path) == "# columns: a\n1\n", "read_all(path) == '# columns: an1n'");
+  check::that(list_folder(folder).size() == 1,
+              "list_folder(folder).size() == 1");  // only the target, no temp left
   struct stat info {};
-  CHECK(stat(path.c_str(), &info) == 0 && (info.st_mode & 0044) != 0);  // not mkstemp's 0600 (umask 022 here)
+  check::that(
+      stat(path.c_str(), &info) == 0 && (info.st_mode & 0044) != 0,
+      "stat(path.c_str(), &info) == 0 && (info.st_mode & 0044) != 0");  // not mkstemp's 0600 (umask 022 here)
 
   // Overwrite an existing file atomically.
   {
@@ -85,7 +88,7 @@ void test_commit_writes_file(const std::string& folder) {
     out.stream() << "new\n";
     out.commit();
   }
-  CHECK(read_all(path) == "new\n");
+  check::that(read_all(path) == "new\n", "read_all(path) == 'newn'");
   unlink(path.c_str());
 }
 
@@ -97,8 +100,8 @@ void test_no_commit_leaves_nothing(const std::string& folder) {
     throw NumericalError("solver failed");
   } catch (const NumericalError&) {
   }
-  CHECK(!exists(path));
-  CHECK(list_folder(folder).empty());  // the temporary file was removed
+  check::that(!exists(path), "!exists(path)");
+  check::that(list_folder(folder).empty(), "list_folder(folder).empty()");  // the temporary file was removed
 
   // A failed run must not clobber an existing good file either.
   {
@@ -110,29 +113,30 @@ void test_no_commit_leaves_nothing(const std::string& folder) {
     throw NumericalError("solver failed");
   } catch (const NumericalError&) {
   }
-  CHECK(read_all(path) == "old\n");
-  CHECK(list_folder(folder).size() == 1);
+  check::that(read_all(path) == "old\n", "read_all(path) == 'oldn'");
+  check::that(list_folder(folder).size() == 1, "list_folder(folder).size() == 1");
   unlink(path.c_str());
 }
 
 void test_bad_paths(const std::string& folder) {
   const std::string missing = folder + "/no_such_folder/out.tsv";
-  CHECK_THROWS(Output(missing), InputError, missing.c_str(), "does not exist");
-  CHECK(!exists(folder + "/no_such_folder"));
-  CHECK_THROWS(Output(folder + "/"), InputError, "folder");
-  CHECK_THROWS(Output(folder), InputError, "is a folder");
+  check::throws<InputError>([&] { (void)(Output(missing)); }, {missing.c_str(), "does not exist"});
+  check::that(!exists(folder + "/no_such_folder"), "!exists(folder + '/no_such_folder')");
+  check::throws<InputError>([&] { (void)(Output(folder + "/")); }, "folder");
+  check::throws<InputError>([&] { (void)(Output(folder)); }, "is a folder");
   {
     std::ofstream(folder + "/plain") << "x";
   }
-  CHECK_THROWS(Output(folder + "/plain/out.tsv"), InputError, "plain/out.tsv");
+  check::throws<InputError>([&] { (void)(Output(folder + "/plain/out.tsv")); }, "plain/out.tsv");
   unlink((folder + "/plain").c_str());
   if (geteuid() != 0) {  // root ignores permissions
     const std::string locked = folder + "/locked";
     mkdir(locked.c_str(), 0500);
-    CHECK_THROWS(Output(locked + "/out.tsv"), InputError, "locked/out.tsv", "cannot create");
+    check::throws<InputError>([&] { (void)(Output(locked + "/out.tsv")); },
+                              {"locked/out.tsv", "cannot create"});
     rmdir(locked.c_str());
   }
-  CHECK(list_folder(folder).empty());
+  check::that(list_folder(folder).empty(), "list_folder(folder).empty()");
 }
 
 // A child process writes without end and gets `signal_number`: neither the temporary file nor
@@ -141,7 +145,7 @@ void test_signal_cleanup(const std::string& folder, int signal_number) {
   const std::string path = folder + "/interrupted.tsv";
   int ready[2];
   if (pipe(ready) != 0) {
-    CHECK(false);
+    check::that(false, "false");
     return;
   }
   const pid_t child = fork();
@@ -157,61 +161,77 @@ void test_signal_cleanup(const std::string& folder, int signal_number) {
   char byte = 0;
   const bool started = read(ready[0], &byte, 1) == 1;
   close(ready[0]);
-  CHECK(started);
-  CHECK(list_folder(folder).size() == 1);  // the child's temporary file exists
+  check::that(started, "started");
+  check::that(list_folder(folder).size() == 1,
+              "list_folder(folder).size() == 1");  // the child's temporary file exists
   usleep(20000);
   kill(child, signal_number);
   int status = 0;
   waitpid(child, &status, 0);
-  CHECK(WIFSIGNALED(status) && WTERMSIG(status) == signal_number);
-  CHECK(!exists(path));
-  CHECK(list_folder(folder).empty());
+  check::that(WIFSIGNALED(status) && WTERMSIG(status) == signal_number,
+              "WIFSIGNALED(status) && WTERMSIG(status) == signal_number");
+  check::that(!exists(path), "!exists(path)");
+  check::that(list_folder(folder).empty(), "list_folder(folder).empty()");
 }
 
 void test_stdout_output() {
   // Stdout is held in memory until commit() (issue 17: no partial output before a failure).
   Output out("");
-  CHECK(&out.stream() != &std::cout);
+  check::that(&out.stream() != &std::cout, "&out.stream() != &std::cout");
   out.commit();
   Output dash("-");
-  CHECK(&dash.stream() != &std::cout);
+  check::that(&dash.stream() != &std::cout, "&dash.stream() != &std::cout");
 }
 
 void test_format_value() {
-  CHECK(format_value(0.1, "x") == "0.10000000000000001");
-  CHECK(format_value(1.0, "x") == "1");
-  CHECK(format_value(1e21, "x") == "1e+21");
+  check::that(format_value(0.1, "x") == "0.10000000000000001",
+              "format_value(0.1, 'x') == '0.10000000000000001'");
+  check::that(format_value(1.0, "x") == "1", "format_value(1.0, 'x') == '1'");
+  check::that(format_value(1e21, "x") == "1e+21", "format_value(1e21, 'x') == '1e+21'");
   // Same text as the C library's "%.17g" (in the "C" locale of this test).
   for (double value : {-2.5e-300, 4.9e-324, 1.7976931348623157e308, 123456.789, -0.0, 1e-5}) {
     char expected[64];
     std::snprintf(expected, sizeof expected, "%.17g", value);
-    CHECK(format_value(value, "x") == expected);
+    check::that(format_value(value, "x") == expected, "format_value(value, 'x') == expected");
   }
   // %.17g round-trips every double.
   const double third = 1.0 / 3.0;
-  CHECK(std::strtod(format_value(third, "x").c_str(), nullptr) == third);
-  CHECK_THROWS(format_value(std::nan(""), "contact_radius"), NumericalError, "contact_radius", "not finite");
-  CHECK_THROWS(format_value(std::numeric_limits<double>::infinity(), "load"), NumericalError, "load");
-  CHECK_THROWS(format_value(-std::numeric_limits<double>::infinity(), "load"), NumericalError, "load");
+  check::that(std::strtod(format_value(third, "x").c_str(), nullptr) == third,
+              "std::strtod(format_value(third, 'x').c_str(), nullptr) == third");
+  check::throws<NumericalError>([&] { (void)(format_value(std::nan(""), "contact_radius")); },
+                                {"contact_radius", "not finite"});
+  check::throws<NumericalError>(
+      [&] { (void)(format_value(std::numeric_limits<double>::infinity(), "load")); }, "load");
+  check::throws<NumericalError>(
+      [&] { (void)(format_value(-std::numeric_limits<double>::infinity(), "load")); }, "load");
 }
 
 void test_header_and_rows() {
   std::ostringstream out;
   write_header(out, {{"film", "1,0.3"}, {"note", "two\nlines"}}, {"q", "C"});
   write_row(out, {0.5, 2.0}, {"q", "C"});
-  CHECK(out.str() == "# film: 1,0.3\n# note: two lines\n# columns: q\tC\n0.5\t2\n");
+  check::that(out.str() == "# film: 1,0.3\n# note: two lines\n# columns: q\tC\n0.5\t2\n",
+              "out.str() == '# film: 1,0.3n# note: two linesn# columns: qtCn0.5t2n'");
   std::ostringstream partial;
-  CHECK_THROWS(write_row(partial, {1.0, std::nan("")}, {"q", "C"}), NumericalError, "'C'");
-  CHECK(partial.str().empty());  // no half row
-  CHECK_THROWS(write_row(partial, {1.0}, {"q", "C"}), std::logic_error, "1 values for 2 columns");
+  check::throws<NumericalError>([&] { (void)(write_row(partial, {1.0, std::nan("")}, {"q", "C"})); }, "'C'");
+  check::that(partial.str().empty(), "partial.str().empty()");  // no half row
+  check::throws<std::logic_error>(
+      [&] {
+        (void)(write_row(partial, {1.0}, {"q", "C"}));
+      },
+      "1 values for 2 columns");
 }
 
 void test_run_guarded() {
-  CHECK(run_guarded("test", [] { return 0; }) == 0);
-  CHECK(run_guarded("test", []() -> int { throw InputError("--x: bad"); }) == 2);
-  CHECK(run_guarded("test", []() -> int { throw NumericalError("no convergence"); }) == 3);
-  CHECK(run_guarded("test", []() -> int { throw std::runtime_error("other"); }) == 3);
-  CHECK(run_guarded("test", []() -> int { throw 42; }) == 3);
+  check::that(run_guarded("test", [] { return 0; }) == 0, "run_guarded('test', [] { return 0; }) == 0");
+  check::that(run_guarded("test", []() -> int { throw InputError("--x: bad"); }) == 2,
+              "run_guarded('test', []() -> int { throw InputError('--x: bad'); }) == 2");
+  check::that(run_guarded("test", []() -> int { throw NumericalError("no convergence"); }) == 3,
+              "run_guarded('test', []() -> int { throw NumericalError('no convergence'); }) == 3");
+  check::that(run_guarded("test", []() -> int { throw std::runtime_error("other"); }) == 3,
+              "run_guarded('test', []() -> int { throw std::runtime_error('other'); }) == 3");
+  check::that(run_guarded("test", []() -> int { throw 42; }) == 3,
+              "run_guarded('test', []() -> int { throw 42; }) == 3");
 }
 
 }  // namespace
@@ -233,5 +253,5 @@ int main() {
   test_header_and_rows();
   test_run_guarded();
   remove_folder(folder);
-  return check::finish("test_support_output");
+  return check::exit_code();
 }
