@@ -19,7 +19,12 @@
 !           bottom), so no exponential larger than 1 is formed.
 ! Section 12: either alone fails (exponentials only: 5e-5 on thin soft incompressible layers).
 ! When the top layer is thick, C - 1 is formed from the up pair's reflected part alone (the
-! down pair alone gives C = 1 exactly), without cancellation where C ~ 1.
+! down pair alone gives C = 1 exactly), without cancellation where C ~ 1: its error is a few
+! ulps of C - 1 plus a few ulps of exp(-2 q h_top/T) (the rounding of the subspace under the
+! top layer), which only shows when the top layer is bonded to the same material.
+! Measured against a 113-bit version of the direct global solve of
+! tests/kernel/test_stack_compliance.cpp: C within 2e-15 over its random stacks, 1.6e-14 with
+! ratios 1e-4..1e4, N <= 20, q 1e-4..1e4 (C - 1: 1.5e-13 relative where |C - 1| > 1e-20).
 !
 ! One bonded layer goes through the closed form of section 3 (cc_compliance_models), so it
 ! equals cc_compliance bit for bit.
@@ -228,8 +233,8 @@ contains
           call thin_layer(stack%nu(i), q * stack%frac(i), s)
         else
           call thick_layer(stack%nu(i), q * stack%frac(i), s, e)
-          call rechart(s)
         end if
+        call rechart(s)
       end if
     end do
     nu1 = stack%nu(1)
@@ -274,31 +279,28 @@ contains
   ! rule every other entry then has modulus <= 1.
   pure subroutine rechart(s)
     type(subspace), intent(inout) :: s
-    real(dp) :: best, d, y(4, 2), inv(2, 2)
-    integer :: i, j, bi, bj, k
-    best = -1.0_dp
-    bi = ir
-    bj = iz
-    do i = 1, 3
-      do j = i + 1, 4
-        d = abs(s%y(i, 1) * s%y(j, 2) - s%y(i, 2) * s%y(j, 1))
-        if (d > best) then
-          best = d
-          bi = i
-          bj = j
-        end if
-      end do
+    integer, parameter :: pair_i(6) = [1, 1, 1, 2, 2, 3], pair_j(6) = [2, 3, 4, 3, 4, 4]
+    real(dp) :: y1(4), y2(4), det(6), inv11, inv12, inv21, inv22, rd
+    integer :: p, bi, bj, k
+    y1 = s%y(:, 1)
+    y2 = s%y(:, 2)
+    do p = 1, 6
+      det(p) = y1(pair_i(p)) * y2(pair_j(p)) - y2(pair_i(p)) * y1(pair_j(p))
     end do
-    d = s%y(bi, 1) * s%y(bj, 2) - s%y(bi, 2) * s%y(bj, 1)
-    inv(1, :) = [s%y(bj, 2), -s%y(bi, 2)] / d
-    inv(2, :) = [-s%y(bj, 1), s%y(bi, 1)] / d
+    p = maxloc(abs(det), dim=1)
+    bi = pair_i(p)
+    bj = pair_j(p)
+    rd = 1.0_dp / det(p)
+    inv11 = y2(bj) * rd
+    inv12 = -y2(bi) * rd
+    inv21 = -y1(bj) * rd
+    inv22 = y1(bi) * rd
     do k = 1, 4
-      y(k, 1) = s%y(k, 1) * inv(1, 1) + s%y(k, 2) * inv(2, 1)
-      y(k, 2) = s%y(k, 1) * inv(1, 2) + s%y(k, 2) * inv(2, 2)
+      s%y(k, 1) = y1(k) * inv11 + y2(k) * inv21
+      s%y(k, 2) = y1(k) * inv12 + y2(k) * inv22
     end do
-    y(bi, :) = [1.0_dp, 0.0_dp]
-    y(bj, :) = [0.0_dp, 1.0_dp]
-    s%y = y
+    s%y(bi, :) = [1.0_dp, 0.0_dp]
+    s%y(bj, :) = [0.0_dp, 1.0_dp]
     s%piv = [bi, bj]
   end subroutine rechart
 
@@ -346,7 +348,7 @@ contains
     z(iz, :) = -y(ir, :)
   end function apply_a
 
-  ! Through a layer of x < 1 with the exact propagator: since (A^2 - I)^2 = 0,
+  ! Through a layer of x < 1 with the exact propagator (not re-charted): since (A^2 - I)^2 = 0,
   !   expm(-A x) = c0 I - c1 A + c2 A^2 - c3 A^3,  c2 = x sinh x / 2,  c0 = cosh x - c2,
   !   c3 = (x cosh x - sinh x)/2 (its series: no cancellation),  c1 = sinh x - c3.
   ! (Section 12 lists these with + signs: they are those of expm(+A x); the state at the top
@@ -371,7 +373,6 @@ contains
     a2 = apply_a(nu, a1)
     a3 = apply_a(nu, a2)
     s%y = c0 * s%y - c1 * a1 + c2 * a2 - c3 * a3
-    call rechart(s)
   end subroutine thin_layer
 
   ! Through a layer of x >= 1 with local decaying exponentials (section 12). In the layer

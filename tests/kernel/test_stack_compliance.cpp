@@ -22,9 +22,9 @@
 #include <lapacke.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -802,13 +802,14 @@ int main() {
       for (int i = 0; i < n; ++i) qs[i] = (i + 0.5) * 40 * total / st.layers[0].h / n;
       for (const Layer& l : st.layers) hh.push_back(l.h), ee.push_back(l.e), nn.push_back(l.nu), ss.push_back(0);
       double best = 1e30;
-      for (int rep = 0; rep < 3; ++rep) {
-        const auto t0 = std::chrono::steady_clock::now();
+      for (int rep = 0; rep < 5; ++rep) {
+        // process CPU time: the cores are shared, wall time measures the neighbours
+        const std::clock_t t0 = std::clock();
         cc_stack_compliance_minus_one(nl, hh.data(), ee.data(), nn.data(), ss.data(), 0, st.eb, st.nub,
                                       n, qs.data(), out.data());
-        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        best = std::min(best, static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC);
       }
-      std::printf("cost: N = %2d, 2^15 q points in [0, 40 T/h_top]: %.2f ms (%.0f ns per q)\n", nl,
+      std::printf("cost: N = %2d, 2^15 q points in [0, 40 T/h_top]: %.2f ms CPU (%.0f ns per q)\n", nl,
                   1e3 * best, 1e9 * best / n);
     }
   }
