@@ -62,6 +62,7 @@ module cc_multilayer_compliance
     type(material_pair) :: pair              ! used when closed_form
     real(dp) :: c_zero = 1.0_dp              ! C(0)
     real(dp) :: nu_base = 0.0_dp
+    real(dp) :: q_small = 0.0_dp             ! below: small-q asymptote (stack_evaluate)
     real(dp), allocatable :: frac(:)         ! h_i / T
     real(dp), allocatable :: nu(:)
     real(dp), allocatable :: scale(:)        ! mu(below layer i) / mu_i (tau rescaling)
@@ -126,6 +127,7 @@ contains
     stack%frac = stack%frac / sum(stack%frac)
     stack%nu = poisson
     stack%slip = slip_below
+    stack%q_small = min(1.0e-20_dp, 1.0e-40_dp / minval(stack%frac))
     allocate(stack%scale(n))
     do i = 1, n
       if (i < n) then
@@ -198,7 +200,36 @@ contains
   end subroutine stack_compliance_minus_one
 
   ! C and C - 1 at one q >= 0 by the recursion of section 12 (any stack, also one layer).
+  ! Below q_small (x = k h < 1e-40 in the thinnest layer) products of x-sized entries would
+  ! underflow: C is then its small-q asymptote, C(0) on an elastic base (C - C(0) = O(q) is
+  ! below rounding there) and C(q_s) (q/q_s)^p on a rigid base, where C ~ q^p (p = 1..3, C is
+  ! analytic at q = 0), p read off C(q_s)/C(q_s/10). Relative accuracy is kept to underflow.
   elemental subroutine stack_evaluate(stack, q, c, f)
+    type(layer_stack), intent(in) :: stack
+    real(dp), intent(in) :: q
+    real(dp), intent(out) :: c, f
+    real(dp) :: c_s, c_s10, f_s
+    integer :: p
+
+    if (q <= 0.0_dp .or. (q < stack%q_small .and. .not. stack%rigid_base)) then
+      c = stack%c_zero
+      f = stack%c_zero - 1.0_dp
+    else if (q < stack%q_small) then
+      call stack_recursion(stack, stack%q_small, c_s, f_s)
+      call stack_recursion(stack, 0.1_dp * stack%q_small, c_s10, f_s)
+      c = 0.0_dp
+      if (c_s > 0.0_dp .and. c_s10 > 0.0_dp) then
+        p = min(3, max(1, nint(log10(c_s / c_s10))))
+        c = c_s * (q / stack%q_small)**p
+      end if
+      f = c - 1.0_dp
+    else
+      call stack_recursion(stack, q, c, f)
+    end if
+  end subroutine stack_evaluate
+
+  ! The recursion of section 12 at one q >= q_small.
+  pure subroutine stack_recursion(stack, q, c, f)
     type(layer_stack), intent(in) :: stack
     real(dp), intent(in) :: q
     real(dp), intent(out) :: c, f
@@ -207,11 +238,6 @@ contains
     integer :: i, n
 
     n = stack%n
-    if (q <= 0.0_dp) then
-      c = stack%c_zero
-      f = stack%c_zero - 1.0_dp
-      return
-    end if
     if (q * stack%frac(1) >= x_saturation) then
       c = 1.0_dp
       f = 0.0_dp
@@ -246,7 +272,7 @@ contains
       call thick_layer(nu1, q * stack%frac(1), s, e)
       call surface_from_reflection(nu1, e, c, f)
     end if
-  end subroutine stack_evaluate
+  end subroutine stack_recursion
 
   ! Admissible states at the top of the base, in the base's own units (rigid: any units).
   pure function base_subspace(stack) result(s)

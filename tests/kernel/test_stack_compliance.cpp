@@ -542,6 +542,34 @@ int main() {
     }
   }
 
+  // ---- tiny q: relative accuracy down to underflow (section 12 check "C(0)") -----------
+  // On a rigid base C ~ q (q^3 when incompressible and bonded, q/2 sliding): against the
+  // closed form through a split layer, and s(q) ~ q/2; finite for the smallest subnormal q.
+  {
+    for (double nu : {0.3, 0.5})
+      for (double q : {1e-100, 1e-45, 1e-30, 1e-12}) {
+        const Stack one = one_layer(1, nu, false, true, 1, 0);
+        const Stack two = split(one, 0, {1e-6, 1 - 1e-6});
+        const double r = rel(stack_c(two, q), stack_c(one, q));
+        check(r <= kRecursionTier, "tiny q, rigid base: split = closed form", r, kRecursionTier);
+      }
+    for (double q : {1e-300, 1e-100, 1e-30}) {
+      const double r = rel(stack_c(one_layer(2, 0.5, true, true, 1, 0), q), q / 2);
+      check(r <= kRecursionTier, "tiny q, frictionless rigid base: C = q/2", r, kRecursionTier);
+    }
+    for (bool rigid : {false, true})
+      for (int pattern = 0; pattern < 4; ++pattern) {
+        Stack st;
+        st.layers = {{1e-3, 1.0, 0.3, (pattern & 1) != 0}, {1.0, 1e-3, 0.5, (pattern & 2) != 0}};
+        st.rigid = rigid;
+        st.eb = 2;
+        for (double q : {4.9e-324, 1e-310, 1e-200}) {
+          const double c = stack_c(st, q), c0 = stack_c(st, 0.0);
+          check(std::isfinite(c) && c >= 0 && (rigid || c == c0), "tiny q: finite, -> C(0)", c, 0);
+        }
+      }
+  }
+
   // ---- C - 1 without cancellation at large q (thick top layer) ---------------------------
   // Against cancellation-free references down to C - 1 ~ 1e-170: a film on a substrate cut into
   // bonded layers (closed form's C - 1), one layer sliding on a half-space, one layer on a
