@@ -830,7 +830,7 @@ int main() {
       for (int i = 0; i < n; ++i) qs[i] = (i + 0.5) * 40 * total / st.layers[0].h / n;
       for (const Layer& l : st.layers) hh.push_back(l.h), ee.push_back(l.e), nn.push_back(l.nu), ss.push_back(0);
       double best = 1e30;
-      for (int rep = 0; rep < 5; ++rep) {
+      for (int rep = 0; rep < 3; ++rep) {
         // process CPU time: the cores are shared, wall time measures the neighbours
         const std::clock_t t0 = std::clock();
         cc_stack_compliance_minus_one(nl, hh.data(), ee.data(), nn.data(), ss.data(), 0, st.eb, st.nub,
