@@ -9,6 +9,9 @@ module cc_kernel_capi
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
   use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
                               n_grid_variants
+  use cc_multilayer_compliance, only: layer_stack, make_layer_stack, stack_compliance, &
+                                      stack_compliance_minus_one, max_stack_layers
+  use cc_elastic_constants, only: CC_ERR_LAYER_COUNT
   implicit none
   private
   ! The Fortran names carry a capi_ prefix, and no module is named like a binding label:
@@ -16,7 +19,8 @@ module cc_kernel_capi
   ! "cc_compliance".
 
   integer, parameter :: message_length = 96
-  character(kind=c_char, len=message_length), target, save :: messages(0:9) = [ &
+  integer, parameter :: last_status = 10
+  character(kind=c_char, len=message_length), target, save :: messages(0:last_status + 1) = [ &
     character(kind=c_char, len=message_length) :: &
     "success" // c_null_char, &
     "film Young's modulus must be finite and > 0" // c_null_char, &
@@ -27,6 +31,8 @@ module cc_kernel_capi
     "FFTW could not plan the transform" // c_null_char, &
     "out of memory" // c_null_char, &
     "the kernel table could not reach its accuracy target" // c_null_char, &
+    "layer thickness must be finite and > 0" // c_null_char, &
+    "number of layers must be between 1 and 1000" // c_null_char, &
     "unknown status code" // c_null_char]
 
 contains
@@ -34,10 +40,10 @@ contains
   function capi_status_message(status) result(message) bind(C, name="cc_status_message")
     integer(c_int), value, intent(in) :: status
     type(c_ptr) :: message
-    if (status >= 0 .and. status <= 8) then
+    if (status >= 0 .and. status <= last_status) then
       message = c_loc(messages(status))
     else
-      message = c_loc(messages(9))
+      message = c_loc(messages(last_status + 1))
     end if
   end function capi_status_message
 
@@ -90,6 +96,71 @@ contains
     end if
     status = int(s, c_int)
   end function compliance_at
+
+  ! Stack of n_layers layers (THEORY.md section 12): C(q) with q = k T, T the total thickness.
+  integer(c_int) function capi_stack_compliance(n_layers, thickness, youngs, poisson, slip_below, &
+      base_rigid, e_base, nu_base, n, q, c) result(status) bind(C, name="cc_stack_compliance")
+    integer(c_int), value, intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), value, intent(in) :: base_rigid
+    real(c_double), value, intent(in) :: e_base, nu_base
+    integer(c_int), value, intent(in) :: n
+    real(c_double), intent(in) :: q(max(n, 0))
+    real(c_double), intent(out) :: c(max(n, 0))
+    status = stack_at(n_layers, thickness, youngs, poisson, slip_below, base_rigid, e_base, &
+                      nu_base, n, q, c, .false.)
+  end function capi_stack_compliance
+
+  integer(c_int) function capi_stack_compliance_minus_one(n_layers, thickness, youngs, poisson, &
+      slip_below, base_rigid, e_base, nu_base, n, q, c) result(status) &
+      bind(C, name="cc_stack_compliance_minus_one")
+    integer(c_int), value, intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), value, intent(in) :: base_rigid
+    real(c_double), value, intent(in) :: e_base, nu_base
+    integer(c_int), value, intent(in) :: n
+    real(c_double), intent(in) :: q(max(n, 0))
+    real(c_double), intent(out) :: c(max(n, 0))
+    status = stack_at(n_layers, thickness, youngs, poisson, slip_below, base_rigid, e_base, &
+                      nu_base, n, q, c, .true.)
+  end function capi_stack_compliance_minus_one
+
+  ! C(q) or C(q) - 1 of a stack after validating it (the layer count before any array is read)
+  ! and the length.
+  integer(c_int) function stack_at(n_layers, thickness, youngs, poisson, slip_below, base_rigid, &
+      e_base, nu_base, n, q, c, minus_one) result(status)
+    integer(c_int), intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), intent(in) :: base_rigid
+    real(c_double), intent(in) :: e_base, nu_base
+    integer(c_int), intent(in) :: n
+    real(c_double), intent(in) :: q(max(n, 0))
+    real(c_double), intent(out) :: c(max(n, 0))
+    logical, intent(in) :: minus_one
+    type(layer_stack) :: stack
+    integer :: s
+    status = CC_ERR_LAYER_COUNT
+    if (n_layers < 1 .or. n_layers > max_stack_layers) return
+    call make_layer_stack(real(thickness, dp), real(youngs, dp), real(poisson, dp), &
+                          slip_below /= 0, base_rigid /= 0, real(e_base, dp), real(nu_base, dp), &
+                          stack, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) return
+    status = CC_ERR_ARGUMENT
+    if (n < 0) return
+    if (minus_one) then
+      call stack_compliance_minus_one(stack, q, c, s)
+    else
+      call stack_compliance(stack, q, c, s)
+    end if
+    status = int(s, c_int)
+  end function stack_at
 
   integer(c_int) function capi_compliance_taylor(e1, nu1, e0, nu0, substrate_rigid, order, &
       coefficients) result(status) bind(C, name="cc_compliance_taylor")

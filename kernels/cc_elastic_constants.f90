@@ -18,6 +18,8 @@ module cc_elastic_constants
   integer, parameter, public :: CC_ERR_FFT = 6
   integer, parameter, public :: CC_ERR_ALLOCATION = 7
   integer, parameter, public :: CC_ERR_ACCURACY = 8
+  integer, parameter, public :: CC_ERR_THICKNESS = 9       ! a stack layer (THEORY.md section 12)
+  integer, parameter, public :: CC_ERR_LAYER_COUNT = 10
 
   ! Substrate models.
   integer, parameter, public :: MODEL_HOMOGENEOUS = 0      ! film and substrate identical: C = 1

@@ -26,7 +26,9 @@ enum cc_status {
   CC_ERR_ARGUMENT = 5,            /* bad array length or order, negative or non-finite q or u, null handle */
   CC_ERR_FFT = 6,                 /* FFTW could not plan the transform */
   CC_ERR_ALLOCATION = 7,          /* out of memory */
-  CC_ERR_ACCURACY = 8             /* the table could not reach its accuracy target */
+  CC_ERR_ACCURACY = 8,            /* the table could not reach its accuracy target */
+  CC_ERR_THICKNESS = 9,           /* a stack layer's thickness not finite or <= 0 */
+  CC_ERR_LAYER_COUNT = 10         /* a stack with fewer than 1 or more than 1000 layers */
 };
 
 /* Short English description of a status code (static string, never NULL). */
@@ -44,6 +46,27 @@ int cc_compliance_minus_one(double e1, double nu1, double e0, double nu0, int su
  * (order <= 15). f_0 = C(0) - 1 = E1* / E0* - 1. */
 int cc_compliance_taylor(double e1, double nu1, double e0, double nu0, int substrate_rigid,
                          int order, double *coefficients);
+
+/* (added) Surface compliance of a stack (THEORY.md section 12): n_layers layers, top first
+ * (1 <= n_layers <= 1000), thickness[i] > 0 (any unit: only ratios matter), youngs[i] > 0,
+ * poisson[i] in (-1, 0.5]; slip_below[i] != 0 makes the interface BELOW layer i frictionless
+ * (below the last layer on a rigid base: a frictionless rigid base, u_z = 0 and s_rz = 0;
+ * every pattern of flags is accepted). The base is rigid when base_rigid != 0 (then e_base and
+ * nu_base are ignored), else an elastic half-space. Normalization: q = k T with T the total
+ * thickness, and u(k) = 2 C(kT) p(k) / (E_top* k) with E_top* the top layer's plane-strain
+ * modulus, so C(inf) = 1 and C(0) = E_top* / E_base* (0 on a rigid base). One bonded layer gives
+ * exactly cc_compliance(youngs[0], poisson[0], e_base, nu_base, base_rigid, ...).
+ * A bad layer reports CC_ERR_THICKNESS, CC_ERR_FILM_MODULUS or CC_ERR_FILM_POISSON, the base
+ * CC_ERR_SUBSTRATE_MODULUS or CC_ERR_SUBSTRATE_POISSON. */
+int cc_stack_compliance(int n_layers, const double *thickness, const double *youngs,
+                        const double *poisson, const int *slip_below, int base_rigid,
+                        double e_base, double nu_base, int n, const double *q, double *c);
+
+/* (added) C(q) - 1 of a stack, without cancellation where C is close to 1 (large q). */
+int cc_stack_compliance_minus_one(int n_layers, const double *thickness, const double *youngs,
+                                  const double *poisson, const int *slip_below, int base_rigid,
+                                  double e_base, double nu_base, int n, const double *q,
+                                  double *c_minus_one);
 
 /* Opaque table of H(u) and of its antiderivative H1(u) = int_0^u H(v) dv for one material
  * pair, built once (FFTW real-even/odd transforms with end corrections) and reused for
