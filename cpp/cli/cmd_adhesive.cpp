@@ -38,6 +38,7 @@ std::vector<OptionSpec> material_options() {
   return {
       {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", true},
       {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true},
+      indenter_option(),
       {"--tol", "T",
        "relative tolerance of the reduced variables from the solver (default " +
            short_num(kDefaultAdhesiveTolerance) + ", allowed 1e-13..1e-1)",
