@@ -44,6 +44,20 @@ CMD_fig2_curve  := reduced $(call materials,$(FIG2_RATIO)) --a-over-t $(FIG2_CUR
 CMD_fig2_points := reduced $(call materials,$(FIG2_RATIO)) \
   --a-over-t $(FIG2_A_OVER_T),$(FIG2_A_OVER_T_NEXT)
 
+# Figures 10-12 (THEORY.md sections 9-11): spring, elastic indenter, shapes.
+$(foreach r,$(SPRING_RATIOS),$(eval \
+  CMD_spring_E$(r) := pulloff $(call materials,$(r)) --eta $(SPRING_ETA) --spring-bar $(SPRING_K_BAR)))
+# E2 = ratio x E1 with the film's Poisson ratio, so E2*/E1* = ratio.
+INDENTER_NAMES := rigid $(INDENTER_RATIOS)
+indenter_arg = $(if $(filter rigid,$(1)),rigid,$(shell awk 'BEGIN { print $(1) * $(INDENTER_FILM_RATIO) }'),$(NU_FILM))
+$(foreach i,$(INDENTER_NAMES),$(eval \
+  CMD_indenter_I$(i) := pulloff $(call materials,$(INDENTER_FILM_RATIO)) --indenter $(call indenter_arg,$(i)) \
+    --eta $(INDENTER_ETA)))
+shape_name = $(firstword $(subst :, ,$(1)))
+$(foreach s,$(SHAPE_LIST),$(eval \
+  CMD_shape_$(call shape_name,$(s)) := contact --shape $(s) --thickness $(SHAPE_THICKNESS) --film $(SHAPE_FILM) \
+    --substrate $(SHAPE_SUBSTRATE) --work $(SHAPE_WORK) --points $(SHAPE_POINTS)))
+
 data = $(DATA_DIR)/$(1).tsv
 PULLOFF_FILES := $(foreach r,$(PULLOFF_RATIOS),$(call data,pulloff_E$(r)))
 
@@ -74,7 +88,17 @@ GP_fig8    = $(GP_common); ratios='$(PULLOFF_RATIOS)'; files='$(PULLOFF_FILES)'
 DATA_fig9  = $(foreach r,$(FIT_RATIOS),$(call data,reduced_E$(r)))
 GP_fig9    = $(GP_common); ratios='$(FIT_RATIOS)'; files='$(DATA_fig9)'
 
-FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9
+SPRING_FILES   := $(foreach r,$(SPRING_RATIOS),$(call data,spring_E$(r)))
+DATA_fig10 = $(SPRING_FILES)
+GP_fig10   = $(GP_common); ratios='$(SPRING_RATIOS)'; files='$(SPRING_FILES)'; eta=$(SPRING_ETA)
+INDENTER_FILES := $(foreach i,$(INDENTER_NAMES),$(call data,indenter_I$(i)))
+DATA_fig11 = $(INDENTER_FILES)
+GP_fig11   = $(GP_common); ratio=$(INDENTER_FILM_RATIO); indenters='$(INDENTER_NAMES)'; files='$(INDENTER_FILES)'
+SHAPE_FILES := $(foreach s,$(SHAPE_LIST),$(call data,shape_$(call shape_name,$(s))))
+DATA_fig12 = $(SHAPE_FILES)
+GP_fig12   = $(GP_common); shapes='$(SHAPE_LIST)'; files='$(SHAPE_FILES)'
+
+FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12
 FIGURE_FILES := $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf)
 
 # Helper scripts loaded by the figure scripts.
@@ -97,7 +121,7 @@ figures: build
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
 
 figures-only: $(FIGURE_FILES)
-	@echo "figures: $(FIG_DIR)/fig{1..9}.png and .pdf   data: $(DATA_DIR)/*.tsv"
+	@echo "figures: $(FIG_DIR)/fig{1..12}.png and .pdf   data: $(DATA_DIR)/*.tsv"
 	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
 
 figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
@@ -138,5 +162,7 @@ FORCE:
 # Name every stamp explicitly so make treats none of them as an intermediate file.
 DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_points \
   $(foreach r,$(ADHESIVE_RATIOS),adhesive_E$(r) pulloffeta_E$(r)) \
-  $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r))
+  $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r)) \
+  $(foreach r,$(SPRING_RATIOS),spring_E$(r)) $(foreach i,$(INDENTER_NAMES),indenter_I$(i)) \
+  $(foreach s,$(SHAPE_LIST),shape_$(call shape_name,$(s)))
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):

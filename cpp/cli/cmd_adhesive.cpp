@@ -15,6 +15,7 @@
 #include "coatcontact/reduced.hpp"
 #include "checks.hpp"
 #include "commands.hpp"
+#include "pulloff_spring.hpp"
 
 namespace coatcontact::cli {
 
@@ -39,6 +40,7 @@ std::vector<OptionSpec> material_options() {
   return {
       {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", true},
       {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true},
+      indenter_option(),
       {"--tol", "T",
        "relative tolerance of the reduced variables from the solver (default " +
            short_num(kDefaultAdhesiveTolerance) + ", allowed 1e-13..1e-1)",
@@ -190,6 +192,7 @@ int run_adhesive(const Args& raw) {
 int run_pulloff(const Args& raw) {
   return run_guarded("pulloff", [&]() {
     auto spec = normalized_options();
+    spec.push_back(spring_bar_option());
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("pulloff", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
@@ -213,6 +216,7 @@ int run_pulloff(const Args& raw) {
     for (double eta : etas) {
       results.push_back(with_options("--eta " + num(eta), [&] { return model.pulloff(eta); }));
     }
+    const SpringRows springs(args, model, etas);  // THEORY.md section 10; empty without --spring-bar
 
     Header h{{"command", "pulloff"}};
     add_material_header(h, stack);
@@ -230,15 +234,22 @@ int run_pulloff(const Args& raw) {
                                    short_num(model.pulloff_options().location_tolerance));
     describe_table(h, model, tol);
     for (const auto& r : results) add_pulloff_warnings(h, r);
-    const std::vector<std::string> columns = {"eta",   "P_load",     "a_bar_load", "D_load",
-                                              "P_disp", "a_bar_disp", "D_disp"};
+    springs.describe(h);
+    std::vector<std::string> columns = {"eta",   "P_load",     "a_bar_load", "D_load",
+                                        "P_disp", "a_bar_disp", "D_disp"};
+    springs.extend(columns);
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (const auto& r : results) {
-      write_row(os,
-                {r.eta, r.load_control.load, r.load_control.a_bar, r.load_control.penetration,
-                 r.displacement_control.load, r.displacement_control.a_bar, r.displacement_control.penetration},
-                columns);
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const Pulloff& r = results[i];
+      const std::vector<double> row = {
+          r.eta, r.load_control.load, r.load_control.a_bar, r.load_control.penetration,
+          r.displacement_control.load, r.displacement_control.a_bar, r.displacement_control.penetration};
+      if (springs.empty()) {
+        write_row(os, row, columns);
+      } else {
+        springs.write(os, i, row, columns);
+      }
     }
     out.commit();
     return 0;

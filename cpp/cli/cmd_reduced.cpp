@@ -16,6 +16,7 @@ namespace {
 const std::vector<OptionSpec> kSpec = {
     {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", true},
     {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
+    indenter_option(),
     {"--a-over-t", "LIST", "contact radius over film thickness: v1,v2,... or MIN:MAX:N (log-spaced)", true},
     {"--tol", "T", "relative tolerance of every value, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},

@@ -14,6 +14,7 @@ int run_adhesive(const Args& args);  // cmd_adhesive.cpp: normalized P(a_bar), D
 int run_pulloff(const Args& args);   // cmd_adhesive.cpp: normalized pull-off per eta
 int run_sphere(const Args& args);    // cmd_adhesive.cpp: adhesive sphere in physical units
 int run_reduced(const Args& args);   // cmd_reduced.cpp: reduced variables Pi_s .. Gamma1 versus a/t
+int run_contact(const Args& args);   // cmd_contact.cpp: any axisymmetric indenter in physical units
 // (further subcommands are declared here as they land)
 
 }  // namespace coatcontact::cli

@@ -25,6 +25,7 @@ const Command kCommands[] = {
     {"adhesive", coatcontact::cli::run_adhesive, "normalized adhesive sphere curves P(a_bar), D(a_bar) per eta"},
     {"pulloff", coatcontact::cli::run_pulloff, "normalized pull-off (load and displacement control) per eta"},
     {"sphere", coatcontact::cli::run_sphere, "adhesive sphere in physical units: a, delta, F and pull-off forces"},
+    {"contact", coatcontact::cli::run_contact, "any axisymmetric indenter (cone, power law, blunted cone, profile) in SI units"},
 };
 
 void print_overview(std::ostream& out) {

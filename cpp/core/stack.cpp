@@ -30,8 +30,12 @@ void validate(const Substrate& substrate) {
   if (!substrate.rigid) validate(substrate.material, "substrate");
 }
 
-Stack Stack::film_on(const Material& film, const Substrate& substrate) {
-  return Stack({Layer{1.0, film}}, substrate);
+void validate(const Indenter& indenter) {
+  if (!indenter.rigid) validate(indenter.material, "indenter");
+}
+
+Stack Stack::film_on(const Material& film, const Substrate& substrate, const Indenter& indenter) {
+  return Stack({Layer{1.0, film}}, substrate, indenter);
 }
 
 Stack::Stack(std::vector<Layer> layers, const Substrate& substrate, const Indenter& indenter)
@@ -48,9 +52,17 @@ Stack::Stack(std::vector<Layer> layers, const Substrate& substrate, const Indent
                      " is not allowed; it must be finite and > 0");
   }
   validate(substrate_);
-  if (!indenter_.rigid) {
-    throw InputError("indenter: only a rigid indenter is supported");
-  }
+  validate(indenter_);
+}
+
+double Stack::indenter_ratio() const {
+  if (indenter_.rigid) return 0.0;
+  return top().reduced_modulus() / indenter_.material.reduced_modulus();
+}
+
+double Stack::reference_modulus() const {
+  // E_r = E1*/(1 + rho): the two bodies' compliances add (THEORY.md section 9).
+  return top().reduced_modulus() / (1.0 + indenter_ratio());
 }
 
 double Stack::total_thickness() const {
@@ -61,11 +73,12 @@ double Stack::total_thickness() const {
 
 double Stack::modulus_ratio() const {
   if (substrate_.rigid) return 0.0;
-  return reference_modulus() / substrate_.material.reduced_modulus();
+  return top().reduced_modulus() / substrate_.material.reduced_modulus();
 }
 
 double Stack::substrate_length_ratio() const {
-  return substrate_.rigid ? 1.0 : std::cbrt(modulus_ratio());
+  const double rho = indenter_ratio();
+  return substrate_.rigid ? 1.0 : std::cbrt((modulus_ratio() + rho) / (1.0 + rho));
 }
 
 }  // namespace coatcontact

@@ -6,6 +6,7 @@
 // New shapes (power law, blunted cone, measured profile) implement this interface.
 #pragma once
 #include <string>
+#include <vector>
 
 namespace coatcontact {
 
@@ -19,6 +20,15 @@ class Shape {
   // accurate γ_θ — for a kink at the apex such as the cone's.
   virtual bool smooth_at_apex() const = 0;
   virtual std::string name() const = 0;
+  // ξ in [0, 1] where θ is not smooth (0 for a non-smooth apex, the blunted cone's tangent
+  // point, a measured profile's knots). When not empty (and smooth_at_apex() is false), the
+  // reciprocity integrals ∫ θ γ_fp and ∫ θ w are product integrals (θ integrated exactly
+  // against the interpolants of γ_fp and w, on pieces graded toward these points) instead of
+  // node sums: THEORY.md section 11 needs 1e-10 for θ = -ξ^1.5.
+  virtual std::vector<double> singular_points() const { return {}; }
+  // Halvings of the graded pieces toward each singular point (fewer for a profile's knots,
+  // where θ is C^2).
+  virtual int grading_levels() const { return 48; }
 };
 
 // Paraboloid z = r²/(2R): δ0 = r²/R, θ = -ξ² (Π_s, Δ_s).

@@ -19,6 +19,86 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string describe(double value) { return short_text(value); }
 
+// Product-integration weights W_j with Σ_j W_j f_j = ∫_0^ã θ(x/ã) f̃(x) dx for f̃ the panels'
+// interpolating polynomials of node values f_j (THEORY.md section 11): per panel, the Legendre
+// moments of θ by composite Gauss on pieces split at, and graded geometrically toward, the
+// shape's singular points, then mapped to nodes by Layout::from_moments.
+std::vector<double> product_weights(const Shape& shape, const Layout& layout, double a) {
+  const int p = layout.p;
+  const GaussRule& rule = gauss_rule(20);
+  std::vector<double> singular;
+  for (double xi : shape.singular_points()) singular.push_back(xi * a);
+  const int levels = shape.grading_levels();
+  std::vector<double> weights(layout.x.size(), 0.0);
+  std::vector<double> moments(static_cast<std::size_t>(p));
+  std::vector<double> legendre(static_cast<std::size_t>(p));
+  for (std::size_t panel_index = 0; panel_index < layout.panels.size(); ++panel_index) {
+    const Panel& panel = layout.panels[panel_index];
+    // Break points inside the panel; the ends graded when a singular point is at or near them.
+    std::vector<double> cuts = {panel.lo, panel.hi};
+    bool grade_lo = false, grade_hi = false;
+    const double length = panel.hi - panel.lo;
+    for (double x : singular) {
+      if (x > panel.lo && x < panel.hi) {
+        cuts.push_back(x);
+      } else if (x <= panel.lo && panel.lo - x < length) {
+        grade_lo = true;
+      } else if (x >= panel.hi && x - panel.hi < length) {
+        grade_hi = true;
+      }
+    }
+    std::sort(cuts.begin(), cuts.end());
+    std::fill(moments.begin(), moments.end(), 0.0);
+    auto integrate = [&](double lo, double hi) {
+      const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+      for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
+        const double x = mid + half * rule.nodes[k];
+        const double value = half * rule.weights[k] * shape.theta(x / a);
+        legendre_values((x - panel.mid()) / panel.half(), p, legendre.data());
+        for (int n = 0; n < p; ++n) moments[static_cast<std::size_t>(n)] += value * legendre[static_cast<std::size_t>(n)];
+      }
+    };
+    for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+      const double lo = cuts[c], hi = cuts[c + 1];
+      const bool from_lo = c > 0 || grade_lo || std::find(singular.begin(), singular.end(), lo) != singular.end();
+      const bool from_hi = c + 2 < cuts.size() || grade_hi ||
+                           std::find(singular.begin(), singular.end(), hi) != singular.end();
+      if (!from_lo && !from_hi) {
+        integrate(lo, hi);
+        continue;
+      }
+      // Halve toward each graded end: pieces [lo + d/2^{j+1}, lo + d/2^j] (and mirrored).
+      const double split = from_lo && from_hi ? 0.5 * (lo + hi) : (from_lo ? hi : lo);
+      if (from_lo) {
+        double right = split;
+        for (int j = 0; j < levels; ++j) {
+          const double left = lo + 0.5 * (right - lo);
+          integrate(left, right);
+          right = left;
+        }
+        integrate(lo, right);
+      }
+      if (from_hi) {
+        double left = split;
+        for (int j = 0; j < levels; ++j) {
+          const double right = hi - 0.5 * (hi - left);
+          integrate(left, right);
+          left = right;
+        }
+        integrate(left, hi);
+      }
+    }
+    for (int k = 0; k < p; ++k) {
+      double w = 0.0;
+      for (int n = 0; n < p; ++n) {
+        w += layout.from_moments[static_cast<std::size_t>(k * p + n)] * moments[static_cast<std::size_t>(n)];
+      }
+      weights[panel_index * static_cast<std::size_t>(p) + static_cast<std::size_t>(k)] = w;
+    }
+  }
+  return weights;
+}
+
 }  // namespace
 
 ShapeSolve solve_shapes(const KernelSource& kernel, double a, const Discretization& disc,
@@ -97,6 +177,14 @@ ShapeSolve solve_shapes(const KernelSource& kernel, double a, const Discretizati
     if (shapes[s]->smooth_at_apex()) {
       for (std::size_t j = 0; j < n; ++j) sum += layout.w[j] * gamma[j];
       edge = system.edge_value(gamma, -1.0);
+    } else if (!shapes[s]->singular_points().empty()) {
+      const std::vector<double> weights = product_weights(*shapes[s], layout, a);
+      double theta_w = 0.0;
+      for (std::size_t j = 0; j < n; ++j) {
+        sum += weights[j] * gamma_fp[j];  // ∫ γ_θ = ∫ θ γ_fp
+        theta_w += weights[j] * w[j];
+      }
+      edge = shapes[s]->theta(1.0) - theta_w / kPi;
     } else {
       double theta_w = 0.0;
       for (std::size_t j = 0; j < n; ++j) {

@@ -476,11 +476,25 @@ std::string Arguments::require(const std::string& name) const {
   return it->second;
 }
 
+Indenter parse_indenter(const std::string& text, const std::string& option) {
+  const Substrate body = parse_substrate(text, option);  // the same "E,nu" | "rigid" syntax
+  return Indenter{body.rigid, body.material};
+}
+
 Stack parse_stack(const Arguments& args) {
   // In the order of the synopsis, so the first bad option is the one named.
   const Material film = parse_material(args.require("--film"), "--film");
   const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
-  return Stack::film_on(film, substrate);
+  const auto indenter_text = args.get("--indenter");
+  const Indenter indenter = indenter_text ? parse_indenter(*indenter_text, "--indenter") : Indenter{};
+  return Stack::film_on(film, substrate, indenter);
+}
+
+OptionSpec indenter_option() {
+  return {"--indenter", "E2,nu2|rigid",
+          "indenter Young's modulus and Poisson ratio, or 'rigid' (default); an elastic indenter "
+          "makes E_r (1/E_r = 1/E1* + 1/E2*) the reference modulus",
+          false};
 }
 
 std::string usage(const std::string& command, const std::string& synopsis,
@@ -528,6 +542,14 @@ void add_material_header(std::vector<std::pair<std::string, std::string>>& items
     items.emplace_back("substrate E0* [Pa]", format_parameter(m.reduced_modulus(), "substrate E0*"));
   }
   items.emplace_back("E1*/E0*", format_parameter(stack.modulus_ratio(), "E1*/E0*"));
+  if (!stack.indenter().rigid) {  // only then, so that rigid-indenter headers stay as they were
+    const Material& m = stack.indenter().material;
+    items.emplace_back("indenter E2 [Pa]", format_parameter(m.youngs_modulus, "indenter E2"));
+    items.emplace_back("indenter nu2", format_parameter(m.poisson_ratio, "indenter nu2"));
+    items.emplace_back("indenter E2* [Pa]", format_parameter(m.reduced_modulus(), "indenter E2*"));
+    items.emplace_back("reference modulus E_r [Pa] (1/E_r = 1/E1* + 1/E2*; THEORY.md section 9)",
+                       format_parameter(stack.reference_modulus(), "E_r"));
+  }
 }
 
 std::string format_value(double value, const std::string& column) {

@@ -310,10 +310,16 @@ static void test_errors(void) {
   check_error("stack without substrate", cc_reduced_solver_create(bare, &new_solver), CC_INPUT_ERROR, "no substrate");
   check_error("reference modulus of an incomplete stack", cc_stack_reference_modulus(bare, &value), CC_INPUT_ERROR, "substrate");
 
-  /* Unsupported features: a second layer, a sliding interface, an elastic indenter. */
+  /* Unsupported features: a second layer, a sliding interface. */
   check_error("second layer", cc_stack_add_layer(stack, 1.0, 2.0, 0.3, 0), CC_INPUT_ERROR, "exactly one layer");
   check_error("sliding interface", cc_stack_add_layer(bare, 1.0, 1.0, 0.3, 1), CC_INPUT_ERROR, "bonded");
-  check_error("elastic indenter", cc_stack_set_indenter(stack, 100.0, 0.2), CC_INPUT_ERROR, "rigid indenter");
+  /* An elastic indenter makes E_r (1/E_r = 1/E1* + 1/E2*, THEORY.md section 9) the reference. */
+  check("elastic indenter", cc_stack_set_indenter(stack, 1.0, 0.3) == CC_OK);
+  {
+    double e_r = 0.0;
+    check("reference modulus E_r = E1*/2 for an indenter of the film's material",
+          cc_stack_reference_modulus(stack, &e_r) == CC_OK && close_to(e_r, 0.5 / 0.91, 1e-15));
+  }
   check_error("indenter modulus -1", cc_stack_set_indenter(stack, -1.0, 0.2), CC_INPUT_ERROR, "indenter");
   check("rigid indenter", cc_stack_set_rigid_indenter(stack) == CC_OK);
   check("the stack is unchanged by the failures", cc_reduced_solver_create(stack, &new_solver) == CC_OK);

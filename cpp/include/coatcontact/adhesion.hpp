@@ -66,6 +66,16 @@ struct Pulloff {
   std::vector<std::string> warnings;  // empty when both minima are single and interior
 };
 
+// Pull-off through a spring of normalized stiffness k_bar = k (pi^2 w^2 R/E*^2)^(1/3)/(pi w R)
+// (THEORY.md section 10): the contact jumps off where Z = D + P/k_bar is minimal along the
+// curve (dP/dD = -k_bar). k_bar = 0 is load control, k_bar = inf displacement control.
+struct SpringPulloff {
+  double eta = 0.0;
+  double k_bar = 0.0;
+  PulloffPoint point;                 // a_bar, P, D at the jump
+  std::vector<std::string> warnings;  // several minima of Z, or none inside the range
+};
+
 struct PulloffOptions {
   // Scanned range of a_bar; <= 0 selects the default
   //   [1e-3 min(1, r), 10 max(1, r)],  r = (E1*/E0*)^(1/3)  (r = 1 for a rigid substrate)
@@ -112,6 +122,10 @@ class AdhesiveModel {
   std::vector<CurvePoint> curve(double eta, const std::vector<double>& a_bar) const;
   // Pull-off under load and displacement control; NumericalError if it cannot be located.
   Pulloff pulloff(double eta) const;
+  // Pull-off through a spring (cpp/adhesion/spring_pulloff.cpp). k_bar >= 0 or +inf; the two
+  // limits return exactly pulloff(eta)'s load- and displacement-controlled points. InputError
+  // for a negative or NaN k_bar.
+  SpringPulloff pulloff_spring(double eta, double k_bar) const;
 
   // Default a_bar range of a curve: both JKR limits of the pull-off, a_bar ~ 1 (top layer)
   // and a_bar ~ (E*/E_base*)^(1/3) (base), and the Hertz-like regime above:

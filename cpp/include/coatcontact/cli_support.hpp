@@ -61,6 +61,8 @@ std::string unit_list(Quantity kind);
 Material parse_material(const std::string& text, const std::string& option);
 // "E,nu" or "rigid".
 Substrate parse_substrate(const std::string& text, const std::string& option);
+// "E2,nu2" or "rigid" (THEORY.md section 9).
+Indenter parse_indenter(const std::string& text, const std::string& option);
 
 // ---- arguments -------------------------------------------------------------------
 
@@ -94,8 +96,11 @@ class Arguments {
 };
 
 // Usage text of a subcommand: synopsis line, description, then one line per option.
-// The stack of --film E1,nu1 and --substrate E0,nu0|rigid (both required).
+// The stack of --film E1,nu1 and --substrate E0,nu0|rigid (both required) and the optional
+// --indenter E2,nu2|rigid (default rigid; THEORY.md section 9).
 Stack parse_stack(const Arguments& args);
+// The --indenter option line of a command's spec.
+OptionSpec indenter_option();
 
 std::string usage(const std::string& command, const std::string& synopsis,
                   const std::string& description, const std::vector<OptionSpec>& spec);
@@ -182,7 +187,9 @@ std::string format_parameter(double value, const std::string& name);
 
 // The header lines describing the film and the substrate, the same in every subcommand:
 // "film E1 [Pa]", "film nu1", "film E1* [Pa]", then "substrate: rigid" or "substrate E0 [Pa]",
-// "substrate nu0", "substrate E0* [Pa]", and "E1*/E0*" (0 for a rigid substrate).
+// "substrate nu0", "substrate E0* [Pa]", and "E1*/E0*" (0 for a rigid substrate); for an
+// elastic indenter also "indenter E2 [Pa]", "indenter nu2", "indenter E2* [Pa]" and the
+// reference modulus E_r of the normalization (THEORY.md section 9).
 void add_material_header(std::vector<std::pair<std::string, std::string>>& items, const Stack& stack);
 
 // Writes "# key: value" header lines and the "# columns: a\tb\t..." line.

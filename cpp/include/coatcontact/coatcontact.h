@@ -48,7 +48,7 @@ const char *cc_last_error_message(void);
  *
  * Layers are added top first; thicknesses are in any unit, only their ratios enter (the
  * contact and the fit take the coating's total thickness in m). Supported today: one layer,
- * bonded to the base (slip_below = 0), and a rigid indenter; anything else is CC_INPUT_ERROR
+ * bonded to the base (slip_below = 0), and a rigid or elastic indenter; anything else is CC_INPUT_ERROR
  * (the layer list is ready for the multilayer kernel of section 12). Each setter checks its
  * values at once with the library's rules and leaves the stack unchanged on failure; the
  * whole stack is checked again when used (a layer and a substrate are required). A new
@@ -62,10 +62,11 @@ int cc_stack_add_layer(cc_stack *stack, double thickness, double youngs_modulus,
                        double poisson_ratio, int slip_below);
 int cc_stack_set_substrate(cc_stack *stack, double youngs_modulus, double poisson_ratio);
 int cc_stack_set_rigid_substrate(cc_stack *stack);
-/* An elastic indenter (THEORY.md section 9) is not supported yet: CC_INPUT_ERROR. */
+/* An elastic indenter (THEORY.md section 9): the reference modulus becomes E_r,
+ * 1/E_r = 1/E1* + 1/E2*, and every normalized result uses it. */
 int cc_stack_set_indenter(cc_stack *stack, double youngs_modulus, double poisson_ratio);
 int cc_stack_set_rigid_indenter(cc_stack *stack);
-/* E* of the normalizations: the top layer's E/(1 - nu^2). */
+/* E* of the normalizations: the top layer's E/(1 - nu^2), or E_r with an elastic indenter. */
 int cc_stack_reference_modulus(const cc_stack *stack, double *reference_modulus);
 
 /* ---- reduced solver (THEORY.md sections 4-5) --------------------------------------------

@@ -2,6 +2,9 @@
 // and the table of H(u) = int_0^inf [C(q)-1] cos(qu) dq and H1(u) = int_0^u H for one
 // Stack. Thin header-only wrapper over the C interface cc_kernel.h (Fortran library);
 // status codes become exceptions: bad constants -> InputError, numerical -> NumericalError.
+// An elastic indenter (THEORY.md section 9) is applied here: with rho = E1*/E2* every value
+// is that of C' = (C + rho)/(1 + rho), so C' - 1 and H' = H/(1 + rho) (the Fortran library
+// sees only the film and the substrate).
 #pragma once
 #include <cmath>
 #include <cstddef>
@@ -61,6 +64,15 @@ inline FilmPair film_pair(const Stack& stack) {
           stack.substrate().rigid ? 1 : 0};
 }
 
+// 1/(1 + rho): C' - 1 = (C - 1)/(1 + rho) (THEORY.md section 9); exactly 1 when rigid.
+inline double indenter_scale(const Stack& stack) { return 1.0 / (1.0 + stack.indenter_ratio()); }
+
+inline void scale_values(std::vector<double>& values, double scale) {
+  if (scale != 1.0) {
+    for (double& v : values) v *= scale;
+  }
+}
+
 inline int checked_size(std::size_t n, const std::string& context) {
   if (n > static_cast<std::size_t>(1) << 30) throw InputError(context + ": array too long");
   return static_cast<int>(n);
@@ -76,6 +88,11 @@ inline std::vector<double> compliance(const Stack& stack, const std::vector<doub
       cc_compliance(p.e1, p.nu1, p.e0, p.nu0, p.rigid,
                     kernel_detail::checked_size(q.size(), "compliance"), q.data(), c.data()),
       stack, "compliance");
+  // C' = (C + rho)/(1 + rho), written as 1 + (C - 1)/(1 + rho) only when rho != 0.
+  const double rho = stack.indenter_ratio();
+  if (rho != 0.0) {
+    for (double& v : c) v = (v + rho) / (1.0 + rho);
+  }
   return c;
 }
 
@@ -92,6 +109,7 @@ inline std::vector<double> compliance_minus_one(const Stack& stack, const std::v
                               kernel_detail::checked_size(q.size(), "compliance_minus_one"),
                               q.data(), c.data()),
       stack, "compliance_minus_one");
+  kernel_detail::scale_values(c, kernel_detail::indenter_scale(stack));
   return c;
 }
 
@@ -103,13 +121,14 @@ inline std::vector<double> compliance_taylor(const Stack& stack, int order) {
   kernel_detail::check_status(
       cc_compliance_taylor(p.e1, p.nu1, p.e0, p.nu0, p.rigid, order, f.data()), stack,
       "compliance_taylor");
+  kernel_detail::scale_values(f, kernel_detail::indenter_scale(stack));
   return f;
 }
 
 struct KernelTableInfo {
   double u_max = 0.0;          // tabulated range [0, u_max] (asymptotic series beyond)
   double du = 0.0;             // table step
-  double c_zero = 0.0;         // C(0) = E1*/E0*
+  double c_zero = 0.0;         // C'(0) (= E1*/E0* for a rigid indenter)
   double half_integral = 0.0;  // int_0^inf H du = (pi/2)(C(0) - 1)
   double abs_accuracy = 0.0;   // estimated max |H - H_exact|
   double max_abs_h = 0.0;      // max |H|
@@ -122,7 +141,8 @@ class KernelTable {
   // `grid_variant` 0 is the default grid; the others (see cc_kernel_table_create_ex) compute
   // the same H independently, for a-posteriori estimates of the effect of the table's errors.
   // InputError for a variant out of range.
-  explicit KernelTable(const Stack& stack, int grid_variant = 0) {
+  explicit KernelTable(const Stack& stack, int grid_variant = 0)
+      : scale_(kernel_detail::indenter_scale(stack)), rho_(stack.indenter_ratio()) {
     if (grid_variant < 0 || grid_variant >= cc_kernel_grid_variants()) {
       throw InputError("kernel table: grid variant " + std::to_string(grid_variant) +
                        " is not allowed (must be in [0, " +
@@ -142,6 +162,12 @@ class KernelTable {
                                             u, h, h1);
     if (status == CC_ERR_ARGUMENT) throw InputError("kernel H(u): u must be finite");
     if (status != CC_OK) throw NumericalError(std::string("kernel H(u): ") + cc_status_message(status));
+    if (scale_ != 1.0) {
+      for (std::size_t i = 0; i < n; ++i) h[i] *= scale_;
+      if (h1 != nullptr) {
+        for (std::size_t i = 0; i < n; ++i) h1[i] *= scale_;
+      }
+    }
   }
   void eval(const std::vector<double>& u, std::vector<double>& h, std::vector<double>& h1) const {
     h.resize(u.size());
@@ -169,15 +195,24 @@ class KernelTable {
     cc_kernel_table_info(table_.get(), &i.u_max, &i.du, &i.c_zero, &i.half_integral,
                          &i.abs_accuracy);
     cc_kernel_table_scale(table_.get(), &i.max_abs_h, nullptr);
+    if (scale_ != 1.0) {  // H' = H/(1 + rho): every absolute quantity scales (section 9)
+      i.c_zero = (i.c_zero + rho_) * scale_;
+      i.half_integral *= scale_;
+      i.abs_accuracy *= scale_;
+      i.max_abs_h *= scale_;
+    }
     return i;
   }
 
+  // The film-on-substrate table (H of C, before the indenter's 1/(1 + rho)).
   const cc_kernel_table* raw() const { return table_.get(); }
 
  private:
   struct Deleter {
     void operator()(cc_kernel_table* t) const { cc_kernel_table_destroy(t); }
   };
+  double scale_ = 1.0;  // 1/(1 + rho)
+  double rho_ = 0.0;
   std::unique_ptr<cc_kernel_table, Deleter> table_;
 };
 

@@ -26,7 +26,8 @@ struct Layer {
   Material material;
 };
 
-// The indenter's elastic constants (rigid, the paper's case, is the only one implemented).
+// The indenter's elastic constants: rigid (the paper's case) or a homogeneous elastic
+// half-space (THEORY.md section 9).
 struct Indenter {
   bool rigid = true;
   Material material;
@@ -35,7 +36,8 @@ struct Indenter {
 class Stack {
  public:
   // A film bonded to `substrate` (the paper's system); the film thickness is the unit length.
-  static Stack film_on(const Material& film, const Substrate& substrate);
+  static Stack film_on(const Material& film, const Substrate& substrate,
+                       const Indenter& indenter = {});
   // Validates every constant (InputError naming the layer, the value and the allowed range).
   Stack(std::vector<Layer> layers, const Substrate& substrate, const Indenter& indenter = {});
 
@@ -44,11 +46,15 @@ class Stack {
   const Substrate& substrate() const { return substrate_; }
   const Indenter& indenter() const { return indenter_; }
   double total_thickness() const;
-  // The modulus of the normalization (THEORY.md section 5): the top layer's E*.
-  double reference_modulus() const { return top().reduced_modulus(); }
-  // C(0) = E_ref*/E_base* (0 for a rigid base).
+  // The modulus of the normalization (THEORY.md sections 5, 9): the top layer's E* for a
+  // rigid indenter, else E_r with 1/E_r = 1/E1* + 1/E2*.
+  double reference_modulus() const;
+  // rho = E1*/E2* (0 for a rigid indenter): the kernel sees C' = (C + rho)/(1 + rho) (section 9).
+  double indenter_ratio() const;
+  // E1*/E0*, the film's C(0) (0 for a rigid base).
   double modulus_ratio() const;
-  // Length scale of the reduced-variable curves' default ranges: (C(0))^(1/3), 1 when rigid.
+  // Length scale of the reduced-variable curves' default ranges: C'(0)^(1/3) = (E_r/E_r,base)^(1/3),
+  // 1 when the base is rigid.
   double substrate_length_ratio() const;
 
  private:
@@ -61,5 +67,6 @@ class Stack {
 // or nu outside (-1, 0.5].
 void validate(const Material& material, const std::string& what);
 void validate(const Substrate& substrate);
+void validate(const Indenter& indenter);
 
 }  // namespace coatcontact

@@ -1,0 +1,264 @@
+// `coatcontact contact`: the adhesive (JKR) contact of an indenter of any axisymmetric shape
+// on a coated substrate, in SI units (THEORY.md sections 5, 9, 10, 11).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/cli_support.hpp"
+#include "coatcontact/data_file.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/reduced.hpp"
+#include "coatcontact/shape_contact.hpp"
+#include "commands.hpp"
+
+namespace coatcontact::cli {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr std::size_t kDefaultPoints = 100;
+
+using Header = std::vector<std::pair<std::string, std::string>>;
+
+std::string num(double v) { return format_parameter(v, "header value"); }
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = text.find(separator, start);
+    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+// "70deg", "70 deg" or "1.22rad"; a bare number is in degrees. Must lie in (0, 90) degrees.
+double parse_angle(const std::string& text, const std::string& option) {
+  std::string value = text;
+  double unit = kPi / 180.0;
+  for (const auto& [suffix, factor] : {std::pair<std::string, double>{"deg", kPi / 180.0}, {"rad", 1.0}}) {
+    if (value.size() > suffix.size() && value.compare(value.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      value = value.substr(0, value.size() - suffix.size());
+      unit = factor;
+      break;
+    }
+  }
+  const double beta = parse_number(value, option) * unit;
+  if (!(beta > 0.0 && beta < kPi / 2)) {
+    throw InputError(option + ": half included angle '" + text +
+                     "' not allowed (need 0deg < BETA < 90deg, e.g. 70deg)");
+  }
+  return beta;
+}
+
+// A factory's InputError, prefixed with the option and its value.
+template <typename Make>
+std::shared_ptr<const IndenterShape> named(const std::string& text, Make&& make) {
+  try {
+    return make();
+  } catch (const InputError& e) {
+    std::string message = e.what();
+    if (message.rfind("--shape: ", 0) == 0) message = message.substr(9);  // named once
+    throw InputError("--shape: '" + text + "': " + message);
+  }
+}
+
+// `profile_end` is set to "FILE:LINE" of a profile's last point (for the too-short message).
+std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::string& profile_end) {
+  const std::string option = "--shape";
+  const std::size_t colon = text.find(':');
+  const std::string expected =
+      "expected sphere:R, cone:BETA, punch:A, power:N,R, blunted-cone:R,BETA or profile:FILE";
+  if (colon == std::string::npos) throw InputError(option + ": '" + text + "' has no parameters; " + expected);
+  const std::string kind = text.substr(0, colon);
+  const std::string rest = text.substr(colon + 1);
+  const std::vector<std::string> items = split(rest, ',');
+  auto count = [&](std::size_t n) {
+    if (items.size() != n) {
+      throw InputError(option + ": '" + text + "' needs " + std::to_string(n) + " parameter(s); " + expected);
+    }
+  };
+  auto length = [&](const std::string& item) { return parse_quantity(item, Quantity::kLength, option); };
+  if (kind == "sphere") {
+    count(1);
+    return named(text, [&] { return make_paraboloid(length(items[0])); });
+  }
+  if (kind == "cone") {
+    count(1);
+    return named(text, [&] { return make_cone(parse_angle(items[0], option)); });
+  }
+  if (kind == "punch") {
+    count(1);
+    return named(text, [&] { return make_flat_punch(length(items[0])); });
+  }
+  if (kind == "power") {
+    count(2);
+    const double n = parse_number(items[0], option);
+    if (!(n > 0.0 && n <= 100.0)) {
+      throw InputError(option + ": '" + text + "': exponent N = " + items[0] + " not allowed (need 0 < N <= 100)");
+    }
+    return named(text, [&] { return make_power_law(n, length(items[1])); });
+  }
+  if (kind == "blunted-cone") {
+    count(2);
+    return named(text, [&] { return make_blunted_cone(length(items[0]), parse_angle(items[1], option)); });
+  }
+  if (kind == "profile") {
+    if (rest.empty()) throw InputError(option + ": '" + text + "' names no file; " + expected);
+    // Columns r z (lengths; "# units:" converts them to SI), as the fit's data files.
+    const DataTable table = read_data_file(rest, 2, {true, false}, {Quantity::kLength, Quantity::kLength});
+    profile_end = rest + ":" + std::to_string(table.line_numbers.back());
+    return make_measured_profile(table.columns[0], table.columns[1], rest, table.line_numbers);
+  }
+  throw InputError(option + ": unknown shape '" + kind + "' in '" + text + "'; " + expected);
+}
+
+// "v1,v2,..." with length units per item, or "MIN:MAX:N" (log-spaced, in m).
+std::vector<double> parse_radii(const std::string& text) {
+  if (text.find(':') != std::string::npos) return parse_list(text, "--contact-radius");
+  std::vector<double> radii;
+  for (const std::string& item : split(text, ',')) {
+    radii.push_back(parse_quantity(item, Quantity::kLength, "--contact-radius"));
+  }
+  return radii;
+}
+
+std::string jump_text(const ShapeJump& j) {
+  return num(j.force) + " (contact radius " + num(j.radius) + " m, penetration " + num(j.penetration) + " m)";
+}
+
+const std::vector<OptionSpec> kSpec = {
+    {"--shape", "SHAPE",
+     "indenter: sphere:R (paraboloid), cone:BETA (half included angle, e.g. 70deg), punch:A, "
+     "power:N,R (z = r^N/(N R^(N-1))), blunted-cone:R,BETA (spherical cap tangent to the cone), "
+     "profile:FILE (columns r z, '# units:' line allowed)",
+     true},
+    {"--thickness", "t", "film thickness (m, or with a unit: mm um nm)", true},
+    {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", true},
+    {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true},
+    indenter_option(),
+    {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true},
+    {"--spring", "k", "spring stiffness in N/m (cantilever, machine frame): adds the spring-controlled pull-off", false},
+    {"--contact-radius", "LIST", "contact radii: v1,v2,... (units allowed) or MIN:MAX:N in m (log-spaced)", false},
+    {"--points", "N", "number of contact radii over the default range (default 100; not with --contact-radius)", false},
+    {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
+    {"--output", "FILE", "write to FILE atomically instead of stdout", false},
+};
+
+}  // namespace
+
+int run_contact(const Args& raw) {
+  return run_guarded("contact", [&]() {
+    const Arguments args(raw, kSpec);
+    if (args.help()) {
+      std::cout << usage("contact",
+                         "--shape SHAPE --thickness t --film E1,nu1 --substrate E0,nu0|rigid "
+                         "[--indenter E2,nu2] --work w [--spring k] [--contact-radius LIST | --points N]",
+                         "Adhesive (JKR) contact of an axisymmetric indenter on a coated substrate in SI\n"
+                         "units: per contact radius the adhesive penetration and force and the adhesionless\n"
+                         "ones (THEORY.md sections 5, 11); the pull-off forces under load, displacement and\n"
+                         "spring control (section 10) in the header, with a warning when F(a) has several\n"
+                         "local minima (the global one is the load-controlled pull-off).",
+                         kSpec);
+      return kExitSuccess;
+    }
+    const auto started = std::chrono::steady_clock::now();
+    const double thickness = parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
+    const Stack stack = parse_stack(args);
+    const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
+    double spring = 0.0;
+    if (const auto text = args.get("--spring")) {
+      spring = parse_number(*text, "--spring");
+      if (!(spring > 0.0)) {
+        throw InputError("--spring: value '" + *text + "' not allowed (need a stiffness > 0 in N/m)");
+      }
+    }
+    double tol = kDefaultTolerance;
+    if (const auto text = args.get("--tol")) {
+      tol = parse_number(*text, "--tol");
+      if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
+        throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 0.1)");
+      }
+    }
+    if (args.has("--contact-radius") && args.has("--points")) {
+      throw InputError("--contact-radius and --points exclude each other");
+    }
+    std::size_t points = kDefaultPoints;
+    if (const auto text = args.get("--points")) {
+      const double n = parse_number(*text, "--points");
+      if (!(n >= 2 && n <= 1e6 && n == std::floor(n))) {
+        throw InputError("--points: value '" + *text + "' not allowed (need an integer, 2 <= N <= 1000000)");
+      }
+      points = static_cast<std::size_t>(n);
+    }
+    std::vector<double> radii;
+    if (const auto text = args.get("--contact-radius")) radii = parse_radii(*text);
+    std::string profile_end;
+    const auto shape = parse_shape(args.require("--shape"), profile_end);
+    for (double a : radii) {
+      if (a > shape->max_contact_radius()) {
+        throw InputError((profile_end.empty() ? "" : profile_end + ": ") + "--contact-radius: " + num(a) +
+                         " m exceeds the shape's largest radius " + num(shape->max_contact_radius()) +
+                         " m (" + shape->description() + ")");
+      }
+    }
+
+    const ShapeSolver solver(stack);
+    const ShapeContact contact(solver, shape, thickness, work, tol);
+    const auto [lo, hi] = contact.default_range();
+    if (radii.empty()) {
+      if (shape->flat()) {
+        radii = {lo};
+      } else {
+        for (std::size_t k = 0; k < points; ++k) {
+          radii.push_back(k + 1 == points ? hi : lo * std::pow(hi / lo, static_cast<double>(k) / (points - 1.0)));
+        }
+      }
+    }
+    const std::vector<ShapePoint> curve = contact.curve(radii);
+    const ShapePulloff pulloff = contact.pulloff(spring);
+    double worst = 0.0;
+    for (const ShapePoint& p : curve) worst = std::max(worst, p.error_estimate);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+    Header h{{"command", "contact"}};
+    h.emplace_back("shape", shape->description());
+    h.emplace_back("film thickness t [m]", num(thickness));
+    h.emplace_back("work of adhesion w [J/m2]", num(work));
+    add_material_header(h, stack);
+    h.emplace_back("reference modulus [Pa]", num(stack.reference_modulus()));
+    if (shape->interpolation_error() > 0.0) {
+      h.emplace_back("profile interpolation error estimate (relative, delta0)", num(shape->interpolation_error()));
+    }
+    h.emplace_back("adhesion", "JKR: delta_fp = -sqrt(2 pi a w/E)/Gamma(1), delta = delta_H + delta_fp, "
+                               "F = F_H + S delta_fp (THEORY.md sections 5, 11)");
+    h.emplace_back("pull-off force, load control [N]", jump_text(pulloff.load));
+    h.emplace_back("pull-off force, displacement control [N]", jump_text(pulloff.displacement));
+    if (spring > 0.0) {
+      h.emplace_back("spring stiffness k [N/m]", num(spring));
+      h.emplace_back("pull-off force, spring control [N]", jump_text(pulloff.spring));
+    }
+    h.emplace_back("pull-off scan", "contact radii [" + num(pulloff.scan_min) + ", " + num(pulloff.scan_max) +
+                                        "] m, 24 per decade, every local minimum refined (Brent)");
+    for (const auto& w : pulloff.warnings) h.emplace_back("warning", w);
+    h.emplace_back("solver tolerance", num(tol));
+    h.emplace_back("solver error estimate (relative, max over rows)", num(worst));
+    h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+    const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "delta_H_m", "F_H_N"};
+    Output out(args.get("--output").value_or(""));
+    std::ostream& os = out.stream();
+    write_header(os, h, columns);
+    for (const ShapePoint& p : curve) {
+      write_row(os, {p.radius, p.penetration, p.force, p.penetration_h, p.force_h}, columns);
+    }
+    out.commit();
+    return kExitSuccess;
+  });
+}
+
+}  // namespace coatcontact::cli

@@ -1,0 +1,38 @@
+# Figure 11 (beyond the paper): pull-off force versus eta for an elastic indenter
+# (THEORY.md §9) of E2*/E1* = 0.3, 1, 3 and a rigid one, on the same film. Everything is
+# normalized with E_r (1/E_r = 1/E1* + 1/E2*): eta = t/(pi w R^2/E_r)^(1/3), P = F/(pi w R);
+# a homogeneous system stays at JKR's -3/2 and -5/6 whatever the indenter.
+# Inputs: files (one `coatcontact pulloff --indenter` output per indenter), indenters
+# ('rigid' or E2*/E1*, same order), ratio (film E1/E0).
+
+W = 1400; H = 640
+load gpdir.'/style.gp'
+
+n = words(files)
+f1 = word(files, 1)
+h = columns_of(f1)
+eval need('c_eta', h, 'eta', f1)
+eval need('c_pl', h, 'P_load', f1)
+eval need('c_pd', h, 'P_disp', f1)
+indenter_text(s) = s eq 'rigid' ? 'rigid indenter' : sprintf("E_2^*/E_1^* = %s", s)
+indenter_ls(k) = eta_ls(k)
+
+set multiplot layout 1, 2 title sprintf("Fig. 11 — elastic indenters,  %s", materials_label(ratio)) \
+    font ',14' margins 0.07, 0.97, 0.13, 0.86 spacing 0.08, 0
+set logscale x
+set format x '10^{%L}'
+set xlabel 'η = t / (π w R^2/E_r)^{1/3},   1/E_r = 1/E_1^* + 1/E_2^*'
+set ylabel 'pull-off force  P = F / (π w R)'
+set key bottom right
+
+set title 'load control'
+plot -1.5 ls 31 title 'JKR', \
+     for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pl)) with lines \
+         ls indenter_ls(k) title indenter_text(word(indenters, k))
+set title 'displacement control'
+set key top right
+plot -5.0/6 ls 31 title 'JKR', \
+     for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pd)) with lines \
+         ls indenter_ls(k) title indenter_text(word(indenters, k))
+unset multiplot
+unset output
