@@ -21,7 +21,7 @@ constexpr double kPi = 3.14159265358979323846;
 // Points and weights in φ on [0, φa] for integrals over the annulus y = c cos φ in [a, c].
 // Pieces are graded in s = c - y toward the three places where the integrands vary on the
 // kernel's scale (THEORY.md section 13): the zone edge c, the contact edge a and `center`
-// (the point x of k(x, y)); elsewhere they grow like half the distance, and no piece spans
+// (the point x of k(x, y)); elsewhere they are as long as their distance from the nearest, and no piece spans
 // more than `piece_angle` in φ.
 struct AnnulusRule {
   std::vector<double> phi, weight, y;
@@ -40,12 +40,14 @@ void annulus_rule(double c, double s_end, double phi_end, double center, const C
   rule.weight_sin2.clear();
   const GaussRule& gauss = gauss_rule(q.points_per_piece);
   const double s_center = std::clamp(c - center, 0.0, s_end);
-  const double growth = 0.5;
+  // Leaving a special point a piece may be as long as its distance behind (ρ >= 3 + sqrt(8));
+  // approaching one, half the distance ahead, so that no piece ends on the feature.
   double s = 0.0, phi = 0.0;
   for (int pieces = 0; s < s_end; ++pieces) {
     if (pieces > 100000) throw NumericalError("cohesive zone: annulus quadrature does not terminate");
-    const double distance = std::min({s, s_end - s, std::abs(s - s_center)});
-    double length = std::max(q.piece_length, growth * distance);
+    const double behind = s >= s_center ? std::min(s, s - s_center) : s;
+    const double ahead = s < s_center ? std::min(s_end - s, s_center - s) : s_end - s;
+    double length = std::max(q.piece_length, std::min(behind, 0.5 * ahead));
     if (s < s_center && s + length > s_center) length = s_center - s;
     double next = s + length;
     if (s_end - next < 0.25 * length) next = s_end;

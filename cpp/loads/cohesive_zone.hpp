@@ -18,7 +18,7 @@
 namespace coatcontact::detail {
 
 struct CohesiveQuadrature {
-  int points_per_piece = 20;   // Gauss-Legendre points per annulus piece (in φ)
+  int points_per_piece = 14;   // Gauss-Legendre points per annulus piece (in φ)
   double piece_length = 1.0;   // longest piece in y (units of t; H varies on the scale 2)
   double piece_angle = 0.5;    // longest piece in φ (sin² and cos are entire)
 };
