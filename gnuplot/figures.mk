@@ -44,6 +44,14 @@ CMD_fig2_curve  := reduced $(call materials,$(FIG2_RATIO)) --a-over-t $(FIG2_CUR
 CMD_fig2_points := reduced $(call materials,$(FIG2_RATIO)) \
   --a-over-t $(FIG2_A_OVER_T),$(FIG2_A_OVER_T_NEXT)
 
+# Maugis-Dugdale pull-off versus lambda (THEORY.md section 13): the two films and the
+# homogeneous solid (eta is irrelevant there), with the JKR pull-offs (lambda = inf).
+$(foreach r,$(ADHESIVE_RATIOS),$(eval \
+  CMD_mdlambda_E$(r) := pulloff $(call materials,$(r)) --eta $(MD_ETA) --lambda $(MD_LAMBDA)))
+$(foreach r,$(ADHESIVE_RATIOS),$(eval \
+  CMD_mdjkr_E$(r) := pulloff $(call materials,$(r)) --eta $(MD_ETA)))
+CMD_mdlambda_homogeneous := pulloff $(call materials,1) --eta 1 --lambda $(MD_LAMBDA)
+
 data = $(DATA_DIR)/$(1).tsv
 PULLOFF_FILES := $(foreach r,$(PULLOFF_RATIOS),$(call data,pulloff_E$(r)))
 
@@ -73,8 +81,15 @@ DATA_fig8  = $(PULLOFF_FILES)
 GP_fig8    = $(GP_common); ratios='$(PULLOFF_RATIOS)'; files='$(PULLOFF_FILES)'
 DATA_fig9  = $(foreach r,$(FIT_RATIOS),$(call data,reduced_E$(r)))
 GP_fig9    = $(GP_common); ratios='$(FIT_RATIOS)'; files='$(DATA_fig9)'
+DATA_fig_md_lambda = $(foreach r,$(SOFT_RATIO) $(STIFF_RATIO),$(call data,mdlambda_E$(r)) $(call data,mdjkr_E$(r))) \
+                     $(call data,mdlambda_homogeneous)
+GP_fig_md_lambda   = $(GP_common); ratios='$(SOFT_RATIO) $(STIFF_RATIO)'; etas='$(subst $(comma), ,$(MD_ETA))'; \
+                     md='$(foreach r,$(SOFT_RATIO) $(STIFF_RATIO),$(call data,mdlambda_E$(r)))'; \
+                     jkr='$(foreach r,$(SOFT_RATIO) $(STIFF_RATIO),$(call data,mdjkr_E$(r)))'; \
+                     homogeneous='$(call data,mdlambda_homogeneous)'
 
-FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9
+comma := ,
+FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig_md_lambda
 FIGURE_FILES := $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf)
 
 # Helper scripts loaded by the figure scripts.
@@ -97,7 +112,7 @@ figures: build
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
 
 figures-only: $(FIGURE_FILES)
-	@echo "figures: $(FIG_DIR)/fig{1..9}.png and .pdf   data: $(DATA_DIR)/*.tsv"
+	@echo "figures: $(FIG_DIR)/fig{1..9}.png, fig_md_lambda.png and .pdf   data: $(DATA_DIR)/*.tsv"
 	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
 
 figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
@@ -138,5 +153,6 @@ FORCE:
 # Name every stamp explicitly so make treats none of them as an intermediate file.
 DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_points \
   $(foreach r,$(ADHESIVE_RATIOS),adhesive_E$(r) pulloffeta_E$(r)) \
-  $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r))
+  $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r)) \
+  $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):
