@@ -8,11 +8,10 @@
 //   a/t = a_bar/eta,  P = F/(pi w R) = eta^3 F,  D = delta/(t^2/(eta^2 R)) = eta^2 delta.
 //
 // Pull-off: the minimum of P (or D) over a_bar is located on a log grid, each grid minimum
-// refined by Brent's minimiser in ln a_bar. Values near a minimum are flat, so the location
-// is good to ~location_tolerance but the minimum value to ~its square plus the noise of the
-// root c(a) (~1e-13): the pull-off force is what is reported to full accuracy. The implicit
-// derivative through c(a) that THEORY.md section 13 recommends would need the derivative of
-// the factored system with a; minimising values avoids it at the cost of ~20 more solves.
+// refined by Brent's minimiser in ln a_bar. Values near a minimum are flat, so that locates
+// a_bar only to ~location_tolerance (the minimum value itself to ~its square plus the noise
+// of the root c(a), ~1e-13); the location is then refined as the root of dP/da_bar (dD/da_bar)
+// differentiated implicitly through c(a) (THEORY.md section 13), to ~1e-10.
 #include "coatcontact/maugis_dugdale.hpp"
 
 #include <gsl/gsl_errno.h>
@@ -87,10 +86,44 @@ double minimise(const std::function<double(double)>& f, double lo, double mid, d
 }  // namespace
 
 struct MaugisDugdaleModel::Impl {
-  Impl(const Stack& s, const MaugisDugdaleOptions& o) : stack(s), options(o), kernel(s) {}
+  Impl(const Stack& s, const MaugisDugdaleOptions& o) : stack(s), options(o), kernel(s) {
+    disc.nodes_per_panel = o.nodes_per_panel;
+    disc.quadrature_accuracy = o.quadrature_accuracy;
+    quadrature.points_per_piece = o.annulus_points;
+  }
   Stack stack;
   MaugisDugdaleOptions options;
   detail::TableKernel kernel;
+  detail::Discretization disc;
+  detail::CohesiveQuadrature quadrature;
+
+  // dP/da_bar (load) or dD/da_bar along the curve, by implicit differentiation through c(a)
+  // (THEORY.md section 13): dX/da = X_a - X_c h_a/h_c, the partial derivatives at fixed c
+  // (resp. a) by fourth-order central differences of the smooth map (a, c) -> (F, δ, h), which
+  // involves no root finder; steps 1e-3 (c - a) give ~1e-12 relative.
+  double slope(double eta, double sigma_hat, double h0, double a, bool load) const {
+    const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
+    const detail::CohesiveState st = zone.solve(sigma_hat, h0);
+    const double c = st.c, step = 1e-3 * std::min(c - a, a);
+    auto value = [&](const detail::CohesiveState& x) { return load ? x.force : x.delta; };
+    const double w[2] = {8.0 / 12.0, -1.0 / 12.0};  // f'(0) ~ Σ w_k (f(k s) - f(-k s)) / s
+    double x_c = 0.0, h_c = 0.0, x_a = 0.0, h_a = 0.0;
+    for (int k = 1; k <= 2; ++k) {
+      const detail::CohesiveState cp = zone.evaluate(sigma_hat, (c + k * step) / a - 1.0);
+      const detail::CohesiveState cm = zone.evaluate(sigma_hat, (c - k * step) / a - 1.0);
+      x_c += w[k - 1] * (value(cp) - value(cm)) / step;
+      h_c += w[k - 1] * (cp.gap - cm.gap) / step;
+      const double ap = a + k * step, am = a - k * step;
+      const detail::CohesiveState sp =
+          detail::CohesiveZone(kernel, ap, 1.0, disc, quadrature).evaluate(sigma_hat, c / ap - 1.0);
+      const detail::CohesiveState sm =
+          detail::CohesiveZone(kernel, am, 1.0, disc, quadrature).evaluate(sigma_hat, c / am - 1.0);
+      x_a += w[k - 1] * (value(sp) - value(sm)) / step;
+      h_a += w[k - 1] * (sp.gap - sm.gap) / step;
+    }
+    const double total = x_a - x_c * h_a / h_c;  // d/da in units of t
+    return load ? eta * eta * total : eta * total;  // P = η³F, D = η²δ, ā = η a
+  }
 };
 
 MaugisDugdaleModel::MaugisDugdaleModel(const Stack& stack, MaugisDugdaleOptions options) {
@@ -144,6 +177,40 @@ std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lam
   return out;
 }
 
+// The minimiser's location (~location_tolerance) refined as the root of the implicit
+// derivative (Impl::slope) by regula falsi (Illinois) in ln a_bar on a bracket 100 times
+// wider than its tolerance; kept as it is when the bracket shows no sign change.
+double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, int& evaluations) const {
+  const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
+  const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+  auto g = [&](double v) {
+    ++evaluations;
+    return impl_->slope(eta, sigma_hat, h0, std::exp(v) / eta, load);
+  };
+  const double half = 100.0 * impl_->options.location_tolerance;
+  double l = x - half, r = x + half, gl = g(l), gr = g(r);
+  if (!(gl < 0.0 && gr > 0.0)) return x;
+  int side = 0;
+  for (int iter = 0; iter < 30 && r - l > 1e-13; ++iter) {
+    const double m = r - gr * (r - l) / (gr - gl);
+    const double gm = g(m);
+    if (gm == 0.0) return m;
+    if (gm < 0.0) {
+      l = m;
+      gl = gm;
+      if (side == -1) gr *= 0.5;
+      side = -1;
+    } else {
+      r = m;
+      gr = gm;
+      if (side == 1) gl *= 0.5;
+      side = 1;
+    }
+    if (std::abs(gm) < 1e-13) break;
+  }
+  return gl == gr ? 0.5 * (l + r) : r - gr * (r - l) / (gr - gl);
+}
+
 MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) const {
   check_value(eta, "eta", false);
   check_value(lambda, "lambda", false);
@@ -183,7 +250,8 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
           ++evaluations;
           return value_of(point(eta, lambda, std::exp(x)), control);
         };
-        const double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
+        double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
+        x = refine(eta, lambda, x, control == Control::kLoad, evaluations);
         at = point(eta, lambda, std::exp(x));
         if (value_of(at, control) > f1) at = points[k];
       }

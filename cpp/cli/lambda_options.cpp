@@ -198,9 +198,9 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
   h.emplace_back("eta", join(etas));
   h.emplace_back("lambda", join(lambdas));
   h.emplace_back("location", "log grid of " + std::to_string(md.options().scan_points_per_decade) +
-                                 " points per decade of a_bar and the end a -> 0, each grid minimum refined by "
-                                 "Brent's minimiser in ln a_bar to relative " + num(md.options().location_tolerance) +
-                                 " (the minimum value is then exact to ~1e-12)");
+                                 " points per decade of a_bar and the end a -> 0; each grid minimum refined by "
+                                 "Brent's minimiser in ln a_bar, then as the root of dP/da_bar (dD/da_bar) "
+                                 "differentiated implicitly through c(a) (a_bar to ~1e-10, P and D to ~1e-12)");
   for (auto& n : notes) h.push_back(std::move(n));
   const std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load", "m_load",
                                             "P_disp", "a_bar_disp", "D_disp", "m_disp"};

@@ -70,4 +70,18 @@ inline double pulloff_load(double lambda, double lo = 1e-3, double hi = 3.0) {
   return std::min(solve(lambda, std::exp(0.5 * (x0 + x1))).load, end_of_curve(lambda).load);
 }
 
+// Location ā_M of the load-controlled pull-off: root of dP/dā_M (central differences of the
+// closed form, which carries no root-finder noise beyond the last bit) by bisection.
+inline double pulloff_location(double lambda, double lo, double hi) {
+  auto slope = [&](double a) {
+    const double h = 1e-5 * a;
+    return (solve(lambda, a + h).load - solve(lambda, a - h).load) / (2.0 * h);
+  };
+  for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (slope(mid) > 0.0 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace maugis

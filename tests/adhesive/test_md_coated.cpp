@@ -101,6 +101,14 @@ int main() {
     const MaugisDugdalePulloff finer = MaugisDugdaleModel(soft, fine).pulloff(1.0, 1.0);
     check_close(coarse.load_control.point.load, finer.load_control.point.load, 1e-11,
                 "pull-off P (load) under refinement, soft film eta=1 lambda=1");
+    // The location comes from the implicit derivative, not from the minimiser's tolerance.
+    MaugisDugdaleOptions loose;
+    loose.location_tolerance = 1e-5;
+    const MaugisDugdalePulloff other = MaugisDugdaleModel(soft, loose).pulloff(1.0, 1.0);
+    check_close(other.load_control.point.a_bar, coarse.load_control.point.a_bar, 1e-9,
+                "pull-off location independent of the minimiser's tolerance (1e-5 vs 1e-7)");
+    check_close(other.load_control.point.penetration, coarse.load_control.point.penetration, 1e-9,
+                "pull-off D (load) independent of the minimiser's tolerance");
     check_close(coarse.displacement_control.point.penetration, finer.displacement_control.point.penetration, 1e-11,
                 "pull-off D (displacement) under refinement, soft film eta=1 lambda=1");
   }

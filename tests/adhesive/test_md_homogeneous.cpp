@@ -5,7 +5,7 @@
 //    the regularity and the gap formula are exercised: they are exact up to rounding);
 //  - the curve's end a -> 0 (finite c, P, Δ_M; no NaN) and its approach from a > 0;
 //  - load-controlled pull-offs -1.81556, -1.60073, -1.51676 at λ = 0.3, 1, 3 (to the digits
-//    given) and to 1e-9 against the closed form's minimum;
+//    given) and to 1e-9 against the closed form's minimum, its location a_M to 1e-8;
 //  - DMT limit λ -> 0: P -> -2; JKR limit λ -> ∞: P -> -3/2.
 #include <cmath>
 #include <cstdio>
@@ -69,6 +69,10 @@ int main() {
     check_close(r.load_control.point.load, row[1], 5e-6, "pull-off lambda=" + g(row[0]) + " vs Maugis");
     check_close(r.load_control.point.load, want, 1e-9, "pull-off lambda=" + g(row[0]) + " vs closed form");
     check(r.load_control.interior, "pull-off lambda=" + g(row[0]) + " is a stationary point");
+    // Location: implicit derivative through c(a) (THEORY.md section 13), against the closed form.
+    const double a_m = r.load_control.point.a_bar * k13;
+    check_close(a_m, maugis::pulloff_location(row[0], 0.9 * a_m, 1.1 * a_m), 1e-8,
+                "pull-off location a_M lambda=" + g(row[0]) + " vs closed form");
     check(std::isfinite(r.displacement_control.point.load), "displacement-controlled pull-off finite");
   }
 

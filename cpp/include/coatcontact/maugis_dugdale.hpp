@@ -23,7 +23,8 @@ struct MaugisDugdaleOptions {
   double quadrature_accuracy = 1e-13;
   // Pull-off scan: a_bar range (<= 0: [1e-3 min(1, r), 10 max(1, r)], r as adhesion.hpp) and
   // grid density; each local minimum on the grid is refined by a Brent minimiser in ln a_bar
-  // to `location_tolerance` (relative): the minimum value is then exact to ~ its square.
+  // to `location_tolerance` (relative), then as the root of the derivative differentiated
+  // implicitly through c(a) (location ~1e-10; the minimum value to ~1e-13).
   double a_bar_min = 0.0;
   double a_bar_max = 0.0;
   int scan_points_per_decade = 8;
@@ -79,6 +80,7 @@ class MaugisDugdaleModel {
   const MaugisDugdaleOptions& options() const;
 
  private:
+  double refine(double eta, double lambda, double ln_a_bar, bool load, int& evaluations) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
