@@ -57,6 +57,13 @@ shape_name = $(firstword $(subst :, ,$(1)))
 $(foreach s,$(SHAPE_LIST),$(eval \
   CMD_shape_$(call shape_name,$(s)) := contact --shape $(s) --thickness $(SHAPE_THICKNESS) --film $(SHAPE_FILM) \
     --substrate $(SHAPE_SUBSTRATE) --work $(SHAPE_WORK) --points $(SHAPE_POINTS)))
+# Maugis-Dugdale pull-off versus lambda (THEORY.md section 13): the two films and the
+# homogeneous solid (eta is irrelevant there), with the JKR pull-offs (lambda = inf).
+$(foreach r,$(ADHESIVE_RATIOS),$(eval \
+  CMD_mdlambda_E$(r) := pulloff $(call materials,$(r)) --eta $(MD_ETA) --lambda $(MD_LAMBDA)))
+$(foreach r,$(ADHESIVE_RATIOS),$(eval \
+  CMD_mdjkr_E$(r) := pulloff $(call materials,$(r)) --eta $(MD_ETA)))
+CMD_mdlambda_homogeneous := pulloff $(call materials,1) --eta 1 --lambda $(MD_LAMBDA)
 
 data = $(DATA_DIR)/$(1).tsv
 PULLOFF_FILES := $(foreach r,$(PULLOFF_RATIOS),$(call data,pulloff_E$(r)))
@@ -87,6 +94,12 @@ DATA_fig8  = $(PULLOFF_FILES)
 GP_fig8    = $(GP_common); ratios='$(PULLOFF_RATIOS)'; files='$(PULLOFF_FILES)'
 DATA_fig9  = $(foreach r,$(FIT_RATIOS),$(call data,reduced_E$(r)))
 GP_fig9    = $(GP_common); ratios='$(FIT_RATIOS)'; files='$(DATA_fig9)'
+DATA_fig_md_lambda = $(foreach r,$(SOFT_RATIO) $(STIFF_RATIO),$(call data,mdlambda_E$(r)) $(call data,mdjkr_E$(r))) \
+                     $(call data,mdlambda_homogeneous)
+GP_fig_md_lambda   = $(GP_common); ratios='$(SOFT_RATIO) $(STIFF_RATIO)'; etas='$(subst $(comma), ,$(MD_ETA))'; \
+                     md='$(foreach r,$(SOFT_RATIO) $(STIFF_RATIO),$(call data,mdlambda_E$(r)))'; \
+                     jkr='$(foreach r,$(SOFT_RATIO) $(STIFF_RATIO),$(call data,mdjkr_E$(r)))'; \
+                     homogeneous='$(call data,mdlambda_homogeneous)'
 
 SPRING_FILES   := $(foreach r,$(SPRING_RATIOS),$(call data,spring_E$(r)))
 DATA_fig10 = $(SPRING_FILES)
@@ -98,7 +111,8 @@ SHAPE_FILES := $(foreach s,$(SHAPE_LIST),$(call data,shape_$(call shape_name,$(s
 DATA_fig12 = $(SHAPE_FILES)
 GP_fig12   = $(GP_common); shapes='$(SHAPE_LIST)'; files='$(SHAPE_FILES)'
 
-FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12
+comma := ,
+FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig_md_lambda
 FIGURE_FILES := $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf)
 
 # Helper scripts loaded by the figure scripts.
@@ -121,7 +135,7 @@ figures: build
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
 
 figures-only: $(FIGURE_FILES)
-	@echo "figures: $(FIG_DIR)/fig{1..12}.png and .pdf   data: $(DATA_DIR)/*.tsv"
+	@echo "figures: $(FIG_DIR)/fig{1..12}.png, fig_md_lambda.png and .pdf   data: $(DATA_DIR)/*.tsv"
 	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
 
 figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
@@ -164,5 +178,6 @@ DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_po
   $(foreach r,$(ADHESIVE_RATIOS),adhesive_E$(r) pulloffeta_E$(r)) \
   $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r)) \
   $(foreach r,$(SPRING_RATIOS),spring_E$(r)) $(foreach i,$(INDENTER_NAMES),indenter_I$(i)) \
-  $(foreach s,$(SHAPE_LIST),shape_$(call shape_name,$(s)))
+  $(foreach s,$(SHAPE_LIST),shape_$(call shape_name,$(s))) \
+  $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):

@@ -15,6 +15,7 @@
 #include "coatcontact/reduced.hpp"
 #include "checks.hpp"
 #include "commands.hpp"
+#include "lambda_options.hpp"
 #include "pulloff_spring.hpp"
 
 namespace coatcontact::cli {
@@ -116,6 +117,7 @@ std::vector<OptionSpec> normalized_options() {
                                  "film thickness over (pi w R^2/E1*)^(1/3), each in [1e-6, 1e6]: "
                                  "v1,v2,... or MIN:MAX:N",
                                  true});
+  spec.push_back(lambda_option());
   return spec;
 }
 
@@ -152,7 +154,13 @@ int run_adhesive(const Args& raw) {
     const auto [stack, etas, tol] = parse_normalized_inputs(args);
     std::vector<double> a_bar;
     if (const auto text = args.get("--a-bar")) a_bar = parse_scaled_list(*text, "--a-bar");
+    const auto lambdas = parse_lambdas(args);
     Output out(args.get("--output").value_or(""));
+    if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
+      write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol);
+      out.commit();
+      return 0;
+    }
 
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
@@ -205,7 +213,13 @@ int run_pulloff(const Args& raw) {
       return 0;
     }
     const auto [stack, etas, tol] = parse_normalized_inputs(args);
+    const auto lambdas = parse_lambdas(args);
     Output out(args.get("--output").value_or(""));
+    if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
+      write_md_pulloff(out.stream(), stack, etas, *lambdas, tol);
+      out.commit();
+      return 0;
+    }
 
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
@@ -272,6 +286,7 @@ int run_sphere(const Args& raw) {
     spec.insert(spec.begin() + 6, {"--contact-radius", "LIST",
                                    "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
                                    false});
+    for (const auto& option : cohesive_options()) spec.push_back(option);
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("sphere",
@@ -297,7 +312,13 @@ int run_sphere(const Args& raw) {
       }
       points = static_cast<std::size_t>(n);
     }
+    const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
     Output out(args.get("--output").value_or(""));
+    if (sigma0) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
+      write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points);
+      out.commit();
+      return 0;
+    }
 
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);

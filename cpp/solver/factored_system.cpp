@@ -278,7 +278,7 @@ class RowBuilder {
 }  // namespace
 
 FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discretization& disc)
-    : a_(a), layout_(make_layout(a, disc)) {
+    : a_(a), kernel_(&kernel), disc_(disc), layout_(make_layout(a, disc)) {
   const std::size_t n = layout_.x.size();
   const lapack_int nn = static_cast<lapack_int>(n);
   RowBuilder builder(kernel, layout_, disc);
@@ -353,6 +353,11 @@ void FactoredSystem::solve(double* columns, std::size_t count) const {
   if (info != 0) {
     throw NumericalError("reduced solver: dgetrs failed at a/t = " + describe(a_));
   }
+}
+
+void FactoredSystem::kernel_rows(const double* x, std::size_t count, double* rows) const {
+  RowBuilder builder(*kernel_, layout_, disc_);
+  for (std::size_t k = 0; k < count; ++k) builder.build(x[k], rows + k * size());
 }
 
 double FactoredSystem::edge_value(const double* gamma, double theta_at_edge) const {

@@ -46,6 +46,9 @@ class FactoredSystem {
   // k_e(x_i) = H(x_i - ã) + H(x_i + ã): its solution w gives every edge value by
   // reciprocity, γ_θ(ã) = θ(ã) - (1/π) ∫ θ w.
   const std::vector<double>& edge_kernel() const { return edge_kernel_; }
+  // rows[k*size() + j] = (1/π) ∫ ℓ_j(y) [H(x_k - y) + H(x_k + y)] dy at any points x_k, also
+  // outside [0, ã]: θ_K(x_k) = row_k · γ (the cohesive zone, THEORY.md section 13).
+  void kernel_rows(const double* x, std::size_t count, double* rows) const;
   double inverse_norm() const { return 1.0 / (rcond_ * norm_inf_); }
   double reciprocal_condition() const { return rcond_; }
   int panels() const { return static_cast<int>(layout_.panels.size()); }
@@ -53,6 +56,8 @@ class FactoredSystem {
 
  private:
   double a_;
+  const KernelSource* kernel_;
+  Discretization disc_;
   Layout layout_;
   std::vector<double> lu_;
   std::vector<int> pivots_;

@@ -1,0 +1,294 @@
+// Maugis-Dugdale adhesive sphere on a coated substrate (THEORY.md section 13): the Maugis
+// normalization on top of the per-radius cohesive-zone solve (cpp/loads/cohesive_zone.hpp),
+// the curve down to its end a -> 0, and the pull-offs.
+//
+// Units of the solve: t = 1, E* = 1 and R = 1 (the paraboloid makes R scale out). Then the
+// Maugis length is (pi w R^2/E*)^(1/3) = t/eta, so pi w = eta^-3 and
+//   sigma_hat = 2 sigma0/E* = lambda K^(2/3)/eta,  h0 = w/sigma0 = 2/(pi eta^3 sigma_hat),
+//   a/t = a_bar/eta,  P = F/(pi w R) = eta^3 F,  D = delta/(t^2/(eta^2 R)) = eta^2 delta.
+//
+// Pull-off: the minimum of P (or D) over a_bar is located on a log grid, each grid minimum
+// refined by Brent's minimiser in ln a_bar. Values near a minimum are flat, so that locates
+// a_bar only to ~location_tolerance (the minimum value itself to ~its square plus the noise
+// of the root c(a), ~1e-13); the location is then refined as the root of dP/da_bar (dD/da_bar)
+// differentiated implicitly through c(a) (THEORY.md section 13), to ~1e-10.
+#include "coatcontact/maugis_dugdale.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_min.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/detail/gsl_handler_off.hpp"
+#include "coatcontact/errors.hpp"
+#include "cohesive_zone.hpp"
+#include "table_kernel.hpp"
+
+namespace coatcontact {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void check_value(double value, const std::string& what, bool zero_allowed) {
+  if (!std::isfinite(value) || !(zero_allowed ? value >= 0.0 : value > 0.0)) {
+    throw InputError(what + " = " + detail::full_precision(value) + " not allowed (need finite and " +
+                     (zero_allowed ? ">= 0)" : "> 0)"));
+  }
+}
+
+enum class Control { kLoad, kDisplacement };
+double value_of(const MaugisDugdalePoint& p, Control c) {
+  return c == Control::kLoad ? p.load : p.penetration;
+}
+
+double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
+
+// Brent minimiser (GSL) on f over [lo, hi] with f(mid) below both ends. Exceptions thrown by
+// f are carried across the C library and rethrown.
+double minimise(const std::function<double(double)>& f, double lo, double mid, double hi, double f_lo,
+                double f_mid, double f_hi, double tolerance) {
+  detail::GslHandlerOff guard;
+  std::exception_ptr error;
+  std::function<double(double)> safe = [&](double x) {
+    if (error) return f_hi;
+    try {
+      return f(x);
+    } catch (...) {
+      error = std::current_exception();
+      return f_hi;
+    }
+  };
+  gsl_function F{&call, &safe};
+  gsl_min_fminimizer* m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+  double x = mid;
+  if (m != nullptr && gsl_min_fminimizer_set_with_values(m, &F, mid, f_mid, lo, f_lo, hi, f_hi) == GSL_SUCCESS) {
+    for (int iter = 0; iter < 200 && !error; ++iter) {
+      if (gsl_min_fminimizer_iterate(m) != GSL_SUCCESS) break;
+      if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m), tolerance, 0.0) ==
+          GSL_SUCCESS) {
+        break;
+      }
+    }
+    x = gsl_min_fminimizer_x_minimum(m);
+  }
+  gsl_min_fminimizer_free(m);
+  if (error) std::rethrow_exception(error);
+  return x;
+}
+
+}  // namespace
+
+struct MaugisDugdaleModel::Impl {
+  Impl(const Stack& s, const MaugisDugdaleOptions& o) : stack(s), options(o), kernel(s) {
+    disc.nodes_per_panel = o.nodes_per_panel;
+    disc.quadrature_accuracy = o.quadrature_accuracy;
+    quadrature.points_per_piece = o.annulus_points;
+  }
+  Stack stack;
+  MaugisDugdaleOptions options;
+  detail::TableKernel kernel;
+  detail::Discretization disc;
+  detail::CohesiveQuadrature quadrature;
+
+  // dP/da_bar (load) or dD/da_bar along the curve, by implicit differentiation through c(a)
+  // (THEORY.md section 13): dX/da = X_a - X_c h_a/h_c, the partial derivatives at fixed c
+  // (resp. a) by fourth-order central differences of the smooth map (a, c) -> (F, δ, h), which
+  // involves no root finder; steps 1e-3 (c - a) give ~1e-12 relative.
+  double slope(double eta, double sigma_hat, double h0, double a, bool load) const {
+    const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
+    const detail::CohesiveState st = zone.solve(sigma_hat, h0);
+    const double c = st.c, step = 1e-3 * std::min(c - a, a);
+    auto value = [&](const detail::CohesiveState& x) { return load ? x.force : x.delta; };
+    const double w[2] = {8.0 / 12.0, -1.0 / 12.0};  // f'(0) ~ Σ w_k (f(k s) - f(-k s)) / s
+    double x_c = 0.0, h_c = 0.0, x_a = 0.0, h_a = 0.0;
+    for (int k = 1; k <= 2; ++k) {
+      const detail::CohesiveState cp = zone.evaluate(sigma_hat, (c + k * step) / a - 1.0);
+      const detail::CohesiveState cm = zone.evaluate(sigma_hat, (c - k * step) / a - 1.0);
+      x_c += w[k - 1] * (value(cp) - value(cm)) / step;
+      h_c += w[k - 1] * (cp.gap - cm.gap) / step;
+      const double ap = a + k * step, am = a - k * step;
+      const detail::CohesiveState sp =
+          detail::CohesiveZone(kernel, ap, 1.0, disc, quadrature).evaluate(sigma_hat, c / ap - 1.0);
+      const detail::CohesiveState sm =
+          detail::CohesiveZone(kernel, am, 1.0, disc, quadrature).evaluate(sigma_hat, c / am - 1.0);
+      x_a += w[k - 1] * (value(sp) - value(sm)) / step;
+      h_a += w[k - 1] * (sp.gap - sm.gap) / step;
+    }
+    const double total = x_a - x_c * h_a / h_c;  // d/da in units of t
+    return load ? eta * eta * total : eta * total;  // P = η³F, D = η²δ, ā = η a
+  }
+};
+
+MaugisDugdaleModel::MaugisDugdaleModel(const Stack& stack, MaugisDugdaleOptions options) {
+  if (!stack.indenter().rigid) throw InputError("Maugis-Dugdale model: only a rigid indenter is implemented");
+  if (options.nodes_per_panel < 4 || options.nodes_per_panel > 48 || options.annulus_points < 4 ||
+      options.annulus_points > 80) {
+    throw InputError("Maugis-Dugdale model: nodes_per_panel must be in [4, 48], annulus_points in [4, 80]");
+  }
+  if (options.scan_points_per_decade < 4) throw InputError("scan_points_per_decade must be >= 4");
+  impl_ = std::make_unique<Impl>(stack, options);
+}
+
+MaugisDugdaleModel::~MaugisDugdaleModel() = default;
+const Stack& MaugisDugdaleModel::stack() const { return impl_->stack; }
+const MaugisDugdaleOptions& MaugisDugdaleModel::options() const { return impl_->options; }
+
+MaugisDugdalePoint MaugisDugdaleModel::point(double eta, double lambda, double a_bar) const {
+  check_value(eta, "eta", false);
+  check_value(lambda, "lambda", false);
+  check_value(a_bar, "a_bar", true);
+  const MaugisDugdaleOptions& o = impl_->options;
+  detail::Discretization disc;
+  disc.nodes_per_panel = o.nodes_per_panel;
+  disc.quadrature_accuracy = o.quadrature_accuracy;
+  detail::CohesiveQuadrature quadrature;
+  quadrature.points_per_piece = o.annulus_points;
+  const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
+  const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+  const double a = a_bar / eta;
+  const detail::CohesiveZone zone(impl_->kernel, a, 1.0, disc, quadrature);
+  const detail::CohesiveState st = zone.solve(sigma_hat, h0);
+  MaugisDugdalePoint p;
+  p.eta = eta;
+  p.lambda = lambda;
+  p.a_bar = a_bar;
+  p.a_over_t = a;
+  p.m = a > 0.0 ? 1.0 + st.excess : std::numeric_limits<double>::infinity();
+  p.c_bar = eta * st.c;
+  p.load = eta * eta * eta * st.force;
+  p.penetration = eta * eta * st.delta;
+  p.gap_evaluations = zone.last_evaluations();
+  return p;
+}
+
+std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lambda,
+                                                          const std::vector<double>& a_bar) const {
+  for (double a : a_bar) check_value(a, "a_bar", true);
+  std::vector<MaugisDugdalePoint> out;
+  out.reserve(a_bar.size());
+  for (double a : a_bar) out.push_back(point(eta, lambda, a));
+  return out;
+}
+
+// The minimiser's location (~location_tolerance) refined as the root of the implicit
+// derivative (Impl::slope) by regula falsi (Illinois) in ln a_bar on a bracket 100 times
+// wider than its tolerance; kept as it is when the bracket shows no sign change.
+double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, int& evaluations) const {
+  const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
+  const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+  auto g = [&](double v) {
+    ++evaluations;
+    return impl_->slope(eta, sigma_hat, h0, std::exp(v) / eta, load);
+  };
+  const double half = 100.0 * impl_->options.location_tolerance;
+  double l = x - half, r = x + half, gl = g(l), gr = g(r);
+  if (!(gl < 0.0 && gr > 0.0)) return x;
+  int side = 0;
+  for (int iter = 0; iter < 30 && r - l > 1e-13; ++iter) {
+    const double m = r - gr * (r - l) / (gr - gl);
+    const double gm = g(m);
+    if (gm == 0.0) return m;
+    if (gm < 0.0) {
+      l = m;
+      gl = gm;
+      if (side == -1) gr *= 0.5;
+      side = -1;
+    } else {
+      r = m;
+      gr = gm;
+      if (side == 1) gl *= 0.5;
+      side = 1;
+    }
+    if (std::abs(gm) < 1e-13) break;
+  }
+  return gl == gr ? 0.5 * (l + r) : r - gr * (r - l) / (gr - gl);
+}
+
+MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) const {
+  check_value(eta, "eta", false);
+  check_value(lambda, "lambda", false);
+  const MaugisDugdaleOptions& o = impl_->options;
+  const double r = impl_->stack.substrate_length_ratio();
+  const double lo = o.a_bar_min > 0.0 ? o.a_bar_min : 1e-3 * std::min(1.0, r);
+  const double hi = o.a_bar_max > 0.0 ? o.a_bar_max : 10.0 * std::max(1.0, r);
+  if (!(lo < hi && std::isfinite(hi))) throw InputError("pull-off a_bar range not allowed");
+  MaugisDugdalePulloff result;
+  result.eta = eta;
+  result.lambda = lambda;
+  result.a_bar_scan_min = lo;
+  result.a_bar_scan_max = hi;
+  const std::size_t n =
+      static_cast<std::size_t>(std::ceil(std::log10(hi / lo) * o.scan_points_per_decade)) + 1;
+  std::vector<double> v(n);  // ln a_bar
+  std::vector<MaugisDugdalePoint> points(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    v[k] = std::log(lo) + std::log(hi / lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+    points[k] = point(eta, lambda, std::exp(v[k]));
+  }
+  result.curve_end = point(eta, lambda, 0.0);
+  int evaluations = static_cast<int>(n) + 1;
+
+  for (Control control : {Control::kLoad, Control::kDisplacement}) {
+    const char* name = control == Control::kLoad ? "load control (minimum of P)" : "displacement control (minimum of D)";
+    MaugisDugdalePulloffPoint best;
+    bool found = false;
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      const double f0 = value_of(points[k - 1], control), f1 = value_of(points[k], control),
+                   f2 = value_of(points[k + 1], control);
+      if (!(f1 < f0 && f1 <= f2)) continue;
+      ++best.local_minima;
+      MaugisDugdalePoint at = points[k];
+      if (f1 < f2) {
+        std::function<double(double)> f = [&](double x) {
+          ++evaluations;
+          return value_of(point(eta, lambda, std::exp(x)), control);
+        };
+        double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
+        x = refine(eta, lambda, x, control == Control::kLoad, evaluations);
+        at = point(eta, lambda, std::exp(x));
+        if (value_of(at, control) > f1) at = points[k];
+      }
+      if (!found || value_of(at, control) < value_of(best.point, control)) best.point = at;
+      found = true;
+    }
+    const MaugisDugdalePoint& end = result.curve_end;
+    std::ostringstream w;
+    w.precision(6);
+    if (!found || value_of(end, control) <= value_of(best.point, control)) {
+      // The contact shrinks to a point at finite force (THEORY.md section 13, no vertical
+      // tangent): the pull-off sits at the end of the curve.
+      best.point = end;
+      best.interior = false;
+      if (value_of(points[n - 1], control) < value_of(end, control)) {
+        w << "eta=" << eta << " lambda=" << lambda << ": " << name << ": no minimum in a_bar [" << lo << ", "
+          << hi << "] and the range end is below the curve's end a -> 0";
+        result.warnings.push_back(w.str());
+      }
+    }
+    if (value_of(points[0], control) < value_of(points[1], control) &&
+        value_of(points[0], control) < value_of(end, control)) {
+      w.str("");
+      w << "eta=" << eta << " lambda=" << lambda << ": " << name << ": P or D is lower at a_bar=" << lo
+        << " than at both neighbours; a minimum below the scanned range cannot be excluded";
+      result.warnings.push_back(w.str());
+    }
+    if (best.local_minima > 1) {
+      w.str("");
+      w << "eta=" << eta << " lambda=" << lambda << ": " << name << ": " << best.local_minima
+        << " local minima; the lowest is reported";
+      result.warnings.push_back(w.str());
+    }
+    (control == Control::kLoad ? result.load_control : result.displacement_control) = best;
+  }
+  result.point_evaluations = evaluations;
+  return result;
+}
+
+}  // namespace coatcontact

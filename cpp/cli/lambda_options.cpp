@@ -1,0 +1,302 @@
+// Maugis-Dugdale options and output of `adhesive`, `pulloff` and `sphere` (THEORY.md
+// section 13; lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3).
+#include "lambda_options.hpp"
+
+#include <cmath>
+#include <limits>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/maugis_dugdale.hpp"
+#include "coatcontact/reduced.hpp"
+
+namespace coatcontact::cli {
+
+namespace {
+
+using Header = std::vector<std::pair<std::string, std::string>>;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const char* const kNormalization =
+    "P = F/(pi w R), D = delta/(pi^2 w^2 R/E1*^2)^(1/3), a_bar = a/(pi w R^2/E1*)^(1/3), "
+    "eta = t/(pi w R^2/E1*)^(1/3) (THEORY.md section 5)";
+const char* const kMaugis =
+    "lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3; m = c/a (c: outer radius of the Dugdale zone); "
+    "Maugis's a_bar_M = (4/3)^(1/3) a_bar, Delta_M = (4/3)^(2/3) D; lambda = inf is JKR (THEORY.md section 13)";
+
+std::string num(double v) { return std::isinf(v) ? "inf" : format_parameter(v, "header value"); }
+
+// One TSV row; inf (lambda = JKR, m at the end of the curve a -> 0) is written as "inf".
+void write_cells(std::ostream& os, const std::vector<double>& values, const std::vector<std::string>& columns) {
+  std::string line;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i != 0) line += '\t';
+    line += std::isinf(values[i]) && values[i] > 0.0 ? "inf" : format_value(values[i], columns[i]);
+  }
+  os << line << '\n';
+}
+
+std::string join(const std::vector<double>& values) {
+  std::string s;
+  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? "," : "") + num(values[i]);
+  return s;
+}
+
+std::string lambda_range_text() {
+  std::ostringstream s;
+  s << "[" << kMinimumLambda << ", " << kMaximumLambda << "] or inf";
+  return s.str();
+}
+
+void check_lambda(double lambda, const std::string& option, const std::string& text) {
+  if (!(lambda >= kMinimumLambda && lambda <= kMaximumLambda)) {
+    std::ostringstream s;
+    s << option << ": lambda " << lambda << (text.empty() ? "" : " from '" + text + "'")
+      << " not allowed (need " << lambda_range_text() << ")";
+    throw InputError(s.str());
+  }
+}
+
+}  // namespace
+
+OptionSpec lambda_option() {
+  return {"--lambda", "LIST",
+          "Maugis-Dugdale transition parameter 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, each in " +
+              lambda_range_text() + " (inf or omitted: JKR)",
+          false};
+}
+
+std::optional<std::vector<double>> parse_lambdas(const Arguments& args) {
+  const auto text = args.get("--lambda");
+  if (!text) return std::nullopt;
+  std::vector<double> values;
+  bool finite = false;
+  if (text->find(':') != std::string::npos) {
+    values = parse_list(*text, "--lambda");
+  } else {
+    std::string item;
+    std::istringstream in(*text + ",");
+    std::size_t count = 0;
+    while (std::getline(in, item, ',')) {
+      ++count;
+      const auto first = item.find_first_not_of(" \t");
+      const auto last = item.find_last_not_of(" \t");
+      const std::string trimmed = first == std::string::npos ? "" : item.substr(first, last - first + 1);
+      values.push_back(trimmed == "inf" ? kInf : parse_number(trimmed, "--lambda"));
+    }
+    if (count == 0 || text->back() == ',') throw InputError("--lambda: empty item in '" + *text + "'");
+  }
+  for (double v : values) {
+    if (!std::isinf(v)) {
+      check_lambda(v, "--lambda", *text);
+      finite = true;
+    }
+  }
+  if (!finite) return std::nullopt;
+  return values;
+}
+
+void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
+                       const std::vector<double>& lambdas, const std::vector<double>& a_bar_given, double tol) {
+  const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
+  const ReducedSolver solver(stack);
+  const AdhesiveModel jkr(solver, tol);
+  const std::vector<double> a_bar =
+      a_bar_given.empty() ? [&] {
+        const auto [lo, hi] = jkr.default_curve_range();
+        return log_spaced(lo, hi, 400);
+      }() : a_bar_given;
+  struct Block {
+    double eta, lambda;
+    std::vector<std::vector<double>> rows;
+    MaugisDugdalePoint end;
+  };
+  std::vector<Block> blocks;
+  for (double eta : etas) {
+    for (double lambda : lambdas) {
+      Block b{eta, lambda, {}, {}};
+      if (std::isinf(lambda)) {
+        for (const CurvePoint& p : jkr.curve(eta, a_bar)) b.rows.push_back({eta, lambda, p.a_bar, p.a_over_t, p.load, p.penetration, 1.0});
+      } else {
+        for (const MaugisDugdalePoint& p : md.curve(eta, lambda, a_bar)) {
+          b.rows.push_back({eta, lambda, p.a_bar, p.a_over_t, p.load, p.penetration, p.m});
+        }
+        b.end = md.point(eta, lambda, 0.0);
+      }
+      blocks.push_back(std::move(b));
+    }
+  }
+  Header h{{"command", "adhesive"}};
+  add_material_header(h, stack);
+  h.emplace_back("normalization", kNormalization);
+  h.emplace_back("Maugis-Dugdale", kMaugis);
+  h.emplace_back("eta", join(etas));
+  h.emplace_back("lambda", join(lambdas));
+  h.emplace_back("a_bar points", std::to_string(a_bar.size()));
+  h.emplace_back("solver", "per contact radius: factored system (p = " +
+                               std::to_string(md.options().nodes_per_panel) +
+                               "), Brent root of h(c) = h0 in ln(c/a - 1); JKR blocks (lambda = inf) from the "
+                               "reduced-variable table at tolerance " + num(tol));
+  for (const Block& b : blocks) {
+    if (std::isinf(b.lambda)) continue;
+    h.emplace_back("end of the curve a -> 0, eta=" + num(b.eta) + " lambda=" + num(b.lambda),
+                   "P = " + num(b.end.load) + ", D = " + num(b.end.penetration) + ", c_bar = " + num(b.end.c_bar) +
+                       " (contact shrunk to a point at finite force)");
+  }
+  h.emplace_back("blocks", "one per (eta, lambda), eta outer, in the order given, separated by two blank lines "
+                           "(gnuplot index)");
+  const std::vector<std::string> columns = {"eta", "lambda", "a_bar", "a_over_t", "P", "D", "m"};
+  write_header(os, h, columns);
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    if (k > 0) os << "\n\n";
+    for (const auto& row : blocks[k].rows) write_cells(os, row, columns);
+  }
+}
+
+void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
+                      const std::vector<double>& lambdas, double tol) {
+  const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
+  const ReducedSolver solver(stack);
+  const AdhesiveModel jkr(solver, tol);
+  Header notes;
+  std::vector<std::vector<double>> rows;
+  for (double eta : etas) {
+    for (double lambda : lambdas) {
+      const std::string at = "eta=" + num(eta) + " lambda=" + num(lambda);
+      if (std::isinf(lambda)) {
+        const Pulloff p = jkr.pulloff(eta);
+        rows.push_back({eta, lambda, p.load_control.load, p.load_control.a_bar, p.load_control.penetration, 1.0,
+                        p.displacement_control.load, p.displacement_control.a_bar,
+                        p.displacement_control.penetration, 1.0});
+        for (const auto& w : p.warnings) notes.emplace_back("warning", w);
+        continue;
+      }
+      const MaugisDugdalePulloff p = md.pulloff(eta, lambda);
+      const MaugisDugdalePoint& l = p.load_control.point;
+      const MaugisDugdalePoint& d = p.displacement_control.point;
+      rows.push_back({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m});
+      for (const auto* c : {&p.load_control, &p.displacement_control}) {
+        const bool load = c == &p.load_control;
+        notes.emplace_back(std::string(load ? "load" : "displacement") + " control, " + at,
+                           c->interior ? "stationary minimum of " + std::string(load ? "P" : "D") + " (contact radius > 0)"
+                                       : "end of the curve a -> 0: the contact shrinks to a point at finite force "
+                                         "(no vertical tangent); m = inf, c_bar = " + num(c->point.c_bar));
+      }
+      for (const auto& w : p.warnings) notes.emplace_back("warning", w);
+    }
+  }
+  Header h{{"command", "pulloff"}};
+  add_material_header(h, stack);
+  h.emplace_back("normalization", kNormalization);
+  h.emplace_back("Maugis-Dugdale", kMaugis);
+  h.emplace_back("eta", join(etas));
+  h.emplace_back("lambda", join(lambdas));
+  h.emplace_back("location", "log grid of " + std::to_string(md.options().scan_points_per_decade) +
+                                 " points per decade of a_bar and the end a -> 0; each grid minimum refined by "
+                                 "Brent's minimiser in ln a_bar, then as the root of dP/da_bar (dD/da_bar) "
+                                 "differentiated implicitly through c(a) (a_bar to ~1e-10, P and D to ~1e-12)");
+  for (auto& n : notes) h.push_back(std::move(n));
+  const std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load", "m_load",
+                                            "P_disp", "a_bar_disp", "D_disp", "m_disp"};
+  write_header(os, h, columns);
+  for (const auto& row : rows) write_cells(os, row, columns);
+}
+
+std::vector<OptionSpec> cohesive_options() {
+  return {
+      {"--cohesive-stress", "sigma0",
+       "Maugis-Dugdale zone: adhesive stress (Pa, or kPa MPa GPa); range h0 = w/sigma0 (not with --range)", false},
+      {"--range", "h0",
+       "Maugis-Dugdale zone: range of the adhesive stress (m, or mm um nm), at most 1e6 film thicknesses; "
+       "sigma0 = w/h0 (not with --cohesive-stress)",
+       false},
+  };
+}
+
+std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& stack, double radius,
+                                            double thickness, double work) {
+  const auto stress = args.get("--cohesive-stress");
+  const auto range = args.get("--range");
+  if (!stress && !range) return std::nullopt;
+  if (stress && range) throw InputError("--cohesive-stress and --range: give one of them, not both");
+  const std::string option = stress ? "--cohesive-stress" : "--range";
+  double sigma0, h0;
+  if (stress) {
+    sigma0 = parse_quantity(*stress, Quantity::kPressure, option);
+    h0 = work / sigma0;
+  } else {
+    h0 = parse_quantity(*range, Quantity::kLength, option);
+    sigma0 = work / h0;
+  }
+  if (!(h0 <= kMaximumRangeOverThickness * thickness)) {
+    std::ostringstream s;
+    s << option << ": the range h0 = w/sigma0 = " << h0 << " m exceeds " << kMaximumRangeOverThickness
+      << " film thicknesses (" << kMaximumRangeOverThickness * thickness << " m)";
+    throw InputError(s.str());
+  }
+  const double k = 4.0 * stack.reference_modulus() / 3.0;
+  const double lambda = 2.0 * sigma0 * std::cbrt(radius / (kPi * work * k * k));
+  check_lambda(lambda, option, "");
+  return sigma0;
+}
+
+void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double thickness, double work,
+                     double sigma0, std::size_t points) {
+  const double e = stack.reference_modulus();
+  const double length = std::cbrt(kPi * work * radius * radius / e);
+  const double eta = thickness / length;
+  if (!(eta >= kMinimumScaled && eta <= kMaximumScaled)) {
+    throw InputError("--radius, --thickness, --work, --film: eta = t/(pi w R^2/E1*)^(1/3) = " + num(eta) +
+                     " is outside the allowed range [1e-06, 1e+06]");
+  }
+  const double k = 4.0 * e / 3.0;
+  const double lambda = 2.0 * sigma0 * std::cbrt(radius / (kPi * work * k * k));
+  const double penetration = length * length / radius, force = kPi * work * radius;
+  const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
+  const double r = stack.substrate_length_ratio();
+  const std::vector<MaugisDugdalePoint> curve =
+      md.curve(eta, lambda, log_spaced(0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r), points));
+  const MaugisDugdalePulloff p = md.pulloff(eta, lambda);
+  const double to_maugis = std::cbrt(4.0 / 3.0);
+  Header h{{"command", "sphere"}};
+  h.emplace_back("sphere radius R [m]", num(radius));
+  h.emplace_back("film thickness t [m]", num(thickness));
+  h.emplace_back("work of adhesion w [J/m2]", num(work));
+  add_material_header(h, stack);
+  h.emplace_back("Maugis-Dugdale adhesive stress sigma0 [Pa]", num(sigma0));
+  h.emplace_back("Maugis-Dugdale range h0 = w/sigma0 [m]", num(work / sigma0));
+  h.emplace_back("lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3", num(lambda));
+  h.emplace_back("length scale (pi w R^2/E1*)^(1/3) [m]", num(length));
+  h.emplace_back("Maugis length (pi w R^2/K)^(1/3) [m]; a_bar_M = (4/3)^(1/3) a_bar", num(length / to_maugis));
+  h.emplace_back("penetration scale (pi^2 w^2 R/E1*^2)^(1/3) [m]", num(penetration));
+  h.emplace_back("force scale pi w R [N]", num(force));
+  h.emplace_back("eta = t/length scale", num(eta));
+  for (const auto* c : {&p.load_control, &p.displacement_control}) {
+    const std::string name = c == &p.load_control ? "load control" : "displacement control";
+    h.emplace_back("pull-off force, " + name + " [N]", num(c->point.load * force));
+    h.emplace_back("pull-off contact radius, " + name + " [m]", num(c->point.a_bar * length));
+    h.emplace_back("pull-off a_bar_M, " + name, num(c->point.a_bar * to_maugis));
+    h.emplace_back("pull-off penetration, " + name + " [m]", num(c->point.penetration * penetration));
+    h.emplace_back("pull-off, " + name, c->interior ? "stationary minimum (contact radius > 0)"
+                                                    : "end of the curve a -> 0 (no vertical tangent)");
+  }
+  h.emplace_back("normalized pull-off P (load, displacement)",
+                 num(p.load_control.point.load) + ", " + num(p.displacement_control.point.load));
+  h.emplace_back("end of the curve a -> 0", "F = " + num(p.curve_end.load * force) + " N, delta = " +
+                                                num(p.curve_end.penetration * penetration) + " m, c = " +
+                                                num(p.curve_end.c_bar * length) + " m");
+  for (const auto& w : p.warnings) h.emplace_back("warning", w);
+  const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "c_m"};
+  write_header(os, h, columns);
+  for (const MaugisDugdalePoint& q : curve) {
+    write_row(os, {q.a_bar * length, q.penetration * penetration, q.load * force, q.c_bar * length}, columns);
+  }
+}
+
+}  // namespace coatcontact::cli

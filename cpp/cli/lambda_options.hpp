@@ -1,0 +1,37 @@
+// The Maugis-Dugdale options of `adhesive`, `pulloff` (--lambda) and `sphere`
+// (--cohesive-stress, --range), and their output (THEORY.md section 13). Kept apart from
+// cmd_adhesive.cpp: that file only asks whether a cohesive zone was requested.
+#pragma once
+#include <iosfwd>
+#include <optional>
+#include <vector>
+
+#include "coatcontact/cli_support.hpp"
+#include "coatcontact/stack.hpp"
+
+namespace coatcontact::cli {
+
+// Allowed lambda (besides inf = JKR): below 1e-3 the DMT limit holds to 1e-3 and the zone
+// reaches 1e3 contact radii; above 1e4 the JKR limit holds to ~1e-9.
+inline constexpr double kMinimumLambda = 1e-3;
+inline constexpr double kMaximumLambda = 1e4;
+
+OptionSpec lambda_option();
+// The --lambda list; nullopt when absent or every value is inf (then JKR, today's output).
+std::optional<std::vector<double>> parse_lambdas(const Arguments& args);
+// a_bar empty: the JKR curves' default range, 400 points.
+void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
+                       const std::vector<double>& lambdas, const std::vector<double>& a_bar, double tol);
+void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
+                      const std::vector<double>& lambdas, double tol);
+
+std::vector<OptionSpec> cohesive_options();
+// sigma0 [Pa] from --cohesive-stress or w/--range; nullopt when neither is given. InputError
+// naming the option for both given, a range above kMaximumRangeOverThickness film
+// thicknesses, or a lambda outside [kMinimumLambda, kMaximumLambda].
+std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& stack, double radius,
+                                            double thickness, double work);
+void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double thickness, double work,
+                     double sigma0, std::size_t points);
+
+}  // namespace coatcontact::cli

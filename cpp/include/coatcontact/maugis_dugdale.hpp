@@ -1,0 +1,92 @@
+// Adhesive sphere with a Maugis-Dugdale cohesive zone on a coated substrate (THEORY.md
+// section 13): beside the JKR law of adhesion.hpp, for a zone of finite size. Unlike JKR it
+// needs one solve per contact radius (the zone radius c depends on a, eta and lambda), so it
+// is a model of its own rather than a law on the interpolated reduced variables.
+//
+// Normalization as adhesion.hpp (reference modulus E* of the top layer): a_bar, eta, P, D;
+// lambda = 2 sigma0 (R/(pi w K^2))^(1/3) with K = 4E*/3 (Maugis 1992), m = c/a,
+// a_bar_M = (4/3)^(1/3) a_bar. lambda -> infinity is JKR, lambda -> 0 DMT.
+//
+// Thread safety: const member functions may run concurrently.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "coatcontact/stack.hpp"
+
+namespace coatcontact {
+
+struct MaugisDugdaleOptions {
+  int nodes_per_panel = 20;          // p of the contact discretization (THEORY.md section 4)
+  int annulus_points = 14;           // Gauss points per piece of the cohesive annulus
+  double quadrature_accuracy = 1e-13;
+  // Pull-off scan: a_bar range (<= 0: [1e-3 min(1, r), 10 max(1, r)], r as adhesion.hpp) and
+  // grid density; each local minimum on the grid is refined by a Brent minimiser in ln a_bar
+  // to `location_tolerance` (relative), then as the root of the derivative differentiated
+  // implicitly through c(a) (location ~1e-10; the minimum value to ~1e-13).
+  double a_bar_min = 0.0;
+  double a_bar_max = 0.0;
+  int scan_points_per_decade = 8;
+  double location_tolerance = 1e-7;
+};
+
+// One point of the curve; a_bar = 0 is the end of the curve (contact shrunk to a point at
+// finite force: no contact, a disk of tension of radius c), where m is infinite.
+struct MaugisDugdalePoint {
+  double eta = 0.0;
+  double lambda = 0.0;
+  double a_bar = 0.0;
+  double a_over_t = 0.0;
+  double m = 0.0;            // c/a
+  double c_bar = 0.0;        // c/(pi w R^2/E*)^(1/3)
+  double load = 0.0;         // P
+  double penetration = 0.0;  // D
+  int gap_evaluations = 0;   // cost of the root c(a)
+};
+
+struct MaugisDugdalePulloffPoint {
+  MaugisDugdalePoint point;
+  bool interior = true;  // false: the minimum sits at the end of the curve, a -> 0
+  int local_minima = 0;
+};
+
+struct MaugisDugdalePulloff {
+  double eta = 0.0;
+  double lambda = 0.0;
+  MaugisDugdalePulloffPoint load_control;          // minimum of P over a_bar
+  MaugisDugdalePulloffPoint displacement_control;  // minimum of D over a_bar
+  MaugisDugdalePoint curve_end;                    // a -> 0
+  double a_bar_scan_min = 0.0, a_bar_scan_max = 0.0;
+  int point_evaluations = 0;
+  std::vector<std::string> warnings;
+};
+
+class MaugisDugdaleModel {
+ public:
+  // Builds the kernel table of the stack once. Rigid indenter only (InputError otherwise).
+  explicit MaugisDugdaleModel(const Stack& stack, MaugisDugdaleOptions options = {});
+  ~MaugisDugdaleModel();
+  MaugisDugdaleModel(const MaugisDugdaleModel&) = delete;
+  MaugisDugdaleModel& operator=(const MaugisDugdaleModel&) = delete;
+
+  // P, D, m at a_bar >= 0 (0: the end of the curve) for eta, lambda > 0 (InputError otherwise;
+  // NumericalError if the root c(a) cannot be found).
+  MaugisDugdalePoint point(double eta, double lambda, double a_bar) const;
+  std::vector<MaugisDugdalePoint> curve(double eta, double lambda, const std::vector<double>& a_bar) const;
+  MaugisDugdalePulloff pulloff(double eta, double lambda) const;
+
+  const Stack& stack() const;
+  const MaugisDugdaleOptions& options() const;
+
+ private:
+  double refine(double eta, double lambda, double ln_a_bar, bool load, int& evaluations) const;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Largest range h0 = w/sigma0 accepted, in units of the coating thickness (the SI commands):
+// beyond it the zone would reach 1e6 film thicknesses and the film is irrelevant.
+inline constexpr double kMaximumRangeOverThickness = 1e6;
+
+}  // namespace coatcontact

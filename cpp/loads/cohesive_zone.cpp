@@ -1,0 +1,275 @@
+// The Maugis-Dugdale cohesive zone for one contact radius (THEORY.md section 13): cohesive
+// right-hand sides on the annulus, the regularity condition, the load and the gap h(c) from
+// the cancellation-free formula, and the root h(c) = h0 in ln(c/a - 1).
+#include "cohesive_zone.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/errors.hpp"
+#include "gauss_legendre.hpp"
+
+namespace coatcontact::detail {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Points and weights in φ on [0, φa] for integrals over the annulus y = c cos φ in [a, c].
+// Pieces are graded in s = c - y toward the three places where the integrands vary on the
+// kernel's scale (THEORY.md section 13): the zone edge c, the contact edge a and `center`
+// (the point x of k(x, y)); elsewhere they are as long as their distance from the nearest, and no piece spans
+// more than `piece_angle` in φ.
+struct AnnulusRule {
+  std::vector<double> phi, weight, y;
+  std::vector<double> weight_sin2;  // weight sin²φ: the cohesive weight sqrt(c² - y²) dy / c²
+};
+
+double phi_of(double c, double s) {  // φ with c - c cos φ = s, without cancellation
+  return std::atan2(std::sqrt(s * (2.0 * c - s)), c - s);
+}
+
+void annulus_rule(double c, double s_end, double phi_end, double center, const CohesiveQuadrature& q,
+                  AnnulusRule& rule) {
+  rule.phi.clear();
+  rule.weight.clear();
+  rule.y.clear();
+  rule.weight_sin2.clear();
+  const GaussRule& gauss = gauss_rule(q.points_per_piece);
+  const double s_center = std::clamp(c - center, 0.0, s_end);
+  // Leaving a special point a piece may be as long as its distance behind (ρ >= 3 + sqrt(8));
+  // approaching one, half the distance ahead, so that no piece ends on the feature.
+  double s = 0.0, phi = 0.0;
+  for (int pieces = 0; s < s_end; ++pieces) {
+    if (pieces > 100000) throw NumericalError("cohesive zone: annulus quadrature does not terminate");
+    const double behind = s >= s_center ? std::min(s, s - s_center) : s;
+    const double ahead = s < s_center ? std::min(s_end - s, s_center - s) : s_end - s;
+    double length = std::max(q.piece_length, std::min(behind, 0.5 * ahead));
+    if (s < s_center && s + length > s_center) length = s_center - s;
+    double next = s + length;
+    if (s_end - next < 0.25 * length) next = s_end;
+    double phi_next = next >= s_end ? phi_end : phi_of(c, next);
+    if (phi_next - phi > q.piece_angle) {
+      phi_next = phi + q.piece_angle;
+      next = 2.0 * c * std::sin(0.5 * phi_next) * std::sin(0.5 * phi_next);
+      if (phi_next >= phi_end) {
+        phi_next = phi_end;
+        next = s_end;
+      }
+    }
+    const double mid = 0.5 * (phi + phi_next), half = 0.5 * (phi_next - phi);
+    for (int k = 0; k < q.points_per_piece; ++k) {
+      const double f = mid + half * gauss.nodes[static_cast<std::size_t>(k)];
+      rule.phi.push_back(f);
+      rule.weight.push_back(half * gauss.weights[static_cast<std::size_t>(k)]);
+      rule.y.push_back(c * std::cos(f));
+      rule.weight_sin2.push_back(rule.weight.back() * std::sin(f) * std::sin(f));
+    }
+    s = next;
+    phi = phi_next;
+  }
+}
+
+// b(x_i) = (c²/π) Σ_k w_k sin²φ_k [H(x_i - y_k) + H(x_i + y_k)] for one rule and many x.
+void cohesive_values(const KernelSource& kernel, double c, const AnnulusRule& rule, const double* x,
+                     std::size_t count, double* b) {
+  const std::size_t m = rule.y.size();
+  std::vector<double> u(2 * m * count), h(2 * m * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t k = 0; k < m; ++k) {
+      u[2 * (i * m + k)] = x[i] - rule.y[k];
+      u[2 * (i * m + k) + 1] = x[i] + rule.y[k];
+    }
+  }
+  kernel.evaluate(u.size(), u.data(), h.data());
+  for (std::size_t i = 0; i < count; ++i) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < m; ++k) sum += rule.weight_sin2[k] * (h[2 * (i * m + k)] + h[2 * (i * m + k) + 1]);
+    b[i] = c * c / kPi * sum;
+  }
+}
+
+// Brent's root finder (zeroin) on a sign-changing bracket; f must not throw mid-way.
+template <typename F>
+double brent_root(F&& f, double lo, double hi, double f_lo, double f_hi, double tolerance) {
+  double a = lo, b = hi, fa = f_lo, fb = f_hi;
+  double c = a, fc = fa, d = b - a, e = d;
+  for (int iter = 0; iter < 200; ++iter) {
+    if ((fb > 0.0) == (fc > 0.0)) {
+      c = a;
+      fc = fa;
+      d = e = b - a;
+    }
+    if (std::abs(fc) < std::abs(fb)) {
+      a = b; b = c; c = a;
+      fa = fb; fb = fc; fc = fa;
+    }
+    const double tol = 2.0 * 2.2e-16 * std::abs(b) + 0.5 * tolerance;
+    const double m = 0.5 * (c - b);
+    if (std::abs(m) <= tol || fb == 0.0) return b;
+    if (std::abs(e) >= tol && std::abs(fa) > std::abs(fb)) {
+      double p, q, r;
+      const double s = fb / fa;
+      if (a == c) {
+        p = 2.0 * m * s;
+        q = 1.0 - s;
+      } else {
+        q = fa / fc;
+        r = fb / fc;
+        p = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0));
+        q = (q - 1.0) * (r - 1.0) * (s - 1.0);
+      }
+      if (p > 0.0) q = -q; else p = -p;
+      if (2.0 * p < std::min(3.0 * m * q - std::abs(tol * q), std::abs(e * q))) {
+        e = d;
+        d = p / q;
+      } else {
+        d = m;
+        e = m;
+      }
+    } else {
+      d = m;
+      e = m;
+    }
+    a = b;
+    fa = fb;
+    b += std::abs(d) > tol ? d : (m > 0.0 ? tol : -tol);
+    fb = f(b);
+  }
+  return b;
+}
+
+}  // namespace
+
+CohesiveZone::CohesiveZone(const KernelSource& kernel, double a, double radius, const Discretization& disc,
+                           const CohesiveQuadrature& quadrature)
+    : kernel_(kernel), a_(a), radius_(radius), quadrature_(quadrature) {
+  if (!(a >= 0.0) || !std::isfinite(a) || !(radius > 0.0)) {
+    throw InputError("cohesive zone: contact radius a/t = " + short_text(a) + " not allowed");
+  }
+  if (a == 0.0) return;
+  system_ = std::make_unique<FactoredSystem>(kernel, a, disc);
+  const std::size_t n = system_->size();
+  const Layout& layout = system_->layout();
+  // Flat punch θ = 1 and sphere θ = -x²/R (THEORY.md section 5), solved once per radius.
+  std::vector<double> rhs(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    rhs[i] = 1.0;
+    rhs[n + i] = -layout.x[i] * layout.x[i] / radius;
+  }
+  system_->solve(rhs.data(), 2);
+  gamma_fp_.assign(rhs.begin(), rhs.begin() + static_cast<long>(n));
+  gamma_s_.assign(rhs.begin() + static_cast<long>(n), rhs.end());
+  edge_fp_ = system_->edge_value(gamma_fp_.data(), 1.0);
+  edge_s_ = system_->edge_value(gamma_s_.data(), -a * a / radius);
+}
+
+CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
+  const double a = a_;
+  const double R = radius_;
+  CohesiveState st;
+  st.a = a;
+  st.excess = excess;
+  // c - a, sqrt(c² - a²) and φa = arccos(a/c) from the excess, free of cancellation.
+  double c, c_minus_a, root, phi_end;
+  if (a > 0.0) {
+    c = a * (1.0 + excess);
+    c_minus_a = a * excess;
+    root = a * std::sqrt(excess * (2.0 + excess));
+    phi_end = std::atan(std::sqrt(excess * (2.0 + excess)));
+  } else {
+    c = excess;
+    c_minus_a = c;
+    root = c;
+    phi_end = 0.5 * kPi;
+  }
+  st.c = c;
+  AnnulusRule outer, inner;
+  annulus_rule(c, c_minus_a, phi_end, a, quadrature_, outer);
+  const std::size_t m = outer.y.size();
+
+  // Interior: γ = δ γ_fp + γ_s + σ̂ γ_c with (I + K) γ_c = b; regularity fixes δ.
+  const std::size_t n = system_ ? system_->size() : 0;
+  std::vector<double> gamma(n);
+  double integral = 0.0;  // ∫_0^a γ
+  if (system_) {
+    const Layout& layout = system_->layout();
+    std::vector<double> points(layout.x);
+    points.push_back(a);
+    std::vector<double> b(n + 1);
+    cohesive_values(kernel_, c, outer, points.data(), n + 1, b.data());
+    std::vector<double> gamma_c(b.begin(), b.begin() + static_cast<long>(n));
+    system_->solve(gamma_c.data(), 1);
+    const double edge_c = system_->edge_value(gamma_c.data(), b[n]);
+    st.delta = -(edge_s_ + sigma_hat * (edge_c + root)) / edge_fp_;
+    for (std::size_t i = 0; i < n; ++i) {
+      gamma[i] = st.delta * gamma_fp_[i] + gamma_s_[i] + sigma_hat * gamma_c[i];
+      integral += layout.w[i] * gamma[i];
+    }
+  } else {
+    const double zero = 0.0;
+    double b0 = 0.0;
+    cohesive_values(kernel_, c, outer, &zero, 1, &b0);
+    st.delta = -sigma_hat * (c + b0);  // θ(0) = γ(0) + θ_K(0)
+  }
+
+  // ∫_0^φa θ_K(c cos φ) dφ, θ_K(x) = row(x)·γ - σ̂ b(x), b graded toward each x.
+  double theta_integral = 0.0;
+  {
+    std::vector<double> rows;
+    if (system_) {
+      rows.resize(m * n);
+      system_->kernel_rows(outer.y.data(), m, rows.data());
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      double theta = 0.0;
+      for (std::size_t j = 0; j < n; ++j) theta += rows[k * n + j] * gamma[j];
+      annulus_rule(c, c_minus_a, phi_end, outer.y[k], quadrature_, inner);
+      double b = 0.0;
+      cohesive_values(kernel_, c, inner, &outer.y[k], 1, &b);
+      theta -= sigma_hat * b;
+      theta_integral += outer.weight[k] * theta;
+    }
+  }
+  st.force = 2.0 * integral - sigma_hat * (c * c * phi_end - a * root);
+  st.gap = 2.0 / kPi *
+           ((c * c / (2.0 * R) - st.delta) * phi_end + a / (2.0 * R) * root - sigma_hat * c_minus_a +
+            theta_integral);
+  if (!std::isfinite(st.delta) || !std::isfinite(st.force) || !std::isfinite(st.gap)) {
+    throw NumericalError("cohesive zone: non-finite state at a/t = " + short_text(a) +
+                         ", c/t = " + short_text(c));
+  }
+  return st;
+}
+
+CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_excess) const {
+  last_evaluations_ = 0;
+  const double u_min = std::log(1e-14), u_max = std::log(1e8);
+  auto f = [&](double u) {
+    ++last_evaluations_;
+    return evaluate(sigma_hat, std::exp(u)).gap - h0;
+  };
+  double u0 = std::clamp(std::log(guess_excess > 0.0 && std::isfinite(guess_excess) ? guess_excess : 1.0),
+                         u_min, u_max);
+  double f0 = f(u0);
+  double u1 = u0, f1 = f0;
+  const double step = 1.5;
+  // Expand away from the guess until the sign changes (h grows with c, h -> 0 as c -> a).
+  while ((f0 > 0.0) == (f1 > 0.0)) {
+    u0 = u1;
+    f0 = f1;
+    u1 = f0 > 0.0 ? u1 - step : u1 + step;
+    if (u1 < u_min || u1 > u_max) {
+      throw NumericalError("cohesive zone: no root of h(c) = h0 for c/a - 1 in [1e-14, 1e8] at a/t = " +
+                           short_text(a_));
+    }
+    f1 = f(u1);
+  }
+  const double u = brent_root(f, u0, u1, f0, f1, 1e-13);
+  return evaluate(sigma_hat, std::exp(u));
+}
+
+}  // namespace coatcontact::detail

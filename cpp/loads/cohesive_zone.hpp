@@ -1,0 +1,63 @@
+// The Maugis-Dugdale cohesive zone on a coated substrate for one contact radius (THEORY.md
+// section 13), on the factored system of section 4. Units: film thickness t = 1, E1* = 1,
+// sphere radius R (the paraboloid z = r²/2R), γ = 2g/E1*, σ̂ = 2σ0/E1*. For a zone [a, c]:
+//   (I + K) γ = δ - x²/R + σ̂ b(x),   b(x) = (1/π) ∫_a^c sqrt(c² - y²) k(x, y) dy,
+//   regularity γ(a⁻) = -σ̂ sqrt(c² - a²) fixes δ,
+//   F = 2 ∫_0^a γ - σ̂ [c² arccos(a/c) - a sqrt(c² - a²)],
+//   h(c) = (2/π) [(c²/2R - δ) φa + (a/2R) sqrt(c² - a²) - σ̂ (c - a) + ∫_0^φa θ_K(c cos φ) dφ],
+// φa = arccos(a/c), θ_K(x) = row(x)·γ - σ̂ b(x), k(x, y) = H(x - y) + H(x + y). On the
+// annulus y = c cos φ (no square-root end points). a = 0 is the end of the curve: no contact,
+// a disk of tension, δ = θ(0) = -σ̂ (c + b(0)).
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "factored_system.hpp"
+#include "kernel_source.hpp"
+
+namespace coatcontact::detail {
+
+struct CohesiveQuadrature {
+  int points_per_piece = 14;   // Gauss-Legendre points per annulus piece (in φ)
+  double piece_length = 1.0;   // longest piece in y (units of t; H varies on the scale 2)
+  double piece_angle = 0.5;    // longest piece in φ (sin² and cos are entire)
+};
+
+// One state (a, c) of the zone, units as above.
+struct CohesiveState {
+  double a = 0.0;
+  double c = 0.0;
+  double excess = 0.0;  // c/a - 1 (a > 0) or c (a = 0), the root variable's exponential
+  double delta = 0.0;
+  double force = 0.0;
+  double gap = 0.0;     // h(c)
+};
+
+class CohesiveZone {
+ public:
+  // a > 0: assembles and factors I + K at ã = a once; a == 0: no system (the curve's end).
+  CohesiveZone(const KernelSource& kernel, double a, double radius, const Discretization& disc,
+               const CohesiveQuadrature& quadrature = {});
+  // δ, F and h(c) for the tension σ̂ on [a, c], c = a (1 + excess) (a > 0) or c = excess (a = 0);
+  // excess > 0 given directly so that c - a carries no cancellation.
+  CohesiveState evaluate(double sigma_hat, double excess) const;
+  // Solves h(c) = h0 for c by a bracketed Brent root in u = ln(excess); throws NumericalError
+  // if no sign change is found for excess in [1e-14, 1e8].
+  CohesiveState solve(double sigma_hat, double h0, double guess_excess = 1.0) const;
+  double contact_radius() const { return a_; }
+  int unknowns() const { return system_ ? static_cast<int>(system_->size()) : 0; }
+  // Gap evaluations of the last solve() (cost statistics).
+  int last_evaluations() const { return last_evaluations_; }
+
+ private:
+  const KernelSource& kernel_;
+  double a_;
+  double radius_;
+  CohesiveQuadrature quadrature_;
+  std::unique_ptr<FactoredSystem> system_;
+  std::vector<double> gamma_fp_, gamma_s_;
+  double edge_fp_ = 0.0, edge_s_ = 0.0;
+  mutable int last_evaluations_ = 0;
+};
+
+}  // namespace coatcontact::detail
