@@ -213,9 +213,7 @@ int run_fit_body(const Args& args) {
     } else if (work) {
       problem.work = *work;
     } else {
-      // JKR estimate from the most tensile force, F_min = -(3/2) pi w R, else 50 mJ/m2.
-      const double f_min = *std::min_element(data.force.begin(), data.force.end());
-      problem.work = f_min < 0.0 ? -f_min / (1.5 * M_PI * problem.sphere_radius) : 0.05;
+      problem.work = fit::jkr_work_estimate(data, problem.sphere_radius);
     }
   } else {
     if (!work) throw InputError("w is fixed: give it with --work (or add w to --free)");
@@ -275,7 +273,6 @@ int run_fit_body(const Args& args) {
   header.emplace_back("converged", result.converged ? "yes (" + result.stop_reason + ")" : "no");
   header.emplace_back("interpolation_error_N", number(result.interpolation_error));
   header.emplace_back("interpolation_error_over_sigma", number(result.interpolation_error / result.residual_sigma));
-  header.emplace_back("lattice_nodes", std::to_string(result.lattice_nodes));
   header.emplace_back("solver_tolerance", number(result.solver_tolerance));
   header.emplace_back("solver_calls", std::to_string(result.solver_calls));
   header.emplace_back("fit_seconds", short_number(result.seconds));
