@@ -126,6 +126,20 @@ void ContactModel::prepare(double radius_min, double radius_max) const {
   model_.table().prepare(radius_min / p_.thickness, radius_max / p_.thickness);
 }
 
+void ContactModel::prepare_pulloff() const {
+  // The pull-off scan would build its decades one source call each; one batched call is
+  // faster (the solver's sweep runs in parallel). A failure is left to the scan, which stops
+  // below the failing decade and says so.
+  const PulloffOptions& options = model_.pulloff_options();
+  const double r = model_.stack().substrate_length_ratio();
+  const double lo = options.a_bar_min > 0.0 ? options.a_bar_min : 1e-3 * std::min(1.0, r);
+  const double hi = options.a_bar_max > 0.0 ? options.a_bar_max : 10.0 * std::max(1.0, r);
+  try {
+    model_.table().prepare(lo / contact_.eta(), hi / contact_.eta());
+  } catch (const NumericalError&) {
+  }
+}
+
 // In Maugis units (THEORY.md section 5) F = pi w R P(a_bar, x) and delta = (l^2/R) D(a_bar, x)
 // with a_bar = a/l, l = (pi w R^2/E1*)^(1/3) ~ w^(1/3) and x = ln(a/t); the JKR law depends on
 // w only through these scales. With P' = dP/da_bar along the curve and P'_x the same at fixed x:
@@ -239,6 +253,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
     const auto [lo, hi] = std::minmax_element(data_.abscissa.begin(), data_.abscissa.end());
     const Pulloff* pulloff = nullptr;
     try {
+      cm.prepare_pulloff();
       pulloff = &cm.contact().pulloff();
     } catch (const NumericalError&) {
       if (!radius_data) throw;

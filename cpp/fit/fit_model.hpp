@@ -70,6 +70,7 @@ class ContactModel {
   SiPoint exact(const ReducedVariables& v, double radius) const;
   const Contact& contact() const { return contact_; }
   void prepare(double radius_min, double radius_max) const;
+  void prepare_pulloff() const;  // the decades of AdhesiveModel's pull-off scan, in one batch
 
  private:
   SiPoint to_si(const coatcontact::CurvePoint& full, const coatcontact::CurvePoint& fixed_x) const;
