@@ -58,7 +58,7 @@ const Option kOptions[] = {
 const std::map<std::string, double> kUnits = {
     {"Pa", 1.0},  {"kPa", 1e3}, {"MPa", 1e6},   {"GPa", 1e9},    {"m", 1.0},  {"mm", 1e-3},
     {"um", 1e-6}, {"nm", 1e-9}, {"J/m2", 1.0},  {"mJ/m2", 1e-3}, {"N", 1.0},  {"mN", 1e-3},
-    {"uN", 1e-6}, {"nN", 1e-9},
+    {"uN", 1e-6}, {"nN", 1e-9}, {"\xc2\xb5m", 1e-6}, {"\xc2\xb5N", 1e-6},
 };
 
 double parse_value(const std::string& text, const std::string& option, bool with_unit) {
