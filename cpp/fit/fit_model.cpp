@@ -33,6 +33,7 @@ constexpr double kStep = 1e-3;
 // Grid ratio above the pull-off radius on which a measured delta is bracketed (delta(a)
 // rises monotonically there; 32 points per decade as AdhesiveModel's pull-off scan).
 const double kBracketRatio = std::pow(10.0, 1.0 / 32.0);
+constexpr std::size_t kMaxBracketSteps = 32 * 6;  // six decades above a_c
 // Top of the pull-off scan in units of max(1, r), r = (E1*/E0*)^(1/3) (ModelEntry).
 constexpr double kPulloffScanTop = 2.0;
 // Data points checked against direct solves after the fit.
@@ -297,6 +298,10 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
   std::vector<double> grid{a_c};
   std::vector<double> grid_delta{out.pulloff_penetration};
   while (grid_delta.back() < delta_max) {
+    if (grid.size() > kMaxBracketSteps) {
+      throw NumericalError("the model's delta(a) stays below the largest measured delta up to a = " +
+                           short_text(grid.back()) + " m");
+    }
     const double a = grid.back() * kBracketRatio;
     check_a_over_t(a);
     grid.push_back(a);
@@ -308,8 +313,9 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
     if (delta <= out.pulloff_penetration) {
       out.clamped[i] = true;
     } else {
-      const std::size_t k = static_cast<std::size_t>(
-          std::lower_bound(grid_delta.begin() + 1, grid_delta.end(), delta) - grid_delta.begin());
+      // The first crossing above a_c (the branch reached continuously from the pull-off).
+      std::size_t k = 1;
+      while (grid_delta[k] < delta) ++k;
       a = find_root([&](double r) { return cm.at(r).penetration - delta; }, grid[k - 1], grid[k]);
     }
     const SiPoint s = cm.at(a);
