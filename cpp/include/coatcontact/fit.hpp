@@ -95,8 +95,8 @@ struct Result {
   // variables solved directly at each data point's a/t, max |F_exact - F_model| over points
   // (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error = 0.0;
-  // Displacement-controlled pull-off of the fitted model (0 if delta(a) has no minimum in
-  // AdhesiveModel's scanned range).
+  // Displacement-controlled pull-off of the fitted model (AdhesiveModel::pulloff); for a,F
+  // data only when it lies within the measured radii, else 0.
   double displacement_pulloff_radius = 0.0;       // a_c [m]
   double displacement_pulloff_penetration = 0.0;  // delta(a_c) [m]
   double displacement_pulloff_force = 0.0;        // F(a_c) [N]
