@@ -28,7 +28,7 @@ using namespace coatcontact;
 // Tolerance tiers (relative unless stated):
 // The homogeneous reduced variables are exactly 8/3, 1, 1, 1; the solver delivers them to its
 // tolerance (1e-8 here); forces are compared on the scale pi w R, so cancellation between the
-// two JKR terms cannot hide an error. 1e-7 leaves a factor 100 for the spline of constants.
+// two JKR terms cannot hide an error. 1e-7 leaves a factor 100 for the interpolant.
 constexpr double kHomogeneousTier = 1e-7;
 // A noise-free fit must return w to the accuracy of the model (same tier).
 constexpr double kRecoveryTier = 1e-7;
