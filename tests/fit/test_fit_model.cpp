@@ -5,20 +5,21 @@
 //  2. Same check: fits of noise-free closed-form JKR a,F and delta,F data return w, and the
 //     displacement-controlled pull-off found on the delta,F branch is P = F/(pi w R) = -5/6 at
 //     a = l/2 (l = (pi w R^2/E*)^(1/3), the minimum of D = a_bar^2 - sqrt(2) a_bar^(1/2)).
-//  3. Coated substrate: the interpolated model (lattice + spline) against the reduced
-//     variables solved directly at each a/t, and against the adhesive model of
-//     coatcontact_adhesive (a separate interpolation, Chebyshev in ln(a/t)).
-//  4. select_branch splits at the maximum of the abscissa.
+//  3. Coated substrate: the model (ReducedTable + JkrLaw + Contact scales) against the reduced
+//     variables solved directly by ReducedSolver at a few a/t, put into [EqForceCS] and
+//     [EqPenetrationCS] here in SI units (no adhesion floor involved); exact_point as well.
+//  4. The Jacobian of the fit (analytic in w and t, central difference in E1) against central
+//     differences of the whole model at the data, for a,F and delta,F data.
+//  5. select_branch splits at the maximum of the abscissa.
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "coatcontact/adhesion.hpp"
-#include "coatcontact/contact.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
 #include "coatcontact/reduced.hpp"
+#include "fit_model.hpp"  // the fit's private model, for the Jacobian check
 
 namespace {
 
@@ -27,15 +28,19 @@ using namespace coatcontact;
 // Tolerance tiers (relative unless stated):
 // The homogeneous reduced variables are exactly 8/3, 1, 1, 1; the solver delivers them to its
 // tolerance (1e-8 here); forces are compared on the scale pi w R, so cancellation between the
-// two JKR terms cannot hide an error. 1e-7 leaves a factor 100 for the spline of constants.
+// two JKR terms cannot hide an error. 1e-7 leaves a factor 100 for the interpolant.
 constexpr double kHomogeneousTier = 1e-7;
 // A noise-free fit must return w to the accuracy of the model (same tier).
 constexpr double kRecoveryTier = 1e-7;
-// Interpolation of the coated-substrate reduced variables, 24 nodes per decade in a/t: the
-// spline of ln X is exact for power laws; what remains is ~(5/384) h^4 |d^4 ln X/dx^4| with
-// h = ln(10)/24 ~ 0.1, plus the solver tolerance 1e-8 (measured: ~2e-8 relative to F).
-// Compared relative to |F|, or to pi w R where F passes through zero.
-constexpr double kInterpolationTier = 1e-6;
+// Interpolation of the coated-substrate reduced variables (ReducedTable, order-24 Chebyshev
+// per decade: ~1e-12 relative, reduced_table.cpp) plus the solver tolerance 1e-8 of both
+// sides (measured: ~1e-11 relative to F). Compared relative to |F|, or to pi w R where F
+// passes through zero.
+constexpr double kInterpolationTier = 1e-7;
+// Jacobian columns against central differences of the model with step h = 1e-4 in ln p:
+// truncation ~h^2 ~ 1e-8 of the column scale, plus the E1 column's own difference error
+// (~2e-7). Relative to the largest entry of the column.
+constexpr double kJacobianTier = 1e-5;
 
 int failures = 0;
 
@@ -130,32 +135,90 @@ void test_homogeneous_fits() {
   check(clamped == 0, "no data point below the minimum of delta");
 }
 
-void test_coated_interpolation() {
+fit::Problem coated_problem() {
   fit::Problem p;
   p.sphere_radius = 5e-3;
   p.film = Material{1e6, 0.49};
   p.substrate.material = Material{70e9, 0.22};
   p.thickness = 50e-6;
   p.work = 0.04;
-  const double force_scale = M_PI * p.work * p.sphere_radius;
-  const double a_min = 20e-6;
-  const double a_max = 400e-6;  // a/t <= 8: the adhesive table then stays below a/t = 10
-  const auto curve = fit::model_curve(p, a_min, a_max, 13);
-  ReducedSolver solver(Stack::film_on(p.film, p.substrate));
-  AdhesiveModel adhesive(solver, 1e-8);
-  Contact contact(adhesive, p.sphere_radius, p.thickness, p.work);
-  double direct_error = 0.0;
-  double adhesive_error = 0.0;
-  for (std::size_t i = 1; i + 1 < curve.size(); ++i) {
-    const auto exact = fit::exact_point(p, curve[i].radius);
+  return p;
+}
+
+void test_coated_direct() {
+  const fit::Problem p = coated_problem();
+  const double E = p.film.reduced_modulus();
+  const double R = p.sphere_radius;
+  const double force_scale = M_PI * p.work * R;
+  const auto curve = fit::model_curve(p, 20e-6, 400e-6, 13);
+  const ReducedSolver solver(Stack::film_on(p.film, p.substrate));
+  double force_error = 0.0;
+  double penetration_error = 0.0;
+  double exact_point_error = 0.0;
+  for (std::size_t i = 1; i + 1 < curve.size(); i += 2) {
+    const double a = curve[i].radius;
+    const ReducedVariables v = solver.solve(a / p.thickness, 1e-8);
+    const double delta_fp = -std::sqrt(2.0 * M_PI * a * p.work / E) / v.gamma1;
+    const double force = a * a * a * E / (2.0 * R) * v.pi_s + 2.0 * a * E * v.e_eq * delta_fp;
+    const double penetration = a * a / R * v.delta_s + delta_fp;
     // Relative to the force itself, or to pi w R where F passes through zero.
-    const double scale = std::max(force_scale, std::fabs(exact.force));
-    direct_error = std::max(direct_error, std::fabs(curve[i].force - exact.force) / scale);
-    adhesive_error = std::max(adhesive_error, std::fabs(curve[i].force - contact.force(curve[i].radius)) / scale);
+    const double scale = std::max(force_scale, std::fabs(force));
+    force_error = std::max(force_error, std::fabs(curve[i].force - force) / scale);
+    penetration_error = std::max(penetration_error, std::fabs(curve[i].penetration - penetration) /
+                                                        std::max(std::fabs(penetration), a * a / R));
+    exact_point_error = std::max(exact_point_error, std::fabs(fit::exact_point(p, a).force - force) / scale);
   }
-  check_close(direct_error, 0.0, kInterpolationTier, "coated: spline model vs direct solve, max |dF|/max(|F|, pi w R)");
-  check_close(adhesive_error, 0.0, kInterpolationTier,
-              "coated: fit model vs coatcontact_adhesive Contact, max |dF|/max(|F|, pi w R)");
+  check_close(force_error, 0.0, kInterpolationTier, "coated: model vs direct solve, max |dF|/max(|F|, pi w R)");
+  check_close(penetration_error, 0.0, kInterpolationTier,
+              "coated: model vs direct solve, max |d delta|/max(|delta|, a^2/R)");
+  check_close(exact_point_error, 0.0, kInterpolationTier, "coated: exact_point vs direct solve");
+}
+
+// Central differences of the model force at the data in ln p (re-inverting delta for
+// delta,F data) against Model::force_derivatives.
+void check_jacobian(const fit::Measurements& data, const std::string& name) {
+  const fit::Problem problem = coated_problem();
+  fit::internal::Model model(problem, data);
+  const fit::internal::Parameters p{problem.work, problem.thickness, problem.film.youngs_modulus};
+  const fit::internal::ModelAtData m = model.at_data(p);
+  const auto columns = model.force_derivatives(p, m, {fit::kWork, fit::kThickness, fit::kFilmModulus});
+  const double h = 1e-4;
+  for (int which = 0; which < fit::kParameterCount; ++which) {
+    auto up = p.as_array();
+    auto down = p.as_array();
+    up[which] *= std::exp(h);
+    down[which] *= std::exp(-h);
+    const auto mu = model.at_data(fit::internal::Parameters::from(up));
+    const auto md = model.at_data(fit::internal::Parameters::from(down));
+    double largest = 0.0;
+    double error = 0.0;
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      largest = std::max(largest, std::fabs(columns[which][i]));
+      error = std::max(error, std::fabs((mu.force[i] - md.force[i]) / (2.0 * h) - columns[which][i]));
+    }
+    check_close(error / largest, 0.0, kJacobianTier,
+                name + ": dF/d ln " + fit::parameter_name(which) + " vs central difference");
+  }
+}
+
+void test_jacobian() {
+  const fit::Problem p = coated_problem();
+  fit::Measurements radius_data;
+  radius_data.kind = fit::DataKind::kRadiusForce;
+  fit::Measurements penetration_data;
+  penetration_data.kind = fit::DataKind::kPenetrationForce;
+  // Radii from the jump-in to beyond, and their penetrations well above the pull-off minimum
+  // (near it a*(delta) has a square-root singularity that finite differences cannot follow).
+  for (int i = 0; i <= 20; ++i) {
+    const double a = 60e-6 + 10e-6 * i;
+    const fit::CurvePoint point = fit::exact_point(p, a);
+    radius_data.abscissa.push_back(a);
+    radius_data.force.push_back(point.force);
+    penetration_data.abscissa.push_back(point.penetration);
+    penetration_data.force.push_back(point.force);
+  }
+  check_jacobian(radius_data, "a,F");
+  check_jacobian(penetration_data, "delta,F");
 }
 
 void test_branches() {
@@ -177,7 +240,8 @@ int main() {
     test_branches();
     test_homogeneous_curve();
     test_homogeneous_fits();
-    test_coated_interpolation();
+    test_coated_direct();
+    test_jacobian();
   } catch (const std::exception& error) {
     std::printf("FAIL: exception: %s\n", error.what());
     return 1;

@@ -7,7 +7,7 @@
 // This is a statistical check of the whole chain (reader, model, branch inversion, GSL fit,
 // covariance). It complements the THEORY.md section 6 checks of test_fit_model (homogeneous
 // limit, JKR pull-off -5/6); the data were generated from the reduced variables solved
-// directly at each point, not from the fit's interpolated lattice.
+// directly at each point, not from the interpolant the fit uses.
 // Usage: test_fit_recovery DATA_DIR
 #include <cmath>
 #include <cstdio>

@@ -1,20 +1,20 @@
 // Least-squares fit of measured adhesive sphere-contact data (contact radius a and force F, or
-// penetration delta and force F) to the exact coated-substrate JKR model (THEORY.md section 5):
+// penetration delta and force F) to the coated-substrate JKR model (THEORY.md section 5):
 //
 //   delta_fp = -sqrt(2 pi a w / E1*) / Gamma(1)                      [selfconsistenceInhom]
 //   F        = (a^3 E1* / (2R)) Pi_s(a/t) + 2 a E1* E_eq(a/t) delta_fp [EqForceCS]
 //   delta    = (a^2 / R) Delta_s(a/t) + delta_fp                      [EqPenetrationCS]
 //
-// Free parameters: any non-empty subset of {w, t, E1}; the others are fixed. The reduced
-// variables are solved on a lattice of a/t (fixed nodes per decade, so nodes are reused when t
-// moves) and interpolated by a natural cubic spline in log(a/t); the lattice is extended when
-// t or E1 move the range the data need, and re-solved when E1 changes (E1*/E0* changes).
+// Free parameters: any non-empty subset of {w, t, E1}; the others are fixed. The model is the
+// adhesion floor's: the reduced variables come from the ReducedTable (one interpolant, built
+// on demand as t moves the range the data need), the JKR law and the Contact's Maugis scales
+// give F and delta; each trial E1 needs its own solver and table (E1*/E0* changes).
 //
 // Residuals are in force, at the measured a (a,F data), or at the contact radius a* on the
 // model curve where delta(a*) equals the measured delta (delta,F data). a* lies on the stable
-// branch under displacement control: a* >= a_c, where a_c is the first minimum of delta(a)
-// (the displacement-controlled pull-off point). A measured delta below the model's minimum
-// delta(a_c) has no equilibrium on that branch; its residual is taken at a_c.
+// branch under displacement control: a* >= a_c, where a_c is the displacement-controlled
+// pull-off point (the minimum of delta(a), AdhesiveModel::pulloff). A measured delta below
+// the model's minimum delta(a_c) has no equilibrium on that branch; its residual is taken at a_c.
 // Standard errors are the usual linearized ones: s^2 = RSS/(n-p), covariance s^2 (J^T J)^-1.
 //
 // Errors: InputError for bad problems (n <= number of free parameters, a <= 0 in a,F data,
@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "coatcontact/reduced.hpp"
 #include "coatcontact/stack.hpp"
 
 namespace coatcontact::fit {
@@ -58,8 +59,7 @@ struct Problem {
   double thickness = 0.0;  // t [m] (start value if free, else fixed)
   double work = 0.0;       // w [J/m2] (start value if free, else fixed)
   std::array<bool, kParameterCount> free{{true, false, false}};
-  double solver_tolerance = 1e-8;  // ReducedSolver tolerance for the lattice
-  int nodes_per_decade = 24;       // lattice density in a/t
+  double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
   int max_iterations = 200;
 };
 
@@ -92,21 +92,25 @@ struct Result {
   std::vector<double> residual;      // model - data [N]
   std::vector<bool> clamped;         // delta data below the model's minimum delta
   // Interpolation check at the solution: the model force recomputed with the reduced
-  // variables solved directly at each data point's a/t, max |F_exact - F_spline| over points
+  // variables solved directly at each data point's a/t, max |F_exact - F_model| over points
   // (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error = 0.0;
-  double displacement_pulloff_radius = 0.0;  // a_c: first minimum of delta(a) [m]
+  // Displacement-controlled pull-off of the fitted model (AdhesiveModel::pulloff); for a,F
+  // data only when it lies within the measured radii, else 0.
+  double displacement_pulloff_radius = 0.0;       // a_c [m]
   double displacement_pulloff_penetration = 0.0;  // delta(a_c) [m]
   double displacement_pulloff_force = 0.0;        // F(a_c) [N]
-  int lattice_nodes = 0;  // nodes of the a/t lattice at the end
-  // Loosest solver tolerance used for a node (the requested one, relaxed tenfold up to 1e-6
-  // where the solver cannot reach it, e.g. at large a/t).
-  double solver_tolerance = 0.0;
-  long solver_calls = 0;  // reduced-variable solves (all E1 values)
+  double solver_tolerance = 0.0;  // tolerance of every reduced-variable solve (Problem's)
+  long solver_calls = 0;  // reduced-variable solves (all E1 values, and the check)
   double seconds = 0.0;   // wall time of the fit
 };
 
 Result fit(const Measurements& data, const Problem& problem);
+
+// Start value of w from the most tensile measured force through the JKR load-controlled
+// pull-off F_min = -(3/2) pi w R (THEORY.md section 6; the film shifts the pull-off, but the
+// estimate is close enough to start from); 50 mJ/m2 if no force is tensile.
+double jkr_work_estimate(const Measurements& data, double sphere_radius);
 
 // The model curve for fixed parameters (used by fit() and for plotting/tests).
 struct CurvePoint {
@@ -119,7 +123,7 @@ struct CurvePoint {
 CurvePoint exact_point(const Problem& problem, double radius);
 
 // `count` points log-spaced in a over [radius_min, radius_max], from the interpolated
-// lattice (the same model the fit uses).
+// reduced variables (the same model the fit uses).
 std::vector<CurvePoint> model_curve(const Problem& problem, double radius_min, double radius_max,
                                     int count);
 

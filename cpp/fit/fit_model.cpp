@@ -1,0 +1,406 @@
+// The fit model at the data points: THEORY.md section 5 through the adhesion floor. The JKR
+// law gives P, D and their a_bar derivatives in Maugis units; Contact's scales turn them
+// into SI. The w and t derivatives follow from the same law (see ContactModel::to_si).
+#include "fit_model.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/detail/gsl_handler_off.hpp"
+#include "coatcontact/errors.hpp"
+
+namespace coatcontact::fit::internal {
+namespace {
+
+using coatcontact::detail::short_text;
+
+// Range of a/t the fit may ask for: far beyond both limits of THEORY.md section 6 (the
+// reduced variables have reached their asymptotes), so leaving it means a parameter ran away.
+constexpr double kMinAOverT = 1e-5;
+constexpr double kMaxAOverT = 1e5;
+// Physical ranges of the parameters; leaving them means the data do not determine them.
+constexpr double kWorkRange[2] = {1e-9, 1e4};      // J/m2
+constexpr double kModulusRange[2] = {1e-2, 1e13};  // Pa
+// Relative step of the central difference in ln E1: truncation ~h^2/6 ~ 2e-7, noise of the
+// interpolated values ~tolerance/h ~ 1e-5 relative.
+constexpr double kStep = 1e-3;
+// Grid ratio above the pull-off radius on which a measured delta is bracketed (delta(a)
+// rises monotonically there; 32 points per decade as AdhesiveModel's pull-off scan).
+const double kBracketRatio = std::pow(10.0, 1.0 / 32.0);
+constexpr std::size_t kMaxBracketSteps = 32 * 6;  // six decades above a_c
+// Top of the pull-off scan in units of max(1, r), r = (E1*/E0*)^(1/3) (ModelEntry).
+constexpr double kPulloffScanTop = 2.0;
+// Data points checked against direct solves after the fit.
+constexpr std::size_t kCheckedPoints = 200;
+
+// Brent root of f on [lo, hi] (f(lo) < 0 <= f(hi)).
+double find_root(const std::function<double(double)>& f, double lo, double hi) {
+  if (f(hi) == 0.0) return hi;
+  gsl_function gf;
+  gf.function = [](double x, void* params) {
+    return (*static_cast<const std::function<double(double)>*>(params))(x);
+  };
+  gf.params = const_cast<std::function<double(double)>*>(&f);
+  std::unique_ptr<gsl_root_fsolver, void (*)(gsl_root_fsolver*)> solver(
+      gsl_root_fsolver_alloc(gsl_root_fsolver_brent), gsl_root_fsolver_free);
+  if (!solver || gsl_root_fsolver_set(solver.get(), &gf, lo, hi) != GSL_SUCCESS) {
+    throw NumericalError("could not bracket a measured penetration on the model curve");
+  }
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    if (gsl_root_fsolver_iterate(solver.get()) != GSL_SUCCESS) break;
+    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(solver.get()),
+                               gsl_root_fsolver_x_upper(solver.get()), 0.0, 1e-13) == GSL_SUCCESS) {
+      return gsl_root_fsolver_root(solver.get());
+    }
+  }
+  throw NumericalError("root finder on the model curve did not converge");
+}
+
+ReducedPoint values_only(const ReducedVariables& v) {
+  ReducedPoint r;
+  r.a_over_t = v.a_over_t;
+  r.pi_s = v.pi_s;
+  r.delta_s = v.delta_s;
+  r.pi_c = v.pi_c;
+  r.delta_c = v.delta_c;
+  r.e_eq = v.e_eq;
+  r.gamma1 = v.gamma1;
+  return r;
+}
+
+// The same point with d ln X/d ln(a/t) = 0: the law's a_bar derivative is then the explicit
+// one, at fixed a/t.
+ReducedPoint frozen(ReducedPoint r) {
+  r.dlog_pi_s = r.dlog_delta_s = r.dlog_pi_c = r.dlog_delta_c = r.dlog_e_eq = r.dlog_gamma1 = 0.0;
+  return r;
+}
+
+}  // namespace
+
+// ---- entries and cache ------------------------------------------------------------------
+
+ModelEntry::ModelEntry(const Problem& problem, double film_modulus) : film_modulus_(film_modulus) {
+  Material film = problem.film;
+  film.youngs_modulus = film_modulus;
+  solver_ = std::make_unique<ReducedSolver>(Stack::film_on(film, problem.substrate));
+  // The minimum of D lies at a_bar = 1/2 (top layer) and r/2 (base) in the JKR limits
+  // (THEORY.md section 6): scanning up to 2 max(1, r), not the default 10 max(1, r), finds it
+  // and spares the costly solves at large a/t (~25 ms each above a/t = 10).
+  PulloffOptions pulloff;
+  pulloff.a_bar_max = kPulloffScanTop * std::max(1.0, solver_->stack().substrate_length_ratio());
+  model_ = std::make_unique<AdhesiveModel>(*solver_, problem.solver_tolerance, TableOptions{}, pulloff);
+}
+
+ModelEntry& ModelCache::get(double film_modulus) {
+  for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+    if ((*it)->film_modulus() == film_modulus) {
+      std::rotate(entries_.begin(), it, it + 1);
+      return *entries_.front();
+    }
+  }
+  if (entries_.size() >= kCapacity) {
+    retired_calls_ += static_cast<long>(entries_.back()->model().table().source_evaluations());
+    entries_.pop_back();
+  }
+  entries_.insert(entries_.begin(), std::make_unique<ModelEntry>(problem_, film_modulus));
+  return *entries_.front();
+}
+
+long ModelCache::solver_calls() const {
+  long calls = retired_calls_;
+  for (const auto& e : entries_) calls += static_cast<long>(e->model().table().source_evaluations());
+  return calls;
+}
+
+// ---- one parameter set --------------------------------------------------------------------
+
+ContactModel::ContactModel(const AdhesiveModel& model, double sphere_radius, const Parameters& p)
+    : model_(model), p_(p), contact_(model, sphere_radius, p.thickness, p.work) {}
+
+void ContactModel::prepare(double radius_min, double radius_max) const {
+  model_.table().prepare(radius_min / p_.thickness, radius_max / p_.thickness);
+}
+
+void ContactModel::prepare_pulloff() const {
+  // The pull-off scan would build its decades one source call each; one batched call is
+  // faster (the solver's sweep runs in parallel). A failure is left to the scan, which stops
+  // below the failing decade and says so.
+  const PulloffOptions& options = model_.pulloff_options();
+  const double r = model_.stack().substrate_length_ratio();
+  const double lo = options.a_bar_min > 0.0 ? options.a_bar_min : 1e-3 * std::min(1.0, r);
+  const double hi = options.a_bar_max > 0.0 ? options.a_bar_max : 10.0 * std::max(1.0, r);
+  try {
+    model_.table().prepare(lo / contact_.eta(), hi / contact_.eta());
+  } catch (const NumericalError&) {
+  }
+}
+
+// In Maugis units (THEORY.md section 5) F = pi w R P(a_bar, x) and delta = (l^2/R) D(a_bar, x)
+// with a_bar = a/l, l = (pi w R^2/E1*)^(1/3) ~ w^(1/3) and x = ln(a/t); the JKR law depends on
+// w only through these scales. With P' = dP/da_bar along the curve and P'_x the same at fixed x:
+//   dF/da       = pi w R P'/l
+//   dF/d ln t   = -pi w R a_bar (P' - P'_x)          (at fixed a: only x moves)
+//   dF/d ln w   = F - pi w R a_bar P'_x / 3          (at fixed a: a_bar ~ w^(-1/3))
+//   d delta/d ln w = (2/3) delta - (l^2/R) a_bar D'_x / 3
+SiPoint ContactModel::to_si(const coatcontact::CurvePoint& full,
+                             const coatcontact::CurvePoint& fixed_x) const {
+  const double l = contact_.length_scale();
+  const double fs = contact_.force_scale();
+  const double ds = contact_.penetration_scale();
+  const double a_bar = full.a_bar;
+  SiPoint s;
+  s.radius = a_bar * l;
+  s.force = fs * full.load;
+  s.penetration = ds * full.penetration;
+  s.force_a = fs * full.dload / l;
+  s.penetration_a = ds * full.dpenetration / l;
+  s.force_lnt = -fs * a_bar * (full.dload - fixed_x.dload);
+  s.penetration_lnt = -ds * a_bar * (full.dpenetration - fixed_x.dpenetration);
+  s.force_lnw = s.force - fs * a_bar * fixed_x.dload / 3.0;
+  s.penetration_lnw = 2.0 * s.penetration / 3.0 - ds * a_bar * fixed_x.dpenetration / 3.0;
+  return s;
+}
+
+SiPoint ContactModel::at(double radius) const {
+  const double eta = contact_.eta();
+  const double a_bar = radius / contact_.length_scale();
+  const ReducedPoint r = model_.table().at(a_bar / eta);
+  SiPoint s = to_si(model_.law().point(r, eta, a_bar), model_.law().point(frozen(r), eta, a_bar));
+  s.radius = radius;
+  return s;
+}
+
+SiPoint ContactModel::exact(const ReducedVariables& v, double radius) const {
+  const double eta = contact_.eta();
+  const double a_bar = radius / contact_.length_scale();
+  const coatcontact::CurvePoint p = model_.law().point(values_only(v), eta, a_bar);
+  SiPoint s = to_si(p, p);  // values only: no derivatives without the interpolant
+  s.radius = radius;
+  return s;
+}
+
+// ---- the model at the data ------------------------------------------------------------------
+
+Model::Model(const Problem& problem, const Measurements& data)
+    : problem_(problem), data_(data), cache_(problem) {}
+
+void Model::check_range(const Parameters& p) const {
+  if (!(p.work >= kWorkRange[0] && p.work <= kWorkRange[1])) {
+    throw NumericalError("w ran to " + short_text(p.work) + " J/m2, outside [" + short_text(kWorkRange[0]) +
+                         ", " + short_text(kWorkRange[1]) + "]: the data do not determine w");
+  }
+  if (!(p.film_modulus >= kModulusRange[0] && p.film_modulus <= kModulusRange[1])) {
+    throw NumericalError("E1 ran to " + short_text(p.film_modulus) + " Pa, outside [" +
+                         short_text(kModulusRange[0]) + ", " + short_text(kModulusRange[1]) +
+                         "]: the data do not determine E1");
+  }
+  if (!(p.thickness > 0.0) || !std::isfinite(p.thickness)) {
+    throw NumericalError("t ran to " + short_text(p.thickness) + " m: the data do not determine t");
+  }
+}
+
+void Model::rethrow_at(const Parameters& p) const {
+  std::string what;
+  try {
+    throw;
+  } catch (const std::exception& error) {
+    what = error.what();
+  }
+  throw NumericalError("model evaluation failed at w = " + short_text(p.work) + " J/m2, t = " +
+                       short_text(p.thickness) + " m, E1 = " + short_text(p.film_modulus) + " Pa (" + what +
+                       "); if the fit wandered there, try start values closer to the solution");
+}
+
+ModelAtData Model::at_data(const Parameters& p, bool with_pulloff) {
+  check_range(p);
+  coatcontact::detail::GslHandlerOff handler_off;
+  try {
+    return evaluate(p, with_pulloff);
+  } catch (const std::exception&) {
+    rethrow_at(p);
+  }
+}
+
+ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
+  const ContactModel cm(cache_.get(p.film_modulus).model(), problem_.sphere_radius, p);
+  const std::size_t n = data_.size();
+  ModelAtData out;
+  out.radius.resize(n);
+  out.penetration.resize(n);
+  out.force.resize(n);
+  out.force_lnw.resize(n);
+  out.force_lnt.resize(n);
+  out.slope.assign(n, 0.0);
+  out.clamped.assign(n, false);
+  const auto check_a_over_t = [&](double a) {
+    const double x = a / p.thickness;
+    if (!(x >= kMinAOverT && x <= kMaxAOverT)) {
+      throw NumericalError("the model needs a/t = " + short_text(x) + ", outside [" +
+                           short_text(kMinAOverT) + ", " + short_text(kMaxAOverT) + "]");
+    }
+  };
+
+  const bool radius_data = data_.kind == DataKind::kRadiusForce;
+  if (!radius_data || with_pulloff) {
+    // For delta,F data the displacement-controlled pull-off bounds the stable branch (a failure
+    // to find it fails the evaluation); for a,F data it is only reported, and only when it
+    // lies within the measured radii.
+    const auto [lo, hi] = std::minmax_element(data_.abscissa.begin(), data_.abscissa.end());
+    const Pulloff* pulloff = nullptr;
+    try {
+      cm.prepare_pulloff();
+      pulloff = &cm.contact().pulloff();
+    } catch (const NumericalError&) {
+      if (!radius_data) throw;
+    }
+    if (pulloff != nullptr) {
+      const PulloffPoint& c = pulloff->displacement_control;
+      const double a_c = c.a_bar * cm.contact().length_scale();
+      if (c.interior && (!radius_data || (a_c >= *lo && a_c <= *hi))) {
+        out.has_pulloff = true;
+        out.pulloff_radius = a_c;
+        out.pulloff_penetration = c.penetration * cm.contact().penetration_scale();
+        out.pulloff_force = c.load * cm.contact().force_scale();
+      } else if (!radius_data) {
+        throw NumericalError("delta(a) has no minimum for a_bar in [" + short_text(pulloff->a_bar_scan_min) +
+                             ", " + short_text(pulloff->a_bar_scan_max) +
+                             "] (no displacement-controlled pull-off)");
+      }
+    }
+  }
+
+  if (radius_data) {
+    const auto [lo, hi] = std::minmax_element(data_.abscissa.begin(), data_.abscissa.end());
+    check_a_over_t(*lo);
+    check_a_over_t(*hi);
+    cm.prepare(*lo, *hi);
+    for (std::size_t i = 0; i < n; ++i) {
+      const SiPoint s = cm.at(data_.abscissa[i]);
+      out.radius[i] = s.radius;
+      out.penetration[i] = s.penetration;
+      out.force[i] = s.force;
+      out.force_lnw[i] = s.force_lnw;
+      out.force_lnt[i] = s.force_lnt;
+    }
+    return out;
+  }
+
+  // delta,F data: each measured delta at a* >= a_c on the stable branch (fit.hpp).
+  const double a_c = out.pulloff_radius;
+  const double delta_max = *std::max_element(data_.abscissa.begin(), data_.abscissa.end());
+  // Grid upwards from a_c until delta exceeds the largest measured one.
+  std::vector<double> grid{a_c};
+  std::vector<double> grid_delta{out.pulloff_penetration};
+  while (grid_delta.back() < delta_max) {
+    if (grid.size() > kMaxBracketSteps) {
+      throw NumericalError("the model's delta(a) stays below the largest measured delta up to a = " +
+                           short_text(grid.back()) + " m");
+    }
+    const double a = grid.back() * kBracketRatio;
+    check_a_over_t(a);
+    grid.push_back(a);
+    grid_delta.push_back(cm.at(a).penetration);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double delta = data_.abscissa[i];
+    double a = a_c;
+    if (delta <= out.pulloff_penetration) {
+      out.clamped[i] = true;
+    } else {
+      // The first crossing above a_c (the branch reached continuously from the pull-off).
+      std::size_t k = 1;
+      while (grid_delta[k] < delta) ++k;
+      a = find_root([&](double r) { return cm.at(r).penetration - delta; }, grid[k - 1], grid[k]);
+    }
+    const SiPoint s = cm.at(a);
+    out.radius[i] = a;
+    out.penetration[i] = s.penetration;
+    out.force[i] = s.force;
+    if (out.clamped[i]) {
+      // Jacobian approximation: the motion of a_c with the parameters is ignored (for every
+      // parameter alike; the pull-off at E1 e^(+-h) would cost two more pull-off scans).
+      out.force_lnw[i] = s.force_lnw;
+      out.force_lnt[i] = s.force_lnt;
+    } else {
+      // a*(p) from delta(a*, p) = delta_i: d a*/dp = -delta_p / delta_a.
+      out.slope[i] = s.force_a / s.penetration_a;
+      out.force_lnw[i] = s.force_lnw - out.slope[i] * s.penetration_lnw;
+      out.force_lnt[i] = s.force_lnt - out.slope[i] * s.penetration_lnt;
+    }
+  }
+  return out;
+}
+
+std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, const ModelAtData& m,
+                                                          const std::vector<int>& which) {
+  const std::size_t n = m.radius.size();
+  std::vector<std::vector<double>> columns;
+  for (int parameter : which) {
+    const auto shifted = [&](double sign) {
+      std::array<double, kParameterCount> v = p.as_array();
+      v[parameter] *= std::exp(sign * kStep);
+      return Parameters::from(v);
+    };
+    std::vector<double> column(n, 0.0);
+    if (parameter == kWork) {
+      column = m.force_lnw;
+    } else if (parameter == kThickness) {
+      column = m.force_lnt;
+    } else {
+      // F and delta at the model radii for E1 e^(+-h); at fixed measured delta the residual
+      // moves by dF - slope d delta.
+      const auto [lo, hi] = std::minmax_element(m.radius.begin(), m.radius.end());
+      for (double sign : {1.0, -1.0}) {
+        const Parameters q = shifted(sign);
+        check_range(q);
+        coatcontact::detail::GslHandlerOff handler_off;
+        try {
+          const ContactModel cm(cache_.get(q.film_modulus).model(), problem_.sphere_radius, q);
+          cm.prepare(*lo, *hi);
+          for (std::size_t i = 0; i < n; ++i) {
+            const SiPoint s = cm.at(m.radius[i]);
+            column[i] += sign * (s.force - m.slope[i] * s.penetration) / (2.0 * kStep);
+          }
+        } catch (const std::exception&) {
+          rethrow_at(q);
+        }
+      }
+    }
+    columns.push_back(std::move(column));
+  }
+  return columns;
+}
+
+double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
+  coatcontact::detail::GslHandlerOff handler_off;
+  const ModelEntry& entry = cache_.get(p.film_modulus);
+  const ContactModel cm(entry.model(), problem_.sphere_radius, p);
+  const std::size_t n = m.radius.size();
+  const std::size_t stride = std::max<std::size_t>(1, n / kCheckedPoints);
+  std::vector<std::size_t> index;
+  std::vector<double> a_over_t;
+  for (std::size_t i = 0; i < n; i += stride) {
+    index.push_back(i);
+    a_over_t.push_back(m.radius[i] / p.thickness);
+  }
+  const SolverSource source(entry.solver(), problem_.solver_tolerance);
+  const std::vector<ReducedVariables> solved = source.evaluate(a_over_t);
+  check_calls_ += static_cast<long>(solved.size());
+  double error = 0.0;
+  for (std::size_t k = 0; k < index.size(); ++k) {
+    const std::size_t i = index[k];
+    const SiPoint exact = cm.exact(solved[k], m.radius[i]);
+    // At fixed measured delta, moving to the exact curve changes F by -slope * (delta mismatch).
+    const double difference = exact.force - m.force[i] - m.slope[i] * (exact.penetration - m.penetration[i]);
+    error = std::max(error, std::fabs(difference));
+  }
+  return error;
+}
+
+}  // namespace coatcontact::fit::internal

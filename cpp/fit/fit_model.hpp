@@ -1,0 +1,123 @@
+// The fit model at the data points (private to coatcontact_fit): the adhesive contact of
+// THEORY.md section 5 evaluated through the adhesion floor (ReducedTable, JkrLaw, Contact),
+// the branch choice for delta,F data, the residuals and the derivatives of the model force.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
+#include "coatcontact/fit.hpp"
+#include "coatcontact/reduced.hpp"
+
+namespace coatcontact::fit::internal {
+
+struct Parameters {
+  double work = 0.0, thickness = 0.0, film_modulus = 0.0;
+  std::array<double, kParameterCount> as_array() const { return {work, thickness, film_modulus}; }
+  static Parameters from(const std::array<double, kParameterCount>& v) {
+    return {v[kWork], v[kThickness], v[kFilmModulus]};
+  }
+};
+
+// One film modulus: its solver and the adhesive model (SolverSource + ReducedTable) on it.
+// E1 enters E1*/E0*, so every E1 needs its own kernel table and interpolant.
+class ModelEntry {
+ public:
+  ModelEntry(const Problem& problem, double film_modulus);
+  const AdhesiveModel& model() const { return *model_; }
+  const ReducedSolver& solver() const { return *solver_; }
+  double film_modulus() const { return film_modulus_; }
+
+ private:
+  double film_modulus_;
+  std::unique_ptr<ReducedSolver> solver_;  // declared first: the model keeps a reference
+  std::unique_ptr<AdhesiveModel> model_;
+};
+
+// The few entries a fit needs at once (E1 and E1 e^(+-h) for the Jacobian), most recent first.
+class ModelCache {
+ public:
+  explicit ModelCache(const Problem& problem) : problem_(problem) {}
+  ModelEntry& get(double film_modulus);
+  long solver_calls() const;  // reduced-variable solves of every table built so far
+
+ private:
+  static constexpr std::size_t kCapacity = 4;
+  const Problem& problem_;
+  std::vector<std::unique_ptr<ModelEntry>> entries_;
+  long retired_calls_ = 0;
+};
+
+// F and delta at contact radius a (SI) with their derivatives: along the curve (d/da at
+// fixed parameters) and with respect to ln w and ln t at fixed a.
+struct SiPoint {
+  double radius = 0.0, force = 0.0, penetration = 0.0;
+  double force_a = 0.0, penetration_a = 0.0;
+  double force_lnw = 0.0, penetration_lnw = 0.0;
+  double force_lnt = 0.0, penetration_lnt = 0.0;
+};
+
+// The contact for one parameter set: a Contact (which owns the Maugis scales) on the model
+// of the parameters' E1.
+class ContactModel {
+ public:
+  ContactModel(const AdhesiveModel& model, double sphere_radius, const Parameters& p);
+  SiPoint at(double radius) const;
+  // F and delta from reduced variables solved directly (no interpolation).
+  SiPoint exact(const ReducedVariables& v, double radius) const;
+  const Contact& contact() const { return contact_; }
+  void prepare(double radius_min, double radius_max) const;
+  void prepare_pulloff() const;  // the decades of AdhesiveModel's pull-off scan, in one batch
+
+ private:
+  SiPoint to_si(const coatcontact::CurvePoint& full, const coatcontact::CurvePoint& fixed_x) const;
+  const AdhesiveModel& model_;
+  Parameters p_;
+  Contact contact_;
+};
+
+// The model at every data point.
+struct ModelAtData {
+  std::vector<double> radius, penetration, force;
+  std::vector<double> force_lnw, force_lnt;  // d F_model / d ln p along the residual's path
+  // dF/d delta along the curve at unclamped delta,F points (0 elsewhere): converts a change of
+  // the model's delta at fixed a into a change of the residual at fixed measured delta.
+  std::vector<double> slope;
+  std::vector<bool> clamped;
+  bool has_pulloff = false;
+  double pulloff_radius = 0.0, pulloff_penetration = 0.0, pulloff_force = 0.0;
+};
+
+class Model {
+ public:
+  Model(const Problem& problem, const Measurements& data);
+
+  // The model at every data point; any failure becomes a NumericalError naming the parameters.
+  // with_pulloff: also report the displacement-controlled pull-off for a,F data when it lies
+  // within the measured radii (delta,F data always need it: it bounds the stable branch).
+  ModelAtData at_data(const Parameters& p, bool with_pulloff = false);
+  // d F_model / d ln p_j at every data point for the parameters in `which` (w and t analytic,
+  // E1 by a central difference in ln E1 at the model radii of `m`: the same derivative as a
+  // re-inversion of delta at E1 e^(+-h), without its square-root singularity near a_c).
+  std::vector<std::vector<double>> force_derivatives(const Parameters& p, const ModelAtData& m,
+                                                     const std::vector<int>& which);
+  // max |F_exact - F_model| over (up to 200 of) the data points, the reduced variables solved
+  // directly at each model radius (first order in the delta mismatch for delta,F data) [N].
+  double interpolation_error(const Parameters& p, const ModelAtData& m);
+  long solver_calls() const { return cache_.solver_calls() + check_calls_; }
+
+ private:
+  ModelAtData evaluate(const Parameters& p, bool with_pulloff);
+  void check_range(const Parameters& p) const;
+  [[noreturn]] void rethrow_at(const Parameters& p) const;
+
+  const Problem& problem_;
+  const Measurements& data_;
+  ModelCache cache_;
+  long check_calls_ = 0;
+};
+
+}  // namespace coatcontact::fit::internal

@@ -1,0 +1,204 @@
+// Nonlinear least squares of the force residuals (GSL gsl_multifit_nlinear, trust region).
+#include "least_squares.hpp"
+
+#include <gsl/gsl_blas.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <memory>
+
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/detail/gsl_handler_off.hpp"
+#include "coatcontact/errors.hpp"
+
+namespace coatcontact::fit::internal {
+namespace {
+
+// GSL works on x_j = kOffset + ln(p_j / p_start_j): the relative step test
+// |dx| <= xtol (|x| + xtol) then acts as a test on the relative change of p_j.
+constexpr double kOffset = 10.0;
+
+struct FitContext {
+  const Measurements* data;
+  Model* model;
+  std::vector<int> free_index;  // parameter index of each GSL variable
+  std::array<double, kParameterCount> start{};
+  double force_scale = 1.0;  // residuals are scaled by it (keeps GSL's tolerances meaningful)
+  std::exception_ptr error;
+
+  Parameters parameters(const gsl_vector* x) const {
+    std::array<double, kParameterCount> value = start;
+    for (std::size_t j = 0; j < free_index.size(); ++j) {
+      value[free_index[j]] = start[free_index[j]] * std::exp(gsl_vector_get(x, j) - kOffset);
+    }
+    return Parameters::from(value);
+  }
+};
+
+int residual_callback(const gsl_vector* x, void* params, gsl_vector* f) {
+  auto* ctx = static_cast<FitContext*>(params);
+  try {
+    const ModelAtData m = ctx->model->at_data(ctx->parameters(x));
+    for (std::size_t i = 0; i < ctx->data->size(); ++i) {
+      gsl_vector_set(f, i, (m.force[i] - ctx->data->force[i]) / ctx->force_scale);
+    }
+    return GSL_SUCCESS;
+  } catch (...) {
+    ctx->error = std::current_exception();
+    return GSL_EBADFUNC;
+  }
+}
+
+int jacobian_callback(const gsl_vector* x, void* params, gsl_matrix* J) {
+  auto* ctx = static_cast<FitContext*>(params);
+  try {
+    const Parameters p = ctx->parameters(x);
+    const ModelAtData m = ctx->model->at_data(p);
+    const auto columns = ctx->model->force_derivatives(p, m, ctx->free_index);
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+      for (std::size_t i = 0; i < columns[j].size(); ++i) {
+        gsl_matrix_set(J, i, j, columns[j][i] / ctx->force_scale);
+      }
+    }
+    return GSL_SUCCESS;
+  } catch (...) {
+    ctx->error = std::current_exception();
+    return GSL_EBADFUNC;
+  }
+}
+
+std::string estimates_text(const FitContext& ctx, const std::vector<double>& x) {
+  std::array<double, kParameterCount> value = ctx.start;
+  for (std::size_t j = 0; j < ctx.free_index.size(); ++j) {
+    value[ctx.free_index[j]] = ctx.start[ctx.free_index[j]] * std::exp(x[j] - kOffset);
+  }
+  std::string text;
+  for (int which : ctx.free_index) {
+    if (!text.empty()) text += ", ";
+    text += std::string(parameter_name(which)) + " = " + coatcontact::detail::short_text(value[which]);
+  }
+  return text;
+}
+
+// One trust-region solve (Levenberg-Marquardt steps, More scaling, QR) over ctx.free_index.
+struct Stage {
+  int status = GSL_FAILURE;
+  int info = 0;
+  int iterations = 0;
+  std::vector<double> x;  // GSL variables at the end
+  Parameters values;
+  bool gradient_small = false;  // for GSL_ENOPROG
+};
+
+Stage run_stage(FitContext& ctx, int max_iterations) {
+  const std::size_t n = ctx.data->size();
+  const std::size_t p_count = ctx.free_index.size();
+  gsl_multifit_nlinear_fdf fdf;
+  fdf.f = residual_callback;
+  fdf.df = jacobian_callback;
+  fdf.fvv = nullptr;
+  fdf.n = n;
+  fdf.p = p_count;
+  fdf.params = &ctx;
+  gsl_multifit_nlinear_parameters fit_parameters = gsl_multifit_nlinear_default_parameters();
+  std::unique_ptr<gsl_multifit_nlinear_workspace, void (*)(gsl_multifit_nlinear_workspace*)> work(
+      gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &fit_parameters, n, p_count),
+      gsl_multifit_nlinear_free);
+  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> x0(gsl_vector_alloc(p_count), gsl_vector_free);
+  if (!work || !x0) throw NumericalError("out of memory allocating the fit workspace");
+  gsl_vector_set_all(x0.get(), kOffset);
+  ctx.error = nullptr;
+  if (gsl_multifit_nlinear_init(x0.get(), &fdf, work.get()) != GSL_SUCCESS) {
+    if (ctx.error) std::rethrow_exception(ctx.error);
+    throw NumericalError("could not evaluate the model at the start values");
+  }
+  const double xtol = 1e-10;  // relative change of each parameter ~ xtol * kOffset = 1e-9
+  const double gtol = 1e-10;
+  const double ftol = 0.0;
+  Stage stage;
+  stage.status = gsl_multifit_nlinear_driver(static_cast<std::size_t>(max_iterations), xtol, gtol, ftol,
+                                             nullptr, nullptr, &stage.info, work.get());
+  if (ctx.error) std::rethrow_exception(ctx.error);
+  stage.iterations = static_cast<int>(gsl_multifit_nlinear_niter(work.get()));
+  const gsl_vector* x = gsl_multifit_nlinear_position(work.get());
+  for (std::size_t j = 0; j < p_count; ++j) stage.x.push_back(gsl_vector_get(x, j));
+  stage.values = ctx.parameters(x);
+  if (stage.status == GSL_ENOPROG) {
+    // No step decreases the cost any more: accept only if the gradient is at the noise level
+    // of the model (the interpolated values carry relative noise ~ solver tolerance).
+    const gsl_vector* f = gsl_multifit_nlinear_residual(work.get());
+    const gsl_matrix* J = gsl_multifit_nlinear_jac(work.get());
+    const double f_norm = gsl_blas_dnrm2(f);
+    stage.gradient_small = true;
+    for (std::size_t j = 0; j < p_count; ++j) {
+      double g = 0.0;
+      double column_norm = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        g += gsl_matrix_get(J, i, j) * gsl_vector_get(f, i);
+        column_norm += gsl_matrix_get(J, i, j) * gsl_matrix_get(J, i, j);
+      }
+      if (std::fabs(g) > 1e-6 * std::sqrt(column_norm) * f_norm) stage.gradient_small = false;
+    }
+  }
+  return stage;
+}
+
+}  // namespace
+
+Minimum minimize(Model& model, const Measurements& data, const Problem& problem,
+                 const std::vector<int>& free_index) {
+  coatcontact::detail::GslHandlerOff handler_off;
+  FitContext ctx;
+  ctx.data = &data;
+  ctx.model = &model;
+  ctx.free_index = free_index;
+  ctx.start = {problem.work, problem.thickness, problem.film.youngs_modulus};
+  // The largest measured force (> 0, checked by fit()): any constant scale gives the same
+  // estimates and standard errors.
+  ctx.force_scale = 0.0;
+  for (double f : data.force) ctx.force_scale = std::max(ctx.force_scale, std::fabs(f));
+
+  Minimum result;
+  // With several free parameters, w alone is fitted first (a 1-D problem that always has a
+  // good start from the pull-off force) and the full fit starts from there: a start far from w
+  // can otherwise lead the joint fit into a secondary minimum.
+  if (free_index.size() > 1 && problem.free[kWork]) {
+    FitContext first = ctx;
+    first.free_index = {kWork};
+    try {
+      const Stage stage = run_stage(first, problem.max_iterations);
+      if (stage.status == GSL_SUCCESS || stage.status == GSL_ENOPROG) {
+        ctx.start[kWork] = stage.values.work;
+        result.iterations += stage.iterations;
+      }
+    } catch (const NumericalError&) {
+      // Keep the user's start; the full fit reports its own failure if there is one.
+    }
+  }
+  const Stage stage = run_stage(ctx, problem.max_iterations);
+  result.iterations += stage.iterations;
+  result.values = stage.values;
+  if (stage.status == GSL_SUCCESS) {
+    result.stop_reason = stage.info == 1 ? "small step" : "small gradient";
+  } else if (stage.status == GSL_ENOPROG) {
+    if (!stage.gradient_small) {
+      throw NumericalError("the fit stopped making progress after " + std::to_string(result.iterations) +
+                           " iterations without converging (last estimates " +
+                           estimates_text(ctx, stage.x) + ")");
+    }
+    result.stop_reason = "no further decrease (gradient at model noise level)";
+  } else if (stage.status == GSL_EMAXITER) {
+    throw NumericalError("the fit did not converge in " + std::to_string(problem.max_iterations) +
+                         " iterations (last estimates " + estimates_text(ctx, stage.x) + ")");
+  } else {
+    throw NumericalError(std::string("the fit failed: ") + gsl_strerror(stage.status) +
+                         " (last estimates " + estimates_text(ctx, stage.x) + ")");
+  }
+  return result;
+}
+
+}  // namespace coatcontact::fit::internal

@@ -1,0 +1,299 @@
+// make_synthetic_data: writes a synthetic adhesive sphere-contact data set (a,F or delta,F, a
+// loading and an unloading branch) from known parameters, with Gaussian noise of a stated
+// standard deviation on the force only (GSL mt19937 generator, fixed seed: reproducible).
+// The model is the library's (THEORY.md section 5): JkrLaw with the Maugis scales of Contact.
+// Its reduced variables are solved directly at each contact radius through a SolverSource,
+// not interpolated, so the data stay independent of the ReducedTable the fit uses.
+// Used by scripts/make_example_data.sh (data/README.md). Links only the library: its few
+// options are parsed here, not by the CLI's parsers.
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "coatcontact/adhesion.hpp"
+#include "coatcontact/contact.hpp"
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/reduced.hpp"
+
+namespace {
+
+using namespace coatcontact;
+
+// ---- options ------------------------------------------------------------------------------
+
+struct Option {
+  const char* name;
+  const char* value;
+  const char* help;
+  const char* fallback;  // nullptr: required
+};
+
+const Option kOptions[] = {
+    {"--kind", "a,F|delta,F", "data columns to write", nullptr},
+    {"--radius", "R", "sphere radius", "5mm"},
+    {"--film", "E1,nu1", "film modulus and Poisson ratio", "1MPa,0.49"},
+    {"--substrate", "E0,nu0|rigid", "substrate", "70GPa,0.22"},
+    {"--thickness", "t", "film thickness", "50um"},
+    {"--work", "w", "adhesion energy", "40mJ/m2"},
+    {"--noise", "sigma", "standard deviation of the Gaussian force noise", "10uN"},
+    {"--seed", "N", "seed of the GSL mt19937 generator", "1"},
+    {"--points", "N", "points per branch", "40"},
+    {"--max-over-pulloff", "f", "a_max / a at zero force on loading", "1.5"},
+    {"--signal", "model|none", "none: F is pure noise (for tests of failing fits)", "model"},
+    {"--output", "FILE", "output file (default stdout)", ""},
+};
+
+// Unit suffixes of the values above (SI factor).
+const std::map<std::string, double> kUnits = {
+    {"Pa", 1.0},  {"kPa", 1e3}, {"MPa", 1e6},   {"GPa", 1e9},    {"m", 1.0},  {"mm", 1e-3},
+    {"um", 1e-6}, {"nm", 1e-9}, {"J/m2", 1.0},  {"mJ/m2", 1e-3}, {"N", 1.0},  {"mN", 1e-3},
+    {"uN", 1e-6}, {"nN", 1e-9}, {"\xc2\xb5m", 1e-6}, {"\xc2\xb5N", 1e-6},
+};
+
+double parse_value(const std::string& text, const std::string& option, bool with_unit) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double number = std::strtod(begin, &end);
+  const std::string unit(end);
+  if (end == begin || !std::isfinite(number)) throw InputError(option + ": '" + text + "' is not a number");
+  if (unit.empty()) return number;
+  const auto it = kUnits.find(unit);
+  if (!with_unit || it == kUnits.end()) throw InputError(option + ": unknown unit in '" + text + "'");
+  return number * it->second;
+}
+
+Material parse_material(const std::string& text, const std::string& option) {
+  const auto comma = text.find(',');
+  if (comma == std::string::npos) throw InputError(option + ": '" + text + "' is not E,nu");
+  Material m{parse_value(text.substr(0, comma), option, true),
+             parse_value(text.substr(comma + 1), option, false)};
+  validate(m, option.substr(2));
+  return m;
+}
+
+class Arguments {
+ public:
+  explicit Arguments(const std::vector<std::string>& args) {
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      if (args[i] == "--help" || args[i] == "-h") {
+        help_ = true;
+        continue;
+      }
+      bool known = false;
+      for (const Option& o : kOptions) known = known || args[i] == o.name;
+      if (!known) throw InputError("unknown option '" + args[i] + "' (see --help)");
+      if (i + 1 >= args.size()) throw InputError(args[i] + " needs a value");
+      values_[args[i]] = args[i + 1];
+      ++i;
+    }
+  }
+  bool help() const { return help_; }
+  std::string get(const std::string& name) const {
+    const auto it = values_.find(name);
+    if (it != values_.end()) return it->second;
+    for (const Option& o : kOptions) {
+      if (name == o.name && o.fallback != nullptr) return o.fallback;
+    }
+    throw InputError(name + " is required (see --help)");
+  }
+
+ private:
+  bool help_ = false;
+  std::map<std::string, std::string> values_;
+};
+
+void print_help() {
+  std::cout << "usage: make_synthetic_data --kind a,F|delta,F [options]\n"
+               "Synthetic adhesive sphere-contact data with Gaussian force noise.\n";
+  for (const Option& o : kOptions) {
+    std::cout << "  " << o.name << " " << o.value << "\t" << o.help;
+    if (o.fallback != nullptr && *o.fallback != '\0') std::cout << " (default " << o.fallback << ")";
+    std::cout << "\n";
+  }
+}
+
+// ---- the model ----------------------------------------------------------------------------
+
+struct Point {
+  double a, delta, force;
+};
+
+// The exact model at each contact radius: one solver sweep, then the JKR law of the adhesive
+// model at a_bar = a/l, converted to SI with the contact's scales.
+std::vector<Point> exact_points(const Contact& contact, const ReducedSolver& solver,
+                                const std::vector<double>& radii, double thickness, double tolerance) {
+  std::vector<double> a_over_t;
+  for (double a : radii) a_over_t.push_back(a / thickness);
+  const std::vector<ReducedVariables> v = SolverSource(solver, tolerance).evaluate(a_over_t);
+  std::vector<Point> out;
+  for (std::size_t i = 0; i < radii.size(); ++i) {
+    ReducedPoint r;  // values only: P and D need no derivatives
+    r.a_over_t = v[i].a_over_t;
+    r.pi_s = v[i].pi_s;
+    r.delta_s = v[i].delta_s;
+    r.pi_c = v[i].pi_c;
+    r.delta_c = v[i].delta_c;
+    r.e_eq = v[i].e_eq;
+    r.gamma1 = v[i].gamma1;
+    const CurvePoint p =
+        contact.model().law().point(r, contact.eta(), radii[i] / contact.length_scale());
+    out.push_back({radii[i], p.penetration * contact.penetration_scale(), p.load * contact.force_scale()});
+  }
+  return out;
+}
+
+std::vector<double> linspace(double from, double to, int count) {
+  std::vector<double> out;
+  for (int i = 0; i < count; ++i) out.push_back(from + (to - from) * i / (count - 1));
+  return out;
+}
+
+std::string text(const char* format, double value) {
+  char line[64];
+  std::snprintf(line, sizeof line, format, value);
+  return line;
+}
+
+int run(const std::vector<std::string>& args) {
+  const Arguments arguments(args);
+  if (arguments.help()) {
+    print_help();
+    return 0;
+  }
+  const std::string kind = arguments.get("--kind");
+  if (kind != "a,F" && kind != "delta,F") {
+    throw InputError("--kind: '" + kind + "' is not allowed (a,F or delta,F)");
+  }
+  const bool radius_data = kind == "a,F";
+  const double R = parse_value(arguments.get("--radius"), "--radius", true);
+  const Material film = parse_material(arguments.get("--film"), "--film");
+  Substrate substrate;
+  if (arguments.get("--substrate") == "rigid") {
+    substrate.rigid = true;
+  } else {
+    substrate.material = parse_material(arguments.get("--substrate"), "--substrate");
+  }
+  const double t = parse_value(arguments.get("--thickness"), "--thickness", true);
+  const double w = parse_value(arguments.get("--work"), "--work", true);
+  const double sigma = parse_value(arguments.get("--noise"), "--noise", true);
+  const double seed_value = parse_value(arguments.get("--seed"), "--seed", false);
+  const double points_value = parse_value(arguments.get("--points"), "--points", false);
+  const double max_factor = parse_value(arguments.get("--max-over-pulloff"), "--max-over-pulloff", false);
+  if (!(sigma >= 0.0)) throw InputError("--noise: must be >= 0");
+  if (seed_value < 0 || seed_value != std::floor(seed_value) || seed_value > 4e9) {
+    throw InputError("--seed: must be an integer in [0, 4e9]");
+  }
+  if (points_value < 3 || points_value != std::floor(points_value) || points_value > 100000) {
+    throw InputError("--points: must be an integer in [3, 100000]");
+  }
+  if (!(max_factor > 1.0 && max_factor < 100.0)) throw InputError("--max-over-pulloff: must be in (1, 100)");
+  const std::string signal = arguments.get("--signal");
+  if (signal != "model" && signal != "none") throw InputError("--signal: '" + signal + "' is not allowed (model or none)");
+  const bool pure_noise = signal == "none";
+  const int points = static_cast<int>(points_value);
+  const unsigned long seed = static_cast<unsigned long>(seed_value);
+  const double tolerance = 1e-9;  // the kernel table limits the solver to ~1e-10
+
+  const ReducedSolver solver(Stack::film_on(film, substrate));
+  const AdhesiveModel model(solver);
+  const Contact contact(model, R, t, w);  // checks R, t, w and owns the Maugis scales
+  // Locate the turning points on a dense exact curve (they only set the sampled range):
+  // a0 where F = 0 on the stable branch (jump into contact), the load-controlled pull-off
+  // (minimum of F) and the displacement-controlled pull-off (minimum of delta).
+  const double length = contact.length_scale();
+  std::vector<double> dense;
+  for (int i = 0; i <= 400; ++i) dense.push_back(1e-3 * length * std::pow(1e4, i / 400.0));
+  const std::vector<Point> curve = exact_points(contact, solver, dense, t, kDefaultTolerance);
+  std::size_t i_fmin = 0;
+  std::size_t i_dmin = 0;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    if (curve[i].force < curve[i_fmin].force) i_fmin = i;
+    if (curve[i].delta < curve[i_dmin].delta) i_dmin = i;
+  }
+  std::size_t i_zero = i_fmin;
+  while (i_zero < curve.size() && curve[i_zero].force < 0.0) ++i_zero;
+  if (i_fmin == 0 || i_dmin == 0 || i_zero >= curve.size()) {
+    throw NumericalError("could not locate the pull-off points on the model curve");
+  }
+  const double a_zero = curve[i_zero].a;
+  const double a_max = max_factor * a_zero;
+  // Loading from the jump-in radius to a_max; unloading back to just above the pull-off
+  // (load control for a,F, displacement control for delta,F), on a grid offset by half a
+  // step so the two branches sample different radii.
+  const double a_end = 1.02 * (radius_data ? curve[i_fmin].a : curve[i_dmin].a);
+  std::vector<double> radii = linspace(a_zero, a_max, points);
+  const double step = (a_max - a_end) / (points - 0.5);
+  for (int i = 0; i < points; ++i) radii.push_back(a_max - (i + 0.5) * step);
+  const std::vector<Point> data = exact_points(contact, solver, radii, t, tolerance);
+
+  std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
+  gsl_rng_set(rng.get(), seed);
+
+  std::ostringstream out;
+  std::string command = "make_synthetic_data";
+  for (const auto& a : args) command += " " + a;
+  out << "# Synthetic adhesive sphere-contact data (coatcontact, issue 6; see data/README.md)\n"
+      << "# generated by: " << command << "\n"
+      << "# model: exact coated-substrate JKR curve (THEORY.md section 5), reduced variables solved\n"
+      << "#   directly at each a/t by ReducedSolver (tolerance " << tolerance << "), no interpolation\n"
+      << "# sphere radius R = " << text("%.15g", R) << " m\n"
+      << "# film: t = " << text("%.15g", t) << " m, E1 = " << text("%.15g", film.youngs_modulus)
+      << " Pa, nu1 = " << text("%.15g", film.poisson_ratio) << "\n";
+  if (substrate.rigid) {
+    out << "# substrate: rigid\n";
+  } else {
+    out << "# substrate: E0 = " << text("%.15g", substrate.material.youngs_modulus)
+        << " Pa, nu0 = " << text("%.15g", substrate.material.poisson_ratio) << "\n";
+  }
+  out << "# adhesion energy w = " << text("%.15g", w) << " J/m2\n"
+      << "# noise: Gaussian, standard deviation " << text("%.15g", sigma) << " N, added to F only ("
+      << (radius_data ? "a" : "delta") << " exact); GSL gsl_rng_mt19937, seed " << seed
+      << ", gsl_ran_gaussian, one draw per row in file order\n"
+      << "# rows: " << points << " loading (a increasing from F = 0 to a_max = " << text("%.6g", a_max)
+      << " m), then " << points << " unloading (a decreasing to 1.02 x the "
+      << (radius_data ? "load-controlled" : "displacement-controlled") << " pull-off radius)\n";
+  if (pure_noise) out << "# signal: none -- F is pure noise (the model force is NOT added)\n";
+  out << (radius_data ? "# columns: a\tF\n# units: um mN\n" : "# columns: delta\tF\n# units: um mN\n");
+  for (const Point& p : data) {
+    const double noisy = (pure_noise ? 0.0 : p.force) + gsl_ran_gaussian(rng.get(), sigma);
+    const double x = (radius_data ? p.a : p.delta) * 1e6;
+    if (!std::isfinite(x) || !std::isfinite(noisy)) throw NumericalError("model value not finite");
+    out << detail::full_precision(x) << "\t" << detail::full_precision(noisy * 1e3) << "\n";
+  }
+
+  const std::string path = arguments.get("--output");
+  if (path.empty()) {
+    std::cout << out.str();
+    return 0;
+  }
+  std::ofstream file(path);
+  file << out.str();
+  file.close();
+  if (!file) throw InputError("cannot write " + path);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const InputError& error) {
+    std::cerr << "make_synthetic_data: error: " << error.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& error) {
+    std::cerr << "make_synthetic_data: numerical failure: " << error.what() << "\n";
+    return kExitNumerical;
+  }
+}
