@@ -24,6 +24,10 @@ PARAMS_DIR   := $(DATA_DIR)/params
 
 include $(FIGURES_CONF)
 
+comma := ,
+empty :=
+space := $(empty) $(empty)
+
 # ---- datasets: name -> CLI arguments (CMD_<name>) ------------------------------------
 # Substrate E0 = 1, film E1 = ratio (see data/figures.conf).
 materials = --film $(1),$(NU_FILM) --substrate 1,$(NU_SUBSTRATE)
@@ -64,6 +68,9 @@ $(foreach r,$(ADHESIVE_RATIOS),$(eval \
 $(foreach r,$(ADHESIVE_RATIOS),$(eval \
   CMD_mdjkr_E$(r) := pulloff $(call materials,$(r)) --eta $(MD_ETA)))
 CMD_mdlambda_homogeneous := pulloff $(call materials,1) --eta 1 --lambda $(MD_LAMBDA)
+CMD_mdcurves := adhesive $(call materials,$(SOFT_RATIO)) --eta $(MD_CURVE_ETA) \
+  --lambda $(subst $(space),$(comma),$(MD_CURVE_LAMBDAS)) --a-bar $(MD_CURVE_A_BAR)
+CMD_mdcurves_jkr := adhesive $(call materials,$(SOFT_RATIO)) --eta $(MD_CURVE_ETA) --a-bar $(MD_CURVE_A_BAR)
 
 data = $(DATA_DIR)/$(1).tsv
 PULLOFF_FILES := $(foreach r,$(PULLOFF_RATIOS),$(call data,pulloff_E$(r)))
@@ -111,8 +118,11 @@ SHAPE_FILES := $(foreach s,$(SHAPE_LIST),$(call data,shape_$(call shape_name,$(s
 DATA_fig12 = $(SHAPE_FILES)
 GP_fig12   = $(GP_common); shapes='$(SHAPE_LIST)'; files='$(SHAPE_FILES)'
 
-comma := ,
-FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig_md_lambda
+DATA_fig13 = $(call data,mdcurves) $(call data,mdcurves_jkr)
+GP_fig13   = $(GP_common); ratio=$(SOFT_RATIO); eta=$(MD_CURVE_ETA); lambdas='$(MD_CURVE_LAMBDAS)'; \
+             md='$(call data,mdcurves)'; jkr='$(call data,mdcurves_jkr)'
+
+FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig13 fig_md_lambda
 FIGURE_FILES := $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf)
 
 # Helper scripts loaded by the figure scripts.
@@ -135,7 +145,7 @@ figures: build
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
 
 figures-only: $(FIGURE_FILES)
-	@echo "figures: $(FIG_DIR)/fig{1..12}.png, fig_md_lambda.png and .pdf   data: $(DATA_DIR)/*.tsv"
+	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png and .pdf   data: $(DATA_DIR)/*.tsv"
 	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
 
 figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
@@ -179,5 +189,6 @@ DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_po
   $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r)) \
   $(foreach r,$(SPRING_RATIOS),spring_E$(r)) $(foreach i,$(INDENTER_NAMES),indenter_I$(i)) \
   $(foreach s,$(SHAPE_LIST),shape_$(call shape_name,$(s))) \
-  $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous
+  $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous \
+  mdcurves mdcurves_jkr
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):
