@@ -8,7 +8,7 @@ module cc_kernel_capi
                                   CC_ERR_ALLOCATION
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
   use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
-                              n_grid_variants
+                              n_grid_variants, build_stack_kernel_table_variant
   use cc_multilayer_compliance, only: layer_stack, make_layer_stack, stack_compliance, &
                                       stack_compliance_minus_one, max_stack_layers
   use cc_elastic_constants, only: CC_ERR_LAYER_COUNT
@@ -231,6 +231,55 @@ contains
     end if
     handle = c_loc(t)
   end function create_table
+
+  ! Table of a stack (THEORY.md section 12); one bonded layer goes through create_table, so
+  ! its table is cc_kernel_table_create_ex's bit for bit.
+  integer(c_int) function capi_kernel_table_create_stack(n_layers, thickness, youngs, poisson, &
+      slip_below, base_rigid, e_base, nu_base, grid_variant, table) result(status) &
+      bind(C, name="cc_kernel_table_create_stack")
+    integer(c_int), value, intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), value, intent(in) :: base_rigid
+    real(c_double), value, intent(in) :: e_base, nu_base
+    integer(c_int), value, intent(in) :: grid_variant
+    type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
+    type(c_ptr), pointer :: handle
+    type(kernel_table), pointer :: t
+    type(layer_stack) :: stack
+    integer :: s, ierr
+    status = CC_ERR_ARGUMENT
+    if (.not. c_associated(table)) return
+    call c_f_pointer(table, handle)
+    handle = c_null_ptr
+    status = CC_ERR_LAYER_COUNT
+    if (n_layers < 1 .or. n_layers > max_stack_layers) return
+    call make_layer_stack(real(thickness, dp), real(youngs, dp), real(poisson, dp), &
+                          slip_below /= 0, base_rigid /= 0, real(e_base, dp), real(nu_base, dp), &
+                          stack, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) return
+    status = CC_ERR_ARGUMENT
+    if (grid_variant < 0 .or. grid_variant >= n_grid_variants) return
+    if (stack%closed_form) then
+      status = create_table(youngs(1), poisson(1), e_base, nu_base, base_rigid, &
+                            int(grid_variant), table)
+      return
+    end if
+    allocate(t, stat=ierr)
+    if (ierr /= 0) then
+      status = CC_ERR_ALLOCATION
+      return
+    end if
+    call build_stack_kernel_table_variant(stack, int(grid_variant), t, s)
+    status = int(s, c_int)
+    if (s /= CC_OK) then
+      deallocate(t)
+      return
+    end if
+    handle = c_loc(t)
+  end function capi_kernel_table_create_stack
 
   subroutine capi_kernel_table_destroy(table) bind(C, name="cc_kernel_table_destroy")
     type(c_ptr), value, intent(in) :: table

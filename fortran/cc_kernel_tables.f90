@@ -37,6 +37,8 @@ module cc_kernel_tables
   use cc_power_series, only: series_value, series_slope, series_deflate, series_quotient, &
                              series_product, exp_series
   use cc_exponential_integral, only: scaled_e1
+  use cc_multilayer_compliance, only: layer_stack, stack_compliance_minus_one
+  use cc_stack_series, only: stack_series
   implicit none
   private
 
@@ -89,7 +91,23 @@ module cc_kernel_tables
     real(dp), allocatable :: h1(:)        ! H1(k du)
   end type kernel_table
 
-  public :: build_kernel_table_variant, evaluate_kernel_table
+  ! What a table is built from: one film (material_pair, THEORY.md section 3) or a stack
+  ! (section 12). For a stack the grid is refined `refine` times (refine >= T/h_top, a power of
+  ! 2): C - 1 decays like exp(-2 q h_top/T), so q_max = refine * 80 reaches ~ 80 T/h_top and
+  ! H is analytic only in |Im u| < 2 h_top/T, so du and the interpolation strip shrink by
+  ! `refine` (the same du/strip as one film: the same interpolation error).
+  type :: kernel_source
+    logical :: is_stack = .false.
+    type(material_pair) :: pair
+    type(layer_stack) :: stack
+    integer :: refine = 1
+  end type kernel_source
+
+  ! Finest stack refinement: 2^22 panels on variant 0 (top layer >= T/32); thinner top
+  ! layers report CC_ERR_ACCURACY rather than a table that cannot meet its target.
+  integer, parameter, public :: max_stack_refine = 32
+
+  public :: build_kernel_table_variant, build_stack_kernel_table_variant, evaluate_kernel_table
 
 contains
 
@@ -179,8 +197,8 @@ contains
   ! Decay rate b of s among 1, sqrt(2), 2, ..., 512: the one with the smallest estimated
   ! error (a small b makes s wide and, for a Taylor radius << 1, huge; a large b enlarges
   ! the unmatched r_7).
-  subroutine choose_decay_rate(pair, table, r_taylor, distance, b)
-    type(material_pair), intent(in) :: pair
+  subroutine choose_decay_rate(src, table, r_taylor, distance, b)
+    type(kernel_source), intent(in) :: src
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: r_taylor(0:), distance
     real(dp), intent(out) :: b
@@ -189,9 +207,10 @@ contains
     integer :: i, j, status
 
     do i = 1, n_probe
-      q(i) = 1.0e-5_dp * (6.0e6_dp)**(real(i - 1, dp) / real(n_probe - 1, dp))
+      q(i) = 1.0e-5_dp * (6.0e6_dp * real(src%refine, dp))**(real(i - 1, dp) &
+             / real(n_probe - 1, dp))
     end do
-    call compliance_minus_one(pair, q, fq, status)
+    call source_minus_one(src, q, fq, status)
     fq = fq - pole_value(table, q)
     best = huge(1.0_dp)
     b = 1.0_dp
@@ -233,8 +252,8 @@ contains
   ! Looks for a real zero -q0 of D with 0 < q0 < pole_threshold (Newton on the series of D
   ! from -D(0)/D'(0)); if found, stores q0 and the residue R = M(-q0)/D'(-q0) of f and
   ! returns the Taylor coefficients of f - p; else those of f.
-  subroutine remove_near_pole(pair, table, r_taylor)
-    type(material_pair), intent(in) :: pair
+  subroutine remove_near_pole(src, table, r_taylor)
+    type(kernel_source), intent(in) :: src
     type(kernel_table), intent(inout) :: table
     real(dp), intent(out) :: r_taylor(0:max_taylor_order)
     real(dp), dimension(0:long_order) :: mser, dser, dred, nred, quotient
@@ -242,9 +261,9 @@ contains
     integer :: it, status
     logical :: converged
 
-    call compliance_taylor(pair, max_taylor_order, r_taylor, status)
+    call source_taylor(src, r_taylor, status)
     table%pole_residue = 0.0_dp
-    call compliance_series(pair, long_order, mser, dser)
+    call source_series(src, mser, dser)
     if (dser(1) <= 0.0_dp .or. dser(0) <= 0.0_dp) return
     q = -dser(0) / dser(1)
     if (q < -pole_threshold) return
@@ -278,6 +297,75 @@ contains
     integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
+    type(kernel_source) :: src
+    src%pair = pair
+    call build_table(src, variant, table, status)
+  end subroutine build_kernel_table_variant
+
+  ! The same table for a validated stack of more than one layer or with a slip flag (one
+  ! bonded layer: build_kernel_table_variant, so that its table is unchanged bit for bit).
+  subroutine build_stack_kernel_table_variant(stack, variant, table, status)
+    type(layer_stack), intent(in) :: stack
+    integer, intent(in) :: variant
+    type(kernel_table), intent(out) :: table
+    integer, intent(out) :: status
+    type(kernel_source) :: src
+    src%is_stack = .true.
+    src%stack = stack
+    src%refine = 1
+    do while (real(src%refine, dp) * stack%frac(1) < 1.0_dp)
+      src%refine = 2 * src%refine
+    end do
+    status = CC_ERR_ACCURACY
+    if (src%refine > max_stack_refine) return
+    call build_table(src, variant, table, status)
+  end subroutine build_stack_kernel_table_variant
+
+  subroutine source_minus_one(src, q, f, status)
+    type(kernel_source), intent(in) :: src
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: f(size(q))
+    integer, intent(out) :: status
+    if (src%is_stack) then
+      call stack_compliance_minus_one(src%stack, q, f, status)
+    else
+      call compliance_minus_one(src%pair, q, f, status)
+    end if
+  end subroutine source_minus_one
+
+  subroutine source_series(src, mser, dser)
+    type(kernel_source), intent(in) :: src
+    real(dp), intent(out) :: mser(0:long_order), dser(0:long_order)
+    if (src%is_stack) then
+      call stack_series(src%stack, long_order, mser, dser)
+    else
+      call compliance_series(src%pair, long_order, mser, dser)
+    end if
+  end subroutine source_series
+
+  ! Taylor coefficients of f = C - 1 at q = 0, orders 0 .. max_taylor_order.
+  subroutine source_taylor(src, f, status)
+    type(kernel_source), intent(in) :: src
+    real(dp), intent(out) :: f(0:max_taylor_order)
+    integer, intent(out) :: status
+    real(dp), dimension(0:long_order) :: mser, dser, quotient
+    if (src%is_stack) then
+      call stack_series(src%stack, long_order, mser, dser)
+      quotient = series_quotient(mser, dser)
+      f = quotient(0:max_taylor_order)
+      f(0) = src%stack%c_zero - 1.0_dp          ! exact
+      status = CC_OK
+    else
+      call compliance_taylor(src%pair, max_taylor_order, f, status)
+    end if
+  end subroutine source_taylor
+
+  ! Builds the table of `src` on the grid of `variant`.
+  subroutine build_table(src, variant, table, status)
+    type(kernel_source), intent(in) :: src
+    integer, intent(in) :: variant
+    type(kernel_table), intent(out) :: table
+    integer, intent(out) :: status
 
     real(c_double), allocatable :: work_in(:), work_out(:)
     real(dp), allocatable :: q(:), r(:), fq(:)
@@ -291,6 +379,7 @@ contains
 
     status = CC_OK
     call grid_parameters(variant, n, u_table, period, stencil, stencil_left)
+    n = n * src%refine
     table%grid_variant = variant
     table%stencil = stencil
     table%stencil_left = stencil_left
@@ -303,7 +392,7 @@ contains
     table%du = du
     table%u_max = u_table
     table%n_nodes = nint(u_table / du) + stencil + 1
-    call compliance_taylor(pair, max_taylor_order, f, status)
+    call source_taylor(src, f, status)
     if (status /= CC_OK) return
     table%c_zero = 1.0_dp + f(0)
     table%half_integral = 0.5_dp * pi * f(0)
@@ -315,11 +404,13 @@ contains
     end if
     table%h = 0.0_dp
     table%h1 = 0.0_dp
-    if (pair%model == MODEL_HOMOGENEOUS) return      ! f = 0 exactly: H = H1 = 0
+    if (.not. src%is_stack) then
+      if (src%pair%model == MODEL_HOMOGENEOUS) return      ! f = 0 exactly: H = H1 = 0
+    end if
 
-    call remove_near_pole(pair, table, rt)
+    call remove_near_pole(src, table, rt)
     table%taylor = rt
-    call choose_decay_rate(pair, table, rt, period - u_table, b)
+    call choose_decay_rate(src, table, rt, period - u_table, b)
     table%decay_rate = b
     c = subtraction_coefficients(rt, b)
 
@@ -329,7 +420,7 @@ contains
       return
     end if
     q = [(real(j, dp) * dq, j = 0, n)]
-    call compliance_minus_one(pair, q, fq, status)
+    call source_minus_one(src, q, fq, status)
     if (status /= CC_OK) return
     r = fq - pole_value(table, q) - subtraction_value(c(0), c(1), c(3), c(5), b, q)
     r(0) = 0.0_dp                                     ! exact by construction
@@ -408,7 +499,7 @@ contains
                   + maxval(abs(table%h1)))
     ! Interpolation: |H(u + iy)| <= int |f| cosh(qy) dq =: M for |y| <= strip < 2, hence
     ! |H^(m)|/m! <= M / strip^m and the error is <= M (du/strip)^m max_t prod |t - k|.
-    strip = 1.5_dp
+    strip = 1.5_dp / real(src%refine, dp)
     cauchy_bound = dq * sum(abs(fq) * cosh(strip * q))
     ! max over t in [0, 1] of prod |t - k| (t = 1/2 for a centred stencil)
     lebesgue = 0.0_dp
@@ -429,7 +520,7 @@ contains
     if (table%abs_accuracy > relative_target * table%max_abs_h .or. &
         alias_h1 + rounding_h1 + interp_h1 + tail > relative_target * maxval(abs(table%h1))) &
       status = CC_ERR_ACCURACY
-  end subroutine build_kernel_table_variant
+  end subroutine build_table
 
   ! Table value at integer node index j (any sign): H even, H1 odd.
   pure real(dp) function node_value(values, j, odd) result(v)

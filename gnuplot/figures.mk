@@ -72,6 +72,30 @@ CMD_mdcurves := adhesive $(call materials,$(SOFT_RATIO)) --eta $(MD_CURVE_ETA) \
   --lambda $(subst $(space),$(comma),$(MD_CURVE_LAMBDAS)) --a-bar $(MD_CURVE_A_BAR)
 CMD_mdcurves_jkr := adhesive $(call materials,$(SOFT_RATIO)) --eta $(MD_CURVE_ETA) --a-bar $(MD_CURVE_A_BAR)
 
+# Stacks of layers (THEORY.md section 12): a three-layer stack against its one-layer
+# approximations (the top layer alone; thickness-weighted E and nu), and one film bonded
+# versus sliding on its substrate. Every curve is normalized by its own top layer's E*.
+stack_layers := $(foreach l,$(STACK_LAYERS),--layer $(l))
+STACK_TOP := $(shell echo '$(firstword $(STACK_LAYERS))' | awk -F, '{ print $$2 "," $$3 }')
+STACK_AVG := $(shell echo '$(STACK_LAYERS)' | awk '{ for (i = 1; i <= NF; i++) { split($$i, a, ","); \
+  h += a[1]; e += a[1] * a[2]; n += a[1] * a[3] } printf "%.10g,%.10g", e / h, n / h }')
+# E*_avg / E*_top: rescales the average model's E_eq and eta to the top layer's units.
+STACK_AVG_SCALE := $(shell echo '$(STACK_TOP) $(STACK_AVG)' | awk '{ split($$1, t, ","); split($$2, a, ","); \
+  printf "%.10g", a[1] / (1 - a[2] ^ 2) / (t[1] / (1 - t[2] ^ 2)) }')
+STACK_MODELS := stack top avg
+stack_materials = $(if $(filter stack,$(1)),$(stack_layers),--film $(if $(filter top,$(1)),$(STACK_TOP),$(STACK_AVG))) \
+  --substrate $(STACK_SUBSTRATE)
+$(foreach m,$(STACK_MODELS),$(eval \
+  CMD_stackreduced_$(m) := reduced $(call stack_materials,$(m)) --a-over-t $(STACK_A_OVER_T)))
+$(foreach m,$(STACK_MODELS),$(eval \
+  CMD_stackpulloff_$(m) := pulloff $(call stack_materials,$(m)) --eta $(STACK_ETA)))
+SLIP_MODELS := bonded sliding
+slip_materials = --layer 1,$(SLIP_FILM)$(if $(filter sliding,$(1)),$(comma)slip) --substrate $(SLIP_SUBSTRATE)
+$(foreach m,$(SLIP_MODELS),$(eval \
+  CMD_slipreduced_$(m) := reduced $(call slip_materials,$(m)) --a-over-t $(STACK_A_OVER_T)))
+$(foreach m,$(SLIP_MODELS),$(eval \
+  CMD_slippulloff_$(m) := pulloff $(call slip_materials,$(m)) --eta $(STACK_ETA)))
+
 data = $(DATA_DIR)/$(1).tsv
 PULLOFF_FILES := $(foreach r,$(PULLOFF_RATIOS),$(call data,pulloff_E$(r)))
 
@@ -122,7 +146,16 @@ DATA_fig13 = $(call data,mdcurves) $(call data,mdcurves_jkr)
 GP_fig13   = $(GP_common); ratio=$(SOFT_RATIO); eta=$(MD_CURVE_ETA); lambdas='$(MD_CURVE_LAMBDAS)'; \
              md='$(call data,mdcurves)'; jkr='$(call data,mdcurves_jkr)'
 
-FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig13 fig_md_lambda
+DATA_fig_stack = $(foreach m,$(STACK_MODELS),$(call data,stackreduced_$(m)) $(call data,stackpulloff_$(m))) \
+                 $(foreach m,$(SLIP_MODELS),$(call data,slipreduced_$(m)) $(call data,slippulloff_$(m)))
+GP_fig_stack   = $(GP_common); layers='$(STACK_LAYERS)'; base='$(STACK_SUBSTRATE)'; \
+                 film='$(SLIP_FILM)'; film_base='$(SLIP_SUBSTRATE)'; avg='$(STACK_AVG)'; avg_scale=$(STACK_AVG_SCALE); \
+                 reduced='$(foreach m,$(STACK_MODELS),$(call data,stackreduced_$(m)))'; \
+                 pulloff='$(foreach m,$(STACK_MODELS),$(call data,stackpulloff_$(m)))'; \
+                 slip_reduced='$(foreach m,$(SLIP_MODELS),$(call data,slipreduced_$(m)))'; \
+                 slip_pulloff='$(foreach m,$(SLIP_MODELS),$(call data,slippulloff_$(m)))'
+
+FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig13 fig_md_lambda fig_stack
 FIGURE_FILES := $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf)
 
 # Helper scripts loaded by the figure scripts.
@@ -145,7 +178,7 @@ figures: build
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
 
 figures-only: $(FIGURE_FILES)
-	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png and .pdf   data: $(DATA_DIR)/*.tsv"
+	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png, fig_stack.png and .pdf   data: $(DATA_DIR)/*.tsv"
 	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
 
 figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
@@ -190,5 +223,7 @@ DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_po
   $(foreach r,$(SPRING_RATIOS),spring_E$(r)) $(foreach i,$(INDENTER_NAMES),indenter_I$(i)) \
   $(foreach s,$(SHAPE_LIST),shape_$(call shape_name,$(s))) \
   $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous \
-  mdcurves mdcurves_jkr
+  mdcurves mdcurves_jkr \
+  $(foreach m,$(STACK_MODELS),stackreduced_$(m) stackpulloff_$(m)) \
+  $(foreach m,$(SLIP_MODELS),slipreduced_$(m) slippulloff_$(m))
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):

@@ -176,13 +176,10 @@ int cc_stack_add_layer(cc_stack* stack, double thickness, double youngs_modulus,
                        int slip_below) {
   return guarded([&] {
     require(stack, "cc_stack_add_layer", "stack");
-    if (slip_below != 0) {
-      // THEORY.md section 12: a sliding interface needs its own transfer matrix, not written yet.
-      throw InputError("stack: layer " + std::to_string(stack->layers.size() + 1) +
-                       ": a sliding interface below a layer is not supported; only bonded layers (slip_below = 0)");
-    }
+    // THEORY.md section 12: layers top first, slip_below != 0 a frictionless interface below.
     std::vector<coatcontact::Layer> layers = stack->layers;
-    layers.push_back(coatcontact::Layer{thickness, material(youngs_modulus, poisson_ratio)});
+    layers.push_back(coatcontact::Layer{thickness, material(youngs_modulus, poisson_ratio),
+                                        slip_below != 0});
     coatcontact::Stack(layers, rigid_base(), stack->indenter);  // the library's checks
     stack->layers = std::move(layers);
   });

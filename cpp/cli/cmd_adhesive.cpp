@@ -37,9 +37,10 @@ std::string short_num(double v) {
 }
 
 // The options every subcommand shares.
-std::vector<OptionSpec> material_options() {
+std::vector<OptionSpec> material_options(bool si = false) {
   return {
-      {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", true},
+      {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", false},
+      layer_option(si),
       {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true},
       indenter_option(),
       {"--tol", "T",
@@ -274,16 +275,16 @@ int run_pulloff(const Args& raw) {
 
 int run_sphere(const Args& raw) {
   return run_guarded("sphere", [&]() {
-    auto spec = material_options();
+    auto spec = material_options(true);
     spec.insert(spec.begin(), {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", true});
-    spec.insert(spec.begin() + 1, {"--thickness", "t", "film thickness (m, or mm um nm)", true});
-    spec.insert(spec.begin() + 4, {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true});
-    spec.insert(spec.begin() + 5, {"--points", "N",
+    spec.insert(spec.begin() + 1, {"--thickness", "t", "film thickness (m, or mm um nm); not with --layer", false});
+    spec.insert(spec.begin() + 5, {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true});
+    spec.insert(spec.begin() + 6, {"--points", "N",
                                    "number of contact radii, log-spaced over a_bar from 0.01 min(1,r) up to 10 max(1,r), "
                                    "r = (E1*/E0*)^(1/3), ending before a > 0.1 R, delta > t or F/(pi a^2) > 0.1 E1* "
                                    "(default 400)",
                                    false});
-    spec.insert(spec.begin() + 6, {"--contact-radius", "LIST",
+    spec.insert(spec.begin() + 7, {"--contact-radius", "LIST",
                                    "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
                                    false});
     for (const auto& option : cohesive_options()) spec.push_back(option);
@@ -300,8 +301,11 @@ int run_sphere(const Args& raw) {
       return 0;
     }
     const double radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
-    const double thickness = parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
+    // With --layer the layers carry the lengths and T = sum h is the unit (THEORY.md section 12).
+    const double film_thickness =
+        args.has("--layer") ? 0.0 : parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
     const Stack stack = parse_stack(args);
+    const double thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
     const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
     const double tol = parse_tolerance(args);
     std::size_t points = 400;

@@ -138,8 +138,9 @@ const std::vector<OptionSpec> kSpec = {
      "power:N,R (z = r^N/(N R^(N-1))), blunted-cone:R,BETA (spherical cap tangent to the cone), "
      "profile:FILE (columns r z, '# units:' line allowed)",
      true},
-    {"--thickness", "t", "film thickness (m, or with a unit: mm um nm)", true},
-    {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", true},
+    {"--thickness", "t", "film thickness (m, or with a unit: mm um nm); not with --layer", false},
+    {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", false},
+    layer_option(true),
     {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true},
     indenter_option(),
     {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true},
@@ -168,8 +169,11 @@ int run_contact(const Args& raw) {
       return kExitSuccess;
     }
     const auto started = std::chrono::steady_clock::now();
-    const double thickness = parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
+    // With --layer the layers carry the lengths and T = sum h is the unit (THEORY.md section 12).
+    const double film_thickness =
+        args.has("--layer") ? 0.0 : parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
     const Stack stack = parse_stack(args);
+    const double thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
     const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
     double spring = 0.0;
     if (const auto text = args.get("--spring")) {

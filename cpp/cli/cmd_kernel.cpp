@@ -14,7 +14,8 @@ namespace coatcontact::cli {
 namespace {
 
 const std::vector<OptionSpec> kSpec = {
-    {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", true},
+    {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", false},
+    layer_option(false),
     {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
     indenter_option(),
     {"--q", "LIST", "q = k t values for C(q): v1,v2,... or MIN:MAX:N (log-spaced)", false},
@@ -34,13 +35,15 @@ int run_kernel(const Args& args) {
     const Arguments arguments(args, kSpec);
     if (arguments.help()) {
       std::cout << usage("kernel",
-                         "--film E1,nu1 --substrate E0,nu0|rigid [--q LIST] "
+                         "(--film E1,nu1 | --layer h,E,nu[,slip] ...) --substrate E0,nu0|rigid [--q LIST] "
                          "[--u LIST] [--output FILE]",
                          "Surface compliance C(q) of a film (thickness t) bonded to a substrate,\n"
                          "u_z(k) = 2 C(kt) p(k) / (E1* k), with q = k t; and the kernel\n"
                          "H(u) = int_0^inf [C(q) - 1] cos(q u) dq of the integral equation, u = r/t.\n"
                          "Prints 'q C' rows (--q) and/or 'u H' rows (--u); with both, two blocks\n"
-                         "separated by two blank lines. Without either, C(q) at q = 0.001:100:26.",
+                         "separated by two blank lines. Without either, C(q) at q = 0.001:100:26.\n"
+                         "With --layer (repeated, top first): a stack, q = k T and u = r/T with T the\n"
+                         "total thickness, C normalized by the top layer's E* (THEORY.md section 12).",
                          kSpec);
       return kExitSuccess;
     }
@@ -74,7 +77,8 @@ int run_kernel(const Args& args) {
     std::ostream& out = output.stream();
     if (!qs.empty()) {
       auto items = header;
-      items.push_back({"quantity", "surface compliance C(q), q = k t"});
+      items.push_back({"quantity", stack.is_multilayer() ? "surface compliance C(q), q = k T"
+                                                         : "surface compliance C(q), q = k t"});
       const std::vector<std::string> columns = {"q", "C"};
       write_header(out, items, columns);
       for (std::size_t i = 0; i < qs.size(); ++i) write_row(out, {qs[i], cs[i]}, columns);
@@ -82,7 +86,9 @@ int run_kernel(const Args& args) {
     if (!us.empty()) {
       if (!qs.empty()) out << "\n\n";
       auto items = header;
-      items.push_back({"quantity", "kernel H(u) = int_0^inf [C(q)-1] cos(qu) dq, u = r/t"});
+      items.push_back({"quantity", stack.is_multilayer()
+                                       ? "kernel H(u) = int_0^inf [C(q)-1] cos(qu) dq, u = r/T"
+                                       : "kernel H(u) = int_0^inf [C(q)-1] cos(qu) dq, u = r/t"});
       const std::vector<std::string> columns = {"u", "H"};
       write_header(out, items, columns);
       for (std::size_t i = 0; i < us.size(); ++i) write_row(out, {us[i], hs[i]}, columns);

@@ -14,7 +14,8 @@ namespace coatcontact::cli {
 namespace {
 
 const std::vector<OptionSpec> kSpec = {
-    {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", true},
+    {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", false},
+    layer_option(false),
     {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
     indenter_option(),
     {"--a-over-t", "LIST", "contact radius over film thickness: v1,v2,... or MIN:MAX:N (log-spaced)", true},

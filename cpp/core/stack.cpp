@@ -40,16 +40,25 @@ Stack Stack::film_on(const Material& film, const Substrate& substrate, const Ind
 
 Stack::Stack(std::vector<Layer> layers, const Substrate& substrate, const Indenter& indenter)
     : layers_(std::move(layers)), substrate_(substrate), indenter_(indenter) {
-  // The kernel evaluates one layer today (THEORY.md section 3); section 12 extends it.
-  if (layers_.size() != 1) {
+  // THEORY.md section 12: 1 .. 1000 layers (the kernel's limit), top first.
+  if (layers_.empty() || layers_.size() > max_layers) {
     throw InputError("stack: " + std::to_string(layers_.size()) +
-                     " layers given; exactly one layer (the film) is supported");
+                     " layers given; between 1 and " + std::to_string(max_layers) +
+                     " are supported");
   }
-  validate(layers_.front().material, "film");
-  const double h = layers_.front().thickness;
-  if (!(h > 0.0) || !std::isfinite(h)) {
-    throw InputError("film: thickness " + detail::full_precision(h) +
-                     " is not allowed; it must be finite and > 0");
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    // One layer keeps the historical name "film" in messages.
+    const std::string what =
+        layers_.size() == 1 ? std::string("film") : "layer " + std::to_string(i + 1);
+    validate(layers_[i].material, what);
+    const double h = layers_[i].thickness;
+    if (!(h > 0.0) || !std::isfinite(h)) {
+      throw InputError(what + ": thickness " + detail::full_precision(h) +
+                       " is not allowed; it must be finite and > 0");
+    }
+  }
+  if (!std::isfinite(total_thickness())) {
+    throw InputError("stack: the total thickness overflows");
   }
   validate(substrate_);
   validate(indenter_);
@@ -69,6 +78,10 @@ double Stack::total_thickness() const {
   double sum = 0.0;
   for (const Layer& layer : layers_) sum += layer.thickness;
   return sum;
+}
+
+bool Stack::is_multilayer() const {
+  return layers_.size() > 1 || layers_.front().slip_below;
 }
 
 double Stack::modulus_ratio() const {

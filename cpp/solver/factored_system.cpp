@@ -277,8 +277,20 @@ class RowBuilder {
 
 }  // namespace
 
+// The panels' lengths are set for H analytic in |Im u| < 2 (one film); a stack's H is
+// analytic only in |Im u| < 2 h_top/T (THEORY.md section 12), so its edge singularities of
+// gamma are nearer the axis and the panels shrink with the strip (unchanged for one film).
+static Discretization scaled_to_strip(const KernelSource& kernel, const Discretization& disc) {
+  const double scale = kernel.analytic_half_width() / 2.0;
+  if (!(scale < 1.0)) return disc;
+  Discretization scaled = disc;
+  scaled.edge_panel *= scale;
+  scaled.single_panel_limit *= scale;
+  return scaled;
+}
+
 FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discretization& disc)
-    : a_(a), kernel_(&kernel), disc_(disc), layout_(make_layout(a, disc)) {
+    : a_(a), kernel_(&kernel), disc_(disc), layout_(make_layout(a, scaled_to_strip(kernel, disc))) {
   const std::size_t n = layout_.x.size();
   const lapack_int nn = static_cast<lapack_int>(n);
   RowBuilder builder(kernel, layout_, disc);

@@ -7,7 +7,11 @@
 namespace coatcontact::detail {
 
 TableKernel::TableKernel(const Stack& stack, int grid_variant)
-    : table_(stack, grid_variant), info_(table_.info()) {}
+    : table_(stack, grid_variant), info_(table_.info()) {
+  if (stack.is_multilayer()) {
+    half_width_ = 2.0 * stack.layers().front().thickness / stack.total_thickness();
+  }
+}
 
 void TableKernel::evaluate(std::size_t n, const double* u, double* h) const {
   // Chunks keep the C interface's int lengths small; H1 goes to a per-thread buffer (a null

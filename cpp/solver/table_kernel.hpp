@@ -16,13 +16,15 @@ class TableKernel : public KernelSource {
   explicit TableKernel(const Stack& stack, int grid_variant = 0);
 
   void evaluate(std::size_t n, const double* u, double* h) const override;
-  // C - 1 ~ q² e^{-2q}: H is analytic in |Im u| < 2 (THEORY.md section 4).
-  double analytic_half_width() const override { return 2.0; }
+  // C - 1 ~ q² e^{-2q}: H is analytic in |Im u| < 2 (THEORY.md section 4); a stack's
+  // C - 1 ~ exp(-2 q h_top/T): |Im u| < 2 h_top/T (section 12).
+  double analytic_half_width() const override { return half_width_; }
   double absolute_accuracy() const override { return info_.abs_accuracy; }
 
  private:
   KernelTable table_;
   KernelTableInfo info_;
+  double half_width_ = 2.0;
 };
 
 }  // namespace coatcontact::detail

@@ -435,7 +435,9 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::vector<Opt
     const std::string name = arg.substr(0, equals);
     const OptionSpec* option = arg.rfind("--", 0) == 0 ? find_option(spec, name) : nullptr;
     if (option == nullptr) throw InputError("unknown option " + option_text(name) + " (see --help)");
-    if (values_.count(name) != 0) throw InputError("option " + option_text(name) + " is given more than once");
+    if (values_.count(name) != 0 && !option->repeatable) {
+      throw InputError("option " + option_text(name) + " is given more than once");
+    }
     if (option->value_name.empty()) {
       if (equals != std::string::npos) throw InputError("option " + option_text(name) + " takes no value");
       values_[name] = "";
@@ -452,7 +454,8 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::vector<Opt
     if (trim_blanks(value).empty()) {
       throw InputError("option " + name + " has an empty value; expected " + option->value_name);
     }
-    values_[name] = value;
+    if (values_.count(name) == 0) values_[name] = value;
+    repeated_[name].push_back(value);
   }
   for (const auto& option : spec) {
     if (option.required && values_.count(option.name) == 0) {
@@ -476,18 +479,87 @@ std::string Arguments::require(const std::string& name) const {
   return it->second;
 }
 
+std::vector<std::string> Arguments::get_all(const std::string& name) const {
+  const auto it = repeated_.find(name);
+  return it == repeated_.end() ? std::vector<std::string>{} : it->second;
+}
+
 Indenter parse_indenter(const std::string& text, const std::string& option) {
   const Substrate body = parse_substrate(text, option);  // the same "E,nu" | "rigid" syntax
   return Indenter{body.rigid, body.material};
 }
 
+Layer parse_layer(const std::string& text, const std::string& option) {
+  const std::string_view whole = trim_blanks(text);
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = whole.find(',', start);
+    items.emplace_back(trim_blanks(whole.substr(start, comma == std::string_view::npos ? comma : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  const std::string expected = "; expected h,E,nu or h,E,nu,slip (thickness, Young's modulus, Poisson ratio)";
+  if (items.size() < 3 || items.size() > 4) fail(option, quote(whole) + " has " + std::to_string(items.size()) + " items" + expected);
+  Layer layer;
+  layer.thickness = parse_quantity(items[0], Quantity::kLength, option);
+  if (!(layer.thickness > 0.0)) {
+    fail(option, "thickness " + quote(items[0]) + " is not allowed; it must be > 0");
+  }
+  layer.material = parse_material(items[1] + "," + items[2], option);
+  if (items.size() == 4) {
+    if (items[3] != "slip") fail(option, "fourth item " + quote(items[3]) + " is not 'slip'" + expected);
+    layer.slip_below = true;
+  }
+  return layer;
+}
+
+OptionSpec layer_option(bool si) {
+  return {"--layer", "h,E,nu[,slip]",
+          std::string("a layer, top first, repeated (instead of --film; THEORY.md section 12): ") +
+              (si ? "thickness (m, or mm um nm)" : "relative thickness (q, u, a/T, eta use the total T)") +
+              ", Young's modulus, Poisson ratio; ',slip' makes the interface below it frictionless",
+          false, true};
+}
+
 Stack parse_stack(const Arguments& args) {
   // In the order of the synopsis, so the first bad option is the one named.
-  const Material film = parse_material(args.require("--film"), "--film");
+  const std::vector<std::string> layer_texts = args.get_all("--layer");
+  if (!layer_texts.empty() && args.has("--film")) {
+    fail("--layer", "cannot be combined with --film (--film E1,nu1 is the one-layer spelling)");
+  }
+  if (layer_texts.size() > Stack::max_layers) {
+    fail("--layer", std::to_string(layer_texts.size()) + " layers given; at most " +
+                        std::to_string(Stack::max_layers) + " are supported");
+  }
+  std::vector<Layer> layers;
+  if (layer_texts.empty()) {
+    if (!args.has("--film")) {
+      throw InputError("missing required option --film E1,nu1 (or --layer h,E,nu[,slip], repeated) (see --help)");
+    }
+    layers.push_back(Layer{1.0, parse_material(args.require("--film"), "--film")});
+  } else {
+    for (const std::string& text : layer_texts) layers.push_back(parse_layer(text, "--layer"));
+  }
   const Substrate substrate = parse_substrate(args.require("--substrate"), "--substrate");
   const auto indenter_text = args.get("--indenter");
   const Indenter indenter = indenter_text ? parse_indenter(*indenter_text, "--indenter") : Indenter{};
-  return Stack::film_on(film, substrate, indenter);
+  try {
+    return Stack(layers, substrate, indenter);
+  } catch (const InputError& e) {
+    if (layer_texts.empty()) throw;
+    throw InputError(std::string("--layer: ") + e.what());
+  }
+}
+
+double coating_thickness(const Arguments& args, const Stack& stack) {
+  if (args.has("--layer")) {
+    if (args.has("--thickness")) {
+      fail("--thickness", "cannot be combined with --layer (the layers' thicknesses are lengths; T is their sum)");
+    }
+    return stack.total_thickness();
+  }
+  return parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
 }
 
 OptionSpec indenter_option() {
@@ -530,9 +602,28 @@ std::string format_parameter(double value, const std::string& name) {
 void add_material_header(std::vector<std::pair<std::string, std::string>>& items, const Stack& stack) {
   const Material& film = stack.top();
   const Substrate& substrate = stack.substrate();
-  items.emplace_back("film E1 [Pa]", format_parameter(film.youngs_modulus, "film E1"));
-  items.emplace_back("film nu1", format_parameter(film.poisson_ratio, "film nu1"));
-  items.emplace_back("film E1* [Pa]", format_parameter(film.reduced_modulus(), "film E1*"));
+  if (stack.is_multilayer()) {
+    // THEORY.md section 12: lengths by the total thickness T, moduli by the top layer's E*.
+    const auto& layers = stack.layers();
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+      const Layer& l = layers[i];
+      items.emplace_back("layer " + std::to_string(i + 1) + " (h, E [Pa], nu, E* [Pa], interface below)",
+                         format_parameter(l.thickness, "layer h") + ", " +
+                             format_parameter(l.material.youngs_modulus, "layer E") + ", " +
+                             format_parameter(l.material.poisson_ratio, "layer nu") + ", " +
+                             format_parameter(l.material.reduced_modulus(), "layer E*") + ", " +
+                             (l.slip_below ? "sliding" : "bonded"));
+    }
+    items.emplace_back("total thickness T (the unit of q, u, a/T and eta; THEORY.md section 12)",
+                       format_parameter(stack.total_thickness(), "T"));
+    items.emplace_back("reference modulus [Pa] (top layer E*" +
+                           std::string(stack.indenter().rigid ? ")" : ", E_r with the indenter)"),
+                       format_parameter(stack.reference_modulus(), "reference modulus"));
+  } else {
+    items.emplace_back("film E1 [Pa]", format_parameter(film.youngs_modulus, "film E1"));
+    items.emplace_back("film nu1", format_parameter(film.poisson_ratio, "film nu1"));
+    items.emplace_back("film E1* [Pa]", format_parameter(film.reduced_modulus(), "film E1*"));
+  }
   if (substrate.rigid) {
     items.emplace_back("substrate", "rigid");
   } else {

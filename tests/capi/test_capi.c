@@ -310,9 +310,21 @@ static void test_errors(void) {
   check_error("stack without substrate", cc_reduced_solver_create(bare, &new_solver), CC_INPUT_ERROR, "no substrate");
   check_error("reference modulus of an incomplete stack", cc_stack_reference_modulus(bare, &value), CC_INPUT_ERROR, "substrate");
 
-  /* Unsupported features: a second layer, a sliding interface. */
-  check_error("second layer", cc_stack_add_layer(stack, 1.0, 2.0, 0.3, 0), CC_INPUT_ERROR, "exactly one layer");
-  check_error("sliding interface", cc_stack_add_layer(bare, 1.0, 1.0, 0.3, 1), CC_INPUT_ERROR, "bonded");
+  /* Several layers and a sliding interface (THEORY.md section 12): the reference modulus is
+   * the top layer's E*; a bad second layer is named and leaves the stack unchanged. */
+  {
+    cc_stack *multi = NULL;
+    double e_top = 0.0;
+    check("new multilayer stack", cc_stack_create(&multi) == CC_OK);
+    check("top layer", cc_stack_add_layer(multi, 1.0, 2.0, 0.3, 0) == CC_OK);
+    check("sliding second layer", cc_stack_add_layer(multi, 2.0, 1.0, 0.45, 1) == CC_OK);
+    check_error("zero thickness of layer 3", cc_stack_add_layer(multi, 0.0, 1.0, 0.3, 0),
+                CC_INPUT_ERROR, "layer 3");
+    check("substrate of the stack", cc_stack_set_substrate(multi, 100.0, 0.2) == CC_OK);
+    check("reference modulus of a stack = top layer E*",
+          cc_stack_reference_modulus(multi, &e_top) == CC_OK && close_to(e_top, 2.0 / 0.91, 1e-15));
+    cc_stack_destroy(multi);
+  }
   /* An elastic indenter makes E_r (1/E_r = 1/E1* + 1/E2*, THEORY.md section 9) the reference. */
   check("elastic indenter", cc_stack_set_indenter(stack, 1.0, 0.3) == CC_OK);
   {

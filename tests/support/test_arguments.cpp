@@ -37,6 +37,14 @@ void test_values() {
   check::throws<InputError>([&] { (void)(a.require("--shift")); }, "--shift");
   check::that(a.positionals().empty(), "a.positionals().empty()");
 
+  // A repeatable option (--layer, THEORY.md section 12) keeps every value in order.
+  const std::vector<OptionSpec> layered = {{"--layer", "h,E,nu", "a layer", false, true}};
+  const Arguments l({"--layer", "1,2,0.3", "--layer=2,1,0.45"}, layered);
+  check::that(l.get_all("--layer") == std::vector<std::string>{"1,2,0.3", "2,1,0.45"} &&
+                  l.get("--layer") == std::optional<std::string>("1,2,0.3"),
+              "repeatable --layer keeps both values in order");
+  check::that(a.get_all("--film") == std::vector<std::string>{"1,0.3"}, "get_all of a single option");
+
   // Negative numbers are values, also with '=' and with a leading '.'.
   const Arguments negative = parse({"--film", "1,0.3", "--shift", "-2.5", "--q", "-.5,1"});
   check::that(negative.get("--shift") == std::optional<std::string>("-2.5"),

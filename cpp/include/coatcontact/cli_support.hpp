@@ -71,6 +71,7 @@ struct OptionSpec {
   std::string value_name;   // "E1,nu1" (empty: a flag without a value)
   std::string help;         // one line
   bool required = false;
+  bool repeatable = false;  // may be given several times (--layer); get_all() lists them
 };
 
 // Parses `--name value`, `--name=value`, flags and positionals against a spec.
@@ -87,18 +88,32 @@ class Arguments {
   bool has(const std::string& name) const;
   std::optional<std::string> get(const std::string& name) const;
   std::string require(const std::string& name) const;  // InputError if absent
+  // Every value of a repeatable option, in command-line order (empty if absent).
+  std::vector<std::string> get_all(const std::string& name) const;
   const std::vector<std::string>& positionals() const { return positionals_; }
 
  private:
   bool help_ = false;
-  std::map<std::string, std::string> values_;
+  std::map<std::string, std::string> values_;  // a repeatable option: its first value
+  std::map<std::string, std::vector<std::string>> repeated_;
   std::vector<std::string> positionals_;
 };
 
 // Usage text of a subcommand: synopsis line, description, then one line per option.
-// The stack of --film E1,nu1 and --substrate E0,nu0|rigid (both required) and the optional
-// --indenter E2,nu2|rigid (default rigid; THEORY.md section 9).
+// The stack of --film E1,nu1 (one layer) or repeated --layer h,E,nu[,slip] (top first,
+// THEORY.md section 12; not both), --substrate E0,nu0|rigid (required) and the optional
+// --indenter E2,nu2|rigid (default rigid; THEORY.md section 9). One of --film and --layer is
+// required (their specs say required = false; this checks it).
 Stack parse_stack(const Arguments& args);
+// "h,E,nu[,slip]": thickness (a number or a length with a unit; only ratios enter the
+// normalized commands), Young's modulus, Poisson ratio, and an optional "slip" (the
+// interface below the layer is frictionless).
+Layer parse_layer(const std::string& text, const std::string& option);
+// The --layer option line of a command's spec (`si`: thicknesses are lengths).
+OptionSpec layer_option(bool si);
+// The film thickness of an SI command: --thickness with --film, the total thickness of the
+// layers with --layer (then --thickness is refused: the layers carry the lengths).
+double coating_thickness(const Arguments& args, const Stack& stack);
 // The --indenter option line of a command's spec.
 OptionSpec indenter_option();
 

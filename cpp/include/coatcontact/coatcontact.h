@@ -47,9 +47,10 @@ const char *cc_last_error_message(void);
 /* ---- stack: the elastic system (THEORY.md sections 1, 9, 12) ----------------------------
  *
  * Layers are added top first; thicknesses are in any unit, only their ratios enter (the
- * contact and the fit take the coating's total thickness in m). Supported today: one layer,
- * bonded to the base (slip_below = 0), and a rigid or elastic indenter; anything else is CC_INPUT_ERROR
- * (the layer list is ready for the multilayer kernel of section 12). Each setter checks its
+ * contact and the fit take the coating's total thickness T in m). 1 to 1000 layers, each
+ * bonded (slip_below = 0) or sliding without friction on what lies below (section 12), and a
+ * rigid or elastic indenter. Normalization (section 12): lengths by the TOTAL thickness T
+ * (q = k T, a/T, eta), moduli by the TOP layer's E*. Each setter checks its
  * values at once with the library's rules and leaves the stack unchanged on failure; the
  * whole stack is checked again when used (a layer and a substrate are required). A new
  * stack has no layer, no substrate and a rigid indenter. */
@@ -57,7 +58,8 @@ typedef struct cc_stack cc_stack;
 
 int cc_stack_create(cc_stack **stack);
 void cc_stack_destroy(cc_stack *stack);
-/* slip_below != 0: the interface below this layer slides without friction (not supported). */
+/* slip_below != 0: the interface below this layer slides without friction (below the last
+ * layer on a rigid base: a frictionless rigid base, u_z = 0 and s_rz = 0). */
 int cc_stack_add_layer(cc_stack *stack, double thickness, double youngs_modulus,
                        double poisson_ratio, int slip_below);
 int cc_stack_set_substrate(cc_stack *stack, double youngs_modulus, double poisson_ratio);

@@ -1,4 +1,5 @@
-// C++ view of the layered-substrate kernel (THEORY.md sections 3-4): surface compliance C(q),
+// C++ view of the layered-substrate kernel (THEORY.md sections 3-4, 12 for stacks: q = k T and
+// u = r/T with T the total thickness, C normalized by the top layer's E*): surface compliance C(q),
 // and the table of H(u) = int_0^inf [C(q)-1] cos(qu) dq and H1(u) = int_0^u H for one
 // Stack. Thin header-only wrapper over the C interface cc_kernel.h (Fortran library);
 // status codes become exceptions: bad constants -> InputError, numerical -> NumericalError.
@@ -46,6 +47,8 @@ inline void check_status(int status, const Stack& stack, const std::string& cont
                        full_precision(substrate.material.poisson_ratio) +
                        " is not allowed (must be in (-1, 0.5])");
     case CC_ERR_ARGUMENT:
+    case CC_ERR_THICKNESS:
+    case CC_ERR_LAYER_COUNT:
       throw InputError(context + ": " + cc_status_message(status));
     default:
       throw NumericalError(context + ": " + cc_status_message(status));
@@ -64,6 +67,52 @@ inline FilmPair film_pair(const Stack& stack) {
           stack.substrate().rigid ? 1 : 0};
 }
 
+inline int checked_size(std::size_t n, const std::string& context) {
+  if (n > static_cast<std::size_t>(1) << 30) throw InputError(context + ": array too long");
+  return static_cast<int>(n);
+}
+
+// The stack kernel's arrays (THEORY.md section 12), top first.
+struct StackArrays {
+  std::vector<double> thickness, youngs, poisson;
+  std::vector<int> slip;
+  int rigid;
+  double e_base, nu_base;
+  int n() const { return static_cast<int>(thickness.size()); }
+};
+inline StackArrays stack_arrays(const Stack& stack) {
+  StackArrays a;
+  for (const Layer& layer : stack.layers()) {
+    a.thickness.push_back(layer.thickness);
+    a.youngs.push_back(layer.material.youngs_modulus);
+    a.poisson.push_back(layer.material.poisson_ratio);
+    a.slip.push_back(layer.slip_below ? 1 : 0);
+  }
+  a.rigid = stack.substrate().rigid ? 1 : 0;
+  a.e_base = stack.substrate().material.youngs_modulus;
+  a.nu_base = stack.substrate().material.poisson_ratio;
+  return a;
+}
+
+// C or C - 1 at q: section 3's closed form for one bonded layer (bit for bit today's
+// numbers), section 12's recursion otherwise.
+inline int compliance_values(const Stack& stack, const std::vector<double>& q, double* out,
+                             bool minus_one, const std::string& context) {
+  const int n = checked_size(q.size(), context);
+  if (stack.is_multilayer()) {
+    const StackArrays a = stack_arrays(stack);
+    return minus_one ? cc_stack_compliance_minus_one(a.n(), a.thickness.data(), a.youngs.data(),
+                                                     a.poisson.data(), a.slip.data(), a.rigid,
+                                                     a.e_base, a.nu_base, n, q.data(), out)
+                     : cc_stack_compliance(a.n(), a.thickness.data(), a.youngs.data(),
+                                           a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
+                                           a.nu_base, n, q.data(), out);
+  }
+  const auto p = film_pair(stack);
+  return minus_one ? cc_compliance_minus_one(p.e1, p.nu1, p.e0, p.nu0, p.rigid, n, q.data(), out)
+                   : cc_compliance(p.e1, p.nu1, p.e0, p.nu0, p.rigid, n, q.data(), out);
+}
+
 // 1/(1 + rho): C' - 1 = (C - 1)/(1 + rho) (THEORY.md section 9); exactly 1 when rigid.
 inline double indenter_scale(const Stack& stack) { return 1.0 / (1.0 + stack.indenter_ratio()); }
 
@@ -73,21 +122,15 @@ inline void scale_values(std::vector<double>& values, double scale) {
   }
 }
 
-inline int checked_size(std::size_t n, const std::string& context) {
-  if (n > static_cast<std::size_t>(1) << 30) throw InputError(context + ": array too long");
-  return static_cast<int>(n);
-}
 
 }  // namespace kernel_detail
 
 // C(q) at each q >= 0 (InputError for negative or non-finite q or bad constants).
 inline std::vector<double> compliance(const Stack& stack, const std::vector<double>& q) {
   std::vector<double> c(q.size());
-  const auto p = kernel_detail::film_pair(stack);
   kernel_detail::check_status(
-      cc_compliance(p.e1, p.nu1, p.e0, p.nu0, p.rigid,
-                    kernel_detail::checked_size(q.size(), "compliance"), q.data(), c.data()),
-      stack, "compliance");
+      kernel_detail::compliance_values(stack, q, c.data(), false, "compliance"), stack,
+      "compliance");
   // C' = (C + rho)/(1 + rho), written as 1 + (C - 1)/(1 + rho) only when rho != 0.
   const double rho = stack.indenter_ratio();
   if (rho != 0.0) {
@@ -103,12 +146,9 @@ inline double compliance(const Stack& stack, double q) {
 // C(q) - 1, accurate where C is close to 1.
 inline std::vector<double> compliance_minus_one(const Stack& stack, const std::vector<double>& q) {
   std::vector<double> c(q.size());
-  const auto p = kernel_detail::film_pair(stack);
   kernel_detail::check_status(
-      cc_compliance_minus_one(p.e1, p.nu1, p.e0, p.nu0, p.rigid,
-                              kernel_detail::checked_size(q.size(), "compliance_minus_one"),
-                              q.data(), c.data()),
-      stack, "compliance_minus_one");
+      kernel_detail::compliance_values(stack, q, c.data(), true, "compliance_minus_one"), stack,
+      "compliance_minus_one");
   kernel_detail::scale_values(c, kernel_detail::indenter_scale(stack));
   return c;
 }
@@ -116,6 +156,10 @@ inline std::vector<double> compliance_minus_one(const Stack& stack, const std::v
 // Taylor coefficients f_k = f^(k)(0)/k!, k = 0..order (<= 15), of f = C - 1.
 inline std::vector<double> compliance_taylor(const Stack& stack, int order) {
   if (order < 0 || order > 15) throw InputError("compliance_taylor: order must be in [0, 15]");
+  if (stack.is_multilayer()) {
+    throw InputError("compliance_taylor: only for one bonded film (a stack's table computes its "
+                     "own series, THEORY.md section 12)");
+  }
   std::vector<double> f(static_cast<std::size_t>(order) + 1);
   const auto p = kernel_detail::film_pair(stack);
   kernel_detail::check_status(
@@ -149,9 +193,16 @@ class KernelTable {
                        std::to_string(cc_kernel_grid_variants() - 1) + "])");
     }
     cc_kernel_table* raw = nullptr;
-    const auto p = kernel_detail::film_pair(stack);
-    const int status =
-        cc_kernel_table_create_ex(p.e1, p.nu1, p.e0, p.nu0, p.rigid, grid_variant, &raw);
+    int status = CC_OK;
+    if (stack.is_multilayer()) {  // THEORY.md section 12: q and u in units of T
+      const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
+      status = cc_kernel_table_create_stack(a.n(), a.thickness.data(), a.youngs.data(),
+                                            a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
+                                            a.nu_base, grid_variant, &raw);
+    } else {
+      const auto p = kernel_detail::film_pair(stack);
+      status = cc_kernel_table_create_ex(p.e1, p.nu1, p.e0, p.nu0, p.rigid, grid_variant, &raw);
+    }
     kernel_detail::check_status(status, stack, "kernel table");
     table_.reset(raw);
   }

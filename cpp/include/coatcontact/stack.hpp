@@ -3,6 +3,7 @@
 // Every floor above the kernel receives a Stack, never loose moduli: the reference modulus
 // that makes P, D, a_bar, eta and the reduced variables dimensionless is the stack's.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct Substrate {
 struct Layer {
   double thickness = 1.0;  // any unit; only ratios to the total thickness enter C(q)
   Material material;
+  // The interface BELOW this layer is frictionless (THEORY.md section 12); below the last
+  // layer on a rigid base: a frictionless rigid base (u_z = 0, s_rz = 0).
+  bool slip_below = false;
 };
 
 // The indenter's elastic constants: rigid (the paper's case) or a homogeneous elastic
@@ -38,7 +42,10 @@ class Stack {
   // A film bonded to `substrate` (the paper's system); the film thickness is the unit length.
   static Stack film_on(const Material& film, const Substrate& substrate,
                        const Indenter& indenter = {});
+  // Up to max_layers layers, top first (THEORY.md section 12). Normalization: lengths by the
+  // TOTAL thickness T, moduli by the TOP layer's E* (E_r with an elastic indenter).
   // Validates every constant (InputError naming the layer, the value and the allowed range).
+  static constexpr std::size_t max_layers = 1000;
   Stack(std::vector<Layer> layers, const Substrate& substrate, const Indenter& indenter = {});
 
   const std::vector<Layer>& layers() const { return layers_; }
@@ -51,8 +58,11 @@ class Stack {
   double reference_modulus() const;
   // rho = E1*/E2* (0 for a rigid indenter): the kernel sees C' = (C + rho)/(1 + rho) (section 9).
   double indenter_ratio() const;
-  // E1*/E0*, the film's C(0) (0 for a rigid base).
+  // E_top*/E_base*, the stack's C(0) (0 for a rigid base).
   double modulus_ratio() const;
+  // More than one layer or a slip flag: the kernel is section 12's (else section 3's, whose
+  // numbers are kept bit for bit).
+  bool is_multilayer() const;
   // Length scale of the reduced-variable curves' default ranges: C'(0)^(1/3) = (E_r/E_r,base)^(1/3),
   // 1 when the base is rigid.
   double substrate_length_ratio() const;

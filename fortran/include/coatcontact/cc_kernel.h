@@ -87,6 +87,19 @@ void cc_kernel_table_destroy(cc_kernel_table *table);
  * the same accuracy target. CC_ERR_ARGUMENT for a variant out of range. */
 int cc_kernel_table_create_ex(double e1, double nu1, double e0, double nu0, int substrate_rigid,
                               int grid_variant, cc_kernel_table **table);
+/* (added) The table of a stack (THEORY.md section 12; arguments and validation as
+ * cc_stack_compliance), in the stack's normalization: u = r/T with T the total thickness,
+ * H(u) = int_0^inf [C(q) - 1] cos(qu) dq with C normalized by the top layer's E*. One bonded
+ * layer gives cc_kernel_table_create_ex's table bit for bit. Otherwise the grid is refined by
+ * a power of 2 >= T/h_top (C - 1 decays like exp(-2 q h_top/T)): the table costs about
+ * T/h_top times one film's, and a top layer thinner than T/32 reports CC_ERR_ACCURACY. The
+ * end correction and asymptotic series use Taylor coefficients from a power-series run of
+ * the stack recursion (exact propagators, so they are accurate to rounding). */
+int cc_kernel_table_create_stack(int n_layers, const double *thickness, const double *youngs,
+                                 const double *poisson, const int *slip_below, int base_rigid,
+                                 double e_base, double nu_base, int grid_variant,
+                                 cc_kernel_table **table);
+
 /* Number of grid variants (4). */
 int cc_kernel_grid_variants(void);
 

@@ -1,0 +1,67 @@
+# Figure beyond the paper (THEORY.md section 12): a stack of layers. Top row: a three-layer
+# coating against its one-layer approximations (the top layer alone; one film of the
+# thickness-weighted E and nu), E_eq(a/T) and the load-controlled pull-off versus eta. Bottom
+# row: one film bonded versus sliding (frictionless) on its substrate. Everything is in the
+# top layer's units: E_eq = E_equivalent/E_top*, eta = T/(pi w R^2/E_top*)^(1/3); the average
+# film's curves are rescaled by avg_scale = E_avg*/E_top* (E_eq times it, eta divided by its
+# cube root). Inputs: layers, base, film, film_base, avg, avg_scale, reduced and pulloff
+# (stack, top, average), slip_reduced and slip_pulloff (bonded, sliding).
+
+W = 1400; H = 1100
+load gpdir.'/style.gp'
+
+f1 = word(reduced, 1)
+h = columns_of(f1)
+eval need('c_a', h, 'a_over_t', f1)
+eval need('c_e', h, 'E_eq', f1)
+p1 = word(pulloff, 1)
+hp = columns_of(p1)
+eval need('c_eta', hp, 'eta', p1)
+eval need('c_pl', hp, 'P_load', p1)
+
+scale_e(k) = k == 3 ? avg_scale : 1.0
+scale_eta(k) = k == 3 ? avg_scale**(1.0/3) : 1.0
+stack_title(k) = k == 1 ? sprintf('stack %s on %s', layers, base) : \
+                 (k == 2 ? 'top layer alone' : sprintf('weighted film E,ν = %s', avg))
+slip_title(k) = k == 1 ? 'bonded' : 'sliding (frictionless interface)'
+
+set multiplot layout 2, 2 title "Stacks of layers (THEORY.md §12): layers h,E,ν top first, normalized by the top layer's E^* and the total thickness T" \
+    font ',14' margins 0.07, 0.97, 0.08, 0.91 spacing 0.08, 0.1
+set logscale x
+set format x '10^{%L}'
+
+set title 'three-layer stack vs one-layer approximations'
+set xlabel 'a/T'
+set ylabel 'E_{eq} / E_{top}^*'
+set logscale y
+set key top left
+plot for [k = 1:3] word(reduced, k) using (column(c_a)):(column(c_e) * scale_e(k)) with lines \
+         ls eta_ls(k) dt k title stack_title(k)
+
+set title 'pull-off, load control'
+set xlabel 'η = T / (π w R^2/E_{top}^*)^{1/3}'
+set ylabel 'P = F / (π w R)'
+unset logscale y
+set key bottom left
+plot -1.5 ls 31 title 'JKR, homogeneous', \
+     for [k = 1:3] word(pulloff, k) using (column(c_eta) / scale_eta(k)):(column(c_pl)) with linespoints \
+         ls eta_ls(k) dt k pt 7 ps 0.6 title stack_title(k)
+
+set title sprintf('film E,ν = %s on %s: bonded vs sliding', film, film_base)
+set xlabel 'a/T'
+set ylabel 'E_{eq} / E_{film}^*'
+set logscale y
+set key top left
+plot for [k = 1:2] word(slip_reduced, k) using (column(c_a)):(column(c_e)) with lines \
+         ls (k == 1 ? 21 : 22) title slip_title(k)
+
+set title 'pull-off, load control'
+set xlabel 'η = T / (π w R^2/E_{film}^*)^{1/3}'
+set ylabel 'P = F / (π w R)'
+unset logscale y
+set key bottom left
+plot -1.5 ls 31 title 'JKR, homogeneous', \
+     for [k = 1:2] word(slip_pulloff, k) using (column(c_eta)):(column(c_pl)) with linespoints \
+         ls (k == 1 ? 21 : 22) pt 7 ps 0.6 title slip_title(k)
+unset multiplot
+unset output
