@@ -15,7 +15,11 @@
 #include "coatcontact/contact.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/indenter_shape.hpp"
+#include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
+#include "coatcontact/shape_contact.hpp"
+#include "coatcontact/shape_solver.hpp"
 #include "coatcontact/stack.hpp"
 
 using coatcontact::InputError;
@@ -44,6 +48,20 @@ struct cc_contact {
   std::shared_ptr<const coatcontact::ReducedSolver> solver;
   std::shared_ptr<const coatcontact::AdhesiveModel> model;
   coatcontact::Contact contact;
+};
+
+struct cc_md_model {
+  std::shared_ptr<const coatcontact::MaugisDugdaleModel> model;
+};
+
+struct cc_shape {
+  std::shared_ptr<const coatcontact::IndenterShape> shape;
+};
+
+struct cc_shape_contact {
+  std::shared_ptr<const coatcontact::ShapeSolver> solver;
+  std::shared_ptr<const coatcontact::IndenterShape> shape;
+  std::unique_ptr<coatcontact::ShapeContact> contact;
 };
 
 namespace {
@@ -153,6 +171,18 @@ std::vector<double> contact_rows(const coatcontact::Contact& contact, const std:
 
 void copy_out(const std::vector<double>& values, double* out) {
   for (std::size_t k = 0; k < values.size(); ++k) out[k] = values[k];
+}
+
+}  // namespace
+
+namespace {
+
+template <typename Make>
+int make_shape(const char* function, cc_shape** shape, Make&& make) {
+  return guarded([&] {
+    require(shape, function, "shape");
+    *shape = new cc_shape{make()};
+  });
 }
 
 }  // namespace
@@ -442,6 +472,149 @@ int cc_fit(const cc_stack* stack, int kind, int n, const double* x, const double
     result.displacement_pulloff[1] = r.displacement_pulloff_penetration;
     result.displacement_pulloff[2] = r.displacement_pulloff_force;
     *out = result;
+  });
+}
+
+// ---- spring control ---------------------------------------------------------------------
+
+int cc_pulloff_spring(cc_adhesive_model* model, double eta, double k_bar, double out[3], int* flags) {
+  return guarded([&] {
+    require(model, "cc_pulloff_spring", "model");
+    require(out, "cc_pulloff_spring", "out");
+    const coatcontact::SpringPulloff p = model->model->pulloff_spring(eta, k_bar);
+    copy_out({p.point.load, p.point.a_bar, p.point.penetration}, out);
+    if (flags != nullptr) {
+      int bits = 0;
+      if (!p.point.interior) bits |= CC_PULLOFF_LOAD_NO_MINIMUM;
+      else if (p.point.local_minima > 1) bits |= CC_PULLOFF_LOAD_SEVERAL_MINIMA;
+      *flags = bits;
+    }
+  });
+}
+
+// ---- Maugis-Dugdale ---------------------------------------------------------------------
+
+int cc_md_model_create(const cc_stack* stack, cc_md_model** model) {
+  return guarded([&] {
+    require(stack, "cc_md_model_create", "stack");
+    require(model, "cc_md_model_create", "model");
+    *model = new cc_md_model{std::make_shared<const coatcontact::MaugisDugdaleModel>(build(*stack))};
+  });
+}
+
+void cc_md_model_destroy(cc_md_model* model) { delete model; }
+
+int cc_md_curve(const cc_md_model* model, double eta, double lambda, int n, const double* a_bar,
+                double* out) {
+  return guarded([&] {
+    require(model, "cc_md_curve", "model");
+    const std::size_t count = count_of(n, "cc_md_curve");
+    require(a_bar, "cc_md_curve", "a_bar");
+    require(out, "cc_md_curve", "out");
+    const auto points = model->model->curve(eta, lambda, std::vector<double>(a_bar, a_bar + count));
+    std::vector<double> rows;
+    rows.reserve(count * CC_MD_CURVE_COLUMNS);
+    for (const coatcontact::MaugisDugdalePoint& p : points) {
+      rows.insert(rows.end(), {p.a_bar, p.a_over_t, p.m, p.load, p.penetration});
+    }
+    copy_out(rows, out);
+  });
+}
+
+int cc_md_pulloff(const cc_md_model* model, double eta, double lambda,
+                  double out[CC_MD_PULLOFF_COLUMNS], int* flags) {
+  return guarded([&] {
+    require(model, "cc_md_pulloff", "model");
+    require(out, "cc_md_pulloff", "out");
+    const coatcontact::MaugisDugdalePulloff p = model->model->pulloff(eta, lambda);
+    const auto& l = p.load_control.point;
+    const auto& d = p.displacement_control.point;
+    copy_out({l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m}, out);
+    if (flags != nullptr) *flags = p.displacement_control.interior ? 0 : 1;
+  });
+}
+
+// ---- shapes and their SI contact --------------------------------------------------------
+
+int cc_shape_paraboloid(double radius, cc_shape** shape) {
+  return make_shape("cc_shape_paraboloid", shape, [&] { return coatcontact::make_paraboloid(radius); });
+}
+int cc_shape_cone(double beta, cc_shape** shape) {
+  return make_shape("cc_shape_cone", shape, [&] { return coatcontact::make_cone(beta); });
+}
+int cc_shape_flat_punch(double radius, cc_shape** shape) {
+  return make_shape("cc_shape_flat_punch", shape, [&] { return coatcontact::make_flat_punch(radius); });
+}
+int cc_shape_power_law(double n, double radius, cc_shape** shape) {
+  return make_shape("cc_shape_power_law", shape, [&] { return coatcontact::make_power_law(n, radius); });
+}
+int cc_shape_blunted_cone(double radius, double beta, cc_shape** shape) {
+  return make_shape("cc_shape_blunted_cone", shape,
+                    [&] { return coatcontact::make_blunted_cone(radius, beta); });
+}
+int cc_shape_profile(int n, const double* r, const double* z, cc_shape** shape) {
+  return make_shape("cc_shape_profile", shape, [&] {
+    const std::size_t count = count_of(n, "cc_shape_profile");
+    require(r, "cc_shape_profile", "r");
+    require(z, "cc_shape_profile", "z");
+    return coatcontact::make_measured_profile(std::vector<double>(r, r + count),
+                                              std::vector<double>(z, z + count), "cc_shape_profile");
+  });
+}
+void cc_shape_destroy(cc_shape* shape) { delete shape; }
+
+int cc_shape_contact_create(const cc_stack* stack, const cc_shape* shape, double thickness,
+                            double work_of_adhesion, double tolerance, cc_shape_contact** contact) {
+  return guarded([&] {
+    require(stack, "cc_shape_contact_create", "stack");
+    require(shape, "cc_shape_contact_create", "shape");
+    require(contact, "cc_shape_contact_create", "contact");
+    auto handle = std::make_unique<cc_shape_contact>();
+    handle->solver = std::make_shared<const coatcontact::ShapeSolver>(build(*stack));
+    handle->shape = shape->shape;
+    handle->contact = std::make_unique<coatcontact::ShapeContact>(
+        *handle->solver, handle->shape, thickness, work_of_adhesion, tolerance_or_default(tolerance));
+    *contact = handle.release();
+  });
+}
+
+void cc_shape_contact_destroy(cc_shape_contact* contact) { delete contact; }
+
+int cc_shape_contact_default_range(const cc_shape_contact* contact, double range[2]) {
+  return guarded([&] {
+    require(contact, "cc_shape_contact_default_range", "contact");
+    require(range, "cc_shape_contact_default_range", "range");
+    const auto [lo, hi] = contact->contact->default_range();
+    range[0] = lo;
+    range[1] = hi;
+  });
+}
+
+int cc_shape_contact_curve(const cc_shape_contact* contact, int n, const double* a, double* out) {
+  return guarded([&] {
+    require(contact, "cc_shape_contact_curve", "contact");
+    const std::size_t count = count_of(n, "cc_shape_contact_curve");
+    require(a, "cc_shape_contact_curve", "a");
+    require(out, "cc_shape_contact_curve", "out");
+    const auto points = contact->contact->curve(std::vector<double>(a, a + count));
+    std::vector<double> rows;
+    rows.reserve(count * CC_SHAPE_CURVE_COLUMNS);
+    for (const coatcontact::ShapePoint& p : points) {
+      rows.insert(rows.end(), {p.radius, p.penetration, p.force, p.penetration_h, p.force_h});
+    }
+    copy_out(rows, out);
+  });
+}
+
+int cc_shape_contact_pulloff(const cc_shape_contact* contact, double spring_stiffness,
+                             double out[CC_SHAPE_PULLOFF_COLUMNS]) {
+  return guarded([&] {
+    require(contact, "cc_shape_contact_pulloff", "contact");
+    require(out, "cc_shape_contact_pulloff", "out");
+    const coatcontact::ShapePulloff p = contact->contact->pulloff(spring_stiffness);
+    copy_out({p.load.force, p.load.radius, p.load.penetration, p.displacement.force, p.displacement.radius,
+              p.displacement.penetration, p.spring.force, p.spring.radius, p.spring.penetration},
+             out);
   });
 }
 

@@ -392,6 +392,70 @@ static void test_errors(void) {
   cc_contact_destroy(NULL);
 }
 
+/* Beyond the paper through the C API: spring control (THEORY.md section 10, the JKR quintic
+ * at k_bar = 1), the Maugis-Dugdale pull-off (section 13, Maugis's -1.60073 at lambda = 1) and
+ * an indenter shape (section 11: a paraboloid through the shape path equals the sphere of the
+ * reduced-variable path). */
+static void test_beyond_the_paper(void) {
+  cc_stack *homogeneous = film_stack(1.0, 0.25, 1.0, 0.25, 0);
+  cc_reduced_solver *solver = solver_of(homogeneous);
+  cc_adhesive_model *model = NULL;
+  cc_md_model *md = NULL;
+  cc_shape *sphere = NULL, *bad = SENTINEL_HANDLE;
+  cc_shape_contact *shaped = NULL;
+  double out[CC_MD_PULLOFF_COLUMNS], load[CC_PULLOFF_COLUMNS], spring[3];
+  int flags = -1;
+
+  check("model", cc_adhesive_model_create(solver, 1e-10, &model) == CC_OK);
+  check("spring pull-off k_bar = 1", cc_pulloff_spring(model, 1.0, 1.0, spring, &flags) == CC_OK);
+  check("spring: P = -1.410238343649", close_to(spring[0], -1.410238343649, 1e-9));
+  check("spring: a_bar = 0.862633136333", close_to(spring[1], 0.862633136333, 1e-9));
+  check("spring: D = -0.569357990117", close_to(spring[2], -0.569357990117, 1e-9));
+  check("spring: a single interior minimum", flags == 0);
+  check("load-controlled pull-off", cc_pulloff(model, 1.0, load, NULL) == CC_OK);
+  check("spring k_bar = 0 is load control",
+        cc_pulloff_spring(model, 1.0, 0.0, spring, NULL) == CC_OK && spring[0] == load[0]);
+
+  check("Maugis-Dugdale model", cc_md_model_create(homogeneous, &md) == CC_OK);
+  check("Maugis-Dugdale pull-off lambda = 1", cc_md_pulloff(md, 1.0, 1.0, out, &flags) == CC_OK);
+  check("MD: P_load = -1.60073 (Maugis 1992)", close_to(out[0], -1.60073, 5e-6));
+  check("MD: m_load > 1", out[3] > 1.0);
+  check_error("MD: lambda = 0", cc_md_pulloff(md, 1.0, 0.0, out, &flags), CC_INPUT_ERROR, "lambda");
+
+  /* R = 1 mm, t = 10 um, w = 50 mJ/m^2 on the stack of test_contact_and_fit's scale. */
+  {
+    cc_stack *coated = film_stack(1e6, 0.25, 1e7, 0.25, 0);
+    cc_reduced_solver *coated_solver = solver_of(coated);
+    cc_adhesive_model *coated_model = NULL;
+    cc_contact *contact = NULL;
+    double sphere_pulloff[CC_PULLOFF_COLUMNS], shape_pulloff[CC_SHAPE_PULLOFF_COLUMNS];
+    check("paraboloid", cc_shape_paraboloid(1e-3, &sphere) == CC_OK);
+    check("shape contact", cc_shape_contact_create(coated, sphere, 1e-5, 0.05, 0.0, &shaped) == CC_OK);
+    check("coated model", cc_adhesive_model_create(coated_solver, 0.0, &coated_model) == CC_OK);
+    check("sphere contact", cc_contact_create(coated_model, 1e-3, 1e-5, 0.05, &contact) == CC_OK);
+    check("sphere pull-off", cc_contact_pulloff(contact, sphere_pulloff, NULL) == CC_OK);
+    check("shape pull-off", cc_shape_contact_pulloff(shaped, 0.0, shape_pulloff) == CC_OK);
+    check("paraboloid = sphere: load-controlled pull-off force",
+          close_to(shape_pulloff[0], sphere_pulloff[0], 1e-7));
+    check("paraboloid = sphere: displacement-controlled pull-off force",
+          close_to(shape_pulloff[3], sphere_pulloff[3], 1e-6));
+    cc_contact_destroy(contact);
+    cc_adhesive_model_destroy(coated_model);
+    cc_reduced_solver_destroy(coated_solver);
+    cc_stack_destroy(coated);
+  }
+  check_error("cone of 100 degrees", cc_shape_cone(100.0 * 3.14159265358979 / 180.0, &bad), CC_INPUT_ERROR,
+              "half included angle");
+  check("failed shape writes no handle", bad == SENTINEL_HANDLE);
+
+  cc_shape_contact_destroy(shaped);
+  cc_shape_destroy(sphere);
+  cc_md_model_destroy(md);
+  cc_adhesive_model_destroy(model);
+  cc_reduced_solver_destroy(solver);
+  cc_stack_destroy(homogeneous);
+}
+
 int main(int argc, char **argv) {
   if (argc != 2) {
     printf("usage: test_capi E_EQ_FROM_THE_COMMAND_LINE\n");
@@ -401,6 +465,7 @@ int main(int argc, char **argv) {
   test_homogeneous_adhesion();
   test_contact_and_fit();
   test_errors();
+  test_beyond_the_paper();
   if (failures == 0) {
     printf("test_capi: all checks passed\n");
     return 0;

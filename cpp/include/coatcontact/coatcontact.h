@@ -179,6 +179,56 @@ int cc_fit(const cc_stack *stack, int kind, int n, const double *x, const double
            double sphere_radius, double thickness_start, double work_start, unsigned free_mask,
            cc_fit_result *out);
 
+/* ---- spring control (THEORY.md section 10) ---------------------------------------------
+ * Pull-off through a spring of normalized stiffness k_bar = k (pi^2 w^2 R/E*^2)^(1/3)/(pi w R):
+ * the minimum of Z = D + P/k_bar. k_bar = 0 is load control, INFINITY displacement control.
+ * out: P, a_bar, D at the jump; flags: CC_PULLOFF_LOAD_SEVERAL_MINIMA or _NO_MINIMUM bits. */
+int cc_pulloff_spring(cc_adhesive_model *model, double eta, double k_bar, double out[3], int *flags);
+
+/* ---- Maugis-Dugdale cohesive zone (THEORY.md section 13) -------------------------------
+ * lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = (4/3) E*, > 0; the sphere, a rigid indenter.
+ * A model solves c(a) at each contact radius (no interpolant): it caches nothing and may be
+ * shared across threads. */
+typedef struct cc_md_model cc_md_model;
+#define CC_MD_CURVE_COLUMNS 5   /* a_bar, a_over_t, m = c/a, P, D */
+#define CC_MD_PULLOFF_COLUMNS 8 /* P_load, a_bar_load, D_load, m_load, P_disp, a_bar_disp, D_disp, m_disp */
+int cc_md_model_create(const cc_stack *stack, cc_md_model **model);
+void cc_md_model_destroy(cc_md_model *model);
+/* a_bar >= 0 (0: the end of the curve, a -> 0, where m is INFINITY). */
+int cc_md_curve(const cc_md_model *model, double eta, double lambda, int n, const double *a_bar,
+                double *out);
+/* flags bit 1: the displacement-controlled pull-off is the end of the curve (a -> 0). */
+int cc_md_pulloff(const cc_md_model *model, double eta, double lambda,
+                  double out[CC_MD_PULLOFF_COLUMNS], int *flags);
+
+/* ---- indenters of any axisymmetric shape, SI units (THEORY.md section 11) --------------
+ * Lengths in m, angles (half included angle beta) in radians, in (0, pi/2). */
+typedef struct cc_shape cc_shape;
+int cc_shape_paraboloid(double radius, cc_shape **shape);
+int cc_shape_cone(double beta, cc_shape **shape);
+int cc_shape_flat_punch(double radius, cc_shape **shape);
+/* z = r^n / (n R^(n-1)), n > 0. */
+int cc_shape_power_law(double n, double radius, cc_shape **shape);
+/* Spherical cap of radius R tangent to the cone of half angle beta. */
+int cc_shape_blunted_cone(double radius, double beta, cc_shape **shape);
+/* Measured profile z(r): n points, r[0] = 0, r increasing, z non-decreasing. */
+int cc_shape_profile(int n, const double *r, const double *z, cc_shape **shape);
+void cc_shape_destroy(cc_shape *shape);
+
+typedef struct cc_shape_contact cc_shape_contact;
+#define CC_SHAPE_CURVE_COLUMNS 5    /* a, delta, F, delta_H, F_H ([m], [m], [N], [m], [N]) */
+#define CC_SHAPE_PULLOFF_COLUMNS 9  /* F, a, delta under load, displacement, spring control */
+/* Film (coating) thickness [m] and work of adhesion [J/m^2]; tolerance 0: default. */
+int cc_shape_contact_create(const cc_stack *stack, const cc_shape *shape, double thickness,
+                            double work_of_adhesion, double tolerance, cc_shape_contact **contact);
+void cc_shape_contact_destroy(cc_shape_contact *contact);
+/* range[0..1]: contact radii [m] holding both JKR pull-offs (film and base modulus). */
+int cc_shape_contact_default_range(const cc_shape_contact *contact, double range[2]);
+int cc_shape_contact_curve(const cc_shape_contact *contact, int n, const double *a, double *out);
+/* spring_stiffness k [N/m] (0: none; the spring columns are then 0). */
+int cc_shape_contact_pulloff(const cc_shape_contact *contact, double spring_stiffness,
+                             double out[CC_SHAPE_PULLOFF_COLUMNS]);
+
 #ifdef __cplusplus
 }
 #endif
