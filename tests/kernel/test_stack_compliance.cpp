@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "check.hpp"
 #include "coatcontact/cc_kernel.h"
 
 namespace {
@@ -47,13 +48,11 @@ constexpr double kRecursionTier = 1e-13;
 // kLongStackTier: 1000 sublayers accumulate 1000 steps of rounding.
 constexpr double kLongStackTier = 1e-11;
 
-int failures = 0;
-
-void check(bool ok, const char* what, double value, double bound) {
-  if (!ok) {
-    ++failures;
-    std::printf("FAIL %s: %.6g (bound %.3g)\n", what, value, bound);
-  }
+// The text of a bounded measurement, for check::that.
+std::string measured(const char* what, double value, double bound) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%s: %.6g (bound %.3g)", what, value, bound);
+  return text;
 }
 
 struct Layer {
@@ -89,20 +88,14 @@ int call_library(const Stack& s, double q, double* out, bool minus_one) {
 double stack_c(const Stack& s, double q) {
   double c = NAN;
   const int status = call_library(s, q, &c, false);
-  if (status != CC_OK) {
-    ++failures;
-    std::printf("FAIL cc_stack_compliance status %d\n", status);
-  }
+  check::that(status == CC_OK, "cc_stack_compliance status " + std::to_string(status));
   return c;
 }
 
 double stack_f(const Stack& s, double q) {
   double f = NAN;
   const int status = call_library(s, q, &f, true);
-  if (status != CC_OK) {
-    ++failures;
-    std::printf("FAIL cc_stack_compliance_minus_one status %d\n", status);
-  }
+  check::that(status == CC_OK, "cc_stack_compliance_minus_one status " + std::to_string(status));
   return f;
 }
 
@@ -416,7 +409,7 @@ int main() {
         worst_ref = std::max(worst_ref, ref_error);
         const double r = static_cast<double>(std::fabs((Real(c) - ref) / ref));
         max_rel = std::max(max_rel, r);
-        check(r <= kDirectTier, "C vs direct global solve", r, kDirectTier);
+        check::that(r <= kDirectTier, measured("C vs direct global solve", r, kDirectTier));
         if (r > kDirectTier) {
           std::printf("  N=%d rigid=%d q=%g C=%.17g ref=%.17Lg\n", nl, st.rigid, q, c, ref);
           for (const Layer& l : st.layers)
@@ -428,13 +421,13 @@ int main() {
           const double rf =
               static_cast<double>(std::fabs((Real(stack_f(st, q)) - fref) / fref));
           max_rel_f = std::max(max_rel_f, rf);
-          check(rf <= kDirectTier, "C-1 vs direct global solve", rf, kDirectTier);
+          check::that(rf <= kDirectTier, measured("C-1 vs direct global solve", rf, kDirectTier));
         }
         if (ferr <= 1e-13) {
           ++lapacke_used;
           const double lr = rel(c, lap);
           max_rel_lapacke = std::max(max_rel_lapacke, lr);
-          check(lr <= kDirectTier, "C vs LAPACKE global solve", lr, kDirectTier);
+          check::that(lr <= kDirectTier, measured("C vs LAPACKE global solve", lr, kDirectTier));
         }
       }
     }
@@ -442,7 +435,7 @@ int main() {
                 "diff %.3g (long double, own error <= %.2g), %.3g (LAPACKE dgesvx, %d points); "
                 "C-1 max rel diff %.3g\n",
                 counted, skipped, max_rel, worst_ref, max_rel_lapacke, lapacke_used, max_rel_f);
-    check(counted >= 1000, "enough reliable direct-solve points", counted, 1000);
+    check::that(counted >= 1000, measured("enough reliable direct-solve points", counted, 1000));
   }
 
   // ---- section 12 check "N = 1 equals section 3" ----------------------------------------
@@ -455,8 +448,7 @@ int main() {
       double c1 = NAN, f1 = NAN;
       cc_compliance(l.e, l.nu, st.eb, st.nub, st.rigid, 1, &q, &c1);
       cc_compliance_minus_one(l.e, l.nu, st.eb, st.nub, st.rigid, 1, &q, &f1);
-      check(stack_c(st, q) == c1 && stack_f(st, q) == f1, "N = 1 is the closed form",
-            stack_c(st, q) - c1, 0);
+      check::that(stack_c(st, q) == c1 && stack_f(st, q) == f1, measured("N = 1 is the closed form", stack_c(st, q) - c1, 0));
     }
   }
 
@@ -482,8 +474,8 @@ int main() {
           const double rf = std::fabs(f2 - f1) / (std::fabs(f1) + floor);
           worst = std::max(worst, r);
           worst_f = std::max(worst_f, rf);
-          check(r <= kRecursionTier, "split layer: C", r, kRecursionTier);
-          check(rf <= kRecursionTier, "split layer: C - 1", rf, kRecursionTier);
+          check::that(r <= kRecursionTier, measured("split layer: C", r, kRecursionTier));
+          check::that(rf <= kRecursionTier, measured("split layer: C - 1", rf, kRecursionTier));
         }
       }
     }
@@ -502,7 +494,7 @@ int main() {
       for (double q : {2e-3, 0.2, 2.0, 20.0, 200.0}) {
         const double r = rel(stack_c(sp, q), stack_c(st, q));
         worst = std::max(worst, r);
-        check(r <= kRecursionTier, "split layer in a stack: C", r, kRecursionTier);
+        check::that(r <= kRecursionTier, measured("split layer in a stack: C", r, kRecursionTier));
       }
     }
     std::printf("split layers: max rel diff C %.3g, C-1 %.3g\n", worst, worst_f);
@@ -522,23 +514,23 @@ int main() {
     // C(0) = E_top*/E_base* for every slip pattern; 0 on a rigid base
     const double expect = st.rigid ? 0.0 : reduced(top.e, top.nu) / reduced(st.eb, st.nub);
     const double c0 = stack_c(st, 0.0);
-    check(st.rigid ? c0 == 0 : rel(c0, expect) <= 1e-15, "C(0) = E_top*/E_base*", c0 - expect, 0);
-    check(stack_f(st, 0.0) == c0 - 1, "C(0) - 1", stack_f(st, 0.0) - (c0 - 1), 0);
+    check::that(st.rigid ? c0 == 0 : rel(c0, expect) <= 1e-15, measured("C(0) = E_top*/E_base*", c0 - expect, 0));
+    check::that(stack_f(st, 0.0) == c0 - 1, measured("C(0) - 1", stack_f(st, 0.0) - (c0 - 1), 0));
     double total = 0;
     for (const Layer& l : st.layers) total += l.h;
     // C - 1 decays like exp(-2 q h_top / T): C = 1 to rounding at 20 T/h_top, exactly beyond
     const double q40 = 40 * total / top.h;
     const double f40 = stack_f(st, q40), c40 = stack_c(st, q40);
-    check(std::isfinite(f40) && std::fabs(f40) < 1e-25, "C(40 T/h_top) - 1 ~ exp(-80)", f40, 1e-25);
-    check(std::fabs(c40 - 1) <= 2.3e-16, "C(40 T/h_top) = 1", c40 - 1, 2.3e-16);
+    check::that(std::isfinite(f40) && std::fabs(f40) < 1e-25, measured("C(40 T/h_top) - 1 ~ exp(-80)", f40, 1e-25));
+    check::that(std::fabs(c40 - 1) <= 2.3e-16, measured("C(40 T/h_top) = 1", c40 - 1, 2.3e-16));
     for (double q : {1e3 * total / top.h, 1e300}) {
-      check(stack_c(st, q) == 1.0 && stack_f(st, q) == 0.0, "C(inf) = 1", stack_c(st, q) - 1, 0);
+      check::that(stack_c(st, q) == 1.0 && stack_f(st, q) == 0.0, measured("C(inf) = 1", stack_c(st, q) - 1, 0));
     }
     // the recursion at q -> 0 meets the exact value (C - C(0) = O(q) with coefficients up to
     // ~1e8 for these ratios, sliding plates bend)
     if (!st.rigid) {
       const double c_small = stack_c(st, 1e-16);
-      check(rel(c_small, expect) <= 1e-7, "C(q -> 0) -> C(0)", rel(c_small, expect), 1e-7);
+      check::that(rel(c_small, expect) <= 1e-7, measured("C(q -> 0) -> C(0)", rel(c_small, expect), 1e-7));
     }
   }
 
@@ -551,11 +543,11 @@ int main() {
         const Stack one = one_layer(1, nu, false, true, 1, 0);
         const Stack two = split(one, 0, {1e-6, 1 - 1e-6});
         const double r = rel(stack_c(two, q), stack_c(one, q));
-        check(r <= kRecursionTier, "tiny q, rigid base: split = closed form", r, kRecursionTier);
+        check::that(r <= kRecursionTier, measured("tiny q, rigid base: split = closed form", r, kRecursionTier));
       }
     for (double q : {1e-300, 1e-100, 1e-30}) {
       const double r = rel(stack_c(one_layer(2, 0.5, true, true, 1, 0), q), q / 2);
-      check(r <= kRecursionTier, "tiny q, frictionless rigid base: C = q/2", r, kRecursionTier);
+      check::that(r <= kRecursionTier, measured("tiny q, frictionless rigid base: C = q/2", r, kRecursionTier));
     }
     for (bool rigid : {false, true})
       for (int pattern = 0; pattern < 4; ++pattern) {
@@ -565,7 +557,7 @@ int main() {
         st.eb = 2;
         for (double q : {4.9e-324, 1e-310, 1e-200}) {
           const double c = stack_c(st, q), c0 = stack_c(st, 0.0);
-          check(std::isfinite(c) && c >= 0 && (rigid || c == c0), "tiny q: finite, -> C(0)", c, 0);
+          check::that(std::isfinite(c) && c >= 0 && (rigid || c == c0), measured("tiny q: finite, -> C(0)", c, 0));
         }
       }
   }
@@ -586,7 +578,7 @@ int main() {
         cc_compliance_minus_one(1.0, 0.3, 5.0, nu, 0, 1, &qf, &ref);
         const double r = rel(stack_f(cut, q), ref);
         worst = std::max(worst, r);
-        check(r <= kRecursionTier, "C - 1 at large q: film on cut substrate", r, kRecursionTier);
+        check::that(r <= kRecursionTier, measured("C - 1 at large q: film on cut substrate", r, kRecursionTier));
       }
     }
     for (double q : {2.0, 20.0, 100.0, 280.0}) {
@@ -598,8 +590,8 @@ int main() {
       const Real one_minus_s = (1 + z - std::exp(-z)) / (std::sinh(z) + z);
       const double r2 = rel(stack_f(rigid, q), static_cast<double>(-one_minus_s));
       worst = std::max({worst, r1, r2});
-      check(r1 <= kRecursionTier, "C - 1 at large q: sliding on a half-space", r1, kRecursionTier);
-      check(r2 <= kRecursionTier, "C - 1 at large q: frictionless rigid base", r2, kRecursionTier);
+      check::that(r1 <= kRecursionTier, measured("C - 1 at large q: sliding on a half-space", r1, kRecursionTier));
+      check::that(r2 <= kRecursionTier, measured("C - 1 at large q: frictionless rigid base", r2, kRecursionTier));
     }
     std::printf("C-1 at large q (down to ~1e-170): max rel diff %.3g\n", worst);
   }
@@ -615,7 +607,7 @@ int main() {
       for (double q : {0.0, 1e-3, 0.1, 1.0, 3.0, 10.0, 100.0}) {
         const double d = std::fabs(stack_c(st, q) - 1) + std::fabs(stack_f(st, q));
         worst = std::max(worst, d);
-        check(d <= 1e-14, "bonded identical layers: C = 1", d, 1e-14);
+        check::that(d <= 1e-14, measured("bonded identical layers: C = 1", d, 1e-14));
       }
       // a film of material X on a half-space of Y equals the one-layer closed form, however the
       // Y below the film is cut into bonded layers (q rescaled: T -> h_film)
@@ -628,7 +620,7 @@ int main() {
         cc_compliance(1.0, 0.3, 5.0, nu, 0, 1, &qf, &ref);
         const double r = rel(stack_c(cut, q), ref);
         worst = std::max(worst, r);
-        check(r <= kRecursionTier, "film on layers of the substrate = closed form", r, kRecursionTier);
+        check::that(r <= kRecursionTier, measured("film on layers of the substrate = closed form", r, kRecursionTier));
       }
     }
     std::printf("identical bonded materials: max deviation %.3g\n", worst);
@@ -644,7 +636,7 @@ int main() {
         const double ref = static_cast<double>(plate_s_of_q(q));
         const double r = rel(stack_c(st, q), ref);
         worst = std::max(worst, r);
-        check(r <= kRecursionTier, "sliding on a rigid base: C = s(q)", r, kRecursionTier);
+        check::that(r <= kRecursionTier, measured("sliding on a rigid base: C = s(q)", r, kRecursionTier));
       }
     // one layer sliding on a half-space: C = (rho(s + a) + 2as)/(2 rho + s + a), s, a at q/2
     for (double ratio : {1e-3, 0.1, 1.0, 10.0, 1e3})
@@ -655,21 +647,21 @@ int main() {
           const Real ref = plate_on_half_space(q, rho);
           const double r = rel(stack_c(st, q), static_cast<double>(ref));
           worst = std::max(worst, r);
-          check(r <= kRecursionTier, "sliding on a half-space: closed form", r, kRecursionTier);
+          check::that(r <= kRecursionTier, measured("sliding on a half-space: closed form", r, kRecursionTier));
           // C - 1 against the same formula, relative where the top is thick
           if (q >= 1) {
             const double rf =
                 rel(stack_f(st, q), static_cast<double>(plate_on_half_space_minus_one(q, rho)));
-            check(rf <= kRecursionTier, "sliding on a half-space: C - 1", rf, kRecursionTier);
+            check::that(rf <= kRecursionTier, measured("sliding on a half-space: C - 1", rf, kRecursionTier));
           }
         }
     // "a sliding interface is never invisible": identical materials, C - 1 ~ 0.31 near q = 1
     {
       const Stack st = one_layer(1.0, 0.3, true, false, 1.0, 0.3);
       const double f1 = stack_f(st, 1.0);
-      check(f1 > 0.30 && f1 < 0.32, "identical materials sliding: C(1) - 1 ~ 0.31", f1, 0.31);
+      check::that(f1 > 0.30 && f1 < 0.32, measured("identical materials sliding: C(1) - 1 ~ 0.31", f1, 0.31));
       for (double q : {1e-3, 0.1, 1.0, 10.0, 50.0})
-        check(stack_f(st, q) > 0, "identical materials sliding: C > 1", stack_f(st, q), 0);
+        check::that(stack_f(st, q) > 0, measured("identical materials sliding: C > 1", stack_f(st, q), 0));
       std::printf("identical materials sliding: C(1) - 1 = %.6f\n", f1);
     }
     // a layer with two shear-free faces, and a half-space under a sliding interface, enter C
@@ -689,7 +681,7 @@ int main() {
         for (double nu_base : {0.0, 0.5}) {
           const double r = rel(with(nu_mid, nu_base), ref);
           worst = std::max(worst, r);
-          check(r <= kRecursionTier, "shear-free faces: only E* enters", r, kRecursionTier);
+          check::that(r <= kRecursionTier, measured("shear-free faces: only E* enters", r, kRecursionTier));
         }
     }
     std::printf("free-plate results: max rel diff %.3g\n", worst);
@@ -708,7 +700,7 @@ int main() {
       near.nub = 0.5 - 1e-8;
       const double a = stack_c(at, q), b = stack_c(near, q);
       // |dC/dnu| is O(1/C0) at worst: 1e-8 in nu moves C by far less than 1e-5 relative
-      check(std::isfinite(a) && rel(b, a) <= 1e-5, "nu = 0.5 continuity", rel(b, a), 1e-5);
+      check::that(std::isfinite(a) && rel(b, a) <= 1e-5, measured("nu = 0.5 continuity", rel(b, a), 1e-5));
     }
   }
 
@@ -721,7 +713,7 @@ int main() {
       double worst = 0;
       for (double q : {1e-3, 0.3, 3.0, 30.0, 300.0}) worst = std::max(worst, rel(stack_c(many, q), stack_c(one, q)));
       const double tier = parts > 20 ? kLongStackTier : kRecursionTier;
-      check(worst <= tier, "N identical sublayers = one layer", worst, tier);
+      check::that(worst <= tier, measured("N identical sublayers = one layer", worst, tier));
       std::printf("%d sublayers vs closed form: max rel diff %.3g\n", parts, worst);
     }
     // extreme ratios: against the direct solve where it is reliable, and finite everywhere
@@ -739,7 +731,7 @@ int main() {
       st.nub = 0.5;
       for (double q : {1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6}) {
         const double c = stack_c(st, q), f = stack_f(st, q);
-        check(std::isfinite(c) && std::isfinite(f) && c >= 0, "extreme ratios: finite C >= 0", c, 0);
+        check::that(std::isfinite(c) && std::isfinite(f) && c >= 0, measured("extreme ratios: finite C >= 0", c, 0));
         double cancellation = 1, rcond = 0, ferr = 1;
         if (q > 1e3) continue;
         const Real ref = direct_long_double(st, q, &cancellation);
@@ -748,7 +740,7 @@ int main() {
         ++counted;
         const double r = static_cast<double>(std::fabs((Real(c) - ref) / ref));
         worst = std::max(worst, r);
-        check(r <= kDirectTier, "extreme ratios vs direct solve", r, kDirectTier);
+        check::that(r <= kDirectTier, measured("extreme ratios vs direct solve", r, kDirectTier));
       }
     }
     std::printf("ratios 1e-4..1e4: %d points against the direct solve, max rel diff %.3g\n", counted,
@@ -765,53 +757,47 @@ int main() {
       return cc_stack_compliance(n, hh, ee, nn, slip, rigid, eb, nub, 1, &q, &c);
     };
     const double zero_h[] = {1, 0}, neg_h[] = {-1, 1}, nan_h[] = {1, NAN}, inf_h[] = {INFINITY, 1};
-    check(status(2, h, e, nu, 0, 1, 0.3) == CC_OK, "status ok", 0, 0);
-    check(status(2, zero_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, "status h = 0", 0, 0);
-    check(status(2, neg_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, "status h < 0", 0, 0);
-    check(status(2, nan_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, "status h NaN", 0, 0);
-    check(status(2, inf_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, "status h inf", 0, 0);
+    check::that(status(2, h, e, nu, 0, 1, 0.3) == CC_OK, measured("status ok", 0, 0));
+    check::that(status(2, zero_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, measured("status h = 0", 0, 0));
+    check::that(status(2, neg_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, measured("status h < 0", 0, 0));
+    check::that(status(2, nan_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, measured("status h NaN", 0, 0));
+    check::that(status(2, inf_h, e, nu, 0, 1, 0.3) == CC_ERR_THICKNESS, measured("status h inf", 0, 0));
     const double zero_e[] = {1, 0}, neg_e[] = {-2, 1};
-    check(status(2, h, zero_e, nu, 0, 1, 0.3) == CC_ERR_FILM_MODULUS, "status E = 0", 0, 0);
-    check(status(2, h, neg_e, nu, 1, 1, 0.3) == CC_ERR_FILM_MODULUS, "status E < 0", 0, 0);
+    check::that(status(2, h, zero_e, nu, 0, 1, 0.3) == CC_ERR_FILM_MODULUS, measured("status E = 0", 0, 0));
+    check::that(status(2, h, neg_e, nu, 1, 1, 0.3) == CC_ERR_FILM_MODULUS, measured("status E < 0", 0, 0));
     for (double bad : {0.51, -1.0, -1.5, double(NAN)}) {
       const double bad_nu[] = {0.3, bad};
-      check(status(2, h, e, bad_nu, 0, 1, 0.3) == CC_ERR_FILM_POISSON, "status layer nu", bad, 0);
+      check::that(status(2, h, e, bad_nu, 0, 1, 0.3) == CC_ERR_FILM_POISSON, measured("status layer nu", bad, 0));
     }
-    check(status(2, h, e, nu, 0, 0, 0.3) == CC_ERR_SUBSTRATE_MODULUS, "status base E", 0, 0);
-    check(status(2, h, e, nu, 0, 1, 0.6) == CC_ERR_SUBSTRATE_POISSON, "status base nu", 0, 0);
-    check(status(2, h, e, nu, 1, -5, 7) == CC_OK, "rigid ignores the base constants", 0, 0);
-    check(status(0, h, e, nu, 0, 1, 0.3) == CC_ERR_LAYER_COUNT, "status 0 layers", 0, 0);
-    check(status(-3, h, e, nu, 0, 1, 0.3) == CC_ERR_LAYER_COUNT, "status < 0 layers", 0, 0);
+    check::that(status(2, h, e, nu, 0, 0, 0.3) == CC_ERR_SUBSTRATE_MODULUS, measured("status base E", 0, 0));
+    check::that(status(2, h, e, nu, 0, 1, 0.6) == CC_ERR_SUBSTRATE_POISSON, measured("status base nu", 0, 0));
+    check::that(status(2, h, e, nu, 1, -5, 7) == CC_OK, measured("rigid ignores the base constants", 0, 0));
+    check::that(status(0, h, e, nu, 0, 1, 0.3) == CC_ERR_LAYER_COUNT, measured("status 0 layers", 0, 0));
+    check::that(status(-3, h, e, nu, 0, 1, 0.3) == CC_ERR_LAYER_COUNT, measured("status < 0 layers", 0, 0));
     {
       const std::vector<double> hh(1001, 1.0), ee(1001, 1.0), nn(1001, 0.3);
       const std::vector<int> ss(1001, 0);
-      check(cc_stack_compliance(1001, hh.data(), ee.data(), nn.data(), ss.data(), 0, 1, 0.3, 1, &q,
-                                &c) == CC_ERR_LAYER_COUNT,
-            "status 1001 layers", 0, 0);
-      check(cc_stack_compliance_minus_one(1000, hh.data(), ee.data(), nn.data(), ss.data(), 0, 1,
-                                          0.3, 1, &q, &c) == CC_OK,
-            "1000 layers accepted", 0, 0);
+      check::that(cc_stack_compliance(1001, hh.data(), ee.data(), nn.data(), ss.data(), 0, 1, 0.3, 1, &q,
+                                &c) == CC_ERR_LAYER_COUNT, measured("status 1001 layers", 0, 0));
+      check::that(cc_stack_compliance_minus_one(1000, hh.data(), ee.data(), nn.data(), ss.data(), 0, 1,
+                                          0.3, 1, &q, &c) == CC_OK, measured("1000 layers accepted", 0, 0));
     }
     for (double bq : {-1.0, double(NAN), double(INFINITY)})
-      check(cc_stack_compliance(2, h, e, nu, slip, 0, 1, 0.3, 1, &bq, &c) == CC_ERR_ARGUMENT,
-            "status bad q", bq, 0);
-    check(cc_stack_compliance(2, h, e, nu, slip, 0, 1, 0.3, -1, &q, &c) == CC_ERR_ARGUMENT,
-          "status n < 0", 0, 0);
-    check(cc_stack_compliance(2, h, e, nu, slip, 0, 1, 0.3, 0, nullptr, nullptr) == CC_OK,
-          "empty q array", 0, 0);
+      check::that(cc_stack_compliance(2, h, e, nu, slip, 0, 1, 0.3, 1, &bq, &c) == CC_ERR_ARGUMENT, measured("status bad q", bq, 0));
+    check::that(cc_stack_compliance(2, h, e, nu, slip, 0, 1, 0.3, -1, &q, &c) == CC_ERR_ARGUMENT, measured("status n < 0", 0, 0));
+    check::that(cc_stack_compliance(2, h, e, nu, slip, 0, 1, 0.3, 0, nullptr, nullptr) == CC_OK, measured("empty q array", 0, 0));
     // every slip pattern on a rigid base is supported (cc_kernel.h): finite, positive C
     for (int pattern = 0; pattern < 4; ++pattern) {
       const int sl[] = {pattern & 1, (pattern >> 1) & 1};
       for (double qq : {1e-3, 1.0, 30.0}) {
         double cc = NAN;
         const int st = cc_stack_compliance(2, h, e, nu, sl, 1, 0, 0, 1, &qq, &cc);
-        check(st == CC_OK && std::isfinite(cc) && cc > 0, "any slip pattern on a rigid base", cc, 0);
+        check::that(st == CC_OK && std::isfinite(cc) && cc > 0, measured("any slip pattern on a rigid base", cc, 0));
       }
     }
-    check(std::string(cc_status_message(CC_ERR_THICKNESS)).find("thickness") != std::string::npos &&
+    check::that(std::string(cc_status_message(CC_ERR_THICKNESS)).find("thickness") != std::string::npos &&
               std::string(cc_status_message(CC_ERR_LAYER_COUNT)).find("layers") != std::string::npos &&
-              std::string(cc_status_message(11)).find("unknown") != std::string::npos,
-          "status messages", 0, 0);
+              std::string(cc_status_message(11)).find("unknown") != std::string::npos, measured("status messages", 0, 0));
   }
 
   // ---- cost: C on 2^15 q points (informative, not checked) -------------------------------
@@ -842,10 +828,5 @@ int main() {
     }
   }
 
-  if (failures) {
-    std::printf("%d failure(s)\n", failures);
-    return 1;
-  }
-  std::printf("all stack compliance checks passed\n");
-  return 0;
+  return check::exit_code();
 }
