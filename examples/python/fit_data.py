@@ -18,8 +18,9 @@ import numpy as np
 import coatcontact as cc
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCALE = {"m": 1, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "nm": 1e-9,
-         "N": 1, "mN": 1e-3, "uN": 1e-6, "nN": 1e-9}
+# Divisors to SI: dividing by an exact integer is what the CLI does (bit-equal input).
+DIVISOR = {"m": 1, "cm": 100, "mm": 1000, "um": 10**6, "nm": 10**9,
+           "N": 1, "mN": 1000, "uN": 10**6, "nN": 10**9}
 
 
 def load(path):
@@ -29,7 +30,7 @@ def load(path):
         for line in f:
             if line.startswith("# units:"):
                 unit_a, unit_F = line.split(":", 1)[1].split()
-                return a * SCALE[unit_a], F * SCALE[unit_F]
+                return a / DIVISOR[unit_a], F / DIVISOR[unit_F]
     return a, F
 
 

@@ -28,8 +28,8 @@ layer's E/(1 - nu^2) (E_r with an elastic indenter); with sphere radius R, work 
 and coating thickness t, l = (pi w R^2/E*)^(1/3), a = a_bar l, t = eta l, delta = D l^2/R,
 F = P pi w R.
 
-Errors: ValueError for input outside its allowed range (the library's message, as the
-command line prints it), NumericalError (a RuntimeError) when a result cannot be reached to
+Errors: ValueError for input outside its allowed range (the library's message: the text the
+command line prints after the option names), NumericalError (a RuntimeError) when a result cannot be reached to
 its tolerance. No function returns NaN.
 """
 import functools
