@@ -81,3 +81,14 @@ def test_help_reads_well():
         assert word in text
     for f in (cc.reduced, cc.adhesive_curve, cc.pulloff, cc.contact, cc.fit, cc.Stack):
         assert f.__doc__ and len(f.__doc__) > 200, f.__name__
+
+
+def test_readme_example_runs(source_dir):
+    # The Python block under the set-up commands of README.md, as printed there.
+    with open(source_dir + "/README.md", encoding="utf-8") as f:
+        text = f.read()
+    block = text.split("```python\n", 1)[1].split("```", 1)[0]
+    assert len(block.strip().splitlines()) == 5
+    scope = {}
+    exec(compile(block, "README.md", "exec"), scope)
+    assert scope["r"]["E_eq"].shape == (200,) and scope["c"]["F"].shape == (200,)
