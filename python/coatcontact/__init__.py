@@ -1,0 +1,392 @@
+"""coatcontact: adhesive contact of an indenter with a coated elastic substrate.
+
+A thin layer over the library's C interface (coatcontact/coatcontact.h): the surface-stress-
+transform solution of E. Barthel and A. Perriot, J. Phys. D 40 (2007) 1059. NumPy arrays in,
+dicts of NumPy arrays out; every solve runs in the compiled library with the GIL released.
+Section numbers (section N) refer to docs/THEORY.md.
+
+    import numpy as np, coatcontact as cc
+    r = cc.reduced(film=(0.1, 0.25), substrate=(1, 0.25), a_over_t=np.geomspace(0.01, 100, 200))
+    r["E_eq"], r["Gamma1"], r["error_estimate"]   # one value per radius
+
+Functions
+    reduced         reduced variables Pi_s, Delta_s, Pi_c, Delta_c, E_eq, Gamma1 (sections 4-5)
+    adhesive_curve  normalized JKR curve P(a_bar), D(a_bar) at one eta (section 5)
+    pulloff         normalized pull-off under load and displacement control (section 5)
+    contact         sphere on a coating in SI units: a [m], delta [m], F [N], pull-off (section 5)
+    fit             least-squares w (t, E1) from measured (a, F) or (delta, F) data
+
+Classes
+    Stack           film (layers), substrate or "rigid", indenter (sections 1, 9, 12)
+    ReducedSolver   the solver of one stack (kernel table built once)
+    AdhesiveModel   interpolated reduced variables of one stack: curves, pull-off, contacts
+    Contact         one sphere radius R, thickness t, work of adhesion w on a model
+
+Units and normalization (sections 1 and 5): moduli in Pa (or any consistent unit for the
+normalized functions), lengths in m, forces in N, compressive positive. E* is the top
+layer's E/(1 - nu^2) (E_r with an elastic indenter); with sphere radius R, work of adhesion w
+and coating thickness t, l = (pi w R^2/E*)^(1/3), a = a_bar l, t = eta l, delta = D l^2/R,
+F = P pi w R.
+
+Errors: ValueError for input outside its allowed range (the library's message: the text the
+command line prints after the option names), NumericalError (a RuntimeError) when a result cannot be reached to
+its tolerance. No function returns NaN.
+"""
+import functools
+import math
+
+import numpy as np
+
+from . import _core
+from ._core import NumericalError
+
+__all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",
+           "reduced", "adhesive_curve", "pulloff", "contact", "fit", "REDUCED_KEYS"]
+
+NumericalError.__doc__ = ("A result could not be delivered to its tolerance (the command "
+                          "line's exit status 3); a RuntimeError.")
+NumericalError.__module__ = __name__
+
+#: Keys of reduced()'s result, the columns of `coatcontact reduced`.
+REDUCED_KEYS = ("a_over_t", "Pi_s", "Delta_s", "Pi_c", "Delta_c", "E_eq", "Gamma1", "error_estimate")
+_PULLOFF_KEYS = ("P_load", "a_bar_load", "D_load", "P_disp", "a_bar_disp", "D_disp")
+_DEFAULT_TOL = 1e-8
+
+
+def _material(value, what):
+    try:
+        e, nu = value
+    except (TypeError, ValueError):
+        raise ValueError("%s: expected (E, nu), got %r" % (what, value)) from None
+    return float(e), float(nu)
+
+
+class Stack:
+    """The elastic system: layers on a substrate, touched by an indenter (sections 1, 9, 12).
+
+    Stack(film=(E1, nu1), substrate=(E0, nu0) or "rigid", indenter=None)
+    Stack(layers=[(t, E1, nu1), ...], substrate=..., indenter=...)
+
+    film        (Young's modulus [Pa], Poisson ratio) of a single coating; its thickness
+                enters only through a/t, eta or the t of contact() and fit().
+    layers      (thickness, Young's modulus [Pa], Poisson ratio) per layer, top first;
+                the library supports one layer today (section 12 extends it).
+    substrate   (E0 [Pa], nu0) or "rigid".
+    indenter    None or "rigid" (default), or (E2 [Pa], nu2): an elastic indenter makes
+                E_r, 1/E_r = 1/E1* + 1/E2*, the reference modulus (section 9).
+
+    Every value is checked at once with the library's rules (ValueError). A Stack is
+    immutable after construction and may be shared between threads.
+    """
+
+    def __init__(self, film=None, *, layers=None, substrate=None, indenter=None):
+        if (film is None) == (layers is None):
+            raise ValueError("stack: give either film=(E, nu) or layers=[(t, E, nu), ...]")
+        if substrate is None:
+            raise ValueError("stack: give substrate=(E0, nu0) or substrate='rigid'")
+        if layers is None:
+            layers = [(1.0,) + _material(film, "film")]
+        self._core = _core.Stack()
+        self.layers = tuple((float(t), float(e), float(nu)) for t, e, nu in layers)
+        for t, e, nu in self.layers:
+            self._core.add_layer(t, e, nu, False)
+        if isinstance(substrate, str):
+            if substrate != "rigid":
+                raise ValueError("stack: substrate %r is neither (E0, nu0) nor 'rigid'" % substrate)
+            self._core.set_rigid_substrate()
+            self.substrate = "rigid"
+        else:
+            self.substrate = _material(substrate, "substrate")
+            self._core.set_substrate(*self.substrate)
+        if indenter is None or (isinstance(indenter, str) and indenter == "rigid"):
+            self.indenter = "rigid"
+        elif isinstance(indenter, str):
+            raise ValueError("stack: indenter %r is neither (E2, nu2) nor 'rigid'" % indenter)
+        else:
+            self.indenter = _material(indenter, "indenter")
+            self._core.set_indenter(*self.indenter)
+
+    @property
+    def reference_modulus(self):
+        """E* of the normalizations [Pa]: the top layer's E/(1 - nu^2), or E_r (section 9)."""
+        return self._core.reference_modulus()
+
+    def _key(self):
+        return (self.layers, self.substrate, self.indenter)
+
+    def __repr__(self):
+        return "Stack(layers=%r, substrate=%r, indenter=%r)" % self._key()
+
+    def __eq__(self, other):
+        return isinstance(other, Stack) and self._key() == other._key()
+
+    def __hash__(self):
+        return hash(self._key())
+
+
+def _stack(stack, film, substrate, indenter):
+    if stack is not None:
+        if film is not None or substrate is not None or indenter is not None:
+            raise ValueError("give either a Stack or film=/substrate=/indenter=, not both")
+        if not isinstance(stack, Stack):
+            raise ValueError("stack: expected a coatcontact.Stack, got %r" % type(stack).__name__)
+        return stack
+    if film is None:
+        raise ValueError("give a Stack or film=(E, nu) and substrate=(E0, nu0) or 'rigid'")
+    return Stack(film, substrate=substrate, indenter=indenter)
+
+
+def _tolerance(tol):
+    # 0 is the C interface's "default"; Python callers say 1e-8 and mean it.
+    return float(tol)
+
+
+class ReducedSolver:
+    """The reduced-variable solver of one stack (sections 4-5); builds the kernel table once.
+
+    ReducedSolver(stack).solve(a_over_t, tol=1e-8) -> dict, as reduced(). Thread-safe.
+    """
+
+    def __init__(self, stack):
+        self.stack = stack
+        self._core = _core.Solver(stack._core)
+
+    def solve(self, a_over_t, tol=_DEFAULT_TOL):
+        """Reduced variables at each contact radius over coating thickness a/t in (0, 1e8].
+
+        Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS: a_over_t;
+        Pi_s, Delta_s (adhesionless sphere); Pi_c, Delta_c (cone); E_eq (flat-punch
+        stiffness over E*); Gamma1 (edge stress intensity); error_estimate (bound on the
+        largest relative error of the six, <= tol). tol in [1e-13, 1e-1].
+        """
+        x = np.asarray(a_over_t, dtype=float)
+        table = self._core.sweep(np.ascontiguousarray(x.ravel()), _tolerance(tol))
+        return {k: table[:, i].reshape(x.shape) for i, k in enumerate(REDUCED_KEYS)}
+
+
+class AdhesiveModel:
+    """JKR adhesive sphere on one stack, normalized (section 5, [EqSolNormF, EqSolNormD]).
+
+    The reduced variables are solved at `tol` on Chebyshev nodes and interpolated; a model
+    is built once and reused by every curve, pull-off and contact made from it. Calls on one
+    model are serialized (its cache is filled lazily).
+    """
+
+    def __init__(self, stack, tol=_DEFAULT_TOL):
+        self.stack = stack
+        self.tol = float(tol)
+        self._core = _core.Model(_solver(stack)._core, _tolerance(tol))
+
+    @property
+    def default_range(self):
+        """Default a_bar range of a curve: [0.01 min(1, r), 10 max(1, r)], r = (E*/E_base*)^(1/3)."""
+        return self._core.default_range()
+
+    def curve(self, eta, a_bar=None, points=400):
+        """Load P and penetration D versus contact radius a_bar at one eta.
+
+        eta     coating thickness over l = (pi w R^2/E*)^(1/3), in [1e-6, 1e6].
+        a_bar   contact radii a/l, each in [1e-6, 1e6]; default `points` log-spaced over
+                default_range (as `coatcontact adhesive`).
+        Returns a dict of arrays: a_bar, a_over_t (= a_bar/eta), P = F/(pi w R),
+        D = delta/(l^2/R).
+        """
+        if a_bar is None:
+            lo, hi = self.default_range
+            a_bar = np.geomspace(lo, hi, int(points))
+        x = np.asarray(a_bar, dtype=float)
+        table = self._core.curve(float(eta), np.ascontiguousarray(x.ravel()))
+        return {k: table[:, i].reshape(x.shape) for i, k in enumerate(("a_bar", "a_over_t", "P", "D"))}
+
+    def pulloff(self, eta):
+        """Pull-off at each eta: the minimum of P(a_bar) (load control) and of D (displacement).
+
+        Returns a dict of arrays of the shape of eta: eta, P_load, a_bar_load, D_load,
+        P_disp, a_bar_disp, D_disp, and flags (bitmask: 1 several load minima, 2 no interior
+        load minimum, 4/8 the same under displacement control, 16 scan truncated at large
+        a/t). Homogeneous limit: P_load = -3/2, P_disp = -5/6.
+        """
+        x = np.asarray(eta, dtype=float)
+        table, flags = self._core.pulloff(np.ascontiguousarray(x.ravel()))
+        out = {"eta": x.copy()}
+        out.update({k: table[:, i].reshape(x.shape) for i, k in enumerate(_PULLOFF_KEYS)})
+        out["flags"] = flags.reshape(x.shape)
+        return out
+
+    def contact(self, radius, thickness, work):
+        """A Contact of a sphere of radius R [m] on a coating of thickness t [m] with work of
+        adhesion w [J/m^2] on this model."""
+        return Contact(self, radius, thickness, work)
+
+
+class Contact:
+    """A sphere of radius R [m] on a coating of total thickness t [m], work of adhesion
+    w [J/m^2], in SI units (section 5). eta = t/l must lie in [1e-6, 1e6]."""
+
+    def __init__(self, model, radius, thickness, work):
+        self.model = model
+        self._core = _core.Contact(model._core, float(radius), float(thickness), float(work))
+        l, dscale, fscale, eta = self._core.scales()
+        #: l [m], l^2/R [m], pi w R [N] and eta = t/l.
+        self.scales = {"l": l, "delta_scale": dscale, "F_scale": fscale, "eta": eta}
+
+    def at(self, a):
+        """Penetration delta [m] and force F [N] (compressive positive) at contact radii a [m].
+        Returns a dict of arrays a, delta, F of the shape of a."""
+        x = np.asarray(a, dtype=float)
+        table = self._core.at(np.ascontiguousarray(x.ravel()))
+        return {k: table[:, i].reshape(x.shape) for i, k in enumerate(("a", "delta", "F"))}
+
+    def curve(self, points=200):
+        """The curve at `points` radii log-spaced over the model's default a_bar range (the
+        last one at its end): dict of arrays a [m], delta [m], F [N]."""
+        table = self._core.curve(int(points))
+        return {k: table[:, i] for i, k in enumerate(("a", "delta", "F"))}
+
+    def pulloff(self):
+        """Pull-off in SI units: dict F_load [N], a_load [m], delta_load [m], F_disp, a_disp,
+        delta_disp, flags (as AdhesiveModel.pulloff)."""
+        values, flags = self._core.pulloff()
+        keys = ("F_load", "a_load", "delta_load", "F_disp", "a_disp", "delta_disp")
+        out = {k: float(values[i]) for i, k in enumerate(keys)}
+        out["flags"] = int(flags)
+        return out
+
+
+# Solvers are read-only and models serialize their own calls: both are cached per stack so
+# that repeated calls do not rebuild the kernel table or the interpolant.
+@functools.lru_cache(maxsize=16)
+def _solver(stack):
+    return ReducedSolver(stack)
+
+
+@functools.lru_cache(maxsize=16)
+def _model(stack, tol):
+    return AdhesiveModel(stack, tol)
+
+
+def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, tol=_DEFAULT_TOL):
+    """Reduced variables of the coated-substrate contact (sections 4-5), one per radius.
+
+    reduced(stack, a_over_t=...) or reduced(film=(E1, nu1), substrate=(E0, nu0) | "rigid",
+    indenter=None | (E2, nu2), a_over_t=...).
+
+    a_over_t  contact radius over coating thickness, each in (0, 1e8] (array or scalar).
+    tol       relative tolerance in [1e-13, 1e-1] (default 1e-8).
+
+    Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS, the columns
+    of `coatcontact reduced`: a_over_t, Pi_s, Delta_s (adhesionless sphere), Pi_c, Delta_c
+    (cone), E_eq (flat-punch stiffness over E*), Gamma1 (edge stress intensity, section 6),
+    error_estimate (bound on the largest relative error of the six; <= tol).
+    Raises ValueError for input out of range, NumericalError when tol cannot be met.
+    """
+    return _solver(_stack(stack, film, substrate, indenter)).solve(a_over_t, tol)
+
+
+def adhesive_curve(stack=None, *, film=None, substrate=None, indenter=None, eta, a_bar=None,
+                   points=400, tol=_DEFAULT_TOL):
+    """Normalized JKR curve of a rigid sphere on the coated substrate at one eta (section 5).
+
+    eta    coating thickness over l = (pi w R^2/E*)^(1/3), in [1e-6, 1e6].
+    a_bar  contact radii a/l (default `points` log-spaced over the model's default range,
+           [0.01 min(1, r), 10 max(1, r)], r = (E*/E_base*)^(1/3), as `coatcontact adhesive`).
+    Returns a dict of arrays: a_bar, a_over_t = a_bar/eta, P = F/(pi w R), D = delta R/l^2.
+    Homogeneous limit (a film like its substrate): the JKR curve
+    P = (4/3) a_bar^3 - 2 sqrt(2) a_bar^(3/2), D = a_bar^2 - sqrt(2 a_bar).
+    """
+    return _model(_stack(stack, film, substrate, indenter), float(tol)).curve(eta, a_bar, points)
+
+
+def pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, tol=_DEFAULT_TOL):
+    """Normalized pull-off at each eta (section 5): dict of arrays eta, P_load, a_bar_load,
+    D_load (minimum of P, load control), P_disp, a_bar_disp, D_disp (minimum of D,
+    displacement control), flags (see AdhesiveModel.pulloff). JKR: -3/2 and -5/6."""
+    return _model(_stack(stack, film, substrate, indenter), float(tol)).pulloff(eta)
+
+
+def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thickness, work,
+            a=None, points=200, tol=_DEFAULT_TOL):
+    """Sphere on a coated substrate in SI units (section 5).
+
+    radius     sphere radius R [m];  thickness  coating thickness t [m];
+    work       work of adhesion w [J/m^2];  film/substrate/indenter moduli in Pa.
+    a          contact radii [m]; default `points` radii over the model's default a_bar range.
+    Returns a dict: a [m], delta [m], F [N] (arrays, F compressive positive); scales
+    (l [m], delta_scale = l^2/R [m], F_scale = pi w R [N], eta = t/l); pulloff (F_load [N],
+    a_load [m], delta_load [m], F_disp, a_disp, delta_disp, flags).
+    """
+    c = Contact(_model(_stack(stack, film, substrate, indenter), float(tol)), radius, thickness, work)
+    out = c.at(a) if a is not None else c.curve(points)
+    out["scales"] = c.scales
+    out["pulloff"] = c.pulloff()
+    return out
+
+
+_FIT_NAMES = ("w", "t", "E1")
+_FIT_UNITS = {"w": "J/m^2", "t": "m", "E1": "Pa"}
+
+
+def fit(x, F, *, kind="a", radius, film, substrate, thickness, work=None, free=("w",),
+        indenter=None, curve_points=200):
+    """Least-squares fit of measured (a, F) or (delta, F) data (residuals in force).
+
+    x, F       arrays: contact radius a [m] (> 0; kind="a") or penetration delta [m]
+               (kind="delta"), and force F [N], compressive positive.
+    radius     sphere radius R [m].  film  (E1 [Pa], nu1): E1 is the start value if fitted.
+    substrate  (E0 [Pa], nu0) or "rigid".  thickness  t [m]: fixed value or start value.
+    work       w [J/m^2]: fixed value or start value; default (when w is free) from the most
+               tensile force through the JKR pull-off F_min = -(3/2) pi w R, as the CLI.
+    free       names among "w", "t", "E1" (default ("w",)); the others are fixed.
+
+    Returns a dict: estimates and errors (dicts by name: w [J/m^2], t [m], E1 [Pa]; error 0
+    for fixed ones), covariance and correlation (3 x 3 arrays in the order w, t, E1),
+    free (the names), residual_norm [N], residual_sigma [N], r_squared, iterations,
+    converged, points, displacement_pulloff (a [m], delta [m], F [N] of the fitted model),
+    curve (the fitted model: a, delta, F on curve_points radii) and, for kind="a", F_model
+    and residual (F_model - F) at the data points.
+    Raises ValueError for bad input, NumericalError when the fit does not converge, the
+    parameters are not identifiable or the model does not describe the data (R^2 < 0.5).
+    """
+    if kind not in ("a", "delta"):
+        raise ValueError("fit: kind %r is neither 'a' nor 'delta'" % (kind,))
+    if isinstance(free, str):
+        free = tuple(s.strip() for s in free.split(","))
+    mask = 0
+    for name in free:
+        if name not in _FIT_NAMES:
+            raise ValueError("fit: free parameter %r is not one of w, t, E1" % (name,))
+        mask |= 1 << _FIT_NAMES.index(name)
+    x = np.ascontiguousarray(np.asarray(x, dtype=float).ravel())
+    F = np.ascontiguousarray(np.asarray(F, dtype=float).ravel())
+    if work is None:
+        if "w" not in free:
+            raise ValueError("w is fixed: give it with work=... (or add 'w' to free)")
+        # The CLI's start value (fit::jkr_work_estimate).
+        f_min = float(F.min()) if F.size else 0.0
+        work = f_min / (-1.5 * math.pi * radius) if f_min < 0.0 else 0.05
+    stack = Stack(film, substrate=substrate, indenter=indenter)
+    kind_code = _core.FIT_RADIUS_FORCE if kind == "a" else _core.FIT_PENETRATION_FORCE
+    r = _core.fit(stack._core, kind_code, x, F, float(radius), float(thickness), float(work), mask)
+
+    value, error, corr = r["value"], r["standard_error"], r["correlation"]
+    out = {
+        "estimates": {n: float(value[i]) for i, n in enumerate(_FIT_NAMES)},
+        "errors": {n: float(error[i]) for i, n in enumerate(_FIT_NAMES)},
+        "units": dict(_FIT_UNITS),
+        "correlation": corr,
+        "covariance": corr * np.outer(error, error),
+        "free": tuple(n for i, n in enumerate(_FIT_NAMES) if mask >> i & 1),
+        "start": {"w": float(work), "t": float(thickness), "E1": float(film[0])},
+    }
+    for k in ("points", "residual_norm", "residual_sigma", "r_squared", "iterations", "converged"):
+        out[k] = r[k]
+    out["displacement_pulloff"] = dict(zip(("a", "delta", "F"), map(float, r["displacement_pulloff"])))
+
+    # The fitted curve: the same model at the estimates, through the SI contact.
+    fitted = Stack((value[2], film[1]), substrate=substrate, indenter=indenter)
+    c = Contact(_model(fitted, _DEFAULT_TOL), radius, value[1], value[0])
+    out["curve"] = c.curve(curve_points)
+    if kind == "a":
+        out["F_model"] = c.at(x)["F"]
+        out["residual"] = out["F_model"] - F
+    return out

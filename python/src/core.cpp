@@ -1,0 +1,306 @@
+// coatcontact._core: the C API (coatcontact/coatcontact.h) for Python. One class per handle,
+// NumPy arrays in and out, the GIL released around every C call that solves. The Python
+// layer (coatcontact/__init__.py) adds keyword arguments, dicts of arrays and docstrings.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "coatcontact/coatcontact.h"
+
+namespace py = pybind11;
+
+namespace {
+
+// Mapped to coatcontact.NumericalError (a RuntimeError) at module import.
+struct NumericalError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Status -> exception, with the library's message (the CLI prints the same text).
+void check(int status, const std::string& message) {
+  switch (status) {
+    case CC_OK: return;
+    case CC_INPUT_ERROR: throw py::value_error(message);
+    case CC_NUMERICAL_ERROR: throw NumericalError(message);
+    default: throw std::runtime_error(message.empty() ? "coatcontact: internal error" : message);
+  }
+}
+
+// Runs a C call without the GIL; the message is read in the same thread, before the GIL
+// comes back (it is per thread and valid until the thread's next call).
+template <typename Call>
+void call_released(Call&& call) {
+  int status;
+  std::string message;
+  {
+    py::gil_scoped_release release;
+    status = call();
+    if (status != CC_OK) message = cc_last_error_message();
+  }
+  check(status, message);
+}
+
+template <typename Call>
+void call_held(Call&& call) {
+  const int status = call();
+  check(status, status == CC_OK ? std::string() : std::string(cc_last_error_message()));
+}
+
+using InArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+int count_of(const InArray& a) {
+  if (a.ndim() != 1) throw py::value_error("expected a one-dimensional array");
+  if (a.shape(0) > 0x7fffffff) throw py::value_error("array too long for the C interface (n > 2^31-1)");
+  return static_cast<int>(a.shape(0));
+}
+
+py::array_t<double> rows(int n, int columns) {
+  return py::array_t<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(columns)});
+}
+
+struct Stack {
+  std::shared_ptr<cc_stack> handle;
+  Stack() {
+    cc_stack* s = nullptr;
+    call_held([&] { return cc_stack_create(&s); });
+    handle.reset(s, cc_stack_destroy);
+  }
+};
+
+struct Solver {
+  std::shared_ptr<cc_reduced_solver> handle;
+  explicit Solver(const Stack& stack) {
+    cc_reduced_solver* s = nullptr;
+    call_released([&] { return cc_reduced_solver_create(stack.handle.get(), &s); });
+    handle.reset(s, cc_reduced_solver_destroy);
+  }
+  py::array_t<double> sweep(const InArray& a_over_t, double tolerance) const {
+    const int n = count_of(a_over_t);
+    auto out = rows(n, CC_REDUCED_COLUMNS);
+    const double* in = a_over_t.data();
+    double* o = out.mutable_data();
+    // One radius: solve() spares the parallel region's start-up (identical numbers).
+    call_released([&] {
+      return n == 1 ? cc_reduced_solver_solve(handle.get(), in[0], tolerance, o)
+                    : cc_reduced_solver_sweep(handle.get(), n, in, tolerance, o);
+    });
+    return out;
+  }
+  // Seconds per C call (median of `repeats`), timed here so that the Python bench can set
+  // the interpreter's overhead against the library's own cost on the same machine.
+  double time_c_call(const InArray& a_over_t, double tolerance, int repeats) const {
+    const int n = count_of(a_over_t);
+    std::vector<double> out(static_cast<std::size_t>(n) * CC_REDUCED_COLUMNS);
+    std::vector<double> times;
+    const double* in = a_over_t.data();
+    call_released([&] {
+      for (int r = 0; r < repeats; ++r) {
+        const auto start = std::chrono::steady_clock::now();
+        const int status = n == 1 ? cc_reduced_solver_solve(handle.get(), in[0], tolerance, out.data())
+                                  : cc_reduced_solver_sweep(handle.get(), n, in, tolerance, out.data());
+        if (status != CC_OK) return status;
+        times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      }
+      return static_cast<int>(CC_OK);
+    });
+    if (times.empty()) return 0.0;
+    std::sort(times.begin(), times.end());
+    return times[times.size() / 2];
+  }
+};
+
+// A model and its contacts fill one lazy cache: the mutex keeps Python threads (the GIL is
+// released during solves) from using it at once, as the C API requires.
+struct Model {
+  std::shared_ptr<cc_adhesive_model> handle;
+  std::shared_ptr<std::mutex> lock = std::make_shared<std::mutex>();
+  Model(const Solver& solver, double tolerance) {
+    cc_adhesive_model* m = nullptr;
+    call_released([&] { return cc_adhesive_model_create(solver.handle.get(), tolerance, &m); });
+    handle.reset(m, cc_adhesive_model_destroy);
+  }
+  py::tuple default_range() const {
+    double range[2];
+    call_held([&] { return cc_adhesive_default_range(handle.get(), range); });
+    return py::make_tuple(range[0], range[1]);
+  }
+  py::array_t<double> curve(double eta, const InArray& a_bar) const {
+    const int n = count_of(a_bar);
+    auto out = rows(n, CC_CURVE_COLUMNS);
+    const double* in = a_bar.data();
+    double* o = out.mutable_data();
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      return n == 0 ? static_cast<int>(CC_OK) : cc_adhesive_curve(handle.get(), eta, n, in, o);
+    });
+    return out;
+  }
+  // One row per eta: the six pull-off columns and the warning flags.
+  py::tuple pulloff(const InArray& eta) const {
+    const int n = count_of(eta);
+    auto out = rows(n, CC_PULLOFF_COLUMNS);
+    py::array_t<int> flags(static_cast<py::ssize_t>(n));
+    const double* in = eta.data();
+    double* o = out.mutable_data();
+    int* f = flags.mutable_data();
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      for (int i = 0; i < n; ++i) {
+        const int status = cc_pulloff(handle.get(), in[i], o + CC_PULLOFF_COLUMNS * i, f + i);
+        if (status != CC_OK) return status;
+      }
+      return static_cast<int>(CC_OK);
+    });
+    return py::make_tuple(out, flags);
+  }
+};
+
+struct Contact {
+  std::shared_ptr<cc_contact> handle;
+  std::shared_ptr<std::mutex> lock;
+  Contact(const Model& model, double radius, double thickness, double work) : lock(model.lock) {
+    cc_contact* c = nullptr;
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      return cc_contact_create(model.handle.get(), radius, thickness, work, &c);
+    });
+    handle.reset(c, cc_contact_destroy);
+  }
+  py::tuple scales() const {
+    double s[4];
+    call_held([&] { return cc_contact_scales(handle.get(), s); });
+    return py::make_tuple(s[0], s[1], s[2], s[3]);
+  }
+  py::array_t<double> curve(int n) const {
+    if (n < 1) throw py::value_error("contact curve: points = " + std::to_string(n) + "; at least one point is needed");
+    auto out = rows(n, CC_CONTACT_COLUMNS);
+    double* o = out.mutable_data();
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      return cc_contact_curve(handle.get(), n, o);
+    });
+    return out;
+  }
+  py::array_t<double> at(const InArray& a) const {
+    const int n = count_of(a);
+    auto out = rows(n, CC_CONTACT_COLUMNS);
+    const double* in = a.data();
+    double* o = out.mutable_data();
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      return cc_contact_at(handle.get(), n, in, o);
+    });
+    return out;
+  }
+  py::tuple pulloff() const {
+    auto out = py::array_t<double>(CC_PULLOFF_COLUMNS);
+    double* o = out.mutable_data();
+    int flags = 0;
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      return cc_contact_pulloff(handle.get(), o, &flags);
+    });
+    return py::make_tuple(out, flags);
+  }
+};
+
+py::dict fit(const Stack& stack, int kind, const InArray& x, const InArray& force, double radius,
+             double thickness_start, double work_start, unsigned free_mask) {
+  const int n = count_of(x);
+  if (count_of(force) != n) {
+    throw py::value_error("fit: x has " + std::to_string(n) + " points, force " +
+                          std::to_string(force.shape(0)));
+  }
+  cc_fit_result r{};
+  const double* px = x.data();
+  const double* pf = force.data();
+  call_released([&] {
+    return cc_fit(stack.handle.get(), kind, n, px, pf, radius, thickness_start, work_start, free_mask, &r);
+  });
+  py::array_t<double> value(3), error(3), correlation({3, 3}), pulloff(3);
+  for (int i = 0; i < 3; ++i) {
+    value.mutable_at(i) = r.value[i];
+    error.mutable_at(i) = r.standard_error[i];
+    pulloff.mutable_at(i) = r.displacement_pulloff[i];
+    for (int j = 0; j < 3; ++j) correlation.mutable_at(i, j) = r.correlation[3 * i + j];
+  }
+  py::dict d;
+  d["value"] = value;
+  d["standard_error"] = error;
+  d["correlation"] = correlation;
+  d["free_mask"] = r.free_mask;
+  d["points"] = r.points;
+  d["residual_norm"] = r.residual_norm;
+  d["residual_sigma"] = r.residual_sigma;
+  d["r_squared"] = r.r_squared;
+  d["iterations"] = r.iterations;
+  d["converged"] = r.converged != 0;
+  d["displacement_pulloff"] = pulloff;
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "Compiled bindings of the coatcontact C API; use the coatcontact package.";
+  py::register_exception<NumericalError>(m, "NumericalError", PyExc_RuntimeError);
+
+  m.attr("REDUCED_COLUMNS") = CC_REDUCED_COLUMNS;
+  m.attr("PULLOFF_LOAD_SEVERAL_MINIMA") = CC_PULLOFF_LOAD_SEVERAL_MINIMA;
+  m.attr("PULLOFF_LOAD_NO_MINIMUM") = CC_PULLOFF_LOAD_NO_MINIMUM;
+  m.attr("PULLOFF_DISP_SEVERAL_MINIMA") = CC_PULLOFF_DISP_SEVERAL_MINIMA;
+  m.attr("PULLOFF_DISP_NO_MINIMUM") = CC_PULLOFF_DISP_NO_MINIMUM;
+  m.attr("PULLOFF_SCAN_TRUNCATED") = CC_PULLOFF_SCAN_TRUNCATED;
+  m.attr("FIT_RADIUS_FORCE") = static_cast<int>(CC_FIT_RADIUS_FORCE);
+  m.attr("FIT_PENETRATION_FORCE") = static_cast<int>(CC_FIT_PENETRATION_FORCE);
+
+  py::class_<Stack>(m, "Stack")
+      .def(py::init<>())
+      .def("add_layer", [](Stack& s, double t, double e, double nu, bool slip) {
+        call_held([&] { return cc_stack_add_layer(s.handle.get(), t, e, nu, slip ? 1 : 0); });
+      })
+      .def("set_substrate", [](Stack& s, double e, double nu) {
+        call_held([&] { return cc_stack_set_substrate(s.handle.get(), e, nu); });
+      })
+      .def("set_rigid_substrate", [](Stack& s) {
+        call_held([&] { return cc_stack_set_rigid_substrate(s.handle.get()); });
+      })
+      .def("set_indenter", [](Stack& s, double e, double nu) {
+        call_held([&] { return cc_stack_set_indenter(s.handle.get(), e, nu); });
+      })
+      .def("set_rigid_indenter", [](Stack& s) {
+        call_held([&] { return cc_stack_set_rigid_indenter(s.handle.get()); });
+      })
+      .def("reference_modulus", [](const Stack& s) {
+        double e = 0.0;
+        call_held([&] { return cc_stack_reference_modulus(s.handle.get(), &e); });
+        return e;
+      });
+
+  py::class_<Solver>(m, "Solver")
+      .def(py::init<const Stack&>())
+      .def("sweep", &Solver::sweep)
+      .def("time_c_call", &Solver::time_c_call);
+
+  py::class_<Model>(m, "Model")
+      .def(py::init<const Solver&, double>())
+      .def("default_range", &Model::default_range)
+      .def("curve", &Model::curve)
+      .def("pulloff", &Model::pulloff);
+
+  py::class_<Contact>(m, "Contact")
+      .def(py::init<const Model&, double, double, double>())
+      .def("scales", &Contact::scales)
+      .def("curve", &Contact::curve)
+      .def("at", &Contact::at)
+      .def("pulloff", &Contact::pulloff);
+
+  m.def("fit", &fit);
+}

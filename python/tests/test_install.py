@@ -1,0 +1,28 @@
+"""`cmake --install` puts the package into the prefix's site-packages, where it imports and
+computes without the build tree."""
+import os
+import subprocess
+import sys
+
+import pytest
+
+BUILD = os.environ.get("COATCONTACT_BUILD_DIR")
+CMAKE = os.environ.get("COATCONTACT_CMAKE", "cmake")
+SITE = os.environ.get("COATCONTACT_PYTHON_INSTALL_DIR", "lib/python3/dist-packages")
+
+
+@pytest.mark.skipif(not BUILD, reason="COATCONTACT_BUILD_DIR not set (CTest sets it)")
+def test_installed_package_imports(tmp_path):
+    prefix = tmp_path / "prefix"
+    p = subprocess.run([CMAKE, "--install", BUILD, "--prefix", str(prefix)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    site = prefix / SITE
+    assert (site / "coatcontact" / "__init__.py").is_file()
+    code = ("import coatcontact as cc; assert cc.__file__.startswith(%r); "
+            "r = cc.reduced(film=(0.1, 0.25), substrate=(1, 0.25), a_over_t=[1.0]); "
+            "print(repr(float(r['E_eq'][0])))" % str(site))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONPATH"] = str(site)
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert float(p.stdout) == 2.0735157126958375  # the CLI's E_eq at a/t = 1 (README)
