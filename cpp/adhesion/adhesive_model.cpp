@@ -41,6 +41,16 @@ void check_positive(double value, const std::string& what) {
   }
 }
 
+// eta outside [kMinimumScaled, kMaximumScaled] puts a/t = a_bar/eta beyond the solver's range
+// (or takes minutes to fail there): refused up front, as the command line does.
+void check_eta(double eta) {
+  check_positive(eta, "eta");
+  if (!(eta >= kMinimumScaled && eta <= kMaximumScaled)) {
+    throw InputError("eta = " + format_g(eta) + " is outside the allowed range [" + format_g(kMinimumScaled) +
+                     ", " + format_g(kMaximumScaled) + "]");
+  }
+}
+
 double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
 
 // Which curve is minimised: P (load control) or D (displacement control).
@@ -170,7 +180,7 @@ AdhesiveModel::AdhesiveModel(std::shared_ptr<const ReducedSource> source, TableO
 AdhesiveModel::~AdhesiveModel() = default;
 
 CurvePoint AdhesiveModel::point(double eta, double a_bar) const {
-  check_positive(eta, "eta");
+  check_eta(eta);
   check_positive(a_bar, "a_bar");
   return law_->point(table_->at(a_bar / eta), eta, a_bar);
 }
@@ -181,7 +191,7 @@ std::pair<double, double> AdhesiveModel::default_curve_range() const {
 }
 
 std::vector<CurvePoint> AdhesiveModel::curve(double eta, const std::vector<double>& a_bar) const {
-  check_positive(eta, "eta");
+  check_eta(eta);
   if (a_bar.empty()) throw InputError("empty a_bar list");
   for (double a : a_bar) check_positive(a, "a_bar");
   const auto [lo, hi] = std::minmax_element(a_bar.begin(), a_bar.end());
@@ -193,7 +203,7 @@ std::vector<CurvePoint> AdhesiveModel::curve(double eta, const std::vector<doubl
 }
 
 Pulloff AdhesiveModel::pulloff(double eta) const {
-  check_positive(eta, "eta");
+  check_eta(eta);
   Pulloff result;
   result.eta = eta;
   const double r = stack().substrate_length_ratio();

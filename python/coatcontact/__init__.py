@@ -15,6 +15,11 @@ Functions
     pulloff         normalized pull-off under load and displacement control (section 5)
     contact         sphere on a coating in SI units: a [m], delta [m], F [N], pull-off (section 5)
     fit             least-squares w (t, E1) from measured (a, F) or (delta, F) data
+    pulloff_spring  pull-off through a spring of normalized stiffness k_bar (section 10)
+    maugis_dugdale_curve, maugis_dugdale_pulloff
+                    finite interaction zone, lambda = 2 sigma0 (R/(pi w K^2))^(1/3) (section 13)
+    shape_contact   any axisymmetric indenter in SI units: sphere, cone, punch, power law,
+                    blunted cone, measured profile (section 11)
 
 Classes
     Stack           film (layers), substrate or "rigid", indenter (sections 1, 9, 12)
@@ -41,7 +46,8 @@ from . import _core
 from ._core import NumericalError
 
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",
-           "reduced", "adhesive_curve", "pulloff", "contact", "fit", "REDUCED_KEYS"]
+           "reduced", "adhesive_curve", "pulloff", "contact", "fit", "pulloff_spring",
+           "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "REDUCED_KEYS"]
 
 NumericalError.__doc__ = ("A result could not be delivered to its tolerance (the command "
                           "line's exit status 3); a RuntimeError.")
@@ -69,8 +75,9 @@ class Stack:
 
     film        (Young's modulus [Pa], Poisson ratio) of a single coating; its thickness
                 enters only through a/t, eta or the t of contact() and fit().
-    layers      (thickness, Young's modulus [Pa], Poisson ratio) per layer, top first;
-                the library supports one layer today (section 12 extends it).
+    layers      (thickness, Young's modulus [Pa], Poisson ratio[, slip]) per layer, top
+                first, 1 to 1000 layers (section 12); slip=True makes the interface below
+                that layer frictionless. Normalized results use the total thickness T.
     substrate   (E0 [Pa], nu0) or "rigid".
     indenter    None or "rigid" (default), or (E2 [Pa], nu2): an elastic indenter makes
                 E_r, 1/E_r = 1/E1* + 1/E2*, the reference modulus (section 9).
@@ -87,9 +94,14 @@ class Stack:
         if layers is None:
             layers = [(1.0,) + _material(film, "film")]
         self._core = _core.Stack()
-        self.layers = tuple((float(t), float(e), float(nu)) for t, e, nu in layers)
-        for t, e, nu in self.layers:
-            self._core.add_layer(t, e, nu, False)
+        def _layer(layer):
+            if len(layer) not in (3, 4):
+                raise ValueError("stack: a layer is (t, E, nu) or (t, E, nu, slip), got %r" % (layer,))
+            t, e, nu = (float(v) for v in layer[:3])
+            return (t, e, nu, bool(layer[3]) if len(layer) == 4 else False)
+        self.layers = tuple(_layer(layer) for layer in layers)
+        for t, e, nu, slip in self.layers:
+            self._core.add_layer(t, e, nu, slip)
         if isinstance(substrate, str):
             if substrate != "rigid":
                 raise ValueError("stack: substrate %r is neither (E0, nu0) nor 'rigid'" % substrate)
@@ -389,4 +401,81 @@ def fit(x, F, *, kind="a", radius, film, substrate, thickness, work=None, free=(
     if kind == "a":
         out["F_model"] = c.at(x)["F"]
         out["residual"] = out["F_model"] - F
+    return out
+
+
+def pulloff_spring(stack=None, *, film=None, substrate=None, indenter=None, eta, k_bar,
+                   tol=_DEFAULT_TOL):
+    """Pull-off through a spring (section 10): the contact jumps off where Z = D + P/k_bar is
+    minimal along the curve (dP/dD = -k_bar).
+
+    eta    one coating thickness over l = (pi w R^2/E*)^(1/3);
+    k_bar  normalized stiffness k (pi^2 w^2 R/E*^2)^(1/3)/(pi w R), array; 0 gives load
+           control, inf displacement control.
+    Returns a dict of arrays k_bar, P, a_bar, D at the jump. JKR at k_bar = 1: P = -1.41024.
+    """
+    k = np.atleast_1d(np.asarray(k_bar, dtype=float))
+    model = _model(_stack(stack, film, substrate, indenter), float(tol))
+    rows = _core.pulloff_spring(model._core, float(eta), k)
+    return {"k_bar": k, "P": rows[:, 0], "a_bar": rows[:, 1], "D": rows[:, 2]}
+
+
+@functools.lru_cache(maxsize=8)
+def _maugis_dugdale(stack):
+    return _core.MaugisDugdale(stack._core)
+
+
+def maugis_dugdale_curve(stack=None, *, film=None, substrate=None, indenter=None, eta, lambda_,
+                         a_bar):
+    """Sphere with a Dugdale interaction zone (section 13) at one eta and lambda.
+
+    lambda_  2 sigma0 (R/(pi w K^2))^(1/3), K = 4E*/3 (inf is JKR: use adhesive_curve);
+    a_bar    contact radii a/l, >= 0 (0: the end of the curve, a -> 0).
+    Returns a dict of arrays a_bar, a_over_t, m = c/a (inf at a = 0), P, D.
+    """
+    rows = _maugis_dugdale(_stack(stack, film, substrate, indenter)).curve(
+        float(eta), float(lambda_), np.atleast_1d(np.asarray(a_bar, dtype=float)))
+    return {key: rows[:, i] for i, key in enumerate(("a_bar", "a_over_t", "m", "P", "D"))}
+
+
+def maugis_dugdale_pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, lambda_):
+    """Maugis-Dugdale pull-off (section 13): dict P_load, a_bar_load, D_load, m_load (minimum
+    of P), P_disp, a_bar_disp, D_disp, m_disp (minimum of D; at the end of the curve, a -> 0,
+    when end_of_curve is True). Homogeneous: -1.81556, -1.60073, -1.51676 at lambda 0.3, 1, 3."""
+    row, flags = _maugis_dugdale(_stack(stack, film, substrate, indenter)).pulloff(float(eta), float(lambda_))
+    keys = ("P_load", "a_bar_load", "D_load", "m_load", "P_disp", "a_bar_disp", "D_disp", "m_disp")
+    out = {key: float(row[i]) for i, key in enumerate(keys)}
+    out["end_of_curve"] = bool(flags & 1)
+    return out
+
+
+def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape, thickness, work,
+                  a=None, points=200, spring=0.0, tol=_DEFAULT_TOL):
+    """Adhesive (JKR) contact of any axisymmetric indenter in SI units (section 11).
+
+    shape      ("sphere", R), ("cone", beta), ("punch", A), ("power", n, R),
+               ("blunted-cone", R, beta) or ("profile", r, z) with arrays r, z [m]; lengths
+               in m, beta the half included angle in radians.
+    thickness  coating thickness t [m]; work  w [J/m^2]; spring  k [N/m] (0: none).
+    a          contact radii [m] (default `points` log-spaced over the default range).
+    Returns a dict: a, delta, F, delta_H, F_H (arrays, adhesive then adhesionless at the same
+    a) and pulloff: F, a, delta under load, displacement (and spring) control.
+    """
+    kind = shape[0]
+    if kind == "profile":
+        core_shape = _core.make_profile(np.asarray(shape[1], dtype=float), np.asarray(shape[2], dtype=float))
+    else:
+        params = [float(v) for v in shape[1:]] + [0.0]
+        core_shape = _core.make_shape(kind, params[0], params[1])
+    c = _core.ShapeContact(_stack(stack, film, substrate, indenter)._core, core_shape, float(thickness),
+                           float(work), _tolerance(tol))
+    if a is None:
+        lo, hi = c.default_range()
+        a = np.geomspace(lo, hi, points)
+    rows = c.curve(np.atleast_1d(np.asarray(a, dtype=float)))
+    out = {key: rows[:, i] for i, key in enumerate(("a", "delta", "F", "delta_H", "F_H"))}
+    p = c.pulloff(float(spring))
+    out["pulloff"] = {"F_load": p[0], "a_load": p[1], "delta_load": p[2],
+                      "F_disp": p[3], "a_disp": p[4], "delta_disp": p[5],
+                      "F_spring": p[6], "a_spring": p[7], "delta_spring": p[8]}
     return out

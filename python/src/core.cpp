@@ -246,6 +246,104 @@ py::dict fit(const Stack& stack, int kind, const InArray& x, const InArray& forc
   return d;
 }
 
+// Spring control on a Model (THEORY.md section 10): one row (P, a_bar, D) per k_bar.
+py::array_t<double> pulloff_spring(const Model& model, double eta, const InArray& k_bar) {
+  const int n = count_of(k_bar);
+  auto out = rows(n, 3);
+  const double* in = k_bar.data();
+  double* o = out.mutable_data();
+  call_released([&] {
+    std::lock_guard<std::mutex> guard(*model.lock);
+    for (int i = 0; i < n; ++i) {
+      const int status = cc_pulloff_spring(model.handle.get(), eta, in[i], o + 3 * i, nullptr);
+      if (status != CC_OK) return status;
+    }
+    return static_cast<int>(CC_OK);
+  });
+  return out;
+}
+
+// Maugis-Dugdale (THEORY.md section 13): no cache, so no lock.
+struct MaugisDugdale {
+  std::shared_ptr<cc_md_model> handle;
+  explicit MaugisDugdale(const Stack& stack) {
+    cc_md_model* m = nullptr;
+    call_released([&] { return cc_md_model_create(stack.handle.get(), &m); });
+    handle.reset(m, cc_md_model_destroy);
+  }
+  py::array_t<double> curve(double eta, double lambda, const InArray& a_bar) const {
+    const int n = count_of(a_bar);
+    auto out = rows(n, CC_MD_CURVE_COLUMNS);
+    const double* in = a_bar.data();
+    double* o = out.mutable_data();
+    call_released([&] { return n == 0 ? static_cast<int>(CC_OK) : cc_md_curve(handle.get(), eta, lambda, n, in, o); });
+    return out;
+  }
+  py::tuple pulloff(double eta, double lambda) const {
+    auto out = py::array_t<double>(CC_MD_PULLOFF_COLUMNS);
+    double* o = out.mutable_data();
+    int flags = 0;
+    call_released([&] { return cc_md_pulloff(handle.get(), eta, lambda, o, &flags); });
+    return py::make_tuple(out, flags);
+  }
+};
+
+// Indenter shapes and their SI contact (THEORY.md section 11).
+struct Shape {
+  std::shared_ptr<cc_shape> handle;
+};
+
+Shape make_shape(const std::string& kind, double p1, double p2) {
+  cc_shape* s = nullptr;
+  call_held([&] {
+    if (kind == "sphere") return cc_shape_paraboloid(p1, &s);
+    if (kind == "cone") return cc_shape_cone(p1, &s);
+    if (kind == "punch") return cc_shape_flat_punch(p1, &s);
+    if (kind == "power") return cc_shape_power_law(p1, p2, &s);
+    if (kind == "blunted-cone") return cc_shape_blunted_cone(p1, p2, &s);
+    throw py::value_error("shape: '" + kind + "' is not one of sphere, cone, punch, power, blunted-cone, profile");
+  });
+  return Shape{std::shared_ptr<cc_shape>(s, cc_shape_destroy)};
+}
+
+Shape make_profile(const InArray& r, const InArray& z) {
+  const int n = count_of(r);
+  if (count_of(z) != n) throw py::value_error("profile: r and z differ in length");
+  cc_shape* s = nullptr;
+  call_held([&] { return cc_shape_profile(n, r.data(), z.data(), &s); });
+  return Shape{std::shared_ptr<cc_shape>(s, cc_shape_destroy)};
+}
+
+struct ShapeContact {
+  std::shared_ptr<cc_shape_contact> handle;
+  ShapeContact(const Stack& stack, const Shape& shape, double thickness, double work, double tolerance) {
+    cc_shape_contact* c = nullptr;
+    call_released([&] {
+      return cc_shape_contact_create(stack.handle.get(), shape.handle.get(), thickness, work, tolerance, &c);
+    });
+    handle.reset(c, cc_shape_contact_destroy);
+  }
+  py::tuple default_range() const {
+    double range[2];
+    call_held([&] { return cc_shape_contact_default_range(handle.get(), range); });
+    return py::make_tuple(range[0], range[1]);
+  }
+  py::array_t<double> curve(const InArray& a) const {
+    const int n = count_of(a);
+    auto out = rows(n, CC_SHAPE_CURVE_COLUMNS);
+    const double* in = a.data();
+    double* o = out.mutable_data();
+    call_released([&] { return n == 0 ? static_cast<int>(CC_OK) : cc_shape_contact_curve(handle.get(), n, in, o); });
+    return out;
+  }
+  py::array_t<double> pulloff(double spring_stiffness) const {
+    auto out = py::array_t<double>(CC_SHAPE_PULLOFF_COLUMNS);
+    double* o = out.mutable_data();
+    call_released([&] { return cc_shape_contact_pulloff(handle.get(), spring_stiffness, o); });
+    return out;
+  }
+};
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -303,4 +401,18 @@ PYBIND11_MODULE(_core, m) {
       .def("pulloff", &Contact::pulloff);
 
   m.def("fit", &fit);
+
+  m.def("pulloff_spring", &pulloff_spring);
+  py::class_<MaugisDugdale>(m, "MaugisDugdale")
+      .def(py::init<const Stack&>())
+      .def("curve", &MaugisDugdale::curve)
+      .def("pulloff", &MaugisDugdale::pulloff);
+  py::class_<Shape>(m, "Shape");
+  m.def("make_shape", &make_shape);
+  m.def("make_profile", &make_profile);
+  py::class_<ShapeContact>(m, "ShapeContact")
+      .def(py::init<const Stack&, const Shape&, double, double, double>())
+      .def("default_range", &ShapeContact::default_range)
+      .def("curve", &ShapeContact::curve)
+      .def("pulloff", &ShapeContact::pulloff);
 }

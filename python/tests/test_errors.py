@@ -53,8 +53,10 @@ def test_bad_reduced_input(kwargs, words):
 
 
 def test_bad_stack():
-    with pytest.raises(ValueError, match="sliding|one layer|layer 2"):
-        cc.Stack(layers=[(1, 0.1, 0.25), (1, 1, 0.25)], substrate=(1, 0.25))
+    with pytest.raises(ValueError, match="thickness"):
+        cc.Stack(layers=[(1, 0.1, 0.25), (0, 1, 0.25)], substrate=(1, 0.25))
+    with pytest.raises(ValueError, match="slip"):
+        cc.Stack(layers=[(1, 0.1, 0.25, True, 3)], substrate=(1, 0.25))
     with pytest.raises(ValueError):
         cc.Stack(film=(0.1, 0.25))
 
