@@ -281,8 +281,10 @@ int run(const std::vector<std::string>& args) {
         << " Pa, nu0 = " << text("%.15g", substrate.material.poisson_ratio) << "\n";
   }
   out << "# adhesion energy w = " << text("%.15g", w) << " J/m2\n"
-      << "# noise: Gaussian, standard deviation " << text("%.15g", sigma) << " N, added to F ("
-      << (radius_data ? "a" : "delta") << (noise_x > 0.0 ? " noisy too, see below" : " exact") << "); GSL gsl_rng_mt19937, seed " << seed
+      << "# noise: Gaussian, standard deviation " << text("%.15g", sigma) << " N, added to F"
+      << (noise_x > 0.0 ? std::string(" (") + (radius_data ? "a" : "delta") + " noisy too, see below)"
+                        : std::string(" only (") + (radius_data ? "a" : "delta") + " exact)")
+      << "; GSL gsl_rng_mt19937, seed " << seed
       << ", gsl_ran_gaussian, one draw per row in file order\n";
   if (noise_x > 0.0) {
     out << "# noise on " << (radius_data ? "a" : "delta") << ": Gaussian, "
