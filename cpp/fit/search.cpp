@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <string>
 
 #include "coatcontact/errors.hpp"
 
@@ -19,6 +21,8 @@ constexpr double kProbeWork[2] = {1e-2, 4e-2};
 // infinite weight).
 constexpr double kSigmaFloor = 1e-9;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Relative change of the cost along an axis below which that parameter counts as undetermined.
+constexpr double kFlatCost = 1e-6;
 
 std::vector<double> log_axis(double lo, double hi) {
   const int count = std::max(2, static_cast<int>(std::ceil(kPointsPerDecade * std::log10(hi / lo))) + 1);
@@ -184,6 +188,29 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     throw NumericalError("the global search found no parameters at which the model can be evaluated for these data");
   }
   std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return cost[a] < cost[b]; });
+  // A free parameter along whose axis the cost does not move is not determined by the data
+  // (e.g. t when film and substrate are alike): say which, before the solve wanders off.
+  {
+    const std::size_t k = minima[0];
+    const std::size_t ie = k / (nt * nw), it = (k / nw) % nt, iw = k % nw;
+    const auto flat = [&](std::size_t count, const std::function<std::size_t(std::size_t)>& index) {
+      double lo = kInf, hi = 0.0;
+      for (std::size_t j = 0; j < count; ++j) {
+        lo = std::min(lo, cost[index(j)]);
+        hi = std::max(hi, cost[index(j)]);
+      }
+      return count > 1 && std::isfinite(hi) && hi - lo <= kFlatCost * hi;
+    };
+    if (nt > 1 && flat(nt, [&](std::size_t j) { return (ie * nt + j) * nw + iw; })) {
+      throw NumericalError("the data do not determine t: the fit does not change for t from " +
+                           std::to_string(t_axis.front()) + " to " + std::to_string(t_axis.back()) +
+                           " m; fix it with --thickness");
+    }
+    if (ne > 1 && flat(ne, [&](std::size_t j) { return (j * nt + it) * nw + iw; })) {
+      throw NumericalError("the data do not determine E1: the fit does not change over E1 within a factor " +
+                           std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
+    }
+  }
   result.best = point[minima[0]];
   result.best_cost = cost[minima[0]];
   if (minima.size() > 1) {
