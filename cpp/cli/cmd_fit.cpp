@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -23,6 +24,7 @@
 #include "coatcontact/fit.hpp"
 #include "checks.hpp"
 #include "commands.hpp"
+#include "fit_plot_script.hpp"
 
 namespace coatcontact::cli {
 namespace {
@@ -347,6 +349,73 @@ void apply_sigma_option(const std::optional<std::string>& text, fit::Measurement
   }
 }
 
+// Characters gnuplot's single-quoted strings and enhanced text take literally enough.
+std::string gnuplot_string(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') {
+      out += "''";
+    } else if (c == '_' || c == '@' || c == '&' || c == '~' || c == '{' || c == '}') {
+      out += ' ';  // enhanced-text control characters (keep ^ for the units)
+    } else if (static_cast<unsigned char>(c) >= 32 || (c & 0x80)) {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
+// Runs gnuplot on the embedded script (gnuplot/fit_plot.gp) with the tables in a private
+// temporary folder; returns the picture (gnuplot writes it to stdout; the caller writes the
+// file atomically). InputError when gnuplot is missing or fails.
+std::string render_fit_plot(const std::string& table, const std::string& curve, const std::string& x_name,
+                            const std::string& title, const std::string& fit_label, const std::string& term,
+                            double lp_x, double lp_f, double dp_x, double dp_f) {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/coatcontact-plot.XXXXXX";
+  std::vector<char> buffer(pattern.begin(), pattern.end());
+  buffer.push_back('\0');
+  if (mkdtemp(buffer.data()) == nullptr) throw InputError("--plot: cannot create a temporary folder for gnuplot");
+  const std::string dir(buffer.data());
+  struct Cleanup {
+    std::string dir;
+    ~Cleanup() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  } cleanup{dir};
+  const auto save = [&](const std::string& name, const std::string& text) {
+    std::ofstream file(dir + "/" + name, std::ios::binary);
+    file << text;
+    if (!file) throw InputError("--plot: cannot write the temporary file " + dir + "/" + name);
+  };
+  save("fit.tsv", table);
+  save("curve.tsv", curve);
+  save("fit_plot.gp", kFitPlotScript);
+  const auto value = [](double v) { return std::isfinite(v) ? number(v) : std::string("NaN"); };
+  const std::string settings = "fitfile=" + gnuplot_string(dir + "/fit.tsv") + "; curvefile=" +
+                               gnuplot_string(dir + "/curve.tsv") + "; xname='" + x_name + "'; term='" + term +
+                               "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(fit_label) +
+                               "; lp_x=" + value(lp_x) + "; lp_F=" + value(lp_f) + "; dp_x=" + value(dp_x) +
+                               "; dp_F=" + value(dp_f);
+  save("settings.gp", settings + "\n");
+  const std::string command = "gnuplot '" + dir + "/settings.gp' '" + dir + "/fit_plot.gp' 2>'" + dir + "/err'";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) throw InputError("--plot: cannot run gnuplot");
+  std::string picture;
+  char chunk[65536];
+  std::size_t got;
+  while ((got = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) picture.append(chunk, got);
+  const int status = pclose(pipe);
+  if (status != 0 || picture.empty()) {
+    std::ifstream err(dir + "/err");
+    std::string first;
+    std::getline(err, first);
+    throw InputError("--plot: gnuplot failed" + (first.empty() ? std::string(" (is gnuplot with the cairo terminals installed?)")
+                                                               : ": " + first));
+  }
+  return picture;
+}
+
 int run_fit_body(const Args& args) {
   const auto& spec = fit_options();
   Arguments arguments(args, spec, 1);
@@ -631,9 +700,13 @@ int run_fit_body(const Args& args) {
                   : std::vector<std::string>{"line", "delta_m", "F_data_N", "a_model_m", "F_model_N", "residual_N",
                                              "clamped", "sigma_eff_N"};
 
-  // The curve (written first so a failure leaves no half-written pair of files).
-  std::unique_ptr<Output> curve_output;
-  if (const auto curve_path = arguments.get("--curve")) {
+  // The curve (for --curve and --plot), then the table; every file is produced in memory
+  // first (the plot by gnuplot) so a failure leaves no half-written set of files.
+  const std::optional<std::string> curve_path = arguments.get("--curve");
+  const std::optional<std::string> plot_path = arguments.get("--plot");
+  const std::vector<std::string> curve_columns{"a_m", "delta_m", "F_N"};
+  std::ostringstream curve_text;
+  if (curve_path || plot_path) {
     fit::Problem fitted = problem;
     fitted.work = result.value[fit::kWork];
     fitted.thickness = result.value[fit::kThickness];
@@ -641,33 +714,79 @@ int run_fit_body(const Args& args) {
     double a_lo = *std::min_element(result.model_radius.begin(), result.model_radius.end());
     const double a_hi = 1.05 * *std::max_element(result.model_radius.begin(), result.model_radius.end());
     if (result.displacement_pulloff_radius > 0.0) a_lo = std::min(a_lo, result.displacement_pulloff_radius);
+    if (result.has_load_pulloff) a_lo = std::min(a_lo, result.load_pulloff_radius);
     a_lo *= radius_data ? 0.9 : 0.3;
     const std::vector<fit::CurvePoint> curve = fit::model_curve(fitted, a_lo, a_hi, 200);
-    curve_output = std::make_unique<Output>(*curve_path, "--curve");
     auto curve_header = header;
     curve_header.emplace_back("curve", "fitted model, 200 points log-spaced in a");
-    const std::vector<std::string> curve_columns{"a_m", "delta_m", "F_N"};
-    write_header(curve_output->stream(), curve_header, curve_columns);
-    for (const auto& p : curve) write_row(curve_output->stream(), {p.radius, p.penetration, p.force}, curve_columns);
+    write_header(curve_text, curve_header, curve_columns);
+    for (const auto& p : curve) write_row(curve_text, {p.radius, p.penetration, p.force}, curve_columns);
   }
 
-  const std::string output_path = arguments.get("--output").value_or("");
-  Output output(output_path);
-  write_header(output.stream(), header, out_columns);
+  std::ostringstream table_text;
+  write_header(table_text, header, out_columns);
   for (std::size_t i = 0; i < data.size(); ++i) {
     const double line = data.line_numbers.empty() ? static_cast<double>(i + 1) : data.line_numbers[i];
     // sigma_eff: the weight's sigma, or the residual standard deviation of an unweighted fit.
     const double sigma = result.weighted ? result.sigma_effective[i] : result.residual_sigma;
     if (radius_data) {
-      write_row(output.stream(), {line, data.abscissa[i], data.force[i], result.model_force[i], result.residual[i], sigma},
+      write_row(table_text, {line, data.abscissa[i], data.force[i], result.model_force[i], result.residual[i], sigma},
                 out_columns);
     } else {
-      write_row(output.stream(),
+      write_row(table_text,
                 {line, data.abscissa[i], data.force[i], result.model_radius[i], result.model_force[i],
                  result.residual[i], result.clamped[i] ? 1.0 : 0.0, sigma},
                 out_columns);
     }
   }
+
+  std::string picture;
+  if (plot_path) {
+    const double nan = std::nan("");
+    const double lp_x = result.has_load_pulloff ? (radius_data ? result.load_pulloff_radius : result.load_pulloff_penetration) : nan;
+    const double dp_x = result.displacement_pulloff_radius > 0.0
+                            ? (radius_data ? result.displacement_pulloff_radius : result.displacement_pulloff_penetration)
+                            : nan;
+    std::string estimates;
+    for (int which = 0; which < fit::kParameterCount; ++which) {
+      if (!free[which]) continue;
+      const double scale = which == fit::kWork ? 1e3 : which == fit::kThickness ? 1e6 : 1e-6;
+      const char* unit = which == fit::kWork ? "mJ/m^2" : which == fit::kThickness ? "µm" : "MPa";
+      estimates += std::string(estimates.empty() ? "" : ",  ") + fit::parameter_name(which) + " = " +
+                   short_number(scale * result.value[which]) + " ± " + short_number(scale * result.standard_error[which]) +
+                   " " + unit;
+    }
+    const std::string fit_label =
+        "fit: " + estimates + "   (n = " + std::to_string(result.points) +
+        (result.weighted ? ", χ^2/(n-p) = " + short_number(result.chi2_per_dof) : ", s = " + short_number(1e6 * result.residual_sigma) + " µN") +
+        (result.has_load_pulloff ? ", pull-off " + short_number(1e3 * result.load_pulloff_force) + " mN" : "") + ")";
+    std::string substrate = problem.substrate.rigid ? std::string("rigid substrate")
+                                                    : "E0 = " + short_number(problem.substrate.material.youngs_modulus / 1e9) +
+                                                          " GPa, ν0 = " + short_number(problem.substrate.material.poisson_ratio);
+    const std::string name = path == "-" ? std::string("stdin") : path.substr(path.find_last_of('/') + 1);
+    const std::string title = name + ": R = " + short_number(problem.sphere_radius * 1e3) + " mm, film E1 = " +
+                              short_number(result.value[fit::kFilmModulus] / 1e6) + " MPa (ν1 = " +
+                              short_number(problem.film.poisson_ratio) + "), t = " +
+                              short_number(result.value[fit::kThickness] * 1e6) + " µm, " + substrate;
+    picture = render_fit_plot(table_text.str(), curve_text.str(), x_name, title, fit_label,
+                              plot_path->substr(plot_path->rfind('.') + 1), lp_x, result.load_pulloff_force, dp_x,
+                              result.displacement_pulloff_force);
+  }
+
+  const std::string output_path = arguments.get("--output").value_or("");
+  std::unique_ptr<Output> plot_output;
+  if (plot_path) {
+    plot_output = std::make_unique<Output>(*plot_path, "--plot");
+    plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+  }
+  std::unique_ptr<Output> curve_output;
+  if (curve_path) {
+    curve_output = std::make_unique<Output>(*curve_path, "--curve");
+    curve_output->stream() << curve_text.str();
+  }
+  Output output(output_path);
+  output.stream() << table_text.str();
+  if (plot_output) plot_output->commit();
   if (curve_output) curve_output->commit();
   output.commit();
 

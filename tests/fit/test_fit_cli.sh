@@ -113,6 +113,14 @@ expect "a > R" 2 "both.tsv:[0-9]+: contact radius .* not below the sphere radius
   "$cli" fit "$work/both.tsv" --columns a,F --radius 0.2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --free w,t
 printf '# units: um mN\n60,1\t-0,69\n70,2\t-0,6\n80,3\t-0,3\n' >"$work/comma.tsv"
 expect "decimal commas" 2 "comma.tsv:2: .*decimal commas" -- "$cli" fit "$work/comma.tsv" --columns a,F "${glass[@]}" --thickness 20um
+# --plot: PNG or PDF by extension, written atomically (nothing left behind on failure)
+if command -v gnuplot >/dev/null; then
+  expect "plot png" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --plot "$work/fit.png"
+  [[ $(head -c 4 "$work/fit.png" | tail -c 3) == PNG ]] || fail "plot png: not a PNG file"
+  expect "plot pdf (delta,F)" 0 "" -- "$cli" fit "$data/example_delta_F.tsv" --columns delta,F "${model[@]}" --free w,t --plot "$work/fit.pdf"
+  [[ $(head -c 4 "$work/fit.pdf") == %PDF ]] || fail "plot pdf: not a PDF file"
+  ls "$work" | grep -q '\.tmp\.' && fail "plot: a temporary file was left behind"
+fi
 # undetermined parameter: exit 3 saying which
 expect "undetermined t" 3 "do not determine t" -- \
   "$cli" fit "$data/example_a_F.tsv" --columns a,F --radius 5mm --film 1MPa,0.49 --substrate 1MPa,0.49 --free w,t
