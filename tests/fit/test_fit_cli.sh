@@ -105,6 +105,8 @@ expect "bad --bootstrap" 2 "--bootstrap" -- "$cli" fit "$work/both.tsv" --column
 expect "bad --plot extension" 2 "--plot" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --plot fit.gif
 expect "bad --columns position" 2 "--columns: a=9" -- "$cli" fit "$work/export.csv" --columns a=9,F=3 "${glass[@]}" --thickness 20um
 expect "bad --columns name" 2 "no column named 'radius'" -- "$cli" fit "$work/export.csv" --columns a=radius,F=3 "${glass[@]}" --thickness 20um
+expect "elastic indenter" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --indenter 70GPa,0.2
+grep -q "^# indenter: E2 = 7" "$work/out" || fail "elastic indenter: not in the header"
 expect "bad --indenter" 2 "--indenter" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --indenter 1GPa
 grep -v '^# units' "$work/both.tsv" >"$work/nounits.tsv"
 expect "forgotten units" 2 "nounits.tsv:[0-9]+: contact radius .* not below the sphere radius.*# units: um mN" -- \

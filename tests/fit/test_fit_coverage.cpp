@@ -47,10 +47,12 @@ Substrate glass() {
   return s;
 }
 
-// F(a) of THEORY.md section 5 in closed form from solved reduced variables.
-Truth make_truth(int points) {
-  const ReducedSolver solver(Stack::film_on(kFilm, glass()));
-  const double e_star = kFilm.youngs_modulus / (1.0 - kFilm.poisson_ratio * kFilm.poisson_ratio);
+// F(a) of THEORY.md section 5 in closed form from solved reduced variables; with an elastic
+// indenter the reference modulus E_r replaces E1* (section 9).
+Truth make_truth(int points, const Indenter& indenter = {}) {
+  const ReducedSolver solver(Stack::film_on(kFilm, glass(), indenter));
+  const double e_star = indenter.rigid ? kFilm.youngs_modulus / (1.0 - kFilm.poisson_ratio * kFilm.poisson_ratio)
+                                       : solver.stack().reference_modulus();
   Truth t;
   std::vector<double> x;
   for (int i = 0; i < points; ++i) {
@@ -112,6 +114,44 @@ int main(int argc, char** argv) {
                   r.search_evaluations, r.seconds);
       check::below(std::fabs(r.value[0] - kWork) / r.standard_error[0], 3.0, std::string(name) + ": w within 3 SE");
       check::below(std::fabs(r.value[1] - kThickness) / r.standard_error[1], 3.0, std::string(name) + ": t within 3 SE");
+    }
+
+    // Elastic indenter (E2 = 3 MPa, comparable to the film): the fit with --indenter recovers
+    // w, t and, with E1 free, the film's own modulus; ignoring the indenter biases w.
+    {
+      Indenter soft;
+      soft.rigid = false;
+      soft.material = Material{3e6, 0.5};
+      const Truth truth_soft = make_truth(kPoints, soft);
+      fit::Problem p = problem(0.05, 1e-3);
+      p.indenter = soft;
+      fit::Problem at_truth = problem(kWork, kThickness);
+      at_truth.indenter = soft;
+      check::close(truth_soft.force[7], fit::exact_point(at_truth, truth_soft.a[7]).force, 1e-7,
+                   "closed-form generator = exact_point (elastic indenter)", 1e-9);
+      const fit::Measurements data = noisy(truth_soft, 11);
+      const fit::Result r = fit::fit(data, p);
+      std::printf("elastic indenter: w = %.5g +- %.2g, t = %.5g +- %.2g\n", r.value[0], r.standard_error[0], r.value[1],
+                  r.standard_error[1]);
+      check::below(std::fabs(r.value[0] - kWork) / r.standard_error[0], 3.0, "elastic indenter: w within 3 SE");
+      check::below(std::fabs(r.value[1] - kThickness) / r.standard_error[1], 3.0, "elastic indenter: t within 3 SE");
+      fit::Problem e1 = p;
+      e1.free = {true, false, true};
+      e1.thickness = kThickness;
+      e1.film.youngs_modulus = 2e6;  // a hint off by 2x
+      const fit::Result re = fit::fit(data, e1);
+      std::printf("elastic indenter, E1 free: E1 = %.5g +- %.2g (film modulus 1e6)\n", re.value[2], re.standard_error[2]);
+      check::below(std::fabs(re.value[2] - kFilm.youngs_modulus) / re.standard_error[2], 3.0,
+                   "elastic indenter: E1 free is the film's modulus, within 3 SE");
+      // Ignoring the indenter must not pass unnoticed: a biased w or a refused fit.
+      try {
+        const fit::Result rigid = fit::fit(data, problem(0.05, 1e-3));
+        std::printf("same data fitted with a rigid indenter: w = %.5g, chi2/dof %.3g\n", rigid.value[0], rigid.chi2_per_dof);
+        check::that(std::fabs(rigid.value[0] - kWork) > 10.0 * r.standard_error[0] || rigid.chi2_per_dof > 2.0,
+                    "ignoring the indenter biases w or shows in chi2");
+      } catch (const NumericalError& e) {
+        std::printf("same data fitted with a rigid indenter: refused (%s)\n", e.what());
+      }
     }
 
     // Speed: 100 points, w and t free, no hint.
