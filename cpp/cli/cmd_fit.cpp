@@ -659,7 +659,8 @@ int run_fit_body(const Args& args) {
     header.emplace_back("weights", "none: residuals in F, noise level from the scatter; the errors assume exact " +
                                        x_name + " (give --sigma " + x_name + "=..,F=.. if " + x_name + " is measured)");
   }
-  header.emplace_back("global_search", std::to_string(result.search_evaluations) + " model evaluations over log-parameters");
+  header.emplace_back("global_search", std::to_string(result.search_evaluations) + " model evaluations over log-parameters, " +
+                                          short_number(result.search_seconds) + " s");
   if (result.second_minimum) {
     std::string text;
     for (int which = 0; which < fit::kParameterCount; ++which) {

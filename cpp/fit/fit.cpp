@@ -141,6 +141,8 @@ Result fit(const Measurements& data, const Problem& problem) {
   internal::SearchResult search;
   search.best = hint;
   if (problem.global_search) search = internal::global_search(model, problem, free_index, hint);
+  const double search_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
 
   // Unweighted: one constant scale (any gives the same estimates; this one keeps GSL's
   // tolerances meaningful). Weighted: 1/sigma_eff from the model's slope, refreshed at each
@@ -168,6 +170,7 @@ Result fit(const Measurements& data, const Problem& problem) {
 
   Result result;
   result.search_evaluations = search.evaluations;
+  result.search_seconds = search_seconds;
   result.iterations = minimum.iterations;
   result.converged = true;
   result.stop_reason = minimum.stop_reason;

@@ -109,7 +109,7 @@ class Model {
   // re-inversion of delta at E1 e^(+-h), without its square-root singularity near a_c).
   std::vector<std::vector<double>> force_derivatives(const Parameters& p, const ModelAtData& m,
                                                      const std::vector<int>& which);
-  // max |F_exact - F_model| over (up to 200 of) the data points, the reduced variables solved
+  // max |F_exact - F_model| over (up to 16 of) the data points, the reduced variables solved
   // directly at each model radius (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error(const Parameters& p, const ModelAtData& m);
   long solver_calls() const { return cache_.solver_calls() + check_calls_; }

@@ -114,6 +114,7 @@ struct Result {
   // Global search: grid points evaluated, and a second local minimum if one was found and
   // polished to distinct parameters (cost ratio = its chi2 or RSS over the best one's).
   int search_evaluations = 0;
+  double search_seconds = 0.0;  // wall time of the search (tables it builds included)
   bool second_minimum = false;
   std::array<double, kParameterCount> second_value{};
   double second_cost_ratio = 0.0;
