@@ -356,7 +356,8 @@ std::string gnuplot_string(const std::string& text) {
     if (c == '\'') {
       out += "''";
     } else if (c == '_' || c == '@' || c == '&' || c == '~' || c == '{' || c == '}') {
-      out += ' ';  // enhanced-text control characters (keep ^ for the units)
+      out += '\\';  // escaped: enhanced text would read them as markup (^ is kept for the units)
+      out += c;
     } else if (static_cast<unsigned char>(c) >= 32 || (c & 0x80)) {
       out += c;
     }
@@ -801,6 +802,10 @@ int run_fit_body(const Args& args) {
                 << short_number(result.value[which]) << " " << parameter_unit(which);
       if (free[which]) {
         std::cout << " +- " << short_number(result.standard_error[which]) << " (standard error)";
+        if (problem.bootstrap > 0) {
+          std::cout << ", bootstrap 68 % [" << short_number(result.interval68_low[which]) << ", "
+                    << short_number(result.interval68_high[which]) << "]";
+        }
       } else {
         std::cout << " (fixed)";
       }
@@ -810,6 +815,26 @@ int run_fit_body(const Args& args) {
               << short_number(result.residual_sigma) << " N, R^2 " << short_number(result.r_squared)
               << ", interpolation error " << order_of_magnitude_bound(result.interpolation_error / result.residual_sigma)
               << " sigma\n";
+    if (result.weighted) {
+      std::cout << "  weighted by sigma_F^2 + (dF/d" << x_name << ")^2 sigma_" << x_name
+                << "^2: chi2/(n-p) = " << short_number(result.chi2_per_dof) << "\n";
+    } else {
+      std::cout << "  unweighted: the errors assume exact " << x_name << " (give --sigma if it is measured)\n";
+    }
+    if (result.has_load_pulloff) {
+      std::cout << "  predicted pull-off: " << short_number(result.load_pulloff_force) << " N under load control";
+      if (result.displacement_pulloff_radius > 0.0) {
+        std::cout << ", " << short_number(result.displacement_pulloff_force) << " N under displacement control";
+      }
+      std::cout << "\n";
+    }
+    if (result.second_minimum) {
+      std::cout << "  note: a second minimum at";
+      for (int which = 0; which < fit::kParameterCount; ++which) {
+        if (free[which]) std::cout << " " << fit::parameter_name(which) << " = " << short_number(result.second_value[which]);
+      }
+      std::cout << " (cost " << short_number(result.second_cost_ratio) << " x the best)\n";
+    }
   }
   return kExitSuccess;
 }

@@ -14,7 +14,10 @@
 namespace coatcontact::fit::internal {
 namespace {
 
+// Grid density: t needs the finest (the cost has one narrow valley in ln t); E1 costs a table
+// per value and w (gridded for delta,F data only) costs full evaluations, so they get fewer.
 constexpr double kPointsPerDecade = 4.0;
+constexpr double kCoarsePointsPerDecade = 2.0;
 // The two w at which the a,F model is evaluated to split F into A - B sqrt(w).
 constexpr double kProbeWork[2] = {1e-2, 4e-2};
 // Relative floor of sigma_eff (a point with sigma 0 in every variable must not get an
@@ -24,8 +27,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Relative change of the cost along an axis below which that parameter counts as undetermined.
 constexpr double kFlatCost = 1e-6;
 
-std::vector<double> log_axis(double lo, double hi) {
-  const int count = std::max(2, static_cast<int>(std::ceil(kPointsPerDecade * std::log10(hi / lo))) + 1);
+std::vector<double> log_axis(double lo, double hi, double per_decade = kPointsPerDecade) {
+  const int count = std::max(2, static_cast<int>(std::ceil(per_decade * std::log10(hi / lo))) + 1);
   std::vector<double> axis;
   for (int k = 0; k < count; ++k) axis.push_back(lo * std::pow(hi / lo, k / static_cast<double>(count - 1)));
   return axis;
@@ -75,7 +78,8 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
                                          ? log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])
                                          : std::vector<double>{hint.thickness};
   const std::vector<double> e_axis =
-      is_free(kFilmModulus) ? log_axis(hint.film_modulus / kSearchModulusFactor, hint.film_modulus * kSearchModulusFactor)
+      is_free(kFilmModulus) ? log_axis(hint.film_modulus / kSearchModulusFactor, hint.film_modulus * kSearchModulusFactor,
+                                       kCoarsePointsPerDecade)
                             : std::vector<double>{hint.film_modulus};
   std::vector<double> w_axis{hint.work};
   const bool profile_work = is_free(kWork) && radius_data;
@@ -83,7 +87,8 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
     const double estimate = f_min < 0.0 ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
-    w_axis = estimate > 0.0 ? log_axis(estimate / 30.0, estimate * 30.0) : log_axis(1e-3, 1.0);
+    w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
+                            : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
   }
 
   SearchResult result;
