@@ -4,7 +4,11 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <sys/stat.h>
+
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -199,12 +203,24 @@ LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::D
     buffer << std::cin.rdbuf();
     text = buffer.str();
   } else {
+    // The checks and messages of read_data_file (the text is needed here first).
+    struct stat info {};
+    if (stat(path.c_str(), &info) != 0) throw InputError(path + ": cannot read data file: " + std::strerror(errno));
+    if (!S_ISREG(info.st_mode)) throw InputError(path + ": not a regular file");
+    if (static_cast<unsigned long long>(info.st_size) > kMaxDataFileBytes) {
+      throw InputError(path + ": larger than " + std::to_string(kMaxDataFileBytes / (1024 * 1024)) +
+                       " MB; refusing to read it");
+    }
     std::ifstream file(path, std::ios::binary);
-    if (!file) throw InputError(path + ": cannot open the data file");
+    if (!file) throw InputError(path + ": cannot open data file: " + std::strerror(errno));
     register_input(path, "data file");
     std::ostringstream buffer;
     buffer << file.rdbuf();
     text = buffer.str();
+  }
+  if (text.size() > kMaxDataFileBytes) {
+    throw InputError(std::string(path == "-" ? "stdin" : path) + ": larger than " +
+                     std::to_string(kMaxDataFileBytes / (1024 * 1024)) + " MB; refusing to read it");
   }
   const std::string name = path == "-" ? std::string("stdin") : path;
   // Decimal commas ("0,12<TAB>3,4" or "0,12;3,4"): refused with a hint before the reader
@@ -616,7 +632,7 @@ int run_fit_body(const Args& args) {
     if (free[which]) {
       header.emplace_back(std::string(fit::parameter_name(which)) + "_stderr_" + key_unit(which),
                           number(result.standard_error[which]));
-      header.emplace_back(std::string(fit::parameter_name(which)) + "_start_" + key_unit(which),
+      header.emplace_back(std::string(fit::parameter_name(which)) + "_hint_" + key_unit(which),
                           number(start_values[which]));
     } else {
       header.emplace_back(std::string(fit::parameter_name(which)) + "_status", "fixed");

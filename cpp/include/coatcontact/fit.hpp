@@ -24,9 +24,10 @@
 // F is linear in sqrt(w) at fixed a) picks the start; the problem's values are only a hint.
 //
 // Errors: InputError for bad problems (n <= number of free parameters, a <= 0 in a,F data,
-// missing start values); NumericalError when the fit does not converge, a parameter runs out
-// of its physical range, the parameters are not identifiable from the data, or the model
-// does not describe the data (R^2 < kMinimumRSquared).
+// negative or non-finite sigmas); NumericalError when the fit does not converge, a parameter
+// runs out of its physical range or does not change the fit over its search range (named),
+// the parameters are not identifiable from the data, or the model does not describe the data
+// (R^2 < kMinimumRSquared).
 #pragma once
 #include <array>
 #include <cstddef>
@@ -64,10 +65,10 @@ const char* parameter_name(int parameter);  // "w", "t", "E1"
 
 struct Problem {
   double sphere_radius = 0.0;  // R [m]
-  Material film;               // E1 (start value if free, else fixed), nu1
+  Material film;               // E1 (hint and centre of the search range if free, else fixed), nu1
   Substrate substrate;
-  double thickness = 0.0;  // t [m] (start value if free, else fixed)
-  double work = 0.0;       // w [J/m2] (start value if free, else fixed)
+  double thickness = 0.0;  // t [m] (a hint to the search if free, else fixed)
+  double work = 0.0;       // w [J/m2] (a hint to the search if free, else fixed)
   std::array<bool, kParameterCount> free{{true, false, false}};
   Indenter indenter;  // rigid by default; elastic: the stack's reference modulus is E_r
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
