@@ -51,6 +51,7 @@ const std::vector<OptionSpec>& fit_options() {
       {"--seed", "N", "seed of the bootstrap resampling (default 1)"},
       {"--plot", "FILE", "draw data, fit, residuals and pull-off with gnuplot (PNG or PDF by extension)"},
       indenter_option(),
+      {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off"},
   };
   return spec;
 }
@@ -326,6 +327,24 @@ LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::D
   return out;
 }
 
+// --spring k: "500", "500N/m" or a force per length ("0.5mN/um").
+double parse_stiffness(const std::string& text) {
+  const auto slash = text.rfind('/');
+  double k;
+  if (slash == std::string::npos) {
+    char* end = nullptr;
+    k = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || *end != '\0') throw InputError("--spring: '" + text + "' is not a stiffness (e.g. 500N/m)");
+  } else {
+    const double force = parse_quantity(text.substr(0, slash), Quantity::kForce, "--spring");
+    const std::string length = text.substr(slash + 1);
+    k = force / parse_quantity(length.empty() || !std::isdigit(static_cast<unsigned char>(length[0])) ? "1" + length : length,
+                               Quantity::kLength, "--spring");
+  }
+  if (!(k > 0.0) || !std::isfinite(k)) throw InputError("--spring: the stiffness must be > 0 (got '" + text + "')");
+  return k;
+}
+
 // --sigma a=0.3%,F=10uN: per-column uncertainties, relative (%) or absolute (with units).
 void apply_sigma_option(const std::optional<std::string>& text, fit::Measurements& data, const ColumnChoice& choice) {
   if (!text) return;
@@ -475,6 +494,7 @@ int run_fit_body(const Args& args) {
   problem.film = parse_material(arguments.require("--film"), "--film");
   problem.substrate = parse_substrate(arguments.require("--substrate"), "--substrate");
   if (const auto text = arguments.get("--indenter")) problem.indenter = parse_indenter(*text, "--indenter");
+  if (const auto text = arguments.get("--spring")) problem.spring_stiffness = parse_stiffness(*text);
   if (const auto text = arguments.get("--bootstrap")) {
     char* end = nullptr;
     const long n = std::strtol(text->c_str(), &end, 10);
@@ -687,6 +707,15 @@ int run_fit_body(const Args& args) {
     }
     header.emplace_back("second_minimum", text + " (cost " + short_number(result.second_cost_ratio) + " x the best)");
   }
+  if (problem.spring_stiffness > 0.0) {
+    if (result.has_spring_pulloff) {
+      header.emplace_back("spring_pulloff_F_N", number(result.spring_pulloff_force));
+      header.emplace_back("spring_pulloff_a_m", number(result.spring_pulloff_radius));
+      header.emplace_back("spring_pulloff_delta_m", number(result.spring_pulloff_penetration));
+    } else {
+      header.emplace_back("spring_pulloff", "not found inside the scanned range of the fitted model");
+    }
+  }
   if (result.has_load_pulloff) {
     header.emplace_back("load_pulloff_F_N", number(result.load_pulloff_force));
     header.emplace_back("load_pulloff_a_m", number(result.load_pulloff_radius));
@@ -843,6 +872,10 @@ int run_fit_body(const Args& args) {
         std::cout << ", " << short_number(result.displacement_pulloff_force) << " N under displacement control";
       }
       std::cout << "\n";
+    }
+    if (result.has_spring_pulloff) {
+      std::cout << "  predicted pull-off through the spring k = " << short_number(problem.spring_stiffness)
+                << " N/m: " << short_number(result.spring_pulloff_force) << " N\n";
     }
     if (result.second_minimum) {
       std::cout << "  note: a second minimum at";

@@ -45,6 +45,9 @@ void validate(const Measurements& data, const Problem& problem) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
   Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
+  if (!(problem.spring_stiffness >= 0.0) || !std::isfinite(problem.spring_stiffness)) {
+    throw InputError("spring stiffness must be finite and >= 0 (got " + short_text(problem.spring_stiffness) + ")");
+  }
   if (problem.bootstrap < 0 || problem.bootstrap > 100000) {
     throw InputError("bootstrap: the number of resamples must be in [0, 100000] (got " +
                      std::to_string(problem.bootstrap) + ")");
@@ -191,6 +194,18 @@ Result fit(const Measurements& data, const Problem& problem) {
     result.load_pulloff_force = m.load_pulloff_force;
   }
   const std::vector<double> final_scale = weighted ? inv_sigma : scale;
+  if (problem.spring_stiffness > 0.0) {
+    try {
+      if (const auto s = model.spring_pulloff(minimum.values, problem.spring_stiffness)) {
+        result.has_spring_pulloff = true;
+        result.spring_pulloff_radius = (*s)[0];
+        result.spring_pulloff_penetration = (*s)[1];
+        result.spring_pulloff_force = (*s)[2];
+      }
+    } catch (const NumericalError&) {
+      // Reported as absent (the header says so); the fit itself stands.
+    }
+  }
 
   // A second local minimum of the search, polished: reported when it stays apart from the best.
   if (search.has_second && search.second_cost <= kSecondCostRatio * search.best_cost) {

@@ -388,6 +388,19 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
   return columns;
 }
 
+std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, double k) {
+  coatcontact::detail::GslHandlerOff handler_off;
+  const ContactModel cm(cache_.get(p.film_modulus).model(), problem_.sphere_radius, p);
+  cm.prepare_pulloff();
+  // k_bar = k (l^2/R) / (pi w R): the stiffness in the Maugis units of force and penetration.
+  const double k_bar = k * cm.contact().penetration_scale() / cm.contact().force_scale();
+  const SpringPulloff s = cm.contact().model().pulloff_spring(cm.contact().eta(), k_bar);
+  if (!s.point.interior) return std::nullopt;
+  return std::array<double, 3>{s.point.a_bar * cm.contact().length_scale(),
+                               s.point.penetration * cm.contact().penetration_scale(),
+                               s.point.load * cm.contact().force_scale()};
+}
+
 double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
   coatcontact::detail::GslHandlerOff handler_off;
   const ModelEntry& entry = cache_.get(p.film_modulus);

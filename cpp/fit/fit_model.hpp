@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "coatcontact/adhesion.hpp"
@@ -113,6 +114,9 @@ class Model {
   // directly at each model radius (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error(const Parameters& p, const ModelAtData& m);
   long solver_calls() const { return cache_.solver_calls() + check_calls_; }
+  // Pull-off through a spring of stiffness k [N/m] at p: {a, delta, F} (SI), or nothing when
+  // the jump is not inside the scanned range.
+  std::optional<std::array<double, 3>> spring_pulloff(const Parameters& p, double k);
   // Swap the data (same kind and size: bootstrap resamples), keeping the tables.
   void set_data(const Measurements& data) { data_ = &data; }
   const Measurements& data() const { return *data_; }

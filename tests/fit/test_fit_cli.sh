@@ -88,6 +88,18 @@ w=$(sed -n 's/^# w_J_per_m2: //p' "$work/out"); t=$(sed -n 's/^# t_m: //p' "$wor
 awk -v w="$w" -v t="$t" 'BEGIN { exit !(w > 0.048 && w < 0.052 && t > 19.8e-6 && t < 20.2e-6) }' \
   || fail "both variables: w = $w, t = $t (truth 0.05, 2e-05)"
 expect "both variables, --start hint" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --start w=0.01,t=50um --sigma a=0.3%,F=10uN
+"$generator" --kind delta,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 50mJ/m2 \
+  --noise 10uN --noise-x 0.3% --a-range 60um,400um --points 30 --seed 4 --output "$work/both_delta.tsv" || fail "generator (delta both)"
+expect "delta,F both variables, no start" 0 "" -- "$cli" fit "$work/both_delta.tsv" --columns delta,F "${glass[@]}" --free w,t --sigma delta=0.3%,F=10uN
+w=$(sed -n 's/^# w_J_per_m2: //p' "$work/out"); t=$(sed -n 's/^# t_m: //p' "$work/out")
+awk -v w="$w" -v t="$t" 'BEGIN { exit !(w > 0.048 && w < 0.052 && t > 19.8e-6 && t < 20.2e-6) }' \
+  || fail "delta,F both variables: w = $w, t = $t (truth 0.05, 2e-05)"
+# the spring pull-off lies between the load- and displacement-controlled ones
+expect "spring pull-off" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --spring 500N/m
+fs=$(sed -n 's/^# spring_pulloff_F_N: //p' "$work/out"); fl=$(sed -n 's/^# load_pulloff_F_N: //p' "$work/out")
+fd=$(sed -n 's/^# displacement_pulloff_F_N: //p' "$work/out")
+awk -v s="$fs" -v l="$fl" -v d="$fd" 'BEGIN { exit !(s != "" && s > l && s < d) }' || fail "spring pull-off $fs not between $fl and $fd"
+expect "bad --spring" 2 "--spring" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --spring abc
 expect "unweighted says exact a" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um
 grep -q "^# weights: none.*assume exact a" "$work/out" || fail "unweighted fit does not say the errors assume exact a"
 expect "bootstrap" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um --bootstrap 20 --seed 3

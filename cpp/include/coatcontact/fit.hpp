@@ -71,6 +71,7 @@ struct Problem {
   double work = 0.0;       // w [J/m2] (a hint to the search if free, else fixed)
   std::array<bool, kParameterCount> free{{true, false, false}};
   Indenter indenter;  // rigid by default; elastic: the stack's reference modulus is E_r
+  double spring_stiffness = 0.0;  // k [N/m] of the machine/cantilever (> 0: its pull-off is reported)
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
   int max_iterations = 200;
   bool global_search = true;  // false: start from the values above (bootstrap refits, tests)
@@ -137,6 +138,9 @@ struct Result {
   double displacement_pulloff_radius = 0.0;       // a_c [m]
   double displacement_pulloff_penetration = 0.0;  // delta(a_c) [m]
   double displacement_pulloff_force = 0.0;        // F(a_c) [N]
+  // Pull-off through the spring k of Problem::spring_stiffness (THEORY.md section 10).
+  bool has_spring_pulloff = false;
+  double spring_pulloff_radius = 0.0, spring_pulloff_penetration = 0.0, spring_pulloff_force = 0.0;
   // Load-controlled pull-off (minimum of F along the model curve), reported for every fit.
   bool has_load_pulloff = false;
   double load_pulloff_radius = 0.0, load_pulloff_penetration = 0.0, load_pulloff_force = 0.0;
