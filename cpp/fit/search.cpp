@@ -18,6 +18,9 @@ namespace {
 // per value and w (gridded for delta,F data only) costs full evaluations, so they get fewer.
 constexpr double kPointsPerDecade = 4.0;
 constexpr double kCoarsePointsPerDecade = 2.0;
+// Below this a/t (of the largest contact radius) the interpolant stays within its fast decades
+// (they are decades of a/t: [1, 10) is the last cheap one).
+constexpr double kCheapAOverT = 10.0;
 // The two w at which the a,F model is evaluated to split F into A - B sqrt(w).
 constexpr double kProbeWork[2] = {1e-2, 4e-2};
 // Relative floor of sigma_eff (a point with sigma 0 in every variable must not get an
@@ -152,15 +155,27 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   const std::size_t ne = e_axis.size(), nt = t_axis.size(), nw = w_axis.size();
   std::vector<double> cost(ne * nt * nw, kInf);
   std::vector<Parameters> point(cost.size());
-  for (std::size_t ie = 0; ie < ne; ++ie) {
-    for (std::size_t it = 0; it < nt; ++it) {
-      for (std::size_t iw = 0; iw < nw; ++iw) {
-        const std::size_t k = (ie * nt + it) * nw + iw;
-        const auto [c, p] = evaluate(Parameters{w_axis[iw], t_axis[it], e_axis[ie]});
-        cost[k] = c;
-        point[k] = p;
+  // Thin films (a/t above kCheapAOverT) need the interpolant's slow decade a/t 10-100: they are
+  // searched only when the best of the thicker ones lies at the thin edge.
+  const auto fill = [&](bool thin) {
+    for (std::size_t ie = 0; ie < ne; ++ie) {
+      for (std::size_t it = 0; it < nt; ++it) {
+        if ((a_hi / t_axis[it] >= kCheapAOverT) != thin) continue;
+        for (std::size_t iw = 0; iw < nw; ++iw) {
+          const std::size_t k = (ie * nt + it) * nw + iw;
+          const auto [c, p] = evaluate(Parameters{w_axis[iw], t_axis[it], e_axis[ie]});
+          cost[k] = c;
+          point[k] = p;
+        }
       }
     }
+  };
+  fill(false);
+  {
+    const std::size_t best = static_cast<std::size_t>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+    const std::size_t it = (best / nw) % nt;
+    const bool at_thin_edge = it == 0 || a_hi / t_axis[it - 1] >= kCheapAOverT;
+    if (!std::isfinite(cost[best]) || (nt > 1 && at_thin_edge)) fill(true);
   }
   // Local minima: no neighbour (one step along one axis) lower.
   std::vector<std::size_t> minima;
@@ -200,11 +215,14 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     const std::size_t ie = k / (nt * nw), it = (k / nw) % nt, iw = k % nw;
     const auto flat = [&](std::size_t count, const std::function<std::size_t(std::size_t)>& index) {
       double lo = kInf, hi = 0.0;
+      std::size_t finite = 0;
       for (std::size_t j = 0; j < count; ++j) {
+        if (!std::isfinite(cost[index(j)])) continue;  // not evaluated (or not evaluable)
+        ++finite;
         lo = std::min(lo, cost[index(j)]);
         hi = std::max(hi, cost[index(j)]);
       }
-      return count > 1 && std::isfinite(hi) && hi - lo <= kFlatCost * hi;
+      return finite > 1 && hi - lo <= kFlatCost * hi;
     };
     if (nt > 1 && flat(nt, [&](std::size_t j) { return (ie * nt + j) * nw + iw; })) {
       throw NumericalError("the data do not determine t: the fit does not change for t from " +
