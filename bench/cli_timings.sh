@@ -31,8 +31,16 @@ time_task "200 radii (reduced, a/t 1e-3..1e4)" \
 time_task "pulloff, 100 eta" \
   "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 0.01:100:100
 
-# make figures from a built tree, into a fresh folder each run (3 runs: ~3 s each)
 root="$(cd "$(dirname "$0")/.." && pwd)"
+# fits with w and t free and no start values (global search included), 80 and 60 points
+time_task "fit a,F, w,t free, no start (80 points, a/t to 5)" \
+  "$cli" fit "$root/data/example_a_F.tsv" --columns a,F --radius 5mm --film 1MPa,0.49 \
+  --substrate 70GPa,0.22 --free w,t
+time_task "fit a,F, noise on a and F, w,t free, no start (60 points, a/t to 20)" \
+  "$cli" fit "$root/data/example_both_a_F.tsv" --columns a,F --radius 2mm --film 1MPa,0.5 \
+  --substrate 70GPa,0.22 --free w,t --sigma a=0.3%,F=10uN
+
+# make figures from a built tree, into a fresh folder each run (3 runs: ~3 s each)
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 figures() {

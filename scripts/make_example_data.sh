@@ -18,4 +18,8 @@ truth=(--radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um --w
 # 40 loading + 40 unloading rows, Gaussian force noise of 10 uN, fixed seeds.
 "$generator" --kind a,F "${truth[@]}" --noise 10uN --points 40 --max-over-pulloff 1.5 --seed 1 --output data/example_a_F.tsv
 "$generator" --kind delta,F "${truth[@]}" --noise 10uN --points 40 --max-over-pulloff 1.5 --seed 2 --output data/example_delta_F.tsv
-echo "wrote data/example_a_F.tsv and data/example_delta_F.tsv"
+# Issue 15: an experiment-like a,F set, noise on both variables (0.3 % on a, 10 uN on F): a 2 mm
+# sphere on a 20 um incompressible film on glass, a from 60 to 400 um (a/t 3-20).
+"$generator" --kind a,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 50mJ/m2 \
+  --noise 10uN --noise-x 0.3% --a-range 60um,400um --points 30 --seed 3 --output data/example_both_a_F.tsv
+echo "wrote data/example_a_F.tsv, data/example_delta_F.tsv and data/example_both_a_F.tsv"

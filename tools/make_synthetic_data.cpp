@@ -1,6 +1,7 @@
 // make_synthetic_data: writes a synthetic adhesive sphere-contact data set (a,F or delta,F, a
 // loading and an unloading branch) from known parameters, with Gaussian noise of a stated
-// standard deviation on the force only (GSL mt19937 generator, fixed seed: reproducible).
+// standard deviation on the force and, optionally, on the abscissa (GSL mt19937 generator,
+// fixed seed: reproducible).
 // The model is the library's (THEORY.md section 5): JkrLaw with the Maugis scales of Contact.
 // Its reduced variables are solved directly at each contact radius through a SolverSource,
 // not interpolated, so the data stay independent of the ReducedTable the fit uses.
@@ -47,6 +48,8 @@ const Option kOptions[] = {
     {"--thickness", "t", "film thickness", "50um"},
     {"--work", "w", "adhesion energy", "40mJ/m2"},
     {"--noise", "sigma", "standard deviation of the Gaussian force noise", "10uN"},
+    {"--noise-x", "sigma|p%", "Gaussian noise on a (or delta): absolute, or relative with %", "0"},
+    {"--a-range", "a_min,a_max", "contact radii of both branches (default: from F = 0)", ""},
     {"--seed", "N", "seed of the GSL mt19937 generator", "1"},
     {"--points", "N", "points per branch", "40"},
     {"--max-over-pulloff", "f", "a_max / a at zero force on loading", "1.5"},
@@ -198,6 +201,21 @@ int run(const std::vector<std::string>& args) {
     throw InputError("--points: must be an integer in [3, 100000]");
   }
   if (!(max_factor > 1.0 && max_factor < 100.0)) throw InputError("--max-over-pulloff: must be in (1, 100)");
+  // Noise on the abscissa: relative ("0.3%") or absolute (with a unit).
+  const std::string noise_x_text = arguments.get("--noise-x");
+  const bool noise_x_relative = !noise_x_text.empty() && noise_x_text.back() == '%';
+  const double noise_x =
+      noise_x_relative ? 0.01 * parse_value(noise_x_text.substr(0, noise_x_text.size() - 1), "--noise-x", false)
+                       : parse_value(noise_x_text, "--noise-x", true);
+  if (!(noise_x >= 0.0)) throw InputError("--noise-x: must be >= 0");
+  double range_lo = 0.0, range_hi = 0.0;
+  if (const std::string range = arguments.get("--a-range"); !range.empty()) {
+    const auto comma = range.find(',');
+    if (comma == std::string::npos) throw InputError("--a-range: '" + range + "' is not a_min,a_max");
+    range_lo = parse_value(range.substr(0, comma), "--a-range", true);
+    range_hi = parse_value(range.substr(comma + 1), "--a-range", true);
+    if (!(range_lo > 0.0 && range_hi > range_lo)) throw InputError("--a-range: need 0 < a_min < a_max");
+  }
   const std::string signal = arguments.get("--signal");
   if (signal != "model" && signal != "none") throw InputError("--signal: '" + signal + "' is not allowed (model or none)");
   const bool pure_noise = signal == "none";
@@ -227,12 +245,18 @@ int run(const std::vector<std::string>& args) {
     throw NumericalError("could not locate the pull-off points on the model curve");
   }
   const double a_zero = curve[i_zero].a;
-  const double a_max = max_factor * a_zero;
+  double a_max = max_factor * a_zero;
   // Loading from the jump-in radius to a_max; unloading back to just above the pull-off
   // (load control for a,F, displacement control for delta,F), on a grid offset by half a
   // step so the two branches sample different radii.
-  const double a_end = 1.02 * (radius_data ? curve[i_fmin].a : curve[i_dmin].a);
-  std::vector<double> radii = linspace(a_zero, a_max, points);
+  double a_end = 1.02 * (radius_data ? curve[i_fmin].a : curve[i_dmin].a);
+  double a_start = a_zero;
+  if (range_hi > 0.0) {
+    a_start = range_lo;
+    a_max = range_hi;
+    a_end = range_lo;
+  }
+  std::vector<double> radii = linspace(a_start, a_max, points);
   const double step = (a_max - a_end) / (points - 0.5);
   for (int i = 0; i < points; ++i) radii.push_back(a_max - (i + 0.5) * step);
   const std::vector<Point> data = exact_points(contact, solver, radii, t, tolerance);
@@ -257,17 +281,34 @@ int run(const std::vector<std::string>& args) {
         << " Pa, nu0 = " << text("%.15g", substrate.material.poisson_ratio) << "\n";
   }
   out << "# adhesion energy w = " << text("%.15g", w) << " J/m2\n"
-      << "# noise: Gaussian, standard deviation " << text("%.15g", sigma) << " N, added to F only ("
-      << (radius_data ? "a" : "delta") << " exact); GSL gsl_rng_mt19937, seed " << seed
-      << ", gsl_ran_gaussian, one draw per row in file order\n"
-      << "# rows: " << points << " loading (a increasing from F = 0 to a_max = " << text("%.6g", a_max)
-      << " m), then " << points << " unloading (a decreasing to 1.02 x the "
-      << (radius_data ? "load-controlled" : "displacement-controlled") << " pull-off radius)\n";
+      << "# noise: Gaussian, standard deviation " << text("%.15g", sigma) << " N, added to F"
+      << (noise_x > 0.0 ? std::string(" (") + (radius_data ? "a" : "delta") + " noisy too, see below)"
+                        : std::string(" only (") + (radius_data ? "a" : "delta") + " exact)")
+      << "; GSL gsl_rng_mt19937, seed " << seed
+      << ", gsl_ran_gaussian, one draw per row in file order\n";
+  if (noise_x > 0.0) {
+    out << "# noise on " << (radius_data ? "a" : "delta") << ": Gaussian, "
+        << (noise_x_relative ? "relative " + text("%.6g", 100.0 * noise_x) + " %" : text("%.6g", noise_x) + " m")
+        << ", a second draw per row after the force's\n";
+  }
+  if (range_hi > 0.0) {
+    out << "# rows: " << points << " loading (a from " << text("%.6g", range_lo) << " to " << text("%.6g", range_hi)
+        << " m), then " << points << " unloading (back to " << text("%.6g", range_lo) << " m, half a step offset)\n";
+  } else {
+    out << "# rows: " << points << " loading (a increasing from F = 0 to a_max = " << text("%.6g", a_max)
+        << " m), then " << points << " unloading (a decreasing to 1.02 x the "
+        << (radius_data ? "load-controlled" : "displacement-controlled") << " pull-off radius)\n";
+  }
   if (pure_noise) out << "# signal: none -- F is pure noise (the model force is NOT added)\n";
   out << (radius_data ? "# columns: a\tF\n# units: um mN\n" : "# columns: delta\tF\n# units: um mN\n");
   for (const Point& p : data) {
     const double noisy = (pure_noise ? 0.0 : p.force) + gsl_ran_gaussian(rng.get(), sigma);
-    const double x = (radius_data ? p.a : p.delta) * 1e6;
+    double x = radius_data ? p.a : p.delta;
+    if (noise_x > 0.0) {
+      const double e = gsl_ran_gaussian(rng.get(), 1.0);
+      x += noise_x_relative ? noise_x * std::fabs(x) * e : noise_x * e;
+    }
+    x *= 1e6;
     if (!std::isfinite(x) || !std::isfinite(noisy)) throw NumericalError("model value not finite");
     out << detail::full_precision(x) << "\t" << detail::full_precision(noisy * 1e3) << "\n";
   }

@@ -4,7 +4,15 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <sys/stat.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -20,13 +28,14 @@
 #include "coatcontact/fit.hpp"
 #include "checks.hpp"
 #include "commands.hpp"
+#include "fit_plot_script.hpp"
 
 namespace coatcontact::cli {
 namespace {
 
 const std::vector<OptionSpec>& fit_options() {
   static const std::vector<OptionSpec> spec = {
-      {"--columns", "a,F|delta,F", "what the two data columns are (F,a and F,delta: reversed order)", true},
+      {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F (F,a, F,delta reversed) for a two-column file, or name=position|header-name for any file (names a|delta, F, sigma_a|sigma_delta, sigma_F)", true},
       {"--radius", "R", "sphere radius (length, e.g. 5mm)", true},
       {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted)", true},
       {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
@@ -37,6 +46,12 @@ const std::vector<OptionSpec>& fit_options() {
       {"--branch", "load|unload|both", "fit only the loading or unloading rows (default both)"},
       {"--output", "FILE", "write the fitted data table here (default stdout)"},
       {"--curve", "FILE", "also write the fitted model curve (a, delta, F; 200 points) here"},
+      {"--sigma", "a=..,F=..", "uncertainty per column: absolute with units (F=10uN) or relative (a=0.3%); delta= for delta,F data"},
+      {"--bootstrap", "N", "N residual-bootstrap refits: percentile intervals (68 %, 95 %)"},
+      {"--seed", "N", "seed of the bootstrap resampling (default 1)"},
+      {"--plot", "FILE", "draw data, fit, residuals and pull-off with gnuplot (PNG or PDF by extension)"},
+      indenter_option(),
+      {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off"},
   };
   return spec;
 }
@@ -96,6 +111,347 @@ const char* key_unit(int which) {
   return which == fit::kWork ? "J_per_m2" : which == fit::kThickness ? "m" : "Pa";
 }
 
+
+// ---- columns and data ----------------------------------------------------------------------
+
+// Roles of the data columns: 0 abscissa (a or delta), 1 F, 2 sigma of the abscissa, 3 sigma_F.
+constexpr int kRoles = 4;
+struct ColumnChoice {
+  fit::DataKind kind = fit::DataKind::kRadiusForce;
+  bool legacy = false;                          // "a,F" style: a two-column file
+  std::array<std::string, kRoles> reference{};  // "2" (1-based position) or a header name; "" unused
+};
+
+ColumnChoice parse_columns(const std::string& text) {
+  ColumnChoice c;
+  const std::map<std::string, std::pair<fit::DataKind, bool>> legacy = {
+      {"a,F", {fit::DataKind::kRadiusForce, false}},      {"F,a", {fit::DataKind::kRadiusForce, true}},
+      {"delta,F", {fit::DataKind::kPenetrationForce, false}}, {"F,delta", {fit::DataKind::kPenetrationForce, true}}};
+  if (const auto it = legacy.find(text); it != legacy.end()) {
+    c.kind = it->second.first;
+    c.legacy = true;
+    c.reference = {it->second.second ? "2" : "1", it->second.second ? "1" : "2", "", ""};
+    return c;
+  }
+  bool has_a = false, has_delta = false;
+  for (const std::string& raw : split(text, ',')) {
+    const std::string item = trim(raw);
+    const auto equals = item.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == item.size()) {
+      throw InputError("--columns: '" + item + "' is not allowed (a,F, delta,F, F,a, F,delta, or name=position|header "
+                       "name such as a=2,F=5,sigma_F=6)");
+    }
+    const std::string name = trim(item.substr(0, equals));
+    const std::string value = trim(item.substr(equals + 1));
+    int role;
+    if (name == "a" || name == "delta") {
+      role = 0;
+      (name == "a" ? has_a : has_delta) = true;
+    } else if (name == "F") {
+      role = 1;
+    } else if (name == "sigma_a" || name == "sigma_delta") {
+      role = 2;
+    } else if (name == "sigma_F") {
+      role = 3;
+    } else {
+      throw InputError("--columns: '" + name + "' is not a column name (a, delta, F, sigma_a, sigma_delta, sigma_F)");
+    }
+    if (!c.reference[role].empty()) throw InputError("--columns: '" + name + "' is given twice (or with its a/delta twin)");
+    c.reference[role] = value;
+  }
+  if (has_a == has_delta) throw InputError("--columns: name exactly one of a= and delta=");
+  if (c.reference[1].empty()) throw InputError("--columns: F= is missing");
+  c.kind = has_a ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
+  return c;
+}
+
+bool is_comment_or_blank(const std::string& line) {
+  const auto first = line.find_first_not_of(" \t\r");
+  return first == std::string::npos || line[first] == '#';
+}
+
+// A unit in a header name: "a (um)", "F [mN]", "w/(mJ/m^2)" is not needed; "^2" is accepted.
+std::optional<std::string> unit_in_name(const std::string& name) {
+  for (const auto& [open, close] : {std::pair<char, char>{'(', ')'}, std::pair<char, char>{'[', ']'}}) {
+    const auto a = name.rfind(open);
+    const auto b = name.rfind(close);
+    if (a != std::string::npos && b != std::string::npos && b > a + 1 && b + 1 >= trim(name).size()) {
+      std::string unit = trim(name.substr(a + 1, b - a - 1));
+      if (const auto caret = unit.find('^'); caret != std::string::npos) unit.erase(caret, 1);
+      return unit;
+    }
+  }
+  return std::nullopt;
+}
+
+std::string bare_name(const std::string& name) {
+  const auto paren = name.find_first_of("([");
+  return trim(paren == std::string::npos ? name : name.substr(0, paren));
+}
+
+struct LoadedData {
+  fit::Measurements data;
+  std::vector<double> sigma_x, sigma_f;  // from columns (empty if none)
+  bool has_units = false;                // "# units:" or units in the column names
+  std::vector<std::string> declared_columns;
+  int declared_line = 0;
+};
+
+LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::DataKind kind) {
+  std::string text;
+  if (path == "-") {
+    std::ostringstream buffer;
+    buffer << std::cin.rdbuf();
+    text = buffer.str();
+  } else {
+    // The checks and messages of read_data_file (the text is needed here first).
+    struct stat info {};
+    if (stat(path.c_str(), &info) != 0) throw InputError(path + ": cannot read data file: " + std::strerror(errno));
+    if (!S_ISREG(info.st_mode)) throw InputError(path + ": not a regular file");
+    if (static_cast<unsigned long long>(info.st_size) > kMaxDataFileBytes) {
+      throw InputError(path + ": larger than " + std::to_string(kMaxDataFileBytes / (1024 * 1024)) +
+                       " MB; refusing to read it");
+    }
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw InputError(path + ": cannot open data file: " + std::strerror(errno));
+    register_input(path, "data file");
+    std::ostringstream buffer;
+    buffer << file.rdbuf();
+    text = buffer.str();
+  }
+  if (text.size() > kMaxDataFileBytes) {
+    throw InputError(std::string(path == "-" ? "stdin" : path) + ": larger than " +
+                     std::to_string(kMaxDataFileBytes / (1024 * 1024)) + " MB; refusing to read it");
+  }
+  const std::string name = path == "-" ? std::string("stdin") : path;
+  // Decimal commas ("0,12<TAB>3,4" or "0,12;3,4"): refused with a hint before the reader
+  // splits them into wrong columns.
+  std::size_t count = 0;
+  {
+    std::istringstream lines(text);
+    std::string line;
+    int number = 0;
+    while (std::getline(lines, line)) {
+      ++number;
+      if (is_comment_or_blank(line)) continue;
+      bool digit_comma_digit = false;
+      for (std::size_t k = 1; k + 1 < line.size(); ++k) {
+        if (line[k] == ',' && std::isdigit(static_cast<unsigned char>(line[k - 1])) &&
+            std::isdigit(static_cast<unsigned char>(line[k + 1]))) {
+          digit_comma_digit = true;
+        }
+      }
+      if (digit_comma_digit && line.find_first_of("\t;") != std::string::npos) {
+        throw InputError(name + ":" + std::to_string(number) + ": the numbers look like they use decimal commas ('" +
+                         trim(line).substr(0, 40) + "'); write decimal points (e.g. sed 's/,/./g' on a tab-separated "
+                         "file) and separate columns by tabs, blanks or commas");
+      }
+      if (count == 0) count = line.find(',') != std::string::npos ? split(line, ',').size() : [&] {
+          std::istringstream fields(line);
+          std::string f;
+          std::size_t k = 0;
+          while (fields >> f) ++k;
+          return k;
+        }();
+    }
+  }
+  if (count == 0) throw InputError(name + ": no data rows");
+  if (choice.legacy && count != 2) {
+    throw InputError(name + ": " + std::to_string(count) + " columns; --columns " +
+                     std::string(kind == fit::DataKind::kRadiusForce ? "a,F" : "delta,F") +
+                     " reads two-column files, name the columns of others (e.g. --columns a=2,F=5)");
+  }
+  DataTable table = read_data_text(text, name, count);
+  LoadedData out;
+  out.declared_columns = table.declared_columns;
+  out.declared_line = table.declared_columns_line;
+  out.has_units = !table.units.empty();
+  // Each role's column: a 1-based position or a header name (with or without its unit).
+  std::array<int, kRoles> index{{-1, -1, -1, -1}};
+  const char* role_option[kRoles] = {kind == fit::DataKind::kRadiusForce ? "a" : "delta", "F", "sigma of the abscissa", "sigma_F"};
+  for (int role = 0; role < kRoles; ++role) {
+    const std::string& ref = choice.reference[role];
+    if (ref.empty()) continue;
+    char* end = nullptr;
+    const long position = std::strtol(ref.c_str(), &end, 10);
+    if (end != ref.c_str() && *end == '\0') {
+      if (position < 1 || position > static_cast<long>(count)) {
+        throw InputError("--columns: " + std::string(role_option[role]) + "=" + ref + " but " + name + " has " +
+                         std::to_string(count) + " columns");
+      }
+      index[role] = static_cast<int>(position - 1);
+    } else {
+      for (std::size_t c = 0; c < table.column_names.size(); ++c) {
+        if (table.column_names[c] == ref || bare_name(table.column_names[c]) == ref) index[role] = static_cast<int>(c);
+      }
+      if (index[role] < 0) {
+        std::string names;
+        for (const auto& n : table.column_names) names += (names.empty() ? "'" : ", '") + n + "'";
+        throw InputError("--columns: no column named '" + ref + "' in " + name +
+                         (names.empty() ? " (it has no header line)" : " (its columns: " + names + ")"));
+      }
+    }
+  }
+  // Units: "# units:" (already applied by the reader) or from the column names.
+  const Quantity role_kind[kRoles] = {Quantity::kLength, Quantity::kForce, Quantity::kLength, Quantity::kForce};
+  for (int role = 0; role < kRoles; ++role) {
+    if (index[role] < 0) continue;
+    const std::size_t c = static_cast<std::size_t>(index[role]);
+    std::optional<std::string> unit;
+    if (!table.units.empty()) {
+      unit = table.units[c];
+    } else if (c < table.column_names.size()) {
+      unit = unit_in_name(table.column_names[c]);
+      if (unit) {
+        const auto info = find_unit(*unit);
+        if (!info) throw InputError(name + ": unknown unit '" + *unit + "' in the column name '" + table.column_names[c] + "'");
+        for (double& v : table.columns[c]) v = to_si(v, info->to_si);
+        out.has_units = true;
+      }
+    }
+    if (unit) {
+      const auto info = find_unit(*unit);
+      if (!info || info->kind != role_kind[role]) {
+        throw InputError(name + ": column " + std::to_string(c + 1) + " (" + role_option[role] + ") has the unit '" +
+                         *unit + "', not a " + quantity_name(role_kind[role]) + " (allowed: " +
+                         unit_list(role_kind[role]) + ")");
+      }
+    }
+  }
+  out.data.kind = kind;
+  out.data.abscissa = table.columns[static_cast<std::size_t>(index[0])];
+  out.data.force = table.columns[static_cast<std::size_t>(index[1])];
+  out.data.line_numbers = table.line_numbers;
+  if (index[2] >= 0) out.data.sigma_abscissa = table.columns[static_cast<std::size_t>(index[2])];
+  if (index[3] >= 0) out.data.sigma_force = table.columns[static_cast<std::size_t>(index[3])];
+  return out;
+}
+
+// --spring k: "500", "500N/m" or a force per length ("0.5mN/um").
+double parse_stiffness(const std::string& text) {
+  const auto slash = text.rfind('/');
+  double k;
+  if (slash == std::string::npos) {
+    char* end = nullptr;
+    k = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || *end != '\0') throw InputError("--spring: '" + text + "' is not a stiffness (e.g. 500N/m)");
+  } else {
+    const double force = parse_quantity(text.substr(0, slash), Quantity::kForce, "--spring");
+    const std::string length = text.substr(slash + 1);
+    k = force / parse_quantity(length.empty() || !std::isdigit(static_cast<unsigned char>(length[0])) ? "1" + length : length,
+                               Quantity::kLength, "--spring");
+  }
+  if (!(k > 0.0) || !std::isfinite(k)) throw InputError("--spring: the stiffness must be > 0 (got '" + text + "')");
+  return k;
+}
+
+// --sigma a=0.3%,F=10uN: per-column uncertainties, relative (%) or absolute (with units).
+void apply_sigma_option(const std::optional<std::string>& text, fit::Measurements& data, const ColumnChoice& choice) {
+  if (!text) return;
+  const bool radius_data = data.kind == fit::DataKind::kRadiusForce;
+  for (const std::string& raw : split(*text, ',')) {
+    const std::string item = trim(raw);
+    const auto equals = item.find('=');
+    if (equals == std::string::npos) {
+      throw InputError("--sigma: '" + item + "' is not name=value (e.g. --sigma a=0.3%,F=10uN)");
+    }
+    const std::string name = trim(item.substr(0, equals));
+    const std::string value = trim(item.substr(equals + 1));
+    const bool abscissa = name == (radius_data ? "a" : "delta");
+    if (!abscissa && name != "F") {
+      throw InputError("--sigma: '" + name + "' is not a column of these data (allowed: " +
+                       std::string(radius_data ? "a" : "delta") + ", F)");
+    }
+    std::vector<double>& sigma = abscissa ? data.sigma_abscissa : data.sigma_force;
+    if (!choice.reference[abscissa ? 2 : 3].empty()) {
+      throw InputError("--sigma: " + name + " already has an uncertainty column (--columns)");
+    }
+    if (!sigma.empty()) throw InputError("--sigma: " + name + " is given twice");
+    const std::vector<double>& values = abscissa ? data.abscissa : data.force;
+    if (!value.empty() && value.back() == '%') {
+      char* end = nullptr;
+      const std::string number_text = value.substr(0, value.size() - 1);
+      const double percent = std::strtod(number_text.c_str(), &end);
+      if (end == number_text.c_str() || *end != '\0' || !(percent > 0.0) || !(percent < 100.0)) {
+        throw InputError("--sigma " + name + ": '" + value + "' is not a percentage in (0, 100)");
+      }
+      for (double v : values) sigma.push_back(0.01 * percent * std::fabs(v));
+    } else {
+      const double absolute = parse_quantity(value, abscissa ? Quantity::kLength : Quantity::kForce, "--sigma " + name);
+      if (!(absolute > 0.0)) throw InputError("--sigma " + name + ": must be > 0 (got '" + value + "')");
+      sigma.assign(values.size(), absolute);
+    }
+  }
+}
+
+// Characters gnuplot's single-quoted strings and enhanced text take literally enough.
+std::string gnuplot_string(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') {
+      out += "''";
+    } else if (c == '_' || c == '@' || c == '&' || c == '~' || c == '{' || c == '}') {
+      out += '\\';  // escaped: enhanced text would read them as markup (^ is kept for the units)
+      out += c;
+    } else if (static_cast<unsigned char>(c) >= 32 || (c & 0x80)) {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
+// Runs gnuplot on the embedded script (gnuplot/fit_plot.gp) with the tables in a private
+// temporary folder; returns the picture (gnuplot writes it to stdout; the caller writes the
+// file atomically). InputError when gnuplot is missing or fails.
+std::string render_fit_plot(const std::string& table, const std::string& curve, const std::string& x_name,
+                            const std::string& title, const std::string& fit_label, const std::string& term,
+                            double lp_x, double lp_f, double dp_x, double dp_f) {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/coatcontact-plot.XXXXXX";
+  std::vector<char> buffer(pattern.begin(), pattern.end());
+  buffer.push_back('\0');
+  if (mkdtemp(buffer.data()) == nullptr) throw InputError("--plot: cannot create a temporary folder for gnuplot");
+  const std::string dir(buffer.data());
+  struct Cleanup {
+    std::string dir;
+    ~Cleanup() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  } cleanup{dir};
+  const auto save = [&](const std::string& name, const std::string& text) {
+    std::ofstream file(dir + "/" + name, std::ios::binary);
+    file << text;
+    if (!file) throw InputError("--plot: cannot write the temporary file " + dir + "/" + name);
+  };
+  save("fit.tsv", table);
+  save("curve.tsv", curve);
+  save("fit_plot.gp", kFitPlotScript);
+  const auto value = [](double v) { return std::isfinite(v) ? number(v) : std::string("NaN"); };
+  const std::string settings = "fitfile=" + gnuplot_string(dir + "/fit.tsv") + "; curvefile=" +
+                               gnuplot_string(dir + "/curve.tsv") + "; xname='" + x_name + "'; term='" + term +
+                               "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(fit_label) +
+                               "; lp_x=" + value(lp_x) + "; lp_F=" + value(lp_f) + "; dp_x=" + value(dp_x) +
+                               "; dp_F=" + value(dp_f);
+  save("settings.gp", settings + "\n");
+  const std::string command = "gnuplot '" + dir + "/settings.gp' '" + dir + "/fit_plot.gp' 2>'" + dir + "/err'";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) throw InputError("--plot: cannot run gnuplot");
+  std::string picture;
+  char chunk[65536];
+  std::size_t got;
+  while ((got = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) picture.append(chunk, got);
+  const int status = pclose(pipe);
+  if (status != 0 || picture.empty()) {
+    std::ifstream err(dir + "/err");
+    std::string first;
+    std::getline(err, first);
+    throw InputError("--plot: gnuplot failed" + (first.empty() ? std::string(" (is gnuplot with the cairo terminals installed?)")
+                                                               : ": " + first));
+  }
+  return picture;
+}
+
 int run_fit_body(const Args& args) {
   const auto& spec = fit_options();
   Arguments arguments(args, spec, 1);
@@ -104,16 +460,19 @@ int run_fit_body(const Args& args) {
         "fit",
         "DATA --columns a,F|delta,F --radius R --film E1,nu1 --substrate E0,nu0|rigid "
         "[--free w[,t][,E1]] [--start w=..,t=..,E1=..] [--thickness t] [--work w] "
-        "[--branch load|unload|both] [--output FILE] [--curve FILE]",
+        "[--branch load|unload|both] [--sigma a=..,F=..] [--bootstrap N [--seed N]] [--indenter E2,nu2] "
+        "[--output FILE] [--curve FILE] [--plot FILE.png|FILE.pdf]",
         "Fits the adhesion energy w (and optionally the film thickness t and modulus E1) to measured\n"
-        "contact radius-force (a,F) or penetration-force (delta,F) data of a rigid sphere on a coated\n"
-        "substrate, by nonlinear least squares (GSL trust region) on the exact model of THEORY.md\n"
-        "section 5. Residuals are in force; for delta,F data the model is taken on the stable branch\n"
-        "under displacement control (a beyond the minimum of delta). Reports each estimate with its\n"
-        "standard error (s^2 = RSS/(n-p), covariance s^2 (J^T J)^-1). DATA: TSV/CSV, '#' comments,\n"
-        "optional '# units: um mN' line; SI otherwise. F is compressive positive (tension negative),\n"
-        "delta may be negative, a must be > 0. Exit 2: bad input (also n <= free parameters);\n"
-        "exit 3: no convergence, parameters not determined, or the model does not describe the data.",
+        "contact radius-force (a,F) or penetration-force (delta,F) data of a sphere on a coated\n"
+        "substrate, by nonlinear least squares (GSL trust region in log-parameters) on the exact model\n"
+        "of THEORY.md section 5. No start values are needed: a coarse global search over the physical\n"
+        "ranges picks the start (--start only adds a hint). Residuals are in force; with --sigma (or\n"
+        "sigma columns) each is weighted by the effective variance sigma_F^2 + (dF/da)^2 sigma_a^2 and\n"
+        "chi2/(n-p) is reported; without, the noise is estimated from the scatter and the errors\n"
+        "assume an exact a (or delta). For delta,F data the model is taken on the stable branch\n"
+        "under displacement control. DATA: TSV/CSV or '-' (stdin), '#' comments, units from a\n"
+        "'# units: um mN' line or column names like 'a (um)'; SI otherwise. F is compressive positive.\n"
+        "Exit 2: bad input; exit 3: no convergence, parameters not determined, or no model fit.",
         spec);
     return kExitSuccess;
   }
@@ -124,17 +483,8 @@ int run_fit_body(const Args& args) {
 
   // ---- columns ----
   const std::string columns = arguments.require("--columns");
-  fit::DataKind kind;
-  bool reversed = false;
-  if (columns == "a,F" || columns == "F,a") {
-    kind = fit::DataKind::kRadiusForce;
-    reversed = columns == "F,a";
-  } else if (columns == "delta,F" || columns == "F,delta") {
-    kind = fit::DataKind::kPenetrationForce;
-    reversed = columns == "F,delta";
-  } else {
-    throw InputError("--columns: '" + columns + "' is not allowed (a,F, delta,F, F,a or F,delta)");
-  }
+  const ColumnChoice choice = parse_columns(columns);
+  const fit::DataKind kind = choice.kind;
   const bool radius_data = kind == fit::DataKind::kRadiusForce;
   const std::string x_name = radius_data ? "a" : "delta";
 
@@ -143,6 +493,32 @@ int run_fit_body(const Args& args) {
   problem.sphere_radius = parse_quantity(arguments.require("--radius"), Quantity::kLength, "--radius");
   problem.film = parse_material(arguments.require("--film"), "--film");
   problem.substrate = parse_substrate(arguments.require("--substrate"), "--substrate");
+  if (const auto text = arguments.get("--indenter")) problem.indenter = parse_indenter(*text, "--indenter");
+  if (const auto text = arguments.get("--spring")) problem.spring_stiffness = parse_stiffness(*text);
+  if (const auto text = arguments.get("--bootstrap")) {
+    char* end = nullptr;
+    const long n = std::strtol(text->c_str(), &end, 10);
+    if (end == text->c_str() || *end != '\0' || n < 10 || n > 100000) {
+      throw InputError("--bootstrap: '" + *text + "' is not an integer in [10, 100000]");
+    }
+    problem.bootstrap = static_cast<int>(n);
+  }
+  if (const auto text = arguments.get("--seed")) {
+    char* end = nullptr;
+    const long long n = std::strtoll(text->c_str(), &end, 10);
+    if (end == text->c_str() || *end != '\0' || n < 0 || n > 4000000000LL) {
+      throw InputError("--seed: '" + *text + "' is not an integer in [0, 4e9]");
+    }
+    if (!arguments.get("--bootstrap")) throw InputError("--seed: only used with --bootstrap");
+    problem.bootstrap_seed = static_cast<unsigned long>(n);
+  }
+  if (const auto text = arguments.get("--plot")) {
+    const auto dot = text->rfind('.');
+    const std::string extension = dot == std::string::npos ? "" : text->substr(dot + 1);
+    if (extension != "png" && extension != "pdf") {
+      throw InputError("--plot: '" + *text + "' must end in .png or .pdf (the format follows the extension)");
+    }
+  }
   std::array<bool, fit::kParameterCount> free{{false, false, false}};
   for (const std::string& item : split(arguments.get("--free").value_or("w"), ',')) {
     const int which = parameter_index(trim(item), "--free");
@@ -181,39 +557,47 @@ int run_fit_body(const Args& args) {
     }
   }
 
-  // ---- data: a >= 0 enforced by the reader (and a > 0 by the fit); F and delta any sign ----
-  const std::vector<bool> nonnegative = radius_data ? (reversed ? std::vector<bool>{false, true}
-                                                                : std::vector<bool>{true, false})
-                                                    : std::vector<bool>{false, false};
-  const std::vector<std::optional<Quantity>> kinds =
-      reversed ? std::vector<std::optional<Quantity>>{Quantity::kForce, Quantity::kLength}
-               : std::vector<std::optional<Quantity>>{Quantity::kLength, Quantity::kForce};
-  const DataTable table = read_data_file(path, 2, nonnegative, kinds);
-  // Refuse a bad --output/--curve now (a device, the data file, each other), not after the fit.
+  // ---- data ----
   check_output_paths({{"--output", arguments.get("--output").value_or("")},
-                      {"--curve", arguments.get("--curve").value_or("")}});
-  fit::Measurements all;
-  all.kind = kind;
-  all.abscissa = table.columns[reversed ? 1 : 0];
-  all.force = table.columns[reversed ? 0 : 1];
-  all.line_numbers = table.line_numbers;
-  if (radius_data) {
-    for (std::size_t i = 0; i < all.size(); ++i) {
-      if (!(all.abscissa[i] > 0.0)) {
-        throw InputError(path + ":" + std::to_string(all.line_numbers[i]) +
-                         ": contact radius must be > 0 (got " + short_number(all.abscissa[i]) +
-                         "); points out of contact are not on the equilibrium curve, remove them");
-      }
+                      {"--curve", arguments.get("--curve").value_or("")},
+                      {"--plot", arguments.get("--plot").value_or("")}});
+  const LoadedData loaded = load_data(path, choice, kind);
+  fit::Measurements all = loaded.data;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (radius_data && !(all.abscissa[i] > 0.0)) {
+      throw InputError(path + ":" + std::to_string(all.line_numbers[i]) +
+                       ": contact radius must be > 0 (got " + short_number(all.abscissa[i]) +
+                       "); points out of contact are not on the equilibrium curve, remove them");
+    }
+    // A contact radius at or above R is not a sphere contact: almost always forgotten units.
+    if (radius_data && all.abscissa[i] >= problem.sphere_radius) {
+      throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
+                       short_number(all.abscissa[i]) + " m is not below the sphere radius --radius " +
+                       short_number(problem.sphere_radius) + " m" +
+                       (loaded.has_units ? std::string("")
+                                         : "; the file declares no units, so its numbers were read as metres and "
+                                           "newtons: add a line '# units: um mN' (or name the columns 'a (um)', 'F (mN)')"));
     }
   }
+  if (!radius_data && !loaded.has_units) {
+    double largest = 0.0;
+    for (double d : all.abscissa) largest = std::max(largest, std::fabs(d));
+    if (largest >= problem.sphere_radius) {
+      throw InputError(path + ": penetrations up to " + short_number(largest) + " m exceed the sphere radius --radius " +
+                       short_number(problem.sphere_radius) + " m; the file declares no units, so its numbers were "
+                       "read as metres and newtons: add a line '# units: um mN' (or name the columns 'delta (um)', 'F (mN)')");
+    }
+  }
+  apply_sigma_option(arguments.get("--sigma"), all, choice);
   const fit::Measurements data = fit::select_branch(all, branch);
 
   // ---- start values / fixed values ----
   if (free[fit::kThickness]) {
-    if (!start[fit::kThickness] && !thickness) {
-      throw InputError("t is free: give its start value with --start t=... (or --thickness)");
-    }
-    problem.thickness = start[fit::kThickness].value_or(thickness.value_or(0.0));
+    // Without a hint the search needs none: t ~ the middle of the contact radii (a/t ~ 1).
+    double middle = 0.0;
+    for (double x : data.abscissa) middle = std::max(middle, std::fabs(x));
+    if (!radius_data) middle = std::sqrt(problem.sphere_radius * middle);
+    problem.thickness = start[fit::kThickness].value_or(thickness.value_or(0.3 * middle));
   } else {
     if (!thickness) throw InputError("t is fixed: give it with --thickness (or add t to --free)");
     problem.thickness = *thickness;
@@ -234,7 +618,7 @@ int run_fit_body(const Args& args) {
     problem.film.youngs_modulus = *start[fit::kFilmModulus];
   }
   const double start_values[3] = {problem.work, problem.thickness, problem.film.youngs_modulus};
-  check_fit_start({columns, table.declared_columns, table.declared_columns_line, path, radius_data, data.abscissa,
+  check_fit_start({choice.legacy ? columns : std::string("a,F"), loaded.declared_columns, loaded.declared_line, path, radius_data, data.abscissa,
                    problem.work, problem.thickness, problem.film.youngs_modulus,
                    free[fit::kWork] ? (start[fit::kWork] ? "--start w" : work ? "--work" : "--radius (with the data's most tensile force, the start value of w)") : "--work",
                    free[fit::kThickness] && start[fit::kThickness] ? "--start t" : "--thickness",
@@ -268,7 +652,7 @@ int run_fit_body(const Args& args) {
     if (free[which]) {
       header.emplace_back(std::string(fit::parameter_name(which)) + "_stderr_" + key_unit(which),
                           number(result.standard_error[which]));
-      header.emplace_back(std::string(fit::parameter_name(which)) + "_start_" + key_unit(which),
+      header.emplace_back(std::string(fit::parameter_name(which)) + "_hint_" + key_unit(which),
                           number(start_values[which]));
     } else {
       header.emplace_back(std::string(fit::parameter_name(which)) + "_status", "fixed");
@@ -281,6 +665,61 @@ int run_fit_body(const Args& args) {
                             number(result.correlation[a][b]));
       }
     }
+  }
+  if (problem.bootstrap > 0) {
+    for (int which = 0; which < fit::kParameterCount; ++which) {
+      if (!free[which]) continue;
+      const std::string name = std::string(fit::parameter_name(which)) + "_";
+      header.emplace_back(name + "interval68_" + key_unit(which),
+                          number(result.interval68_low[which]) + " " + number(result.interval68_high[which]));
+      header.emplace_back(name + "interval95_" + key_unit(which),
+                          number(result.interval95_low[which]) + " " + number(result.interval95_high[which]));
+    }
+    header.emplace_back("bootstrap", std::to_string(result.bootstrap_samples) + " of " + std::to_string(problem.bootstrap) +
+                                         " residual resamples refitted (seed " + std::to_string(problem.bootstrap_seed) +
+                                         "), percentile intervals");
+  }
+  header.emplace_back("indenter", problem.indenter.rigid ? std::string("rigid")
+                                                         : "E2 = " + number(problem.indenter.material.youngs_modulus) +
+                                                               " Pa, nu2 = " + number(problem.indenter.material.poisson_ratio));
+  if (result.weighted) {
+    header.emplace_back("weights", "effective variance sigma_F^2 + (dF/d" + x_name + ")^2 sigma_" + x_name +
+                                       "^2 (dF/d" + x_name + " along the fitted curve)");
+    header.emplace_back("chi2", number(result.chi2));
+    header.emplace_back("chi2_per_dof", number(result.chi2_per_dof));
+    if (result.chi2_per_dof > 2.0 || result.chi2_per_dof < 0.5) {
+      header.emplace_back("warning", "chi2/(n-p) = " + short_number(result.chi2_per_dof) +
+                                         " is far from 1: the stated uncertainties do not match the scatter, and "
+                                         "the standard errors (which trust them) are off by sqrt(chi2/(n-p))");
+    }
+  } else {
+    header.emplace_back("weights", "none: residuals in F, noise level from the scatter; the errors assume exact " +
+                                       x_name + " (give --sigma " + x_name + "=..,F=.. if " + x_name + " is measured)");
+  }
+  header.emplace_back("global_search", std::to_string(result.search_evaluations) + " model evaluations over log-parameters, " +
+                                          short_number(result.search_seconds) + " s");
+  if (result.second_minimum) {
+    std::string text;
+    for (int which = 0; which < fit::kParameterCount; ++which) {
+      if (!free[which]) continue;
+      text += std::string(text.empty() ? "" : ", ") + fit::parameter_name(which) + " = " +
+              short_number(result.second_value[which]) + " " + parameter_unit(which);
+    }
+    header.emplace_back("second_minimum", text + " (cost " + short_number(result.second_cost_ratio) + " x the best)");
+  }
+  if (problem.spring_stiffness > 0.0) {
+    if (result.has_spring_pulloff) {
+      header.emplace_back("spring_pulloff_F_N", number(result.spring_pulloff_force));
+      header.emplace_back("spring_pulloff_a_m", number(result.spring_pulloff_radius));
+      header.emplace_back("spring_pulloff_delta_m", number(result.spring_pulloff_penetration));
+    } else {
+      header.emplace_back("spring_pulloff", "not found inside the scanned range of the fitted model");
+    }
+  }
+  if (result.has_load_pulloff) {
+    header.emplace_back("load_pulloff_F_N", number(result.load_pulloff_force));
+    header.emplace_back("load_pulloff_a_m", number(result.load_pulloff_radius));
+    header.emplace_back("load_pulloff_delta_m", number(result.load_pulloff_penetration));
   }
   header.emplace_back("residual_norm_N", number(result.residual_norm));
   header.emplace_back("residual_sigma_N", number(result.residual_sigma));
@@ -304,13 +743,17 @@ int run_fit_body(const Args& args) {
                                         + std::to_string(clamped) + " (taken at a_c)");
   }
   const std::vector<std::string> out_columns =
-      radius_data ? std::vector<std::string>{"line", "a_m", "F_data_N", "F_model_N", "residual_N"}
+      radius_data ? std::vector<std::string>{"line", "a_m", "F_data_N", "F_model_N", "residual_N", "sigma_eff_N"}
                   : std::vector<std::string>{"line", "delta_m", "F_data_N", "a_model_m", "F_model_N", "residual_N",
-                                             "clamped"};
+                                             "clamped", "sigma_eff_N"};
 
-  // The curve (written first so a failure leaves no half-written pair of files).
-  std::unique_ptr<Output> curve_output;
-  if (const auto curve_path = arguments.get("--curve")) {
+  // The curve (for --curve and --plot), then the table; every file is produced in memory
+  // first (the plot by gnuplot) so a failure leaves no half-written set of files.
+  const std::optional<std::string> curve_path = arguments.get("--curve");
+  const std::optional<std::string> plot_path = arguments.get("--plot");
+  const std::vector<std::string> curve_columns{"a_m", "delta_m", "F_N"};
+  std::ostringstream curve_text;
+  if (curve_path || plot_path) {
     fit::Problem fitted = problem;
     fitted.work = result.value[fit::kWork];
     fitted.thickness = result.value[fit::kThickness];
@@ -318,31 +761,79 @@ int run_fit_body(const Args& args) {
     double a_lo = *std::min_element(result.model_radius.begin(), result.model_radius.end());
     const double a_hi = 1.05 * *std::max_element(result.model_radius.begin(), result.model_radius.end());
     if (result.displacement_pulloff_radius > 0.0) a_lo = std::min(a_lo, result.displacement_pulloff_radius);
+    if (result.has_load_pulloff) a_lo = std::min(a_lo, result.load_pulloff_radius);
     a_lo *= radius_data ? 0.9 : 0.3;
     const std::vector<fit::CurvePoint> curve = fit::model_curve(fitted, a_lo, a_hi, 200);
-    curve_output = std::make_unique<Output>(*curve_path, "--curve");
     auto curve_header = header;
     curve_header.emplace_back("curve", "fitted model, 200 points log-spaced in a");
-    const std::vector<std::string> curve_columns{"a_m", "delta_m", "F_N"};
-    write_header(curve_output->stream(), curve_header, curve_columns);
-    for (const auto& p : curve) write_row(curve_output->stream(), {p.radius, p.penetration, p.force}, curve_columns);
+    write_header(curve_text, curve_header, curve_columns);
+    for (const auto& p : curve) write_row(curve_text, {p.radius, p.penetration, p.force}, curve_columns);
   }
 
-  const std::string output_path = arguments.get("--output").value_or("");
-  Output output(output_path);
-  write_header(output.stream(), header, out_columns);
+  std::ostringstream table_text;
+  write_header(table_text, header, out_columns);
   for (std::size_t i = 0; i < data.size(); ++i) {
     const double line = data.line_numbers.empty() ? static_cast<double>(i + 1) : data.line_numbers[i];
+    // sigma_eff: the weight's sigma, or the residual standard deviation of an unweighted fit.
+    const double sigma = result.weighted ? result.sigma_effective[i] : result.residual_sigma;
     if (radius_data) {
-      write_row(output.stream(), {line, data.abscissa[i], data.force[i], result.model_force[i], result.residual[i]},
+      write_row(table_text, {line, data.abscissa[i], data.force[i], result.model_force[i], result.residual[i], sigma},
                 out_columns);
     } else {
-      write_row(output.stream(),
+      write_row(table_text,
                 {line, data.abscissa[i], data.force[i], result.model_radius[i], result.model_force[i],
-                 result.residual[i], result.clamped[i] ? 1.0 : 0.0},
+                 result.residual[i], result.clamped[i] ? 1.0 : 0.0, sigma},
                 out_columns);
     }
   }
+
+  std::string picture;
+  if (plot_path) {
+    const double nan = std::nan("");
+    const double lp_x = result.has_load_pulloff ? (radius_data ? result.load_pulloff_radius : result.load_pulloff_penetration) : nan;
+    const double dp_x = result.displacement_pulloff_radius > 0.0
+                            ? (radius_data ? result.displacement_pulloff_radius : result.displacement_pulloff_penetration)
+                            : nan;
+    std::string estimates;
+    for (int which = 0; which < fit::kParameterCount; ++which) {
+      if (!free[which]) continue;
+      const double scale = which == fit::kWork ? 1e3 : which == fit::kThickness ? 1e6 : 1e-6;
+      const char* unit = which == fit::kWork ? "mJ/m^2" : which == fit::kThickness ? "µm" : "MPa";
+      estimates += std::string(estimates.empty() ? "" : ",  ") + fit::parameter_name(which) + " = " +
+                   short_number(scale * result.value[which]) + " ± " + short_number(scale * result.standard_error[which]) +
+                   " " + unit;
+    }
+    const std::string fit_label =
+        "fit: " + estimates + "   (n = " + std::to_string(result.points) +
+        (result.weighted ? ", χ^2/(n-p) = " + short_number(result.chi2_per_dof) : ", s = " + short_number(1e6 * result.residual_sigma) + " µN") +
+        (result.has_load_pulloff ? ", pull-off " + short_number(1e3 * result.load_pulloff_force) + " mN" : "") + ")";
+    std::string substrate = problem.substrate.rigid ? std::string("rigid substrate")
+                                                    : "E0 = " + short_number(problem.substrate.material.youngs_modulus / 1e9) +
+                                                          " GPa, ν0 = " + short_number(problem.substrate.material.poisson_ratio);
+    const std::string name = path == "-" ? std::string("stdin") : path.substr(path.find_last_of('/') + 1);
+    const std::string title = name + ": R = " + short_number(problem.sphere_radius * 1e3) + " mm, film E1 = " +
+                              short_number(result.value[fit::kFilmModulus] / 1e6) + " MPa (ν1 = " +
+                              short_number(problem.film.poisson_ratio) + "), t = " +
+                              short_number(result.value[fit::kThickness] * 1e6) + " µm, " + substrate;
+    picture = render_fit_plot(table_text.str(), curve_text.str(), x_name, title, fit_label,
+                              plot_path->substr(plot_path->rfind('.') + 1), lp_x, result.load_pulloff_force, dp_x,
+                              result.displacement_pulloff_force);
+  }
+
+  const std::string output_path = arguments.get("--output").value_or("");
+  std::unique_ptr<Output> plot_output;
+  if (plot_path) {
+    plot_output = std::make_unique<Output>(*plot_path, "--plot");
+    plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+  }
+  std::unique_ptr<Output> curve_output;
+  if (curve_path) {
+    curve_output = std::make_unique<Output>(*curve_path, "--curve");
+    curve_output->stream() << curve_text.str();
+  }
+  Output output(output_path);
+  output.stream() << table_text.str();
+  if (plot_output) plot_output->commit();
   if (curve_output) curve_output->commit();
   output.commit();
 
@@ -356,6 +847,10 @@ int run_fit_body(const Args& args) {
                 << short_number(result.value[which]) << " " << parameter_unit(which);
       if (free[which]) {
         std::cout << " +- " << short_number(result.standard_error[which]) << " (standard error)";
+        if (problem.bootstrap > 0) {
+          std::cout << ", bootstrap 68 % [" << short_number(result.interval68_low[which]) << ", "
+                    << short_number(result.interval68_high[which]) << "]";
+        }
       } else {
         std::cout << " (fixed)";
       }
@@ -365,6 +860,30 @@ int run_fit_body(const Args& args) {
               << short_number(result.residual_sigma) << " N, R^2 " << short_number(result.r_squared)
               << ", interpolation error " << order_of_magnitude_bound(result.interpolation_error / result.residual_sigma)
               << " sigma\n";
+    if (result.weighted) {
+      std::cout << "  weighted by sigma_F^2 + (dF/d" << x_name << ")^2 sigma_" << x_name
+                << "^2: chi2/(n-p) = " << short_number(result.chi2_per_dof) << "\n";
+    } else {
+      std::cout << "  unweighted: the errors assume exact " << x_name << " (give --sigma if it is measured)\n";
+    }
+    if (result.has_load_pulloff) {
+      std::cout << "  predicted pull-off: " << short_number(result.load_pulloff_force) << " N under load control";
+      if (result.displacement_pulloff_radius > 0.0) {
+        std::cout << ", " << short_number(result.displacement_pulloff_force) << " N under displacement control";
+      }
+      std::cout << "\n";
+    }
+    if (result.has_spring_pulloff) {
+      std::cout << "  predicted pull-off through the spring k = " << short_number(problem.spring_stiffness)
+                << " N/m: " << short_number(result.spring_pulloff_force) << " N\n";
+    }
+    if (result.second_minimum) {
+      std::cout << "  note: a second minimum at";
+      for (int which = 0; which < fit::kParameterCount; ++which) {
+        if (free[which]) std::cout << " " << fit::parameter_name(which) << " = " << short_number(result.second_value[which]);
+      }
+      std::cout << " (cost " << short_number(result.second_cost_ratio) << " x the best)\n";
+    }
   }
   return kExitSuccess;
 }

@@ -2,9 +2,12 @@
 // (least_squares.cpp) and statistics (statistics.cpp).
 #include "coatcontact/fit.hpp"
 
+#include <gsl/gsl_rng.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "coatcontact/detail/format.hpp"
@@ -12,6 +15,7 @@
 #include "coatcontact/errors.hpp"
 #include "fit_model.hpp"
 #include "least_squares.hpp"
+#include "search.hpp"
 #include "statistics.hpp"
 
 namespace coatcontact::fit {
@@ -25,6 +29,14 @@ constexpr double kPi = 3.14159265358979323846;
 // Load-controlled JKR pull-off in Maugis units, P = F/(pi w R) (THEORY.md section 6).
 constexpr double kJkrPulloffLoad = -1.5;
 constexpr double kDefaultWork = 0.05;  // J/m2, when no measured force is tensile
+// Effective-variance passes: the weights depend on the slope at the solution; a change of
+// their logarithm below kWeightChange moves the estimates far less than their errors.
+constexpr int kWeightPasses = 5;
+constexpr double kWeightChange = 1e-3;
+// A second grid minimum is polished when its cost is within this factor of the best one's,
+// and reported when it ends more than kDistinctMinimum apart in some ln p.
+constexpr double kSecondCostRatio = 3.0;
+constexpr double kDistinctMinimum = 0.05;
 
 void validate(const Measurements& data, const Problem& problem) {
   const std::size_t n = data.size();
@@ -32,7 +44,24 @@ void validate(const Measurements& data, const Problem& problem) {
   if (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius)) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
-  Stack::film_on(problem.film, problem.substrate);  // validates the constants
+  Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
+  if (!(problem.spring_stiffness >= 0.0) || !std::isfinite(problem.spring_stiffness)) {
+    throw InputError("spring stiffness must be finite and >= 0 (got " + short_text(problem.spring_stiffness) + ")");
+  }
+  if (problem.bootstrap < 0 || problem.bootstrap > 100000) {
+    throw InputError("bootstrap: the number of resamples must be in [0, 100000] (got " +
+                     std::to_string(problem.bootstrap) + ")");
+  }
+  for (const auto* sigma : {&data.sigma_abscissa, &data.sigma_force}) {
+    if (!sigma->empty() && sigma->size() != n) throw InputError("fit: a sigma column differs in length from the data");
+    for (std::size_t i = 0; i < sigma->size(); ++i) {
+      if (!((*sigma)[i] >= 0.0) || !std::isfinite((*sigma)[i])) {
+        const std::string where = data.line_numbers.size() == n ? "line " + std::to_string(data.line_numbers[i])
+                                                                : "point " + std::to_string(i + 1);
+        throw InputError(where + ": an uncertainty must be finite and >= 0 (got " + short_text((*sigma)[i]) + ")");
+      }
+    }
+  }
   check_tolerance(problem.solver_tolerance);
   if (!(problem.thickness > 0.0) || !std::isfinite(problem.thickness)) {
     throw InputError("film thickness must be > 0 (got " + short_text(problem.thickness) + ")");
@@ -80,6 +109,10 @@ Measurements select_branch(const Measurements& data, Branch branch) {
   if (data.line_numbers.size() == data.size()) {
     out.line_numbers.assign(data.line_numbers.begin() + begin, data.line_numbers.begin() + end);
   }
+  if (!data.sigma_abscissa.empty()) {
+    out.sigma_abscissa.assign(data.sigma_abscissa.begin() + begin, data.sigma_abscissa.begin() + end);
+  }
+  if (!data.sigma_force.empty()) out.sigma_force.assign(data.sigma_force.begin() + begin, data.sigma_force.begin() + end);
   return out;
 }
 
@@ -107,9 +140,40 @@ Result fit(const Measurements& data, const Problem& problem) {
   }
 
   internal::Model model(problem, data);
-  const internal::Minimum minimum = internal::minimize(model, data, problem, free_index);
+  const Parameters hint{problem.work, problem.thickness, problem.film.youngs_modulus};
+  internal::SearchResult search;
+  search.best = hint;
+  if (problem.global_search) search = internal::global_search(model, problem, free_index, hint);
+  const double search_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+
+  // Unweighted: one constant scale (any gives the same estimates; this one keeps GSL's
+  // tolerances meaningful). Weighted: 1/sigma_eff from the model's slope, refreshed at each
+  // solution until it no longer moves (the effective-variance iteration).
+  const bool weighted = !data.sigma_force.empty() || !data.sigma_abscissa.empty();
+  double largest_force = 0.0;
+  for (double f : data.force) largest_force = std::max(largest_force, std::fabs(f));
+  std::vector<double> scale(n, 1.0 / largest_force);
+  if (weighted) scale = internal::inverse_sigma(data, model.at_data(search.best));
+  internal::Minimum minimum;
+  Parameters start = search.best;
+  int iterations = 0;
+  for (int pass = 0; pass < kWeightPasses; ++pass) {
+    minimum = internal::minimize(model, problem, free_index, start, scale, !problem.global_search);
+    iterations += minimum.iterations;
+    if (!weighted) break;
+    const std::vector<double> next = internal::inverse_sigma(data, model.at_data(minimum.values));
+    double change = 0.0;
+    for (std::size_t i = 0; i < n; ++i) change = std::max(change, std::fabs(std::log(next[i] / scale[i])));
+    scale = next;
+    start = minimum.values;
+    if (change < kWeightChange) break;
+  }
+  minimum.iterations = iterations;
 
   Result result;
+  result.search_evaluations = search.evaluations;
+  result.search_seconds = search_seconds;
   result.iterations = minimum.iterations;
   result.converged = true;
   result.stop_reason = minimum.stop_reason;
@@ -119,7 +183,96 @@ Result fit(const Measurements& data, const Problem& problem) {
   result.value = minimum.values.as_array();
   const internal::ModelAtData m = model.at_data(minimum.values, true);
   const auto jacobian = model.force_derivatives(minimum.values, m, free_index);
-  internal::fill_statistics(data, m.force, jacobian, free_index, result);
+  const std::vector<double> inv_sigma = weighted ? internal::inverse_sigma(data, m) : std::vector<double>{};
+  internal::fill_statistics(data, m.force, jacobian, free_index, inv_sigma, result);
+  result.sigma_effective.clear();
+  for (double u : inv_sigma) result.sigma_effective.push_back(1.0 / u);
+  if (m.has_load_pulloff) {
+    result.has_load_pulloff = true;
+    result.load_pulloff_radius = m.load_pulloff_radius;
+    result.load_pulloff_penetration = m.load_pulloff_penetration;
+    result.load_pulloff_force = m.load_pulloff_force;
+  }
+  const std::vector<double> final_scale = weighted ? inv_sigma : scale;
+  if (problem.spring_stiffness > 0.0) {
+    try {
+      if (const auto s = model.spring_pulloff(minimum.values, problem.spring_stiffness)) {
+        result.has_spring_pulloff = true;
+        result.spring_pulloff_radius = (*s)[0];
+        result.spring_pulloff_penetration = (*s)[1];
+        result.spring_pulloff_force = (*s)[2];
+      }
+    } catch (const NumericalError&) {
+      // Reported as absent (the header says so); the fit itself stands.
+    }
+  }
+
+  // A second local minimum of the search, polished: reported when it stays apart from the best.
+  if (search.has_second && search.second_cost <= kSecondCostRatio * search.best_cost) {
+    try {
+      const internal::Minimum other = internal::minimize(model, problem, free_index, search.second, final_scale, false);
+      double distance = 0.0;
+      for (int which : free_index) {
+        distance = std::max(distance, std::fabs(std::log(other.values.as_array()[which] / result.value[which])));
+      }
+      if (distance > kDistinctMinimum && other.cost >= minimum.cost) {
+        result.second_minimum = true;
+        result.second_value = other.values.as_array();
+        result.second_cost_ratio = other.cost / minimum.cost;
+      }
+    } catch (const NumericalError&) {
+      // No second solution there.
+    }
+  }
+
+  // Residual bootstrap: resample the standardized residuals (centred, inflated by
+  // sqrt(n/(n-p)) for the fitted degrees of freedom), refit from the estimate with the same
+  // weights, take percentiles.
+  if (problem.bootstrap > 0) {
+    std::vector<double> e(n);
+    double mean = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      e[i] = result.residual[i] * final_scale[i];
+      mean += e[i] / static_cast<double>(n);
+    }
+    const double inflate = std::sqrt(static_cast<double>(n) / static_cast<double>(n - p_count));
+    for (double& x : e) x = (x - mean) * inflate;
+    std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
+    gsl_rng_set(rng.get(), problem.bootstrap_seed);
+    Measurements resampled = data;
+    model.set_data(resampled);
+    std::vector<std::vector<double>> samples(kParameterCount);
+    for (int b = 0; b < problem.bootstrap; ++b) {
+      for (std::size_t i = 0; i < n; ++i) {
+        resampled.force[i] = m.force[i] - e[gsl_rng_uniform_int(rng.get(), n)] / final_scale[i];
+      }
+      try {
+        const internal::Minimum r = internal::minimize(model, problem, free_index, minimum.values, final_scale, false);
+        for (int which : free_index) samples[which].push_back(r.values.as_array()[which]);
+        ++result.bootstrap_samples;
+      } catch (const NumericalError&) {
+        // A resample the fit cannot follow does not count (bootstrap_samples says how many did).
+      }
+    }
+    model.set_data(data);
+    if (result.bootstrap_samples < std::max(10, problem.bootstrap / 2)) {
+      throw NumericalError("bootstrap: only " + std::to_string(result.bootstrap_samples) + " of " +
+                           std::to_string(problem.bootstrap) + " refits converged; the intervals would mean nothing");
+    }
+    const auto percentile = [](std::vector<double> v, double q) {
+      std::sort(v.begin(), v.end());
+      const double position = q * static_cast<double>(v.size() - 1);
+      const std::size_t k = static_cast<std::size_t>(position);
+      const double f = position - static_cast<double>(k);
+      return k + 1 < v.size() ? v[k] * (1.0 - f) + v[k + 1] * f : v[k];
+    };
+    for (int which : free_index) {
+      result.interval68_low[which] = percentile(samples[which], 0.16);
+      result.interval68_high[which] = percentile(samples[which], 0.84);
+      result.interval95_low[which] = percentile(samples[which], 0.025);
+      result.interval95_high[which] = percentile(samples[which], 0.975);
+    }
+  }
   result.model_radius = m.radius;
   result.model_penetration = m.penetration;
   result.model_force = m.force;

@@ -36,8 +36,10 @@ const double kBracketRatio = std::pow(10.0, 1.0 / 32.0);
 constexpr std::size_t kMaxBracketSteps = 32 * 6;  // six decades above a_c
 // Top of the pull-off scan in units of max(1, r), r = (E1*/E0*)^(1/3) (ModelEntry).
 constexpr double kPulloffScanTop = 2.0;
-// Data points checked against direct solves after the fit.
-constexpr std::size_t kCheckedPoints = 200;
+// Data points checked against direct solves after the fit: a direct solve at a/t ~ 20 costs
+// as much as a whole fit's worth of interpolation, and the interpolant's error varies smoothly,
+// so a spread-out sample finds its maximum.
+constexpr std::size_t kCheckedPoints = 16;
 
 // Brent root of f on [lo, hi] (f(lo) < 0 <= f(hi)).
 double find_root(const std::function<double(double)>& f, double lo, double hi) {
@@ -88,7 +90,7 @@ ReducedPoint frozen(ReducedPoint r) {
 ModelEntry::ModelEntry(const Problem& problem, double film_modulus) : film_modulus_(film_modulus) {
   Material film = problem.film;
   film.youngs_modulus = film_modulus;
-  solver_ = std::make_unique<ReducedSolver>(Stack::film_on(film, problem.substrate));
+  solver_ = std::make_unique<ReducedSolver>(Stack::film_on(film, problem.substrate, problem.indenter));
   // The minimum of D lies at a_bar = 1/2 (top layer) and r/2 (base) in the JKR limits
   // (THEORY.md section 6): scanning up to 2 max(1, r), not the default 10 max(1, r), finds it
   // and spares the costly solves at large a/t (~25 ms each above a/t = 10).
@@ -188,7 +190,7 @@ SiPoint ContactModel::exact(const ReducedVariables& v, double radius) const {
 // ---- the model at the data ------------------------------------------------------------------
 
 Model::Model(const Problem& problem, const Measurements& data)
-    : problem_(problem), data_(data), cache_(problem) {}
+    : problem_(problem), data_(&data), cache_(problem) {}
 
 void Model::check_range(const Parameters& p) const {
   if (!(p.work >= kWorkRange[0] && p.work <= kWorkRange[1])) {
@@ -228,6 +230,7 @@ ModelAtData Model::at_data(const Parameters& p, bool with_pulloff) {
 }
 
 ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
+  const Measurements& data_ = *this->data_;
   const ContactModel cm(cache_.get(p.film_modulus).model(), problem_.sphere_radius, p);
   const std::size_t n = data_.size();
   ModelAtData out;
@@ -237,6 +240,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
   out.force_lnw.resize(n);
   out.force_lnt.resize(n);
   out.slope.assign(n, 0.0);
+  out.force_x.assign(n, 0.0);
   out.clamped.assign(n, false);
   const auto check_a_over_t = [&](double a) {
     const double x = a / p.thickness;
@@ -249,9 +253,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
   const bool radius_data = data_.kind == DataKind::kRadiusForce;
   if (!radius_data || with_pulloff) {
     // For delta,F data the displacement-controlled pull-off bounds the stable branch (a failure
-    // to find it fails the evaluation); for a,F data it is only reported, and only when it
-    // lies within the measured radii.
-    const auto [lo, hi] = std::minmax_element(data_.abscissa.begin(), data_.abscissa.end());
+    // to find it fails the evaluation); for a,F data the pull-offs are only reported.
     const Pulloff* pulloff = nullptr;
     try {
       cm.prepare_pulloff();
@@ -262,7 +264,14 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
     if (pulloff != nullptr) {
       const PulloffPoint& c = pulloff->displacement_control;
       const double a_c = c.a_bar * cm.contact().length_scale();
-      if (c.interior && (!radius_data || (a_c >= *lo && a_c <= *hi))) {
+      const PulloffPoint& f = pulloff->load_control;
+      if (f.interior) {
+        out.has_load_pulloff = true;
+        out.load_pulloff_radius = f.a_bar * cm.contact().length_scale();
+        out.load_pulloff_penetration = f.penetration * cm.contact().penetration_scale();
+        out.load_pulloff_force = f.load * cm.contact().force_scale();
+      }
+      if (c.interior) {
         out.has_pulloff = true;
         out.pulloff_radius = a_c;
         out.pulloff_penetration = c.penetration * cm.contact().penetration_scale();
@@ -287,6 +296,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
       out.force[i] = s.force;
       out.force_lnw[i] = s.force_lnw;
       out.force_lnt[i] = s.force_lnt;
+      out.force_x[i] = s.force_a;
     }
     return out;
   }
@@ -330,6 +340,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
     } else {
       // a*(p) from delta(a*, p) = delta_i: d a*/dp = -delta_p / delta_a.
       out.slope[i] = s.force_a / s.penetration_a;
+      out.force_x[i] = out.slope[i];
       out.force_lnw[i] = s.force_lnw - out.slope[i] * s.penetration_lnw;
       out.force_lnt[i] = s.force_lnt - out.slope[i] * s.penetration_lnt;
     }
@@ -377,12 +388,25 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
   return columns;
 }
 
+std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, double k) {
+  coatcontact::detail::GslHandlerOff handler_off;
+  const ContactModel cm(cache_.get(p.film_modulus).model(), problem_.sphere_radius, p);
+  cm.prepare_pulloff();
+  // k_bar = k (l^2/R) / (pi w R): the stiffness in the Maugis units of force and penetration.
+  const double k_bar = k * cm.contact().penetration_scale() / cm.contact().force_scale();
+  const SpringPulloff s = cm.contact().model().pulloff_spring(cm.contact().eta(), k_bar);
+  if (!s.point.interior) return std::nullopt;
+  return std::array<double, 3>{s.point.a_bar * cm.contact().length_scale(),
+                               s.point.penetration * cm.contact().penetration_scale(),
+                               s.point.load * cm.contact().force_scale()};
+}
+
 double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
   coatcontact::detail::GslHandlerOff handler_off;
   const ModelEntry& entry = cache_.get(p.film_modulus);
   const ContactModel cm(entry.model(), problem_.sphere_radius, p);
   const std::size_t n = m.radius.size();
-  const std::size_t stride = std::max<std::size_t>(1, n / kCheckedPoints);
+  const std::size_t stride = std::max<std::size_t>(1, (n + kCheckedPoints - 1) / kCheckedPoints);
   std::vector<std::size_t> index;
   std::vector<double> a_over_t;
   for (std::size_t i = 0; i < n; i += stride) {

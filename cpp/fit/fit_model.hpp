@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "coatcontact/adhesion.hpp"
@@ -86,9 +87,14 @@ struct ModelAtData {
   // dF/d delta along the curve at unclamped delta,F points (0 elsewhere): converts a change of
   // the model's delta at fixed a into a change of the residual at fixed measured delta.
   std::vector<double> slope;
+  // dF/dx along the curve at each point, x the data's abscissa (a, or delta): what turns a
+  // sigma of x into one of F (effective variance). 0 at clamped points.
+  std::vector<double> force_x;
   std::vector<bool> clamped;
   bool has_pulloff = false;
   double pulloff_radius = 0.0, pulloff_penetration = 0.0, pulloff_force = 0.0;
+  bool has_load_pulloff = false;
+  double load_pulloff_radius = 0.0, load_pulloff_penetration = 0.0, load_pulloff_force = 0.0;
 };
 
 class Model {
@@ -96,18 +102,24 @@ class Model {
   Model(const Problem& problem, const Measurements& data);
 
   // The model at every data point; any failure becomes a NumericalError naming the parameters.
-  // with_pulloff: also report the displacement-controlled pull-off for a,F data when it lies
-  // within the measured radii (delta,F data always need it: it bounds the stable branch).
+  // with_pulloff: also report the pull-offs (load and displacement control) for a,F data
+  // (delta,F data always need the displacement-controlled one: it bounds the stable branch).
   ModelAtData at_data(const Parameters& p, bool with_pulloff = false);
   // d F_model / d ln p_j at every data point for the parameters in `which` (w and t analytic,
   // E1 by a central difference in ln E1 at the model radii of `m`: the same derivative as a
   // re-inversion of delta at E1 e^(+-h), without its square-root singularity near a_c).
   std::vector<std::vector<double>> force_derivatives(const Parameters& p, const ModelAtData& m,
                                                      const std::vector<int>& which);
-  // max |F_exact - F_model| over (up to 200 of) the data points, the reduced variables solved
+  // max |F_exact - F_model| over (up to 16 of) the data points, the reduced variables solved
   // directly at each model radius (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error(const Parameters& p, const ModelAtData& m);
   long solver_calls() const { return cache_.solver_calls() + check_calls_; }
+  // Pull-off through a spring of stiffness k [N/m] at p: {a, delta, F} (SI), or nothing when
+  // the jump is not inside the scanned range.
+  std::optional<std::array<double, 3>> spring_pulloff(const Parameters& p, double k);
+  // Swap the data (same kind and size: bootstrap resamples), keeping the tables.
+  void set_data(const Measurements& data) { data_ = &data; }
+  const Measurements& data() const { return *data_; }
 
  private:
   ModelAtData evaluate(const Parameters& p, bool with_pulloff);
@@ -115,7 +127,7 @@ class Model {
   [[noreturn]] void rethrow_at(const Parameters& p) const;
 
   const Problem& problem_;
-  const Measurements& data_;
+  const Measurements* data_;
   ModelCache cache_;
   long check_calls_ = 0;
 };

@@ -27,7 +27,7 @@ struct FitContext {
   Model* model;
   std::vector<int> free_index;  // parameter index of each GSL variable
   std::array<double, kParameterCount> start{};
-  double force_scale = 1.0;  // residuals are scaled by it (keeps GSL's tolerances meaningful)
+  std::vector<double> scale;  // per point: 1/sigma_eff, or 1/max|F| when unweighted
   std::exception_ptr error;
 
   Parameters parameters(const gsl_vector* x) const {
@@ -44,7 +44,7 @@ int residual_callback(const gsl_vector* x, void* params, gsl_vector* f) {
   try {
     const ModelAtData m = ctx->model->at_data(ctx->parameters(x));
     for (std::size_t i = 0; i < ctx->data->size(); ++i) {
-      gsl_vector_set(f, i, (m.force[i] - ctx->data->force[i]) / ctx->force_scale);
+      gsl_vector_set(f, i, (m.force[i] - ctx->data->force[i]) * ctx->scale[i]);
     }
     return GSL_SUCCESS;
   } catch (...) {
@@ -61,7 +61,7 @@ int jacobian_callback(const gsl_vector* x, void* params, gsl_matrix* J) {
     const auto columns = ctx->model->force_derivatives(p, m, ctx->free_index);
     for (std::size_t j = 0; j < columns.size(); ++j) {
       for (std::size_t i = 0; i < columns[j].size(); ++i) {
-        gsl_matrix_set(J, i, j, columns[j][i] / ctx->force_scale);
+        gsl_matrix_set(J, i, j, columns[j][i] * ctx->scale[i]);
       }
     }
     return GSL_SUCCESS;
@@ -91,6 +91,7 @@ struct Stage {
   int iterations = 0;
   std::vector<double> x;  // GSL variables at the end
   Parameters values;
+  double cost = 0.0;
   bool gradient_small = false;  // for GSL_ENOPROG
 };
 
@@ -127,7 +128,9 @@ Stage run_stage(FitContext& ctx, int max_iterations) {
   const gsl_vector* x = gsl_multifit_nlinear_position(work.get());
   for (std::size_t j = 0; j < p_count; ++j) stage.x.push_back(gsl_vector_get(x, j));
   stage.values = ctx.parameters(x);
-  if (stage.status == GSL_ENOPROG) {
+  const gsl_vector* f_end = gsl_multifit_nlinear_residual(work.get());
+  stage.cost = gsl_blas_dnrm2(f_end) * gsl_blas_dnrm2(f_end);
+  if (stage.status == GSL_ENOPROG || stage.status == GSL_EMAXITER) {
     // No step decreases the cost any more: accept only if the gradient is at the noise level
     // of the model (the interpolated values carry relative noise ~ solver tolerance).
     const gsl_vector* f = gsl_multifit_nlinear_residual(work.get());
@@ -149,24 +152,21 @@ Stage run_stage(FitContext& ctx, int max_iterations) {
 
 }  // namespace
 
-Minimum minimize(Model& model, const Measurements& data, const Problem& problem,
-                 const std::vector<int>& free_index) {
+Minimum minimize(Model& model, const Problem& problem, const std::vector<int>& free_index,
+                 const Parameters& start, const std::vector<double>& scale, bool fit_work_first) {
   coatcontact::detail::GslHandlerOff handler_off;
   FitContext ctx;
-  ctx.data = &data;
+  ctx.data = &model.data();
   ctx.model = &model;
   ctx.free_index = free_index;
-  ctx.start = {problem.work, problem.thickness, problem.film.youngs_modulus};
-  // The largest measured force (> 0, checked by fit()): any constant scale gives the same
-  // estimates and standard errors.
-  ctx.force_scale = 0.0;
-  for (double f : data.force) ctx.force_scale = std::max(ctx.force_scale, std::fabs(f));
+  ctx.start = start.as_array();
+  ctx.scale = scale;
 
   Minimum result;
   // With several free parameters, w alone is fitted first (a 1-D problem that always has a
   // good start from the pull-off force) and the full fit starts from there: a start far from w
   // can otherwise lead the joint fit into a secondary minimum.
-  if (free_index.size() > 1 && problem.free[kWork]) {
+  if (fit_work_first && free_index.size() > 1 && problem.free[kWork]) {
     FitContext first = ctx;
     first.free_index = {kWork};
     try {
@@ -182,9 +182,12 @@ Minimum minimize(Model& model, const Measurements& data, const Problem& problem,
   const Stage stage = run_stage(ctx, problem.max_iterations);
   result.iterations += stage.iterations;
   result.values = stage.values;
+  result.cost = stage.cost;
   if (stage.status == GSL_SUCCESS) {
     result.stop_reason = stage.info == 1 ? "small step" : "small gradient";
-  } else if (stage.status == GSL_ENOPROG) {
+  } else if (stage.status == GSL_ENOPROG || (stage.status == GSL_EMAXITER && stage.gradient_small)) {
+    // (A start at the minimum itself, as the global search gives, can leave the step test
+    // unmet by the interpolant's noise: the gradient decides.)
     if (!stage.gradient_small) {
       throw NumericalError("the fit stopped making progress after " + std::to_string(result.iterations) +
                            " iterations without converging (last estimates " +

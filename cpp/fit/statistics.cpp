@@ -19,7 +19,7 @@ using coatcontact::detail::short_text;
 
 void fill_statistics(const Measurements& data, const std::vector<double>& model_force,
                      const std::vector<std::vector<double>>& jacobian, const std::vector<int>& free_index,
-                     Result& result) {
+                     const std::vector<double>& inv_sigma, Result& result) {
   coatcontact::detail::GslHandlerOff handler_off;
   const std::size_t n = data.size();
   const std::size_t p_count = free_index.size();
@@ -36,19 +36,25 @@ void fill_statistics(const Measurements& data, const std::vector<double>& model_
   result.residual_norm = std::sqrt(rss);
   result.residual_sigma = std::sqrt(rss / static_cast<double>(n - p_count));
   result.r_squared = tss > 0.0 ? 1.0 - rss / tss : (rss == 0.0 ? 1.0 : -HUGE_VAL);
+  const bool weighted = !inv_sigma.empty();
+  const auto weight = [&](std::size_t i) { return weighted ? inv_sigma[i] : 1.0; };
+  result.weighted = weighted;
+  result.chi2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) result.chi2 += std::pow(result.residual[i] * weight(i), 2);
+  result.chi2_per_dof = result.chi2 / static_cast<double>(n - p_count);
 
   // Covariance in ln p through the SVD of the column-normalized Jacobian J D^-1:
   // (J^T J)^-1 = D^-1 V S^-2 V^T D^-1.
   std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> J(gsl_matrix_alloc(n, p_count), gsl_matrix_free);
   std::vector<double> column_norm(p_count, 0.0);
   for (std::size_t j = 0; j < p_count; ++j) {
-    for (std::size_t i = 0; i < n; ++i) column_norm[j] += jacobian[j][i] * jacobian[j][i];
+    for (std::size_t i = 0; i < n; ++i) column_norm[j] += std::pow(jacobian[j][i] * weight(i), 2);
     column_norm[j] = std::sqrt(column_norm[j]);
     if (!(column_norm[j] > 0.0)) {
       throw NumericalError(std::string("the data do not depend on ") + parameter_name(free_index[j]) +
                            ": it cannot be fitted (fix it instead)");
     }
-    for (std::size_t i = 0; i < n; ++i) gsl_matrix_set(J.get(), i, j, jacobian[j][i] / column_norm[j]);
+    for (std::size_t i = 0; i < n; ++i) gsl_matrix_set(J.get(), i, j, jacobian[j][i] * weight(i) / column_norm[j]);
   }
   std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> V(gsl_matrix_alloc(p_count, p_count), gsl_matrix_free);
   std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> S(gsl_vector_alloc(p_count), gsl_vector_free);
@@ -63,7 +69,8 @@ void fill_statistics(const Measurements& data, const std::vector<double>& model_
                          "number " + (s_min > 0.0 ? short_text(s_max / s_min) : std::string("infinite")) +
                          "): fix one of them");
   }
-  const double s2 = rss / static_cast<double>(n - p_count);
+  // Known sigmas: the weights carry the scale. Unknown: the scatter about the fit estimates it.
+  const double s2 = weighted ? 1.0 : rss / static_cast<double>(n - p_count);
   std::vector<std::vector<double>> covariance(p_count, std::vector<double>(p_count, 0.0));
   for (std::size_t a = 0; a < p_count; ++a) {
     for (std::size_t b = 0; b < p_count; ++b) {

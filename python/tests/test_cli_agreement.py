@@ -107,7 +107,8 @@ def test_fit_equals_cli(cli, source_dir):
     # The file's "# units: um mN", divided as the CLI does.
     r = cc.fit(a / 1e6, F / 1e3, kind="a", radius=5e-3, film=(1e6, 0.49), substrate=(70e9, 0.22),
                thickness=50e-6)
-    assert same(values["w_start_J_per_m2"], r["start"]["w"])
+    # The start of w is only a hint now (the fit searches log w globally, issue 15); the
+    # estimates are what must agree.
     assert same(values["w_J_per_m2"], r["estimates"]["w"])
     assert same(values["w_stderr_J_per_m2"], r["errors"]["w"])
     assert same(values["residual_norm_N"], r["residual_norm"])

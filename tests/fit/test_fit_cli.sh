@@ -76,6 +76,69 @@ expect "pure noise delta,F (w)" 3 "does not describe|not determine|not identifia
   "$cli" fit "$work/noise_delta_F.tsv" --columns delta,F "${model[@]}" --thickness 50um
 [[ -e $work/never.tsv ]] && fail "an output file was left behind"
 
+# --- issue 15: errors in both variables, no start, instrument data ---
+glass=(--radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22)
+"$generator" --kind a,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 50mJ/m2 \
+  --noise 10uN --noise-x 0.3% --a-range 60um,400um --points 30 --seed 5 --output "$work/both.tsv" || fail "generator (both)"
+expect "both variables, no start" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN
+for key in "chi2_per_dof" "load_pulloff_F_N" "global_search" "weights: effective variance"; do
+  grep -q "^# $key" "$work/out" || fail "both variables: no '# $key' header line"
+done
+w=$(sed -n 's/^# w_J_per_m2: //p' "$work/out"); t=$(sed -n 's/^# t_m: //p' "$work/out")
+awk -v w="$w" -v t="$t" 'BEGIN { exit !(w > 0.048 && w < 0.052 && t > 19.8e-6 && t < 20.2e-6) }' \
+  || fail "both variables: w = $w, t = $t (truth 0.05, 2e-05)"
+expect "both variables, --start hint" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --start w=0.01,t=50um --sigma a=0.3%,F=10uN
+"$generator" --kind delta,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 50mJ/m2 \
+  --noise 10uN --noise-x 0.3% --a-range 60um,400um --points 30 --seed 4 --output "$work/both_delta.tsv" || fail "generator (delta both)"
+expect "delta,F both variables, no start" 0 "" -- "$cli" fit "$work/both_delta.tsv" --columns delta,F "${glass[@]}" --free w,t --sigma delta=0.3%,F=10uN
+w=$(sed -n 's/^# w_J_per_m2: //p' "$work/out"); t=$(sed -n 's/^# t_m: //p' "$work/out")
+awk -v w="$w" -v t="$t" 'BEGIN { exit !(w > 0.048 && w < 0.052 && t > 19.8e-6 && t < 20.2e-6) }' \
+  || fail "delta,F both variables: w = $w, t = $t (truth 0.05, 2e-05)"
+# the spring pull-off lies between the load- and displacement-controlled ones
+expect "spring pull-off" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --spring 500N/m
+fs=$(sed -n 's/^# spring_pulloff_F_N: //p' "$work/out"); fl=$(sed -n 's/^# load_pulloff_F_N: //p' "$work/out")
+fd=$(sed -n 's/^# displacement_pulloff_F_N: //p' "$work/out")
+awk -v s="$fs" -v l="$fl" -v d="$fd" 'BEGIN { exit !(s != "" && s > l && s < d) }' || fail "spring pull-off $fs not between $fl and $fd"
+expect "bad --spring" 2 "--spring" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --spring abc
+expect "unweighted says exact a" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um
+grep -q "^# weights: none.*assume exact a" "$work/out" || fail "unweighted fit does not say the errors assume exact a"
+expect "bootstrap" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um --bootstrap 20 --seed 3
+grep -q "^# w_interval68_J_per_m2" "$work/out" || fail "bootstrap: no interval in the header"
+# multi-column export with units in the column names, columns by name and position, stdin
+{ echo "time (s),a (um),load (mN),sF (mN)"; grep -v '^#' "$work/both.tsv" | awk '{ print NR "," $1 "," $2 ",0.01" }'; } >"$work/export.csv"
+expect "columns by name, units from names" 0 "" -- "$cli" fit "$work/export.csv" --columns a=a,F=load,sigma_F=sF "${glass[@]}" --free w,t --sigma a=0.3%
+expect "columns by position from stdin" 0 "" -- bash -c "'$cli' fit - --columns a=2,F=3 ${glass[*]} --free w,t --sigma a=0.3%,F=10uN <'$work/export.csv'"
+# bad values: exit 2 naming the option or file:line
+expect "bad --sigma name" 2 "--sigma: 'x'" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma x=1%
+expect "bad --sigma percent" 2 "--sigma a" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=abc%
+expect "bad --sigma unit" 2 "--sigma F" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma F=10um
+expect "delta sigma on a,F data" 2 "--sigma: 'delta'" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --sigma delta=1nm --thickness 20um
+expect "bad --bootstrap" 2 "--bootstrap" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --bootstrap 3
+expect "bad --plot extension" 2 "--plot" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --plot fit.gif
+expect "bad --columns position" 2 "--columns: a=9" -- "$cli" fit "$work/export.csv" --columns a=9,F=3 "${glass[@]}" --thickness 20um
+expect "bad --columns name" 2 "no column named 'radius'" -- "$cli" fit "$work/export.csv" --columns a=radius,F=3 "${glass[@]}" --thickness 20um
+expect "elastic indenter" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --indenter 70GPa,0.2
+grep -q "^# indenter: E2 = 7" "$work/out" || fail "elastic indenter: not in the header"
+expect "bad --indenter" 2 "--indenter" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --indenter 1GPa
+grep -v '^# units' "$work/both.tsv" >"$work/nounits.tsv"
+expect "forgotten units" 2 "nounits.tsv:[0-9]+: contact radius .* not below the sphere radius.*# units: um mN" -- \
+  "$cli" fit "$work/nounits.tsv" --columns a,F "${glass[@]}" --free w,t
+expect "a > R" 2 "both.tsv:[0-9]+: contact radius .* not below the sphere radius" -- \
+  "$cli" fit "$work/both.tsv" --columns a,F --radius 0.2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --free w,t
+printf '# units: um mN\n60,1\t-0,69\n70,2\t-0,6\n80,3\t-0,3\n' >"$work/comma.tsv"
+expect "decimal commas" 2 "comma.tsv:2: .*decimal commas" -- "$cli" fit "$work/comma.tsv" --columns a,F "${glass[@]}" --thickness 20um
+# --plot: PNG or PDF by extension, written atomically (nothing left behind on failure)
+if command -v gnuplot >/dev/null; then
+  expect "plot png" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --plot "$work/fit.png"
+  [[ $(head -c 4 "$work/fit.png" | tail -c 3) == PNG ]] || fail "plot png: not a PNG file"
+  expect "plot pdf (delta,F)" 0 "" -- "$cli" fit "$data/example_delta_F.tsv" --columns delta,F "${model[@]}" --free w,t --plot "$work/fit.pdf"
+  [[ $(head -c 4 "$work/fit.pdf") == %PDF ]] || fail "plot pdf: not a PDF file"
+  ls "$work" | grep -q '\.tmp\.' && fail "plot: a temporary file was left behind"
+fi
+# undetermined parameter: exit 3 saying which
+expect "undetermined t" 3 "do not determine t" -- \
+  "$cli" fit "$data/example_a_F.tsv" --columns a,F --radius 5mm --film 1MPa,0.49 --substrate 1MPa,0.49 --free w,t
+
 if [[ $failures -ne 0 ]]; then
   echo "FAIL ($failures failures)"
   exit 1

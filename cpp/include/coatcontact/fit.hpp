@@ -15,12 +15,19 @@
 // branch under displacement control: a* >= a_c, where a_c is the displacement-controlled
 // pull-off point (the minimum of delta(a), AdhesiveModel::pulloff). A measured delta below
 // the model's minimum delta(a_c) has no equilibrium on that branch; its residual is taken at a_c.
-// Standard errors are the usual linearized ones: s^2 = RSS/(n-p), covariance s^2 (J^T J)^-1.
+// Weights: with per-point uncertainties (sigma_abscissa, sigma_force) the residuals are divided
+// by the effective sigma, sigma_eff^2 = sigma_F^2 + (dF/dx)^2 sigma_x^2, dF/dx along the model
+// curve (x = a or delta), weights refreshed at the solution until stable; the covariance is then
+// (J^T W J)^-1 and chi^2/(n-p) is reported. Without any sigma the residuals are unweighted,
+// s^2 = RSS/(n-p), covariance s^2 (J^T J)^-1, and the errors assume an exact abscissa.
+// Start values: a coarse global search over log-parameters (w profiled out for a,F data, where
+// F is linear in sqrt(w) at fixed a) picks the start; the problem's values are only a hint.
 //
 // Errors: InputError for bad problems (n <= number of free parameters, a <= 0 in a,F data,
-// missing start values); NumericalError when the fit does not converge, a parameter runs out
-// of its physical range, the parameters are not identifiable from the data, or the model
-// does not describe the data (R^2 < kMinimumRSquared).
+// negative or non-finite sigmas); NumericalError when the fit does not converge, a parameter
+// runs out of its physical range or does not change the fit over its search range (named),
+// the parameters are not identifiable from the data, or the model does not describe the data
+// (R^2 < kMinimumRSquared).
 #pragma once
 #include <array>
 #include <cstddef>
@@ -40,6 +47,10 @@ struct Measurements {
   std::vector<double> abscissa;  // a [m] (> 0) or delta [m] (any sign)
   std::vector<double> force;     // F [N], compressive positive (any sign)
   std::vector<int> line_numbers;  // source lines (for messages and output); may be empty
+  // Standard uncertainties per point (same length as force, or empty: that variable is exact
+  // / unknown). With neither, the fit is unweighted.
+  std::vector<double> sigma_abscissa;  // [m]
+  std::vector<double> sigma_force;     // [N]
   std::size_t size() const { return force.size(); }
 };
 
@@ -54,14 +65,26 @@ const char* parameter_name(int parameter);  // "w", "t", "E1"
 
 struct Problem {
   double sphere_radius = 0.0;  // R [m]
-  Material film;               // E1 (start value if free, else fixed), nu1
+  Material film;               // E1 (hint and centre of the search range if free, else fixed), nu1
   Substrate substrate;
-  double thickness = 0.0;  // t [m] (start value if free, else fixed)
-  double work = 0.0;       // w [J/m2] (start value if free, else fixed)
+  double thickness = 0.0;  // t [m] (a hint to the search if free, else fixed)
+  double work = 0.0;       // w [J/m2] (a hint to the search if free, else fixed)
   std::array<bool, kParameterCount> free{{true, false, false}};
+  Indenter indenter;  // rigid by default; elastic: the stack's reference modulus is E_r
+  double spring_stiffness = 0.0;  // k [N/m] of the machine/cantilever (> 0: its pull-off is reported)
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
   int max_iterations = 200;
+  bool global_search = true;  // false: start from the values above (bootstrap refits, tests)
+  int bootstrap = 0;          // residual-bootstrap refits (0: none)
+  unsigned long bootstrap_seed = 1;
 };
+
+// Ranges of the global search (the model itself accepts wider values; kSearch* only bound the
+// grid): w over [kSearchWork], t with the data's a/t in [kSearchAOverT] (a,F data: the range
+// covers every a), E1 within a factor kSearchModulusFactor of the given value.
+constexpr double kSearchWork[2] = {1e-5, 10.0};      // J/m2
+constexpr double kSearchAOverT[2] = {1e-2, 50.0};
+constexpr double kSearchModulusFactor = 10.0;
 
 // Below this coefficient of determination the fit is refused as "the model does not describe
 // the data" (e.g. a fit of pure noise): the model must explain at least half of the variance of
@@ -82,6 +105,21 @@ struct Result {
   double residual_norm = 0.0;   // sqrt(RSS) [N]
   double residual_sigma = 0.0;  // s = sqrt(RSS/(n-p)) [N]
   double r_squared = 0.0;       // 1 - RSS / sum (F - mean F)^2
+  bool weighted = false;        // per-point sigmas were given
+  double chi2 = 0.0;            // sum (residual / sigma_eff)^2 (weighted fits)
+  double chi2_per_dof = 0.0;    // chi2 / (n - p)
+  std::vector<double> sigma_effective;  // per point [N] (weighted fits; else empty)
+  // Residual bootstrap (Problem::bootstrap > 0): percentile intervals of each free parameter.
+  int bootstrap_samples = 0;    // refits that converged
+  std::array<double, kParameterCount> interval68_low{}, interval68_high{};
+  std::array<double, kParameterCount> interval95_low{}, interval95_high{};
+  // Global search: grid points evaluated, and a second local minimum if one was found and
+  // polished to distinct parameters (cost ratio = its chi2 or RSS over the best one's).
+  int search_evaluations = 0;
+  double search_seconds = 0.0;  // wall time of the search (tables it builds included)
+  bool second_minimum = false;
+  std::array<double, kParameterCount> second_value{};
+  double second_cost_ratio = 0.0;
   int iterations = 0;
   bool converged = false;
   std::string stop_reason;  // "small step", "small gradient", ...
@@ -95,11 +133,17 @@ struct Result {
   // variables solved directly at each data point's a/t, max |F_exact - F_model| over points
   // (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error = 0.0;
-  // Displacement-controlled pull-off of the fitted model (AdhesiveModel::pulloff); for a,F
-  // data only when it lies within the measured radii, else 0.
+  // Displacement-controlled pull-off of the fitted model (AdhesiveModel::pulloff), for both
+  // kinds of data (0 when the model has no interior minimum of delta).
   double displacement_pulloff_radius = 0.0;       // a_c [m]
   double displacement_pulloff_penetration = 0.0;  // delta(a_c) [m]
   double displacement_pulloff_force = 0.0;        // F(a_c) [N]
+  // Pull-off through the spring k of Problem::spring_stiffness (THEORY.md section 10).
+  bool has_spring_pulloff = false;
+  double spring_pulloff_radius = 0.0, spring_pulloff_penetration = 0.0, spring_pulloff_force = 0.0;
+  // Load-controlled pull-off (minimum of F along the model curve), reported for every fit.
+  bool has_load_pulloff = false;
+  double load_pulloff_radius = 0.0, load_pulloff_penetration = 0.0, load_pulloff_force = 0.0;
   double solver_tolerance = 0.0;  // tolerance of every reduced-variable solve (Problem's)
   long solver_calls = 0;  // reduced-variable solves (all E1 values, and the check)
   double seconds = 0.0;   // wall time of the fit

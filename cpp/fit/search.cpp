@@ -1,0 +1,253 @@
+// Global search over log-parameters (search.hpp): the model is cheap once its table exists,
+// so a few dozen evaluations cost little next to the table, and they remove the need for
+// start values.
+#include "search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+
+#include "coatcontact/errors.hpp"
+
+namespace coatcontact::fit::internal {
+namespace {
+
+// Grid density: t needs the finest (the cost has one narrow valley in ln t); E1 costs a table
+// per value and w (gridded for delta,F data only) costs full evaluations, so they get fewer.
+constexpr double kPointsPerDecade = 4.0;
+constexpr double kCoarsePointsPerDecade = 2.0;
+// Below this a/t (of the largest contact radius) the interpolant stays within its fast decades
+// (they are decades of a/t: [1, 10) is the last cheap one).
+constexpr double kCheapAOverT = 10.0;
+// The two w at which the a,F model is evaluated to split F into A - B sqrt(w).
+constexpr double kProbeWork[2] = {1e-2, 4e-2};
+// Relative floor of sigma_eff (a point with sigma 0 in every variable must not get an
+// infinite weight).
+constexpr double kSigmaFloor = 1e-9;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Relative change of the cost along an axis below which that parameter counts as undetermined.
+constexpr double kFlatCost = 1e-6;
+
+std::vector<double> log_axis(double lo, double hi, double per_decade = kPointsPerDecade) {
+  const int count = std::max(2, static_cast<int>(std::ceil(per_decade * std::log10(hi / lo))) + 1);
+  std::vector<double> axis;
+  for (int k = 0; k < count; ++k) axis.push_back(lo * std::pow(hi / lo, k / static_cast<double>(count - 1)));
+  return axis;
+}
+
+double max_abs_force(const Measurements& data) {
+  double m = 0.0;
+  for (double f : data.force) m = std::max(m, std::fabs(f));
+  return m;
+}
+
+}  // namespace
+
+std::vector<double> inverse_sigma(const Measurements& data, const ModelAtData& m) {
+  if (data.sigma_force.empty() && data.sigma_abscissa.empty()) return {};
+  const double floor = kSigmaFloor * max_abs_force(data);
+  std::vector<double> out(data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const double sf = data.sigma_force.empty() ? 0.0 : data.sigma_force[i];
+    const double sx = data.sigma_abscissa.empty() ? 0.0 : data.sigma_abscissa[i] * m.force_x[i];
+    out[i] = 1.0 / std::max(floor, std::sqrt(sf * sf + sx * sx));
+  }
+  return out;
+}
+
+SearchResult global_search(Model& model, const Problem& problem, const std::vector<int>& free_index,
+                           const Parameters& hint) {
+  const Measurements& data = model.data();
+  const bool radius_data = data.kind == DataKind::kRadiusForce;
+  const auto is_free = [&](int which) {
+    return std::find(free_index.begin(), free_index.end(), which) != free_index.end();
+  };
+  const double unweighted = 1.0 / max_abs_force(data);
+
+  // Range of contact radii: measured (a,F), or sqrt(R delta) of Hertz at the largest |delta|.
+  double a_lo, a_hi;
+  if (radius_data) {
+    a_lo = *std::min_element(data.abscissa.begin(), data.abscissa.end());
+    a_hi = *std::max_element(data.abscissa.begin(), data.abscissa.end());
+  } else {
+    double d = 0.0;
+    for (double x : data.abscissa) d = std::max(d, std::fabs(x));
+    a_hi = std::sqrt(problem.sphere_radius * d);
+    a_lo = 0.1 * a_hi;
+  }
+  const std::vector<double> t_axis = is_free(kThickness)
+                                         ? log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])
+                                         : std::vector<double>{hint.thickness};
+  const std::vector<double> e_axis =
+      is_free(kFilmModulus) ? log_axis(hint.film_modulus / kSearchModulusFactor, hint.film_modulus * kSearchModulusFactor,
+                                       kCoarsePointsPerDecade)
+                            : std::vector<double>{hint.film_modulus};
+  std::vector<double> w_axis{hint.work};
+  const bool profile_work = is_free(kWork) && radius_data;
+  if (is_free(kWork) && !radius_data) {
+    // Around the load-controlled JKR estimate when the data are tensile somewhere.
+    const double f_min = *std::min_element(data.force.begin(), data.force.end());
+    const double estimate = f_min < 0.0 ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
+    w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
+                            : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
+  }
+
+  SearchResult result;
+  // Cost (weighted or scaled sum of squares) of one grid point; w profiled when asked.
+  const auto evaluate = [&](Parameters p) -> std::pair<double, Parameters> {
+    try {
+      if (!profile_work) {
+        const ModelAtData m = model.at_data(p);
+        ++result.evaluations;
+        std::vector<double> scale = inverse_sigma(data, m);
+        double cost = 0.0;
+        for (std::size_t i = 0; i < data.size(); ++i) {
+          cost += std::pow((m.force[i] - data.force[i]) * (scale.empty() ? unweighted : scale[i]), 2);
+        }
+        return {cost, p};
+      }
+      Parameters p1 = p, p2 = p;
+      p1.work = kProbeWork[0];
+      p2.work = kProbeWork[1];
+      const ModelAtData m1 = model.at_data(p1);
+      const ModelAtData m2 = model.at_data(p2);
+      result.evaluations += 2;
+      const double s1 = std::sqrt(kProbeWork[0]), s2 = std::sqrt(kProbeWork[1]);
+      const std::size_t n = data.size();
+      std::vector<double> A(n), B(n), Ax(n), Bx(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        B[i] = (m1.force[i] - m2.force[i]) / (s2 - s1);
+        A[i] = m1.force[i] + B[i] * s1;
+        Bx[i] = (m1.force_x[i] - m2.force_x[i]) / (s2 - s1);
+        Ax[i] = m1.force_x[i] + Bx[i] * s1;
+      }
+      // Weighted linear fit for s = sqrt(w); the effective-variance weights depend on s, so
+      // refresh them a few times.
+      double s = std::sqrt(p.work);
+      double cost = kInf;
+      ModelAtData at_s;
+      at_s.force_x.resize(n);
+      for (int pass = 0; pass < 3; ++pass) {
+        for (std::size_t i = 0; i < n; ++i) at_s.force_x[i] = Ax[i] - Bx[i] * s;
+        std::vector<double> scale = inverse_sigma(data, at_s);
+        if (scale.empty()) scale.assign(n, unweighted);
+        double num = 0.0, den = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          const double u = scale[i] * scale[i];
+          num += u * B[i] * (A[i] - data.force[i]);
+          den += u * B[i] * B[i];
+        }
+        if (!(den > 0.0)) return {kInf, p};
+        s = std::clamp(num / den, std::sqrt(kSearchWork[0]), std::sqrt(kSearchWork[1]));
+        cost = 0.0;
+        for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s - data.force[i]) * scale[i], 2);
+      }
+      p.work = s * s;
+      return {cost, p};
+    } catch (const NumericalError&) {
+      return {kInf, p};  // outside the model's range: not a candidate
+    }
+  };
+
+  // The grid, E1 slowest (each E1 builds its own table), then t, then w.
+  const std::size_t ne = e_axis.size(), nt = t_axis.size(), nw = w_axis.size();
+  std::vector<double> cost(ne * nt * nw, kInf);
+  std::vector<Parameters> point(cost.size());
+  // Thin films (a/t above kCheapAOverT) need the interpolant's slow decade a/t 10-100: they are
+  // searched only when the best of the thicker ones lies at the thin edge.
+  const auto fill = [&](bool thin) {
+    for (std::size_t ie = 0; ie < ne; ++ie) {
+      for (std::size_t it = 0; it < nt; ++it) {
+        if ((a_hi / t_axis[it] >= kCheapAOverT) != thin) continue;
+        for (std::size_t iw = 0; iw < nw; ++iw) {
+          const std::size_t k = (ie * nt + it) * nw + iw;
+          const auto [c, p] = evaluate(Parameters{w_axis[iw], t_axis[it], e_axis[ie]});
+          cost[k] = c;
+          point[k] = p;
+        }
+      }
+    }
+  };
+  fill(false);
+  {
+    const std::size_t best = static_cast<std::size_t>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+    const std::size_t it = (best / nw) % nt;
+    const bool at_thin_edge = it == 0 || a_hi / t_axis[it - 1] >= kCheapAOverT;
+    if (!std::isfinite(cost[best]) || (nt > 1 && at_thin_edge)) fill(true);
+  }
+  // Local minima: no neighbour (one step along one axis) lower.
+  std::vector<std::size_t> minima;
+  for (std::size_t ie = 0; ie < ne; ++ie) {
+    for (std::size_t it = 0; it < nt; ++it) {
+      for (std::size_t iw = 0; iw < nw; ++iw) {
+        const std::size_t k = (ie * nt + it) * nw + iw;
+        if (!std::isfinite(cost[k])) continue;
+        bool lowest = true;
+        const auto compare = [&](long de, long dt, long dw) {
+          const long je = static_cast<long>(ie) + de, jt = static_cast<long>(it) + dt, jw = static_cast<long>(iw) + dw;
+          if (je < 0 || jt < 0 || jw < 0 || je >= static_cast<long>(ne) || jt >= static_cast<long>(nt) ||
+              jw >= static_cast<long>(nw)) {
+            return;
+          }
+          if (cost[(static_cast<std::size_t>(je) * nt + static_cast<std::size_t>(jt)) * nw + static_cast<std::size_t>(jw)] < cost[k]) {
+            lowest = false;
+          }
+        };
+        for (long d : {-1L, 1L}) {
+          compare(d, 0, 0);
+          compare(0, d, 0);
+          compare(0, 0, d);
+        }
+        if (lowest) minima.push_back(k);
+      }
+    }
+  }
+  if (minima.empty()) {
+    throw NumericalError("the global search found no parameters at which the model can be evaluated for these data");
+  }
+  std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return cost[a] < cost[b]; });
+  // A free parameter along whose axis the cost does not move is not determined by the data
+  // (e.g. t when film and substrate are alike): say which, before the solve wanders off.
+  {
+    const std::size_t k = minima[0];
+    const std::size_t ie = k / (nt * nw), it = (k / nw) % nt, iw = k % nw;
+    const auto flat = [&](std::size_t count, const std::function<std::size_t(std::size_t)>& index) {
+      double lo = kInf, hi = 0.0;
+      std::size_t finite = 0;
+      for (std::size_t j = 0; j < count; ++j) {
+        if (!std::isfinite(cost[index(j)])) continue;  // not evaluated (or not evaluable)
+        ++finite;
+        lo = std::min(lo, cost[index(j)]);
+        hi = std::max(hi, cost[index(j)]);
+      }
+      return finite > 1 && hi - lo <= kFlatCost * hi;
+    };
+    if (nt > 1 && flat(nt, [&](std::size_t j) { return (ie * nt + j) * nw + iw; })) {
+      throw NumericalError("the data do not determine t: the fit does not change for t from " +
+                           std::to_string(t_axis.front()) + " to " + std::to_string(t_axis.back()) +
+                           " m; fix it with --thickness");
+    }
+    if (ne > 1 && flat(ne, [&](std::size_t j) { return (j * nt + it) * nw + iw; })) {
+      throw NumericalError("the data do not determine E1: the fit does not change over E1 within a factor " +
+                           std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
+    }
+  }
+  result.best = point[minima[0]];
+  result.best_cost = cost[minima[0]];
+  if (minima.size() > 1) {
+    result.has_second = true;
+    result.second = point[minima[1]];
+    result.second_cost = cost[minima[1]];
+  }
+  // The user's values are a hint: a better start than the grid's best replaces it.
+  const auto [hint_cost, hint_point] = evaluate(hint);
+  if (hint_cost < result.best_cost) {
+    result.best = hint_point;
+    result.best_cost = hint_cost;
+  }
+  return result;
+}
+
+}  // namespace coatcontact::fit::internal
