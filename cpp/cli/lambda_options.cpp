@@ -166,6 +166,15 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
   const AdhesiveModel jkr(solver, tol);
   Header notes;
   std::vector<std::vector<double>> rows;
+  // The Maugis-Dugdale pull-offs first, in parallel; rows and notes below in the given order.
+  std::vector<std::pair<double, double>> finite;
+  for (double eta : etas) {
+    for (double lambda : lambdas) {
+      if (!std::isinf(lambda)) finite.emplace_back(eta, lambda);
+    }
+  }
+  const std::vector<MaugisDugdalePulloff> md_results = md.pulloffs(finite);
+  std::size_t next = 0;
   for (double eta : etas) {
     for (double lambda : lambdas) {
       const std::string at = "eta=" + num(eta) + " lambda=" + num(lambda);
@@ -177,7 +186,7 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
         for (const auto& w : p.warnings) notes.emplace_back("warning", w);
         continue;
       }
-      const MaugisDugdalePulloff p = md.pulloff(eta, lambda);
+      const MaugisDugdalePulloff& p = md_results[next++];
       const MaugisDugdalePoint& l = p.load_control.point;
       const MaugisDugdalePoint& d = p.displacement_control.point;
       rows.push_back({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m});

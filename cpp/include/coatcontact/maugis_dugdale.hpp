@@ -11,6 +11,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coatcontact/stack.hpp"
@@ -75,6 +76,9 @@ class MaugisDugdaleModel {
   MaugisDugdalePoint point(double eta, double lambda, double a_bar) const;
   std::vector<MaugisDugdalePoint> curve(double eta, double lambda, const std::vector<double>& a_bar) const;
   MaugisDugdalePulloff pulloff(double eta, double lambda) const;
+  // pulloff(eta_i, lambda_i) for each pair, computed in parallel (OpenMP); the same values as
+  // one call per pair. The first failing pair's exception is rethrown.
+  std::vector<MaugisDugdalePulloff> pulloffs(const std::vector<std::pair<double, double>>& eta_lambda) const;
 
   const Stack& stack() const;
   const MaugisDugdaleOptions& options() const;
