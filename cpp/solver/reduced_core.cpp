@@ -52,13 +52,12 @@ AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolera
                              const IndependentKernel& independent) {
   Discretization disc;
   disc.quadrature_accuracy = std::clamp(1e-4 * tolerance, 1e-14, 1e-11);
-  // Measured convergence: the error falls by ~6.5 per node per panel and is <= 2e-9 at p = 8
-  // for every ã up to 1e4 (issue 11; the older model, ~10 at p = 0, started 4 nodes too high);
-  // start where that model meets the tolerance. The level difference then estimates the
-  // coarser level's error, and the returned finer level is better by a further factor ~40.
+  // Measured convergence: the error falls by ~6.5 per node per panel, from ~10 at p = 0 for
+  // the largest ã (docs/solver.md); start where that model meets the tolerance. The level
+  // difference then estimates the coarser level's error, and the returned finer level is
+  // better by a further factor ~6.5² = 40.
   const int start = std::clamp(
-      8 + static_cast<int>(std::ceil(std::log(2e-9 / tolerance) / std::log(6.5))), 4,
-      kMaxNodesPerPanel - 2);
+      static_cast<int>(std::ceil(std::log(10.0 / tolerance) / std::log(6.5))), 4, kMaxNodesPerPanel - 2);
   const int step = 2;
   disc.nodes_per_panel = start;
   FixedSolve previous = solve_fixed(kernel, a, disc);
