@@ -39,9 +39,9 @@ std::string short_num(double v) {
 // The options every subcommand shares.
 std::vector<OptionSpec> material_options(bool si = false) {
   return {
-      {"--film", "E1,nu1", "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio", false},
+      film_option(),
       layer_option(si),
-      {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true},
+      substrate_option(),
       indenter_option(),
       {"--tol", "T",
        "relative tolerance of the reduced variables from the solver (default " +

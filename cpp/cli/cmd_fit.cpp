@@ -38,7 +38,7 @@ const std::vector<OptionSpec>& fit_options() {
       {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F (F,a, F,delta reversed) for a two-column file, or name=position|header-name for any file (names a|delta, F, sigma_a|sigma_delta, sigma_F)", true},
       {"--radius", "R", "sphere radius (length, e.g. 5mm)", true},
       {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted)", true},
-      {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
+      substrate_option(),
       {"--free", "w[,t][,E1]", "parameters to fit (default w); the others are fixed"},
       {"--start", "w=..,t=..,E1=..", "start values of free parameters (with units)"},
       {"--thickness", "t", "film thickness (required when t is fixed; start value when free)"},

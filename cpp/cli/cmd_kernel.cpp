@@ -14,9 +14,9 @@ namespace coatcontact::cli {
 namespace {
 
 const std::vector<OptionSpec> kSpec = {
-    {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", false},
+    film_option(),
     layer_option(false),
-    {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
+    substrate_option(),
     indenter_option(),
     {"--q", "LIST", "q = k t values for C(q): v1,v2,... or MIN:MAX:N (log-spaced)", false},
     {"--u", "LIST", "u = r/t values for H(u): v1,v2,... or MIN:MAX:N (log-spaced)", false},

@@ -14,9 +14,9 @@ namespace coatcontact::cli {
 namespace {
 
 const std::vector<OptionSpec> kSpec = {
-    {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (unit suffix allowed)", false},
+    film_option(),
     layer_option(false),
-    {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or rigid", true},
+    substrate_option(),
     indenter_option(),
     {"--a-over-t", "LIST", "contact radius over film thickness: v1,v2,... or MIN:MAX:N (log-spaced)", true},
     {"--tol", "T", "relative tolerance of every value, in [1e-13, 1e-1] (default 1e-8)", false},

@@ -562,6 +562,16 @@ double coating_thickness(const Arguments& args, const Stack& stack) {
   return parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
 }
 
+OptionSpec film_option() {
+  return {"--film", "E1,nu1",
+          "film Young's modulus (Pa, or with a unit: kPa MPa GPa) and Poisson ratio (one layer; or --layer)",
+          false};
+}
+
+OptionSpec substrate_option() {
+  return {"--substrate", "E0,nu0|rigid", "substrate Young's modulus and Poisson ratio, or 'rigid'", true};
+}
+
 OptionSpec indenter_option() {
   return {"--indenter", "E2,nu2|rigid",
           "indenter Young's modulus and Poisson ratio, or 'rigid' (default); an elastic indenter "

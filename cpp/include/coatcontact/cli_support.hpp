@@ -99,6 +99,10 @@ class Arguments {
   std::vector<std::string> positionals_;
 };
 
+// --film and --substrate, the same in every command that takes materials.
+OptionSpec film_option();
+OptionSpec substrate_option();
+
 // Usage text of a subcommand: synopsis line, description, then one line per option.
 // The stack of --film E1,nu1 (one layer) or repeated --layer h,E,nu[,slip] (top first,
 // THEORY.md section 12; not both), --substrate E0,nu0|rigid (required) and the optional
