@@ -22,4 +22,8 @@ truth=(--radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um --w
 # sphere on a 20 um incompressible film on glass, a from 60 to 400 um (a/t 3-20).
 "$generator" --kind a,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 50mJ/m2 \
   --noise 10uN --noise-x 0.3% --a-range 60um,400um --points 30 --seed 3 --output data/example_both_a_F.tsv
-echo "wrote data/example_a_F.tsv, data/example_delta_F.tsv and data/example_both_a_F.tsv"
+# A coating of two layers (a 20 um soft skin on a 30 um stiffer layer) on glass, for fits of a
+# layer's thickness or modulus (--layer, --free w,h2).
+"$generator" --kind a,F --radius 5mm --layer 20um,1MPa,0.49 --layer 30um,5MPa,0.45 --substrate 70GPa,0.22 \
+  --work 40mJ/m2 --noise 10uN --points 40 --max-over-pulloff 1.5 --seed 3 --output data/example_layers_a_F.tsv
+echo "wrote data/example_a_F.tsv, data/example_delta_F.tsv, data/example_both_a_F.tsv and data/example_layers_a_F.tsv"

@@ -46,7 +46,10 @@ const Option kOptions[] = {
     {"--film", "E1,nu1", "film modulus and Poisson ratio", "1MPa,0.49"},
     {"--substrate", "E0,nu0|rigid", "substrate", "70GPa,0.22"},
     {"--thickness", "t", "film thickness", "50um"},
+    {"--layer", "h,E,nu[,slip]", "a layer, top first, repeated (instead of --film and --thickness)", ""},
     {"--work", "w", "adhesion energy", "40mJ/m2"},
+    {"--work-unload", "w", "adhesion energy of the unloading rows (default: --work)", ""},
+    {"--branch-column", "yes|no", "add a third column 'branch': 1 on loading rows, 0 on unloading rows", "no"},
     {"--noise", "sigma", "standard deviation of the Gaussian force noise", "10uN"},
     {"--noise-x", "sigma|p%", "Gaussian noise on a (or delta): absolute, or relative with %", "0"},
     {"--a-range", "a_min,a_max", "contact radii of both branches (default: from F = 0)", ""},
@@ -98,10 +101,15 @@ class Arguments {
       if (!known) throw InputError("unknown option '" + args[i] + "' (see --help)");
       if (i + 1 >= args.size()) throw InputError(args[i] + " needs a value");
       values_[args[i]] = args[i + 1];
+      all_[args[i]].push_back(args[i + 1]);
       ++i;
     }
   }
   bool help() const { return help_; }
+  std::vector<std::string> get_all(const std::string& name) const {
+    const auto it = all_.find(name);
+    return it == all_.end() ? std::vector<std::string>{} : it->second;
+  }
   std::string get(const std::string& name) const {
     const auto it = values_.find(name);
     if (it != values_.end()) return it->second;
@@ -114,7 +122,25 @@ class Arguments {
  private:
   bool help_ = false;
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> all_;
 };
+
+// "h,E,nu[,slip]" (h with a length unit).
+Layer parse_layer(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) items.push_back(item);
+  if (items.size() < 3 || items.size() > 4 || (items.size() == 4 && items[3] != "slip")) {
+    throw InputError("--layer: '" + text + "' is not h,E,nu[,slip]");
+  }
+  Layer layer;
+  layer.thickness = parse_value(items[0], "--layer", true);
+  if (!(layer.thickness > 0.0)) throw InputError("--layer: the thickness must be > 0 (got '" + items[0] + "')");
+  layer.material = parse_material(items[1] + "," + items[2], "--layer");
+  layer.slip_below = items.size() == 4;
+  return layer;
+}
 
 void print_help() {
   std::cout << "usage: make_synthetic_data --kind a,F|delta,F [options]\n"
@@ -180,6 +206,8 @@ int run(const std::vector<std::string>& args) {
   }
   const bool radius_data = kind == "a,F";
   const double R = parse_value(arguments.get("--radius"), "--radius", true);
+  std::vector<Layer> layers;
+  for (const std::string& text : arguments.get_all("--layer")) layers.push_back(parse_layer(text));
   const Material film = parse_material(arguments.get("--film"), "--film");
   Substrate substrate;
   if (arguments.get("--substrate") == "rigid") {
@@ -187,8 +215,17 @@ int run(const std::vector<std::string>& args) {
   } else {
     substrate.material = parse_material(arguments.get("--substrate"), "--substrate");
   }
-  const double t = parse_value(arguments.get("--thickness"), "--thickness", true);
+  double t = parse_value(arguments.get("--thickness"), "--thickness", true);
+  if (!layers.empty()) {
+    t = 0.0;  // the layers carry the lengths; T = sum h is the unit
+    for (const Layer& layer : layers) t += layer.thickness;
+  }
   const double w = parse_value(arguments.get("--work"), "--work", true);
+  const std::string unload_text = arguments.get("--work-unload");
+  const double w_unload = unload_text.empty() ? w : parse_value(unload_text, "--work-unload", true);
+  const std::string branch_text = arguments.get("--branch-column");
+  if (branch_text != "yes" && branch_text != "no") throw InputError("--branch-column: '" + branch_text + "' is not yes or no");
+  const bool branch_column = branch_text == "yes";
   const double sigma = parse_value(arguments.get("--noise"), "--noise", true);
   const double seed_value = parse_value(arguments.get("--seed"), "--seed", false);
   const double points_value = parse_value(arguments.get("--points"), "--points", false);
@@ -223,9 +260,10 @@ int run(const std::vector<std::string>& args) {
   const unsigned long seed = static_cast<unsigned long>(seed_value);
   const double tolerance = 1e-9;  // the kernel table limits the solver to ~1e-10
 
-  const ReducedSolver solver(Stack::film_on(film, substrate));
+  const ReducedSolver solver(layers.empty() ? Stack::film_on(film, substrate) : Stack(layers, substrate));
   const AdhesiveModel model(solver);
   const Contact contact(model, R, t, w);  // checks R, t, w and owns the Maugis scales
+  const Contact unload_contact(model, R, t, w_unload);
   // Locate the turning points on a dense exact curve (they only set the sampled range):
   // a0 where F = 0 on the stable branch (jump into contact), the load-controlled pull-off
   // (minimum of F) and the displacement-controlled pull-off (minimum of delta).
@@ -239,6 +277,14 @@ int run(const std::vector<std::string>& args) {
     if (curve[i].force < curve[i_fmin].force) i_fmin = i;
     if (curve[i].delta < curve[i_dmin].delta) i_dmin = i;
   }
+  // The unloading rows end above the pull-off of their own adhesion energy.
+  const std::vector<Point> unload_curve = w_unload == w ? curve : exact_points(unload_contact, solver, dense, t, kDefaultTolerance);
+  std::size_t u_fmin = 0;
+  std::size_t u_dmin = 0;
+  for (std::size_t i = 0; i < unload_curve.size(); ++i) {
+    if (unload_curve[i].force < unload_curve[u_fmin].force) u_fmin = i;
+    if (unload_curve[i].delta < unload_curve[u_dmin].delta) u_dmin = i;
+  }
   std::size_t i_zero = i_fmin;
   while (i_zero < curve.size() && curve[i_zero].force < 0.0) ++i_zero;
   if (i_fmin == 0 || i_dmin == 0 || i_zero >= curve.size()) {
@@ -249,7 +295,7 @@ int run(const std::vector<std::string>& args) {
   // Loading from the jump-in radius to a_max; unloading back to just above the pull-off
   // (load control for a,F, displacement control for delta,F), on a grid offset by half a
   // step so the two branches sample different radii.
-  double a_end = 1.02 * (radius_data ? curve[i_fmin].a : curve[i_dmin].a);
+  double a_end = 1.02 * (radius_data ? unload_curve[u_fmin].a : unload_curve[u_dmin].a);
   double a_start = a_zero;
   if (range_hi > 0.0) {
     a_start = range_lo;
@@ -258,8 +304,17 @@ int run(const std::vector<std::string>& args) {
   }
   std::vector<double> radii = linspace(a_start, a_max, points);
   const double step = (a_max - a_end) / (points - 0.5);
-  for (int i = 0; i < points; ++i) radii.push_back(a_max - (i + 0.5) * step);
-  const std::vector<Point> data = exact_points(contact, solver, radii, t, tolerance);
+  std::vector<double> unload_radii;
+  for (int i = 0; i < points; ++i) unload_radii.push_back(a_max - (i + 0.5) * step);
+  std::vector<Point> data;
+  if (w_unload == w) {
+    radii.insert(radii.end(), unload_radii.begin(), unload_radii.end());
+    data = exact_points(contact, solver, radii, t, tolerance);
+  } else {
+    data = exact_points(contact, solver, radii, t, tolerance);
+    const std::vector<Point> unloading = exact_points(unload_contact, solver, unload_radii, t, tolerance);
+    data.insert(data.end(), unloading.begin(), unloading.end());
+  }
 
   std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
   gsl_rng_set(rng.get(), seed);
@@ -271,16 +326,25 @@ int run(const std::vector<std::string>& args) {
       << "# generated by: " << command << "\n"
       << "# model: exact coated-substrate JKR curve (THEORY.md section 5), reduced variables solved\n"
       << "#   directly at each a/t by ReducedSolver (tolerance " << tolerance << "), no interpolation\n"
-      << "# sphere radius R = " << text("%.15g", R) << " m\n"
-      << "# film: t = " << text("%.15g", t) << " m, E1 = " << text("%.15g", film.youngs_modulus)
-      << " Pa, nu1 = " << text("%.15g", film.poisson_ratio) << "\n";
+      << "# sphere radius R = " << text("%.15g", R) << " m\n";
+  if (layers.empty()) {
+    out << "# film: t = " << text("%.15g", t) << " m, E1 = " << text("%.15g", film.youngs_modulus)
+        << " Pa, nu1 = " << text("%.15g", film.poisson_ratio) << "\n";
+  } else {
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+      out << "# layer " << i + 1 << ": h = " << text("%.15g", layers[i].thickness) << " m, E = "
+          << text("%.15g", layers[i].material.youngs_modulus) << " Pa, nu = "
+          << text("%.15g", layers[i].material.poisson_ratio) << (layers[i].slip_below ? ", slip below" : "") << "\n";
+    }
+  }
   if (substrate.rigid) {
     out << "# substrate: rigid\n";
   } else {
     out << "# substrate: E0 = " << text("%.15g", substrate.material.youngs_modulus)
         << " Pa, nu0 = " << text("%.15g", substrate.material.poisson_ratio) << "\n";
   }
-  out << "# adhesion energy w = " << text("%.15g", w) << " J/m2\n"
+  out << "# adhesion energy w = " << text("%.15g", w) << " J/m2"
+      << (w_unload == w ? std::string() : " on loading, " + text("%.15g", w_unload) + " J/m2 on unloading") << "\n"
       << "# noise: Gaussian, standard deviation " << text("%.15g", sigma) << " N, added to F"
       << (noise_x > 0.0 ? std::string(" (") + (radius_data ? "a" : "delta") + " noisy too, see below)"
                         : std::string(" only (") + (radius_data ? "a" : "delta") + " exact)")
@@ -300,8 +364,13 @@ int run(const std::vector<std::string>& args) {
         << (radius_data ? "load-controlled" : "displacement-controlled") << " pull-off radius)\n";
   }
   if (pure_noise) out << "# signal: none -- F is pure noise (the model force is NOT added)\n";
-  out << (radius_data ? "# columns: a\tF\n# units: um mN\n" : "# columns: delta\tF\n# units: um mN\n");
-  for (const Point& p : data) {
+  if (branch_column) {
+    out << (radius_data ? "# columns: a\tF\tbranch\n# units: um mN 1\n" : "# columns: delta\tF\tbranch\n# units: um mN 1\n");
+  } else {
+    out << (radius_data ? "# columns: a\tF\n# units: um mN\n" : "# columns: delta\tF\n# units: um mN\n");
+  }
+  for (std::size_t row = 0; row < data.size(); ++row) {
+    const Point& p = data[row];
     const double noisy = (pure_noise ? 0.0 : p.force) + gsl_ran_gaussian(rng.get(), sigma);
     double x = radius_data ? p.a : p.delta;
     if (noise_x > 0.0) {
@@ -310,7 +379,9 @@ int run(const std::vector<std::string>& args) {
     }
     x *= 1e6;
     if (!std::isfinite(x) || !std::isfinite(noisy)) throw NumericalError("model value not finite");
-    out << detail::full_precision(x) << "\t" << detail::full_precision(noisy * 1e3) << "\n";
+    out << detail::full_precision(x) << "\t" << detail::full_precision(noisy * 1e3);
+    if (branch_column) out << "\t" << (row < static_cast<std::size_t>(points) ? 1 : 0);
+    out << "\n";
   }
 
   const std::string path = arguments.get("--output");

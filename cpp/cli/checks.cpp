@@ -9,6 +9,7 @@
 
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/fit.hpp"
 
 namespace coatcontact::cli {
 namespace {
@@ -19,10 +20,10 @@ std::string show(double v) {
   return s.str();
 }
 
-// Mirrors of the fit's ranges (cpp/fit/fit.cpp: kWorkRange, kModulusRange, kMin/MaxAOverT).
-constexpr double kFitWork[2] = {1e-9, 1e4};
-constexpr double kFitModulus[2] = {1e-2, 1e13};
-constexpr double kFitAOverT[2] = {1e-5, 1e5};
+// The fit's own ranges (fit.hpp), so a start the fit would refuse is refused before the data are read.
+constexpr const double (&kFitWork)[2] = fit::kWorkRange;
+constexpr const double (&kFitModulus)[2] = fit::kModulusRange;
+constexpr const double (&kFitAOverT)[2] = fit::kAOverTRange;
 
 // Solver evaluations per decade of a/t in the interpolation table (TableOptions::order + 1).
 constexpr double kEvaluationsPerDecade = 25.0;

@@ -37,11 +37,12 @@ const std::vector<OptionSpec>& fit_options() {
   static const std::vector<OptionSpec> spec = {
       {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F (F,a, F,delta reversed) for a two-column file, or name=position|header-name for any file (names a|delta, F, sigma_a|sigma_delta, sigma_F)", true},
       {"--radius", "R", "sphere radius (length, e.g. 5mm)", true},
-      {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted)", true},
+      {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted); or --layer", false},
+      layer_option(true),
       substrate_option(),
-      {"--free", "w[,t][,E1]", "parameters to fit (default w); the others are fixed"},
-      {"--start", "w=..,t=..,E1=..", "start values of free parameters (with units)"},
-      {"--thickness", "t", "film thickness (required when t is fixed; start value when free)"},
+      {"--free", "w[,t][,E1]|w,h1..hN,E1..EN", "parameters to fit (default w); the others are fixed. With --layer: h1..hN and E1..EN name the layers' thicknesses and moduli, top first (one layer: t = h1)"},
+      {"--start", "w=..,t=..,E1=..", "start values of free parameters (with units; h2=.., E2=.. with --layer)"},
+      {"--thickness", "t", "film thickness with --film (required when t is fixed; start value when free); not with --layer"},
       {"--work", "w", "adhesion energy (required when w is fixed; start value when free)"},
       {"--branch", "load|unload|both", "fit only the loading or unloading rows (default both)"},
       {"--output", "FILE", "write the fitted data table here (default stdout)"},
@@ -90,25 +91,35 @@ std::string trim(const std::string& text) {
   return text.substr(first, text.find_last_not_of(" \t") - first + 1);
 }
 
-int parameter_index(const std::string& name, const std::string& option) {
-  if (name == "w") return fit::kWork;
-  if (name == "t") return fit::kThickness;
-  if (name == "E1") return fit::kFilmModulus;
-  throw InputError(option + ": '" + name + "' is not a parameter (allowed: w, t, E1)");
+// The index of a parameter named on the command line: w, t, E1 (one film); with --layer also
+// h1..hN and E1..EN (t is h1 of a single layer, refused for several).
+int parameter_index(const std::string& name, const std::string& option, std::size_t layers, bool stack) {
+  const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers);
+  std::string allowed;
+  for (const auto& info : list) allowed += (allowed.empty() ? "" : ", ") + info.name;
+  if (layers == 1 && stack) allowed += " (h1 = t)";
+  if (name == "t" && layers > 1) {
+    throw InputError(option + ": 't' is the thickness of a single film; with " + std::to_string(layers) +
+                     " layers name the thicknesses h1..h" + std::to_string(layers) + " (allowed: " + allowed + ")");
+  }
+  const std::string key = layers == 1 && name == "h1" && stack ? "t" : name;
+  for (std::size_t which = 0; which < list.size(); ++which) {
+    if (list[which].name == key) return static_cast<int>(which);
+  }
+  throw InputError(option + ": '" + name + "' is not a parameter" +
+                   (stack ? " of this " + std::to_string(layers) + "-layer stack" : std::string()) + " (allowed: " +
+                   allowed + ")");
 }
 
-Quantity parameter_kind(int which) {
-  return which == fit::kWork ? Quantity::kEnergy
-                             : which == fit::kThickness ? Quantity::kLength : Quantity::kPressure;
-}
-
-const char* parameter_unit(int which) {
-  return which == fit::kWork ? "J/m2" : which == fit::kThickness ? "m" : "Pa";
+Quantity parameter_kind(const fit::ParameterInfo& info) {
+  return info.kind == fit::ParameterKind::kWork        ? Quantity::kEnergy
+         : info.kind == fit::ParameterKind::kThickness ? Quantity::kLength
+                                                       : Quantity::kPressure;
 }
 
 // The unit as spelled in header keys ("w_stderr_J_per_m2").
-const char* key_unit(int which) {
-  return which == fit::kWork ? "J_per_m2" : which == fit::kThickness ? "m" : "Pa";
+const char* key_unit(const fit::ParameterInfo& info) {
+  return info.kind == fit::ParameterKind::kWork ? "J_per_m2" : info.unit;
 }
 
 
@@ -458,14 +469,16 @@ int run_fit_body(const Args& args) {
   if (arguments.help()) {
     std::cout << usage(
         "fit",
-        "DATA --columns a,F|delta,F --radius R --film E1,nu1 --substrate E0,nu0|rigid "
-        "[--free w[,t][,E1]] [--start w=..,t=..,E1=..] [--thickness t] [--work w] "
+        "DATA --columns a,F|delta,F --radius R (--film E1,nu1 | --layer h,E,nu[,slip] ...) --substrate E0,nu0|rigid "
+        "[--free w[,t][,E1] | --free w,h1..hN,E1..EN] [--start w=..,t=..,E1=..] [--thickness t] [--work w] "
         "[--branch load|unload|both] [--sigma a=..,F=..] [--bootstrap N [--seed N]] [--indenter E2,nu2] "
         "[--output FILE] [--curve FILE] [--plot FILE.png|FILE.pdf]",
         "Fits the adhesion energy w (and optionally the film thickness t and modulus E1) to measured\n"
         "contact radius-force (a,F) or penetration-force (delta,F) data of a sphere on a coated\n"
         "substrate, by nonlinear least squares (GSL trust region in log-parameters) on the exact model\n"
-        "of THEORY.md section 5. No start values are needed: a coarse global search over the physical\n"
+        "of THEORY.md section 5. The coating may be a stack of layers (--layer h,E,nu[,slip], top\n"
+        "first, h a length, THEORY.md section 12): then any of w, h1..hN, E1..EN may be free, the others\n"
+        "keep their given values. No start values are needed: a coarse global search over the physical\n"
         "ranges picks the start (--start only adds a hint). Residuals are in force; with --sigma (or\n"
         "sigma columns) each is weighted by the effective variance sigma_F^2 + (dF/da)^2 sigma_a^2 and\n"
         "chi2/(n-p) is reported; without, the noise is estimated from the scatter and the errors\n"
@@ -491,9 +504,26 @@ int run_fit_body(const Args& args) {
   // ---- physical parameters ----
   fit::Problem problem;
   problem.sphere_radius = parse_quantity(arguments.require("--radius"), Quantity::kLength, "--radius");
-  problem.film = parse_material(arguments.require("--film"), "--film");
-  problem.substrate = parse_substrate(arguments.require("--substrate"), "--substrate");
-  if (const auto text = arguments.get("--indenter")) problem.indenter = parse_indenter(*text, "--indenter");
+  // --film (one film of thickness t) or --layer, repeated (a stack whose layers carry their
+  // thicknesses); parse_stack refuses both together and checks the constants.
+  const bool stack_given = arguments.has("--layer");
+  {
+    const Stack stack = parse_stack(arguments);
+    if (stack_given) {
+      if (arguments.has("--thickness")) {
+        throw InputError("--thickness: cannot be combined with --layer (the layers carry their thicknesses; "
+                         "fit one with --free h1..hN)");
+      }
+      problem.layers = stack.layers();
+    } else {
+      problem.film = stack.top();
+    }
+    problem.substrate = stack.substrate();
+    problem.indenter = stack.indenter();
+  }
+  const std::size_t layer_count = stack_given ? problem.layers.size() : 1;
+  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count);
+  const std::size_t parameter_count = parameters.size();
   if (const auto text = arguments.get("--spring")) problem.spring_stiffness = parse_stiffness(*text);
   if (const auto text = arguments.get("--bootstrap")) {
     char* end = nullptr;
@@ -519,14 +549,17 @@ int run_fit_body(const Args& args) {
       throw InputError("--plot: '" + *text + "' must end in .png or .pdf (the format follows the extension)");
     }
   }
-  std::array<bool, fit::kParameterCount> free{{false, false, false}};
+  std::vector<bool> free(parameter_count, false);
   for (const std::string& item : split(arguments.get("--free").value_or("w"), ',')) {
-    const int which = parameter_index(trim(item), "--free");
+    const int which = parameter_index(trim(item), "--free", layer_count, stack_given);
     if (free[which]) throw InputError("--free: '" + trim(item) + "' is named twice");
     free[which] = true;
   }
-  problem.free = free;
-  std::array<std::optional<double>, fit::kParameterCount> start;
+  for (std::size_t which = 0; which < parameter_count; ++which) {
+    if (stack_given && free[which]) problem.free_parameters.push_back(which);
+    if (!stack_given) problem.free[which] = free[which];
+  }
+  std::vector<std::optional<double>> start(parameter_count);
   if (const auto text = arguments.get("--start")) {
     for (const std::string& item : split(*text, ',')) {
       const auto equals = item.find('=');
@@ -534,12 +567,12 @@ int run_fit_body(const Args& args) {
         throw InputError("--start: '" + trim(item) + "' is not name=value (e.g. w=40mJ/m2,t=50um)");
       }
       const std::string name = trim(item.substr(0, equals));
-      const int which = parameter_index(name, "--start");
+      const int which = parameter_index(name, "--start", layer_count, stack_given);
       if (!free[which]) {
         throw InputError("--start: " + name + " is not free (add it to --free, or fix it with its own option)");
       }
       if (start[which]) throw InputError("--start: " + name + " is given twice");
-      start[which] = parse_quantity(item.substr(equals + 1), parameter_kind(which), "--start " + name);
+      start[which] = parse_quantity(item.substr(equals + 1), parameter_kind(parameters[which]), "--start " + name);
     }
   }
   std::optional<double> thickness;
@@ -592,7 +625,15 @@ int run_fit_body(const Args& args) {
   const fit::Measurements data = fit::select_branch(all, branch);
 
   // ---- start values / fixed values ----
-  if (free[fit::kThickness]) {
+  if (stack_given) {
+    // The layers' given values are the hints of the free ones (or --start) and fix the others.
+    for (std::size_t which = 0; which < parameter_count; ++which) {
+      if (!start[which] || which == fit::kWork) continue;
+      const fit::ParameterInfo& info = parameters[which];
+      Layer& layer = problem.layers[info.layer];
+      (info.kind == fit::ParameterKind::kThickness ? layer.thickness : layer.material.youngs_modulus) = *start[which];
+    }
+  } else if (free[fit::kThickness]) {
     // Without a hint the search needs none: t ~ the middle of the contact radii (a/t ~ 1).
     double middle = 0.0;
     for (double x : data.abscissa) middle = std::max(middle, std::fabs(x));
@@ -614,15 +655,37 @@ int run_fit_body(const Args& args) {
     if (!work) throw InputError("w is fixed: give it with --work (or add w to --free)");
     problem.work = *work;
   }
-  if (free[fit::kFilmModulus] && start[fit::kFilmModulus]) {
+  if (!stack_given && free[fit::kFilmModulus] && start[fit::kFilmModulus]) {
     problem.film.youngs_modulus = *start[fit::kFilmModulus];
   }
-  const double start_values[3] = {problem.work, problem.thickness, problem.film.youngs_modulus};
+  // The hint (free) or fixed value of every parameter, in the order of the parameter vector.
+  std::vector<double> start_values{problem.work};
+  if (stack_given) {
+    for (const Layer& layer : problem.layers) start_values.push_back(layer.thickness);
+    for (const Layer& layer : problem.layers) start_values.push_back(layer.material.youngs_modulus);
+  } else {
+    start_values.push_back(problem.thickness);
+    start_values.push_back(problem.film.youngs_modulus);
+  }
+  const auto source_option = [&](std::size_t which) -> std::string {
+    if (start[which]) return "--start " + parameters[which].name;
+    return stack_given ? "--layer" : which == fit::kThickness ? "--thickness" : "--film";
+  };
+  double total_thickness = 0.0;
+  for (std::size_t i = 0; i < layer_count; ++i) total_thickness += start_values[fit::thickness_index(i)];
   check_fit_start({choice.legacy ? columns : std::string("a,F"), loaded.declared_columns, loaded.declared_line, path, radius_data, data.abscissa,
-                   problem.work, problem.thickness, problem.film.youngs_modulus,
+                   problem.work, total_thickness, start_values[fit::modulus_index(0, layer_count)],
                    free[fit::kWork] ? (start[fit::kWork] ? "--start w" : work ? "--work" : "--radius (with the data's most tensile force, the start value of w)") : "--work",
-                   free[fit::kThickness] && start[fit::kThickness] ? "--start t" : "--thickness",
-                   free[fit::kFilmModulus] && start[fit::kFilmModulus] ? "--start E1" : "--film"});
+                   layer_count == 1 ? source_option(fit::kThickness) : "--layer (their total thickness)",
+                   source_option(fit::modulus_index(0, layer_count))});
+  for (std::size_t i = 1; i < layer_count; ++i) {
+    const std::size_t which = fit::modulus_index(i, layer_count);
+    if (!(start_values[which] >= fit::kModulusRange[0] && start_values[which] <= fit::kModulusRange[1])) {
+      throw InputError(source_option(which) + ": " + parameters[which].name + " = " + short_number(start_values[which]) +
+                       " Pa is outside the range the fit explores, [" + short_number(fit::kModulusRange[0]) + ", " +
+                       short_number(fit::kModulusRange[1]) + "] Pa");
+    }
+  }
 
   const fit::Result result = fit::fit(data, problem);
 
@@ -636,43 +699,56 @@ int run_fit_body(const Args& args) {
   header.emplace_back("branch", branch == fit::Branch::kAll ? "both" : branch == fit::Branch::kLoading ? "load" : "unload");
   header.emplace_back("points", std::to_string(result.points) + " (of " + std::to_string(all.size()) + " in the file)");
   header.emplace_back("sphere_radius_m", number(problem.sphere_radius));
-  header.emplace_back("film_nu1", number(problem.film.poisson_ratio));
+  if (stack_given) {
+    std::string layers_text;
+    for (std::size_t i = 0; i < layer_count; ++i) {
+      const Layer& layer = problem.layers[i];
+      const std::string k = std::to_string(i + 1);
+      layers_text += (i == 0 ? "" : "; ") + std::string("h") + k + " = " + number(layer.thickness) + " m" +
+                     (free[fit::thickness_index(i)] ? " (free)" : "") + ", E" + k + " = " +
+                     number(layer.material.youngs_modulus) + " Pa" +
+                     (free[fit::modulus_index(i, layer_count)] ? " (free)" : "") + ", nu" + k + " = " +
+                     number(layer.material.poisson_ratio) + (layer.slip_below ? ", slip below" : "");
+    }
+    header.emplace_back("layers", std::to_string(layer_count) + " (top first; given values, hints of the free ones): " +
+                                      layers_text);
+  } else {
+    header.emplace_back("film_nu1", number(problem.film.poisson_ratio));
+  }
   header.emplace_back("substrate", problem.substrate.rigid ? std::string("rigid")
                                                            : "E0 = " + number(problem.substrate.material.youngs_modulus) +
                                                                  " Pa, nu0 = " + number(problem.substrate.material.poisson_ratio));
   std::string free_names;
-  for (int which = 0; which < fit::kParameterCount; ++which) {
+  for (std::size_t which = 0; which < parameter_count; ++which) {
     if (!free[which]) continue;
-    free_names += (free_names.empty() ? "" : ",") + std::string(fit::parameter_name(which));
+    free_names += (free_names.empty() ? "" : ",") + parameters[which].name;
   }
   header.emplace_back("free", free_names);
-  const char* keys[3] = {"w_J_per_m2", "t_m", "E1_Pa"};
-  for (int which = 0; which < fit::kParameterCount; ++which) {
-    header.emplace_back(keys[which], number(result.value[which]));
+  for (std::size_t which = 0; which < parameter_count; ++which) {
+    const std::string& name = parameters[which].name;
+    header.emplace_back(name + "_" + key_unit(parameters[which]), number(result.value[which]));
     if (free[which]) {
-      header.emplace_back(std::string(fit::parameter_name(which)) + "_stderr_" + key_unit(which),
-                          number(result.standard_error[which]));
-      header.emplace_back(std::string(fit::parameter_name(which)) + "_hint_" + key_unit(which),
-                          number(start_values[which]));
+      header.emplace_back(name + "_stderr_" + key_unit(parameters[which]), number(result.standard_error[which]));
+      header.emplace_back(name + "_hint_" + key_unit(parameters[which]), number(start_values[which]));
     } else {
-      header.emplace_back(std::string(fit::parameter_name(which)) + "_status", "fixed");
+      header.emplace_back(name + "_status", "fixed");
     }
   }
-  for (int a = 0; a < fit::kParameterCount; ++a) {
-    for (int b = a + 1; b < fit::kParameterCount; ++b) {
+  for (std::size_t a = 0; a < parameter_count; ++a) {
+    for (std::size_t b = a + 1; b < parameter_count; ++b) {
       if (free[a] && free[b]) {
-        header.emplace_back(std::string("correlation_") + fit::parameter_name(a) + "_" + fit::parameter_name(b),
+        header.emplace_back("correlation_" + parameters[a].name + "_" + parameters[b].name,
                             number(result.correlation[a][b]));
       }
     }
   }
   if (problem.bootstrap > 0) {
-    for (int which = 0; which < fit::kParameterCount; ++which) {
+    for (std::size_t which = 0; which < parameter_count; ++which) {
       if (!free[which]) continue;
-      const std::string name = std::string(fit::parameter_name(which)) + "_";
-      header.emplace_back(name + "interval68_" + key_unit(which),
+      const std::string name = parameters[which].name + "_";
+      header.emplace_back(name + "interval68_" + key_unit(parameters[which]),
                           number(result.interval68_low[which]) + " " + number(result.interval68_high[which]));
-      header.emplace_back(name + "interval95_" + key_unit(which),
+      header.emplace_back(name + "interval95_" + key_unit(parameters[which]),
                           number(result.interval95_low[which]) + " " + number(result.interval95_high[which]));
     }
     header.emplace_back("bootstrap", std::to_string(result.bootstrap_samples) + " of " + std::to_string(problem.bootstrap) +
@@ -700,10 +776,10 @@ int run_fit_body(const Args& args) {
                                           short_number(result.search_seconds) + " s");
   if (result.second_minimum) {
     std::string text;
-    for (int which = 0; which < fit::kParameterCount; ++which) {
+    for (std::size_t which = 0; which < parameter_count; ++which) {
       if (!free[which]) continue;
-      text += std::string(text.empty() ? "" : ", ") + fit::parameter_name(which) + " = " +
-              short_number(result.second_value[which]) + " " + parameter_unit(which);
+      text += std::string(text.empty() ? "" : ", ") + parameters[which].name + " = " +
+              short_number(result.second_value[which]) + " " + parameters[which].unit;
     }
     header.emplace_back("second_minimum", text + " (cost " + short_number(result.second_cost_ratio) + " x the best)");
   }
@@ -756,8 +832,15 @@ int run_fit_body(const Args& args) {
   if (curve_path || plot_path) {
     fit::Problem fitted = problem;
     fitted.work = result.value[fit::kWork];
-    fitted.thickness = result.value[fit::kThickness];
-    fitted.film.youngs_modulus = result.value[fit::kFilmModulus];
+    if (stack_given) {
+      for (std::size_t i = 0; i < layer_count; ++i) {
+        fitted.layers[i].thickness = result.value[fit::thickness_index(i)];
+        fitted.layers[i].material.youngs_modulus = result.value[fit::modulus_index(i, layer_count)];
+      }
+    } else {
+      fitted.thickness = result.value[fit::kThickness];
+      fitted.film.youngs_modulus = result.value[fit::kFilmModulus];
+    }
     double a_lo = *std::min_element(result.model_radius.begin(), result.model_radius.end());
     const double a_hi = 1.05 * *std::max_element(result.model_radius.begin(), result.model_radius.end());
     if (result.displacement_pulloff_radius > 0.0) a_lo = std::min(a_lo, result.displacement_pulloff_radius);
@@ -795,11 +878,12 @@ int run_fit_body(const Args& args) {
                             ? (radius_data ? result.displacement_pulloff_radius : result.displacement_pulloff_penetration)
                             : nan;
     std::string estimates;
-    for (int which = 0; which < fit::kParameterCount; ++which) {
+    for (std::size_t which = 0; which < parameter_count; ++which) {
       if (!free[which]) continue;
-      const double scale = which == fit::kWork ? 1e3 : which == fit::kThickness ? 1e6 : 1e-6;
-      const char* unit = which == fit::kWork ? "mJ/m^2" : which == fit::kThickness ? "µm" : "MPa";
-      estimates += std::string(estimates.empty() ? "" : ",  ") + fit::parameter_name(which) + " = " +
+      const fit::ParameterKind kind = parameters[which].kind;
+      const double scale = kind == fit::ParameterKind::kWork ? 1e3 : kind == fit::ParameterKind::kThickness ? 1e6 : 1e-6;
+      const char* unit = kind == fit::ParameterKind::kWork ? "mJ/m^2" : kind == fit::ParameterKind::kThickness ? "µm" : "MPa";
+      estimates += std::string(estimates.empty() ? "" : ",  ") + parameters[which].name + " = " +
                    short_number(scale * result.value[which]) + " ± " + short_number(scale * result.standard_error[which]) +
                    " " + unit;
     }
@@ -811,10 +895,20 @@ int run_fit_body(const Args& args) {
                                                     : "E0 = " + short_number(problem.substrate.material.youngs_modulus / 1e9) +
                                                           " GPa, ν0 = " + short_number(problem.substrate.material.poisson_ratio);
     const std::string name = path == "-" ? std::string("stdin") : path.substr(path.find_last_of('/') + 1);
-    const std::string title = name + ": R = " + short_number(problem.sphere_radius * 1e3) + " mm, film E1 = " +
-                              short_number(result.value[fit::kFilmModulus] / 1e6) + " MPa (ν1 = " +
-                              short_number(problem.film.poisson_ratio) + "), t = " +
-                              short_number(result.value[fit::kThickness] * 1e6) + " µm, " + substrate;
+    std::string coating;
+    if (stack_given) {
+      coating = std::to_string(layer_count) + " layers (";
+      for (std::size_t i = 0; i < layer_count; ++i) {
+        coating += (i == 0 ? "" : "; ") + short_number(result.value[fit::thickness_index(i)] * 1e6) + " µm, " +
+                   short_number(result.value[fit::modulus_index(i, layer_count)] / 1e6) + " MPa";
+      }
+      coating += ")";
+    } else {
+      coating = "film E1 = " + short_number(result.value[fit::kFilmModulus] / 1e6) + " MPa (ν1 = " +
+                short_number(problem.film.poisson_ratio) + "), t = " +
+                short_number(result.value[fit::kThickness] * 1e6) + " µm";
+    }
+    const std::string title = name + ": R = " + short_number(problem.sphere_radius * 1e3) + " mm, " + coating + ", " + substrate;
     picture = render_fit_plot(table_text.str(), curve_text.str(), x_name, title, fit_label,
                               plot_path->substr(plot_path->rfind('.') + 1), lp_x, result.load_pulloff_force, dp_x,
                               result.displacement_pulloff_force);
@@ -842,9 +936,11 @@ int run_fit_body(const Args& args) {
     std::cout << "coatcontact fit: " << result.points << " points (" << x_name << ",F), "
               << result.free_count << " free parameter" << (result.free_count == 1 ? "" : "s") << ", converged ("
               << result.stop_reason << ") after " << result.iterations << " iterations\n";
-    for (int which = 0; which < fit::kParameterCount; ++which) {
-      std::cout << "  " << fit::parameter_name(which) << (which == fit::kFilmModulus ? " = " : "  = ")
-                << short_number(result.value[which]) << " " << parameter_unit(which);
+    std::size_t width = 0;
+    for (const auto& info : parameters) width = std::max(width, info.name.size());
+    for (std::size_t which = 0; which < parameter_count; ++which) {
+      std::cout << "  " << parameters[which].name << std::string(width - parameters[which].name.size(), ' ') << " = "
+                << short_number(result.value[which]) << " " << parameters[which].unit;
       if (free[which]) {
         std::cout << " +- " << short_number(result.standard_error[which]) << " (standard error)";
         if (problem.bootstrap > 0) {
@@ -879,8 +975,8 @@ int run_fit_body(const Args& args) {
     }
     if (result.second_minimum) {
       std::cout << "  note: a second minimum at";
-      for (int which = 0; which < fit::kParameterCount; ++which) {
-        if (free[which]) std::cout << " " << fit::parameter_name(which) << " = " << short_number(result.second_value[which]);
+      for (std::size_t which = 0; which < parameter_count; ++which) {
+        if (free[which]) std::cout << " " << parameters[which].name << " = " << short_number(result.second_value[which]);
       }
       std::cout << " (cost " << short_number(result.second_cost_ratio) << " x the best)\n";
     }

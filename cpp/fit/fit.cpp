@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -44,7 +45,23 @@ void validate(const Measurements& data, const Problem& problem) {
   if (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius)) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
-  Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
+  if (problem.layers.empty()) {
+    Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
+  } else {
+    Stack(problem.layers, problem.substrate, problem.indenter);
+    const std::size_t count = parameter_list(problem.layers.size()).size();
+    for (std::size_t which : problem.free_parameters) {
+      if (which >= count) {
+        throw InputError("fit: free parameter index " + std::to_string(which) + " is outside the " +
+                         std::to_string(count) + " parameters of a " + std::to_string(problem.layers.size()) +
+                         "-layer stack");
+      }
+    }
+    if (std::set<std::size_t>(problem.free_parameters.begin(), problem.free_parameters.end()).size() !=
+        problem.free_parameters.size()) {
+      throw InputError("fit: a free parameter is named twice");
+    }
+  }
   if (!(problem.spring_stiffness >= 0.0) || !std::isfinite(problem.spring_stiffness)) {
     throw InputError("spring stiffness must be finite and >= 0 (got " + short_text(problem.spring_stiffness) + ")");
   }
@@ -63,7 +80,7 @@ void validate(const Measurements& data, const Problem& problem) {
     }
   }
   check_tolerance(problem.solver_tolerance);
-  if (!(problem.thickness > 0.0) || !std::isfinite(problem.thickness)) {
+  if (problem.layers.empty() && (!(problem.thickness > 0.0) || !std::isfinite(problem.thickness))) {
     throw InputError("film thickness must be > 0 (got " + short_text(problem.thickness) + ")");
   }
   if (!(problem.work > 0.0) || !std::isfinite(problem.work)) {
@@ -94,6 +111,18 @@ const char* parameter_name(int parameter) {
     case kFilmModulus: return "E1";
     default: return "?";
   }
+}
+
+std::vector<ParameterInfo> parameter_list(std::size_t layers) {
+  std::vector<ParameterInfo> list;
+  list.push_back({ParameterKind::kWork, 0, "w", "J/m2"});
+  for (std::size_t i = 0; i < layers; ++i) {
+    list.push_back({ParameterKind::kThickness, i, layers == 1 ? "t" : "h" + std::to_string(i + 1), "m"});
+  }
+  for (std::size_t i = 0; i < layers; ++i) {
+    list.push_back({ParameterKind::kModulus, i, "E" + std::to_string(i + 1), "Pa"});
+  }
+  return list;
 }
 
 Measurements select_branch(const Measurements& data, Branch branch) {
@@ -127,12 +156,12 @@ Result fit(const Measurements& data, const Problem& problem) {
   const auto clock_start = std::chrono::steady_clock::now();
   validate(data, problem);
   const std::size_t n = data.size();
-  std::vector<int> free_index;
-  for (int which = 0; which < kParameterCount; ++which) {
-    if (problem.free[which]) free_index.push_back(which);
-  }
+  const std::vector<int> free_index = internal::free_indices(problem);
   const std::size_t p_count = free_index.size();
-  if (p_count == 0) throw InputError("no free parameter: name at least one of w, t, E1");
+  if (p_count == 0) {
+    throw InputError(problem.layers.empty() ? "no free parameter: name at least one of w, t, E1"
+                                            : "no free parameter: name at least one of w, h1..hN, E1..EN");
+  }
   if (n <= p_count) {
     throw InputError(std::to_string(n) + " data point" + (n == 1 ? "" : "s") + " for " +
                      std::to_string(p_count) + " free parameter" + (p_count == 1 ? "" : "s") +
@@ -140,7 +169,8 @@ Result fit(const Measurements& data, const Problem& problem) {
   }
 
   internal::Model model(problem, data);
-  const Parameters hint{problem.work, problem.thickness, problem.film.youngs_modulus};
+  const Parameters hint = internal::problem_parameters(problem);
+  const std::size_t parameter_count = hint.values.size();
   internal::SearchResult search;
   search.best = hint;
   if (problem.global_search) search = internal::global_search(model, problem, free_index, hint);
@@ -179,8 +209,10 @@ Result fit(const Measurements& data, const Problem& problem) {
   result.stop_reason = minimum.stop_reason;
   result.points = n;
   result.free_count = static_cast<int>(p_count);
-  result.free = problem.free;
-  result.value = minimum.values.as_array();
+  result.parameters = model.names();
+  result.free.assign(parameter_count, false);
+  for (int which : free_index) result.free[static_cast<std::size_t>(which)] = true;
+  result.value = minimum.values.values;
   const internal::ModelAtData m = model.at_data(minimum.values, true);
   const auto jacobian = model.force_derivatives(minimum.values, m, free_index);
   const std::vector<double> inv_sigma = weighted ? internal::inverse_sigma(data, m) : std::vector<double>{};
@@ -213,11 +245,11 @@ Result fit(const Measurements& data, const Problem& problem) {
       const internal::Minimum other = internal::minimize(model, problem, free_index, search.second, final_scale, false);
       double distance = 0.0;
       for (int which : free_index) {
-        distance = std::max(distance, std::fabs(std::log(other.values.as_array()[which] / result.value[which])));
+        distance = std::max(distance, std::fabs(std::log(other.values.values[which] / result.value[which])));
       }
       if (distance > kDistinctMinimum && other.cost >= minimum.cost) {
         result.second_minimum = true;
-        result.second_value = other.values.as_array();
+        result.second_value = other.values.values;
         result.second_cost_ratio = other.cost / minimum.cost;
       }
     } catch (const NumericalError&) {
@@ -241,14 +273,14 @@ Result fit(const Measurements& data, const Problem& problem) {
     gsl_rng_set(rng.get(), problem.bootstrap_seed);
     Measurements resampled = data;
     model.set_data(resampled);
-    std::vector<std::vector<double>> samples(kParameterCount);
+    std::vector<std::vector<double>> samples(parameter_count);
     for (int b = 0; b < problem.bootstrap; ++b) {
       for (std::size_t i = 0; i < n; ++i) {
         resampled.force[i] = m.force[i] - e[gsl_rng_uniform_int(rng.get(), n)] / final_scale[i];
       }
       try {
         const internal::Minimum r = internal::minimize(model, problem, free_index, minimum.values, final_scale, false);
-        for (int which : free_index) samples[which].push_back(r.values.as_array()[which]);
+        for (int which : free_index) samples[which].push_back(r.values.values[which]);
         ++result.bootstrap_samples;
       } catch (const NumericalError&) {
         // A resample the fit cannot follow does not count (bootstrap_samples says how many did).
@@ -266,6 +298,9 @@ Result fit(const Measurements& data, const Problem& problem) {
       const double f = position - static_cast<double>(k);
       return k + 1 < v.size() ? v[k] * (1.0 - f) + v[k + 1] * f : v[k];
     };
+    for (auto* v : {&result.interval68_low, &result.interval68_high, &result.interval95_low, &result.interval95_high}) {
+      v->assign(parameter_count, 0.0);
+    }
     for (int which : free_index) {
       result.interval68_low[which] = percentile(samples[which], 0.16);
       result.interval68_high[which] = percentile(samples[which], 0.84);
@@ -290,13 +325,13 @@ Result fit(const Measurements& data, const Problem& problem) {
 }
 
 CurvePoint exact_point(const Problem& problem, double radius) {
-  if (!(radius > 0.0) || !(problem.thickness > 0.0)) throw InputError("exact_point: a and t must be > 0");
+  const Parameters p = internal::problem_parameters(problem);
+  if (!(radius > 0.0) || !(p.total_thickness() > 0.0)) throw InputError("exact_point: a and t must be > 0");
   coatcontact::detail::GslHandlerOff handler_off;
-  const internal::ModelEntry entry(problem, problem.film.youngs_modulus);
-  const Parameters p{problem.work, problem.thickness, problem.film.youngs_modulus};
+  const internal::ModelEntry entry(problem, internal::StackKey::of(p));
   const ContactModel contact(entry.model(), problem.sphere_radius, p);
   const SolverSource source(entry.solver(), problem.solver_tolerance);
-  const internal::SiPoint s = contact.exact(source.evaluate({radius / problem.thickness}).front(), radius);
+  const internal::SiPoint s = contact.exact(source.evaluate({radius / p.total_thickness()}).front(), radius);
   return {radius, s.penetration, s.force};
 }
 
@@ -306,8 +341,8 @@ std::vector<CurvePoint> model_curve(const Problem& problem, double radius_min, d
     throw InputError("model_curve: need 0 < a_min <= a_max and at least 2 points");
   }
   coatcontact::detail::GslHandlerOff handler_off;
-  const internal::ModelEntry entry(problem, problem.film.youngs_modulus);
-  const Parameters p{problem.work, problem.thickness, problem.film.youngs_modulus};
+  const Parameters p = internal::problem_parameters(problem);
+  const internal::ModelEntry entry(problem, internal::StackKey::of(p));
   const ContactModel contact(entry.model(), problem.sphere_radius, p);
   contact.prepare(radius_min, radius_max);
   std::vector<CurvePoint> curve;

@@ -20,13 +20,11 @@ namespace {
 
 using coatcontact::detail::short_text;
 
-// Range of a/t the fit may ask for: far beyond both limits of THEORY.md section 6 (the
-// reduced variables have reached their asymptotes), so leaving it means a parameter ran away.
-constexpr double kMinAOverT = 1e-5;
-constexpr double kMaxAOverT = 1e5;
-// Physical ranges of the parameters; leaving them means the data do not determine them.
-constexpr double kWorkRange[2] = {1e-9, 1e4};      // J/m2
-constexpr double kModulusRange[2] = {1e-2, 1e13};  // Pa
+// Range of a/t the fit may ask for (kAOverTRange, fit.hpp): far beyond both limits of
+// THEORY.md section 6 (the reduced variables have reached their asymptotes), so leaving it
+// means a parameter ran away.
+constexpr double kMinAOverT = kAOverTRange[0];
+constexpr double kMaxAOverT = kAOverTRange[1];
 // Relative step of the central difference in ln E1: truncation ~h^2/6 ~ 2e-7, noise of the
 // interpolated values ~tolerance/h ~ 1e-5 relative.
 constexpr double kStep = 1e-3;
@@ -85,12 +83,64 @@ ReducedPoint frozen(ReducedPoint r) {
 
 }  // namespace
 
+// ---- parameters -----------------------------------------------------------------------------
+
+double Parameters::total_thickness() const {
+  double total = 0.0;
+  for (std::size_t i = 0; i < layers; ++i) total += thickness(i);
+  return total;
+}
+
+std::vector<Layer> problem_layers(const Problem& problem) {
+  if (!problem.layers.empty()) return problem.layers;
+  return {Layer{problem.thickness, problem.film}};
+}
+
+Parameters problem_parameters(const Problem& problem) {
+  const std::vector<Layer> layers = problem_layers(problem);
+  const std::size_t n = layers.size();
+  std::vector<double> v(1 + 2 * n);
+  v[kWork] = problem.work;
+  for (std::size_t i = 0; i < n; ++i) {
+    v[thickness_index(i)] = layers[i].thickness;
+    v[modulus_index(i, n)] = layers[i].material.youngs_modulus;
+  }
+  return Parameters(std::move(v), n);
+}
+
+std::vector<int> free_indices(const Problem& problem) {
+  std::vector<int> out;
+  if (problem.layers.empty()) {
+    for (int which = 0; which < kParameterCount; ++which) {
+      if (problem.free[which]) out.push_back(which);
+    }
+    return out;
+  }
+  for (std::size_t which : problem.free_parameters) out.push_back(static_cast<int>(which));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+StackKey StackKey::of(const Parameters& p) {
+  StackKey key;
+  const double total = p.total_thickness();
+  for (std::size_t i = 0; i < p.layers; ++i) {
+    // One film: exactly 1 (the film is the unit length, as Stack::film_on has it).
+    key.relative_thickness.push_back(p.layers == 1 ? 1.0 : p.thickness(i) / total);
+    key.modulus.push_back(p.modulus(i));
+  }
+  return key;
+}
+
 // ---- entries and cache ------------------------------------------------------------------
 
-ModelEntry::ModelEntry(const Problem& problem, double film_modulus) : film_modulus_(film_modulus) {
-  Material film = problem.film;
-  film.youngs_modulus = film_modulus;
-  solver_ = std::make_unique<ReducedSolver>(Stack::film_on(film, problem.substrate, problem.indenter));
+ModelEntry::ModelEntry(const Problem& problem, const StackKey& key) : key_(key) {
+  std::vector<Layer> layers = problem_layers(problem);
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    layers[i].thickness = key.relative_thickness[i];
+    layers[i].material.youngs_modulus = key.modulus[i];
+  }
+  solver_ = std::make_unique<ReducedSolver>(Stack(layers, problem.substrate, problem.indenter));
   // The minimum of D lies at a_bar = 1/2 (top layer) and r/2 (base) in the JKR limits
   // (THEORY.md section 6): scanning up to 2 max(1, r), not the default 10 max(1, r), finds it
   // and spares the costly solves at large a/t (~25 ms each above a/t = 10).
@@ -99,18 +149,19 @@ ModelEntry::ModelEntry(const Problem& problem, double film_modulus) : film_modul
   model_ = std::make_unique<AdhesiveModel>(*solver_, problem.solver_tolerance, TableOptions{}, pulloff);
 }
 
-ModelEntry& ModelCache::get(double film_modulus) {
+ModelEntry& ModelCache::get(const Parameters& p) {
+  const StackKey key = StackKey::of(p);
   for (auto it = entries_.begin(); it != entries_.end(); ++it) {
-    if ((*it)->film_modulus() == film_modulus) {
+    if ((*it)->key() == key) {
       std::rotate(entries_.begin(), it, it + 1);
       return *entries_.front();
     }
   }
-  if (entries_.size() >= kCapacity) {
+  if (entries_.size() >= capacity_) {
     retired_calls_ += static_cast<long>(entries_.back()->model().table().source_evaluations());
     entries_.pop_back();
   }
-  entries_.insert(entries_.begin(), std::make_unique<ModelEntry>(problem_, film_modulus));
+  entries_.insert(entries_.begin(), std::make_unique<ModelEntry>(problem_, key));
   return *entries_.front();
 }
 
@@ -123,10 +174,10 @@ long ModelCache::solver_calls() const {
 // ---- one parameter set --------------------------------------------------------------------
 
 ContactModel::ContactModel(const AdhesiveModel& model, double sphere_radius, const Parameters& p)
-    : model_(model), p_(p), contact_(model, sphere_radius, p.thickness, p.work) {}
+    : model_(model), total_thickness_(p.total_thickness()), contact_(model, sphere_radius, total_thickness_, p.work()) {}
 
 void ContactModel::prepare(double radius_min, double radius_max) const {
-  model_.table().prepare(radius_min / p_.thickness, radius_max / p_.thickness);
+  model_.table().prepare(radius_min / total_thickness_, radius_max / total_thickness_);
 }
 
 void ContactModel::prepare_pulloff() const {
@@ -189,22 +240,52 @@ SiPoint ContactModel::exact(const ReducedVariables& v, double radius) const {
 
 // ---- the model at the data ------------------------------------------------------------------
 
+namespace {
+// The stack and its two neighbours in each free parameter that changes the table, and one
+// spare (the legacy minimum of four for one film).
+std::size_t cache_capacity(const Problem& problem) {
+  const Parameters p = problem_parameters(problem);
+  std::size_t changing = 0;
+  for (int which : free_indices(problem)) {
+    if (which != kWork && !(which == kThickness && p.layers == 1)) ++changing;
+  }
+  return std::max<std::size_t>(4, 2 + 2 * changing);
+}
+}  // namespace
+
 Model::Model(const Problem& problem, const Measurements& data)
-    : problem_(problem), data_(&data), cache_(problem) {}
+    : problem_(problem), data_(&data), cache_(problem, cache_capacity(problem)),
+      names_(parameter_list(problem_layers(problem).size())) {}
 
 void Model::check_range(const Parameters& p) const {
-  if (!(p.work >= kWorkRange[0] && p.work <= kWorkRange[1])) {
-    throw NumericalError("w ran to " + short_text(p.work) + " J/m2, outside [" + short_text(kWorkRange[0]) +
-                         ", " + short_text(kWorkRange[1]) + "]: the data do not determine w");
+  for (std::size_t which = 0; which < p.values.size(); ++which) {
+    const double v = p.values[which];
+    const ParameterInfo& info = names_[which];
+    if (info.kind == ParameterKind::kWork && !(v >= kWorkRange[0] && v <= kWorkRange[1])) {
+      throw NumericalError(info.name + " ran to " + short_text(v) + " J/m2, outside [" + short_text(kWorkRange[0]) +
+                           ", " + short_text(kWorkRange[1]) + "]: the data do not determine " + info.name);
+    }
+    if (info.kind == ParameterKind::kModulus && !(v >= kModulusRange[0] && v <= kModulusRange[1])) {
+      throw NumericalError(info.name + " ran to " + short_text(v) + " Pa, outside [" + short_text(kModulusRange[0]) +
+                           ", " + short_text(kModulusRange[1]) + "]: the data do not determine " + info.name);
+    }
   }
-  if (!(p.film_modulus >= kModulusRange[0] && p.film_modulus <= kModulusRange[1])) {
-    throw NumericalError("E1 ran to " + short_text(p.film_modulus) + " Pa, outside [" +
-                         short_text(kModulusRange[0]) + ", " + short_text(kModulusRange[1]) +
-                         "]: the data do not determine E1");
+  for (std::size_t which = 0; which < p.values.size(); ++which) {
+    const double v = p.values[which];
+    const ParameterInfo& info = names_[which];
+    if (info.kind == ParameterKind::kThickness && (!(v > 0.0) || !std::isfinite(v))) {
+      throw NumericalError(info.name + " ran to " + short_text(v) + " m: the data do not determine " + info.name);
+    }
   }
-  if (!(p.thickness > 0.0) || !std::isfinite(p.thickness)) {
-    throw NumericalError("t ran to " + short_text(p.thickness) + " m: the data do not determine t");
+}
+
+std::string Model::describe(const Parameters& p) const {
+  std::string text;
+  for (std::size_t which = 0; which < p.values.size(); ++which) {
+    text += (text.empty() ? "" : ", ") + names_[which].name + " = " + short_text(p.values[which]) + " " +
+            names_[which].unit;
   }
+  return text;
 }
 
 void Model::rethrow_at(const Parameters& p) const {
@@ -214,8 +295,7 @@ void Model::rethrow_at(const Parameters& p) const {
   } catch (const std::exception& error) {
     what = error.what();
   }
-  throw NumericalError("model evaluation failed at w = " + short_text(p.work) + " J/m2, t = " +
-                       short_text(p.thickness) + " m, E1 = " + short_text(p.film_modulus) + " Pa (" + what +
+  throw NumericalError("model evaluation failed at " + describe(p) + " (" + what +
                        "); if the fit wandered there, try start values closer to the solution");
 }
 
@@ -231,7 +311,8 @@ ModelAtData Model::at_data(const Parameters& p, bool with_pulloff) {
 
 ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
   const Measurements& data_ = *this->data_;
-  const ContactModel cm(cache_.get(p.film_modulus).model(), problem_.sphere_radius, p);
+  const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p);
+  const double total_thickness = p.total_thickness();
   const std::size_t n = data_.size();
   ModelAtData out;
   out.radius.resize(n);
@@ -243,7 +324,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
   out.force_x.assign(n, 0.0);
   out.clamped.assign(n, false);
   const auto check_a_over_t = [&](double a) {
-    const double x = a / p.thickness;
+    const double x = a / total_thickness;
     if (!(x >= kMinAOverT && x <= kMaxAOverT)) {
       throw NumericalError("the model needs a/t = " + short_text(x) + ", outside [" +
                            short_text(kMinAOverT) + ", " + short_text(kMaxAOverT) + "]");
@@ -354,25 +435,25 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
   std::vector<std::vector<double>> columns;
   for (int parameter : which) {
     const auto shifted = [&](double sign) {
-      std::array<double, kParameterCount> v = p.as_array();
-      v[parameter] *= std::exp(sign * kStep);
-      return Parameters::from(v);
+      Parameters q = p;
+      q.values[static_cast<std::size_t>(parameter)] *= std::exp(sign * kStep);
+      return q;
     };
     std::vector<double> column(n, 0.0);
     if (parameter == kWork) {
       column = m.force_lnw;
-    } else if (parameter == kThickness) {
+    } else if (parameter == kThickness && p.layers == 1) {
       column = m.force_lnt;
     } else {
-      // F and delta at the model radii for E1 e^(+-h); at fixed measured delta the residual
-      // moves by dF - slope d delta.
+      // F and delta at the model radii for p e^(+-h) (a new table: C(q) changes); at fixed
+      // measured delta the residual moves by dF - slope d delta.
       const auto [lo, hi] = std::minmax_element(m.radius.begin(), m.radius.end());
       for (double sign : {1.0, -1.0}) {
         const Parameters q = shifted(sign);
         check_range(q);
         coatcontact::detail::GslHandlerOff handler_off;
         try {
-          const ContactModel cm(cache_.get(q.film_modulus).model(), problem_.sphere_radius, q);
+          const ContactModel cm(cache_.get(q).model(), problem_.sphere_radius, q);
           cm.prepare(*lo, *hi);
           for (std::size_t i = 0; i < n; ++i) {
             const SiPoint s = cm.at(m.radius[i]);
@@ -390,7 +471,7 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
 
 std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, double k) {
   coatcontact::detail::GslHandlerOff handler_off;
-  const ContactModel cm(cache_.get(p.film_modulus).model(), problem_.sphere_radius, p);
+  const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p);
   cm.prepare_pulloff();
   // k_bar = k (l^2/R) / (pi w R): the stiffness in the Maugis units of force and penetration.
   const double k_bar = k * cm.contact().penetration_scale() / cm.contact().force_scale();
@@ -403,7 +484,7 @@ std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, 
 
 double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
   coatcontact::detail::GslHandlerOff handler_off;
-  const ModelEntry& entry = cache_.get(p.film_modulus);
+  const ModelEntry& entry = cache_.get(p);
   const ContactModel cm(entry.model(), problem_.sphere_radius, p);
   const std::size_t n = m.radius.size();
   const std::size_t stride = std::max<std::size_t>(1, (n + kCheckedPoints - 1) / kCheckedPoints);
@@ -411,7 +492,7 @@ double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
   std::vector<double> a_over_t;
   for (std::size_t i = 0; i < n; i += stride) {
     index.push_back(i);
-    a_over_t.push_back(m.radius[i] / p.thickness);
+    a_over_t.push_back(m.radius[i] / p.total_thickness());
   }
   const SolverSource source(entry.solver(), problem_.solver_tolerance);
   const std::vector<ReducedVariables> solved = source.evaluate(a_over_t);

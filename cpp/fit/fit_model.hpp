@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "coatcontact/adhesion.hpp"
@@ -15,39 +16,68 @@
 
 namespace coatcontact::fit::internal {
 
+// The parameter vector (fit.hpp, parameter_list): w, h_1..h_N, E_1..E_N.
 struct Parameters {
-  double work = 0.0, thickness = 0.0, film_modulus = 0.0;
-  std::array<double, kParameterCount> as_array() const { return {work, thickness, film_modulus}; }
+  std::vector<double> values;
+  std::size_t layers = 1;
+
+  Parameters() = default;
+  Parameters(double work, double thickness, double film_modulus)  // one film
+      : values{work, thickness, film_modulus} {}
+  Parameters(std::vector<double> v, std::size_t layer_count) : values(std::move(v)), layers(layer_count) {}
+  double work() const { return values[kWork]; }
+  double thickness(std::size_t layer) const { return values[thickness_index(layer)]; }
+  double modulus(std::size_t layer) const { return values[modulus_index(layer, layers)]; }
+  double total_thickness() const;  // T = sum h_i
+  // One film only.
+  std::array<double, kParameterCount> as_array() const { return {values[0], values[1], values[2]}; }
   static Parameters from(const std::array<double, kParameterCount>& v) {
     return {v[kWork], v[kThickness], v[kFilmModulus]};
   }
 };
 
-// One film modulus: its solver and the adhesive model (SolverSource + ReducedTable) on it.
-// E1 enters E1*/E0*, so every E1 needs its own kernel table and interpolant.
+// The layers of a problem (one film: `film` of thickness `thickness`) and its hint vector.
+std::vector<Layer> problem_layers(const Problem& problem);
+Parameters problem_parameters(const Problem& problem);
+// The free parameters' indices, ascending.
+std::vector<int> free_indices(const Problem& problem);
+
+// What C(q) depends on: the relative thicknesses h_i/T (1 for one film) and the moduli.
+struct StackKey {
+  std::vector<double> relative_thickness, modulus;
+  static StackKey of(const Parameters& p);
+  bool operator==(const StackKey& other) const {
+    return relative_thickness == other.relative_thickness && modulus == other.modulus;
+  }
+};
+
+// One stack: its solver and the adhesive model (SolverSource + ReducedTable) on it. The
+// moduli and h_i/T enter C(q), so every distinct set needs its own kernel table and
+// interpolant.
 class ModelEntry {
  public:
-  ModelEntry(const Problem& problem, double film_modulus);
+  ModelEntry(const Problem& problem, const StackKey& key);
   const AdhesiveModel& model() const { return *model_; }
   const ReducedSolver& solver() const { return *solver_; }
-  double film_modulus() const { return film_modulus_; }
+  const StackKey& key() const { return key_; }
 
  private:
-  double film_modulus_;
+  StackKey key_;
   std::unique_ptr<ReducedSolver> solver_;  // declared first: the model keeps a reference
   std::unique_ptr<AdhesiveModel> model_;
 };
 
-// The few entries a fit needs at once (E1 and E1 e^(+-h) for the Jacobian), most recent first.
+// The few entries a fit needs at once (the stack and its neighbours e^(+-h) in each
+// table-changing free parameter, for the Jacobian), most recent first.
 class ModelCache {
  public:
-  explicit ModelCache(const Problem& problem) : problem_(problem) {}
-  ModelEntry& get(double film_modulus);
+  ModelCache(const Problem& problem, std::size_t capacity) : problem_(problem), capacity_(capacity) {}
+  ModelEntry& get(const Parameters& p);
   long solver_calls() const;  // reduced-variable solves of every table built so far
 
  private:
-  static constexpr std::size_t kCapacity = 4;
   const Problem& problem_;
+  std::size_t capacity_;
   std::vector<std::unique_ptr<ModelEntry>> entries_;
   long retired_calls_ = 0;
 };
@@ -76,7 +106,7 @@ class ContactModel {
  private:
   SiPoint to_si(const coatcontact::CurvePoint& full, const coatcontact::CurvePoint& fixed_x) const;
   const AdhesiveModel& model_;
-  Parameters p_;
+  double total_thickness_;  // T [m], the unit length
   Contact contact_;
 };
 
@@ -105,9 +135,10 @@ class Model {
   // with_pulloff: also report the pull-offs (load and displacement control) for a,F data
   // (delta,F data always need the displacement-controlled one: it bounds the stable branch).
   ModelAtData at_data(const Parameters& p, bool with_pulloff = false);
-  // d F_model / d ln p_j at every data point for the parameters in `which` (w and t analytic,
-  // E1 by a central difference in ln E1 at the model radii of `m`: the same derivative as a
-  // re-inversion of delta at E1 e^(+-h), without its square-root singularity near a_c).
+  // d F_model / d ln p_j at every data point for the parameters in `which` (w and the one
+  // film's t analytic, every parameter that changes the table (E_i; h_i of several layers) by
+  // a central difference in ln p at the model radii of `m`: the same derivative as a
+  // re-inversion of delta at p e^(+-h), without its square-root singularity near a_c).
   std::vector<std::vector<double>> force_derivatives(const Parameters& p, const ModelAtData& m,
                                                      const std::vector<int>& which);
   // max |F_exact - F_model| over (up to 16 of) the data points, the reduced variables solved
@@ -120,6 +151,8 @@ class Model {
   // Swap the data (same kind and size: bootstrap resamples), keeping the tables.
   void set_data(const Measurements& data) { data_ = &data; }
   const Measurements& data() const { return *data_; }
+  const std::vector<ParameterInfo>& names() const { return names_; }
+  std::string describe(const Parameters& p) const;  // "w = .. J/m2, t = .. m, E1 = .. Pa"
 
  private:
   ModelAtData evaluate(const Parameters& p, bool with_pulloff);
@@ -129,6 +162,7 @@ class Model {
   const Problem& problem_;
   const Measurements* data_;
   ModelCache cache_;
+  std::vector<ParameterInfo> names_;
   long check_calls_ = 0;
 };
 

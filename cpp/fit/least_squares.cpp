@@ -26,16 +26,16 @@ struct FitContext {
   const Measurements* data;
   Model* model;
   std::vector<int> free_index;  // parameter index of each GSL variable
-  std::array<double, kParameterCount> start{};
+  Parameters start;
   std::vector<double> scale;  // per point: 1/sigma_eff, or 1/max|F| when unweighted
   std::exception_ptr error;
 
   Parameters parameters(const gsl_vector* x) const {
-    std::array<double, kParameterCount> value = start;
+    Parameters value = start;
     for (std::size_t j = 0; j < free_index.size(); ++j) {
-      value[free_index[j]] = start[free_index[j]] * std::exp(gsl_vector_get(x, j) - kOffset);
+      value.values[free_index[j]] = start.values[free_index[j]] * std::exp(gsl_vector_get(x, j) - kOffset);
     }
-    return Parameters::from(value);
+    return value;
   }
 };
 
@@ -72,14 +72,14 @@ int jacobian_callback(const gsl_vector* x, void* params, gsl_matrix* J) {
 }
 
 std::string estimates_text(const FitContext& ctx, const std::vector<double>& x) {
-  std::array<double, kParameterCount> value = ctx.start;
+  std::vector<double> value = ctx.start.values;
   for (std::size_t j = 0; j < ctx.free_index.size(); ++j) {
-    value[ctx.free_index[j]] = ctx.start[ctx.free_index[j]] * std::exp(x[j] - kOffset);
+    value[ctx.free_index[j]] = ctx.start.values[ctx.free_index[j]] * std::exp(x[j] - kOffset);
   }
   std::string text;
   for (int which : ctx.free_index) {
     if (!text.empty()) text += ", ";
-    text += std::string(parameter_name(which)) + " = " + coatcontact::detail::short_text(value[which]);
+    text += ctx.model->names()[which].name + " = " + coatcontact::detail::short_text(value[which]);
   }
   return text;
 }
@@ -159,20 +159,20 @@ Minimum minimize(Model& model, const Problem& problem, const std::vector<int>& f
   ctx.data = &model.data();
   ctx.model = &model;
   ctx.free_index = free_index;
-  ctx.start = start.as_array();
+  ctx.start = start;
   ctx.scale = scale;
 
   Minimum result;
   // With several free parameters, w alone is fitted first (a 1-D problem that always has a
   // good start from the pull-off force) and the full fit starts from there: a start far from w
   // can otherwise lead the joint fit into a secondary minimum.
-  if (fit_work_first && free_index.size() > 1 && problem.free[kWork]) {
+  if (fit_work_first && free_index.size() > 1 && free_index.front() == kWork) {
     FitContext first = ctx;
     first.free_index = {kWork};
     try {
       const Stage stage = run_stage(first, problem.max_iterations);
       if (stage.status == GSL_SUCCESS || stage.status == GSL_ENOPROG) {
-        ctx.start[kWork] = stage.values.work;
+        ctx.start.values[kWork] = stage.values.work();
         result.iterations += stage.iterations;
       }
     } catch (const NumericalError&) {

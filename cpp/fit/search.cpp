@@ -61,10 +61,12 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
                            const Parameters& hint) {
   const Measurements& data = model.data();
   const bool radius_data = data.kind == DataKind::kRadiusForce;
-  const auto is_free = [&](int which) {
-    return std::find(free_index.begin(), free_index.end(), which) != free_index.end();
+  const auto is_free = [&](std::size_t which) {
+    return std::find(free_index.begin(), free_index.end(), static_cast<int>(which)) != free_index.end();
   };
   const double unweighted = 1.0 / max_abs_force(data);
+  const std::vector<ParameterInfo>& names = model.names();
+  const std::size_t layers = hint.layers;
 
   // Range of contact radii: measured (a,F), or sqrt(R delta) of Hertz at the largest |delta|.
   double a_lo, a_hi;
@@ -77,21 +79,38 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     a_hi = std::sqrt(problem.sphere_radius * d);
     a_lo = 0.1 * a_hi;
   }
-  const std::vector<double> t_axis = is_free(kThickness)
-                                         ? log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])
-                                         : std::vector<double>{hint.thickness};
-  const std::vector<double> e_axis =
-      is_free(kFilmModulus) ? log_axis(hint.film_modulus / kSearchModulusFactor, hint.film_modulus * kSearchModulusFactor,
-                                       kCoarsePointsPerDecade)
-                            : std::vector<double>{hint.film_modulus};
-  std::vector<double> w_axis{hint.work};
+
+  // One axis per free parameter, the slowest first: the moduli and the layer thicknesses
+  // (each value builds its own table), then the one film's t, then w.
+  struct Axis {
+    std::size_t which;
+    std::vector<double> values;
+  };
+  std::vector<Axis> axes;
+  for (std::size_t i = 0; i < layers; ++i) {
+    const std::size_t which = modulus_index(i, layers);
+    if (!is_free(which)) continue;
+    const double e = hint.values[which];
+    axes.push_back({which, log_axis(e / kSearchModulusFactor, e * kSearchModulusFactor, kCoarsePointsPerDecade)});
+  }
+  if (layers > 1) {
+    for (std::size_t i = 0; i < layers; ++i) {
+      const std::size_t which = thickness_index(i);
+      if (!is_free(which)) continue;
+      const double h = hint.values[which];
+      axes.push_back({which, log_axis(h / kSearchThicknessFactor, h * kSearchThicknessFactor, kCoarsePointsPerDecade)});
+    }
+  } else if (is_free(kThickness)) {
+    axes.push_back({static_cast<std::size_t>(kThickness), log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])});
+  }
   const bool profile_work = is_free(kWork) && radius_data;
   if (is_free(kWork) && !radius_data) {
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
     const double estimate = f_min < 0.0 ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
-    w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
-                            : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
+    axes.push_back({static_cast<std::size_t>(kWork),
+                    estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
+                                   : log_axis(1e-3, 1.0, kCoarsePointsPerDecade)});
   }
 
   SearchResult result;
@@ -109,8 +128,8 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
         return {cost, p};
       }
       Parameters p1 = p, p2 = p;
-      p1.work = kProbeWork[0];
-      p2.work = kProbeWork[1];
+      p1.values[kWork] = kProbeWork[0];
+      p2.values[kWork] = kProbeWork[1];
       const ModelAtData m1 = model.at_data(p1);
       const ModelAtData m2 = model.at_data(p2);
       result.evaluations += 2;
@@ -125,7 +144,7 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
       }
       // Weighted linear fit for s = sqrt(w); the effective-variance weights depend on s, so
       // refresh them a few times.
-      double s = std::sqrt(p.work);
+      double s = std::sqrt(p.work());
       double cost = kInf;
       ModelAtData at_s;
       at_s.force_x.resize(n);
@@ -144,65 +163,63 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
         cost = 0.0;
         for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s - data.force[i]) * scale[i], 2);
       }
-      p.work = s * s;
+      p.values[kWork] = s * s;
       return {cost, p};
     } catch (const NumericalError&) {
       return {kInf, p};  // outside the model's range: not a candidate
     }
   };
 
-  // The grid, E1 slowest (each E1 builds its own table), then t, then w.
-  const std::size_t ne = e_axis.size(), nt = t_axis.size(), nw = w_axis.size();
-  std::vector<double> cost(ne * nt * nw, kInf);
-  std::vector<Parameters> point(cost.size());
-  // Thin films (a/t above kCheapAOverT) need the interpolant's slow decade a/t 10-100: they are
-  // searched only when the best of the thicker ones lies at the thin edge.
-  const auto fill = [&](bool thin) {
-    for (std::size_t ie = 0; ie < ne; ++ie) {
-      for (std::size_t it = 0; it < nt; ++it) {
-        if ((a_hi / t_axis[it] >= kCheapAOverT) != thin) continue;
-        for (std::size_t iw = 0; iw < nw; ++iw) {
-          const std::size_t k = (ie * nt + it) * nw + iw;
-          const auto [c, p] = evaluate(Parameters{w_axis[iw], t_axis[it], e_axis[ie]});
-          cost[k] = c;
-          point[k] = p;
-        }
-      }
+  // The grid: index k = mixed radix over the axes, the last one fastest.
+  const std::size_t dims = axes.size();
+  std::vector<std::size_t> stride(dims, 1);
+  std::size_t total = 1;
+  for (std::size_t d = dims; d-- > 0;) {
+    stride[d] = total;
+    total *= axes[d].values.size();
+  }
+  const auto coordinate = [&](std::size_t k, std::size_t d) { return (k / stride[d]) % axes[d].values.size(); };
+  const auto point_at = [&](std::size_t k) {
+    Parameters p = hint;
+    for (std::size_t d = 0; d < dims; ++d) p.values[axes[d].which] = axes[d].values[coordinate(k, d)];
+    return p;
+  };
+  const auto is_thickness = [&](std::size_t d) { return names[axes[d].which].kind == ParameterKind::kThickness; };
+  // Thin coatings (a/T above kCheapAOverT) need the interpolant's slow decade a/t 10-100: they
+  // are searched only when the best of the thicker ones lies at the thin edge.
+  const auto thin = [&](std::size_t k) { return a_hi / point_at(k).total_thickness() >= kCheapAOverT; };
+  std::vector<double> cost(total, kInf);
+  std::vector<Parameters> point(total);
+  const auto fill = [&](bool thin_ones) {
+    for (std::size_t k = 0; k < total; ++k) {
+      if (thin(k) != thin_ones) continue;
+      const auto [c, p] = evaluate(point_at(k));
+      cost[k] = c;
+      point[k] = p;
     }
   };
   fill(false);
   {
     const std::size_t best = static_cast<std::size_t>(std::min_element(cost.begin(), cost.end()) - cost.begin());
-    const std::size_t it = (best / nw) % nt;
-    const bool at_thin_edge = it == 0 || a_hi / t_axis[it - 1] >= kCheapAOverT;
-    if (!std::isfinite(cost[best]) || (nt > 1 && at_thin_edge)) fill(true);
+    bool at_thin_edge = false;
+    for (std::size_t d = 0; d < dims; ++d) {
+      if (!is_thickness(d) || axes[d].values.size() < 2) continue;
+      const std::size_t c = coordinate(best, d);
+      if (c == 0 || thin(best - stride[d])) at_thin_edge = true;
+    }
+    if (!std::isfinite(cost[best]) || at_thin_edge) fill(true);
   }
   // Local minima: no neighbour (one step along one axis) lower.
   std::vector<std::size_t> minima;
-  for (std::size_t ie = 0; ie < ne; ++ie) {
-    for (std::size_t it = 0; it < nt; ++it) {
-      for (std::size_t iw = 0; iw < nw; ++iw) {
-        const std::size_t k = (ie * nt + it) * nw + iw;
-        if (!std::isfinite(cost[k])) continue;
-        bool lowest = true;
-        const auto compare = [&](long de, long dt, long dw) {
-          const long je = static_cast<long>(ie) + de, jt = static_cast<long>(it) + dt, jw = static_cast<long>(iw) + dw;
-          if (je < 0 || jt < 0 || jw < 0 || je >= static_cast<long>(ne) || jt >= static_cast<long>(nt) ||
-              jw >= static_cast<long>(nw)) {
-            return;
-          }
-          if (cost[(static_cast<std::size_t>(je) * nt + static_cast<std::size_t>(jt)) * nw + static_cast<std::size_t>(jw)] < cost[k]) {
-            lowest = false;
-          }
-        };
-        for (long d : {-1L, 1L}) {
-          compare(d, 0, 0);
-          compare(0, d, 0);
-          compare(0, 0, d);
-        }
-        if (lowest) minima.push_back(k);
-      }
+  for (std::size_t k = 0; k < total; ++k) {
+    if (!std::isfinite(cost[k])) continue;
+    bool lowest = true;
+    for (std::size_t d = 0; d < dims && lowest; ++d) {
+      const std::size_t c = coordinate(k, d);
+      if (c > 0 && cost[k - stride[d]] < cost[k]) lowest = false;
+      if (c + 1 < axes[d].values.size() && cost[k + stride[d]] < cost[k]) lowest = false;
     }
+    if (lowest) minima.push_back(k);
   }
   if (minima.empty()) {
     throw NumericalError("the global search found no parameters at which the model can be evaluated for these data");
@@ -212,26 +229,34 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   // (e.g. t when film and substrate are alike): say which, before the solve wanders off.
   {
     const std::size_t k = minima[0];
-    const std::size_t ie = k / (nt * nw), it = (k / nw) % nt, iw = k % nw;
-    const auto flat = [&](std::size_t count, const std::function<std::size_t(std::size_t)>& index) {
+    const auto flat = [&](std::size_t d) {
       double lo = kInf, hi = 0.0;
       std::size_t finite = 0;
-      for (std::size_t j = 0; j < count; ++j) {
-        if (!std::isfinite(cost[index(j)])) continue;  // not evaluated (or not evaluable)
+      const std::size_t base = k - coordinate(k, d) * stride[d];
+      for (std::size_t j = 0; j < axes[d].values.size(); ++j) {
+        const double c = cost[base + j * stride[d]];
+        if (!std::isfinite(c)) continue;  // not evaluated (or not evaluable)
         ++finite;
-        lo = std::min(lo, cost[index(j)]);
-        hi = std::max(hi, cost[index(j)]);
+        lo = std::min(lo, c);
+        hi = std::max(hi, c);
       }
       return finite > 1 && hi - lo <= kFlatCost * hi;
     };
-    if (nt > 1 && flat(nt, [&](std::size_t j) { return (ie * nt + j) * nw + iw; })) {
-      throw NumericalError("the data do not determine t: the fit does not change for t from " +
-                           std::to_string(t_axis.front()) + " to " + std::to_string(t_axis.back()) +
-                           " m; fix it with --thickness");
-    }
-    if (ne > 1 && flat(ne, [&](std::size_t j) { return (j * nt + it) * nw + iw; })) {
-      throw NumericalError("the data do not determine E1: the fit does not change over E1 within a factor " +
-                           std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
+    // Thicknesses first, then moduli (w is not checked: its axis exists only for delta,F data).
+    for (const ParameterKind kind : {ParameterKind::kThickness, ParameterKind::kModulus}) {
+      for (std::size_t d = 0; d < dims; ++d) {
+        const ParameterInfo& info = names[axes[d].which];
+        if (info.kind != kind || axes[d].values.size() < 2 || !flat(d)) continue;
+        if (kind == ParameterKind::kModulus) {
+          throw NumericalError("the data do not determine " + info.name + ": the fit does not change over " +
+                               info.name + " within a factor " +
+                               std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
+        }
+        throw NumericalError("the data do not determine " + info.name + ": the fit does not change for " + info.name +
+                             " from " + std::to_string(axes[d].values.front()) + " to " +
+                             std::to_string(axes[d].values.back()) + " m; fix it" +
+                             (layers == 1 ? " with --thickness" : " (leave it out of --free)"));
+      }
     }
   }
   result.best = point[minima[0]];

@@ -51,7 +51,7 @@ void fill_statistics(const Measurements& data, const std::vector<double>& model_
     for (std::size_t i = 0; i < n; ++i) column_norm[j] += std::pow(jacobian[j][i] * weight(i), 2);
     column_norm[j] = std::sqrt(column_norm[j]);
     if (!(column_norm[j] > 0.0)) {
-      throw NumericalError(std::string("the data do not depend on ") + parameter_name(free_index[j]) +
+      throw NumericalError(std::string("the data do not depend on ") + result.parameters[free_index[j]].name +
                            ": it cannot be fitted (fix it instead)");
     }
     for (std::size_t i = 0; i < n; ++i) gsl_matrix_set(J.get(), i, j, jacobian[j][i] * weight(i) / column_norm[j]);
@@ -82,9 +82,10 @@ void fill_statistics(const Measurements& data, const std::vector<double>& model_
       covariance[a][b] = s2 * sum / (column_norm[a] * column_norm[b]);
     }
   }
-  result.standard_error = {};
-  result.correlation = {};
-  for (int a = 0; a < kParameterCount; ++a) result.correlation[a][a] = 1.0;
+  const std::size_t count = result.value.size();
+  result.standard_error.assign(count, 0.0);
+  result.correlation.assign(count, std::vector<double>(count, 0.0));
+  for (std::size_t a = 0; a < count; ++a) result.correlation[a][a] = 1.0;
   for (std::size_t a = 0; a < p_count; ++a) {
     const int pa = free_index[a];
     // Linearized: se(p) = p se(ln p).
@@ -97,8 +98,8 @@ void fill_statistics(const Measurements& data, const std::vector<double>& model_
   }
   for (int which : free_index) {
     if (!(result.standard_error[which] < result.value[which])) {
-      throw NumericalError(std::string("the data do not determine ") + parameter_name(which) + ": " +
-                           parameter_name(which) + " = " + short_text(result.value[which]) +
+      const std::string& name = result.parameters[which].name;
+      throw NumericalError("the data do not determine " + name + ": " + name + " = " + short_text(result.value[which]) +
                            " with a standard error of " + short_text(result.standard_error[which]) +
                            " (not smaller than the value)");
     }

@@ -5,10 +5,12 @@
 //   F        = (a^3 E1* / (2R)) Pi_s(a/t) + 2 a E1* E_eq(a/t) delta_fp [EqForceCS]
 //   delta    = (a^2 / R) Delta_s(a/t) + delta_fp                      [EqPenetrationCS]
 //
-// Free parameters: any non-empty subset of {w, t, E1}; the others are fixed. The model is the
-// adhesion floor's: the reduced variables come from the ReducedTable (one interpolant, built
-// on demand as t moves the range the data need), the JKR law and the Contact's Maugis scales
-// give F and delta; each trial E1 needs its own solver and table (E1*/E0* changes).
+// Free parameters: any non-empty subset of {w, t, E1}; the others are fixed. On a stack of N
+// layers (Problem::layers, THEORY.md section 12) t is the total thickness T = sum h_i and the
+// parameters are w, h_1..h_N, E_1..E_N (parameter_list). The model is the adhesion floor's:
+// the reduced variables come from the ReducedTable (one interpolant, built on demand as t
+// moves the range the data need), the JKR law and the Contact's Maugis scales give F and
+// delta; each trial E1 (each set of h_i/T and E_i of a stack) needs its own solver and table.
 //
 // Residuals are in force, at the measured a (a,F data), or at the contact radius a* on the
 // model curve where delta(a*) equals the measured delta (delta,F data). a* lies on the stable
@@ -58,10 +60,27 @@ struct Measurements {
 // rows from that maximum on (so the turning point belongs to both). kAll returns `data`.
 Measurements select_branch(const Measurements& data, Branch branch);
 
-// Parameter indices.
+// The parameter vector of a fit on N layers (top first): w, the thicknesses h_1..h_N, the
+// Young's moduli E_1..E_N. One film (N = 1) gives the three of the paper, w, t, E1, at the
+// indices below; its thickness is called t. Only h_i/T and the moduli enter C(q), so every
+// distinct set of them has its own kernel table; the total thickness T = sum h_i scales the
+// lengths.
 enum Parameter : int { kWork = 0, kThickness = 1, kFilmModulus = 2 };
-constexpr int kParameterCount = 3;
-const char* parameter_name(int parameter);  // "w", "t", "E1"
+constexpr int kParameterCount = 3;  // one film
+const char* parameter_name(int parameter);  // one film: "w", "t", "E1"
+
+enum class ParameterKind { kWork, kThickness, kModulus };
+struct ParameterInfo {
+  ParameterKind kind = ParameterKind::kWork;
+  std::size_t layer = 0;  // 0-based, top first (thickness and modulus)
+  std::string name;       // "w", "t" (one film) or "h2", "E1"
+  const char* unit = "";  // "J/m2", "m", "Pa"
+};
+// The parameters of a fit on `layers` layers, in the order of the parameter vector.
+std::vector<ParameterInfo> parameter_list(std::size_t layers);
+// Index in the parameter vector of w, h_i or E_i (0-based layer).
+inline std::size_t thickness_index(std::size_t layer) { return 1 + layer; }
+inline std::size_t modulus_index(std::size_t layer, std::size_t layers) { return 1 + layers + layer; }
 
 struct Problem {
   double sphere_radius = 0.0;  // R [m]
@@ -70,6 +89,11 @@ struct Problem {
   double thickness = 0.0;  // t [m] (a hint to the search if free, else fixed)
   double work = 0.0;       // w [J/m2] (a hint to the search if free, else fixed)
   std::array<bool, kParameterCount> free{{true, false, false}};
+  // A stack of layers instead of `film` and `thickness` (when not empty): top first, thickness
+  // in m, moduli and thicknesses are hints if free, else fixed. `free_parameters` then names
+  // the free ones by their index in the parameter vector (parameter_list); `free` is unused.
+  std::vector<Layer> layers;
+  std::vector<std::size_t> free_parameters;
   Indenter indenter;  // rigid by default; elastic: the stack's reference modulus is E_r
   double spring_stiffness = 0.0;  // k [N/m] of the machine/cantilever (> 0: its pull-off is reported)
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
@@ -81,10 +105,19 @@ struct Problem {
 
 // Ranges of the global search (the model itself accepts wider values; kSearch* only bound the
 // grid): w over [kSearchWork], t with the data's a/t in [kSearchAOverT] (a,F data: the range
-// covers every a), E1 within a factor kSearchModulusFactor of the given value.
+// covers every a), E1 within a factor kSearchModulusFactor of the given value; in a stack of
+// several layers each h_i within kSearchThicknessFactor and each E_i within
+// kSearchModulusFactor of its given value.
 constexpr double kSearchWork[2] = {1e-5, 10.0};      // J/m2
 constexpr double kSearchAOverT[2] = {1e-2, 50.0};
 constexpr double kSearchModulusFactor = 10.0;
+constexpr double kSearchThicknessFactor = 10.0;
+
+// Physical ranges of the parameters the model accepts (leaving them means the data do not
+// determine them), and the a/t (a/T for a stack) it is tabulated for.
+constexpr double kWorkRange[2] = {1e-9, 1e4};      // J/m2
+constexpr double kModulusRange[2] = {1e-2, 1e13};  // Pa
+constexpr double kAOverTRange[2] = {1e-5, 1e5};
 
 // Below this coefficient of determination the fit is refused as "the model does not describe
 // the data" (e.g. a fit of pure noise): the model must explain at least half of the variance of
@@ -94,12 +127,15 @@ constexpr double kMinimumRSquared = 0.5;
 // identifiable from the data.
 constexpr double kMaximumCondition = 1e10;
 
+// Per-parameter fields are indexed like the parameter vector (parameter_list; one film: kWork,
+// kThickness, kFilmModulus).
 struct Result {
-  std::array<double, kParameterCount> value{};           // fitted or fixed values
-  std::array<double, kParameterCount> standard_error{};  // 0 for fixed parameters
-  std::array<bool, kParameterCount> free{};
+  std::vector<ParameterInfo> parameters;  // names and units
+  std::vector<double> value;           // fitted or fixed values
+  std::vector<double> standard_error;  // 0 for fixed parameters
+  std::vector<bool> free;
   // Correlation coefficients between parameters (1 on the diagonal, 0 for fixed ones).
-  std::array<std::array<double, kParameterCount>, kParameterCount> correlation{};
+  std::vector<std::vector<double>> correlation;
   std::size_t points = 0;
   int free_count = 0;
   double residual_norm = 0.0;   // sqrt(RSS) [N]
@@ -111,14 +147,14 @@ struct Result {
   std::vector<double> sigma_effective;  // per point [N] (weighted fits; else empty)
   // Residual bootstrap (Problem::bootstrap > 0): percentile intervals of each free parameter.
   int bootstrap_samples = 0;    // refits that converged
-  std::array<double, kParameterCount> interval68_low{}, interval68_high{};
-  std::array<double, kParameterCount> interval95_low{}, interval95_high{};
+  std::vector<double> interval68_low, interval68_high;
+  std::vector<double> interval95_low, interval95_high;
   // Global search: grid points evaluated, and a second local minimum if one was found and
   // polished to distinct parameters (cost ratio = its chi2 or RSS over the best one's).
   int search_evaluations = 0;
   double search_seconds = 0.0;  // wall time of the search (tables it builds included)
   bool second_minimum = false;
-  std::array<double, kParameterCount> second_value{};
+  std::vector<double> second_value;
   double second_cost_ratio = 0.0;
   int iterations = 0;
   bool converged = false;
