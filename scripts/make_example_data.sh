@@ -26,4 +26,8 @@ truth=(--radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um --w
 # layer's thickness or modulus (--layer, --free w,h2).
 "$generator" --kind a,F --radius 5mm --layer 20um,1MPa,0.49 --layer 30um,5MPa,0.45 --substrate 70GPa,0.22 \
   --work 40mJ/m2 --noise 10uN --points 40 --max-over-pulloff 1.5 --seed 3 --output data/example_layers_a_F.tsv
-echo "wrote data/example_a_F.tsv, data/example_delta_F.tsv, data/example_both_a_F.tsv and data/example_layers_a_F.tsv"
+# JKR hysteresis: w = 20 mJ/m2 while loading, 60 mJ/m2 while unloading, with a branch column
+# (1 loading, 0 unloading), for fits of w_load and w_unload.
+"$generator" --kind a,F --radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um --work 20mJ/m2 --work-unload 60mJ/m2 --branch-column yes \
+  --noise 10uN --points 40 --max-over-pulloff 1.5 --seed 11 --output data/example_hysteresis_a_F.tsv
+echo "wrote data/example_a_F.tsv, data/example_delta_F.tsv, data/example_both_a_F.tsv, data/example_layers_a_F.tsv and data/example_hysteresis_a_F.tsv"

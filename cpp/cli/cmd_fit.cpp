@@ -35,12 +35,12 @@ namespace {
 
 const std::vector<OptionSpec>& fit_options() {
   static const std::vector<OptionSpec> spec = {
-      {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F (F,a, F,delta reversed) for a two-column file, or name=position|header-name for any file (names a|delta, F, sigma_a|sigma_delta, sigma_F)", true},
+      {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F (F,a, F,delta reversed) for a two-column file, or name=position|header-name for any file (names a|delta, F, sigma_a|sigma_delta, sigma_F, branch: 1 loading, 0 unloading)", true},
       {"--radius", "R", "sphere radius (length, e.g. 5mm)", true},
       {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted); or --layer", false},
       layer_option(true),
       substrate_option(),
-      {"--free", "w[,t][,E1]|w,h1..hN,E1..EN", "parameters to fit (default w); the others are fixed. With --layer: h1..hN and E1..EN name the layers' thicknesses and moduli, top first (one layer: t = h1)"},
+      {"--free", "w[,t][,E1]|w,h1..hN,E1..EN", "parameters to fit (default w); the others are fixed. With --layer: h1..hN and E1..EN name the layers' thicknesses and moduli, top first (one layer: t = h1). w_load,w_unload in place of w: each branch its own adhesion energy (rows from the branch column, else loading up to the largest a or delta)"},
       {"--start", "w=..,t=..,E1=..", "start values of free parameters (with units; h2=.., E2=.. with --layer)"},
       {"--thickness", "t", "film thickness with --film (required when t is fixed; start value when free); not with --layer"},
       {"--work", "w", "adhesion energy (required when w is fixed; start value when free)"},
@@ -93,11 +93,19 @@ std::string trim(const std::string& text) {
 
 // The index of a parameter named on the command line: w, t, E1 (one film); with --layer also
 // h1..hN and E1..EN (t is h1 of a single layer, refused for several).
-int parameter_index(const std::string& name, const std::string& option, std::size_t layers, bool stack) {
-  const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers);
+int parameter_index(const std::string& name, const std::string& option, std::size_t layers, bool stack,
+                    bool hysteresis) {
+  const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers, hysteresis);
   std::string allowed;
   for (const auto& info : list) allowed += (allowed.empty() ? "" : ", ") + info.name;
   if (layers == 1 && stack) allowed += " (h1 = t)";
+  if (hysteresis && name == "w") {
+    throw InputError(option + ": 'w' is not a parameter when the branches have their own adhesion energies "
+                     "(allowed: " + allowed + ")");
+  }
+  if (!hysteresis && (name == "w_load" || name == "w_unload")) {
+    throw InputError(option + ": '" + name + "' needs both branch energies free (--free w_load,w_unload,...)");
+  }
   if (name == "t" && layers > 1) {
     throw InputError(option + ": 't' is the thickness of a single film; with " + std::to_string(layers) +
                      " layers name the thicknesses h1..h" + std::to_string(layers) + " (allowed: " + allowed + ")");
@@ -125,8 +133,9 @@ const char* key_unit(const fit::ParameterInfo& info) {
 
 // ---- columns and data ----------------------------------------------------------------------
 
-// Roles of the data columns: 0 abscissa (a or delta), 1 F, 2 sigma of the abscissa, 3 sigma_F.
-constexpr int kRoles = 4;
+// Roles of the data columns: 0 abscissa (a or delta), 1 F, 2 sigma of the abscissa, 3 sigma_F,
+// 4 branch (1 loading, 0 unloading).
+constexpr int kRoles = 5;
 struct ColumnChoice {
   fit::DataKind kind = fit::DataKind::kRadiusForce;
   bool legacy = false;                          // "a,F" style: a two-column file
@@ -141,7 +150,7 @@ ColumnChoice parse_columns(const std::string& text) {
   if (const auto it = legacy.find(text); it != legacy.end()) {
     c.kind = it->second.first;
     c.legacy = true;
-    c.reference = {it->second.second ? "2" : "1", it->second.second ? "1" : "2", "", ""};
+    c.reference = {it->second.second ? "2" : "1", it->second.second ? "1" : "2", "", "", ""};
     return c;
   }
   bool has_a = false, has_delta = false;
@@ -164,8 +173,10 @@ ColumnChoice parse_columns(const std::string& text) {
       role = 2;
     } else if (name == "sigma_F") {
       role = 3;
+    } else if (name == "branch") {
+      role = 4;
     } else {
-      throw InputError("--columns: '" + name + "' is not a column name (a, delta, F, sigma_a, sigma_delta, sigma_F)");
+      throw InputError("--columns: '" + name + "' is not a column name (a, delta, F, sigma_a, sigma_delta, sigma_F, branch)");
     }
     if (!c.reference[role].empty()) throw InputError("--columns: '" + name + "' is given twice (or with its a/delta twin)");
     c.reference[role] = value;
@@ -203,6 +214,7 @@ std::string bare_name(const std::string& name) {
 struct LoadedData {
   fit::Measurements data;
   std::vector<double> sigma_x, sigma_f;  // from columns (empty if none)
+  std::vector<double> branch;            // the branch column (empty if none)
   bool has_units = false;                // "# units:" or units in the column names
   std::vector<std::string> declared_columns;
   int declared_line = 0;
@@ -278,8 +290,8 @@ LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::D
   out.declared_line = table.declared_columns_line;
   out.has_units = !table.units.empty();
   // Each role's column: a 1-based position or a header name (with or without its unit).
-  std::array<int, kRoles> index{{-1, -1, -1, -1}};
-  const char* role_option[kRoles] = {kind == fit::DataKind::kRadiusForce ? "a" : "delta", "F", "sigma of the abscissa", "sigma_F"};
+  std::array<int, kRoles> index{{-1, -1, -1, -1, -1}};
+  const char* role_option[kRoles] = {kind == fit::DataKind::kRadiusForce ? "a" : "delta", "F", "sigma of the abscissa", "sigma_F", "branch"};
   for (int role = 0; role < kRoles; ++role) {
     const std::string& ref = choice.reference[role];
     if (ref.empty()) continue;
@@ -306,7 +318,7 @@ LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::D
   // Units: "# units:" (already applied by the reader) or from the column names.
   const Quantity role_kind[kRoles] = {Quantity::kLength, Quantity::kForce, Quantity::kLength, Quantity::kForce};
   for (int role = 0; role < kRoles; ++role) {
-    if (index[role] < 0) continue;
+    if (index[role] < 0 || role == 4) continue;  // the branch column is a pure number
     const std::size_t c = static_cast<std::size_t>(index[role]);
     std::optional<std::string> unit;
     if (!table.units.empty()) {
@@ -335,6 +347,7 @@ LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::D
   out.data.line_numbers = table.line_numbers;
   if (index[2] >= 0) out.data.sigma_abscissa = table.columns[static_cast<std::size_t>(index[2])];
   if (index[3] >= 0) out.data.sigma_force = table.columns[static_cast<std::size_t>(index[3])];
+  if (index[4] >= 0) out.branch = table.columns[static_cast<std::size_t>(index[4])];
   return out;
 }
 
@@ -478,13 +491,15 @@ int run_fit_body(const Args& args) {
         "substrate, by nonlinear least squares (GSL trust region in log-parameters) on the exact model\n"
         "of THEORY.md section 5. The coating may be a stack of layers (--layer h,E,nu[,slip], top\n"
         "first, h a length, THEORY.md section 12): then any of w, h1..hN, E1..EN may be free, the others\n"
-        "keep their given values. No start values are needed: a coarse global search over the physical\n"
-        "ranges picks the start (--start only adds a hint). Residuals are in force; with --sigma (or\n"
-        "sigma columns) each is weighted by the effective variance sigma_F^2 + (dF/da)^2 sigma_a^2 and\n"
-        "chi2/(n-p) is reported; without, the noise is estimated from the scatter and the errors\n"
-        "assume an exact a (or delta). For delta,F data the model is taken on the stable branch\n"
-        "under displacement control. DATA: TSV/CSV or '-' (stdin), '#' comments, units from a\n"
-        "'# units: um mN' line or column names like 'a (um)'; SI otherwise. F is compressive positive.\n"
+        "keep their given values. --free w_load,w_unload gives the loading and the unloading rows their\n"
+        "own adhesion energy (JKR hysteresis; pull-offs with w_unload). No start values are needed: a\n"
+        "coarse global search over the physical ranges picks the start (--start only adds a hint).\n"
+        "Residuals are in force; with --sigma (or sigma columns) each is weighted by the effective\n"
+        "variance sigma_F^2 + (dF/da)^2 sigma_a^2 and chi2/(n-p) is reported; without, the noise is\n"
+        "estimated from the scatter and the errors assume an exact a (or delta). For delta,F data the\n"
+        "model is taken on the stable branch under displacement control. DATA: TSV/CSV or '-'\n"
+        "(stdin), '#' comments, units from a '# units: um mN' line or column names like 'a (um)'; SI\n"
+        "otherwise. F is compressive positive.\n"
         "Exit 2: bad input; exit 3: no convergence, parameters not determined, or no model fit.",
         spec);
     return kExitSuccess;
@@ -522,8 +537,15 @@ int run_fit_body(const Args& args) {
     problem.indenter = stack.indenter();
   }
   const std::size_t layer_count = stack_given ? problem.layers.size() : 1;
-  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count);
+  // Loading and unloading with their own adhesion energy (JKR hysteresis): named in --free.
+  const std::vector<std::string> free_items = split(arguments.get("--free").value_or("w"), ',');
+  const bool hysteresis = std::any_of(free_items.begin(), free_items.end(), [](const std::string& item) {
+    return trim(item) == "w_load" || trim(item) == "w_unload";
+  });
+  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis);
   const std::size_t parameter_count = parameters.size();
+  const std::size_t unload_index = fit::unload_work_index(layer_count);
+  problem.hysteresis = hysteresis;
   if (const auto text = arguments.get("--spring")) problem.spring_stiffness = parse_stiffness(*text);
   if (const auto text = arguments.get("--bootstrap")) {
     char* end = nullptr;
@@ -550,14 +572,17 @@ int run_fit_body(const Args& args) {
     }
   }
   std::vector<bool> free(parameter_count, false);
-  for (const std::string& item : split(arguments.get("--free").value_or("w"), ',')) {
-    const int which = parameter_index(trim(item), "--free", layer_count, stack_given);
+  for (const std::string& item : free_items) {
+    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis);
     if (free[which]) throw InputError("--free: '" + trim(item) + "' is named twice");
     free[which] = true;
   }
+  if (hysteresis && !(free[fit::kWork] && free[unload_index])) {
+    throw InputError("--free: name both w_load and w_unload (the two branches' adhesion energies are fitted together)");
+  }
   for (std::size_t which = 0; which < parameter_count; ++which) {
-    if (stack_given && free[which]) problem.free_parameters.push_back(which);
-    if (!stack_given) problem.free[which] = free[which];
+    if ((stack_given || hysteresis) && free[which]) problem.free_parameters.push_back(which);
+    if (!stack_given && !hysteresis) problem.free[which] = free[which];
   }
   std::vector<std::optional<double>> start(parameter_count);
   if (const auto text = arguments.get("--start")) {
@@ -567,7 +592,7 @@ int run_fit_body(const Args& args) {
         throw InputError("--start: '" + trim(item) + "' is not name=value (e.g. w=40mJ/m2,t=50um)");
       }
       const std::string name = trim(item.substr(0, equals));
-      const int which = parameter_index(name, "--start", layer_count, stack_given);
+      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis);
       if (!free[which]) {
         throw InputError("--start: " + name + " is not free (add it to --free, or fix it with its own option)");
       }
@@ -580,6 +605,13 @@ int run_fit_body(const Args& args) {
   if (const auto text = arguments.get("--thickness")) thickness = parse_quantity(*text, Quantity::kLength, "--thickness");
   if (const auto text = arguments.get("--work")) work = parse_quantity(*text, Quantity::kEnergy, "--work");
   fit::Branch branch = fit::Branch::kAll;
+  if (const auto text = arguments.get("--branch"); text && hysteresis && *text != "both") {
+    throw InputError("--branch: '" + *text + "' keeps one branch, but w_load,w_unload need both (leave --branch out)");
+  }
+  if (choice.reference[4].size() > 0 && !hysteresis) {
+    throw InputError("--columns: branch=" + choice.reference[4] +
+                     " is read only when the branches have their own adhesion energies (--free w_load,w_unload)");
+  }
   if (const auto text = arguments.get("--branch")) {
     if (*text == "load") {
       branch = fit::Branch::kLoading;
@@ -622,6 +654,26 @@ int run_fit_body(const Args& args) {
     }
   }
   apply_sigma_option(arguments.get("--sigma"), all, choice);
+  // The branch of each row: the branch column (1 loading, 0 unloading), else the row order.
+  std::string branch_source;
+  if (hysteresis) {
+    if (!loaded.branch.empty()) {
+      all.unloading.assign(all.size(), false);
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        const double b = loaded.branch[i];
+        if (b != 0.0 && b != 1.0) {
+          throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": branch = " + short_number(b) +
+                           " is not allowed (1 for a loading row, 0 for an unloading row)");
+        }
+        all.unloading[i] = b == 0.0;
+      }
+      branch_source = "the branch column (1 loading, 0 unloading)";
+    } else {
+      all.unloading = fit::unloading_by_order(all);
+      branch_source = std::string("the row order (loading up to the largest ") + (radius_data ? "a" : "delta") +
+                      ", unloading after it)";
+    }
+  }
   const fit::Measurements data = fit::select_branch(all, branch);
 
   // ---- start values / fixed values ----
@@ -651,6 +703,9 @@ int run_fit_body(const Args& args) {
     } else {
       problem.work = fit::jkr_work_estimate(data, problem.sphere_radius);
     }
+    if (hysteresis) {
+      problem.unload_work = start[unload_index].value_or(work.value_or(fit::jkr_work_estimate(data, problem.sphere_radius)));
+    }
   } else {
     if (!work) throw InputError("w is fixed: give it with --work (or add w to --free)");
     problem.work = *work;
@@ -666,6 +721,14 @@ int run_fit_body(const Args& args) {
   } else {
     start_values.push_back(problem.thickness);
     start_values.push_back(problem.film.youngs_modulus);
+  }
+  if (hysteresis) {
+    start_values.push_back(problem.unload_work);
+    if (!(problem.unload_work >= fit::kWorkRange[0] && problem.unload_work <= fit::kWorkRange[1])) {
+      throw InputError(std::string(start[unload_index] ? "--start w_unload" : "--work") + ": w_unload = " +
+                       short_number(problem.unload_work) + " J/m2 is outside the range the fit explores, [" +
+                       short_number(fit::kWorkRange[0]) + ", " + short_number(fit::kWorkRange[1]) + "] J/m2");
+    }
   }
   const auto source_option = [&](std::size_t which) -> std::string {
     if (start[which]) return "--start " + parameters[which].name;
@@ -697,6 +760,12 @@ int run_fit_body(const Args& args) {
   header.emplace_back("data", path);
   header.emplace_back("columns_in_file", columns);
   header.emplace_back("branch", branch == fit::Branch::kAll ? "both" : branch == fit::Branch::kLoading ? "load" : "unload");
+  if (hysteresis) {
+    const auto unloading_rows = std::count(data.unloading.begin(), data.unloading.end(), true);
+    header.emplace_back("branches", std::to_string(data.size() - static_cast<std::size_t>(unloading_rows)) + " loading rows (w_load), " +
+                                        std::to_string(unloading_rows) + " unloading rows (w_unload), from " + branch_source +
+                                        "; pull-offs predicted with w_unload");
+  }
   header.emplace_back("points", std::to_string(result.points) + " (of " + std::to_string(all.size()) + " in the file)");
   header.emplace_back("sphere_radius_m", number(problem.sphere_radius));
   if (stack_given) {
@@ -818,10 +887,11 @@ int run_fit_body(const Args& args) {
     header.emplace_back("model_branch", "a >= a_c (first minimum of delta(a)); points with delta < delta(a_c): "
                                         + std::to_string(clamped) + " (taken at a_c)");
   }
-  const std::vector<std::string> out_columns =
+  std::vector<std::string> out_columns =
       radius_data ? std::vector<std::string>{"line", "a_m", "F_data_N", "F_model_N", "residual_N", "sigma_eff_N"}
                   : std::vector<std::string>{"line", "delta_m", "F_data_N", "a_model_m", "F_model_N", "residual_N",
                                              "clamped", "sigma_eff_N"};
+  if (hysteresis) out_columns.push_back("branch");  // 1 loading, 0 unloading
 
   // The curve (for --curve and --plot), then the table; every file is produced in memory
   // first (the plot by gnuplot) so a failure leaves no half-written set of files.
@@ -831,7 +901,9 @@ int run_fit_body(const Args& args) {
   std::ostringstream curve_text;
   if (curve_path || plot_path) {
     fit::Problem fitted = problem;
-    fitted.work = result.value[fit::kWork];
+    // With two adhesion energies the curve is the unloading one (the pull-offs' w).
+    fitted.work = result.value[hysteresis ? unload_index : static_cast<std::size_t>(fit::kWork)];
+    fitted.hysteresis = false;
     if (stack_given) {
       for (std::size_t i = 0; i < layer_count; ++i) {
         fitted.layers[i].thickness = result.value[fit::thickness_index(i)];
@@ -848,7 +920,7 @@ int run_fit_body(const Args& args) {
     a_lo *= radius_data ? 0.9 : 0.3;
     const std::vector<fit::CurvePoint> curve = fit::model_curve(fitted, a_lo, a_hi, 200);
     auto curve_header = header;
-    curve_header.emplace_back("curve", "fitted model, 200 points log-spaced in a");
+    curve_header.emplace_back("curve", std::string("fitted model, 200 points log-spaced in a") + (hysteresis ? " (with w_unload)" : ""));
     write_header(curve_text, curve_header, curve_columns);
     for (const auto& p : curve) write_row(curve_text, {p.radius, p.penetration, p.force}, curve_columns);
   }
@@ -859,15 +931,12 @@ int run_fit_body(const Args& args) {
     const double line = data.line_numbers.empty() ? static_cast<double>(i + 1) : data.line_numbers[i];
     // sigma_eff: the weight's sigma, or the residual standard deviation of an unweighted fit.
     const double sigma = result.weighted ? result.sigma_effective[i] : result.residual_sigma;
-    if (radius_data) {
-      write_row(table_text, {line, data.abscissa[i], data.force[i], result.model_force[i], result.residual[i], sigma},
-                out_columns);
-    } else {
-      write_row(table_text,
-                {line, data.abscissa[i], data.force[i], result.model_radius[i], result.model_force[i],
-                 result.residual[i], result.clamped[i] ? 1.0 : 0.0, sigma},
-                out_columns);
-    }
+    std::vector<double> row =
+        radius_data ? std::vector<double>{line, data.abscissa[i], data.force[i], result.model_force[i], result.residual[i], sigma}
+                    : std::vector<double>{line, data.abscissa[i], data.force[i], result.model_radius[i], result.model_force[i],
+                                          result.residual[i], result.clamped[i] ? 1.0 : 0.0, sigma};
+    if (hysteresis) row.push_back(data.unloading[i] ? 0.0 : 1.0);
+    write_row(table_text, row, out_columns);
   }
 
   std::string picture;

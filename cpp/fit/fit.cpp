@@ -45,15 +45,36 @@ void validate(const Measurements& data, const Problem& problem) {
   if (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius)) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
-  if (problem.layers.empty()) {
+  if (problem.hysteresis) {
+    if (data.unloading.size() != n) throw InputError("fit: w_load,w_unload need the branch of every point");
+    const auto unloading_points = static_cast<std::size_t>(std::count(data.unloading.begin(), data.unloading.end(), true));
+    if (unloading_points == 0 || unloading_points == n) {
+      throw InputError(std::string("w_load,w_unload: the data have no ") + (unloading_points == 0 ? "unloading" : "loading") +
+                       " rows; each adhesion energy needs points of its own branch");
+    }
+    if (!(problem.unload_work > 0.0) || !std::isfinite(problem.unload_work)) {
+      throw InputError("adhesion energy of unloading must be > 0 (got " + short_text(problem.unload_work) + ")");
+    }
+    const std::size_t w_unload = unload_work_index(problem.layers.empty() ? 1 : problem.layers.size());
+    const auto named = [&](std::size_t which) {
+      return std::find(problem.free_parameters.begin(), problem.free_parameters.end(), which) != problem.free_parameters.end();
+    };
+    if (!named(kWork) || !named(w_unload)) throw InputError("fit: w_load and w_unload are free together");
+  }
+  if (problem.layers.empty() && !problem.hysteresis) {
     Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
   } else {
-    Stack(problem.layers, problem.substrate, problem.indenter);
-    const std::size_t count = parameter_list(problem.layers.size()).size();
+    if (problem.layers.empty()) {
+      Stack::film_on(problem.film, problem.substrate, problem.indenter);
+    } else {
+      Stack(problem.layers, problem.substrate, problem.indenter);
+    }
+    const std::size_t layer_count = problem.layers.empty() ? 1 : problem.layers.size();
+    const std::size_t count = parameter_list(layer_count, problem.hysteresis).size();
     for (std::size_t which : problem.free_parameters) {
       if (which >= count) {
         throw InputError("fit: free parameter index " + std::to_string(which) + " is outside the " +
-                         std::to_string(count) + " parameters of a " + std::to_string(problem.layers.size()) +
+                         std::to_string(count) + " parameters of a " + std::to_string(layer_count) +
                          "-layer stack");
       }
     }
@@ -113,16 +134,26 @@ const char* parameter_name(int parameter) {
   }
 }
 
-std::vector<ParameterInfo> parameter_list(std::size_t layers) {
+std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis) {
   std::vector<ParameterInfo> list;
-  list.push_back({ParameterKind::kWork, 0, "w", "J/m2"});
+  list.push_back({ParameterKind::kWork, 0, hysteresis ? "w_load" : "w", "J/m2"});
   for (std::size_t i = 0; i < layers; ++i) {
     list.push_back({ParameterKind::kThickness, i, layers == 1 ? "t" : "h" + std::to_string(i + 1), "m"});
   }
   for (std::size_t i = 0; i < layers; ++i) {
     list.push_back({ParameterKind::kModulus, i, "E" + std::to_string(i + 1), "Pa"});
   }
+  if (hysteresis) list.push_back({ParameterKind::kWork, 0, "w_unload", "J/m2"});
   return list;
+}
+
+std::vector<bool> unloading_by_order(const Measurements& data) {
+  std::vector<bool> out(data.size(), false);
+  if (data.size() == 0) return out;
+  const std::size_t top = static_cast<std::size_t>(
+      std::max_element(data.abscissa.begin(), data.abscissa.end()) - data.abscissa.begin());
+  for (std::size_t i = top + 1; i < data.size(); ++i) out[i] = true;
+  return out;
 }
 
 Measurements select_branch(const Measurements& data, Branch branch) {
@@ -142,6 +173,7 @@ Measurements select_branch(const Measurements& data, Branch branch) {
     out.sigma_abscissa.assign(data.sigma_abscissa.begin() + begin, data.sigma_abscissa.begin() + end);
   }
   if (!data.sigma_force.empty()) out.sigma_force.assign(data.sigma_force.begin() + begin, data.sigma_force.begin() + end);
+  if (!data.unloading.empty()) out.unloading.assign(data.unloading.begin() + begin, data.unloading.begin() + end);
   return out;
 }
 

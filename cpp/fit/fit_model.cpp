@@ -85,6 +85,12 @@ ReducedPoint frozen(ReducedPoint r) {
 
 // ---- parameters -----------------------------------------------------------------------------
 
+Parameters Parameters::branch(bool unloading) const {
+  Parameters out(std::vector<double>(values.begin(), values.begin() + static_cast<long>(1 + 2 * layers)), layers);
+  out.values[kWork] = unloading ? unload_work() : work();
+  return out;
+}
+
 double Parameters::total_thickness() const {
   double total = 0.0;
   for (std::size_t i = 0; i < layers; ++i) total += thickness(i);
@@ -99,18 +105,19 @@ std::vector<Layer> problem_layers(const Problem& problem) {
 Parameters problem_parameters(const Problem& problem) {
   const std::vector<Layer> layers = problem_layers(problem);
   const std::size_t n = layers.size();
-  std::vector<double> v(1 + 2 * n);
+  std::vector<double> v(1 + 2 * n + (problem.hysteresis ? 1 : 0));
   v[kWork] = problem.work;
   for (std::size_t i = 0; i < n; ++i) {
     v[thickness_index(i)] = layers[i].thickness;
     v[modulus_index(i, n)] = layers[i].material.youngs_modulus;
   }
-  return Parameters(std::move(v), n);
+  if (problem.hysteresis) v[unload_work_index(n)] = problem.unload_work;
+  return Parameters(std::move(v), n, problem.hysteresis);
 }
 
 std::vector<int> free_indices(const Problem& problem) {
   std::vector<int> out;
-  if (problem.layers.empty()) {
+  if (problem.layers.empty() && !problem.hysteresis) {
     for (int which = 0; which < kParameterCount; ++which) {
       if (problem.free[which]) out.push_back(which);
     }
@@ -245,9 +252,10 @@ namespace {
 // spare (the legacy minimum of four for one film).
 std::size_t cache_capacity(const Problem& problem) {
   const Parameters p = problem_parameters(problem);
+  const std::vector<ParameterInfo> names = parameter_list(p.layers, p.hysteresis);
   std::size_t changing = 0;
   for (int which : free_indices(problem)) {
-    if (which != kWork && !(which == kThickness && p.layers == 1)) ++changing;
+    if (names[which].kind != ParameterKind::kWork && !(which == kThickness && p.layers == 1)) ++changing;
   }
   return std::max<std::size_t>(4, 2 + 2 * changing);
 }
@@ -255,7 +263,7 @@ std::size_t cache_capacity(const Problem& problem) {
 
 Model::Model(const Problem& problem, const Measurements& data)
     : problem_(problem), data_(&data), cache_(problem, cache_capacity(problem)),
-      names_(parameter_list(problem_layers(problem).size())) {}
+      names_(parameter_list(problem_layers(problem).size(), problem.hysteresis)) {}
 
 void Model::check_range(const Parameters& p) const {
   for (std::size_t which = 0; which < p.values.size(); ++which) {
@@ -309,8 +317,59 @@ ModelAtData Model::at_data(const Parameters& p, bool with_pulloff) {
   }
 }
 
+// Two adhesion energies: each branch's points with their own w (the unloading branch's
+// pull-offs are the ones reported), merged back into the data's order.
 ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
-  const Measurements& data_ = *this->data_;
+  if (!p.hysteresis) return evaluate_single(p, *data_, with_pulloff);
+  const Measurements& data = *data_;
+  const std::size_t n = data.size();
+  ModelAtData out;
+  out.radius.resize(n);
+  out.penetration.resize(n);
+  out.force.resize(n);
+  out.force_lnw.resize(n);
+  out.force_lnt.resize(n);
+  out.slope.resize(n);
+  out.force_x.resize(n);
+  out.clamped.resize(n);
+  for (const bool unloading : {false, true}) {
+    Measurements part;
+    part.kind = data.kind;
+    std::vector<std::size_t> index;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (data.unloading[i] != unloading) continue;
+      index.push_back(i);
+      part.abscissa.push_back(data.abscissa[i]);
+      part.force.push_back(data.force[i]);
+    }
+    if (index.empty()) continue;
+    const ModelAtData m = evaluate_single(p.branch(unloading), part, unloading && with_pulloff);
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      const std::size_t i = index[k];
+      out.radius[i] = m.radius[k];
+      out.penetration[i] = m.penetration[k];
+      out.force[i] = m.force[k];
+      out.force_lnw[i] = m.force_lnw[k];
+      out.force_lnt[i] = m.force_lnt[k];
+      out.slope[i] = m.slope[k];
+      out.force_x[i] = m.force_x[k];
+      out.clamped[i] = m.clamped[k];
+    }
+    if (unloading) {
+      out.has_pulloff = m.has_pulloff;
+      out.pulloff_radius = m.pulloff_radius;
+      out.pulloff_penetration = m.pulloff_penetration;
+      out.pulloff_force = m.pulloff_force;
+      out.has_load_pulloff = m.has_load_pulloff;
+      out.load_pulloff_radius = m.load_pulloff_radius;
+      out.load_pulloff_penetration = m.load_pulloff_penetration;
+      out.load_pulloff_force = m.load_pulloff_force;
+    }
+  }
+  return out;
+}
+
+ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data_, bool with_pulloff) {
   const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p);
   const double total_thickness = p.total_thickness();
   const std::size_t n = data_.size();
@@ -440,8 +499,16 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
       return q;
     };
     std::vector<double> column(n, 0.0);
-    if (parameter == kWork) {
+    const bool is_unload_work = p.hysteresis && static_cast<std::size_t>(parameter) == unload_work_index(p.layers);
+    if (parameter == kWork || is_unload_work) {
+      // With two adhesion energies each moves only the points of its own branch.
       column = m.force_lnw;
+      if (p.hysteresis) {
+        const Measurements& data = *data_;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (data.unloading[i] != is_unload_work) column[i] = 0.0;
+        }
+      }
     } else if (parameter == kThickness && p.layers == 1) {
       column = m.force_lnt;
     } else {
@@ -453,10 +520,13 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
         check_range(q);
         coatcontact::detail::GslHandlerOff handler_off;
         try {
-          const ContactModel cm(cache_.get(q).model(), problem_.sphere_radius, q);
+          // One contact per adhesion energy (the same table: w does not enter C(q)).
+          const ContactModel cm(cache_.get(q).model(), problem_.sphere_radius, q.branch(false));
+          const ContactModel cm_unload(cache_.get(q).model(), problem_.sphere_radius, q.branch(true));
           cm.prepare(*lo, *hi);
           for (std::size_t i = 0; i < n; ++i) {
-            const SiPoint s = cm.at(m.radius[i]);
+            const bool unloading = q.hysteresis && data_->unloading[i];
+            const SiPoint s = (unloading ? cm_unload : cm).at(m.radius[i]);
             column[i] += sign * (s.force - m.slope[i] * s.penetration) / (2.0 * kStep);
           }
         } catch (const std::exception&) {
@@ -471,7 +541,7 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
 
 std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, double k) {
   coatcontact::detail::GslHandlerOff handler_off;
-  const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p);
+  const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p.branch(true));
   cm.prepare_pulloff();
   // k_bar = k (l^2/R) / (pi w R): the stiffness in the Maugis units of force and penetration.
   const double k_bar = k * cm.contact().penetration_scale() / cm.contact().force_scale();
@@ -485,7 +555,8 @@ std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, 
 double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
   coatcontact::detail::GslHandlerOff handler_off;
   const ModelEntry& entry = cache_.get(p);
-  const ContactModel cm(entry.model(), problem_.sphere_radius, p);
+  const ContactModel cm(entry.model(), problem_.sphere_radius, p.branch(false));
+  const ContactModel cm_unload(entry.model(), problem_.sphere_radius, p.branch(true));
   const std::size_t n = m.radius.size();
   const std::size_t stride = std::max<std::size_t>(1, (n + kCheckedPoints - 1) / kCheckedPoints);
   std::vector<std::size_t> index;
@@ -500,7 +571,7 @@ double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
   double error = 0.0;
   for (std::size_t k = 0; k < index.size(); ++k) {
     const std::size_t i = index[k];
-    const SiPoint exact = cm.exact(solved[k], m.radius[i]);
+    const SiPoint exact = (p.hysteresis && data_->unloading[i] ? cm_unload : cm).exact(solved[k], m.radius[i]);
     // At fixed measured delta, moving to the exact curve changes F by -slope * (delta mismatch).
     const double difference = exact.force - m.force[i] - m.slope[i] * (exact.penetration - m.penetration[i]);
     error = std::max(error, std::fabs(difference));

@@ -20,12 +20,17 @@ namespace coatcontact::fit::internal {
 struct Parameters {
   std::vector<double> values;
   std::size_t layers = 1;
+  bool hysteresis = false;  // w_unload follows the moduli
 
   Parameters() = default;
   Parameters(double work, double thickness, double film_modulus)  // one film
       : values{work, thickness, film_modulus} {}
-  Parameters(std::vector<double> v, std::size_t layer_count) : values(std::move(v)), layers(layer_count) {}
+  Parameters(std::vector<double> v, std::size_t layer_count, bool two_works = false)
+      : values(std::move(v)), layers(layer_count), hysteresis(two_works) {}
   double work() const { return values[kWork]; }
+  double unload_work() const { return hysteresis ? values[unload_work_index(layers)] : work(); }
+  // The parameters of one branch: one w (its own), no w_unload.
+  Parameters branch(bool unloading) const;
   double thickness(std::size_t layer) const { return values[thickness_index(layer)]; }
   double modulus(std::size_t layer) const { return values[modulus_index(layer, layers)]; }
   double total_thickness() const;  // T = sum h_i
@@ -156,6 +161,8 @@ class Model {
 
  private:
   ModelAtData evaluate(const Parameters& p, bool with_pulloff);
+  // One w for every point of `data`.
+  ModelAtData evaluate_single(const Parameters& p, const Measurements& data, bool with_pulloff);
   void check_range(const Parameters& p) const;
   [[noreturn]] void rethrow_at(const Parameters& p) const;
 

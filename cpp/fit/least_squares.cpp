@@ -166,13 +166,18 @@ Minimum minimize(Model& model, const Problem& problem, const std::vector<int>& f
   // With several free parameters, w alone is fitted first (a 1-D problem that always has a
   // good start from the pull-off force) and the full fit starts from there: a start far from w
   // can otherwise lead the joint fit into a secondary minimum.
-  if (fit_work_first && free_index.size() > 1 && free_index.front() == kWork) {
+  // (Two adhesion energies: both of them first.)
+  std::vector<int> work_index;
+  for (int which : free_index) {
+    if (model.names()[which].kind == ParameterKind::kWork) work_index.push_back(which);
+  }
+  if (fit_work_first && !work_index.empty() && work_index.size() < free_index.size()) {
     FitContext first = ctx;
-    first.free_index = {kWork};
+    first.free_index = work_index;
     try {
       const Stage stage = run_stage(first, problem.max_iterations);
       if (stage.status == GSL_SUCCESS || stage.status == GSL_ENOPROG) {
-        ctx.start.values[kWork] = stage.values.work();
+        for (int which : work_index) ctx.start.values[which] = stage.values.values[which];
         result.iterations += stage.iterations;
       }
     } catch (const NumericalError&) {

@@ -104,14 +104,23 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     axes.push_back({static_cast<std::size_t>(kThickness), log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])});
   }
   const bool profile_work = is_free(kWork) && radius_data;
+  // Two adhesion energies (w_load, w_unload): each branch's points depend on their own only.
+  const std::size_t unload_index = hint.hysteresis ? unload_work_index(layers) : 0;
   if (is_free(kWork) && !radius_data) {
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
     const double estimate = f_min < 0.0 ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
-    axes.push_back({static_cast<std::size_t>(kWork),
-                    estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
-                                   : log_axis(1e-3, 1.0, kCoarsePointsPerDecade)});
+    const std::vector<double> w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
+                                                      : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
+    axes.push_back({static_cast<std::size_t>(kWork), w_axis});
+    if (hint.hysteresis) axes.push_back({unload_index, w_axis});
   }
+  // The group of each point for the profiled w: 0, or 1 on the unloading branch.
+  std::vector<int> group(data.size(), 0);
+  if (hint.hysteresis) {
+    for (std::size_t i = 0; i < data.size(); ++i) group[i] = data.unloading[i] ? 1 : 0;
+  }
+  const int groups = hint.hysteresis ? 2 : 1;
 
   SearchResult result;
   // Cost (weighted or scaled sum of squares) of one grid point; w profiled when asked.
@@ -130,6 +139,10 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
       Parameters p1 = p, p2 = p;
       p1.values[kWork] = kProbeWork[0];
       p2.values[kWork] = kProbeWork[1];
+      if (p.hysteresis) {
+        p1.values[unload_index] = kProbeWork[0];
+        p2.values[unload_index] = kProbeWork[1];
+      }
       const ModelAtData m1 = model.at_data(p1);
       const ModelAtData m2 = model.at_data(p2);
       result.evaluations += 2;
@@ -142,28 +155,32 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
         Bx[i] = (m1.force_x[i] - m2.force_x[i]) / (s2 - s1);
         Ax[i] = m1.force_x[i] + Bx[i] * s1;
       }
-      // Weighted linear fit for s = sqrt(w); the effective-variance weights depend on s, so
-      // refresh them a few times.
-      double s = std::sqrt(p.work());
+      // Weighted linear fit for s = sqrt(w) (one per group); the effective-variance weights
+      // depend on s, so refresh them a few times.
+      double s[2] = {std::sqrt(p.work()), std::sqrt(p.unload_work())};
       double cost = kInf;
       ModelAtData at_s;
       at_s.force_x.resize(n);
       for (int pass = 0; pass < 3; ++pass) {
-        for (std::size_t i = 0; i < n; ++i) at_s.force_x[i] = Ax[i] - Bx[i] * s;
+        for (std::size_t i = 0; i < n; ++i) at_s.force_x[i] = Ax[i] - Bx[i] * s[group[i]];
         std::vector<double> scale = inverse_sigma(data, at_s);
         if (scale.empty()) scale.assign(n, unweighted);
-        double num = 0.0, den = 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
-          const double u = scale[i] * scale[i];
-          num += u * B[i] * (A[i] - data.force[i]);
-          den += u * B[i] * B[i];
+        for (int g = 0; g < groups; ++g) {
+          double num = 0.0, den = 0.0;
+          for (std::size_t i = 0; i < n; ++i) {
+            if (group[i] != g) continue;
+            const double u = scale[i] * scale[i];
+            num += u * B[i] * (A[i] - data.force[i]);
+            den += u * B[i] * B[i];
+          }
+          if (!(den > 0.0)) return {kInf, p};
+          s[g] = std::clamp(num / den, std::sqrt(kSearchWork[0]), std::sqrt(kSearchWork[1]));
         }
-        if (!(den > 0.0)) return {kInf, p};
-        s = std::clamp(num / den, std::sqrt(kSearchWork[0]), std::sqrt(kSearchWork[1]));
         cost = 0.0;
-        for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s - data.force[i]) * scale[i], 2);
+        for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s[group[i]] - data.force[i]) * scale[i], 2);
       }
-      p.values[kWork] = s * s;
+      p.values[kWork] = s[0] * s[0];
+      if (p.hysteresis) p.values[unload_index] = s[1] * s[1];
       return {cost, p};
     } catch (const NumericalError&) {
       return {kInf, p};  // outside the model's range: not a candidate

@@ -1,8 +1,10 @@
-// Fits on a stack of layers through the program, on synthetic data of make_synthetic_data:
-// recovery of a buried layer's thickness (and of w) from noisy two-layer data, the one-layer
-// --layer fit against the --film/--thickness fit, and the bad input that must stop with exit
-// 2, a message naming the option and no output file.
-// Usage: test_fit_stack COATCONTACT MAKE_SYNTHETIC_DATA
+// Fits through the program on synthetic data of make_synthetic_data.
+// `stack`: on a stack of layers, recovery of a buried layer's thickness or modulus (and of w)
+// from noisy two-layer data, the one-layer --layer fit against the --film/--thickness fit, and
+// the bad input that must stop with exit 2, a message naming the option and no output file.
+// `branches`: loading and unloading with their own adhesion energies (w_load, w_unload), the
+// branches from a branch column or from the row order, and bad branch values.
+// Usage: test_fit_stack COATCONTACT MAKE_SYNTHETIC_DATA stack|branches
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -149,11 +151,82 @@ void test_bad_input() {
   expect_refused(kTwoLayers + " --thickness 50um --free w", "--thickness", "--thickness with --layer");
 }
 
+// JKR hysteresis: w = 20 mJ/m2 on loading, 60 mJ/m2 on unloading.
+const std::string kFilm = " --radius 5mm --film 1MPa,0.49 --thickness 50um" + kSubstrate;
+
+void test_branch_recovery() {
+  const std::string data = folder + "/hysteresis.tsv";
+  check::that(run("'" + generator + "' --kind a,F" + kFilm + " --work 20mJ/m2 --work-unload 60mJ/m2 --noise 10uN "
+                  "--seed 11 --branch-column yes --output '" + data + "'")
+                      .status == 0,
+              "generator: a,F data with a branch column");
+  const std::string out = folder + "/fit_branches.tsv";
+  const Run column = run("'" + cli + "' fit '" + data + "' --columns a=1,F=2,branch=3" + kFilm +
+                         " --free w_load,w_unload --output '" + out + "'");
+  check::that(column.status == 0, "fit w_load,w_unload (branch column): exit 0 (" + column.err + ")");
+  std::printf("fit w_load,w_unload, a,F with a branch column: %.2f s\n", column.seconds);
+  const auto h = header(out);
+  check_within(h, "w_load", "J_per_m2", 0.02, "a,F, branch column");
+  check_within(h, "w_unload", "J_per_m2", 0.06, "a,F, branch column");
+  check::that(h.count("branches") == 1 && h.at("branches").find("branch column") != std::string::npos,
+              "header says where the branches came from");
+
+  // The same rows by their order (no column): the rows after the largest a are unloading.
+  const std::string by_order = folder + "/fit_order.tsv";
+  check::that(run("'" + cli + "' fit '" + data + "' --columns a=1,F=2" + kFilm + " --free w_load,w_unload --output '" +
+                  by_order + "'")
+                      .status == 0,
+              "fit w_load,w_unload (row order): exit 0");
+  const auto ho = header(by_order);
+  for (const char* key : {"w_load_J_per_m2", "w_unload_J_per_m2"}) {
+    check::close(value(ho, key), value(h, key), check::tier::kRounding,
+                 std::string("branches by row order equal the branch column's, ") + key);
+  }
+
+  const std::string penetration = folder + "/hysteresis_delta.tsv";
+  check::that(run("'" + generator + "' --kind delta,F" + kFilm + " --work 20mJ/m2 --work-unload 60mJ/m2 --noise 10uN "
+                  "--seed 12 --output '" + penetration + "'")
+                      .status == 0,
+              "generator: delta,F data with two adhesion energies");
+  const std::string out_delta = folder + "/fit_branches_delta.tsv";
+  const Run delta_run = run("'" + cli + "' fit '" + penetration + "' --columns delta,F" + kFilm +
+                            " --free w_load,w_unload --output '" + out_delta + "'");
+  check::that(delta_run.status == 0, "fit w_load,w_unload (delta,F): exit 0 (" + delta_run.err + ")");
+  std::printf("fit w_load,w_unload, delta,F by row order: %.2f s\n", delta_run.seconds);
+  const auto hd = header(out_delta);
+  check_within(hd, "w_load", "J_per_m2", 0.02, "delta,F, row order");
+  check_within(hd, "w_unload", "J_per_m2", 0.06, "delta,F, row order");
+}
+
+void test_bad_branches() {
+  const std::string bad = folder + "/bad_branch.tsv";
+  {
+    std::ofstream file(bad);
+    file << "# units: um mN 1\n130\t0.1\t1\n150\t0.5\t1\n170\t1.0\t2\n150\t0.3\t0\n";
+  }
+  const std::string out = folder + "/never.tsv";
+  const Run r = run("'" + cli + "' fit '" + bad + "' --columns a=1,F=2,branch=3" + kFilm +
+                    " --free w_load,w_unload --output '" + out + "'");
+  check::that(r.status == 2, "branch = 2: exit 2 (got " + std::to_string(r.status) + ")");
+  check::that(r.err.find("bad_branch.tsv:4:") != std::string::npos, "branch = 2: message names file:line: " + r.err);
+  check::that(r.err.find("branch") != std::string::npos, "branch = 2: message names the column: " + r.err);
+  check::that(!std::filesystem::exists(out), "branch = 2: no output file");
+  const Run w_too = run("'" + cli + "' fit '" + folder + "/hysteresis.tsv' --columns a=1,F=2,branch=3" + kFilm +
+                        " --free w,w_unload --output '" + out + "'");
+  check::that(w_too.status == 2 && w_too.err.find("--free: 'w'") != std::string::npos,
+              "--free w,w_unload: exit 2 naming --free: " + w_too.err);
+  const Run one = run("'" + cli + "' fit '" + folder + "/hysteresis.tsv' --columns a=1,F=2,branch=3" + kFilm +
+                      " --free w_unload --output '" + out + "'");
+  check::that(one.status == 2 && one.err.find("--free") != std::string::npos,
+              "--free w_unload alone: exit 2 naming --free: " + one.err);
+  check::that(!std::filesystem::exists(out), "bad --free: no output file");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: test_fit_stack COATCONTACT MAKE_SYNTHETIC_DATA\n");
+  if (argc != 4 || (std::string(argv[3]) != "stack" && std::string(argv[3]) != "branches")) {
+    std::fprintf(stderr, "usage: test_fit_stack COATCONTACT MAKE_SYNTHETIC_DATA stack|branches\n");
     return 2;
   }
   cli = argv[1];
@@ -164,9 +237,14 @@ int main(int argc, char** argv) {
   buffer.push_back('\0');
   if (mkdtemp(buffer.data()) == nullptr) return 2;
   folder = buffer.data();
-  test_two_layer_recovery();
-  test_one_layer_equals_film();
-  test_bad_input();
+  if (std::string(argv[3]) == "stack") {
+    test_two_layer_recovery();
+    test_one_layer_equals_film();
+    test_bad_input();
+  } else {
+    test_branch_recovery();
+    test_bad_branches();
+  }
   std::error_code ignored;
   std::filesystem::remove_all(folder, ignored);
   return check::exit_code();

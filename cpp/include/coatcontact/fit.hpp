@@ -11,6 +11,8 @@
 // the reduced variables come from the ReducedTable (one interpolant, built on demand as t
 // moves the range the data need), the JKR law and the Contact's Maugis scales give F and
 // delta; each trial E1 (each set of h_i/T and E_i of a stack) needs its own solver and table.
+// With Problem::hysteresis the loading and unloading points take their own w (w_load,
+// w_unload; Measurements::unloading says which), the pull-offs use w_unload.
 //
 // Residuals are in force, at the measured a (a,F data), or at the contact radius a* on the
 // model curve where delta(a*) equals the measured delta (delta,F data). a* lies on the stable
@@ -53,8 +55,14 @@ struct Measurements {
   // / unknown). With neither, the fit is unweighted.
   std::vector<double> sigma_abscissa;  // [m]
   std::vector<double> sigma_force;     // [N]
+  // Per point: true on the unloading branch (fits with w_load and w_unload); empty: one w.
+  std::vector<bool> unloading;
   std::size_t size() const { return force.size(); }
 };
+
+// The unloading rows by their order: every row after the (first) maximum of the abscissa
+// (the turning point itself is loading).
+std::vector<bool> unloading_by_order(const Measurements& data);
 
 // Loading = the rows up to and including the (first) maximum of the abscissa, unloading = the
 // rows from that maximum on (so the turning point belongs to both). kAll returns `data`.
@@ -76,11 +84,14 @@ struct ParameterInfo {
   std::string name;       // "w", "t" (one film) or "h2", "E1"
   const char* unit = "";  // "J/m2", "m", "Pa"
 };
-// The parameters of a fit on `layers` layers, in the order of the parameter vector.
-std::vector<ParameterInfo> parameter_list(std::size_t layers);
+// The parameters of a fit on `layers` layers, in the order of the parameter vector. With
+// `hysteresis` the loading and unloading branches have their own adhesion energy: w is then
+// called w_load and w_unload follows the moduli.
+std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis = false);
 // Index in the parameter vector of w, h_i or E_i (0-based layer).
 inline std::size_t thickness_index(std::size_t layer) { return 1 + layer; }
 inline std::size_t modulus_index(std::size_t layer, std::size_t layers) { return 1 + layers + layer; }
+inline std::size_t unload_work_index(std::size_t layers) { return 1 + 2 * layers; }
 
 struct Problem {
   double sphere_radius = 0.0;  // R [m]
@@ -94,6 +105,11 @@ struct Problem {
   // the free ones by their index in the parameter vector (parameter_list); `free` is unused.
   std::vector<Layer> layers;
   std::vector<std::size_t> free_parameters;
+  // JKR hysteresis: the loading rows (Measurements::unloading false) take w_load = `work`,
+  // the unloading rows w_unload = `unload_work`; both are free (named in free_parameters, which
+  // then replaces `free` for one film too). The pull-offs are predicted with w_unload.
+  bool hysteresis = false;
+  double unload_work = 0.0;  // w_unload [J/m2] (a hint to the search)
   Indenter indenter;  // rigid by default; elastic: the stack's reference modulus is E_r
   double spring_stiffness = 0.0;  // k [N/m] of the machine/cantilever (> 0: its pull-off is reported)
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
