@@ -17,6 +17,7 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "check.hpp"
 
 namespace {
 
@@ -40,12 +41,6 @@ constexpr double kStandardErrors = 3.0;
 constexpr double kSigmaTier = 0.3;
 constexpr double kInterpolationOverSigma = 0.01;
 
-int failures = 0;
-
-void check(bool ok, const std::string& what) {
-  std::printf("%s %s\n", ok ? "ok  " : "FAIL", what.c_str());
-  if (!ok) ++failures;
-}
 
 fit::Measurements load(const std::string& path, fit::DataKind kind) {
   const DataTable table = read_data_file(path, 2, {kind == fit::DataKind::kRadiusForce, false},
@@ -70,21 +65,22 @@ void run_case(const std::string& name, const fit::Measurements& data, bool fit_t
   const fit::Result r = fit::fit(data, problem);
   std::printf("%s: %zu points, %d iterations, %.3f s, %ld solver calls, s = %.4g N\n", name.c_str(), r.points,
               r.iterations, r.seconds, r.solver_calls, r.residual_sigma);
-  check(r.converged, name + ": converged");
+  check::that(r.converged, name + ": converged");
   const double truth[2] = {kWork, kThickness};
   for (int which = 0; which < (fit_thickness ? 2 : 1); ++which) {
     const double deviation = (r.value[which] - truth[which]) / r.standard_error[which];
     char text[200];
     std::snprintf(text, sizeof text, "%s: %s = %.6g +- %.3g (truth %.6g, %.2f SE)", name.c_str(),
                   fit::parameter_name(which), r.value[which], r.standard_error[which], truth[which], deviation);
-    check(std::fabs(deviation) <= kStandardErrors && r.standard_error[which] > 0.0, text);
+    check::that(r.standard_error[which] > 0.0, std::string(text) + ": standard error > 0");
+    check::below(std::fabs(deviation), kStandardErrors, std::string(text) + ": |deviation| in SE");
   }
   char text[200];
   std::snprintf(text, sizeof text, "%s: s = %.4g N vs sigma %.4g N", name.c_str(), r.residual_sigma, kNoise);
-  check(std::fabs(r.residual_sigma / kNoise - 1.0) <= kSigmaTier, text);
+  check::close(r.residual_sigma, kNoise, kSigmaTier, text);
   std::snprintf(text, sizeof text, "%s: interpolation error %.3g N = %.2e sigma", name.c_str(),
                 r.interpolation_error, r.interpolation_error / kNoise);
-  check(r.interpolation_error <= kInterpolationOverSigma * kNoise, text);
+  check::below(r.interpolation_error, kInterpolationOverSigma * kNoise, text);
 }
 
 }  // namespace
@@ -95,6 +91,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = argv[1];
+  check::verbose = true;  // the log reports every estimate against the truth
   try {
     const auto radius_data = load(dir + "/example_a_F.tsv", fit::DataKind::kRadiusForce);
     const auto penetration_data = load(dir + "/example_delta_F.tsv", fit::DataKind::kPenetrationForce);
@@ -105,9 +102,7 @@ int main(int argc, char** argv) {
     run_case("delta,F  w", penetration_data, false);
     run_case("delta,F  w,t", penetration_data, true);
   } catch (const std::exception& error) {
-    std::printf("FAIL: exception: %s\n", error.what());
-    return 1;
+    check::that(false, std::string("exception: ") + error.what());
   }
-  std::printf("%s (%d failure%s)\n", failures == 0 ? "PASS" : "FAIL", failures, failures == 1 ? "" : "s");
-  return failures == 0 ? 0 : 1;
+  return check::exit_code();
 }
