@@ -3,6 +3,7 @@
 // before anything is written to the caller's memory.
 #include "coatcontact/coatcontact.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <exception>
 #include <memory>
@@ -440,6 +441,10 @@ int cc_fit(const cc_stack* stack, int kind, int n, const double* x, const double
                        "CC_FIT_FREE_FILM_MODULUS");
     }
     const coatcontact::Stack built = build(*stack);
+    if (built.layers().size() != 1) {
+      throw InputError("cc_fit: the stack has " + std::to_string(built.layers().size()) +
+                       " layers; cc_fit fits one film (cc_fit_stack fits a stack)");
+    }
 
     fit::Measurements data;
     data.kind = kind == CC_FIT_RADIUS_FORCE ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
@@ -472,6 +477,67 @@ int cc_fit(const cc_stack* stack, int kind, int n, const double* x, const double
     result.displacement_pulloff[1] = r.displacement_pulloff_penetration;
     result.displacement_pulloff[2] = r.displacement_pulloff_force;
     *out = result;
+  });
+}
+
+int cc_fit_stack(const cc_stack* stack, int kind, int n, const double* x, const double* force,
+                 double sphere_radius, double work_start, const char* free_names, int parameter_count,
+                 double* values, double* standard_errors, double* residual_sigma) {
+  namespace fit = coatcontact::fit;
+  return guarded([&] {
+    require(stack, "cc_fit_stack", "stack");
+    require(x, "cc_fit_stack", "x");
+    require(force, "cc_fit_stack", "force");
+    require(free_names, "cc_fit_stack", "free_names");
+    require(values, "cc_fit_stack", "values");
+    require(standard_errors, "cc_fit_stack", "standard_errors");
+    const std::size_t count = count_of(n, "cc_fit_stack");
+    if (kind != CC_FIT_RADIUS_FORCE && kind != CC_FIT_PENETRATION_FORCE) {
+      throw InputError("cc_fit_stack: kind = " + std::to_string(kind) +
+                       " is neither CC_FIT_RADIUS_FORCE (0) nor CC_FIT_PENETRATION_FORCE (1)");
+    }
+    const coatcontact::Stack built = build(*stack);
+    const std::size_t layers = built.layers().size();
+    const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers);
+    if (parameter_count != static_cast<int>(list.size())) {
+      throw InputError("cc_fit_stack: parameter_count = " + std::to_string(parameter_count) + " but a " +
+                       std::to_string(layers) + "-layer stack has " + std::to_string(list.size()) +
+                       " parameters (w, h1..hN, E1..EN)");
+    }
+    fit::Problem problem;
+    problem.sphere_radius = sphere_radius;
+    problem.layers = built.layers();
+    problem.substrate = built.substrate();
+    problem.indenter = built.indenter();
+    problem.work = work_start;
+    std::string allowed;
+    for (const auto& info : list) allowed += (allowed.empty() ? "" : ", ") + info.name;
+    std::string names(free_names);
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t comma = names.find(',', start);
+      std::string name = names.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      if (layers == 1 && name == "h1") name = "t";
+      std::size_t which = list.size();
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        if (list[k].name == name) which = k;
+      }
+      if (which == list.size()) {
+        throw InputError("cc_fit_stack: free_names: '" + name + "' is not a parameter of this " +
+                         std::to_string(layers) + "-layer stack (allowed: " + allowed + ")");
+      }
+      problem.free_parameters.push_back(which);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    fit::Measurements data;
+    data.kind = kind == CC_FIT_RADIUS_FORCE ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
+    data.abscissa.assign(x, x + count);
+    data.force.assign(force, force + count);
+    const fit::Result r = fit::fit(data, problem);
+    std::copy(r.value.begin(), r.value.end(), values);
+    std::copy(r.standard_error.begin(), r.standard_error.end(), standard_errors);
+    if (residual_sigma != nullptr) *residual_sigma = r.residual_sigma;
   });
 }
 

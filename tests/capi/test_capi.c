@@ -246,6 +246,89 @@ static void test_contact_and_fit(void) {
   cc_stack_destroy(stack);
 }
 
+/* cc_fit_stack: a one-layer stack in SI lengths gives cc_fit's numbers; on two layers the
+ * fit of the contact's own curve recovers w and the buried layer's thickness h2. */
+static void test_fit_stack(void) {
+  const double h1 = 1e-5, h2 = 2e-5, e2 = 4e6;
+  double curve[kCurvePoints * CC_CONTACT_COLUMNS], x[kCurvePoints], force[kCurvePoints];
+  double values[5], errors[5], sigma = -1.0, film_values[3], film_errors[3];
+  cc_stack *film = film_stack(kE1, kNu, kE0, kNu, 0), *one = NULL, *two = NULL;
+  cc_reduced_solver *solver = NULL;
+  cc_adhesive_model *model = NULL;
+  cc_contact *contact = NULL;
+  cc_fit_result fit;
+  int i, status;
+
+  /* One layer: the curve of the film, fitted both ways. */
+  solver = solver_of(film);
+  check("stack fit: model", cc_adhesive_model_create(solver, 1e-10, &model) == CC_OK);
+  check("stack fit: contact", cc_contact_create(model, kRadius, kThickness, kWork, &contact) == CC_OK);
+  check("stack fit: curve", cc_contact_curve(contact, kCurvePoints, curve) == CC_OK);
+  for (i = 0; i < kCurvePoints; ++i) {
+    x[i] = curve[CC_CONTACT_COLUMNS * i];
+    force[i] = curve[CC_CONTACT_COLUMNS * i + 2];
+  }
+  cc_contact_destroy(contact);
+  cc_adhesive_model_destroy(model);
+  cc_reduced_solver_destroy(solver);
+  check("fit (one film): status", cc_fit(film, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius, 0.7 * kThickness,
+                                         1.3 * kWork, CC_FIT_FREE_WORK | CC_FIT_FREE_THICKNESS, &fit) == CC_OK);
+  check("cc_stack_create (one SI layer)", cc_stack_create(&one) == CC_OK);
+  check("one SI layer", cc_stack_add_layer(one, 0.7 * kThickness, kE1, kNu, 0) == CC_OK &&
+                            cc_stack_set_substrate(one, kE0, kNu) == CC_OK);
+  check("cc_fit_stack (one layer): status",
+        cc_fit_stack(one, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius, 1.3 * kWork, "w,h1", 3, film_values,
+                     film_errors, NULL) == CC_OK);
+  check("cc_fit_stack (one layer) = cc_fit: w", film_values[0] == fit.value[CC_FIT_WORK]);
+  check("cc_fit_stack (one layer) = cc_fit: t", film_values[1] == fit.value[CC_FIT_THICKNESS]);
+  check("cc_fit_stack (one layer) = cc_fit: E1 fixed", film_values[2] == kE1 && film_errors[2] == 0.0);
+
+  /* Two layers: h2 from a start at half its value. */
+  check("cc_stack_create (two layers)", cc_stack_create(&two) == CC_OK);
+  check("two layers", cc_stack_add_layer(two, h1, kE1, kNu, 0) == CC_OK &&
+                          cc_stack_add_layer(two, h2, e2, kNu, 0) == CC_OK && cc_stack_set_substrate(two, kE0, kNu) == CC_OK);
+  solver = solver_of(two);
+  check("two layers: model", cc_adhesive_model_create(solver, 1e-10, &model) == CC_OK);
+  check("two layers: contact", cc_contact_create(model, kRadius, h1 + h2, kWork, &contact) == CC_OK);
+  check("two layers: curve", cc_contact_curve(contact, kCurvePoints, curve) == CC_OK);
+  for (i = 0; i < kCurvePoints; ++i) {
+    x[i] = curve[CC_CONTACT_COLUMNS * i];
+    force[i] = curve[CC_CONTACT_COLUMNS * i + 2];
+  }
+  cc_contact_destroy(contact);
+  cc_adhesive_model_destroy(model);
+  cc_reduced_solver_destroy(solver);
+  check("cc_fit refuses two layers", cc_fit(two, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius, h1 + h2, kWork,
+                                             CC_FIT_FREE_WORK, &fit) == CC_INPUT_ERROR);
+  check("cc_fit refuses two layers: names cc_fit_stack", strstr(cc_last_error_message(), "cc_fit_stack") != NULL);
+  cc_stack_destroy(two);
+  check("cc_stack_create (two layers, h2 off)", cc_stack_create(&two) == CC_OK);
+  check("two layers, h2 off", cc_stack_add_layer(two, h1, kE1, kNu, 0) == CC_OK &&
+                                  cc_stack_add_layer(two, 0.5 * h2, e2, kNu, 0) == CC_OK &&
+                                  cc_stack_set_substrate(two, kE0, kNu) == CC_OK);
+  check("cc_fit_stack (w,h2): status", cc_fit_stack(two, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius,
+                                                    1.3 * kWork, "w,h2", 5, values, errors, &sigma) == CC_OK);
+  printf("cc_fit_stack w,h2: relative errors w %.2e h2 %.2e\n", values[0] / kWork - 1.0, values[2] / h2 - 1.0);
+  check("cc_fit_stack: w", close_to(values[0], kWork, 1e-6));
+  check("cc_fit_stack: h2", close_to(values[2], h2, 1e-6));
+  check("cc_fit_stack: h1, E1, E2 fixed", values[1] == h1 && values[3] == kE1 && values[4] == e2 && errors[1] == 0.0 &&
+                                              errors[3] == 0.0 && errors[4] == 0.0);
+  check("cc_fit_stack: residual sigma", sigma >= 0.0);
+
+  fill(values, 5);
+  status = cc_fit_stack(two, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius, kWork, "w,h3", 5, values, errors, NULL);
+  check_error("cc_fit_stack: h3 of two layers", status, CC_INPUT_ERROR, "h3");
+  check("cc_fit_stack: h3 leaves the values", untouched(values, 5));
+  status = cc_fit_stack(two, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius, kWork, "w,t", 5, values, errors, NULL);
+  check_error("cc_fit_stack: t of two layers", status, CC_INPUT_ERROR, "'t'");
+  status = cc_fit_stack(two, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius, kWork, "w", 3, values, errors, NULL);
+  check_error("cc_fit_stack: parameter_count", status, CC_INPUT_ERROR, "parameter_count");
+  check("cc_fit_stack: errors leave the values", untouched(values, 5));
+  cc_stack_destroy(two);
+  cc_stack_destroy(one);
+  cc_stack_destroy(film);
+}
+
 static void test_errors(void) {
   double out[CC_REDUCED_COLUMNS + 8], value = SENTINEL;
   const double radii[2] = {1.0, 2.0};
@@ -464,6 +547,7 @@ int main(int argc, char **argv) {
   test_solver(strtod(argv[1], NULL));
   test_homogeneous_adhesion();
   test_contact_and_fit();
+  test_fit_stack();
   test_errors();
   test_beyond_the_paper();
   if (failures == 0) {

@@ -174,10 +174,20 @@ typedef struct cc_fit_result {
   double displacement_pulloff[3];
 } cc_fit_result;
 
-/* x: a [m] (> 0) for CC_FIT_RADIUS_FORCE, delta [m] for CC_FIT_PENETRATION_FORCE; force [N]. */
+/* x: a [m] (> 0) for CC_FIT_RADIUS_FORCE, delta [m] for CC_FIT_PENETRATION_FORCE; force [N].
+ * One film: a stack of more than one layer is refused (CC_INPUT_ERROR; see cc_fit_stack). */
 int cc_fit(const cc_stack *stack, int kind, int n, const double *x, const double *force,
            double sphere_radius, double thickness_start, double work_start, unsigned free_mask,
            cc_fit_result *out);
+
+/* The same fit on every layer of a stack. The stack's layer thicknesses are lengths [m]; they
+ * and the layers' moduli are the fixed values, or the hints of the free ones. free_names:
+ * comma-separated, from w, h1..hN, E1..EN (layers top first; one layer: t or h1).
+ * values, standard_errors: parameter_count = 1 + 2N entries in the order w, h1..hN, E1..EN
+ * (standard error 0 for a fixed parameter); residual_sigma (may be NULL): sqrt(RSS/(n-p)) [N]. */
+int cc_fit_stack(const cc_stack *stack, int kind, int n, const double *x, const double *force,
+                 double sphere_radius, double work_start, const char *free_names, int parameter_count,
+                 double *values, double *standard_errors, double *residual_sigma);
 
 /* ---- spring control (THEORY.md section 10) ---------------------------------------------
  * Pull-off through a spring of normalized stiffness k_bar = k (pi^2 w^2 R/E*^2)^(1/3)/(pi w R):
