@@ -124,6 +124,7 @@ std::vector<int> free_indices(const Problem& problem) {
     return out;
   }
   for (std::size_t which : problem.free_parameters) out.push_back(static_cast<int>(which));
+  if (out.empty() && problem.free[kWork]) out.push_back(kWork);
   std::sort(out.begin(), out.end());
   return out;
 }

@@ -102,7 +102,8 @@ struct Problem {
   std::array<bool, kParameterCount> free{{true, false, false}};
   // A stack of layers instead of `film` and `thickness` (when not empty): top first, thickness
   // in m, moduli and thicknesses are hints if free, else fixed. `free_parameters` then names
-  // the free ones by their index in the parameter vector (parameter_list); `free` is unused.
+  // the free ones by their index in the parameter vector (parameter_list); left empty, w alone
+  // is free if free[kWork] (the default), and the rest of `free` is unused.
   std::vector<Layer> layers;
   std::vector<std::size_t> free_parameters;
   // JKR hysteresis: the loading rows (Measurements::unloading false) take w_load = `work`,
