@@ -20,9 +20,9 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <exception>
 #include <functional>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "coatcontact/detail/format.hpp"
@@ -227,14 +227,26 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
   result.a_bar_scan_max = hi;
   const std::size_t n =
       static_cast<std::size_t>(std::ceil(std::log10(hi / lo) * o.scan_points_per_decade)) + 1;
+  // Every point computed, by ln a_bar: the searches below revisit points (the minimiser, stuck
+  // at its own resolution, may evaluate the same two points until its iteration limit).
+  std::map<double, MaugisDugdalePoint> memo;
+  int evaluations = 0;
+  auto point_at = [&](double x) -> const MaugisDugdalePoint& {
+    auto it = memo.find(x);
+    if (it == memo.end()) {
+      ++evaluations;
+      it = memo.emplace(x, point(eta, lambda, std::exp(x))).first;
+    }
+    return it->second;
+  };
   std::vector<double> v(n);  // ln a_bar
   std::vector<MaugisDugdalePoint> points(n);
   for (std::size_t k = 0; k < n; ++k) {
     v[k] = std::log(lo) + std::log(hi / lo) * static_cast<double>(k) / static_cast<double>(n - 1);
-    points[k] = point(eta, lambda, std::exp(v[k]));
+    points[k] = point_at(v[k]);
   }
   result.curve_end = point(eta, lambda, 0.0);
-  int evaluations = static_cast<int>(n) + 1;
+  ++evaluations;
 
   for (Control control : {Control::kLoad, Control::kDisplacement}) {
     const char* name = control == Control::kLoad ? "load control (minimum of P)" : "displacement control (minimum of D)";
@@ -247,13 +259,10 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
       ++best.local_minima;
       MaugisDugdalePoint at = points[k];
       if (f1 < f2) {
-        std::function<double(double)> f = [&](double x) {
-          ++evaluations;
-          return value_of(point(eta, lambda, std::exp(x)), control);
-        };
+        std::function<double(double)> f = [&](double x) { return value_of(point_at(x), control); };
         double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
         x = refine(eta, lambda, x, control == Control::kLoad, evaluations);
-        at = point(eta, lambda, std::exp(x));
+        at = point_at(x);
         if (value_of(at, control) > f1) at = points[k];
       }
       if (!found || value_of(at, control) < value_of(best.point, control)) best.point = at;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coatcontact/detail/format.hpp"
@@ -248,9 +249,13 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
 CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_excess) const {
   last_evaluations_ = 0;
   const double u_min = std::log(1e-14), u_max = std::log(1e8);
+  // Every state evaluated, so that the root (always one of the evaluated points) is not
+  // evaluated a second time.
+  std::vector<std::pair<double, CohesiveState>> seen;
   auto f = [&](double u) {
     ++last_evaluations_;
-    return evaluate(sigma_hat, std::exp(u)).gap - h0;
+    seen.emplace_back(u, evaluate(sigma_hat, std::exp(u)));
+    return seen.back().second.gap - h0;
   };
   double u0 = std::clamp(std::log(guess_excess > 0.0 && std::isfinite(guess_excess) ? guess_excess : 1.0),
                          u_min, u_max);
@@ -269,6 +274,9 @@ CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_exce
     f1 = f(u1);
   }
   const double u = brent_root(f, u0, u1, f0, f1, 1e-13);
+  for (auto it = seen.rbegin(); it != seen.rend(); ++it) {
+    if (it->first == u) return it->second;
+  }
   return evaluate(sigma_hat, std::exp(u));
 }
 
