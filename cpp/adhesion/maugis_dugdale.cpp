@@ -21,6 +21,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -36,6 +37,8 @@ namespace coatcontact {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// First bracket step in ln(c/a - 1) from a guess interpolated between neighbouring a_bar.
+constexpr double kNearStep = 0.05;
 
 void check_value(double value, const std::string& what, bool zero_allowed) {
   if (!std::isfinite(value) || !(zero_allowed ? value >= 0.0 : value > 0.0)) {
@@ -102,9 +105,9 @@ struct MaugisDugdaleModel::Impl {
   // (THEORY.md section 13): dX/da = X_a - X_c h_a/h_c, the partial derivatives at fixed c
   // (resp. a) by fourth-order central differences of the smooth map (a, c) -> (F, δ, h), which
   // involves no root finder; steps 1e-3 (c - a) give ~1e-12 relative.
-  double slope(double eta, double sigma_hat, double h0, double a, bool load) const {
+  double slope(double eta, double sigma_hat, double h0, double a, bool load, double guess_excess) const {
     const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
-    const detail::CohesiveState st = zone.solve(sigma_hat, h0);
+    const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, kNearStep);
     const double c = st.c, step = 1e-3 * std::min(c - a, a);
     auto value = [&](const detail::CohesiveState& x) { return load ? x.force : x.delta; };
     const double w[2] = {8.0 / 12.0, -1.0 / 12.0};  // f'(0) ~ Σ w_k (f(k s) - f(-k s)) / s
@@ -124,6 +127,29 @@ struct MaugisDugdaleModel::Impl {
     }
     const double total = x_a - x_c * h_a / h_c;  // d/da in units of t
     return load ? eta * eta * total : eta * total;  // P = η³F, D = η²δ, ā = η a
+  }
+
+  // The curve at a_bar; the root c(a) is searched from guess_excess (c/a - 1, or c at a = 0)
+  // in first steps of `step` in ln(excess). *excess receives the root's excess.
+  MaugisDugdalePoint point(double eta, double lambda, double a_bar, double guess_excess, double step,
+                           double* excess = nullptr) const {
+    const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
+    const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+    const double a = a_bar / eta;
+    const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
+    const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, step);
+    if (excess != nullptr) *excess = st.excess;
+    MaugisDugdalePoint p;
+    p.eta = eta;
+    p.lambda = lambda;
+    p.a_bar = a_bar;
+    p.a_over_t = a;
+    p.m = a > 0.0 ? 1.0 + st.excess : std::numeric_limits<double>::infinity();
+    p.c_bar = eta * st.c;
+    p.load = eta * eta * eta * st.force;
+    p.penetration = eta * eta * st.delta;
+    p.gap_evaluations = zone.last_evaluations();
+    return p;
   }
 };
 
@@ -145,28 +171,7 @@ MaugisDugdalePoint MaugisDugdaleModel::point(double eta, double lambda, double a
   check_value(eta, "eta", false);
   check_value(lambda, "lambda", false);
   check_value(a_bar, "a_bar", true);
-  const MaugisDugdaleOptions& o = impl_->options;
-  detail::Discretization disc;
-  disc.nodes_per_panel = o.nodes_per_panel;
-  disc.quadrature_accuracy = o.quadrature_accuracy;
-  detail::CohesiveQuadrature quadrature;
-  quadrature.points_per_piece = o.annulus_points;
-  const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
-  const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
-  const double a = a_bar / eta;
-  const detail::CohesiveZone zone(impl_->kernel, a, 1.0, disc, quadrature);
-  const detail::CohesiveState st = zone.solve(sigma_hat, h0);
-  MaugisDugdalePoint p;
-  p.eta = eta;
-  p.lambda = lambda;
-  p.a_bar = a_bar;
-  p.a_over_t = a;
-  p.m = a > 0.0 ? 1.0 + st.excess : std::numeric_limits<double>::infinity();
-  p.c_bar = eta * st.c;
-  p.load = eta * eta * eta * st.force;
-  p.penetration = eta * eta * st.delta;
-  p.gap_evaluations = zone.last_evaluations();
-  return p;
+  return impl_->point(eta, lambda, a_bar, 1.0, 1.5);
 }
 
 std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lambda,
@@ -181,12 +186,13 @@ std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lam
 // The minimiser's location (~location_tolerance) refined as the root of the implicit
 // derivative (Impl::slope) by regula falsi (Illinois) in ln a_bar on a bracket 100 times
 // wider than its tolerance; kept as it is when the bracket shows no sign change.
-double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, int& evaluations) const {
+double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, double guess_excess,
+                                  int& evaluations) const {
   const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
   const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
   auto g = [&](double v) {
     ++evaluations;
-    return impl_->slope(eta, sigma_hat, h0, std::exp(v) / eta, load);
+    return impl_->slope(eta, sigma_hat, h0, std::exp(v) / eta, load, guess_excess);
   };
   const double half = 100.0 * impl_->options.location_tolerance;
   double l = x - half, r = x + half, gl = g(l), gr = g(r);
@@ -229,16 +235,44 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
       static_cast<std::size_t>(std::ceil(std::log10(hi / lo) * o.scan_points_per_decade)) + 1;
   // Every point computed, by ln a_bar: the searches below revisit points (the minimiser, stuck
   // at its own resolution, may evaluate the same two points until its iteration limit).
-  std::map<double, MaugisDugdalePoint> memo;
+  // The root c(a) of a new point starts from ln(c/a - 1) interpolated (extrapolated) linearly
+  // in ln a_bar between its nearest computed neighbours.
+  struct Known {
+    MaugisDugdalePoint point;
+    double u;  // ln(c/a - 1)
+  };
+  std::map<double, Known> memo;
   int evaluations = 0;
-  auto point_at = [&](double x) -> const MaugisDugdalePoint& {
+  auto guess_u = [&](double x) {
+    if (memo.empty()) return 0.0;
+    auto hi_it = memo.lower_bound(x);
+    auto lo_it = hi_it;
+    if (hi_it == memo.end()) {
+      hi_it = std::prev(memo.end());
+      if (hi_it == memo.begin()) return hi_it->second.u;
+      lo_it = std::prev(hi_it);
+    } else if (hi_it == memo.begin()) {
+      lo_it = std::next(hi_it);
+      if (lo_it == memo.end()) return hi_it->second.u;
+    } else {
+      lo_it = std::prev(hi_it);
+    }
+    const double x0 = lo_it->first, x1 = hi_it->first, u0 = lo_it->second.u, u1 = hi_it->second.u;
+    return u0 + (u1 - u0) * (x - x0) / (x1 - x0);
+  };
+  auto known_at = [&](double x) -> const Known& {
     auto it = memo.find(x);
     if (it == memo.end()) {
       ++evaluations;
-      it = memo.emplace(x, point(eta, lambda, std::exp(x))).first;
+      const bool near = memo.size() >= 2;
+      double excess = 1.0;
+      MaugisDugdalePoint p = impl_->point(eta, lambda, std::exp(x), near ? std::exp(guess_u(x)) : 1.0,
+                                          near ? kNearStep : 1.5, &excess);
+      it = memo.emplace(x, Known{p, std::log(excess)}).first;
     }
     return it->second;
   };
+  auto point_at = [&](double x) -> const MaugisDugdalePoint& { return known_at(x).point; };
   std::vector<double> v(n);  // ln a_bar
   std::vector<MaugisDugdalePoint> points(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -261,7 +295,7 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
       if (f1 < f2) {
         std::function<double(double)> f = [&](double x) { return value_of(point_at(x), control); };
         double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
-        x = refine(eta, lambda, x, control == Control::kLoad, evaluations);
+        x = refine(eta, lambda, x, control == Control::kLoad, std::exp(known_at(x).u), evaluations);
         at = point_at(x);
         if (value_of(at, control) > f1) at = points[k];
       }

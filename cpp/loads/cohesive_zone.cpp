@@ -246,7 +246,7 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
   return st;
 }
 
-CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_excess) const {
+CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_excess, double first_step) const {
   last_evaluations_ = 0;
   const double u_min = std::log(1e-14), u_max = std::log(1e8);
   // Every state evaluated, so that the root (always one of the evaluated points) is not
@@ -261,9 +261,10 @@ CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_exce
                          u_min, u_max);
   double f0 = f(u0);
   double u1 = u0, f1 = f0;
-  const double step = 1.5;
+  double step = std::clamp(first_step, 1e-6, 1.5);
   // Expand away from the guess until the sign changes (h grows with c, h -> 0 as c -> a).
-  while ((f0 > 0.0) == (f1 > 0.0)) {
+  for (bool first = true; (f0 > 0.0) == (f1 > 0.0); first = false) {
+    if (!first) step = std::min(1.5, 3.0 * step);
     u0 = u1;
     f0 = f1;
     u1 = f0 > 0.0 ? u1 - step : u1 + step;
