@@ -21,10 +21,11 @@
 #include <cmath>
 #include <exception>
 #include <functional>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
@@ -39,6 +40,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // First bracket step in ln(c/a - 1) from a guess interpolated between neighbouring a_bar.
 constexpr double kNearStep = 0.05;
+constexpr double kMinNearStep = 1e-7;
+// The refinement's points lie within 100 location tolerances (1e-5) of the guess's a_bar.
+constexpr double kSlopeStep = 1e-4;
 
 void check_value(double value, const std::string& what, bool zero_allowed) {
   if (!std::isfinite(value) || !(zero_allowed ? value >= 0.0 : value > 0.0)) {
@@ -107,7 +111,7 @@ struct MaugisDugdaleModel::Impl {
   // involves no root finder; steps 1e-3 (c - a) give ~1e-12 relative.
   double slope(double eta, double sigma_hat, double h0, double a, bool load, double guess_excess) const {
     const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
-    const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, kNearStep);
+    const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, kSlopeStep);
     const double c = st.c, step = 1e-3 * std::min(c - a, a);
     auto value = [&](const detail::CohesiveState& x) { return load ? x.force : x.delta; };
     const double w[2] = {8.0 / 12.0, -1.0 / 12.0};  // f'(0) ~ Σ w_k (f(k s) - f(-k s)) / s
@@ -235,42 +239,48 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
       static_cast<std::size_t>(std::ceil(std::log10(hi / lo) * o.scan_points_per_decade)) + 1;
   // Every point computed, by ln a_bar: the searches below revisit points (the minimiser, stuck
   // at its own resolution, may evaluate the same two points until its iteration limit).
-  // The root c(a) of a new point starts from ln(c/a - 1) interpolated (extrapolated) linearly
-  // in ln a_bar between its nearest computed neighbours.
+  // The root c(a) of a new point starts from ln(c/a - 1) interpolated (extrapolated) in
+  // ln a_bar through the three nearest points already computed (quadratic), its first bracket
+  // step twice the difference from the linear estimate through the two nearest.
   struct Known {
     MaugisDugdalePoint point;
     double u;  // ln(c/a - 1)
   };
   std::map<double, Known> memo;
   int evaluations = 0;
-  auto guess_u = [&](double x) {
-    if (memo.empty()) return 0.0;
-    auto hi_it = memo.lower_bound(x);
-    auto lo_it = hi_it;
-    if (hi_it == memo.end()) {
-      hi_it = std::prev(memo.end());
-      if (hi_it == memo.begin()) return hi_it->second.u;
-      lo_it = std::prev(hi_it);
-    } else if (hi_it == memo.begin()) {
-      lo_it = std::next(hi_it);
-      if (lo_it == memo.end()) return hi_it->second.u;
-    } else {
-      lo_it = std::prev(hi_it);
-    }
-    const double x0 = lo_it->first, x1 = hi_it->first, u0 = lo_it->second.u, u1 = hi_it->second.u;
-    return u0 + (u1 - u0) * (x - x0) / (x1 - x0);
-  };
   auto known_at = [&](double x) -> const Known& {
     auto it = memo.find(x);
-    if (it == memo.end()) {
-      ++evaluations;
-      const bool near = memo.size() >= 2;
-      double excess = 1.0;
-      MaugisDugdalePoint p = impl_->point(eta, lambda, std::exp(x), near ? std::exp(guess_u(x)) : 1.0,
-                                          near ? kNearStep : 1.5, &excess);
-      it = memo.emplace(x, Known{p, std::log(excess)}).first;
+    if (it != memo.end()) return it->second;
+    ++evaluations;
+    double guess = 1.0, step = 1.5;
+    if (memo.size() >= 2) {
+      // up to three neighbours on each side, then the nearest three by distance
+      std::vector<std::pair<double, double>> near;  // (x, u)
+      auto hi_it = memo.lower_bound(x);
+      auto lo_it = hi_it;
+      for (int k = 0; k < 3 && hi_it != memo.end(); ++k, ++hi_it) near.emplace_back(hi_it->first, hi_it->second.u);
+      for (int k = 0; k < 3 && lo_it != memo.begin(); ++k) {
+        --lo_it;
+        near.emplace_back(lo_it->first, lo_it->second.u);
+      }
+      std::sort(near.begin(), near.end(), [&](const auto& p, const auto& q) {
+        return std::abs(p.first - x) < std::abs(q.first - x);
+      });
+      const double x0 = near[0].first, u0 = near[0].second, x1 = near[1].first, u1 = near[1].second;
+      const double linear = u0 + (u1 - u0) * (x - x0) / (x1 - x0);
+      double u = linear;
+      step = kNearStep;
+      if (near.size() >= 3) {
+        const double x2 = near[2].first, u2 = near[2].second;
+        u = u0 * (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2)) + u1 * (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2)) +
+            u2 * (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1));
+        step = std::clamp(2.0 * std::abs(u - linear), kMinNearStep, kNearStep);
+      }
+      if (std::isfinite(u)) guess = std::exp(u);
     }
-    return it->second;
+    double excess = 1.0;
+    MaugisDugdalePoint p = impl_->point(eta, lambda, std::exp(x), guess, step, &excess);
+    return memo.emplace(x, Known{p, std::log(excess)}).first->second;
   };
   auto point_at = [&](double x) -> const MaugisDugdalePoint& { return known_at(x).point; };
   std::vector<double> v(n);  // ln a_bar
