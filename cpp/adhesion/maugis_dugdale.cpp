@@ -56,6 +56,34 @@ double value_of(const MaugisDugdalePoint& p, Control c) {
   return c == Control::kLoad ? p.load : p.penetration;
 }
 
+// Start of the root c(a) at ln a_bar = x from the roots u = ln(c/a - 1) already known at other
+// x: u interpolated (extrapolated) through the three nearest (quadratic), the first bracket
+// step twice its difference from the linear estimate through the two nearest (at least
+// kMinNearStep); with two known roots the linear estimate and kNearStep; fewer: unchanged.
+void start_from(const std::map<double, double>& roots, double x, double& guess, double& step) {
+  if (roots.size() < 2) return;
+  std::vector<std::pair<double, double>> near;  // up to three on each side, nearest first
+  auto hi_it = roots.lower_bound(x);
+  auto lo_it = hi_it;
+  for (int k = 0; k < 3 && hi_it != roots.end(); ++k, ++hi_it) near.push_back(*hi_it);
+  for (int k = 0; k < 3 && lo_it != roots.begin(); ++k) near.push_back(*--lo_it);
+  std::sort(near.begin(), near.end(),
+            [&](const auto& p, const auto& q) { return std::abs(p.first - x) < std::abs(q.first - x); });
+  const double x0 = near[0].first, u0 = near[0].second, x1 = near[1].first, u1 = near[1].second;
+  const double linear = u0 + (u1 - u0) * (x - x0) / (x1 - x0);
+  double u = linear, s = kNearStep;
+  if (near.size() >= 3) {
+    const double x2 = near[2].first, u2 = near[2].second;
+    u = u0 * (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2)) + u1 * (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2)) +
+        u2 * (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1));
+    s = std::clamp(2.0 * std::abs(u - linear), kMinNearStep, kNearStep);
+  }
+  if (std::isfinite(u) && std::isfinite(s)) {
+    guess = std::exp(u);
+    step = s;
+  }
+}
+
 double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
 
 // Brent minimiser (GSL) on f over [lo, hi] with f(mid) below both ends. Exceptions thrown by
@@ -181,9 +209,22 @@ MaugisDugdalePoint MaugisDugdaleModel::point(double eta, double lambda, double a
 std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lambda,
                                                           const std::vector<double>& a_bar) const {
   for (double a : a_bar) check_value(a, "a_bar", true);
+  check_value(eta, "eta", false);
+  check_value(lambda, "lambda", false);
   std::vector<MaugisDugdalePoint> out;
   out.reserve(a_bar.size());
-  for (double a : a_bar) out.push_back(point(eta, lambda, a));
+  std::map<double, double> roots;  // ln a_bar -> ln(c/a - 1) of the points so far (a > 0)
+  for (double a : a_bar) {
+    if (a == 0.0) {
+      out.push_back(point(eta, lambda, a));
+      continue;
+    }
+    const double x = std::log(a);
+    double guess = 1.0, step = 1.5, excess = 1.0;
+    start_from(roots, x, guess, step);
+    out.push_back(impl_->point(eta, lambda, a, guess, step, &excess));
+    roots[x] = std::log(excess);
+  }
   return out;
 }
 
@@ -239,50 +280,19 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
       static_cast<std::size_t>(std::ceil(std::log10(hi / lo) * o.scan_points_per_decade)) + 1;
   // Every point computed, by ln a_bar: the searches below revisit points (the minimiser, stuck
   // at its own resolution, may evaluate the same two points until its iteration limit).
-  // The root c(a) of a new point starts from ln(c/a - 1) interpolated (extrapolated) in
-  // ln a_bar through the three nearest points already computed (quadratic), its first bracket
-  // step twice the difference from the linear estimate through the two nearest.
-  struct Known {
-    MaugisDugdalePoint point;
-    double u;  // ln(c/a - 1)
-  };
-  std::map<double, Known> memo;
+  std::map<double, MaugisDugdalePoint> memo;  // by ln a_bar
+  std::map<double, double> roots;              // ln a_bar -> ln(c/a - 1)
   int evaluations = 0;
-  auto known_at = [&](double x) -> const Known& {
+  auto point_at = [&](double x) -> const MaugisDugdalePoint& {
     auto it = memo.find(x);
     if (it != memo.end()) return it->second;
     ++evaluations;
-    double guess = 1.0, step = 1.5;
-    if (memo.size() >= 2) {
-      // up to three neighbours on each side, then the nearest three by distance
-      std::vector<std::pair<double, double>> near;  // (x, u)
-      auto hi_it = memo.lower_bound(x);
-      auto lo_it = hi_it;
-      for (int k = 0; k < 3 && hi_it != memo.end(); ++k, ++hi_it) near.emplace_back(hi_it->first, hi_it->second.u);
-      for (int k = 0; k < 3 && lo_it != memo.begin(); ++k) {
-        --lo_it;
-        near.emplace_back(lo_it->first, lo_it->second.u);
-      }
-      std::sort(near.begin(), near.end(), [&](const auto& p, const auto& q) {
-        return std::abs(p.first - x) < std::abs(q.first - x);
-      });
-      const double x0 = near[0].first, u0 = near[0].second, x1 = near[1].first, u1 = near[1].second;
-      const double linear = u0 + (u1 - u0) * (x - x0) / (x1 - x0);
-      double u = linear;
-      step = kNearStep;
-      if (near.size() >= 3) {
-        const double x2 = near[2].first, u2 = near[2].second;
-        u = u0 * (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2)) + u1 * (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2)) +
-            u2 * (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1));
-        step = std::clamp(2.0 * std::abs(u - linear), kMinNearStep, kNearStep);
-      }
-      if (std::isfinite(u)) guess = std::exp(u);
-    }
-    double excess = 1.0;
-    MaugisDugdalePoint p = impl_->point(eta, lambda, std::exp(x), guess, step, &excess);
-    return memo.emplace(x, Known{p, std::log(excess)}).first->second;
+    double guess = 1.0, step = 1.5, excess = 1.0;
+    start_from(roots, x, guess, step);
+    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess)).first;
+    roots[x] = std::log(excess);
+    return it->second;
   };
-  auto point_at = [&](double x) -> const MaugisDugdalePoint& { return known_at(x).point; };
   std::vector<double> v(n);  // ln a_bar
   std::vector<MaugisDugdalePoint> points(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -305,7 +315,7 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
       if (f1 < f2) {
         std::function<double(double)> f = [&](double x) { return value_of(point_at(x), control); };
         double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
-        x = refine(eta, lambda, x, control == Control::kLoad, std::exp(known_at(x).u), evaluations);
+        x = refine(eta, lambda, x, control == Control::kLoad, std::exp(roots.at(x)), evaluations);
         at = point_at(x);
         if (value_of(at, control) > f1) at = points[k];
       }
