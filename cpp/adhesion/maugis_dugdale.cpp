@@ -360,7 +360,7 @@ std::vector<MaugisDugdalePulloff> MaugisDugdaleModel::pulloffs(
   const long count = static_cast<long>(eta_lambda.size());
   std::vector<MaugisDugdalePulloff> results(eta_lambda.size());
   std::vector<std::exception_ptr> errors(eta_lambda.size());
-  // Each pull-off (~0.4-0.7 s, mostly serial refinement) is independent and deterministic.
+  // Each pull-off (~0.1-1 s) is independent and deterministic.
 #pragma omp parallel for schedule(dynamic, 1) if (count > 1)
   for (long i = 0; i < count; ++i) {
     const auto k = static_cast<std::size_t>(i);
