@@ -20,10 +20,12 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <exception>
 #include <functional>
 #include <limits>
+#include <map>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
@@ -36,6 +38,11 @@ namespace coatcontact {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// First bracket step in ln(c/a - 1) from a guess interpolated between neighbouring a_bar.
+constexpr double kNearStep = 0.05;
+constexpr double kMinNearStep = 1e-7;
+// The refinement's points lie within 100 location tolerances (1e-5) of the guess's a_bar.
+constexpr double kSlopeStep = 1e-4;
 
 void check_value(double value, const std::string& what, bool zero_allowed) {
   if (!std::isfinite(value) || !(zero_allowed ? value >= 0.0 : value > 0.0)) {
@@ -47,6 +54,34 @@ void check_value(double value, const std::string& what, bool zero_allowed) {
 enum class Control { kLoad, kDisplacement };
 double value_of(const MaugisDugdalePoint& p, Control c) {
   return c == Control::kLoad ? p.load : p.penetration;
+}
+
+// Start of the root c(a) at ln a_bar = x from the roots u = ln(c/a - 1) already known at other
+// x: u interpolated (extrapolated) through the three nearest (quadratic), the first bracket
+// step twice its difference from the linear estimate through the two nearest (at least
+// kMinNearStep); with two known roots the linear estimate and kNearStep; fewer: unchanged.
+void start_from(const std::map<double, double>& roots, double x, double& guess, double& step) {
+  if (roots.size() < 2) return;
+  std::vector<std::pair<double, double>> near;  // up to three on each side, nearest first
+  auto hi_it = roots.lower_bound(x);
+  auto lo_it = hi_it;
+  for (int k = 0; k < 3 && hi_it != roots.end(); ++k, ++hi_it) near.push_back(*hi_it);
+  for (int k = 0; k < 3 && lo_it != roots.begin(); ++k) near.push_back(*--lo_it);
+  std::sort(near.begin(), near.end(),
+            [&](const auto& p, const auto& q) { return std::abs(p.first - x) < std::abs(q.first - x); });
+  const double x0 = near[0].first, u0 = near[0].second, x1 = near[1].first, u1 = near[1].second;
+  const double linear = u0 + (u1 - u0) * (x - x0) / (x1 - x0);
+  double u = linear, s = kNearStep;
+  if (near.size() >= 3) {
+    const double x2 = near[2].first, u2 = near[2].second;
+    u = u0 * (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2)) + u1 * (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2)) +
+        u2 * (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1));
+    s = std::clamp(2.0 * std::abs(u - linear), kMinNearStep, kNearStep);
+  }
+  if (std::isfinite(u) && std::isfinite(s)) {
+    guess = std::exp(u);
+    step = s;
+  }
 }
 
 double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
@@ -102,9 +137,9 @@ struct MaugisDugdaleModel::Impl {
   // (THEORY.md section 13): dX/da = X_a - X_c h_a/h_c, the partial derivatives at fixed c
   // (resp. a) by fourth-order central differences of the smooth map (a, c) -> (F, δ, h), which
   // involves no root finder; steps 1e-3 (c - a) give ~1e-12 relative.
-  double slope(double eta, double sigma_hat, double h0, double a, bool load) const {
+  double slope(double eta, double sigma_hat, double h0, double a, bool load, double guess_excess) const {
     const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
-    const detail::CohesiveState st = zone.solve(sigma_hat, h0);
+    const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, kSlopeStep);
     const double c = st.c, step = 1e-3 * std::min(c - a, a);
     auto value = [&](const detail::CohesiveState& x) { return load ? x.force : x.delta; };
     const double w[2] = {8.0 / 12.0, -1.0 / 12.0};  // f'(0) ~ Σ w_k (f(k s) - f(-k s)) / s
@@ -124,6 +159,29 @@ struct MaugisDugdaleModel::Impl {
     }
     const double total = x_a - x_c * h_a / h_c;  // d/da in units of t
     return load ? eta * eta * total : eta * total;  // P = η³F, D = η²δ, ā = η a
+  }
+
+  // The curve at a_bar; the root c(a) is searched from guess_excess (c/a - 1, or c at a = 0)
+  // in first steps of `step` in ln(excess). *excess receives the root's excess.
+  MaugisDugdalePoint point(double eta, double lambda, double a_bar, double guess_excess, double step,
+                           double* excess = nullptr) const {
+    const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
+    const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+    const double a = a_bar / eta;
+    const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
+    const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, step);
+    if (excess != nullptr) *excess = st.excess;
+    MaugisDugdalePoint p;
+    p.eta = eta;
+    p.lambda = lambda;
+    p.a_bar = a_bar;
+    p.a_over_t = a;
+    p.m = a > 0.0 ? 1.0 + st.excess : std::numeric_limits<double>::infinity();
+    p.c_bar = eta * st.c;
+    p.load = eta * eta * eta * st.force;
+    p.penetration = eta * eta * st.delta;
+    p.gap_evaluations = zone.last_evaluations();
+    return p;
   }
 };
 
@@ -145,48 +203,41 @@ MaugisDugdalePoint MaugisDugdaleModel::point(double eta, double lambda, double a
   check_value(eta, "eta", false);
   check_value(lambda, "lambda", false);
   check_value(a_bar, "a_bar", true);
-  const MaugisDugdaleOptions& o = impl_->options;
-  detail::Discretization disc;
-  disc.nodes_per_panel = o.nodes_per_panel;
-  disc.quadrature_accuracy = o.quadrature_accuracy;
-  detail::CohesiveQuadrature quadrature;
-  quadrature.points_per_piece = o.annulus_points;
-  const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
-  const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
-  const double a = a_bar / eta;
-  const detail::CohesiveZone zone(impl_->kernel, a, 1.0, disc, quadrature);
-  const detail::CohesiveState st = zone.solve(sigma_hat, h0);
-  MaugisDugdalePoint p;
-  p.eta = eta;
-  p.lambda = lambda;
-  p.a_bar = a_bar;
-  p.a_over_t = a;
-  p.m = a > 0.0 ? 1.0 + st.excess : std::numeric_limits<double>::infinity();
-  p.c_bar = eta * st.c;
-  p.load = eta * eta * eta * st.force;
-  p.penetration = eta * eta * st.delta;
-  p.gap_evaluations = zone.last_evaluations();
-  return p;
+  return impl_->point(eta, lambda, a_bar, 1.0, 1.5);
 }
 
 std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lambda,
                                                           const std::vector<double>& a_bar) const {
   for (double a : a_bar) check_value(a, "a_bar", true);
+  check_value(eta, "eta", false);
+  check_value(lambda, "lambda", false);
   std::vector<MaugisDugdalePoint> out;
   out.reserve(a_bar.size());
-  for (double a : a_bar) out.push_back(point(eta, lambda, a));
+  std::map<double, double> roots;  // ln a_bar -> ln(c/a - 1) of the points so far (a > 0)
+  for (double a : a_bar) {
+    if (a == 0.0) {
+      out.push_back(point(eta, lambda, a));
+      continue;
+    }
+    const double x = std::log(a);
+    double guess = 1.0, step = 1.5, excess = 1.0;
+    start_from(roots, x, guess, step);
+    out.push_back(impl_->point(eta, lambda, a, guess, step, &excess));
+    roots[x] = std::log(excess);
+  }
   return out;
 }
 
 // The minimiser's location (~location_tolerance) refined as the root of the implicit
 // derivative (Impl::slope) by regula falsi (Illinois) in ln a_bar on a bracket 100 times
 // wider than its tolerance; kept as it is when the bracket shows no sign change.
-double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, int& evaluations) const {
+double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, double guess_excess,
+                                  int& evaluations) const {
   const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
   const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
   auto g = [&](double v) {
     ++evaluations;
-    return impl_->slope(eta, sigma_hat, h0, std::exp(v) / eta, load);
+    return impl_->slope(eta, sigma_hat, h0, std::exp(v) / eta, load, guess_excess);
   };
   const double half = 100.0 * impl_->options.location_tolerance;
   double l = x - half, r = x + half, gl = g(l), gr = g(r);
@@ -227,14 +278,29 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
   result.a_bar_scan_max = hi;
   const std::size_t n =
       static_cast<std::size_t>(std::ceil(std::log10(hi / lo) * o.scan_points_per_decade)) + 1;
+  // Every point computed, by ln a_bar: the searches below revisit points (the minimiser, stuck
+  // at its own resolution, may evaluate the same two points until its iteration limit).
+  std::map<double, MaugisDugdalePoint> memo;  // by ln a_bar
+  std::map<double, double> roots;              // ln a_bar -> ln(c/a - 1)
+  int evaluations = 0;
+  auto point_at = [&](double x) -> const MaugisDugdalePoint& {
+    auto it = memo.find(x);
+    if (it != memo.end()) return it->second;
+    ++evaluations;
+    double guess = 1.0, step = 1.5, excess = 1.0;
+    start_from(roots, x, guess, step);
+    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess)).first;
+    roots[x] = std::log(excess);
+    return it->second;
+  };
   std::vector<double> v(n);  // ln a_bar
   std::vector<MaugisDugdalePoint> points(n);
   for (std::size_t k = 0; k < n; ++k) {
     v[k] = std::log(lo) + std::log(hi / lo) * static_cast<double>(k) / static_cast<double>(n - 1);
-    points[k] = point(eta, lambda, std::exp(v[k]));
+    points[k] = point_at(v[k]);
   }
   result.curve_end = point(eta, lambda, 0.0);
-  int evaluations = static_cast<int>(n) + 1;
+  ++evaluations;
 
   for (Control control : {Control::kLoad, Control::kDisplacement}) {
     const char* name = control == Control::kLoad ? "load control (minimum of P)" : "displacement control (minimum of D)";
@@ -247,13 +313,10 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
       ++best.local_minima;
       MaugisDugdalePoint at = points[k];
       if (f1 < f2) {
-        std::function<double(double)> f = [&](double x) {
-          ++evaluations;
-          return value_of(point(eta, lambda, std::exp(x)), control);
-        };
+        std::function<double(double)> f = [&](double x) { return value_of(point_at(x), control); };
         double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
-        x = refine(eta, lambda, x, control == Control::kLoad, evaluations);
-        at = point(eta, lambda, std::exp(x));
+        x = refine(eta, lambda, x, control == Control::kLoad, std::exp(roots.at(x)), evaluations);
+        at = point_at(x);
         if (value_of(at, control) > f1) at = points[k];
       }
       if (!found || value_of(at, control) < value_of(best.point, control)) best.point = at;
@@ -297,7 +360,7 @@ std::vector<MaugisDugdalePulloff> MaugisDugdaleModel::pulloffs(
   const long count = static_cast<long>(eta_lambda.size());
   std::vector<MaugisDugdalePulloff> results(eta_lambda.size());
   std::vector<std::exception_ptr> errors(eta_lambda.size());
-  // Each pull-off (~0.4-0.7 s, mostly serial refinement) is independent and deterministic.
+  // Each pull-off (~0.1-1 s) is independent and deterministic.
 #pragma omp parallel for schedule(dynamic, 1) if (count > 1)
   for (long i = 0; i < count; ++i) {
     const auto k = static_cast<std::size_t>(i);

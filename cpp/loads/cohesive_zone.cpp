@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coatcontact/detail/format.hpp"
@@ -245,20 +246,25 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
   return st;
 }
 
-CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_excess) const {
+CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_excess, double first_step) const {
   last_evaluations_ = 0;
   const double u_min = std::log(1e-14), u_max = std::log(1e8);
+  // Every state evaluated, so that the root (always one of the evaluated points) is not
+  // evaluated a second time.
+  std::vector<std::pair<double, CohesiveState>> seen;
   auto f = [&](double u) {
     ++last_evaluations_;
-    return evaluate(sigma_hat, std::exp(u)).gap - h0;
+    seen.emplace_back(u, evaluate(sigma_hat, std::exp(u)));
+    return seen.back().second.gap - h0;
   };
   double u0 = std::clamp(std::log(guess_excess > 0.0 && std::isfinite(guess_excess) ? guess_excess : 1.0),
                          u_min, u_max);
   double f0 = f(u0);
   double u1 = u0, f1 = f0;
-  const double step = 1.5;
+  double step = std::clamp(first_step, 1e-6, 1.5);
   // Expand away from the guess until the sign changes (h grows with c, h -> 0 as c -> a).
-  while ((f0 > 0.0) == (f1 > 0.0)) {
+  for (bool first = true; (f0 > 0.0) == (f1 > 0.0); first = false) {
+    if (!first) step = std::min(1.5, 3.0 * step);
     u0 = u1;
     f0 = f1;
     u1 = f0 > 0.0 ? u1 - step : u1 + step;
@@ -269,6 +275,9 @@ CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_exce
     f1 = f(u1);
   }
   const double u = brent_root(f, u0, u1, f0, f1, 1e-13);
+  for (auto it = seen.rbegin(); it != seen.rend(); ++it) {
+    if (it->first == u) return it->second;
+  }
   return evaluate(sigma_hat, std::exp(u));
 }
 

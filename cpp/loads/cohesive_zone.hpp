@@ -42,8 +42,10 @@ class CohesiveZone {
   // excess > 0 given directly so that c - a carries no cancellation.
   CohesiveState evaluate(double sigma_hat, double excess) const;
   // Solves h(c) = h0 for c by a bracketed Brent root in u = ln(excess); throws NumericalError
-  // if no sign change is found for excess in [1e-14, 1e8].
-  CohesiveState solve(double sigma_hat, double h0, double guess_excess = 1.0) const;
+  // if no sign change is found for excess in [1e-14, 1e8]. The bracket is searched from the
+  // guess in steps of first_step in u, growing threefold up to 1.5 (a close guess, e.g. from
+  // a neighbouring contact radius, with a small first step saves evaluations).
+  CohesiveState solve(double sigma_hat, double h0, double guess_excess = 1.0, double first_step = 1.5) const;
   double contact_radius() const { return a_; }
   int unknowns() const { return system_ ? static_cast<int>(system_->size()) : 0; }
   // Gap evaluations of the last solve() (cost statistics).

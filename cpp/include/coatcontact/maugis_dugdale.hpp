@@ -84,7 +84,7 @@ class MaugisDugdaleModel {
   const MaugisDugdaleOptions& options() const;
 
  private:
-  double refine(double eta, double lambda, double ln_a_bar, bool load, int& evaluations) const;
+  double refine(double eta, double lambda, double ln_a_bar, bool load, double guess_excess, int& evaluations) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
