@@ -71,6 +71,7 @@ struct AdaptiveSolve {
   KernelErrorKind kernel_error_kind = KernelErrorKind::kCoherentBound;
   int unknowns = 0;
   int nodes_per_panel = 0;
+  int table_level = 0;                // the kernel table used (solve_on_solver_tables)
   bool converged = false;
 };
 
