@@ -447,7 +447,11 @@ contains
     table%decay_rate = b
     c = subtraction_coefficients(rt, b)
 
-    allocate(q(0:n), r(0:n), fq(0:n), work_in(0:n), work_out(0:n), stat=ierr)
+    if (compact) then
+      allocate(q(0:n), r(0:n), fq(0:n), work_in(0:2 * n - 1), work_out(0:2 * n - 1), stat=ierr)
+    else
+      allocate(q(0:n), r(0:n), fq(0:n), work_in(0:n), work_out(0:n), stat=ierr)
+    end if
     if (ierr /= 0) then
       status = CC_ERR_ALLOCATION
       return
@@ -459,15 +463,26 @@ contains
     r(0) = 0.0_dp                                     ! exact by construction
 
     ! H_r(k du) = (dq/2) DCT-I(r)_k  (trapezoid rule, endpoints halved by REDFT00)
-    work_in = r
     call cc_planner_lock()
-    plan = fftw_plan_r2r_1d(int(n + 1, c_int), work_in, work_out, FFTW_REDFT00, FFTW_ESTIMATE)
+    if (compact) then
+      ! The DCT-I as the real DFT (R2HC, real parts first) of the even extension of r with
+      ! period 2N: the same sums, and planning a power-of-2 R2HC costs a fraction of planning
+      ! a REDFT00 (~0.5 against ~1.5 ms, most of a one-radius call once the grid is compact).
+      plan = fftw_plan_r2r_1d(int(2 * n, c_int), work_in, work_out, FFTW_R2HC, FFTW_ESTIMATE)
+    else
+      plan = fftw_plan_r2r_1d(int(n + 1, c_int), work_in, work_out, FFTW_REDFT00, FFTW_ESTIMATE)
+    end if
     call cc_planner_unlock()
     if (.not. c_associated(plan)) then
       status = CC_ERR_FFT
       return
     end if
-    work_in = r
+    if (compact) then
+      work_in(0:n) = r
+      work_in(n + 1:2 * n - 1) = r(n - 1:1:-1)
+    else
+      work_in = r
+    end if
     call fftw_execute_r2r(plan, work_in, work_out)
     call cc_planner_lock()
     call fftw_destroy_plan(plan)
