@@ -2,6 +2,7 @@
 #include "table_kernel.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "coatcontact/errors.hpp"
 
@@ -38,7 +39,7 @@ namespace {
 // relative; there the full grid is used, so that every result stays within ~1e-14 of the
 // full-grid solve (measured: <= 1e-2 of the bound).
 constexpr double kCompactKernelBound = 1e-12;
-constexpr double kSolverTableRange[kSolverTableLevels - 1] = {80.0, 320.0, 1280.0};
+constexpr double kSolverTableRange[kSolverTableLevels - 1] = {80.0};
 }  // namespace
 
 int solver_table_level(double a_over_t) {
@@ -66,10 +67,12 @@ AdaptiveSolve solve_on_solver_tables(const std::function<const KernelSource&(int
   const bool full = level + 1 == kSolverTableLevels;
   // On a compact table without the independent tables: where those would be needed (coherent
   // bound > tol / 10) the attempt stops early and costs no two-table re-solves.
+  const double keep_bound = std::min(0.1 * tolerance, kCompactKernelBound);
   AdaptiveSolve result = solve_adaptive(table(level), a_over_t, tolerance,
-                                        full ? independent : IndependentKernel{});
+                                        full ? independent : IndependentKernel{},
+                                        full ? std::numeric_limits<double>::infinity() : keep_bound);
   const bool cheap = result.converged && result.kernel_error_kind == KernelErrorKind::kCoherentBound &&
-                     result.kernel_bound <= std::min(0.1 * tolerance, kCompactKernelBound);
+                     result.kernel_bound <= keep_bound;
   if (!full && !cheap) {
     result = solve_adaptive(table(kSolverTableLevels - 1), a_over_t, tolerance, independent);
     result.table_level = kSolverTableLevels - 1;

@@ -36,15 +36,20 @@ class TableKernel : public KernelSource {
 // kSolverTableRange[k] / 2 use a compact table of that range (a fraction of the full grid's
 // FFT work, which dominated a one-radius call); the last level is the full default grid. The
 // level depends on a/t alone, so a radius gets the same values whatever else is solved.
-constexpr int kSolverTableLevels = 4;
+// One compact level (u <= 80, a/t <= 40): beyond it the coherent bound nearly always exceeds
+// the compact tables' acceptance limit (table_kernel.cpp), and the first-level solves spent
+// finding that out made the 200-radius sweep 10% slower than the full grid alone (with
+// compact levels 320 and 1280 as well).
+constexpr int kSolverTableLevels = 2;
 int solver_table_level(double a_over_t);
 // The table of `level`: a compact grid that misses its accuracy target falls back to the
 // next level's grid.
 std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level);
 // solve_adaptive on the table of a/t's level, `table(level)`; where that is not decided by the
-// cheap coherent kernel bound (two-table estimate or no convergence: ill-conditioned systems,
-// which amplify the compact grid's shorter-period errors), again on the full grid, so that
-// those cases behave as before the compact tables.
+// cheap coherent kernel bound, or the bound exceeds the acceptance limit (ill-conditioned
+// systems, which amplify the compact grid's different errors; the attempt then stops after its
+// first level), again on the full grid, so that those cases behave as before the compact
+// tables.
 AdaptiveSolve solve_on_solver_tables(const std::function<const KernelSource&(int level)>& table,
                                      double a_over_t, double tolerance,
                                      const IndependentKernel& independent);
