@@ -8,7 +8,7 @@ module cc_kernel_capi
                                   CC_ERR_ALLOCATION
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
   use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
-                              n_grid_variants, build_stack_kernel_table_variant
+                              evaluate_kernel_h, n_grid_variants, build_stack_kernel_table_variant
   use cc_multilayer_compliance, only: layer_stack, make_layer_stack, stack_compliance, &
                                       stack_compliance_minus_one, max_stack_layers
   use cc_elastic_constants, only: CC_ERR_LAYER_COUNT
@@ -194,17 +194,34 @@ contains
     status = create_table(e1, nu1, e0, nu0, substrate_rigid, int(grid_variant), table)
   end function capi_kernel_table_create_ex
 
+  ! Variant 0 on a compact grid covering [0, u_range] (series beyond), no H1: see cc_kernel.h.
+  integer(c_int) function capi_kernel_table_create_range(e1, nu1, e0, nu0, substrate_rigid, &
+      u_range, table) result(status) bind(C, name="cc_kernel_table_create_range")
+    real(c_double), value, intent(in) :: e1, nu1, e0, nu0, u_range
+    integer(c_int), value, intent(in) :: substrate_rigid
+    type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
+    status = CC_ERR_ARGUMENT
+    if (.not. valid_range(u_range)) return
+    status = create_table(e1, nu1, e0, nu0, substrate_rigid, 0, table, real(u_range, dp))
+  end function capi_kernel_table_create_range
+
+  logical function valid_range(u_range)
+    real(c_double), intent(in) :: u_range
+    valid_range = u_range > 0.0_dp .and. u_range <= huge(1.0_dp)   ! also rejects NaN
+  end function valid_range
+
   integer(c_int) function capi_kernel_grid_variants() result(count) &
       bind(C, name="cc_kernel_grid_variants")
     count = int(n_grid_variants, c_int)
   end function capi_kernel_grid_variants
 
-  integer(c_int) function create_table(e1, nu1, e0, nu0, substrate_rigid, variant, table) &
-      result(status)
+  integer(c_int) function create_table(e1, nu1, e0, nu0, substrate_rigid, variant, table, &
+      u_range) result(status)
     real(c_double), intent(in) :: e1, nu1, e0, nu0
     integer(c_int), intent(in) :: substrate_rigid
     integer, intent(in) :: variant
     type(c_ptr), intent(in) :: table
+    real(dp), intent(in), optional :: u_range
     type(c_ptr), pointer :: handle
     type(kernel_table), pointer :: t
     type(material_pair) :: pair
@@ -223,7 +240,7 @@ contains
       status = CC_ERR_ALLOCATION
       return
     end if
-    call build_kernel_table_variant(pair, variant, t, s)
+    call build_kernel_table_variant(pair, variant, t, s, u_range)
     status = int(s, c_int)
     if (s /= CC_OK) then
       deallocate(t)
@@ -245,6 +262,38 @@ contains
     real(c_double), value, intent(in) :: e_base, nu_base
     integer(c_int), value, intent(in) :: grid_variant
     type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
+    status = create_stack_table(n_layers, thickness, youngs, poisson, slip_below, base_rigid, &
+                                e_base, nu_base, int(grid_variant), table)
+  end function capi_kernel_table_create_stack
+
+  ! Variant 0 of a stack on a compact grid covering [0, u_range], no H1: see cc_kernel.h.
+  integer(c_int) function capi_kernel_table_create_stack_range(n_layers, thickness, youngs, &
+      poisson, slip_below, base_rigid, e_base, nu_base, u_range, table) result(status) &
+      bind(C, name="cc_kernel_table_create_stack_range")
+    integer(c_int), value, intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), value, intent(in) :: base_rigid
+    real(c_double), value, intent(in) :: e_base, nu_base, u_range
+    type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
+    status = CC_ERR_ARGUMENT
+    if (.not. valid_range(u_range)) return
+    status = create_stack_table(n_layers, thickness, youngs, poisson, slip_below, base_rigid, &
+                                e_base, nu_base, 0, table, real(u_range, dp))
+  end function capi_kernel_table_create_stack_range
+
+  integer(c_int) function create_stack_table(n_layers, thickness, youngs, poisson, slip_below, &
+      base_rigid, e_base, nu_base, grid_variant, table, u_range) result(status)
+    integer(c_int), intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), intent(in) :: base_rigid
+    real(c_double), intent(in) :: e_base, nu_base
+    integer, intent(in) :: grid_variant
+    type(c_ptr), intent(in) :: table       ! cc_kernel_table **
+    real(dp), intent(in), optional :: u_range
     type(c_ptr), pointer :: handle
     type(kernel_table), pointer :: t
     type(layer_stack) :: stack
@@ -264,7 +313,7 @@ contains
     if (grid_variant < 0 .or. grid_variant >= n_grid_variants) return
     if (stack%closed_form) then
       status = create_table(youngs(1), poisson(1), e_base, nu_base, base_rigid, &
-                            int(grid_variant), table)
+                            grid_variant, table, u_range)
       return
     end if
     allocate(t, stat=ierr)
@@ -272,14 +321,14 @@ contains
       status = CC_ERR_ALLOCATION
       return
     end if
-    call build_stack_kernel_table_variant(stack, int(grid_variant), t, s)
+    call build_stack_kernel_table_variant(stack, grid_variant, t, s, u_range)
     status = int(s, c_int)
     if (s /= CC_OK) then
       deallocate(t)
       return
     end if
     handle = c_loc(t)
-  end function capi_kernel_table_create_stack
+  end function create_stack_table
 
   subroutine capi_kernel_table_destroy(table) bind(C, name="cc_kernel_table_destroy")
     type(c_ptr), value, intent(in) :: table
@@ -298,17 +347,16 @@ contains
     type(c_ptr), value, intent(in) :: h1           ! optional output: NULL or n doubles
     type(kernel_table), pointer :: t
     real(c_double), pointer :: h1s(:)
-    real(dp), allocatable :: scratch(:)
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table) .or. n < 0) return
     if (any(u /= u) .or. any(abs(u) > huge(1.0_dp))) return   ! NaN or infinite
     call c_f_pointer(table, t)
     if (c_associated(h1)) then
+      if (.not. t%has_h1) return                  ! compact tables hold H only
       call c_f_pointer(h1, h1s, [n])
       call evaluate_kernel_table(t, u, h, h1s)
     else
-      allocate(scratch(n))
-      call evaluate_kernel_table(t, u, h, scratch)
+      h = evaluate_kernel_h(t, u)                 ! H alone: the same values, half the work
     end if
     status = CC_OK
   end function capi_kernel_table_eval

@@ -64,6 +64,11 @@ module cc_kernel_tables
   integer, parameter :: max_stencil = 16
   ! Poles closer to 0 than this are removed analytically; the damping rate of p(q).
   real(dp), parameter :: pole_threshold = 0.05_dp
+  ! Compact grids (u_range, build_table): their short range and period need a Taylor radius
+  ! >~ 1, so poles up to this are removed (stiff films, E1*/E0* >~ 2).
+  real(dp), parameter :: compact_pole_threshold = 0.5_dp
+  ! Smallest compact grid: 2^11 panels (times a stack's refinement), u_max = 40.
+  integer, parameter :: min_compact_panels = 2**11
   real(dp), parameter :: pole_damping = 2.0_dp
   ! Order of the internal series used for the pole removal (D and M are entire: the terms
   ! at order 40 are ~ 4^40/40! relative, negligible).
@@ -88,7 +93,8 @@ module cc_kernel_tables
     integer :: stencil_left = 5            ! the stencil of [i, i+1] is i-left .. i-left+stencil-1
     real(dp) :: lagrange_weight(0:max_stencil - 1) = 0.0_dp   ! 1 / prod_{l /= j} (j - l)
     real(dp), allocatable :: h(:)         ! H(k du),  k = 0 .. n_nodes-1
-    real(dp), allocatable :: h1(:)        ! H1(k du)
+    real(dp), allocatable :: h1(:)        ! H1(k du) (not on compact tables)
+    logical :: has_h1 = .true.
   end type kernel_table
 
   ! What a table is built from: one film (material_pair, THEORY.md section 3) or a stack
@@ -107,7 +113,8 @@ module cc_kernel_tables
   ! layers report CC_ERR_ACCURACY rather than a table that cannot meet its target.
   integer, parameter, public :: max_stack_refine = 32
 
-  public :: build_kernel_table_variant, build_stack_kernel_table_variant, evaluate_kernel_table
+  public :: build_kernel_table_variant, build_stack_kernel_table_variant, evaluate_kernel_table, &
+            evaluate_kernel_h
 
 contains
 
@@ -252,10 +259,11 @@ contains
   ! Looks for a real zero -q0 of D with 0 < q0 < pole_threshold (Newton on the series of D
   ! from -D(0)/D'(0)); if found, stores q0 and the residue R = M(-q0)/D'(-q0) of f and
   ! returns the Taylor coefficients of f - p; else those of f.
-  subroutine remove_near_pole(src, table, r_taylor)
+  subroutine remove_near_pole(src, table, r_taylor, threshold)
     type(kernel_source), intent(in) :: src
     type(kernel_table), intent(inout) :: table
     real(dp), intent(out) :: r_taylor(0:max_taylor_order)
+    real(dp), intent(in) :: threshold
     real(dp), dimension(0:long_order) :: mser, dser, dred, nred, quotient
     real(dp) :: q, step, residue
     integer :: it, status
@@ -266,7 +274,7 @@ contains
     call source_series(src, mser, dser)
     if (dser(1) <= 0.0_dp .or. dser(0) <= 0.0_dp) return
     q = -dser(0) / dser(1)
-    if (q < -pole_threshold) return
+    if (q < -threshold) return
     converged = .false.
     do it = 1, 60
       step = series_value(dser, q) / series_slope(dser, q)
@@ -276,7 +284,7 @@ contains
         exit
       end if
     end do
-    if (.not. converged .or. q >= 0.0_dp .or. q < -pole_threshold) return
+    if (.not. converged .or. q >= 0.0_dp .or. q < -threshold) return
     table%pole_q0 = -q
     dred = series_deflate(dser, table%pole_q0)                 ! D / (q + q0)
     ! residue of f at -q0 is M(-q0)/D'(-q0) = M(-q0)/Dtilde(-q0); p's is R exp(2 q0)
@@ -291,24 +299,26 @@ contains
 
   ! Builds the table on the grid of `variant` (0 .. n_grid_variants - 1, see grid_parameters)
   ! for a validated pair. FFTW planning is serialized by cc_planner_lock.c, so any number of
-  ! threads may build tables; evaluation is read-only.
-  subroutine build_kernel_table_variant(pair, variant, table, status)
+  ! threads may build tables; evaluation is read-only. u_range: a compact grid (build_table).
+  subroutine build_kernel_table_variant(pair, variant, table, status, u_range)
     type(material_pair), intent(in) :: pair
     integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
+    real(dp), intent(in), optional :: u_range
     type(kernel_source) :: src
     src%pair = pair
-    call build_table(src, variant, table, status)
+    call build_table(src, variant, table, status, u_range)
   end subroutine build_kernel_table_variant
 
   ! The same table for a validated stack of more than one layer or with a slip flag (one
   ! bonded layer: build_kernel_table_variant, so that its table is unchanged bit for bit).
-  subroutine build_stack_kernel_table_variant(stack, variant, table, status)
+  subroutine build_stack_kernel_table_variant(stack, variant, table, status, u_range)
     type(layer_stack), intent(in) :: stack
     integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
+    real(dp), intent(in), optional :: u_range
     type(kernel_source) :: src
     src%is_stack = .true.
     src%stack = stack
@@ -318,7 +328,7 @@ contains
     end do
     status = CC_ERR_ACCURACY
     if (src%refine > max_stack_refine) return
-    call build_table(src, variant, table, status)
+    call build_table(src, variant, table, status, u_range)
   end subroutine build_stack_kernel_table_variant
 
   subroutine source_minus_one(src, q, f, status)
@@ -361,11 +371,16 @@ contains
   end subroutine source_taylor
 
   ! Builds the table of `src` on the grid of `variant`.
-  subroutine build_table(src, variant, table, status)
+  ! u_range (variant 0 only): a compact grid, same du, stencil and q_max, whose period and
+  ! range halve while the range still covers u_range (>= 40): a solver that never needs H
+  ! beyond u_range skips most of the FFT work; the asymptotic series is used beyond, as usual.
+  ! Such a table has no H1 (not computed: half the FFT work; evaluate_kernel_h only).
+  subroutine build_table(src, variant, table, status, u_range)
     type(kernel_source), intent(in) :: src
     integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
+    real(dp), intent(in), optional :: u_range
 
     real(c_double), allocatable :: work_in(:), work_out(:)
     real(dp), allocatable :: q(:), r(:), fq(:)
@@ -376,10 +391,20 @@ contains
     type(c_ptr) :: plan
     real(dp) :: u_table, period, t_probe, product
     integer :: n, k, j, ierr, stencil, stencil_left, i_probe
+    logical :: compact
 
     status = CC_OK
     call grid_parameters(variant, n, u_table, period, stencil, stencil_left)
     n = n * src%refine
+    compact = present(u_range) .and. variant == 0
+    if (compact) then
+      do while (n > min_compact_panels * src%refine .and. 0.5_dp * u_table >= u_range)
+        n = n / 2
+        u_table = 0.5_dp * u_table
+        period = 0.5_dp * period
+      end do
+    end if
+    table%has_h1 = .not. compact
     table%grid_variant = variant
     table%stencil = stencil
     table%stencil_left = stencil_left
@@ -397,24 +422,36 @@ contains
     table%c_zero = 1.0_dp + f(0)
     table%half_integral = 0.5_dp * pi * f(0)
 
-    allocate(table%h(0:table%n_nodes - 1), table%h1(0:table%n_nodes - 1), stat=ierr)
+    if (table%has_h1) then
+      allocate(table%h(0:table%n_nodes - 1), table%h1(0:table%n_nodes - 1), stat=ierr)
+    else
+      allocate(table%h(0:table%n_nodes - 1), stat=ierr)
+    end if
     if (ierr /= 0) then
       status = CC_ERR_ALLOCATION
       return
     end if
     table%h = 0.0_dp
-    table%h1 = 0.0_dp
+    if (table%has_h1) table%h1 = 0.0_dp
     if (.not. src%is_stack) then
       if (src%pair%model == MODEL_HOMOGENEOUS) return      ! f = 0 exactly: H = H1 = 0
     end if
 
-    call remove_near_pole(src, table, rt)
+    if (compact) then
+      call remove_near_pole(src, table, rt, compact_pole_threshold)
+    else
+      call remove_near_pole(src, table, rt, pole_threshold)
+    end if
     table%taylor = rt
     call choose_decay_rate(src, table, rt, period - u_table, b)
     table%decay_rate = b
     c = subtraction_coefficients(rt, b)
 
-    allocate(q(0:n), r(0:n), fq(0:n), work_in(0:n), work_out(0:n), stat=ierr)
+    if (compact) then
+      allocate(q(0:n), r(0:n), fq(0:n), work_in(0:2 * n - 1), work_out(0:2 * n - 1), stat=ierr)
+    else
+      allocate(q(0:n), r(0:n), fq(0:n), work_in(0:n), work_out(0:n), stat=ierr)
+    end if
     if (ierr /= 0) then
       status = CC_ERR_ALLOCATION
       return
@@ -426,21 +463,33 @@ contains
     r(0) = 0.0_dp                                     ! exact by construction
 
     ! H_r(k du) = (dq/2) DCT-I(r)_k  (trapezoid rule, endpoints halved by REDFT00)
-    work_in = r
     call cc_planner_lock()
-    plan = fftw_plan_r2r_1d(int(n + 1, c_int), work_in, work_out, FFTW_REDFT00, FFTW_ESTIMATE)
+    if (compact) then
+      ! The DCT-I as the real DFT (R2HC, real parts first) of the even extension of r with
+      ! period 2N: the same sums, and planning a power-of-2 R2HC costs a fraction of planning
+      ! a REDFT00 (~0.5 against ~1.5 ms, most of a one-radius call once the grid is compact).
+      plan = fftw_plan_r2r_1d(int(2 * n, c_int), work_in, work_out, FFTW_R2HC, FFTW_ESTIMATE)
+    else
+      plan = fftw_plan_r2r_1d(int(n + 1, c_int), work_in, work_out, FFTW_REDFT00, FFTW_ESTIMATE)
+    end if
     call cc_planner_unlock()
     if (.not. c_associated(plan)) then
       status = CC_ERR_FFT
       return
     end if
-    work_in = r
+    if (compact) then
+      work_in(0:n) = r
+      work_in(n + 1:2 * n - 1) = r(n - 1:1:-1)
+    else
+      work_in = r
+    end if
     call fftw_execute_r2r(plan, work_in, work_out)
     call cc_planner_lock()
     call fftw_destroy_plan(plan)
     call cc_planner_unlock()
     table%h = 0.5_dp * dq * work_out(0:table%n_nodes - 1)
 
+    if (table%has_h1) then
     ! H1_r(k du) = (dq/2) DST-I(r/q)_(k-1): samples at q_1 .. q_(N-1) (r/q -> 0 at both ends)
     work_in(0:n - 2) = r(1:n - 1) / q(1:n - 1)
     call cc_planner_lock()
@@ -457,6 +506,7 @@ contains
     call cc_planner_unlock()
     table%h1(0) = 0.0_dp
     table%h1(1:table%n_nodes - 1) = 0.5_dp * dq * work_out(0:table%n_nodes - 2)
+    end if
 
     ! Add the analytic transforms of s and p.
     do k = 0, table%n_nodes - 1
@@ -477,7 +527,7 @@ contains
       hs = hs + 120.0_dp * c(5) * real(zk, dp)
       call pole_transforms(table, u, hp, h1p)
       table%h(k) = table%h(k) + hs + hp
-      table%h1(k) = table%h1(k) + h1s + h1p
+      if (table%has_h1) table%h1(k) = table%h1(k) + h1s + h1p
     end do
     table%max_abs_h = maxval(abs(table%h))
 
@@ -495,8 +545,9 @@ contains
     end do
     ! Rounding in the samples (f - p - s) and the transforms.
     rounding_h = 16.0_dp * epsilon(1.0_dp) * (dq * sum(abs(fq)) + maxval(abs(table%h)))
-    rounding_h1 = 16.0_dp * epsilon(1.0_dp) * (dq * sum(abs(r(1:n - 1) / q(1:n - 1))) &
-                  + maxval(abs(table%h1)))
+    rounding_h1 = 0.0_dp
+    if (table%has_h1) rounding_h1 = 16.0_dp * epsilon(1.0_dp) &
+                                     * (dq * sum(abs(r(1:n - 1) / q(1:n - 1))) + maxval(abs(table%h1)))
     ! Interpolation: |H(u + iy)| <= int |f| cosh(qy) dq =: M for |y| <= strip < 2, hence
     ! |H^(m)|/m! <= M / strip^m and the error is <= M (du/strip)^m max_t prod |t - k|.
     strip = 1.5_dp / real(src%refine, dp)
@@ -517,9 +568,19 @@ contains
     tail = gamma(real(max_taylor_order + 1, dp)) * abs(rt(max_taylor_order)) &
            / u_table**(max_taylor_order + 1)
     table%abs_accuracy = alias_h + rounding_h + interp_h + tail
-    if (table%abs_accuracy > relative_target * table%max_abs_h .or. &
-        alias_h1 + rounding_h1 + interp_h1 + tail > relative_target * maxval(abs(table%h1))) &
-      status = CC_ERR_ACCURACY
+    ! Compact grids: the tail and alias estimates above are the last terms of series in
+    ! 1/u_max^2; they are trusted only where those series still fall fast (ratio of the last
+    ! two terms <= 0.1; else a near singularity of f makes them understate: a longer grid).
+    if (compact) then
+      if (gamma(real(max_taylor_order + 1, dp)) * abs(rt(max_taylor_order)) > 0.1_dp &
+          * gamma(real(max_taylor_order - 1, dp)) * abs(rt(max_taylor_order - 2)) * u_table**2) &
+        status = CC_ERR_ACCURACY
+    end if
+    if (table%abs_accuracy > relative_target * table%max_abs_h) status = CC_ERR_ACCURACY
+    if (table%has_h1) then
+      if (alias_h1 + rounding_h1 + interp_h1 + tail > relative_target * maxval(abs(table%h1))) &
+        status = CC_ERR_ACCURACY
+    end if
   end subroutine build_table
 
   ! Table value at integer node index j (any sign): H even, H1 odd.
@@ -583,5 +644,44 @@ contains
     end if
     if (u < 0.0_dp) h1 = -h1
   end subroutine evaluate_kernel_table
+
+  ! H(u) alone (the solver's case; the only evaluation of a table without H1): the same
+  ! values as evaluate_kernel_table, half the work.
+  elemental real(dp) function evaluate_kernel_h(table, u) result(h)
+    type(kernel_table), intent(in) :: table
+    real(dp), intent(in) :: u
+    real(dp) :: v, t, ell, sum_h, inv, inv2, term, fact, h1
+    integer :: i, k
+
+    v = abs(u)
+    if (v <= table%u_max) then
+      t = v / table%du
+      i = int(t)
+      t = t - real(i, dp)
+      if (t == 0.0_dp) then
+        h = table%h(i)
+      else
+        ell = 1.0_dp
+        sum_h = 0.0_dp
+        do k = -table%stencil_left, table%stencil - 1 - table%stencil_left
+          ell = ell * (t - real(k, dp))
+          sum_h = sum_h + table%lagrange_weight(k + table%stencil_left) / (t - real(k, dp)) &
+                          * table%h(abs(i + k))
+        end do
+        h = ell * sum_h
+      end if
+    else
+      call pole_transforms(table, v, h, h1)
+      inv = 1.0_dp / v
+      inv2 = inv * inv
+      term = inv
+      fact = 1.0_dp
+      do k = 0, (max_taylor_order - 1) / 2
+        h = h - (-1.0_dp)**k * fact * real(2 * k + 1, dp) * table%taylor(2 * k + 1) * term * inv
+        term = term * inv2
+        fact = fact * real((2 * k + 1) * (2 * k + 2), dp)
+      end do
+    end if
+  end function evaluate_kernel_h
 
 end module cc_kernel_tables

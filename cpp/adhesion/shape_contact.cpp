@@ -78,7 +78,8 @@ std::vector<ShapePoint> ShapeContact::curve(const std::vector<double>& radii) co
   const long count = static_cast<long>(radii.size());
   std::vector<ShapePoint> out(radii.size());
   std::vector<std::exception_ptr> errors(radii.size());
-#pragma omp parallel for schedule(dynamic, 1)
+  // No parallel region for a single radius: starting it costs more than the solve.
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
   for (long i = 0; i < count; ++i) {
     try {
       out[static_cast<std::size_t>(i)] = at(radii[static_cast<std::size_t>(i)]);

@@ -19,7 +19,16 @@ namespace coatcontact {
 struct ReducedSolver::Impl {
   explicit Impl(const Stack& s) : stack(s) {}
   Stack stack;
-  std::unique_ptr<detail::TableKernel> kernel;
+  std::array<std::once_flag, detail::kSolverTableLevels> level_once;
+  std::array<std::unique_ptr<detail::TableKernel>, detail::kSolverTableLevels> level_table;
+
+  // The table for radii of `level` (detail::solver_table_level), built on first use.
+  const detail::TableKernel& kernel(int level) {
+    const auto k = static_cast<std::size_t>(level);
+    std::call_once(level_once[k], [this, level, k] { level_table[k] = detail::make_solver_table(stack, level); });
+    return *level_table[k];
+  }
+
   // The same H on independent grids (variants 1 and 2), for the a-posteriori kernel-error
   // estimate (docs/solver.md); built on first need (~20-50 ms each), only when the coherent
   // bound is too large for the tolerance (rigid substrates, very soft films, large a/t).
@@ -65,7 +74,7 @@ void check_tolerance(double tolerance) {
 }
 
 ReducedSolver::ReducedSolver(const Stack& stack) : impl_(std::make_unique<Impl>(stack)) {
-  impl_->kernel = std::make_unique<detail::TableKernel>(impl_->stack);
+  impl_->kernel(0);  // constants the kernel library rejects fail here, as before
 }
 
 ReducedSolver::~ReducedSolver() = default;
@@ -77,8 +86,9 @@ const Stack& ReducedSolver::stack() const { return impl_->stack; }
 ReducedVariables ReducedSolver::solve(double a_over_t, double tolerance) const {
   check_arguments(a_over_t, tolerance);
   Impl* impl = impl_.get();
-  const detail::AdaptiveSolve solution = detail::solve_adaptive(
-      *impl->kernel, a_over_t, tolerance, [impl](int index) { return impl->independent_kernel(index); });
+  const detail::AdaptiveSolve solution = detail::solve_on_solver_tables(
+      [impl](int level) -> const detail::KernelSource& { return impl->kernel(level); }, a_over_t,
+      tolerance, [impl](int index) { return impl->independent_kernel(index); });
   if (!solution.converged) {
     std::ostringstream message;
     message.precision(3);
@@ -126,7 +136,8 @@ std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_
   std::vector<ReducedVariables> results(a_over_t.size());
   std::vector<std::exception_ptr> errors(a_over_t.size());
   // Each radius is independent and deterministic: the parallel result equals the serial one.
-#pragma omp parallel for schedule(dynamic, 1)
+  // No parallel region for a single radius: starting it costs more than the solve.
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
   for (long i = 0; i < count; ++i) {
     try {
       results[static_cast<std::size_t>(i)] = solve(a_over_t[static_cast<std::size_t>(i)], tolerance);

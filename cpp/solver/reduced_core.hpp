@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "kernel_source.hpp"
@@ -71,6 +72,7 @@ struct AdaptiveSolve {
   KernelErrorKind kernel_error_kind = KernelErrorKind::kCoherentBound;
   int unknowns = 0;
   int nodes_per_panel = 0;
+  int table_level = 0;                // the kernel table used (solve_on_solver_tables)
   bool converged = false;
 };
 
@@ -87,7 +89,10 @@ constexpr int kMaxNodesPerPanel = 48;
 // that is <= tolerance / 10; otherwise, once the discretization has converged, kTwoTableSafety
 // times the max relative difference of the six outputs from re-solves at the same
 // discretization with `independent`'s tables (an a-posteriori estimate).
+// bound_limit: give up (converged = false) right after the first level when its coherent
+// bound exceeds this (a caller that would discard such a solve; solve_on_solver_tables).
 AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a_over_t, double tolerance,
-                             const IndependentKernel& independent = {});
+                             const IndependentKernel& independent = {},
+                             double bound_limit = std::numeric_limits<double>::infinity());
 
 }  // namespace coatcontact::detail

@@ -1,6 +1,9 @@
 // The Fortran kernel table (coatcontact::KernelTable, cpp/include/coatcontact/kernel.hpp) as
 // the solver's KernelSource (internal to coatcontact_solver).
 #pragma once
+#include <functional>
+#include <memory>
+
 #include "coatcontact/kernel.hpp"
 #include "coatcontact/stack.hpp"
 #include "reduced_core.hpp"
@@ -14,6 +17,8 @@ class TableKernel : public KernelSource {
   // grid_variant: the table's grid (0 = default; 1, 2 = independent grids used to estimate
   // the effect of the table's errors a posteriori, docs/solver.md).
   explicit TableKernel(const Stack& stack, int grid_variant = 0);
+  // Grid variant 0 on a compact grid that tabulates at least [0, u_range] (series beyond).
+  TableKernel(const Stack& stack, double u_range);
 
   void evaluate(std::size_t n, const double* u, double* h) const override;
   // C - 1 ~ q² e^{-2q}: H is analytic in |Im u| < 2 (THEORY.md section 4); a stack's
@@ -26,5 +31,27 @@ class TableKernel : public KernelSource {
   KernelTableInfo info_;
   double half_width_ = 2.0;
 };
+
+// Tables sized to the work: the solver needs H at |x +- y| <= 2 a/t only, so radii up to
+// kSolverTableRange[k] / 2 use a compact table of that range (a fraction of the full grid's
+// FFT work, which dominated a one-radius call); the last level is the full default grid. The
+// level depends on a/t alone, so a radius gets the same values whatever else is solved.
+// One compact level (u <= 80, a/t <= 40): beyond it the coherent bound nearly always exceeds
+// the compact tables' acceptance limit (table_kernel.cpp), and the first-level solves spent
+// finding that out made the 200-radius sweep 10% slower than the full grid alone (with
+// compact levels 320 and 1280 as well).
+constexpr int kSolverTableLevels = 2;
+int solver_table_level(double a_over_t);
+// The table of `level`: a compact grid that misses its accuracy target falls back to the
+// next level's grid.
+std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level);
+// solve_adaptive on the table of a/t's level, `table(level)`; where that is not decided by the
+// cheap coherent kernel bound, or the bound exceeds the acceptance limit (ill-conditioned
+// systems, which amplify the compact grid's different errors; the attempt then stops after its
+// first level), again on the full grid, so that those cases behave as before the compact
+// tables.
+AdaptiveSolve solve_on_solver_tables(const std::function<const KernelSource&(int level)>& table,
+                                     double a_over_t, double tolerance,
+                                     const IndependentKernel& independent);
 
 }  // namespace coatcontact::detail

@@ -57,6 +57,13 @@ void test_estimate_bounds_reference() {
     const Stack stack = Stack::film_on(c.film, c.substrate);
     const ReducedSolver solver(stack);
     const detail::TableKernel t1(stack, 1), t2(stack, 2);
+    // The tables solve() uses (sized to a/t, detail::solve_on_solver_tables).
+    std::unique_ptr<detail::TableKernel> tables[detail::kSolverTableLevels];
+    const auto table_of = [&](int level) -> const detail::TableKernel& {
+      auto& t = tables[level];
+      if (!t) t = detail::make_solver_table(stack, level);
+      return *t;
+    };
     for (double a : radii) {
       ReducedVariables v;
       try {
@@ -65,11 +72,12 @@ void test_estimate_bounds_reference() {
         std::printf("%-24s a/t %6g: NumericalError (allowed): %s\n", c.name, a, e.what());
         continue;
       }
-      // solve() uses the default table (grid variant 0); the same loop here must agree exactly.
-      const detail::TableKernel table(stack, 0);
-      const auto adaptive = detail::solve_adaptive(
-          table, a, kTolerance,
+      // solve() uses the table of a/t's level (or the full grid); the same loop here must
+      // agree exactly, and the reference is solved on the table that loop ended on.
+      const auto adaptive = detail::solve_on_solver_tables(
+          [&](int level) -> const detail::KernelSource& { return table_of(level); }, a, kTolerance,
           [&](int index) -> const detail::KernelSource* { return index == 0 ? &t1 : &t2; });
+      const detail::TableKernel& table = table_of(adaptive.table_level);
       check::that(max_relative_difference(adaptive.values, v) == 0.0,
                   std::string(c.name) + ": same values as solve() at a/t " + std::to_string(a));
       detail::Discretization disc;

@@ -207,11 +207,35 @@ class KernelTable {
     table_.reset(raw);
   }
 
+  // Grid variant 0 on a compact grid tabulating at least [0, u_range], H only
+  // (cc_kernel_table_create_range): for callers that never need H beyond u_range nor H1
+  // (eval with an h1 output then throws InputError). NumericalError where the compact grid
+  // misses the accuracy target (then use a larger range or the full grid).
+  KernelTable(const Stack& stack, double u_range)
+      : scale_(kernel_detail::indenter_scale(stack)), rho_(stack.indenter_ratio()) {
+    cc_kernel_table* raw = nullptr;
+    int status = CC_OK;
+    if (stack.is_multilayer()) {
+      const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
+      status = cc_kernel_table_create_stack_range(a.n(), a.thickness.data(), a.youngs.data(),
+                                                  a.poisson.data(), a.slip.data(), a.rigid,
+                                                  a.e_base, a.nu_base, u_range, &raw);
+    } else {
+      const auto p = kernel_detail::film_pair(stack);
+      status = cc_kernel_table_create_range(p.e1, p.nu1, p.e0, p.nu0, p.rigid, u_range, &raw);
+    }
+    kernel_detail::check_status(status, stack, "kernel table");
+    table_.reset(raw);
+  }
+
   // h[i] = H(u[i]), h1[i] = H1(u[i]) (h1 may be null).
   void eval(const double* u, std::size_t n, double* h, double* h1 = nullptr) const {
     const int status = cc_kernel_table_eval(table_.get(), kernel_detail::checked_size(n, "H(u)"),
                                             u, h, h1);
-    if (status == CC_ERR_ARGUMENT) throw InputError("kernel H(u): u must be finite");
+    if (status == CC_ERR_ARGUMENT) {
+      throw InputError(h1 != nullptr ? "kernel H(u): u must be finite (and H1 needs a full table)"
+                                     : "kernel H(u): u must be finite");
+    }
     if (status != CC_OK) throw NumericalError(std::string("kernel H(u): ") + cc_status_message(status));
     if (scale_ != 1.0) {
       for (std::size_t i = 0; i < n; ++i) h[i] *= scale_;
