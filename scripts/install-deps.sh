@@ -6,10 +6,6 @@ set -euo pipefail
 packages=(
   gfortran g++ cmake make pkg-config
   libgsl-dev liblapack-dev liblapacke-dev libblas-dev libfftw3-dev
-  # OpenBLAS built on the same OpenMP runtime as coatcontact: Debian's alternatives make it
-  # liblapack.so.3/libblas.so.3 (LU ~13% less CPU on a 200-radius sweep than the reference
-  # LAPACK); inside coatcontact's parallel regions it runs single-threaded, so no oversubscription.
-  libopenblas0-openmp
   gnuplot-nox python3
   # the Python package and its tests (python/, examples/python/)
   python3-dev python3-numpy pybind11-dev python3-pytest python3-matplotlib
