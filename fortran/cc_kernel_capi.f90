@@ -8,7 +8,8 @@ module cc_kernel_capi
                                   CC_ERR_ALLOCATION
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
   use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
-                              evaluate_kernel_h, n_grid_variants, build_stack_kernel_table_variant
+                              evaluate_kernel_h, n_grid_variants, build_stack_kernel_table_variant, &
+                              max_stack_refine
   use cc_multilayer_compliance, only: layer_stack, make_layer_stack, stack_compliance, &
                                       stack_compliance_minus_one, max_stack_layers
   use cc_elastic_constants, only: CC_ERR_LAYER_COUNT
@@ -214,6 +215,11 @@ contains
       bind(C, name="cc_kernel_grid_variants")
     count = int(n_grid_variants, c_int)
   end function capi_kernel_grid_variants
+
+  integer(c_int) function capi_kernel_stack_max_refinement() result(refinement) &
+      bind(C, name="cc_kernel_stack_max_refinement")
+    refinement = int(max_stack_refine, c_int)
+  end function capi_kernel_stack_max_refinement
 
   integer(c_int) function create_table(e1, nu1, e0, nu0, substrate_rigid, variant, table, &
       u_range) result(status)

@@ -48,6 +48,9 @@ for _ in $(seq 1001); do many+=(--layer 1,1,0.3); done
 bad --layer kernel "${many[@]}" --substrate 1,0.3 --q 1
 bad --thickness sphere --radius 5um --thickness 1um --layer 1um,1GPa,0.3 --substrate 10GPa,0.25 --work 50mJ/m2
 bad --film kernel --substrate 1,0.3 --q 1
+# A top layer thinner than T/32 cannot have a kernel table: refused before any work.
+bad --layer reduced --layer 0.03,10,0.3 --layer 1,1,0.45 --substrate 100,0.2 --a-over-t 1
+bad --layer pulloff --layer 1,10,0.3 --layer 40,1,0.45 --substrate 100,0.2 --eta 1
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures failure(s)"

@@ -153,16 +153,25 @@ int main() {
     check::that(same, "one bonded layer: the one-film table bit for bit");
   }
 
-  // Bad input: a top layer thinner than T/32 cannot reach the target (NumericalError), a bad
-  // thickness is InputError from the stack.
+  // Bad input: a top layer thinner than T/32 is refused before the build (InputError from
+  // the C++ table; CC_ERR_ACCURACY from the C one), a bad thickness is InputError from the stack.
   {
-    bool numerical = false;
+    bool refused = false;
     try {
       coatcontact::KernelTable t(Stack({layer(1, 1, 0.3), layer(100, 2, 0.3)}, elastic(1, 0.3)));
-    } catch (const coatcontact::NumericalError&) {
-      numerical = true;
+    } catch (const coatcontact::InputError& e) {
+      refused = std::string(e.what()).find("1/32") != std::string::npos;
     }
-    check::that(numerical, "top layer < T/32: NumericalError");
+    check::that(refused, "top layer < T/32: InputError naming the 1/32 limit");
+    {
+      cc_kernel_table* thin = nullptr;
+      const double h[2] = {1.0, 100.0}, e[2] = {1.0, 2.0}, nu[2] = {0.3, 0.3};
+      const int slip[2] = {0, 0};
+      check::that(cc_kernel_table_create_stack(2, h, e, nu, slip, 0, 1.0, 0.3, 0, &thin) == CC_ERR_ACCURACY &&
+                      thin == nullptr,
+                  "top layer < T/32 through the C table: CC_ERR_ACCURACY");
+      check::that(cc_kernel_stack_max_refinement() == 32, "cc_kernel_stack_max_refinement: 32");
+    }
     cc_kernel_table* raw = nullptr;
     const double h[2] = {1.0, -1.0}, e[2] = {1.0, 1.0}, nu[2] = {0.3, 0.3};
     const int slip[2] = {0, 0};

@@ -123,6 +123,22 @@ inline void scale_values(std::vector<double>& values, double scale) {
 }
 
 
+// A stack table's grid is refined ~T/h_top times (THEORY.md section 12: C - 1 decays like
+// exp(-2 q h_top/T)) up to cc_kernel_stack_max_refinement(): a thinner top layer is refused
+// here with its numbers, not after a failed build.
+inline void check_stack_table_supported(const Stack& stack) {
+  if (!stack.is_multilayer()) return;
+  const double fraction = stack.layers().front().thickness / stack.total_thickness();
+  const int refinement = cc_kernel_stack_max_refinement();
+  if (fraction * refinement < 1.0) {
+    throw InputError("the top layer is " + detail::short_text(fraction) +
+                     " of the stack's total thickness T; kernel tables need at least 1/" +
+                     std::to_string(refinement) + " (their grid grows like T/h_top, THEORY.md "
+                     "section 12): give the top layer (--layer) at least T/" +
+                     std::to_string(refinement) + " or merge it with the layer below");
+  }
+}
+
 }  // namespace kernel_detail
 
 // C(q) at each q >= 0 (InputError for negative or non-finite q or bad constants).
@@ -192,6 +208,7 @@ class KernelTable {
                        " is not allowed (must be in [0, " +
                        std::to_string(cc_kernel_grid_variants() - 1) + "])");
     }
+    kernel_detail::check_stack_table_supported(stack);
     cc_kernel_table* raw = nullptr;
     int status = CC_OK;
     if (stack.is_multilayer()) {  // THEORY.md section 12: q and u in units of T
@@ -213,6 +230,7 @@ class KernelTable {
   // misses the accuracy target (then use a larger range or the full grid).
   KernelTable(const Stack& stack, double u_range)
       : scale_(kernel_detail::indenter_scale(stack)), rho_(stack.indenter_ratio()) {
+    kernel_detail::check_stack_table_supported(stack);
     cc_kernel_table* raw = nullptr;
     int status = CC_OK;
     if (stack.is_multilayer()) {

@@ -118,6 +118,10 @@ int cc_kernel_table_create_stack_range(int n_layers, const double *thickness,
 /* Number of grid variants (4). */
 int cc_kernel_grid_variants(void);
 
+/* Largest refinement of a stack's table grid (32): a stack table needs a top layer of at
+ * least T / cc_kernel_stack_max_refinement() (thinner ones report CC_ERR_ACCURACY). */
+int cc_kernel_stack_max_refinement(void);
+
 /* H(u[i]) and H1(u[i]) for any real u (H even, H1 odd); h1 may be NULL (then H alone is
  * evaluated; a compact table, cc_kernel_table_create_range, requires NULL).
  * Beyond the tabulated range the asymptotic expansion in 1/u^2 is used. */
