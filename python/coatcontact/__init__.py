@@ -427,7 +427,8 @@ def fit_stack(x, F, stack=None, *, layers=None, substrate=None, indenter=None, k
     The stack is given as everywhere else in the package, either a Stack or layers=
     [(h [m], E [Pa], nu[, slip]), ...] (top first) with substrate= and indenter=; here the
     layer thicknesses are lengths in m (not just ratios): with the moduli they are the
-    fixed values, or the start values of the free ones.
+    fixed values, or the start values of the free ones. (A Stack made with film= has one
+    layer 1 m thick: give layers= instead.)
 
     x, F    arrays: contact radius a [m] (> 0; kind="a") or penetration delta [m]
             (kind="delta"), and force F [N], compressive positive.
