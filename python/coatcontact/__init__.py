@@ -14,7 +14,10 @@ Functions
     adhesive_curve  normalized JKR curve P(a_bar), D(a_bar) at one eta (section 5)
     pulloff         normalized pull-off under load and displacement control (section 5)
     contact         sphere on a coating in SI units: a [m], delta [m], F [N], pull-off (section 5)
-    fit             least-squares w (t, E1) from measured (a, F) or (delta, F) data
+    fit             least-squares w (t, E1) of one film from measured (a, F) or (delta, F) data
+    fit_stack       least-squares fit of any of w, h1..hN, E1..EN of a layered coating
+    stack_parameter_names
+                    the parameter names of a stack fit, in the order of its arrays
     pulloff_spring  pull-off through a spring of normalized stiffness k_bar (section 10)
     maugis_dugdale_curve, maugis_dugdale_pulloff
                     finite interaction zone, lambda = 2 sigma0 (R/(pi w K^2))^(1/3) (section 13)
@@ -46,7 +49,8 @@ from . import _core
 from ._core import NumericalError
 
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",
-           "reduced", "adhesive_curve", "pulloff", "contact", "fit", "pulloff_spring",
+           "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
+           "stack_parameter_names", "pulloff_spring",
            "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "REDUCED_KEYS"]
 
 NumericalError.__doc__ = ("A result could not be delivered to its tolerance (the command "
@@ -397,6 +401,124 @@ def fit(x, F, *, kind="a", radius, film, substrate, thickness, work=None, free=(
     # The fitted curve: the same model at the estimates, through the SI contact.
     fitted = Stack((value[2], film[1]), substrate=substrate, indenter=indenter)
     c = Contact(_model(fitted, _DEFAULT_TOL), radius, value[1], value[0])
+    out["curve"] = c.curve(curve_points)
+    if kind == "a":
+        out["F_model"] = c.at(x)["F"]
+        out["residual"] = out["F_model"] - F
+    return out
+
+
+def stack_parameter_names(layers):
+    """Names of a stack fit's parameters, in the order of fit_stack()'s arrays: w, then the
+    thicknesses h1..hN, then the moduli E1..EN (N layers, top first). One layer: w, t, E1
+    (h1 is accepted for t), as fit()."""
+    n = int(layers)
+    if n < 1:
+        raise ValueError("layers: a stack has at least one layer, got %d" % n)
+    if n == 1:
+        return ("w", "t", "E1")
+    return ("w",) + tuple("h%d" % (i + 1) for i in range(n)) + tuple("E%d" % (i + 1) for i in range(n))
+
+
+def fit_stack(x, F, stack=None, *, layers=None, substrate=None, indenter=None, kind="a", radius,
+              work=None, free=("w",), curve_points=200):
+    """Least-squares fit of any parameters of a layered coating (residuals in force).
+
+    The stack is given as everywhere else in the package, either a Stack or layers=
+    [(h [m], E [Pa], nu[, slip]), ...] (top first) with substrate= and indenter=; here the
+    layer thicknesses are lengths in m (not just ratios): with the moduli they are the
+    fixed values, or the start values of the free ones. (A Stack made with film= has one
+    layer 1 m thick: give layers= instead.)
+
+    x, F    arrays: contact radius a [m] (> 0; kind="a") or penetration delta [m]
+            (kind="delta"), and force F [N], compressive positive.
+    radius  sphere radius R [m].
+    work    w [J/m^2]: fixed value or start value; default (when w is free) from the most
+            tensile force through the JKR pull-off F_min = -(3/2) pi w R, as fit().
+    free    names among stack_parameter_names(N): "w", "h1".."hN", "E1".."EN" (one layer:
+            "w", "t" or "h1", "E1"), as a sequence or a comma-separated string; default w.
+
+    Returns a dict: names (all parameters, in order), value and standard_error (arrays in
+    that order; error 0 for fixed parameters), estimates, errors and units (dicts by name),
+    free (the names, in the order of `names`), start (dict by name), residual_sigma
+    = sqrt(RSS/(n - p)) [N], points, curve (the fitted model: a, delta, F on curve_points
+    radii) and, for kind="a", F_model and residual (F_model - F) at the data points.
+    The C interface does not return the correlation of a stack fit: there is no
+    correlation or covariance key (fit() has them for one film). One adhesion energy for
+    all points: loading and unloading branches with their own w (w_load, w_unload) are not
+    available through the C interface.
+
+    Raises ValueError naming the bad argument, NumericalError when the fit does not
+    converge, the parameters are not identifiable or the model does not describe the data.
+    """
+    if kind not in ("a", "delta"):
+        raise ValueError("kind: %r is neither 'a' nor 'delta'" % (kind,))
+    if stack is not None:
+        if layers is not None or substrate is not None or indenter is not None:
+            raise ValueError("stack: give either a Stack or layers=/substrate=/indenter=, not both")
+        if not isinstance(stack, Stack):
+            raise ValueError("stack: expected a coatcontact.Stack, got %r" % type(stack).__name__)
+    else:
+        if layers is None:
+            raise ValueError("layers: give a Stack or layers=[(h, E, nu), ...] and substrate=")
+        if isinstance(layers, (str, bytes)) or not hasattr(layers, "__len__") or len(layers) == 0:
+            raise ValueError("layers: expected a non-empty list of (h [m], E [Pa], nu[, slip]), got %r" % (layers,))
+        stack = Stack(layers=layers, substrate=substrate, indenter=indenter)
+    names = stack_parameter_names(len(stack.layers))
+    if isinstance(free, str):
+        free = [s.strip() for s in free.split(",")]
+    free = ["t" if (name == "h1" and len(stack.layers) == 1) else name for name in free]
+    if not free:
+        raise ValueError("free: no parameter named (allowed: %s)" % ", ".join(names))
+    for name in free:
+        if name not in names:
+            raise ValueError("free: %r is not a parameter of this %d-layer stack (allowed: %s)"
+                             % (name, len(stack.layers), ", ".join(names)))
+    if len(set(free)) != len(free):
+        raise ValueError("free: a parameter is named twice in %r" % (free,))
+    try:
+        radius = float(radius)
+    except (TypeError, ValueError):
+        raise ValueError("radius: expected a number [m], got %r" % (radius,)) from None
+    if not (math.isfinite(radius) and radius > 0):
+        raise ValueError("radius: the sphere radius must be finite and > 0 m, got %r" % radius)
+    x = np.ascontiguousarray(np.asarray(x, dtype=float).ravel())
+    F = np.ascontiguousarray(np.asarray(F, dtype=float).ravel())
+    if x.shape != F.shape:
+        raise ValueError("F: %d forces for %d x values" % (F.size, x.size))
+    if work is None:
+        if "w" not in free:
+            raise ValueError("work: w is fixed, give it with work=... (or add 'w' to free)")
+        f_min = float(F.min()) if F.size else 0.0
+        work = f_min / (-1.5 * math.pi * radius) if f_min < 0.0 else 0.05
+    work = float(work)
+    if not (math.isfinite(work) and work > 0):
+        raise ValueError("work: the work of adhesion must be finite and > 0 J/m^2, got %r" % work)
+
+    kind_code = _core.FIT_RADIUS_FORCE if kind == "a" else _core.FIT_PENETRATION_FORCE
+    r = _core.fit_stack(stack._core, kind_code, x, F, radius, work, ",".join(free), len(names))
+    value, error = r["value"], r["standard_error"]
+    n_layers = len(stack.layers)
+    start = [work] + [layer[0] for layer in stack.layers] + [layer[1] for layer in stack.layers]
+    out = {
+        "names": names,
+        "value": value,
+        "standard_error": error,
+        "estimates": {n: float(value[i]) for i, n in enumerate(names)},
+        "errors": {n: float(error[i]) for i, n in enumerate(names)},
+        "units": {n: ("J/m^2" if n == "w" else "Pa" if n.startswith("E") else "m") for n in names},
+        "free": tuple(n for n in names if n in free),
+        "start": {n: float(start[i]) for i, n in enumerate(names)},
+        "residual_sigma": r["residual_sigma"],
+        "points": int(x.size),
+    }
+
+    # The fitted curve: the stack at the estimates, through the SI contact.
+    thickness = value[1:1 + n_layers]
+    moduli = value[1 + n_layers:]
+    fitted = Stack(layers=[(thickness[i], moduli[i], layer[2], layer[3]) for i, layer in enumerate(stack.layers)],
+                   substrate=stack.substrate, indenter=stack.indenter)
+    c = Contact(_model(fitted, _DEFAULT_TOL), radius, float(thickness.sum()), float(value[0]))
     out["curve"] = c.curve(curve_points)
     if kind == "a":
         out["F_model"] = c.at(x)["F"]

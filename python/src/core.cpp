@@ -246,6 +246,34 @@ py::dict fit(const Stack& stack, int kind, const InArray& x, const InArray& forc
   return d;
 }
 
+// Fit of any parameters of a stack (cc_fit_stack): the parameter vector is w, h1..hN, E1..EN
+// (N layers, top first). The C API gives estimates, standard errors and sigma only; the
+// correlation of a stack fit does not cross it.
+py::dict fit_stack(const Stack& stack, int kind, const InArray& x, const InArray& force, double radius,
+                   double work_start, const std::string& free_names, int parameter_count) {
+  const int n = count_of(x);
+  if (count_of(force) != n) {
+    throw py::value_error("fit_stack: x has " + std::to_string(n) + " points, F " +
+                          std::to_string(force.shape(0)));
+  }
+  if (parameter_count < 3) throw py::value_error("fit_stack: parameter_count < 3");
+  py::array_t<double> value(parameter_count), error(parameter_count);
+  double sigma = 0.0;
+  const double* px = x.data();
+  const double* pf = force.data();
+  double* pv = value.mutable_data();
+  double* pe = error.mutable_data();
+  call_released([&] {
+    return cc_fit_stack(stack.handle.get(), kind, n, px, pf, radius, work_start, free_names.c_str(),
+                        parameter_count, pv, pe, &sigma);
+  });
+  py::dict d;
+  d["value"] = value;
+  d["standard_error"] = error;
+  d["residual_sigma"] = sigma;
+  return d;
+}
+
 // Spring control on a Model (THEORY.md section 10): one row (P, a_bar, D) per k_bar.
 py::array_t<double> pulloff_spring(const Model& model, double eta, const InArray& k_bar) {
   const int n = count_of(k_bar);
@@ -401,6 +429,7 @@ PYBIND11_MODULE(_core, m) {
       .def("pulloff", &Contact::pulloff);
 
   m.def("fit", &fit);
+  m.def("fit_stack", &fit_stack);
 
   m.def("pulloff_spring", &pulloff_spring);
   py::class_<MaugisDugdale>(m, "MaugisDugdale")

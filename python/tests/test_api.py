@@ -79,7 +79,7 @@ def test_help_reads_well():
     for word in ("reduced", "adhesive_curve", "pulloff", "contact", "fit", "Stack", "NumericalError",
                  "THEORY.md", "[m]", "[N]", "Pa"):
         assert word in text
-    for f in (cc.reduced, cc.adhesive_curve, cc.pulloff, cc.contact, cc.fit, cc.Stack):
+    for f in (cc.reduced, cc.adhesive_curve, cc.pulloff, cc.contact, cc.fit, cc.fit_stack, cc.Stack):
         assert f.__doc__ and len(f.__doc__) > 200, f.__name__
 
 
