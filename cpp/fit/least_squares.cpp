@@ -28,6 +28,9 @@ struct FitContext {
   std::vector<int> free_index;  // parameter index of each GSL variable
   Parameters start;
   std::vector<double> scale;  // per point: 1/sigma_eff, or 1/max|F| when unweighted
+  // |F_model - F| below which a residual is the model's own noise [N]: the interpolant's values
+  // are accurate to the solver tolerance relative to the forces.
+  double noise_floor = 0.0;
   std::exception_ptr error;
 
   Parameters parameters(const gsl_vector* x) const {
@@ -93,6 +96,7 @@ struct Stage {
   Parameters values;
   double cost = 0.0;
   bool gradient_small = false;  // for GSL_ENOPROG
+  bool residuals_at_noise_floor = false;  // every |F_model - F| <= noise_floor (exact data)
 };
 
 Stage run_stage(FitContext& ctx, int max_iterations) {
@@ -136,6 +140,12 @@ Stage run_stage(FitContext& ctx, int max_iterations) {
     const gsl_vector* f = gsl_multifit_nlinear_residual(work.get());
     const gsl_matrix* J = gsl_multifit_nlinear_jac(work.get());
     const double f_norm = gsl_blas_dnrm2(f);
+    // Data without noise: the residuals are the interpolant's own rounding, their direction is
+    // random, and the gradient test cannot pass; the fit is then as good as the model allows.
+    stage.residuals_at_noise_floor = true;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (std::fabs(gsl_vector_get(f, i)) > ctx.noise_floor * ctx.scale[i]) stage.residuals_at_noise_floor = false;
+    }
     stage.gradient_small = true;
     for (std::size_t j = 0; j < p_count; ++j) {
       double g = 0.0;
@@ -161,6 +171,9 @@ Minimum minimize(Model& model, const Problem& problem, const std::vector<int>& f
   ctx.free_index = free_index;
   ctx.start = start;
   ctx.scale = scale;
+  double largest_force = 0.0;
+  for (double f : model.data().force) largest_force = std::max(largest_force, std::fabs(f));
+  ctx.noise_floor = problem.solver_tolerance * largest_force;
 
   Minimum result;
   // With several free parameters, w alone is fitted first (a 1-D problem that always has a
@@ -176,7 +189,7 @@ Minimum minimize(Model& model, const Problem& problem, const std::vector<int>& f
     first.free_index = work_index;
     try {
       const Stage stage = run_stage(first, problem.max_iterations);
-      if (stage.status == GSL_SUCCESS || stage.status == GSL_ENOPROG) {
+      if (stage.status == GSL_SUCCESS || stage.status == GSL_ENOPROG || stage.residuals_at_noise_floor) {
         for (int which : work_index) ctx.start.values[which] = stage.values.values[which];
         result.iterations += stage.iterations;
       }
@@ -190,6 +203,8 @@ Minimum minimize(Model& model, const Problem& problem, const std::vector<int>& f
   result.cost = stage.cost;
   if (stage.status == GSL_SUCCESS) {
     result.stop_reason = stage.info == 1 ? "small step" : "small gradient";
+  } else if (stage.residuals_at_noise_floor) {
+    result.stop_reason = "residuals at the model's noise level (data without noise)";
   } else if (stage.status == GSL_ENOPROG || (stage.status == GSL_EMAXITER && stage.gradient_small)) {
     // (A start at the minimum itself, as the global search gives, can leave the step test
     // unmet by the interpolant's noise: the gradient decides.)
