@@ -36,7 +36,8 @@ namespace {
 const std::vector<OptionSpec>& fit_options() {
   static const std::vector<OptionSpec> spec = {
       {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F (F,a, F,delta reversed) for a two-column file, or name=position|header-name for any file (names a|delta, F, sigma_a|sigma_delta, sigma_F, branch: 1 loading, 0 unloading)", true},
-      {"--radius", "R", "sphere radius (length, e.g. 5mm)", true},
+      {"--radius", "R", "sphere radius (length, e.g. 5mm); or --shape"},
+      {"--shape", "SPEC", "any axisymmetric indenter instead of the sphere, as in 'contact --shape': sphere:R, cone:BETA (half included angle, e.g. 70deg), punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (columns r z). The shape's own parameters are fixed; w, t/h_i, E_i are fitted as for the sphere (no --curve, --plot)"},
       {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted); or --layer", false},
       layer_option(true),
       substrate_option(),
@@ -482,7 +483,7 @@ int run_fit_body(const Args& args) {
   if (arguments.help()) {
     std::cout << usage(
         "fit",
-        "DATA --columns a,F|delta,F --radius R (--film E1,nu1 | --layer h,E,nu[,slip] ...) --substrate E0,nu0|rigid "
+        "DATA --columns a,F|delta,F (--radius R | --shape SPEC) (--film E1,nu1 | --layer h,E,nu[,slip] ...) --substrate E0,nu0|rigid "
         "[--free w[,t][,E1] | --free w,h1..hN,E1..EN] [--start w=..,t=..,E1=..] [--thickness t] [--work w] "
         "[--branch load|unload|both] [--sigma a=..,F=..] [--bootstrap N [--seed N]] [--indenter E2,nu2] "
         "[--output FILE] [--curve FILE] [--plot FILE.png|FILE.pdf]",
@@ -500,6 +501,9 @@ int run_fit_body(const Args& args) {
         "model is taken on the stable branch under displacement control. DATA: TSV/CSV or '-'\n"
         "(stdin), '#' comments, units from a '# units: um mN' line or column names like 'a (um)'; SI\n"
         "otherwise. F is compressive positive.\n"
+        "--shape SPEC replaces the sphere by any indenter of 'contact --shape' (cone, flat punch, power\n"
+        "law, blunted cone, measured profile; THEORY.md section 11): the model is then solved directly\n"
+        "at each data point (slower: seconds to minutes), the shape's own parameters stay fixed.\n"
         "Exit 2: bad input; exit 3: no convergence, parameters not determined, or no model fit.",
         spec);
     return kExitSuccess;
@@ -518,7 +522,20 @@ int run_fit_body(const Args& args) {
 
   // ---- physical parameters ----
   fit::Problem problem;
-  problem.sphere_radius = parse_quantity(arguments.require("--radius"), Quantity::kLength, "--radius");
+  if (const auto text = arguments.get("--shape")) {
+    if (arguments.has("--radius")) {
+      throw InputError("--shape and --radius exclude each other (a sphere is --radius R or --shape sphere:R)");
+    }
+    if (arguments.has("--curve") || arguments.has("--plot")) {
+      throw InputError("--shape: --curve and --plot draw the sphere's interpolated curve only; the fitted table "
+                       "(--output) has the model at every data point");
+    }
+    std::string profile_end;
+    problem.shape = parse_shape(*text, profile_end);
+  } else {
+    if (!arguments.has("--radius")) throw InputError("missing required option --radius R (or --shape SPEC) (see --help)");
+    problem.sphere_radius = parse_quantity(arguments.require("--radius"), Quantity::kLength, "--radius");
+  }
   // --film (one film of thickness t) or --layer, repeated (a stack whose layers carry their
   // thicknesses); parse_stack refuses both together and checks the constants.
   const bool stack_given = arguments.has("--layer");
@@ -635,7 +652,7 @@ int run_fit_body(const Args& args) {
                        "); points out of contact are not on the equilibrium curve, remove them");
     }
     // A contact radius at or above R is not a sphere contact: almost always forgotten units.
-    if (radius_data && all.abscissa[i] >= problem.sphere_radius) {
+    if (!problem.shape && radius_data && all.abscissa[i] >= problem.sphere_radius) {
       throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
                        short_number(all.abscissa[i]) + " m is not below the sphere radius --radius " +
                        short_number(problem.sphere_radius) + " m" +
@@ -644,7 +661,16 @@ int run_fit_body(const Args& args) {
                                            "newtons: add a line '# units: um mN' (or name the columns 'a (um)', 'F (mN)')"));
     }
   }
-  if (!radius_data && !loaded.has_units) {
+  if (problem.shape && radius_data) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (all.abscissa[i] > problem.shape->max_contact_radius()) {
+        throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
+                         short_number(all.abscissa[i]) + " m exceeds the largest radius of --shape (" +
+                         problem.shape->description() + ")");
+      }
+    }
+  }
+  if (!problem.shape && !radius_data && !loaded.has_units) {
     double largest = 0.0;
     for (double d : all.abscissa) largest = std::max(largest, std::fabs(d));
     if (largest >= problem.sphere_radius) {
@@ -689,7 +715,7 @@ int run_fit_body(const Args& args) {
     // Without a hint the search needs none: t ~ the middle of the contact radii (a/t ~ 1).
     double middle = 0.0;
     for (double x : data.abscissa) middle = std::max(middle, std::fabs(x));
-    if (!radius_data) middle = std::sqrt(problem.sphere_radius * middle);
+    if (!radius_data && !problem.shape) middle = std::sqrt(problem.sphere_radius * middle);
     problem.thickness = start[fit::kThickness].value_or(thickness.value_or(0.3 * middle));
   } else {
     if (!thickness) throw InputError("t is fixed: give it with --thickness (or add t to --free)");
@@ -701,10 +727,12 @@ int run_fit_body(const Args& args) {
     } else if (work) {
       problem.work = *work;
     } else {
-      problem.work = fit::jkr_work_estimate(data, problem.sphere_radius);
+      // A shape has no sphere radius for the JKR estimate: the search finds w on its own.
+      problem.work = problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius);
     }
     if (hysteresis) {
-      problem.unload_work = start[unload_index].value_or(work.value_or(fit::jkr_work_estimate(data, problem.sphere_radius)));
+      problem.unload_work = start[unload_index].value_or(
+          work.value_or(problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius)));
     }
   } else {
     if (!work) throw InputError("w is fixed: give it with --work (or add w to --free)");
@@ -750,7 +778,20 @@ int run_fit_body(const Args& args) {
     }
   }
 
-  const fit::Result result = fit::fit(data, problem);
+  const fit::Result result = [&] {
+    try {
+      return fit::fit(data, problem);
+    } catch (const NumericalError& error) {
+      // An unweighted fit assumes an exact abscissa; scatter in a (or delta) near the steep
+      // part of the curve then drags w to the edge of its range. Say so and how to fix it.
+      const std::string what = error.what();
+      const bool runaway = what.find("the data do not determine w") != std::string::npos;
+      if (!runaway || !data.sigma_abscissa.empty() || !data.sigma_force.empty()) throw;
+      throw NumericalError(what + ". No uncertainties were given: if " + x_name +
+                           " is noisy, that noise may dominate an unweighted fit in force; give both, e.g. --sigma " +
+                           x_name + "=2%,F=1uN (or sigma columns), to weight each point by its effective variance");
+    }
+  }();
 
   // ---- output ----
   std::vector<std::pair<std::string, std::string>> header;
@@ -767,7 +808,11 @@ int run_fit_body(const Args& args) {
                                         "; pull-offs predicted with w_unload");
   }
   header.emplace_back("points", std::to_string(result.points) + " (of " + std::to_string(all.size()) + " in the file)");
-  header.emplace_back("sphere_radius_m", number(problem.sphere_radius));
+  if (problem.shape) {
+    header.emplace_back("indenter_shape", problem.shape->description());
+  } else {
+    header.emplace_back("sphere_radius_m", number(problem.sphere_radius));
+  }
   if (stack_given) {
     std::string layers_text;
     for (std::size_t i = 0; i < layer_count; ++i) {

@@ -42,7 +42,7 @@ constexpr double kDistinctMinimum = 0.05;
 void validate(const Measurements& data, const Problem& problem) {
   const std::size_t n = data.size();
   if (data.abscissa.size() != n) throw InputError("fit: abscissa and force columns differ in length");
-  if (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius)) {
+  if (!problem.shape && (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius))) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
   if (problem.hysteresis) {
@@ -357,6 +357,7 @@ Result fit(const Measurements& data, const Problem& problem) {
 }
 
 CurvePoint exact_point(const Problem& problem, double radius) {
+  if (problem.shape) throw InputError("exact_point: the sphere only (a shape's model is ShapeContact::at)");
   const Parameters p = internal::problem_parameters(problem);
   if (!(radius > 0.0) || !(p.total_thickness() > 0.0)) throw InputError("exact_point: a and t must be > 0");
   coatcontact::detail::GslHandlerOff handler_off;
@@ -372,6 +373,7 @@ std::vector<CurvePoint> model_curve(const Problem& problem, double radius_min, d
   if (!(radius_min > 0.0) || !(radius_max >= radius_min) || count < 2) {
     throw InputError("model_curve: need 0 < a_min <= a_max and at least 2 points");
   }
+  if (problem.shape) throw InputError("model_curve: the sphere only (a shape's curve is ShapeContact::curve)");
   coatcontact::detail::GslHandlerOff handler_off;
   const Parameters p = internal::problem_parameters(problem);
   const internal::ModelEntry entry(problem, internal::StackKey::of(p));

@@ -148,6 +148,11 @@ ModelEntry::ModelEntry(const Problem& problem, const StackKey& key) : key_(key) 
     layers[i].thickness = key.relative_thickness[i];
     layers[i].material.youngs_modulus = key.modulus[i];
   }
+  if (problem.shape) {
+    // A shape: direct solves on the shape floor's factorization, no reduced table.
+    shape_solver_ = std::make_unique<ShapeSolver>(Stack(layers, problem.substrate, problem.indenter));
+    return;
+  }
   solver_ = std::make_unique<ReducedSolver>(Stack(layers, problem.substrate, problem.indenter));
   // The minimum of D lies at a_bar = 1/2 (top layer) and r/2 (base) in the JKR limits
   // (THEORY.md section 6): scanning up to 2 max(1, r), not the default 10 max(1, r), finds it
@@ -166,7 +171,9 @@ ModelEntry& ModelCache::get(const Parameters& p) {
     }
   }
   if (entries_.size() >= capacity_) {
-    retired_calls_ += static_cast<long>(entries_.back()->model().table().source_evaluations());
+    if (entries_.back()->has_model()) {
+      retired_calls_ += static_cast<long>(entries_.back()->model().table().source_evaluations());
+    }
     entries_.pop_back();
   }
   entries_.insert(entries_.begin(), std::make_unique<ModelEntry>(problem_, key));
@@ -175,7 +182,9 @@ ModelEntry& ModelCache::get(const Parameters& p) {
 
 long ModelCache::solver_calls() const {
   long calls = retired_calls_;
-  for (const auto& e : entries_) calls += static_cast<long>(e->model().table().source_evaluations());
+  for (const auto& e : entries_) {
+    if (e->has_model()) calls += static_cast<long>(e->model().table().source_evaluations());
+  }
   return calls;
 }
 
@@ -371,6 +380,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
 }
 
 ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data_, bool with_pulloff) {
+  if (problem_.shape) return evaluate_shape(p, data_, with_pulloff);
   const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p);
   const double total_thickness = p.total_thickness();
   const std::size_t n = data_.size();
@@ -489,6 +499,135 @@ ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data
   return out;
 }
 
+ShapeContact Model::shape_contact(const Parameters& branch) {
+  return ShapeContact(cache_.get(branch).shape_solver(), problem_.shape, branch.total_thickness(), branch.work(),
+                      problem_.solver_tolerance);
+}
+
+// Problem::shape: F and delta from ShapeContact at each radius (THEORY.md sections 5, 11). At
+// fixed a, F = F_H + S delta_fp and delta = delta_H + delta_fp with delta_fp ~ sqrt(w), so
+// dF/d ln w = (F - F_H)/2 and d delta/d ln w = (delta - delta_H)/2 exactly; d/da along the
+// curve is a central difference in ln a. delta,F data: a* >= a_c on the stable branch as for
+// the sphere, a_c the displacement-controlled pull-off of ShapeContact::pulloff.
+ModelAtData Model::evaluate_shape(const Parameters& p, const Measurements& data, bool with_pulloff) {
+  const ShapeContact contact = shape_contact(p);
+  const double total_thickness = p.total_thickness();
+  const std::size_t n = data.size();
+  ModelAtData out;
+  out.radius.resize(n);
+  out.penetration.resize(n);
+  out.force.resize(n);
+  out.force_lnw.resize(n);
+  out.force_lnt.assign(n, 0.0);  // not used: t is differenced in force_derivatives
+  out.slope.assign(n, 0.0);
+  out.force_x.assign(n, 0.0);
+  out.clamped.assign(n, false);
+  const auto check_radius = [&](double a) {
+    const double x = a / total_thickness;
+    if (!(x >= kMinAOverT && x <= kMaxAOverT)) {
+      throw NumericalError("the model needs a/t = " + short_text(x) + ", outside [" + short_text(kMinAOverT) + ", " +
+                           short_text(kMaxAOverT) + "]");
+    }
+    if (a > problem_.shape->max_contact_radius()) {
+      throw NumericalError("the model needs a contact radius " + short_text(a) + " m beyond the shape's largest, " +
+                           short_text(problem_.shape->max_contact_radius()) + " m");
+    }
+  };
+  const auto at = [&](double a) {
+    ++shape_calls_;
+    return contact.at(a);
+  };
+  // dF/da and d delta/da along the curve (relative step kStep in a).
+  const auto along = [&](double a) {
+    const ShapePoint up = at(a * std::exp(kStep)), down = at(a * std::exp(-kStep));
+    const double da = a * (std::exp(kStep) - std::exp(-kStep));
+    return std::array<double, 2>{(up.force - down.force) / da, (up.penetration - down.penetration) / da};
+  };
+  const bool radius_data = data.kind == DataKind::kRadiusForce;
+  const bool need_slope = !data.sigma_abscissa.empty();
+  if (!radius_data || with_pulloff) {
+    ShapePulloff pulloff;
+    bool found = false;
+    try {
+      pulloff = contact.pulloff(0.0);
+      found = true;
+    } catch (const NumericalError&) {
+      if (!radius_data) throw;
+    }
+    if (found) {
+      if (pulloff.load.interior) {
+        out.has_load_pulloff = true;
+        out.load_pulloff_radius = pulloff.load.radius;
+        out.load_pulloff_penetration = pulloff.load.penetration;
+        out.load_pulloff_force = pulloff.load.force;
+      }
+      if (pulloff.displacement.interior) {
+        out.has_pulloff = true;
+        out.pulloff_radius = pulloff.displacement.radius;
+        out.pulloff_penetration = pulloff.displacement.penetration;
+        out.pulloff_force = pulloff.displacement.force;
+      } else if (!radius_data) {
+        throw NumericalError("delta(a) of the shape has no minimum for a in [" + short_text(pulloff.scan_min) + ", " +
+                             short_text(pulloff.scan_max) + "] m (no displacement-controlled pull-off)");
+      }
+    }
+  }
+  if (radius_data) {
+    for (std::size_t i = 0; i < n; ++i) check_radius(data.abscissa[i]);
+    const std::vector<ShapePoint> points = contact.curve(data.abscissa);
+    shape_calls_ += static_cast<long>(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      out.radius[i] = points[i].radius;
+      out.penetration[i] = points[i].penetration;
+      out.force[i] = points[i].force;
+      out.force_lnw[i] = (points[i].force - points[i].force_h) / 2.0;
+      if (need_slope) out.force_x[i] = along(points[i].radius)[0];
+    }
+    return out;
+  }
+  const double a_c = out.pulloff_radius;
+  const double delta_max = *std::max_element(data.abscissa.begin(), data.abscissa.end());
+  std::vector<double> grid{a_c};
+  std::vector<double> grid_delta{out.pulloff_penetration};
+  while (grid_delta.back() < delta_max) {
+    if (grid.size() > kMaxBracketSteps) {
+      throw NumericalError("the model's delta(a) stays below the largest measured delta up to a = " +
+                           short_text(grid.back()) + " m");
+    }
+    const double a = std::min(grid.back() * kBracketRatio, problem_.shape->max_contact_radius());
+    if (!(a > grid.back())) throw NumericalError("the largest measured delta is beyond the shape's largest radius");
+    check_radius(a);
+    grid.push_back(a);
+    grid_delta.push_back(at(a).penetration);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double delta = data.abscissa[i];
+    double a = a_c;
+    if (delta <= out.pulloff_penetration) {
+      out.clamped[i] = true;
+    } else {
+      std::size_t k = 1;
+      while (grid_delta[k] < delta) ++k;
+      a = find_root([&](double r) { return at(r).penetration - delta; }, grid[k - 1], grid[k]);
+    }
+    const ShapePoint s = at(a);
+    out.radius[i] = a;
+    out.penetration[i] = s.penetration;
+    out.force[i] = s.force;
+    const double force_lnw = (s.force - s.force_h) / 2.0;
+    const double penetration_lnw = (s.penetration - s.penetration_h) / 2.0;
+    if (out.clamped[i]) {
+      out.force_lnw[i] = force_lnw;
+    } else {
+      const auto d = along(a);
+      out.slope[i] = d[0] / d[1];
+      out.force_x[i] = out.slope[i];
+      out.force_lnw[i] = force_lnw - out.slope[i] * penetration_lnw;
+    }
+  }
+  return out;
+}
+
 std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, const ModelAtData& m,
                                                           const std::vector<int>& which) {
   const std::size_t n = m.radius.size();
@@ -510,8 +649,28 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
           if (data.unloading[i] != is_unload_work) column[i] = 0.0;
         }
       }
-    } else if (parameter == kThickness && p.layers == 1) {
+    } else if (parameter == kThickness && p.layers == 1 && !problem_.shape) {
       column = m.force_lnt;
+    } else if (problem_.shape) {
+      // Direct solves at the model radii for p e^(+-h); at fixed measured delta the residual
+      // moves by dF - slope d delta (as below).
+      for (double sign : {1.0, -1.0}) {
+        const Parameters q = shifted(sign);
+        check_range(q);
+        coatcontact::detail::GslHandlerOff handler_off;
+        try {
+          const ShapeContact load = shape_contact(q.branch(false));
+          const ShapeContact unload = shape_contact(q.branch(true));
+          for (std::size_t i = 0; i < n; ++i) {
+            const bool unloading = q.hysteresis && data_->unloading[i];
+            const ShapePoint s = (unloading ? unload : load).at(m.radius[i]);
+            ++shape_calls_;
+            column[i] += sign * (s.force - m.slope[i] * s.penetration) / (2.0 * kStep);
+          }
+        } catch (const std::exception&) {
+          rethrow_at(q);
+        }
+      }
     } else {
       // F and delta at the model radii for p e^(+-h) (a new table: C(q) changes); at fixed
       // measured delta the residual moves by dF - slope d delta.
@@ -542,6 +701,11 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
 
 std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, double k) {
   coatcontact::detail::GslHandlerOff handler_off;
+  if (problem_.shape) {
+    const ShapeJump s = shape_contact(p.branch(true)).pulloff(k).spring;
+    if (!s.interior) return std::nullopt;
+    return std::array<double, 3>{s.radius, s.penetration, s.force};
+  }
   const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p.branch(true));
   cm.prepare_pulloff();
   // k_bar = k (l^2/R) / (pi w R): the stiffness in the Maugis units of force and penetration.
@@ -554,6 +718,7 @@ std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, 
 }
 
 double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
+  if (problem_.shape) return 0.0;  // every model value of a shape fit is a direct solve
   coatcontact::detail::GslHandlerOff handler_off;
   const ModelEntry& entry = cache_.get(p);
   const ContactModel cm(entry.model(), problem_.sphere_radius, p.branch(false));

@@ -13,6 +13,8 @@
 #include "coatcontact/contact.hpp"
 #include "coatcontact/fit.hpp"
 #include "coatcontact/reduced.hpp"
+#include "coatcontact/shape_contact.hpp"
+#include "coatcontact/shape_solver.hpp"
 
 namespace coatcontact::fit::internal {
 
@@ -65,9 +67,13 @@ class ModelEntry {
   const AdhesiveModel& model() const { return *model_; }
   const ReducedSolver& solver() const { return *solver_; }
   const StackKey& key() const { return key_; }
+  bool has_model() const { return model_ != nullptr; }
+  // A fit with Problem::shape: the shape floor's solver on the same stack (no table, no model).
+  const ShapeSolver& shape_solver() const { return *shape_solver_; }
 
  private:
   StackKey key_;
+  std::unique_ptr<ShapeSolver> shape_solver_;
   std::unique_ptr<ReducedSolver> solver_;  // declared first: the model keeps a reference
   std::unique_ptr<AdhesiveModel> model_;
 };
@@ -149,7 +155,7 @@ class Model {
   // max |F_exact - F_model| over (up to 16 of) the data points, the reduced variables solved
   // directly at each model radius (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error(const Parameters& p, const ModelAtData& m);
-  long solver_calls() const { return cache_.solver_calls() + check_calls_; }
+  long solver_calls() const { return cache_.solver_calls() + check_calls_ + shape_calls_; }
   // Pull-off through a spring of stiffness k [N/m] at p: {a, delta, F} (SI), or nothing when
   // the jump is not inside the scanned range.
   std::optional<std::array<double, 3>> spring_pulloff(const Parameters& p, double k);
@@ -163,6 +169,9 @@ class Model {
   ModelAtData evaluate(const Parameters& p, bool with_pulloff);
   // One w for every point of `data`.
   ModelAtData evaluate_single(const Parameters& p, const Measurements& data, bool with_pulloff);
+  // The same through ShapeContact (Problem::shape): direct solves at every radius.
+  ModelAtData evaluate_shape(const Parameters& p, const Measurements& data, bool with_pulloff);
+  ShapeContact shape_contact(const Parameters& branch);
   void check_range(const Parameters& p) const;
   [[noreturn]] void rethrow_at(const Parameters& p) const;
 
@@ -171,6 +180,7 @@ class Model {
   ModelCache cache_;
   std::vector<ParameterInfo> names_;
   long check_calls_ = 0;
+  long shape_calls_ = 0;  // ShapeContact::at calls (shape fits)
 };
 
 }  // namespace coatcontact::fit::internal

@@ -76,7 +76,21 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   } else {
     double d = 0.0;
     for (double x : data.abscissa) d = std::max(d, std::fabs(x));
-    a_hi = std::sqrt(problem.sphere_radius * d);
+    if (problem.shape) {
+      // delta0(a) = |delta|: the adhesionless radius of the largest penetration (bisection in ln a).
+      double lo = 1e-15, hi = std::min(1.0, problem.shape->max_contact_radius());
+      if (problem.shape->flat() || problem.shape->delta0(hi) <= d) {
+        lo = hi;
+      } else {
+        for (int i = 0; i < 200 && hi / lo > 1.0 + 1e-9; ++i) {
+          const double mid = std::sqrt(lo * hi);
+          (problem.shape->delta0(mid) < d ? lo : hi) = mid;
+        }
+      }
+      a_hi = hi;
+    } else {
+      a_hi = std::sqrt(problem.sphere_radius * d);
+    }
     a_lo = 0.1 * a_hi;
   }
 
@@ -109,7 +123,8 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   if (is_free(kWork) && !radius_data) {
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
-    const double estimate = f_min < 0.0 ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
+    const double estimate =
+        f_min < 0.0 && !problem.shape ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
     const std::vector<double> w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
                                                       : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
     axes.push_back({static_cast<std::size_t>(kWork), w_axis});

@@ -38,6 +38,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "coatcontact/indenter_shape.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/stack.hpp"
 
@@ -94,7 +97,13 @@ inline std::size_t modulus_index(std::size_t layer, std::size_t layers) { return
 inline std::size_t unload_work_index(std::size_t layers) { return 1 + 2 * layers; }
 
 struct Problem {
-  double sphere_radius = 0.0;  // R [m]
+  double sphere_radius = 0.0;  // R [m] (unused with `shape`)
+  // Any axisymmetric indenter instead of the sphere (THEORY.md section 11): the model is then
+  // the adhesion floor's ShapeContact, solved directly at every model radius (no interpolant;
+  // w enters only through delta_fp ~ sqrt(w), so dF/d ln w stays analytic, the other
+  // derivatives are central differences in ln p). Null: the sphere of radius sphere_radius.
+  // The shape's own parameters (cone angle, tip radius, ...) are fixed.
+  std::shared_ptr<const IndenterShape> shape;
   Material film;               // E1 (hint and centre of the search range if free, else fixed), nu1
   Substrate substrate;
   double thickness = 0.0;  // t [m] (a hint to the search if free, else fixed)
