@@ -61,7 +61,16 @@ void validate(const Measurements& data, const Problem& problem) {
     };
     if (!named(kWork) || !named(w_unload)) throw InputError("fit: w_load and w_unload are free together");
   }
-  if (problem.layers.empty() && !problem.hysteresis) {
+  if (problem.base_displacement) {
+    if (data.kind != DataKind::kPenetrationForce) {
+      throw InputError("fit: base-displacement data are z,F data (the penetration kind)");
+    }
+    if (problem.shape) throw InputError("fit: base-displacement (z,F) data with a shape are not supported");
+    if (!(problem.spring_stiffness > 0.0) || !std::isfinite(problem.spring_stiffness)) {
+      throw InputError("fit: z,F data need the spring stiffness k > 0 (got " + short_text(problem.spring_stiffness) + ")");
+    }
+  }
+  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement) {
     Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
   } else {
     if (problem.layers.empty()) {
@@ -70,7 +79,7 @@ void validate(const Measurements& data, const Problem& problem) {
       Stack(problem.layers, problem.substrate, problem.indenter);
     }
     const std::size_t layer_count = problem.layers.empty() ? 1 : problem.layers.size();
-    const std::size_t count = parameter_list(layer_count, problem.hysteresis).size();
+    const std::size_t count = parameter_list(layer_count, problem.hysteresis, problem.base_displacement).size();
     for (std::size_t which : problem.free_parameters) {
       if (which >= count) {
         throw InputError("fit: free parameter index " + std::to_string(which) + " is outside the " +
@@ -134,7 +143,7 @@ const char* parameter_name(int parameter) {
   }
 }
 
-std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis) {
+std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis, bool spring) {
   std::vector<ParameterInfo> list;
   list.push_back({ParameterKind::kWork, 0, hysteresis ? "w_load" : "w", "J/m2"});
   for (std::size_t i = 0; i < layers; ++i) {
@@ -144,6 +153,7 @@ std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis) {
     list.push_back({ParameterKind::kModulus, i, "E" + std::to_string(i + 1), "Pa"});
   }
   if (hysteresis) list.push_back({ParameterKind::kWork, 0, "w_unload", "J/m2"});
+  if (spring) list.push_back({ParameterKind::kSpring, 0, "k", "N/m"});
   return list;
 }
 
@@ -260,7 +270,9 @@ Result fit(const Measurements& data, const Problem& problem) {
   const std::vector<double> final_scale = weighted ? inv_sigma : scale;
   if (problem.spring_stiffness > 0.0) {
     try {
-      if (const auto s = model.spring_pulloff(minimum.values, problem.spring_stiffness)) {
+      // z,F data: through the fitted (or fixed) k of the parameter vector.
+      const double k = problem.base_displacement ? minimum.values.values.back() : problem.spring_stiffness;
+      if (const auto s = model.spring_pulloff(minimum.values, k)) {
         result.has_spring_pulloff = true;
         result.spring_pulloff_radius = (*s)[0];
         result.spring_pulloff_penetration = (*s)[1];

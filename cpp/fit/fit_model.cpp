@@ -88,6 +88,10 @@ ReducedPoint frozen(ReducedPoint r) {
 Parameters Parameters::branch(bool unloading) const {
   Parameters out(std::vector<double>(values.begin(), values.begin() + static_cast<long>(1 + 2 * layers)), layers);
   out.values[kWork] = unloading ? unload_work() : work();
+  if (spring) {
+    out.values.push_back(stiffness());
+    out.spring = true;
+  }
   return out;
 }
 
@@ -112,12 +116,13 @@ Parameters problem_parameters(const Problem& problem) {
     v[modulus_index(i, n)] = layers[i].material.youngs_modulus;
   }
   if (problem.hysteresis) v[unload_work_index(n)] = problem.unload_work;
-  return Parameters(std::move(v), n, problem.hysteresis);
+  if (problem.base_displacement) v.push_back(problem.spring_stiffness);
+  return Parameters(std::move(v), n, problem.hysteresis, problem.base_displacement);
 }
 
 std::vector<int> free_indices(const Problem& problem) {
   std::vector<int> out;
-  if (problem.layers.empty() && !problem.hysteresis) {
+  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement) {
     for (int which = 0; which < kParameterCount; ++which) {
       if (problem.free[which]) out.push_back(which);
     }
@@ -262,10 +267,13 @@ namespace {
 // spare (the legacy minimum of four for one film).
 std::size_t cache_capacity(const Problem& problem) {
   const Parameters p = problem_parameters(problem);
-  const std::vector<ParameterInfo> names = parameter_list(p.layers, p.hysteresis);
+  const std::vector<ParameterInfo> names = parameter_list(p.layers, p.hysteresis, p.spring);
   std::size_t changing = 0;
   for (int which : free_indices(problem)) {
-    if (names[which].kind != ParameterKind::kWork && !(which == kThickness && p.layers == 1)) ++changing;
+    if (names[which].kind != ParameterKind::kWork && names[which].kind != ParameterKind::kSpring &&
+        !(which == kThickness && p.layers == 1)) {
+      ++changing;
+    }
   }
   return std::max<std::size_t>(4, 2 + 2 * changing);
 }
@@ -273,7 +281,7 @@ std::size_t cache_capacity(const Problem& problem) {
 
 Model::Model(const Problem& problem, const Measurements& data)
     : problem_(problem), data_(&data), cache_(problem, cache_capacity(problem)),
-      names_(parameter_list(problem_layers(problem).size(), problem.hysteresis)) {}
+      names_(parameter_list(problem_layers(problem).size(), problem.hysteresis, problem.base_displacement)) {}
 
 void Model::check_range(const Parameters& p) const {
   for (std::size_t which = 0; which < p.values.size(); ++which) {
@@ -291,6 +299,9 @@ void Model::check_range(const Parameters& p) const {
   for (std::size_t which = 0; which < p.values.size(); ++which) {
     const double v = p.values[which];
     const ParameterInfo& info = names_[which];
+    if (info.kind == ParameterKind::kSpring && (!(v > 0.0) || !std::isfinite(v))) {
+      throw NumericalError("k ran to " + short_text(v) + " N/m: the data do not determine the spring stiffness k");
+    }
     if (info.kind == ParameterKind::kThickness && (!(v > 0.0) || !std::isfinite(v))) {
       throw NumericalError(info.name + " ran to " + short_text(v) + " m: the data do not determine " + info.name);
     }
@@ -402,6 +413,9 @@ ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data
   };
 
   const bool radius_data = data_.kind == DataKind::kRadiusForce;
+  // z,F data (p.spring): the abscissa is z = delta + F/k; a_c is then the spring pull-off.
+  const double compliance = p.spring ? 1.0 / p.stiffness() : 0.0;
+  double spring_radius = 0.0, spring_force = 0.0, spring_base = 0.0;
   if (!radius_data || with_pulloff) {
     // For delta,F data the displacement-controlled pull-off bounds the stable branch (a failure
     // to find it fails the evaluation); for a,F data the pull-offs are only reported.
@@ -427,7 +441,19 @@ ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data
         out.pulloff_radius = a_c;
         out.pulloff_penetration = c.penetration * cm.contact().penetration_scale();
         out.pulloff_force = c.load * cm.contact().force_scale();
-      } else if (!radius_data) {
+      }
+      if (p.spring) {
+        // z = delta + F/k data: the branch stable under spring control starts at its pull-off.
+        const double k_bar = p.stiffness() * cm.contact().penetration_scale() / cm.contact().force_scale();
+        const SpringPulloff s = cm.contact().model().pulloff_spring(cm.contact().eta(), k_bar);
+        if (!s.point.interior) {
+          throw NumericalError("delta + F/k has no minimum in the scanned range at k = " + short_text(p.stiffness()) +
+                               " N/m (no spring-controlled pull-off)");
+        }
+        spring_radius = s.point.a_bar * cm.contact().length_scale();
+        spring_force = s.point.load * cm.contact().force_scale();
+        spring_base = s.point.penetration * cm.contact().penetration_scale() + spring_force / p.stiffness();
+      } else if (!c.interior && !radius_data) {
         throw NumericalError("delta(a) has no minimum for a_bar in [" + short_text(pulloff->a_bar_scan_min) +
                              ", " + short_text(pulloff->a_bar_scan_max) +
                              "] (no displacement-controlled pull-off)");
@@ -452,12 +478,15 @@ ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data
     return out;
   }
 
-  // delta,F data: each measured delta at a* >= a_c on the stable branch (fit.hpp).
-  const double a_c = out.pulloff_radius;
+  // delta,F data: each measured delta at a* >= a_c on the stable branch (fit.hpp); z,F data
+  // the same with delta + F/k in place of delta.
+  const double a_c = p.spring ? spring_radius : out.pulloff_radius;
+  const double x_c = p.spring ? spring_base : out.pulloff_penetration;
+  const auto abscissa = [&](const SiPoint& s) { return s.penetration + compliance * s.force; };
   const double delta_max = *std::max_element(data_.abscissa.begin(), data_.abscissa.end());
   // Grid upwards from a_c until delta exceeds the largest measured one.
   std::vector<double> grid{a_c};
-  std::vector<double> grid_delta{out.pulloff_penetration};
+  std::vector<double> grid_delta{x_c};
   while (grid_delta.back() < delta_max) {
     if (grid.size() > kMaxBracketSteps) {
       throw NumericalError("the model's delta(a) stays below the largest measured delta up to a = " +
@@ -466,18 +495,18 @@ ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data
     const double a = grid.back() * kBracketRatio;
     check_a_over_t(a);
     grid.push_back(a);
-    grid_delta.push_back(cm.at(a).penetration);
+    grid_delta.push_back(abscissa(cm.at(a)));
   }
   for (std::size_t i = 0; i < n; ++i) {
     const double delta = data_.abscissa[i];
     double a = a_c;
-    if (delta <= out.pulloff_penetration) {
+    if (delta <= x_c) {
       out.clamped[i] = true;
     } else {
       // The first crossing above a_c (the branch reached continuously from the pull-off).
       std::size_t k = 1;
       while (grid_delta[k] < delta) ++k;
-      a = find_root([&](double r) { return cm.at(r).penetration - delta; }, grid[k - 1], grid[k]);
+      a = find_root([&](double r) { return abscissa(cm.at(r)) - delta; }, grid[k - 1], grid[k]);
     }
     const SiPoint s = cm.at(a);
     out.radius[i] = a;
@@ -490,10 +519,10 @@ ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data
       out.force_lnt[i] = s.force_lnt;
     } else {
       // a*(p) from delta(a*, p) = delta_i: d a*/dp = -delta_p / delta_a.
-      out.slope[i] = s.force_a / s.penetration_a;
+      out.slope[i] = s.force_a / (s.penetration_a + compliance * s.force_a);
       out.force_x[i] = out.slope[i];
-      out.force_lnw[i] = s.force_lnw - out.slope[i] * s.penetration_lnw;
-      out.force_lnt[i] = s.force_lnt - out.slope[i] * s.penetration_lnt;
+      out.force_lnw[i] = s.force_lnw - out.slope[i] * (s.penetration_lnw + compliance * s.force_lnw);
+      out.force_lnt[i] = s.force_lnt - out.slope[i] * (s.penetration_lnt + compliance * s.force_lnt);
     }
   }
   return out;
@@ -649,6 +678,12 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
           if (data.unloading[i] != is_unload_work) column[i] = 0.0;
         }
       }
+    } else if (p.spring && static_cast<std::size_t>(parameter) + 1 == p.values.size()) {
+      // k: at fixed a, z moves by d(F/k)/d ln k = -F/k; at fixed measured z the residual moves by
+      // -slope times that (0 at clamped points, where a = a_c).
+      for (std::size_t i = 0; i < n; ++i) {
+        column[i] = m.clamped[i] ? 0.0 : m.slope[i] * m.force[i] / p.stiffness();
+      }
     } else if (parameter == kThickness && p.layers == 1 && !problem_.shape) {
       column = m.force_lnt;
     } else if (problem_.shape) {
@@ -687,7 +722,8 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
           for (std::size_t i = 0; i < n; ++i) {
             const bool unloading = q.hysteresis && data_->unloading[i];
             const SiPoint s = (unloading ? cm_unload : cm).at(m.radius[i]);
-            column[i] += sign * (s.force - m.slope[i] * s.penetration) / (2.0 * kStep);
+            const double x = s.penetration + (q.spring ? s.force / q.stiffness() : 0.0);
+            column[i] += sign * (s.force - m.slope[i] * x) / (2.0 * kStep);
           }
         } catch (const std::exception&) {
           rethrow_at(q);
@@ -739,7 +775,9 @@ double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
     const std::size_t i = index[k];
     const SiPoint exact = (p.hysteresis && data_->unloading[i] ? cm_unload : cm).exact(solved[k], m.radius[i]);
     // At fixed measured delta, moving to the exact curve changes F by -slope * (delta mismatch).
-    const double difference = exact.force - m.force[i] - m.slope[i] * (exact.penetration - m.penetration[i]);
+    const double compliance = p.spring ? 1.0 / p.stiffness() : 0.0;
+    const double difference = exact.force - m.force[i] -
+                              m.slope[i] * (exact.penetration - m.penetration[i] + compliance * (exact.force - m.force[i]));
     error = std::max(error, std::fabs(difference));
   }
   return error;

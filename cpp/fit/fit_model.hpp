@@ -23,15 +23,17 @@ struct Parameters {
   std::vector<double> values;
   std::size_t layers = 1;
   bool hysteresis = false;  // w_unload follows the moduli
+  bool spring = false;      // k last (Problem::base_displacement)
 
   Parameters() = default;
   Parameters(double work, double thickness, double film_modulus)  // one film
       : values{work, thickness, film_modulus} {}
-  Parameters(std::vector<double> v, std::size_t layer_count, bool two_works = false)
-      : values(std::move(v)), layers(layer_count), hysteresis(two_works) {}
+  Parameters(std::vector<double> v, std::size_t layer_count, bool two_works = false, bool with_spring = false)
+      : values(std::move(v)), layers(layer_count), hysteresis(two_works), spring(with_spring) {}
+  double stiffness() const { return values.back(); }  // k [N/m] (spring only)
   double work() const { return values[kWork]; }
   double unload_work() const { return hysteresis ? values[unload_work_index(layers)] : work(); }
-  // The parameters of one branch: one w (its own), no w_unload.
+  // The parameters of one branch: one w (its own), no w_unload (k kept).
   Parameters branch(bool unloading) const;
   double thickness(std::size_t layer) const { return values[thickness_index(layer)]; }
   double modulus(std::size_t layer) const { return values[modulus_index(layer, layers)]; }

@@ -130,6 +130,11 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     axes.push_back({static_cast<std::size_t>(kWork), w_axis});
     if (hint.hysteresis) axes.push_back({unload_index, w_axis});
   }
+  // The spring of z,F data (last in the parameter vector): within kSearchSpringFactor of its hint.
+  if (hint.spring && is_free(hint.values.size() - 1)) {
+    const double k = hint.stiffness();
+    axes.push_back({hint.values.size() - 1, log_axis(k / kSearchSpringFactor, k * kSearchSpringFactor, kCoarsePointsPerDecade)});
+  }
   // The group of each point for the profiled w: 0, or 1 on the unloading branch.
   std::vector<int> group(data.size(), 0);
   if (hint.hysteresis) {
