@@ -53,6 +53,8 @@ const std::vector<OptionSpec>& fit_options() {
       {"--seed", "N", "seed of the bootstrap resampling (default 1)"},
       {"--plot", "FILE", "draw data, fit, residuals and pull-off with gnuplot (PNG or PDF by extension)"},
       indenter_option(),
+      {"--model", "jkr|md", "adhesion model: jkr (default) or md, the Maugis-Dugdale zone (a,F data of a rigid sphere; --free w,lambda; slow: one solve per point and trial, keep to a few tens of points)"},
+      {"--lambda", "L", "Maugis's lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, in [1e-3, 1e3] with --model md: fixed, or the start of the search when --free names lambda (default 1)"},
       {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off. With --columns z,F the spring the data were taken through: fixed, or the start of the search when --free names k"},
   };
   return spec;
@@ -95,8 +97,8 @@ std::string trim(const std::string& text) {
 // The index of a parameter named on the command line: w, t, E1 (one film); with --layer also
 // h1..hN and E1..EN (t is h1 of a single layer, refused for several).
 int parameter_index(const std::string& name, const std::string& option, std::size_t layers, bool stack,
-                    bool hysteresis, bool spring) {
-  const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers, hysteresis, spring);
+                    bool hysteresis, bool spring, bool md) {
+  const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers, hysteresis, spring, md);
   std::string allowed;
   for (const auto& info : list) allowed += (allowed.empty() ? "" : ", ") + info.name;
   if (layers == 1 && stack) allowed += " (h1 = t)";
@@ -106,6 +108,10 @@ int parameter_index(const std::string& name, const std::string& option, std::siz
   }
   if (!hysteresis && (name == "w_load" || name == "w_unload")) {
     throw InputError(option + ": '" + name + "' needs both branch energies free (--free w_load,w_unload,...)");
+  }
+  if (name == "lambda" && !md) {
+    throw InputError(option + ": 'lambda' is a parameter of the Maugis-Dugdale model only (--model md) (allowed: " +
+                     allowed + ")");
   }
   if (name == "k" && !spring) {
     throw InputError(option + ": 'k' (the spring stiffness) is a parameter only of base-displacement data "
@@ -125,6 +131,17 @@ int parameter_index(const std::string& name, const std::string& option, std::siz
                    allowed + ")");
 }
 
+// Maugis's lambda: a number in [kLambdaRange] (InputError naming `option`).
+double parse_lambda(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const double lambda = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(lambda >= fit::kLambdaRange[0] && lambda <= fit::kLambdaRange[1])) {
+    throw InputError(option + ": '" + text + "' is not allowed (need a number 1e-3 <= lambda <= 1e3; lambda = 2 sigma0 "
+                     "(R/(pi w K^2))^(1/3), K = 4E1*/3)");
+  }
+  return lambda;
+}
+
 Quantity parameter_kind(const fit::ParameterInfo& info) {
   return info.kind == fit::ParameterKind::kWork        ? Quantity::kEnergy
          : info.kind == fit::ParameterKind::kThickness ? Quantity::kLength
@@ -133,7 +150,10 @@ Quantity parameter_kind(const fit::ParameterInfo& info) {
 
 // The unit as spelled in header keys ("w_stderr_J_per_m2").
 const char* key_unit(const fit::ParameterInfo& info) {
-  return info.kind == fit::ParameterKind::kWork ? "J_per_m2" : info.kind == fit::ParameterKind::kSpring ? "N_per_m" : info.unit;
+  return info.kind == fit::ParameterKind::kWork     ? "J_per_m2"
+         : info.kind == fit::ParameterKind::kSpring ? "N_per_m"
+         : info.kind == fit::ParameterKind::kLambda ? "1"
+                                                    : info.unit;
 }
 
 
@@ -516,6 +536,8 @@ int run_fit_body(const Args& args) {
         "--columns z,F: the abscissa is the base (piezo) displacement z = delta + F/k of a sphere on a\n"
         "spring k (cantilever, machine frame; --spring k): the model is taken on the branch stable under\n"
         "spring control, and k itself can be fitted (--free w,k): F and z together carry it.\n"
+        "--model md: a Maugis-Dugdale cohesive zone instead of JKR (THEORY.md section 13), lambda fixed\n"
+        "(--lambda) or free (--free w,lambda); a,F data of a rigid sphere, one solve per point and trial.\n"
         "Exit 2: bad input; exit 3: no convergence, parameters not determined, or no model fit.",
         spec);
     return kExitSuccess;
@@ -571,7 +593,27 @@ int run_fit_body(const Args& args) {
   const bool hysteresis = std::any_of(free_items.begin(), free_items.end(), [](const std::string& item) {
     return trim(item) == "w_load" || trim(item) == "w_unload";
   });
-  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis, choice.base);
+  // --model md: the Maugis-Dugdale zone (lambda last in the parameter vector; --lambda its value).
+  bool md = false;
+  if (const auto text = arguments.get("--model")) {
+    if (*text == "md") {
+      md = true;
+    } else if (*text != "jkr") {
+      throw InputError("--model: '" + *text + "' is not allowed (jkr, the default, or md: Maugis-Dugdale)");
+    }
+  }
+  if (md) {
+    problem.maugis_dugdale = true;
+    if (!radius_data) throw InputError("--model md: fits a,F data only (--columns a,F)");
+    if (problem.shape) throw InputError("--model md: the Maugis-Dugdale zone is fitted for the sphere only, not --shape");
+    if (hysteresis) throw InputError("--model md: one adhesion energy only (not w_load,w_unload)");
+    if (!problem.indenter.rigid) throw InputError("--model md: a rigid sphere only (not --indenter)");
+    if (arguments.has("--spring")) throw InputError("--model md: no spring pull-off (leave out --spring)");
+    if (const auto text = arguments.get("--lambda")) problem.lambda = parse_lambda(*text, "--lambda");
+  } else if (arguments.has("--lambda")) {
+    throw InputError("--lambda: only with --model md");
+  }
+  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis, choice.base, md);
   const std::size_t parameter_count = parameters.size();
   const std::size_t unload_index = fit::unload_work_index(layer_count);
   problem.hysteresis = hysteresis;
@@ -613,7 +655,7 @@ int run_fit_body(const Args& args) {
   }
   std::vector<bool> free(parameter_count, false);
   for (const std::string& item : free_items) {
-    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis, choice.base);
+    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis, choice.base, md);
     if (free[which]) throw InputError("--free: '" + trim(item) + "' is named twice");
     free[which] = true;
   }
@@ -621,8 +663,8 @@ int run_fit_body(const Args& args) {
     throw InputError("--free: name both w_load and w_unload (the two branches' adhesion energies are fitted together)");
   }
   for (std::size_t which = 0; which < parameter_count; ++which) {
-    if ((stack_given || hysteresis || choice.base) && free[which]) problem.free_parameters.push_back(which);
-    if (!stack_given && !hysteresis && !choice.base) problem.free[which] = free[which];
+    if ((stack_given || hysteresis || choice.base || md) && free[which]) problem.free_parameters.push_back(which);
+    if (!stack_given && !hysteresis && !choice.base && !md) problem.free[which] = free[which];
   }
   std::vector<std::optional<double>> start(parameter_count);
   if (const auto text = arguments.get("--start")) {
@@ -632,12 +674,14 @@ int run_fit_body(const Args& args) {
         throw InputError("--start: '" + trim(item) + "' is not name=value (e.g. w=40mJ/m2,t=50um)");
       }
       const std::string name = trim(item.substr(0, equals));
-      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis, choice.base);
+      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis, choice.base, md);
       if (!free[which]) {
         throw InputError("--start: " + name + " is not free (add it to --free, or fix it with its own option)");
       }
       if (start[which]) throw InputError("--start: " + name + " is given twice");
-      if (parameters[which].kind == fit::ParameterKind::kSpring) {
+      if (parameters[which].kind == fit::ParameterKind::kLambda) {
+        start[which] = parse_lambda(item.substr(equals + 1), "--start lambda");
+      } else if (parameters[which].kind == fit::ParameterKind::kSpring) {
         try {
           start[which] = parse_stiffness(item.substr(equals + 1));
         } catch (const InputError& error) {
@@ -651,6 +695,7 @@ int run_fit_body(const Args& args) {
     }
   }
   if (choice.base && start[parameters.size() - 1]) problem.spring_stiffness = *start[parameters.size() - 1];
+  if (md && start[parameters.size() - 1]) problem.lambda = *start[parameters.size() - 1];
   std::optional<double> thickness;
   std::optional<double> work;
   if (const auto text = arguments.get("--thickness")) thickness = parse_quantity(*text, Quantity::kLength, "--thickness");
@@ -793,6 +838,7 @@ int run_fit_body(const Args& args) {
     }
   }
   if (choice.base) start_values.push_back(problem.spring_stiffness);  // k, last
+  if (md) start_values.push_back(problem.lambda);                     // lambda, last
   const auto source_option = [&](std::size_t which) -> std::string {
     if (start[which]) return "--start " + parameters[which].name;
     return stack_given ? "--layer" : which == fit::kThickness ? "--thickness" : "--film";

@@ -61,6 +61,16 @@ void validate(const Measurements& data, const Problem& problem) {
     };
     if (!named(kWork) || !named(w_unload)) throw InputError("fit: w_load and w_unload are free together");
   }
+  if (problem.maugis_dugdale) {
+    if (data.kind != DataKind::kRadiusForce) throw InputError("fit: the Maugis-Dugdale model fits a,F data only");
+    if (problem.shape || problem.base_displacement || problem.hysteresis || !problem.indenter.rigid) {
+      throw InputError("fit: the Maugis-Dugdale model takes a rigid sphere, one w and a,F data");
+    }
+    if (!(problem.lambda >= kLambdaRange[0] && problem.lambda <= kLambdaRange[1])) {
+      throw InputError("fit: lambda = " + short_text(problem.lambda) + " is outside [" + short_text(kLambdaRange[0]) +
+                       ", " + short_text(kLambdaRange[1]) + "]");
+    }
+  }
   if (problem.base_displacement) {
     if (data.kind != DataKind::kPenetrationForce) {
       throw InputError("fit: base-displacement data are z,F data (the penetration kind)");
@@ -70,7 +80,7 @@ void validate(const Measurements& data, const Problem& problem) {
       throw InputError("fit: z,F data need the spring stiffness k > 0 (got " + short_text(problem.spring_stiffness) + ")");
     }
   }
-  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement) {
+  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement && !problem.maugis_dugdale) {
     Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
   } else {
     if (problem.layers.empty()) {
@@ -79,7 +89,8 @@ void validate(const Measurements& data, const Problem& problem) {
       Stack(problem.layers, problem.substrate, problem.indenter);
     }
     const std::size_t layer_count = problem.layers.empty() ? 1 : problem.layers.size();
-    const std::size_t count = parameter_list(layer_count, problem.hysteresis, problem.base_displacement).size();
+    const std::size_t count =
+        parameter_list(layer_count, problem.hysteresis, problem.base_displacement, problem.maugis_dugdale).size();
     for (std::size_t which : problem.free_parameters) {
       if (which >= count) {
         throw InputError("fit: free parameter index " + std::to_string(which) + " is outside the " +
@@ -143,7 +154,7 @@ const char* parameter_name(int parameter) {
   }
 }
 
-std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis, bool spring) {
+std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis, bool spring, bool lambda) {
   std::vector<ParameterInfo> list;
   list.push_back({ParameterKind::kWork, 0, hysteresis ? "w_load" : "w", "J/m2"});
   for (std::size_t i = 0; i < layers; ++i) {
@@ -154,6 +165,7 @@ std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis, b
   }
   if (hysteresis) list.push_back({ParameterKind::kWork, 0, "w_unload", "J/m2"});
   if (spring) list.push_back({ParameterKind::kSpring, 0, "k", "N/m"});
+  if (lambda) list.push_back({ParameterKind::kLambda, 0, "lambda", ""});  // dimensionless
   return list;
 }
 

@@ -92,6 +92,10 @@ Parameters Parameters::branch(bool unloading) const {
     out.values.push_back(stiffness());
     out.spring = true;
   }
+  if (md) {
+    out.values.push_back(lambda());
+    out.md = true;
+  }
   return out;
 }
 
@@ -117,12 +121,15 @@ Parameters problem_parameters(const Problem& problem) {
   }
   if (problem.hysteresis) v[unload_work_index(n)] = problem.unload_work;
   if (problem.base_displacement) v.push_back(problem.spring_stiffness);
-  return Parameters(std::move(v), n, problem.hysteresis, problem.base_displacement);
+  if (problem.maugis_dugdale) v.push_back(problem.lambda);
+  Parameters p(std::move(v), n, problem.hysteresis, problem.base_displacement);
+  p.md = problem.maugis_dugdale;
+  return p;
 }
 
 std::vector<int> free_indices(const Problem& problem) {
   std::vector<int> out;
-  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement) {
+  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement && !problem.maugis_dugdale) {
     for (int which = 0; which < kParameterCount; ++which) {
       if (problem.free[which]) out.push_back(which);
     }
@@ -152,6 +159,10 @@ ModelEntry::ModelEntry(const Problem& problem, const StackKey& key) : key_(key) 
   for (std::size_t i = 0; i < layers.size(); ++i) {
     layers[i].thickness = key.relative_thickness[i];
     layers[i].material.youngs_modulus = key.modulus[i];
+  }
+  if (problem.maugis_dugdale) {
+    md_model_ = std::make_unique<MaugisDugdaleModel>(Stack(layers, problem.substrate, problem.indenter));
+    return;
   }
   if (problem.shape) {
     // A shape: direct solves on the shape floor's factorization, no reduced table.
@@ -271,6 +282,7 @@ std::size_t cache_capacity(const Problem& problem) {
   std::size_t changing = 0;
   for (int which : free_indices(problem)) {
     if (names[which].kind != ParameterKind::kWork && names[which].kind != ParameterKind::kSpring &&
+        names[which].kind != ParameterKind::kLambda &&
         !(which == kThickness && p.layers == 1)) {
       ++changing;
     }
@@ -281,7 +293,8 @@ std::size_t cache_capacity(const Problem& problem) {
 
 Model::Model(const Problem& problem, const Measurements& data)
     : problem_(problem), data_(&data), cache_(problem, cache_capacity(problem)),
-      names_(parameter_list(problem_layers(problem).size(), problem.hysteresis, problem.base_displacement)) {}
+      names_(parameter_list(problem_layers(problem).size(), problem.hysteresis, problem.base_displacement,
+                            problem.maugis_dugdale)) {}
 
 void Model::check_range(const Parameters& p) const {
   for (std::size_t which = 0; which < p.values.size(); ++which) {
@@ -299,6 +312,10 @@ void Model::check_range(const Parameters& p) const {
   for (std::size_t which = 0; which < p.values.size(); ++which) {
     const double v = p.values[which];
     const ParameterInfo& info = names_[which];
+    if (info.kind == ParameterKind::kLambda && !(v >= kLambdaRange[0] && v <= kLambdaRange[1])) {
+      throw NumericalError("lambda ran to " + short_text(v) + ", outside [" + short_text(kLambdaRange[0]) + ", " +
+                           short_text(kLambdaRange[1]) + "]: the data do not determine lambda");
+    }
     if (info.kind == ParameterKind::kSpring && (!(v > 0.0) || !std::isfinite(v))) {
       throw NumericalError("k ran to " + short_text(v) + " N/m: the data do not determine the spring stiffness k");
     }
@@ -392,6 +409,7 @@ ModelAtData Model::evaluate(const Parameters& p, bool with_pulloff) {
 
 ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data_, bool with_pulloff) {
   if (problem_.shape) return evaluate_shape(p, data_, with_pulloff);
+  if (problem_.maugis_dugdale) return evaluate_md(p, data_, with_pulloff);
   const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p);
   const double total_thickness = p.total_thickness();
   const std::size_t n = data_.size();
@@ -523,6 +541,79 @@ ModelAtData Model::evaluate_single(const Parameters& p, const Measurements& data
       out.force_x[i] = out.slope[i];
       out.force_lnw[i] = s.force_lnw - out.slope[i] * (s.penetration_lnw + compliance * s.force_lnw);
       out.force_lnt[i] = s.force_lnt - out.slope[i] * (s.penetration_lnt + compliance * s.force_lnt);
+    }
+  }
+  return out;
+}
+
+// Problem::maugis_dugdale: F = pi w R P, delta = (l^2/R) D at a_bar = a/l, l = (pi w R^2/E*)^(1/3),
+// eta = T/l (THEORY.md section 13), from MaugisDugdaleModel::curve at the measured radii.
+ModelAtData Model::evaluate_md(const Parameters& p, const Measurements& data, bool with_pulloff) {
+  constexpr double kPi = 3.14159265358979323846;
+  const MaugisDugdaleModel& md = cache_.get(p).md_model();
+  const double radius = problem_.sphere_radius;
+  const double work = p.work();
+  const double l = std::cbrt(kPi * work * radius * radius / md.stack().reference_modulus());
+  const double force_scale = kPi * work * radius, penetration_scale = l * l / radius;
+  const double eta = p.total_thickness() / l;
+  const double lambda = p.lambda();
+  const std::size_t n = data.size();
+  ModelAtData out;
+  out.radius = data.abscissa;
+  out.penetration.resize(n);
+  out.force.resize(n);
+  out.force_lnw.assign(n, 0.0);  // not used: every derivative is differenced in force_derivatives
+  out.force_lnt.assign(n, 0.0);
+  out.slope.assign(n, 0.0);
+  out.force_x.assign(n, 0.0);
+  out.clamped.assign(n, false);
+  std::vector<double> a_bar(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = data.abscissa[i] / p.total_thickness();
+    if (!(x >= kMinAOverT && x <= kMaxAOverT)) {
+      throw NumericalError("the model needs a/t = " + short_text(x) + ", outside [" + short_text(kMinAOverT) + ", " +
+                           short_text(kMaxAOverT) + "]");
+    }
+    a_bar[i] = data.abscissa[i] / l;
+  }
+  const std::vector<MaugisDugdalePoint> points = md.curve(eta, lambda, a_bar);
+  shape_calls_ += static_cast<long>(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.force[i] = force_scale * points[i].load;
+    out.penetration[i] = penetration_scale * points[i].penetration;
+  }
+  if (!data.sigma_abscissa.empty()) {
+    // dF/da along the curve for the effective variance (relative step kStep in a).
+    std::vector<double> up(n), down(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      up[i] = a_bar[i] * std::exp(kStep);
+      down[i] = a_bar[i] * std::exp(-kStep);
+    }
+    const auto pu = md.curve(eta, lambda, up), pd = md.curve(eta, lambda, down);
+    shape_calls_ += static_cast<long>(2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      out.force_x[i] = force_scale * (pu[i].load - pd[i].load) / (l * (up[i] - down[i]));
+    }
+  }
+  if (with_pulloff) {
+    try {
+      const MaugisDugdalePulloff pulloff = md.pulloff(eta, lambda);
+      const MaugisDugdalePulloffPoint& f = pulloff.load_control;
+      if (f.interior) {
+        out.has_load_pulloff = true;
+        out.load_pulloff_radius = f.point.a_bar * l;
+        out.load_pulloff_penetration = f.point.penetration * penetration_scale;
+        out.load_pulloff_force = f.point.load * force_scale;
+      }
+      const MaugisDugdalePulloffPoint& c = pulloff.displacement_control;
+      if (c.interior) {
+        out.has_pulloff = true;
+        out.pulloff_radius = c.point.a_bar * l;
+        out.pulloff_penetration = c.point.penetration * penetration_scale;
+        out.pulloff_force = c.point.load * force_scale;
+      }
+    } catch (const NumericalError&) {
+      // Reported as absent; the fit itself stands.
     }
   }
   return out;
@@ -668,6 +759,22 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
       return q;
     };
     std::vector<double> column(n, 0.0);
+    if (problem_.maugis_dugdale) {
+      // Every parameter by a central difference in ln p at the measured a (a,F data only).
+      for (double sign : {1.0, -1.0}) {
+        const Parameters q = shifted(sign);
+        check_range(q);
+        coatcontact::detail::GslHandlerOff handler_off;
+        try {
+          const ModelAtData mq = evaluate_md(q, *data_, false);
+          for (std::size_t i = 0; i < n; ++i) column[i] += sign * mq.force[i] / (2.0 * kStep);
+        } catch (const std::exception&) {
+          rethrow_at(q);
+        }
+      }
+      columns.push_back(std::move(column));
+      continue;
+    }
     const bool is_unload_work = p.hysteresis && static_cast<std::size_t>(parameter) == unload_work_index(p.layers);
     if (parameter == kWork || is_unload_work) {
       // With two adhesion energies each moves only the points of its own branch.
@@ -737,6 +844,7 @@ std::vector<std::vector<double>> Model::force_derivatives(const Parameters& p, c
 
 std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, double k) {
   coatcontact::detail::GslHandlerOff handler_off;
+  if (problem_.maugis_dugdale) return std::nullopt;  // not implemented for the cohesive zone
   if (problem_.shape) {
     const ShapeJump s = shape_contact(p.branch(true)).pulloff(k).spring;
     if (!s.interior) return std::nullopt;
@@ -754,7 +862,8 @@ std::optional<std::array<double, 3>> Model::spring_pulloff(const Parameters& p, 
 }
 
 double Model::interpolation_error(const Parameters& p, const ModelAtData& m) {
-  if (problem_.shape) return 0.0;  // every model value of a shape fit is a direct solve
+  // Every model value of a shape or Maugis-Dugdale fit is a direct solve.
+  if (problem_.shape || problem_.maugis_dugdale) return 0.0;
   coatcontact::detail::GslHandlerOff handler_off;
   const ModelEntry& entry = cache_.get(p);
   const ContactModel cm(entry.model(), problem_.sphere_radius, p.branch(false));

@@ -12,6 +12,7 @@
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/shape_contact.hpp"
 #include "coatcontact/shape_solver.hpp"
@@ -24,6 +25,7 @@ struct Parameters {
   std::size_t layers = 1;
   bool hysteresis = false;  // w_unload follows the moduli
   bool spring = false;      // k last (Problem::base_displacement)
+  bool md = false;          // lambda last (Problem::maugis_dugdale)
 
   Parameters() = default;
   Parameters(double work, double thickness, double film_modulus)  // one film
@@ -31,6 +33,7 @@ struct Parameters {
   Parameters(std::vector<double> v, std::size_t layer_count, bool two_works = false, bool with_spring = false)
       : values(std::move(v)), layers(layer_count), hysteresis(two_works), spring(with_spring) {}
   double stiffness() const { return values.back(); }  // k [N/m] (spring only)
+  double lambda() const { return values.back(); }     // Maugis's lambda (md only)
   double work() const { return values[kWork]; }
   double unload_work() const { return hysteresis ? values[unload_work_index(layers)] : work(); }
   // The parameters of one branch: one w (its own), no w_unload (k kept).
@@ -72,10 +75,13 @@ class ModelEntry {
   bool has_model() const { return model_ != nullptr; }
   // A fit with Problem::shape: the shape floor's solver on the same stack (no table, no model).
   const ShapeSolver& shape_solver() const { return *shape_solver_; }
+  // A Maugis-Dugdale fit (Problem::maugis_dugdale): the adhesion floor's model on the stack.
+  const MaugisDugdaleModel& md_model() const { return *md_model_; }
 
  private:
   StackKey key_;
   std::unique_ptr<ShapeSolver> shape_solver_;
+  std::unique_ptr<MaugisDugdaleModel> md_model_;
   std::unique_ptr<ReducedSolver> solver_;  // declared first: the model keeps a reference
   std::unique_ptr<AdhesiveModel> model_;
 };
@@ -174,6 +180,8 @@ class Model {
   // The same through ShapeContact (Problem::shape): direct solves at every radius.
   ModelAtData evaluate_shape(const Parameters& p, const Measurements& data, bool with_pulloff);
   ShapeContact shape_contact(const Parameters& branch);
+  // Problem::maugis_dugdale: F and delta at the measured a (a,F data), one solve per point.
+  ModelAtData evaluate_md(const Parameters& p, const Measurements& data, bool with_pulloff);
   void check_range(const Parameters& p) const;
   [[noreturn]] void rethrow_at(const Parameters& p) const;
 

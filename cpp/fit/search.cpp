@@ -117,10 +117,11 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   } else if (is_free(kThickness)) {
     axes.push_back({static_cast<std::size_t>(kThickness), log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])});
   }
-  const bool profile_work = is_free(kWork) && radius_data;
+  // (Maugis-Dugdale: F is not linear in sqrt(w) at fixed a; w gets an axis.)
+  const bool profile_work = is_free(kWork) && radius_data && !problem.maugis_dugdale;
   // Two adhesion energies (w_load, w_unload): each branch's points depend on their own only.
   const std::size_t unload_index = hint.hysteresis ? unload_work_index(layers) : 0;
-  if (is_free(kWork) && !radius_data) {
+  if (is_free(kWork) && !profile_work) {
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
     const double estimate =
@@ -134,6 +135,12 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   if (hint.spring && is_free(hint.values.size() - 1)) {
     const double k = hint.stiffness();
     axes.push_back({hint.values.size() - 1, log_axis(k / kSearchSpringFactor, k * kSearchSpringFactor, kCoarsePointsPerDecade)});
+  }
+  if (hint.md && is_free(hint.values.size() - 1)) {
+    const double lambda = hint.lambda();
+    axes.push_back({hint.values.size() - 1,
+                    log_axis(std::max(kLambdaRange[0], lambda / kSearchLambdaFactor),
+                             std::min(kLambdaRange[1], lambda * kSearchLambdaFactor), kCoarsePointsPerDecade)});
   }
   // The group of each point for the profiled w: 0, or 1 on the unloading branch.
   std::vector<int> group(data.size(), 0);

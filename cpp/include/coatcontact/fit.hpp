@@ -80,7 +80,7 @@ enum Parameter : int { kWork = 0, kThickness = 1, kFilmModulus = 2 };
 constexpr int kParameterCount = 3;  // one film
 const char* parameter_name(int parameter);  // one film: "w", "t", "E1"
 
-enum class ParameterKind { kWork, kThickness, kModulus, kSpring };
+enum class ParameterKind { kWork, kThickness, kModulus, kSpring, kLambda };
 struct ParameterInfo {
   ParameterKind kind = ParameterKind::kWork;
   std::size_t layer = 0;  // 0-based, top first (thickness and modulus)
@@ -90,8 +90,10 @@ struct ParameterInfo {
 // The parameters of a fit on `layers` layers, in the order of the parameter vector. With
 // `hysteresis` the loading and unloading branches have their own adhesion energy: w is then
 // called w_load and w_unload follows the moduli.
-// With `spring` (Problem::base_displacement) the stiffness k [N/m] comes last.
-std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis = false, bool spring = false);
+// With `spring` (Problem::base_displacement) the stiffness k [N/m] comes last; with `lambda`
+// (Problem::maugis_dugdale) Maugis's lambda (dimensionless) comes last.
+std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis = false, bool spring = false,
+                                          bool lambda = false);
 // Index in the parameter vector of w, h_i or E_i (0-based layer).
 inline std::size_t thickness_index(std::size_t layer) { return 1 + layer; }
 inline std::size_t modulus_index(std::size_t layer, std::size_t layers) { return 1 + layers + layer; }
@@ -131,6 +133,13 @@ struct Problem {
   // the parameter vector as "k" (spring_index), so it can be named in free_parameters. F and z
   // together carry k: along the curve dz/dF = d delta/dF + 1/k.
   bool base_displacement = false;
+  // Maugis-Dugdale cohesive zone instead of JKR (THEORY.md section 13, MaugisDugdaleModel of
+  // the adhesion floor): F = pi w R P(a_bar; eta, lambda), lambda = 2 sigma0 (R/(pi w K^2))^(1/3),
+  // K = 4E1*/3. `lambda` (hint if free, else fixed) is appended to the parameter vector as
+  // "lambda". a,F data of a rigid sphere only; one solve per point and trial, every derivative
+  // a central difference in ln p, no spring pull-off (slow: keep the data small).
+  bool maugis_dugdale = false;
+  double lambda = 1.0;
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
   int max_iterations = 200;
   bool global_search = true;  // false: start from the values above (bootstrap refits, tests)
@@ -148,6 +157,8 @@ constexpr double kSearchAOverT[2] = {1e-2, 50.0};
 constexpr double kSearchModulusFactor = 10.0;
 constexpr double kSearchThicknessFactor = 10.0;
 constexpr double kSearchSpringFactor = 10.0;  // k of z,F data, around its hint (--spring)
+constexpr double kSearchLambdaFactor = 10.0;  // Maugis-Dugdale lambda, around its hint
+constexpr double kLambdaRange[2] = {1e-3, 1e3};  // lambda the fit may ask for
 
 // Physical ranges of the parameters the model accepts (leaving them means the data do not
 // determine them), and the a/t (a/T for a stack) it is tabulated for.
