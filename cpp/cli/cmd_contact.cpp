@@ -68,7 +68,42 @@ std::shared_ptr<const IndenterShape> named(const std::string& text, Make&& make)
   }
 }
 
-// `profile_end` is set to "FILE:LINE" of a profile's last point (for the too-short message).
+// "v1,v2,..." with length units per item, or "MIN:MAX:N" (log-spaced, in m).
+std::vector<double> parse_radii(const std::string& text) {
+  if (text.find(':') != std::string::npos) return parse_list(text, "--contact-radius");
+  std::vector<double> radii;
+  for (const std::string& item : split(text, ',')) {
+    radii.push_back(parse_quantity(item, Quantity::kLength, "--contact-radius"));
+  }
+  return radii;
+}
+
+std::string jump_text(const ShapeJump& j) {
+  return num(j.force) + " (contact radius " + num(j.radius) + " m, penetration " + num(j.penetration) + " m)";
+}
+
+const std::vector<OptionSpec> kSpec = {
+    {"--shape", "SHAPE",
+     "indenter: sphere:R (paraboloid), cone:BETA (half included angle, e.g. 70deg), punch:A, "
+     "power:N,R (z = r^N/(N R^(N-1))), blunted-cone:R,BETA (spherical cap tangent to the cone), "
+     "profile:FILE (columns r z, '# units:' line allowed)",
+     true},
+    {"--thickness", "t", "film thickness (m, or with a unit: mm um nm); not with --layer", false},
+    film_option(),
+    layer_option(true),
+    substrate_option(),
+    indenter_option(),
+    {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true},
+    {"--spring", "k", "spring stiffness in N/m (cantilever, machine frame): adds the spring-controlled pull-off", false},
+    {"--contact-radius", "LIST", "contact radii: v1,v2,... (units allowed) or MIN:MAX:N in m (log-spaced)", false},
+    {"--points", "N", "number of contact radii over the default range (default 100; not with --contact-radius)", false},
+    {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
+    {"--output", "FILE", "write to FILE atomically instead of stdout", false},
+};
+
+}  // namespace
+
+// Declared in commands.hpp (also the shapes of `fit --shape`).
 std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::string& profile_end) {
   const std::string option = "--shape";
   const std::size_t colon = text.find(':');
@@ -117,41 +152,6 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   }
   throw InputError(option + ": unknown shape '" + kind + "' in '" + text + "'; " + expected);
 }
-
-// "v1,v2,..." with length units per item, or "MIN:MAX:N" (log-spaced, in m).
-std::vector<double> parse_radii(const std::string& text) {
-  if (text.find(':') != std::string::npos) return parse_list(text, "--contact-radius");
-  std::vector<double> radii;
-  for (const std::string& item : split(text, ',')) {
-    radii.push_back(parse_quantity(item, Quantity::kLength, "--contact-radius"));
-  }
-  return radii;
-}
-
-std::string jump_text(const ShapeJump& j) {
-  return num(j.force) + " (contact radius " + num(j.radius) + " m, penetration " + num(j.penetration) + " m)";
-}
-
-const std::vector<OptionSpec> kSpec = {
-    {"--shape", "SHAPE",
-     "indenter: sphere:R (paraboloid), cone:BETA (half included angle, e.g. 70deg), punch:A, "
-     "power:N,R (z = r^N/(N R^(N-1))), blunted-cone:R,BETA (spherical cap tangent to the cone), "
-     "profile:FILE (columns r z, '# units:' line allowed)",
-     true},
-    {"--thickness", "t", "film thickness (m, or with a unit: mm um nm); not with --layer", false},
-    film_option(),
-    layer_option(true),
-    substrate_option(),
-    indenter_option(),
-    {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true},
-    {"--spring", "k", "spring stiffness in N/m (cantilever, machine frame): adds the spring-controlled pull-off", false},
-    {"--contact-radius", "LIST", "contact radii: v1,v2,... (units allowed) or MIN:MAX:N in m (log-spaced)", false},
-    {"--points", "N", "number of contact radii over the default range (default 100; not with --contact-radius)", false},
-    {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
-    {"--output", "FILE", "write to FILE atomically instead of stdout", false},
-};
-
-}  // namespace
 
 int run_contact(const Args& raw) {
   return run_guarded("contact", [&]() {

@@ -35,8 +35,9 @@ namespace {
 
 const std::vector<OptionSpec>& fit_options() {
   static const std::vector<OptionSpec> spec = {
-      {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F (F,a, F,delta reversed) for a two-column file, or name=position|header-name for any file (names a|delta, F, sigma_a|sigma_delta, sigma_F, branch: 1 loading, 0 unloading)", true},
-      {"--radius", "R", "sphere radius (length, e.g. 5mm)", true},
+      {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F / z,F (F,a, F,delta, F,z reversed) for a two-column file, or name=position|header-name for any file (names a|delta|z, F, sigma_a|sigma_delta|sigma_z, sigma_F, branch: 1 loading, 0 unloading). z is the base (piezo) displacement z = delta + F/k through the spring k of --spring (k may be free: --free w,k)", true},
+      {"--radius", "R", "sphere radius (length, e.g. 5mm); or --shape"},
+      {"--shape", "SPEC", "any axisymmetric indenter instead of the sphere, as in 'contact --shape': sphere:R, cone:BETA (half included angle, e.g. 70deg), punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (columns r z). The shape's own parameters are fixed; w, t/h_i, E_i are fitted as for the sphere (no --curve, --plot)"},
       {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted); or --layer", false},
       layer_option(true),
       substrate_option(),
@@ -52,7 +53,9 @@ const std::vector<OptionSpec>& fit_options() {
       {"--seed", "N", "seed of the bootstrap resampling (default 1)"},
       {"--plot", "FILE", "draw data, fit, residuals and pull-off with gnuplot (PNG or PDF by extension)"},
       indenter_option(),
-      {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off"},
+      {"--model", "jkr|md", "adhesion model: jkr (default) or md, the Maugis-Dugdale zone (a,F data of a rigid sphere; --free w,lambda; slow: one solve per point and trial, keep to a few tens of points)"},
+      {"--lambda", "L", "Maugis's lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, in [1e-3, 1e3] with --model md: fixed, or the start of the search when --free names lambda (default 1)"},
+      {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off. With --columns z,F the spring the data were taken through: fixed, or the start of the search when --free names k"},
   };
   return spec;
 }
@@ -94,8 +97,8 @@ std::string trim(const std::string& text) {
 // The index of a parameter named on the command line: w, t, E1 (one film); with --layer also
 // h1..hN and E1..EN (t is h1 of a single layer, refused for several).
 int parameter_index(const std::string& name, const std::string& option, std::size_t layers, bool stack,
-                    bool hysteresis) {
-  const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers, hysteresis);
+                    bool hysteresis, bool spring, bool md) {
+  const std::vector<fit::ParameterInfo> list = fit::parameter_list(layers, hysteresis, spring, md);
   std::string allowed;
   for (const auto& info : list) allowed += (allowed.empty() ? "" : ", ") + info.name;
   if (layers == 1 && stack) allowed += " (h1 = t)";
@@ -105,6 +108,15 @@ int parameter_index(const std::string& name, const std::string& option, std::siz
   }
   if (!hysteresis && (name == "w_load" || name == "w_unload")) {
     throw InputError(option + ": '" + name + "' needs both branch energies free (--free w_load,w_unload,...)");
+  }
+  if (name == "lambda" && !md) {
+    throw InputError(option + ": 'lambda' is a parameter of the Maugis-Dugdale model only (--model md) (allowed: " +
+                     allowed + ")");
+  }
+  if (name == "k" && !spring) {
+    throw InputError(option + ": 'k' (the spring stiffness) is a parameter only of base-displacement data "
+                     "(--columns z,F, z = delta + F/k); with a,F or delta,F data k does not enter the curve (allowed: " +
+                     allowed + ")");
   }
   if (name == "t" && layers > 1) {
     throw InputError(option + ": 't' is the thickness of a single film; with " + std::to_string(layers) +
@@ -119,6 +131,17 @@ int parameter_index(const std::string& name, const std::string& option, std::siz
                    allowed + ")");
 }
 
+// Maugis's lambda: a number in [kLambdaRange] (InputError naming `option`).
+double parse_lambda(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const double lambda = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(lambda >= fit::kLambdaRange[0] && lambda <= fit::kLambdaRange[1])) {
+    throw InputError(option + ": '" + text + "' is not allowed (need a number 1e-3 <= lambda <= 1e3; lambda = 2 sigma0 "
+                     "(R/(pi w K^2))^(1/3), K = 4E1*/3)");
+  }
+  return lambda;
+}
+
 Quantity parameter_kind(const fit::ParameterInfo& info) {
   return info.kind == fit::ParameterKind::kWork        ? Quantity::kEnergy
          : info.kind == fit::ParameterKind::kThickness ? Quantity::kLength
@@ -127,7 +150,10 @@ Quantity parameter_kind(const fit::ParameterInfo& info) {
 
 // The unit as spelled in header keys ("w_stderr_J_per_m2").
 const char* key_unit(const fit::ParameterInfo& info) {
-  return info.kind == fit::ParameterKind::kWork ? "J_per_m2" : info.unit;
+  return info.kind == fit::ParameterKind::kWork     ? "J_per_m2"
+         : info.kind == fit::ParameterKind::kSpring ? "N_per_m"
+         : info.kind == fit::ParameterKind::kLambda ? "1"
+                                                    : info.unit;
 }
 
 
@@ -139,6 +165,7 @@ constexpr int kRoles = 5;
 struct ColumnChoice {
   fit::DataKind kind = fit::DataKind::kRadiusForce;
   bool legacy = false;                          // "a,F" style: a two-column file
+  bool base = false;                            // z,F: base displacement z = delta + F/k
   std::array<std::string, kRoles> reference{};  // "2" (1-based position) or a header name; "" unused
 };
 
@@ -146,14 +173,16 @@ ColumnChoice parse_columns(const std::string& text) {
   ColumnChoice c;
   const std::map<std::string, std::pair<fit::DataKind, bool>> legacy = {
       {"a,F", {fit::DataKind::kRadiusForce, false}},      {"F,a", {fit::DataKind::kRadiusForce, true}},
-      {"delta,F", {fit::DataKind::kPenetrationForce, false}}, {"F,delta", {fit::DataKind::kPenetrationForce, true}}};
+      {"delta,F", {fit::DataKind::kPenetrationForce, false}}, {"F,delta", {fit::DataKind::kPenetrationForce, true}},
+      {"z,F", {fit::DataKind::kPenetrationForce, false}},     {"F,z", {fit::DataKind::kPenetrationForce, true}}};
   if (const auto it = legacy.find(text); it != legacy.end()) {
     c.kind = it->second.first;
     c.legacy = true;
+    c.base = text.find('z') != std::string::npos;
     c.reference = {it->second.second ? "2" : "1", it->second.second ? "1" : "2", "", "", ""};
     return c;
   }
-  bool has_a = false, has_delta = false;
+  bool has_a = false, has_delta = false, has_z = false;
   for (const std::string& raw : split(text, ',')) {
     const std::string item = trim(raw);
     const auto equals = item.find('=');
@@ -164,26 +193,27 @@ ColumnChoice parse_columns(const std::string& text) {
     const std::string name = trim(item.substr(0, equals));
     const std::string value = trim(item.substr(equals + 1));
     int role;
-    if (name == "a" || name == "delta") {
+    if (name == "a" || name == "delta" || name == "z") {
       role = 0;
-      (name == "a" ? has_a : has_delta) = true;
+      (name == "a" ? has_a : name == "z" ? has_z : has_delta) = true;
     } else if (name == "F") {
       role = 1;
-    } else if (name == "sigma_a" || name == "sigma_delta") {
+    } else if (name == "sigma_a" || name == "sigma_delta" || name == "sigma_z") {
       role = 2;
     } else if (name == "sigma_F") {
       role = 3;
     } else if (name == "branch") {
       role = 4;
     } else {
-      throw InputError("--columns: '" + name + "' is not a column name (a, delta, F, sigma_a, sigma_delta, sigma_F, branch)");
+      throw InputError("--columns: '" + name + "' is not a column name (a, delta, z, F, sigma_a, sigma_delta, sigma_z, sigma_F, branch)");
     }
-    if (!c.reference[role].empty()) throw InputError("--columns: '" + name + "' is given twice (or with its a/delta twin)");
+    if (!c.reference[role].empty()) throw InputError("--columns: '" + name + "' is given twice (or with its a/delta/z twin)");
     c.reference[role] = value;
   }
-  if (has_a == has_delta) throw InputError("--columns: name exactly one of a= and delta=");
+  if (int(has_a) + int(has_delta) + int(has_z) != 1) throw InputError("--columns: name exactly one of a=, delta= and z=");
   if (c.reference[1].empty()) throw InputError("--columns: F= is missing");
   c.kind = has_a ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
+  c.base = has_z;
   return c;
 }
 
@@ -381,10 +411,10 @@ void apply_sigma_option(const std::optional<std::string>& text, fit::Measurement
     }
     const std::string name = trim(item.substr(0, equals));
     const std::string value = trim(item.substr(equals + 1));
-    const bool abscissa = name == (radius_data ? "a" : "delta");
+    const std::string x = radius_data ? "a" : choice.base ? "z" : "delta";
+    const bool abscissa = name == x;
     if (!abscissa && name != "F") {
-      throw InputError("--sigma: '" + name + "' is not a column of these data (allowed: " +
-                       std::string(radius_data ? "a" : "delta") + ", F)");
+      throw InputError("--sigma: '" + name + "' is not a column of these data (allowed: " + x + ", F)");
     }
     std::vector<double>& sigma = abscissa ? data.sigma_abscissa : data.sigma_force;
     if (!choice.reference[abscissa ? 2 : 3].empty()) {
@@ -482,7 +512,7 @@ int run_fit_body(const Args& args) {
   if (arguments.help()) {
     std::cout << usage(
         "fit",
-        "DATA --columns a,F|delta,F --radius R (--film E1,nu1 | --layer h,E,nu[,slip] ...) --substrate E0,nu0|rigid "
+        "DATA --columns a,F|delta,F|z,F (--radius R | --shape SPEC) (--film E1,nu1 | --layer h,E,nu[,slip] ...) --substrate E0,nu0|rigid "
         "[--free w[,t][,E1] | --free w,h1..hN,E1..EN] [--start w=..,t=..,E1=..] [--thickness t] [--work w] "
         "[--branch load|unload|both] [--sigma a=..,F=..] [--bootstrap N [--seed N]] [--indenter E2,nu2] "
         "[--output FILE] [--curve FILE] [--plot FILE.png|FILE.pdf]",
@@ -500,6 +530,14 @@ int run_fit_body(const Args& args) {
         "model is taken on the stable branch under displacement control. DATA: TSV/CSV or '-'\n"
         "(stdin), '#' comments, units from a '# units: um mN' line or column names like 'a (um)'; SI\n"
         "otherwise. F is compressive positive.\n"
+        "--shape SPEC replaces the sphere by any indenter of 'contact --shape' (cone, flat punch, power\n"
+        "law, blunted cone, measured profile; THEORY.md section 11): the model is then solved directly\n"
+        "at each data point (slower: seconds to minutes), the shape's own parameters stay fixed.\n"
+        "--columns z,F: the abscissa is the base (piezo) displacement z = delta + F/k of a sphere on a\n"
+        "spring k (cantilever, machine frame; --spring k): the model is taken on the branch stable under\n"
+        "spring control, and k itself can be fitted (--free w,k): F and z together carry it.\n"
+        "--model md: a Maugis-Dugdale cohesive zone instead of JKR (THEORY.md section 13), lambda fixed\n"
+        "(--lambda) or free (--free w,lambda); a,F data of a rigid sphere, one solve per point and trial.\n"
         "Exit 2: bad input; exit 3: no convergence, parameters not determined, or no model fit.",
         spec);
     return kExitSuccess;
@@ -514,11 +552,24 @@ int run_fit_body(const Args& args) {
   const ColumnChoice choice = parse_columns(columns);
   const fit::DataKind kind = choice.kind;
   const bool radius_data = kind == fit::DataKind::kRadiusForce;
-  const std::string x_name = radius_data ? "a" : "delta";
+  const std::string x_name = radius_data ? "a" : choice.base ? "z" : "delta";
 
   // ---- physical parameters ----
   fit::Problem problem;
-  problem.sphere_radius = parse_quantity(arguments.require("--radius"), Quantity::kLength, "--radius");
+  if (const auto text = arguments.get("--shape")) {
+    if (arguments.has("--radius")) {
+      throw InputError("--shape and --radius exclude each other (a sphere is --radius R or --shape sphere:R)");
+    }
+    if (arguments.has("--curve") || arguments.has("--plot")) {
+      throw InputError("--shape: --curve and --plot draw the sphere's interpolated curve only; the fitted table "
+                       "(--output) has the model at every data point");
+    }
+    std::string profile_end;
+    problem.shape = parse_shape(*text, profile_end);
+  } else {
+    if (!arguments.has("--radius")) throw InputError("missing required option --radius R (or --shape SPEC) (see --help)");
+    problem.sphere_radius = parse_quantity(arguments.require("--radius"), Quantity::kLength, "--radius");
+  }
   // --film (one film of thickness t) or --layer, repeated (a stack whose layers carry their
   // thicknesses); parse_stack refuses both together and checks the constants.
   const bool stack_given = arguments.has("--layer");
@@ -542,11 +593,42 @@ int run_fit_body(const Args& args) {
   const bool hysteresis = std::any_of(free_items.begin(), free_items.end(), [](const std::string& item) {
     return trim(item) == "w_load" || trim(item) == "w_unload";
   });
-  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis);
+  // --model md: the Maugis-Dugdale zone (lambda last in the parameter vector; --lambda its value).
+  bool md = false;
+  if (const auto text = arguments.get("--model")) {
+    if (*text == "md") {
+      md = true;
+    } else if (*text != "jkr") {
+      throw InputError("--model: '" + *text + "' is not allowed (jkr, the default, or md: Maugis-Dugdale)");
+    }
+  }
+  if (md) {
+    problem.maugis_dugdale = true;
+    if (!radius_data) throw InputError("--model md: fits a,F data only (--columns a,F)");
+    if (problem.shape) throw InputError("--model md: the Maugis-Dugdale zone is fitted for the sphere only, not --shape");
+    if (hysteresis) throw InputError("--model md: one adhesion energy only (not w_load,w_unload)");
+    if (!problem.indenter.rigid) throw InputError("--model md: a rigid sphere only (not --indenter)");
+    if (arguments.has("--spring")) throw InputError("--model md: no spring pull-off (leave out --spring)");
+    if (const auto text = arguments.get("--lambda")) problem.lambda = parse_lambda(*text, "--lambda");
+  } else if (arguments.has("--lambda")) {
+    throw InputError("--lambda: only with --model md");
+  }
+  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis, choice.base, md);
   const std::size_t parameter_count = parameters.size();
   const std::size_t unload_index = fit::unload_work_index(layer_count);
   problem.hysteresis = hysteresis;
   if (const auto text = arguments.get("--spring")) problem.spring_stiffness = parse_stiffness(*text);
+  // z,F: the base (piezo) displacement z = delta + F/k; k is a parameter (--spring: its value).
+  problem.base_displacement = choice.base;
+  if (choice.base) {
+    if (problem.shape) {
+      throw InputError("--columns z,F: base-displacement data are fitted with the sphere only (--radius), not --shape");
+    }
+    if (!arguments.has("--spring")) {
+      throw InputError("--columns z,F: give the spring stiffness with --spring k (its value when fixed, the start of "
+                       "the search when --free names k)");
+    }
+  }
   if (const auto text = arguments.get("--bootstrap")) {
     char* end = nullptr;
     const long n = std::strtol(text->c_str(), &end, 10);
@@ -573,7 +655,7 @@ int run_fit_body(const Args& args) {
   }
   std::vector<bool> free(parameter_count, false);
   for (const std::string& item : free_items) {
-    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis);
+    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis, choice.base, md);
     if (free[which]) throw InputError("--free: '" + trim(item) + "' is named twice");
     free[which] = true;
   }
@@ -581,8 +663,8 @@ int run_fit_body(const Args& args) {
     throw InputError("--free: name both w_load and w_unload (the two branches' adhesion energies are fitted together)");
   }
   for (std::size_t which = 0; which < parameter_count; ++which) {
-    if ((stack_given || hysteresis) && free[which]) problem.free_parameters.push_back(which);
-    if (!stack_given && !hysteresis) problem.free[which] = free[which];
+    if ((stack_given || hysteresis || choice.base || md) && free[which]) problem.free_parameters.push_back(which);
+    if (!stack_given && !hysteresis && !choice.base && !md) problem.free[which] = free[which];
   }
   std::vector<std::optional<double>> start(parameter_count);
   if (const auto text = arguments.get("--start")) {
@@ -592,14 +674,28 @@ int run_fit_body(const Args& args) {
         throw InputError("--start: '" + trim(item) + "' is not name=value (e.g. w=40mJ/m2,t=50um)");
       }
       const std::string name = trim(item.substr(0, equals));
-      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis);
+      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis, choice.base, md);
       if (!free[which]) {
         throw InputError("--start: " + name + " is not free (add it to --free, or fix it with its own option)");
       }
       if (start[which]) throw InputError("--start: " + name + " is given twice");
-      start[which] = parse_quantity(item.substr(equals + 1), parameter_kind(parameters[which]), "--start " + name);
+      if (parameters[which].kind == fit::ParameterKind::kLambda) {
+        start[which] = parse_lambda(item.substr(equals + 1), "--start lambda");
+      } else if (parameters[which].kind == fit::ParameterKind::kSpring) {
+        try {
+          start[which] = parse_stiffness(item.substr(equals + 1));
+        } catch (const InputError& error) {
+          std::string message = error.what();
+          if (message.rfind("--spring: ", 0) == 0) message = message.substr(10);
+          throw InputError("--start k: " + message);
+        }
+      } else {
+        start[which] = parse_quantity(item.substr(equals + 1), parameter_kind(parameters[which]), "--start " + name);
+      }
     }
   }
+  if (choice.base && start[parameters.size() - 1]) problem.spring_stiffness = *start[parameters.size() - 1];
+  if (md && start[parameters.size() - 1]) problem.lambda = *start[parameters.size() - 1];
   std::optional<double> thickness;
   std::optional<double> work;
   if (const auto text = arguments.get("--thickness")) thickness = parse_quantity(*text, Quantity::kLength, "--thickness");
@@ -635,7 +731,7 @@ int run_fit_body(const Args& args) {
                        "); points out of contact are not on the equilibrium curve, remove them");
     }
     // A contact radius at or above R is not a sphere contact: almost always forgotten units.
-    if (radius_data && all.abscissa[i] >= problem.sphere_radius) {
+    if (!problem.shape && radius_data && all.abscissa[i] >= problem.sphere_radius) {
       throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
                        short_number(all.abscissa[i]) + " m is not below the sphere radius --radius " +
                        short_number(problem.sphere_radius) + " m" +
@@ -644,7 +740,16 @@ int run_fit_body(const Args& args) {
                                            "newtons: add a line '# units: um mN' (or name the columns 'a (um)', 'F (mN)')"));
     }
   }
-  if (!radius_data && !loaded.has_units) {
+  if (problem.shape && radius_data) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (all.abscissa[i] > problem.shape->max_contact_radius()) {
+        throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
+                         short_number(all.abscissa[i]) + " m exceeds the largest radius of --shape (" +
+                         problem.shape->description() + ")");
+      }
+    }
+  }
+  if (!problem.shape && !radius_data && !loaded.has_units) {
     double largest = 0.0;
     for (double d : all.abscissa) largest = std::max(largest, std::fabs(d));
     if (largest >= problem.sphere_radius) {
@@ -689,7 +794,7 @@ int run_fit_body(const Args& args) {
     // Without a hint the search needs none: t ~ the middle of the contact radii (a/t ~ 1).
     double middle = 0.0;
     for (double x : data.abscissa) middle = std::max(middle, std::fabs(x));
-    if (!radius_data) middle = std::sqrt(problem.sphere_radius * middle);
+    if (!radius_data && !problem.shape) middle = std::sqrt(problem.sphere_radius * middle);
     problem.thickness = start[fit::kThickness].value_or(thickness.value_or(0.3 * middle));
   } else {
     if (!thickness) throw InputError("t is fixed: give it with --thickness (or add t to --free)");
@@ -701,10 +806,12 @@ int run_fit_body(const Args& args) {
     } else if (work) {
       problem.work = *work;
     } else {
-      problem.work = fit::jkr_work_estimate(data, problem.sphere_radius);
+      // A shape has no sphere radius for the JKR estimate: the search finds w on its own.
+      problem.work = problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius);
     }
     if (hysteresis) {
-      problem.unload_work = start[unload_index].value_or(work.value_or(fit::jkr_work_estimate(data, problem.sphere_radius)));
+      problem.unload_work = start[unload_index].value_or(
+          work.value_or(problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius)));
     }
   } else {
     if (!work) throw InputError("w is fixed: give it with --work (or add w to --free)");
@@ -730,6 +837,8 @@ int run_fit_body(const Args& args) {
                        short_number(fit::kWorkRange[0]) + ", " + short_number(fit::kWorkRange[1]) + "] J/m2");
     }
   }
+  if (choice.base) start_values.push_back(problem.spring_stiffness);  // k, last
+  if (md) start_values.push_back(problem.lambda);                     // lambda, last
   const auto source_option = [&](std::size_t which) -> std::string {
     if (start[which]) return "--start " + parameters[which].name;
     return stack_given ? "--layer" : which == fit::kThickness ? "--thickness" : "--film";
@@ -750,7 +859,20 @@ int run_fit_body(const Args& args) {
     }
   }
 
-  const fit::Result result = fit::fit(data, problem);
+  const fit::Result result = [&] {
+    try {
+      return fit::fit(data, problem);
+    } catch (const NumericalError& error) {
+      // An unweighted fit assumes an exact abscissa; scatter in a (or delta) near the steep
+      // part of the curve then drags w to the edge of its range. Say so and how to fix it.
+      const std::string what = error.what();
+      const bool runaway = what.find("the data do not determine w") != std::string::npos;
+      if (!runaway || !data.sigma_abscissa.empty() || !data.sigma_force.empty()) throw;
+      throw NumericalError(what + ". No uncertainties were given: if " + x_name +
+                           " is noisy, that noise may dominate an unweighted fit in force; give both, e.g. --sigma " +
+                           x_name + "=2%,F=1uN (or sigma columns), to weight each point by its effective variance");
+    }
+  }();
 
   // ---- output ----
   std::vector<std::pair<std::string, std::string>> header;
@@ -767,7 +889,11 @@ int run_fit_body(const Args& args) {
                                         "; pull-offs predicted with w_unload");
   }
   header.emplace_back("points", std::to_string(result.points) + " (of " + std::to_string(all.size()) + " in the file)");
-  header.emplace_back("sphere_radius_m", number(problem.sphere_radius));
+  if (problem.shape) {
+    header.emplace_back("indenter_shape", problem.shape->description());
+  } else {
+    header.emplace_back("sphere_radius_m", number(problem.sphere_radius));
+  }
   if (stack_given) {
     std::string layers_text;
     for (std::size_t i = 0; i < layer_count; ++i) {
@@ -1039,7 +1165,8 @@ int run_fit_body(const Args& args) {
       std::cout << "\n";
     }
     if (result.has_spring_pulloff) {
-      std::cout << "  predicted pull-off through the spring k = " << short_number(problem.spring_stiffness)
+      std::cout << "  predicted pull-off through the spring k = "
+                << short_number(choice.base ? result.value.back() : problem.spring_stiffness)
                 << " N/m: " << short_number(result.spring_pulloff_force) << " N\n";
     }
     if (result.second_minimum) {

@@ -1,8 +1,11 @@
 // Subcommands of the `coatcontact` program. Each takes the arguments after its name and
 // returns the process exit code (0 success, 2 bad usage or input, 3 numerical failure).
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "coatcontact/indenter_shape.hpp"
 
 namespace coatcontact::cli {
 
@@ -15,6 +18,10 @@ int run_pulloff(const Args& args);   // cmd_adhesive.cpp: normalized pull-off pe
 int run_sphere(const Args& args);    // cmd_adhesive.cpp: adhesive sphere in physical units
 int run_reduced(const Args& args);   // cmd_reduced.cpp: reduced variables Pi_s .. Gamma1 versus a/t
 int run_contact(const Args& args);   // cmd_contact.cpp: any axisymmetric indenter in physical units
+// The indenter of `--shape SPEC` (sphere:R, cone:BETA, punch:A, power:N,R, blunted-cone:R,BETA,
+// profile:FILE; cmd_contact.cpp), shared by `contact` and `fit`. InputError naming --shape.
+// `profile_end` is set to "FILE:LINE" of a profile's last point.
+std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::string& profile_end);
 // (further subcommands are declared here as they land)
 
 }  // namespace coatcontact::cli

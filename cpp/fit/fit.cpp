@@ -42,7 +42,7 @@ constexpr double kDistinctMinimum = 0.05;
 void validate(const Measurements& data, const Problem& problem) {
   const std::size_t n = data.size();
   if (data.abscissa.size() != n) throw InputError("fit: abscissa and force columns differ in length");
-  if (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius)) {
+  if (!problem.shape && (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius))) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
   if (problem.hysteresis) {
@@ -61,7 +61,26 @@ void validate(const Measurements& data, const Problem& problem) {
     };
     if (!named(kWork) || !named(w_unload)) throw InputError("fit: w_load and w_unload are free together");
   }
-  if (problem.layers.empty() && !problem.hysteresis) {
+  if (problem.maugis_dugdale) {
+    if (data.kind != DataKind::kRadiusForce) throw InputError("fit: the Maugis-Dugdale model fits a,F data only");
+    if (problem.shape || problem.base_displacement || problem.hysteresis || !problem.indenter.rigid) {
+      throw InputError("fit: the Maugis-Dugdale model takes a rigid sphere, one w and a,F data");
+    }
+    if (!(problem.lambda >= kLambdaRange[0] && problem.lambda <= kLambdaRange[1])) {
+      throw InputError("fit: lambda = " + short_text(problem.lambda) + " is outside [" + short_text(kLambdaRange[0]) +
+                       ", " + short_text(kLambdaRange[1]) + "]");
+    }
+  }
+  if (problem.base_displacement) {
+    if (data.kind != DataKind::kPenetrationForce) {
+      throw InputError("fit: base-displacement data are z,F data (the penetration kind)");
+    }
+    if (problem.shape) throw InputError("fit: base-displacement (z,F) data with a shape are not supported");
+    if (!(problem.spring_stiffness > 0.0) || !std::isfinite(problem.spring_stiffness)) {
+      throw InputError("fit: z,F data need the spring stiffness k > 0 (got " + short_text(problem.spring_stiffness) + ")");
+    }
+  }
+  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement && !problem.maugis_dugdale) {
     Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
   } else {
     if (problem.layers.empty()) {
@@ -70,7 +89,8 @@ void validate(const Measurements& data, const Problem& problem) {
       Stack(problem.layers, problem.substrate, problem.indenter);
     }
     const std::size_t layer_count = problem.layers.empty() ? 1 : problem.layers.size();
-    const std::size_t count = parameter_list(layer_count, problem.hysteresis).size();
+    const std::size_t count =
+        parameter_list(layer_count, problem.hysteresis, problem.base_displacement, problem.maugis_dugdale).size();
     for (std::size_t which : problem.free_parameters) {
       if (which >= count) {
         throw InputError("fit: free parameter index " + std::to_string(which) + " is outside the " +
@@ -134,7 +154,7 @@ const char* parameter_name(int parameter) {
   }
 }
 
-std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis) {
+std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis, bool spring, bool lambda) {
   std::vector<ParameterInfo> list;
   list.push_back({ParameterKind::kWork, 0, hysteresis ? "w_load" : "w", "J/m2"});
   for (std::size_t i = 0; i < layers; ++i) {
@@ -144,6 +164,8 @@ std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis) {
     list.push_back({ParameterKind::kModulus, i, "E" + std::to_string(i + 1), "Pa"});
   }
   if (hysteresis) list.push_back({ParameterKind::kWork, 0, "w_unload", "J/m2"});
+  if (spring) list.push_back({ParameterKind::kSpring, 0, "k", "N/m"});
+  if (lambda) list.push_back({ParameterKind::kLambda, 0, "lambda", ""});  // dimensionless
   return list;
 }
 
@@ -260,7 +282,9 @@ Result fit(const Measurements& data, const Problem& problem) {
   const std::vector<double> final_scale = weighted ? inv_sigma : scale;
   if (problem.spring_stiffness > 0.0) {
     try {
-      if (const auto s = model.spring_pulloff(minimum.values, problem.spring_stiffness)) {
+      // z,F data: through the fitted (or fixed) k of the parameter vector.
+      const double k = problem.base_displacement ? minimum.values.values.back() : problem.spring_stiffness;
+      if (const auto s = model.spring_pulloff(minimum.values, k)) {
         result.has_spring_pulloff = true;
         result.spring_pulloff_radius = (*s)[0];
         result.spring_pulloff_penetration = (*s)[1];
@@ -357,6 +381,7 @@ Result fit(const Measurements& data, const Problem& problem) {
 }
 
 CurvePoint exact_point(const Problem& problem, double radius) {
+  if (problem.shape) throw InputError("exact_point: the sphere only (a shape's model is ShapeContact::at)");
   const Parameters p = internal::problem_parameters(problem);
   if (!(radius > 0.0) || !(p.total_thickness() > 0.0)) throw InputError("exact_point: a and t must be > 0");
   coatcontact::detail::GslHandlerOff handler_off;
@@ -372,6 +397,7 @@ std::vector<CurvePoint> model_curve(const Problem& problem, double radius_min, d
   if (!(radius_min > 0.0) || !(radius_max >= radius_min) || count < 2) {
     throw InputError("model_curve: need 0 < a_min <= a_max and at least 2 points");
   }
+  if (problem.shape) throw InputError("model_curve: the sphere only (a shape's curve is ShapeContact::curve)");
   coatcontact::detail::GslHandlerOff handler_off;
   const Parameters p = internal::problem_parameters(problem);
   const internal::ModelEntry entry(problem, internal::StackKey::of(p));

@@ -12,7 +12,10 @@
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
+#include "coatcontact/shape_contact.hpp"
+#include "coatcontact/shape_solver.hpp"
 
 namespace coatcontact::fit::internal {
 
@@ -21,15 +24,19 @@ struct Parameters {
   std::vector<double> values;
   std::size_t layers = 1;
   bool hysteresis = false;  // w_unload follows the moduli
+  bool spring = false;      // k last (Problem::base_displacement)
+  bool md = false;          // lambda last (Problem::maugis_dugdale)
 
   Parameters() = default;
   Parameters(double work, double thickness, double film_modulus)  // one film
       : values{work, thickness, film_modulus} {}
-  Parameters(std::vector<double> v, std::size_t layer_count, bool two_works = false)
-      : values(std::move(v)), layers(layer_count), hysteresis(two_works) {}
+  Parameters(std::vector<double> v, std::size_t layer_count, bool two_works = false, bool with_spring = false)
+      : values(std::move(v)), layers(layer_count), hysteresis(two_works), spring(with_spring) {}
+  double stiffness() const { return values.back(); }  // k [N/m] (spring only)
+  double lambda() const { return values.back(); }     // Maugis's lambda (md only)
   double work() const { return values[kWork]; }
   double unload_work() const { return hysteresis ? values[unload_work_index(layers)] : work(); }
-  // The parameters of one branch: one w (its own), no w_unload.
+  // The parameters of one branch: one w (its own), no w_unload (k kept).
   Parameters branch(bool unloading) const;
   double thickness(std::size_t layer) const { return values[thickness_index(layer)]; }
   double modulus(std::size_t layer) const { return values[modulus_index(layer, layers)]; }
@@ -65,9 +72,16 @@ class ModelEntry {
   const AdhesiveModel& model() const { return *model_; }
   const ReducedSolver& solver() const { return *solver_; }
   const StackKey& key() const { return key_; }
+  bool has_model() const { return model_ != nullptr; }
+  // A fit with Problem::shape: the shape floor's solver on the same stack (no table, no model).
+  const ShapeSolver& shape_solver() const { return *shape_solver_; }
+  // A Maugis-Dugdale fit (Problem::maugis_dugdale): the adhesion floor's model on the stack.
+  const MaugisDugdaleModel& md_model() const { return *md_model_; }
 
  private:
   StackKey key_;
+  std::unique_ptr<ShapeSolver> shape_solver_;
+  std::unique_ptr<MaugisDugdaleModel> md_model_;
   std::unique_ptr<ReducedSolver> solver_;  // declared first: the model keeps a reference
   std::unique_ptr<AdhesiveModel> model_;
 };
@@ -149,7 +163,7 @@ class Model {
   // max |F_exact - F_model| over (up to 16 of) the data points, the reduced variables solved
   // directly at each model radius (first order in the delta mismatch for delta,F data) [N].
   double interpolation_error(const Parameters& p, const ModelAtData& m);
-  long solver_calls() const { return cache_.solver_calls() + check_calls_; }
+  long solver_calls() const { return cache_.solver_calls() + check_calls_ + shape_calls_; }
   // Pull-off through a spring of stiffness k [N/m] at p: {a, delta, F} (SI), or nothing when
   // the jump is not inside the scanned range.
   std::optional<std::array<double, 3>> spring_pulloff(const Parameters& p, double k);
@@ -163,6 +177,11 @@ class Model {
   ModelAtData evaluate(const Parameters& p, bool with_pulloff);
   // One w for every point of `data`.
   ModelAtData evaluate_single(const Parameters& p, const Measurements& data, bool with_pulloff);
+  // The same through ShapeContact (Problem::shape): direct solves at every radius.
+  ModelAtData evaluate_shape(const Parameters& p, const Measurements& data, bool with_pulloff);
+  ShapeContact shape_contact(const Parameters& branch);
+  // Problem::maugis_dugdale: F and delta at the measured a (a,F data), one solve per point.
+  ModelAtData evaluate_md(const Parameters& p, const Measurements& data, bool with_pulloff);
   void check_range(const Parameters& p) const;
   [[noreturn]] void rethrow_at(const Parameters& p) const;
 
@@ -171,6 +190,7 @@ class Model {
   ModelCache cache_;
   std::vector<ParameterInfo> names_;
   long check_calls_ = 0;
+  long shape_calls_ = 0;  // ShapeContact::at calls (shape fits)
 };
 
 }  // namespace coatcontact::fit::internal

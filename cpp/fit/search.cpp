@@ -76,7 +76,21 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   } else {
     double d = 0.0;
     for (double x : data.abscissa) d = std::max(d, std::fabs(x));
-    a_hi = std::sqrt(problem.sphere_radius * d);
+    if (problem.shape) {
+      // delta0(a) = |delta|: the adhesionless radius of the largest penetration (bisection in ln a).
+      double lo = 1e-15, hi = std::min(1.0, problem.shape->max_contact_radius());
+      if (problem.shape->flat() || problem.shape->delta0(hi) <= d) {
+        lo = hi;
+      } else {
+        for (int i = 0; i < 200 && hi / lo > 1.0 + 1e-9; ++i) {
+          const double mid = std::sqrt(lo * hi);
+          (problem.shape->delta0(mid) < d ? lo : hi) = mid;
+        }
+      }
+      a_hi = hi;
+    } else {
+      a_hi = std::sqrt(problem.sphere_radius * d);
+    }
     a_lo = 0.1 * a_hi;
   }
 
@@ -103,17 +117,30 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   } else if (is_free(kThickness)) {
     axes.push_back({static_cast<std::size_t>(kThickness), log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])});
   }
-  const bool profile_work = is_free(kWork) && radius_data;
+  // (Maugis-Dugdale: F is not linear in sqrt(w) at fixed a; w gets an axis.)
+  const bool profile_work = is_free(kWork) && radius_data && !problem.maugis_dugdale;
   // Two adhesion energies (w_load, w_unload): each branch's points depend on their own only.
   const std::size_t unload_index = hint.hysteresis ? unload_work_index(layers) : 0;
-  if (is_free(kWork) && !radius_data) {
+  if (is_free(kWork) && !profile_work) {
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
-    const double estimate = f_min < 0.0 ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
+    const double estimate =
+        f_min < 0.0 && !problem.shape ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
     const std::vector<double> w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
                                                       : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
     axes.push_back({static_cast<std::size_t>(kWork), w_axis});
     if (hint.hysteresis) axes.push_back({unload_index, w_axis});
+  }
+  // The spring of z,F data (last in the parameter vector): within kSearchSpringFactor of its hint.
+  if (hint.spring && is_free(hint.values.size() - 1)) {
+    const double k = hint.stiffness();
+    axes.push_back({hint.values.size() - 1, log_axis(k / kSearchSpringFactor, k * kSearchSpringFactor, kCoarsePointsPerDecade)});
+  }
+  if (hint.md && is_free(hint.values.size() - 1)) {
+    const double lambda = hint.lambda();
+    axes.push_back({hint.values.size() - 1,
+                    log_axis(std::max(kLambdaRange[0], lambda / kSearchLambdaFactor),
+                             std::min(kLambdaRange[1], lambda * kSearchLambdaFactor), kCoarsePointsPerDecade)});
   }
   // The group of each point for the profiled w: 0, or 1 on the unloading branch.
   std::vector<int> group(data.size(), 0);

@@ -135,6 +135,13 @@ if command -v gnuplot >/dev/null; then
   [[ $(head -c 4 "$work/fit.pdf") == %PDF ]] || fail "plot pdf: not a PDF file"
   ls "$work" | grep -q '\.tmp\.' && fail "plot: a temporary file was left behind"
 fi
+# w runs out of its range on unweighted data without adhesion (w = 1e-9 J/m2, noisy a): the
+# message hints that noise on a may dominate and names --sigma
+"$generator" --kind a,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 1e-9 \
+  --noise 10uN --noise-x 3% --a-range 60um,400um --points 20 --seed 5 --output "$work/no_adhesion.tsv" || fail "generator (no adhesion)"
+expect "w runaway, no --sigma: hint" 3 "do not determine w\. No uncertainties were given.*--sigma a=" -- \
+  "$cli" fit "$work/no_adhesion.tsv" --columns a,F "${glass[@]}" --thickness 20um --output "$work/never.tsv"
+[[ -e $work/never.tsv ]] && fail "w runaway: an output file was left behind"
 # undetermined parameter: exit 3 saying which
 expect "undetermined t" 3 "do not determine t" -- \
   "$cli" fit "$data/example_a_F.tsv" --columns a,F --radius 5mm --film 1MPa,0.49 --substrate 1MPa,0.49 --free w,t

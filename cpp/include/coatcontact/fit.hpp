@@ -38,6 +38,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "coatcontact/indenter_shape.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/stack.hpp"
 
@@ -77,7 +80,7 @@ enum Parameter : int { kWork = 0, kThickness = 1, kFilmModulus = 2 };
 constexpr int kParameterCount = 3;  // one film
 const char* parameter_name(int parameter);  // one film: "w", "t", "E1"
 
-enum class ParameterKind { kWork, kThickness, kModulus };
+enum class ParameterKind { kWork, kThickness, kModulus, kSpring, kLambda };
 struct ParameterInfo {
   ParameterKind kind = ParameterKind::kWork;
   std::size_t layer = 0;  // 0-based, top first (thickness and modulus)
@@ -87,14 +90,24 @@ struct ParameterInfo {
 // The parameters of a fit on `layers` layers, in the order of the parameter vector. With
 // `hysteresis` the loading and unloading branches have their own adhesion energy: w is then
 // called w_load and w_unload follows the moduli.
-std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis = false);
+// With `spring` (Problem::base_displacement) the stiffness k [N/m] comes last; with `lambda`
+// (Problem::maugis_dugdale) Maugis's lambda (dimensionless) comes last.
+std::vector<ParameterInfo> parameter_list(std::size_t layers, bool hysteresis = false, bool spring = false,
+                                          bool lambda = false);
 // Index in the parameter vector of w, h_i or E_i (0-based layer).
 inline std::size_t thickness_index(std::size_t layer) { return 1 + layer; }
 inline std::size_t modulus_index(std::size_t layer, std::size_t layers) { return 1 + layers + layer; }
 inline std::size_t unload_work_index(std::size_t layers) { return 1 + 2 * layers; }
+inline std::size_t spring_index(std::size_t layers, bool hysteresis) { return 1 + 2 * layers + (hysteresis ? 1 : 0); }
 
 struct Problem {
-  double sphere_radius = 0.0;  // R [m]
+  double sphere_radius = 0.0;  // R [m] (unused with `shape`)
+  // Any axisymmetric indenter instead of the sphere (THEORY.md section 11): the model is then
+  // the adhesion floor's ShapeContact, solved directly at every model radius (no interpolant;
+  // w enters only through delta_fp ~ sqrt(w), so dF/d ln w stays analytic, the other
+  // derivatives are central differences in ln p). Null: the sphere of radius sphere_radius.
+  // The shape's own parameters (cone angle, tip radius, ...) are fixed.
+  std::shared_ptr<const IndenterShape> shape;
   Material film;               // E1 (hint and centre of the search range if free, else fixed), nu1
   Substrate substrate;
   double thickness = 0.0;  // t [m] (a hint to the search if free, else fixed)
@@ -113,6 +126,20 @@ struct Problem {
   double unload_work = 0.0;  // w_unload [J/m2] (a hint to the search)
   Indenter indenter;  // rigid by default; elastic: the stack's reference modulus is E_r
   double spring_stiffness = 0.0;  // k [N/m] of the machine/cantilever (> 0: its pull-off is reported)
+  // The abscissa of kPenetrationForce data is the base (piezo) displacement z = delta + F/k,
+  // the indenter sitting on a spring of stiffness k (THEORY.md section 10): the model's
+  // delta + F/k is matched to z on the branch that is stable under spring control (a >= the
+  // spring pull-off radius), and k (spring_stiffness: hint if free, else fixed) is appended to
+  // the parameter vector as "k" (spring_index), so it can be named in free_parameters. F and z
+  // together carry k: along the curve dz/dF = d delta/dF + 1/k.
+  bool base_displacement = false;
+  // Maugis-Dugdale cohesive zone instead of JKR (THEORY.md section 13, MaugisDugdaleModel of
+  // the adhesion floor): F = pi w R P(a_bar; eta, lambda), lambda = 2 sigma0 (R/(pi w K^2))^(1/3),
+  // K = 4E1*/3. `lambda` (hint if free, else fixed) is appended to the parameter vector as
+  // "lambda". a,F data of a rigid sphere only; one solve per point and trial, every derivative
+  // a central difference in ln p, no spring pull-off (slow: keep the data small).
+  bool maugis_dugdale = false;
+  double lambda = 1.0;
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
   int max_iterations = 200;
   bool global_search = true;  // false: start from the values above (bootstrap refits, tests)
@@ -129,6 +156,9 @@ constexpr double kSearchWork[2] = {1e-5, 10.0};      // J/m2
 constexpr double kSearchAOverT[2] = {1e-2, 50.0};
 constexpr double kSearchModulusFactor = 10.0;
 constexpr double kSearchThicknessFactor = 10.0;
+constexpr double kSearchSpringFactor = 10.0;  // k of z,F data, around its hint (--spring)
+constexpr double kSearchLambdaFactor = 10.0;  // Maugis-Dugdale lambda, around its hint
+constexpr double kLambdaRange[2] = {1e-3, 1e3};  // lambda the fit may ask for
 
 // Physical ranges of the parameters the model accepts (leaving them means the data do not
 // determine them), and the a/t (a/T for a stack) it is tabulated for.

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# `coatcontact fit --model md`: the Maugis-Dugdale cohesive zone (THEORY.md section 13).
+#   recovery: w and lambda from 12 noisy a,F points of `coatcontact sphere --cohesive-stress`
+#     (an independent path: the curve of the sphere command, no fit code), within 3 standard
+#     errors;
+#   bad input (exit 2, naming the option, no output file): bad --model, bad --lambda, lambda
+#     free without --model md, --model md with delta,F data.
+# Usage: test_fit_md.sh COATCONTACT
+set -u
+cli=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+ok() { echo "ok   $*"; }
+expect() {
+  local name=$1 code=$2 pattern=$3
+  shift 4
+  "$@" >"$work/out" 2>"$work/err"
+  local got=$?
+  if [[ $got -ne $code ]]; then
+    fail "$name: exit $got, expected $code; stderr: $(cat "$work/err")"
+  elif [[ -n $pattern ]] && ! grep -Eq -- "$pattern" "$work/err"; then
+    fail "$name: stderr does not match /$pattern/: $(cat "$work/err")"
+  else
+    ok "$name (exit $got${pattern:+, message: $(head -c 200 "$work/err")})"
+  fi
+}
+within3() {
+  awk -v e="$2" -v s="$3" -v t="$4" 'BEGIN { d = e - t; if (d < 0) d = -d; exit !(s > 0 && d < 3 * s) }' \
+    && ok "$1 = $2 +- $3 (truth $4)" || fail "$1 = $2 +- $3, truth $4: not within 3 standard errors"
+}
+
+glass=(--radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22)
+# sigma0 = 30 kPa on the 20 um film: lambda = 0.954706 (the sphere command's header).
+"$cli" sphere "${glass[@]}" --thickness 20um --work 50mJ/m2 --cohesive-stress 30kPa --output "$work/md.tsv" \
+  || fail "sphere --cohesive-stress (data)"
+lambda=$(sed -n 's/^# lambda = 2 sigma0.*: //p' "$work/md.tsv")
+awk -v l="$lambda" 'BEGIN { exit !(l > 0.9546 && l < 0.9548) }' || fail "lambda of the data is '$lambda', expected 0.954706"
+# 12 of its rows with 10 um <= a <= 150 um (through the pull-off), 2 uN of noise (fixed deviates).
+noise="-0.256 0.511 -0.226 -0.315 -0.930 -0.213 1.112 0.424 1.037 0.249 0.395 0.185"
+grep -v '^#' "$work/md.tsv" | awk '$1 >= 1e-5 && $1 <= 1.5e-4' |
+  awk -v z="$noise" 'BEGIN { split(z, d, " ") } { r[n++] = $0 }
+    END { for (i = 0; i < 12; i++) { split(r[int(i * (n - 1) / 11 + 0.5)], f, "\t"); printf "%.12e\t%.12e\n", f[1], f[3] + 2e-6 * d[i + 1] } }' \
+  >"$work/md_a_F.tsv"
+[[ $(wc -l <"$work/md_a_F.tsv") -eq 12 ]] || fail "md data: $(wc -l <"$work/md_a_F.tsv") rows, expected 12"
+start=$(date +%s)
+expect "md: w,lambda free" 0 "" -- "$cli" fit "$work/md_a_F.tsv" --columns a,F "${glass[@]}" --thickness 20um \
+  --model md --free w,lambda --sigma F=2uN
+echo "     ($(( $(date +%s) - start )) s)"
+if grep -v '^#' "$work/out" | grep -Eiq 'nan|inf'; then fail "md: NaN/inf in the output"; fi
+within3 "w [J/m2]" "$(sed -n 's/^# w_J_per_m2: //p' "$work/out")" "$(sed -n 's/^# w_stderr_J_per_m2: //p' "$work/out")" 0.05
+within3 "lambda" "$(sed -n 's/^# lambda_1: //p' "$work/out")" "$(sed -n 's/^# lambda_stderr_1: //p' "$work/out")" "$lambda"
+
+# --- bad input: exit 2 ---
+expect "bad --model" 2 "--model: 'dmt' is not allowed" -- "$cli" fit "$work/md_a_F.tsv" --columns a,F "${glass[@]}" \
+  --thickness 20um --model dmt --output "$work/never.tsv"
+expect "bad --lambda" 2 "--lambda: '0' is not allowed" -- "$cli" fit "$work/md_a_F.tsv" --columns a,F "${glass[@]}" \
+  --thickness 20um --model md --lambda 0 --output "$work/never.tsv"
+expect "--lambda without --model md" 2 "--lambda: only with --model md" -- "$cli" fit "$work/md_a_F.tsv" --columns a,F \
+  "${glass[@]}" --thickness 20um --lambda 1 --output "$work/never.tsv"
+expect "lambda free with JKR" 2 "--free: 'lambda' is a parameter of the Maugis-Dugdale model only" -- "$cli" fit \
+  "$work/md_a_F.tsv" --columns a,F "${glass[@]}" --thickness 20um --free w,lambda --output "$work/never.tsv"
+expect "md with delta,F data" 2 "--model md: fits a,F data only" -- "$cli" fit "$work/md_a_F.tsv" --columns delta,F \
+  "${glass[@]}" --thickness 20um --model md --output "$work/never.tsv"
+[[ -e $work/never.tsv ]] && fail "an output file was left behind"
+
+if [[ $failures -ne 0 ]]; then
+  echo "FAIL ($failures failures)"
+  exit 1
+fi
+echo "PASS"
