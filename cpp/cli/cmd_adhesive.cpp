@@ -319,7 +319,12 @@ int run_sphere(const Args& raw) {
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
     Output out(args.get("--output").value_or(""));
     if (sigma0) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
-      write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points);
+      std::vector<double> contact_radii;
+      if (const auto text = args.get("--contact-radius")) {
+        if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
+        contact_radii = parse_list(*text, "--contact-radius");
+      }
+      write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points, contact_radii);
       out.commit();
       return 0;
     }

@@ -256,7 +256,7 @@ std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& 
 }
 
 void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double thickness, double work,
-                     double sigma0, std::size_t points) {
+                     double sigma0, std::size_t points, const std::vector<double>& contact_radii) {
   const double e = stack.reference_modulus();
   const double length = std::cbrt(kPi * work * radius * radius / e);
   const double eta = thickness / length;
@@ -269,8 +269,17 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
   const double penetration = length * length / radius, force = kPi * work * radius;
   const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
   const double r = stack.substrate_length_ratio();
-  const std::vector<MaugisDugdalePoint> curve =
-      md.curve(eta, lambda, log_spaced(0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r), points));
+  std::vector<double> a_bar;
+  for (double a : contact_radii) {
+    if (!(a / length >= kMinimumScaled && a / length <= kMaximumScaled)) {
+      throw InputError("--contact-radius: " + num(a) + " m is not allowed; every a must be in [" +
+                       num(kMinimumScaled * length) + ", " + num(kMaximumScaled * length) +
+                       "] m (1e-6 to 1e6 times the length scale)");
+    }
+    a_bar.push_back(a / length);
+  }
+  if (a_bar.empty()) a_bar = log_spaced(0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r), points);
+  const std::vector<MaugisDugdalePoint> curve = md.curve(eta, lambda, a_bar);
   const MaugisDugdalePulloff p = md.pulloff(eta, lambda);
   const double to_maugis = std::cbrt(4.0 / 3.0);
   Header h{{"command", "sphere"}};

@@ -31,7 +31,8 @@ std::vector<OptionSpec> cohesive_options();
 // thicknesses, or a lambda outside [kMinimumLambda, kMaximumLambda].
 std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& stack, double radius,
                                             double thickness, double work);
+// contact_radii [m]: the radii of the curve; empty: `points` log-spaced over the default range.
 void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double thickness, double work,
-                     double sigma0, std::size_t points);
+                     double sigma0, std::size_t points, const std::vector<double>& contact_radii);
 
 }  // namespace coatcontact::cli

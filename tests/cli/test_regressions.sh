@@ -238,6 +238,16 @@ progress_line)
   grep -q $'\r' err && fail "carriage return in a non-terminal stderr"
   ok "no progress line off a terminal"
   ;;
+md_sphere_ignores_contact_radius)
+  # `sphere --cohesive-stress` wrote its 400 default radii whatever --contact-radius asked for.
+  md=(sphere --radius 5mm --thickness 50um --film 1MPa,0.49 --substrate 70GPa,0.22 --work 50mJ/m2
+      --cohesive-stress 30kPa)
+  run 0 "${md[@]}" --contact-radius 2e-5,5e-5,1e-4 && grep -v '^#' out | cut -f1 >radii
+  printf '2.0000000000000002e-05\n5.0000000000000002e-05\n0.0001\n' >want
+  cmp -s radii want && ok "the three requested radii, in order" || fail "rows: $(tr '\n' ' ' <radii | cut -c1-200)"
+  expect_error "--points" "${md[@]}" --contact-radius 2e-5 --points 3
+  expect_error "--contact-radius" "${md[@]}" --contact-radius 1e-12
+  ;;
 *)
   echo "unknown case '$case_name'"
   exit 1
