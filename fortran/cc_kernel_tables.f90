@@ -375,6 +375,42 @@ contains
   ! range halve while the range still covers u_range (>= 40): a solver that never needs H
   ! beyond u_range skips most of the FFT work; the asymptotic series is used beyond, as usual.
   ! Such a table has no H1 (not computed: half the FFT work; evaluate_kernel_h only).
+  ! One r2r transform of length n on FFTW-allocated (SIMD-aligned) copies of x and y:
+  ! FFTW_ESTIMATE picks its codelets by the arrays' alignment, so transforming Fortran-allocated
+  ! arrays made a table (and every printed digit after it) depend on the heap state, e.g. on
+  ! which thread built the table.
+  subroutine aligned_r2r(n, kind, x, y, status)
+    integer, intent(in) :: n
+    integer(C_FFTW_R2R_KIND), intent(in) :: kind
+    real(c_double), intent(in) :: x(0:)
+    real(c_double), intent(inout) :: y(0:)
+    integer, intent(out) :: status
+    type(c_ptr) :: p_in, p_out, plan
+    real(c_double), pointer :: a_in(:), a_out(:)
+    status = CC_ERR_ALLOCATION
+    p_in = fftw_alloc_real(int(n, c_size_t))
+    p_out = fftw_alloc_real(int(n, c_size_t))
+    if (c_associated(p_in) .and. c_associated(p_out)) then
+      call c_f_pointer(p_in, a_in, [n])
+      call c_f_pointer(p_out, a_out, [n])
+      call cc_planner_lock()
+      plan = fftw_plan_r2r_1d(int(n, c_int), a_in, a_out, kind, FFTW_ESTIMATE)
+      call cc_planner_unlock()
+      status = CC_ERR_FFT
+      if (c_associated(plan)) then
+        a_in = x(0:n - 1)
+        call fftw_execute_r2r(plan, a_in, a_out)
+        y(0:n - 1) = a_out
+        call cc_planner_lock()
+        call fftw_destroy_plan(plan)
+        call cc_planner_unlock()
+        status = CC_OK
+      end if
+    end if
+    if (c_associated(p_in)) call fftw_free(p_in)
+    if (c_associated(p_out)) call fftw_free(p_out)
+  end subroutine aligned_r2r
+
   subroutine build_table(src, variant, table, status, u_range)
     type(kernel_source), intent(in) :: src
     integer, intent(in) :: variant
@@ -388,7 +424,6 @@ contains
     real(dp) :: alias_h, alias_h1, rounding_h, rounding_h1, interp_h, interp_h1, tail, strip
     real(dp) :: cauchy_bound, lebesgue, distance, rk, hs, h1s, hp, h1p, u
     complex(dp) :: z, zk
-    type(c_ptr) :: plan
     real(dp) :: u_table, period, t_probe, product
     integer :: n, k, j, ierr, stencil, stencil_left, i_probe
     logical :: compact
@@ -463,47 +498,25 @@ contains
     r(0) = 0.0_dp                                     ! exact by construction
 
     ! H_r(k du) = (dq/2) DCT-I(r)_k  (trapezoid rule, endpoints halved by REDFT00)
-    call cc_planner_lock()
     if (compact) then
       ! The DCT-I as the real DFT (R2HC, real parts first) of the even extension of r with
       ! period 2N: the same sums, and planning a power-of-2 R2HC costs a fraction of planning
       ! a REDFT00 (~0.5 against ~1.5 ms, most of a one-radius call once the grid is compact).
-      plan = fftw_plan_r2r_1d(int(2 * n, c_int), work_in, work_out, FFTW_R2HC, FFTW_ESTIMATE)
-    else
-      plan = fftw_plan_r2r_1d(int(n + 1, c_int), work_in, work_out, FFTW_REDFT00, FFTW_ESTIMATE)
-    end if
-    call cc_planner_unlock()
-    if (.not. c_associated(plan)) then
-      status = CC_ERR_FFT
-      return
-    end if
-    if (compact) then
       work_in(0:n) = r
       work_in(n + 1:2 * n - 1) = r(n - 1:1:-1)
+      call aligned_r2r(2 * n, FFTW_R2HC, work_in, work_out, status)
     else
       work_in = r
+      call aligned_r2r(n + 1, FFTW_REDFT00, work_in, work_out, status)
     end if
-    call fftw_execute_r2r(plan, work_in, work_out)
-    call cc_planner_lock()
-    call fftw_destroy_plan(plan)
-    call cc_planner_unlock()
+    if (status /= CC_OK) return
     table%h = 0.5_dp * dq * work_out(0:table%n_nodes - 1)
 
     if (table%has_h1) then
     ! H1_r(k du) = (dq/2) DST-I(r/q)_(k-1): samples at q_1 .. q_(N-1) (r/q -> 0 at both ends)
     work_in(0:n - 2) = r(1:n - 1) / q(1:n - 1)
-    call cc_planner_lock()
-    plan = fftw_plan_r2r_1d(int(n - 1, c_int), work_in, work_out, FFTW_RODFT00, FFTW_ESTIMATE)
-    call cc_planner_unlock()
-    if (.not. c_associated(plan)) then
-      status = CC_ERR_FFT
-      return
-    end if
-    work_in(0:n - 2) = r(1:n - 1) / q(1:n - 1)
-    call fftw_execute_r2r(plan, work_in, work_out)
-    call cc_planner_lock()
-    call fftw_destroy_plan(plan)
-    call cc_planner_unlock()
+    call aligned_r2r(n - 1, FFTW_RODFT00, work_in, work_out, status)
+    if (status /= CC_OK) return
     table%h1(0) = 0.0_dp
     table%h1(1:table%n_nodes - 1) = 0.5_dp * dq * work_out(0:table%n_nodes - 2)
     end if
