@@ -19,6 +19,7 @@ usage: check_tutorial.py --cli PATH/coatcontact [--update] TUTORIAL.md
 """
 import argparse
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -76,7 +77,14 @@ def run(cli, command, workdir):
     return proc.returncode, proc.stdout, proc.stderr
 
 
+# A fit's stop reason ("small step", "no further decrease ...") can differ between builds
+# (-O2 against -O3 moves the model by an ulp where the start is already the minimum); both
+# mean converged, so the reason is not compared.
+STOP_REASON = re.compile(r"converged \(.*\) after")
+
+
 def tokens_match(shown, actual):
+    shown, actual = (STOP_REASON.sub("converged after", x) for x in (shown, actual))
     a, b = shown.split(), actual.split()
     if len(a) != len(b):
         return False
