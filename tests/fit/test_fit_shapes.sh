@@ -6,29 +6,7 @@
 # Usage: test_fit_shapes.sh COATCONTACT
 set -u
 cli=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-ok() { echo "ok   $*"; }
-expect() {
-  local name=$1 code=$2 pattern=$3
-  shift 4
-  "$@" >"$work/out" 2>"$work/err"
-  local got=$?
-  if [[ $got -ne $code ]]; then
-    fail "$name: exit $got, expected $code; stderr: $(cat "$work/err")"
-  elif [[ -n $pattern ]] && ! grep -Eq -- "$pattern" "$work/err"; then
-    fail "$name: stderr does not match /$pattern/: $(cat "$work/err")"
-  else
-    ok "$name (exit $got${pattern:+, message: $(head -c 200 "$work/err")})"
-  fi
-}
-# within3 NAME ESTIMATE ERROR TRUTH: |estimate - truth| < 3 error, error > 0.
-within3() {
-  awk -v e="$2" -v s="$3" -v t="$4" 'BEGIN { d = e - t; if (d < 0) d = -d; exit !(s > 0 && d < 3 * s) }' \
-    && ok "$1 = $2 +- $3 (truth $4)" || fail "$1 = $2 +- $3, truth $4: not within 3 standard errors"
-}
+source "$(dirname "$0")/fit_checks.sh"
 
 # A blunt cone (beta = 80 deg) on a soft film, adhesion and the substrate both visible:
 # 14 contact radii 1..20 um (a/t 0.2..4), Gaussian noise of 0.2 uN (fixed deviates) on F.
@@ -61,8 +39,4 @@ expect "neither --shape nor --radius" 2 "--radius R \(or --shape SPEC\)" -- "$cl
   "${material[@]}" --thickness 5um --output "$work/never.tsv"
 [[ -e $work/never.tsv ]] && fail "an output file was left behind"
 
-if [[ $failures -ne 0 ]]; then
-  echo "FAIL ($failures failures)"
-  exit 1
-fi
-echo "PASS"
+finish

@@ -9,28 +9,7 @@
 set -u
 cli=$1
 generator=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-ok() { echo "ok   $*"; }
-expect() {
-  local name=$1 code=$2 pattern=$3
-  shift 4
-  "$@" >"$work/out" 2>"$work/err"
-  local got=$?
-  if [[ $got -ne $code ]]; then
-    fail "$name: exit $got, expected $code; stderr: $(cat "$work/err")"
-  elif [[ -n $pattern ]] && ! grep -Eq -- "$pattern" "$work/err"; then
-    fail "$name: stderr does not match /$pattern/: $(cat "$work/err")"
-  else
-    ok "$name (exit $got${pattern:+, message: $(head -c 200 "$work/err")})"
-  fi
-}
-within3() {
-  awk -v e="$2" -v s="$3" -v t="$4" 'BEGIN { d = e - t; if (d < 0) d = -d; exit !(s > 0 && d < 3 * s) }' \
-    && ok "$1 = $2 +- $3 (truth $4)" || fail "$1 = $2 +- $3, truth $4: not within 3 standard errors"
-}
+source "$(dirname "$0")/fit_checks.sh"
 
 glass=(--radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22)
 common=(--kind delta,F "${glass[@]}" --thickness 20um --work 50mJ/m2 --a-range 60um,250um --points 14 --seed 4)
@@ -71,8 +50,4 @@ expect "sigma delta on z,F data" 2 "--sigma: 'delta' is not a column of these da
   --columns z,F "${glass[@]}" --thickness 20um --spring 1e5 --sigma delta=1nm --output "$work/never.tsv"
 [[ -e $work/never.tsv ]] && fail "an output file was left behind"
 
-if [[ $failures -ne 0 ]]; then
-  echo "FAIL ($failures failures)"
-  exit 1
-fi
-echo "PASS"
+finish

@@ -13,6 +13,7 @@
 #include <gsl/gsl_integration.h>
 
 #include "../common/check.hpp"
+#include "../common/oscillatory_integral.hpp"
 #include "coatcontact/kernel.hpp"
 
 namespace {
@@ -44,25 +45,7 @@ const std::vector<double> kBreaks = {0,   1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e
                                      1,   3,    10,   20,   40,   60,   100,  160,  250,  400};
 
 double oscillatory(double (*g)(double, void*), Integrand* in, double u, bool sine, double abs_tol) {
-  gsl_integration_workspace* work = gsl_integration_workspace_alloc(2000);
-  double total = 0;
-  for (std::size_t i = 0; i + 1 < kBreaks.size(); ++i) {
-    const double a = kBreaks[i], b = kBreaks[i + 1];
-    gsl_function fn{g, in};
-    double result = 0, err = 0;
-    const double tol = abs_tol / static_cast<double>(kBreaks.size());
-    if (u == 0) {
-      if (!sine) gsl_integration_qag(&fn, a, b, tol, 1e-14, 2000, GSL_INTEG_GAUSS41, work, &result, &err);
-    } else {
-      gsl_integration_qawo_table* table = gsl_integration_qawo_table_alloc(
-          u, b - a, sine ? GSL_INTEG_SINE : GSL_INTEG_COSINE, 40);
-      gsl_integration_qawo(&fn, a, tol, 1e-14, 2000, work, table, &result, &err);
-      gsl_integration_qawo_table_free(table);
-    }
-    total += result;
-  }
-  gsl_integration_workspace_free(work);
-  return total;
+  return check::oscillatory_integral(g, in, u, sine, abs_tol, kBreaks);
 }
 
 struct Case {
