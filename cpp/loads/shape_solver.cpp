@@ -117,12 +117,11 @@ ShapeVariables ShapeSolver::solve(const IndenterShape& shape, double contact_rad
 
   detail::Discretization disc;
   disc.quadrature_accuracy = std::clamp(1e-4 * tolerance, 1e-14, 1e-11);
-  const int start = std::clamp(static_cast<int>(std::ceil(std::log(10.0 / tolerance) / std::log(6.5))), 4,
-                               detail::kMaxNodesPerPanel - 2);
-  disc.nodes_per_panel = start;
+  int coarse_p = detail::first_refinement_level(tolerance);
+  disc.nodes_per_panel = coarse_p;
   detail::ShapeSolve previous = detail::solve_shapes(impl_->kernel, a, disc, {load});
   double estimate = 0.0;
-  for (int p = start + 2; p <= detail::kMaxNodesPerPanel; p += 2) {
+  for (int p = coarse_p + detail::kRefinementStep; p <= detail::kMaxNodesPerPanel;) {
     disc.nodes_per_panel = p;
     const detail::ShapeSolve current = detail::solve_shapes(impl_->kernel, a, disc, {load});
     const double discretization = std::max(max_difference(values_of(previous), values_of(current)),
@@ -152,7 +151,17 @@ ShapeVariables ShapeSolver::solve(const IndenterShape& shape, double contact_rad
       v.unknowns = current.unknowns;
       return v;
     }
-    previous = current;
+    const int next = discretization > tolerance
+                         ? detail::next_coarse_level(coarse_p, p, discretization, tolerance)
+                         : p;
+    if (next > p) {  // a fresh pair further on
+      disc.nodes_per_panel = next;
+      previous = detail::solve_shapes(impl_->kernel, a, disc, {load});
+    } else {
+      previous = current;
+    }
+    coarse_p = next;
+    p = next + detail::kRefinementStep;
   }
   std::ostringstream message;
   message.precision(3);

@@ -25,7 +25,27 @@ double max_relative_difference(const ReducedValues& coarse, const ReducedValues&
   return worst;
 }
 
+// Convergence rate of the level differences per node per panel (docs/solver.md).
+constexpr double kRatePerNode = 6.5;
+// The error of the benign material pairs extrapolated to p = 0 (all a/t).
+constexpr double kStartErrorScale = 0.03;
+
 }  // namespace
+
+int first_refinement_level(double tolerance) {
+  const double p = std::ceil(std::log(kStartErrorScale / tolerance) / std::log(kRatePerNode));
+  return std::clamp(static_cast<int>(p), 4, kMaxNodesPerPanel - kRefinementStep);
+}
+
+int next_coarse_level(int coarse, int fine, double difference, double tolerance) {
+  if (fine >= kMaxNodesPerPanel - kRefinementStep) return fine;
+  // Whole steps: the levels stay those of the plain schedule (the rounding term grows with p,
+  // and overshooting one step can push it over the tolerance).
+  const double steps =
+      std::ceil(std::log(difference / tolerance) / std::log(kRatePerNode) / kRefinementStep);
+  const int predicted = coarse + kRefinementStep * static_cast<int>(std::min(steps, double(kMaxNodesPerPanel)));
+  return std::clamp(predicted, fine, kMaxNodesPerPanel - kRefinementStep);
+}
 
 FixedSolve solve_fixed(const KernelSource& kernel, double a, const Discretization& disc) {
   static const SphereShape sphere;
@@ -52,14 +72,8 @@ AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolera
                              const IndependentKernel& independent, double bound_limit) {
   Discretization disc;
   disc.quadrature_accuracy = std::clamp(1e-4 * tolerance, 1e-14, 1e-11);
-  // Measured convergence: the error falls by ~6.5 per node per panel, from ~10 at p = 0 for
-  // the largest ã (docs/solver.md); start where that model meets the tolerance. The level
-  // difference then estimates the coarser level's error, and the returned finer level is
-  // better by a further factor ~6.5² = 40.
-  const int start = std::clamp(
-      static_cast<int>(std::ceil(std::log(10.0 / tolerance) / std::log(6.5))), 4, kMaxNodesPerPanel - 2);
-  const int step = 2;
-  disc.nodes_per_panel = start;
+  int coarse_p = first_refinement_level(tolerance);
+  disc.nodes_per_panel = coarse_p;
   FixedSolve previous = solve_fixed(kernel, a, disc);
   AdaptiveSolve result;
   if (previous.kernel_error > bound_limit) {  // the caller would not keep this solve
@@ -67,12 +81,12 @@ AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolera
     result.kernel_error = previous.kernel_error;
     result.rounding_error = previous.rounding_error;
     result.unknowns = previous.unknowns;
-    result.nodes_per_panel = start;
+    result.nodes_per_panel = coarse_p;
     result.error_estimate = std::numeric_limits<double>::infinity();
     return result;
   }
   double previous_two_table = std::numeric_limits<double>::infinity();
-  for (int p = start + step; p <= kMaxNodesPerPanel; p += step) {
+  for (int p = coarse_p + kRefinementStep; p <= kMaxNodesPerPanel;) {
     disc.nodes_per_panel = p;
     FixedSolve current = solve_fixed(kernel, a, disc);
     result.values = current.values;
@@ -125,7 +139,17 @@ AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolera
       if (!(result.kernel_error < 0.5 * previous_two_table)) return result;
       previous_two_table = result.kernel_error;
     }
-    previous = current;
+    const int next = result.discretization_error > tolerance
+                         ? next_coarse_level(coarse_p, p, result.discretization_error, tolerance)
+                         : p;
+    if (next > p) {  // a fresh pair further on
+      disc.nodes_per_panel = next;
+      previous = solve_fixed(kernel, a, disc);
+    } else {
+      previous = current;
+    }
+    coarse_p = next;
+    p = next + kRefinementStep;
   }
   return result;
 }
