@@ -610,13 +610,142 @@ contains
     end if
   end function node_value
 
+  ! Lagrange basis l_j(t) = w_j prod_{m /= j} (t - k_m) on the nodes k_j = j - left,
+  ! j = 0 .. stencil-1, by prefix and suffix products: no divisions (each costs several
+  ! multiplications), and valid at a node too, where the other l_j vanish.
+  pure subroutine lagrange_basis(weight, stencil, left, t, ell)
+    real(dp), intent(in) :: weight(0:max_stencil - 1)
+    integer, intent(in) :: stencil, left
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: ell(0:max_stencil - 1)
+    real(dp) :: d(0:max_stencil - 1), suffix(0:max_stencil - 1), prefix
+    integer :: j
+
+    do j = 0, stencil - 1
+      d(j) = t - real(j - left, dp)
+    end do
+    suffix(stencil - 1) = 1.0_dp
+    do j = stencil - 2, 0, -1
+      suffix(j) = suffix(j + 1) * d(j + 1)
+    end do
+    prefix = 1.0_dp
+    do j = 0, stencil - 1
+      ell(j) = (weight(j) * prefix) * suffix(j)
+      prefix = prefix * d(j)
+    end do
+  end subroutine lagrange_basis
+
+  ! The default stencil (12 nodes, k = -5 .. 6) with constant bounds and short dependency
+  ! chains, so that it unrolls into registers and consecutive evaluations overlap: the
+  ! nodes 5-m and 6+m pair up (their product q_m), and l_j = w_j (t - k_partner) times the
+  ! product of the other five q, taken as a balanced tree.
+  pure subroutine lagrange_basis_12(weight, t, ell)
+    real(dp), intent(in) :: weight(0:max_stencil - 1)
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: ell(0:max_stencil - 1)
+    real(dp) :: d(0:11), q(0:5), r01, r23, r45, others(0:5)
+    integer :: j, m
+
+    do j = 0, 11
+      d(j) = t - real(j - 5, dp)
+    end do
+    do m = 0, 5
+      q(m) = d(5 - m) * d(6 + m)
+    end do
+    r01 = q(0) * q(1)
+    r23 = q(2) * q(3)
+    r45 = q(4) * q(5)
+    others(0) = q(1) * (r23 * r45)
+    others(1) = q(0) * (r23 * r45)
+    others(2) = q(3) * (r01 * r45)
+    others(3) = q(2) * (r01 * r45)
+    others(4) = q(5) * (r01 * r23)
+    others(5) = q(4) * (r01 * r23)
+    do m = 0, 5
+      ell(5 - m) = (weight(5 - m) * d(6 + m)) * others(m)
+      ell(6 + m) = (weight(6 + m) * d(5 - m)) * others(m)
+    end do
+  end subroutine lagrange_basis_12
+
+  ! sum_j l_j x_j over 12 nodes as a balanced tree (short chain, fixed order).
+  pure real(dp) function stencil_sum_12(ell, x) result(s)
+    real(dp), intent(in) :: ell(0:max_stencil - 1)
+    real(dp), intent(in) :: x(0:11)
+    real(dp) :: y(0:5)
+    integer :: m
+
+    do m = 0, 5
+      y(m) = ell(5 - m) * x(5 - m) + ell(6 + m) * x(6 + m)
+    end do
+    s = ((y(0) + y(1)) + (y(2) + y(3))) + (y(4) + y(5))
+  end function stencil_sum_12
+
+  ! The nodes i - left .. i - left + stencil - 1 of a table: direct indexing away from u = 0;
+  ! near it the stencil reaches negative nodes, given by the symmetry of H (even) or H1 (odd).
+  pure subroutine stencil_nodes(values, stencil, left, i, odd, x)
+    real(dp), intent(in), contiguous :: values(0:)
+    integer, intent(in) :: stencil, left, i
+    logical, intent(in) :: odd
+    real(dp), intent(out) :: x(0:max_stencil - 1)
+    integer :: j
+
+    if (i >= left) then
+      x(0:stencil - 1) = values(i - left:i - left + stencil - 1)
+    else
+      do j = 0, stencil - 1
+        x(j) = node_value(values, i - left + j, odd)
+      end do
+    end if
+  end subroutine stencil_nodes
+
+  ! Interpolated H, and H1 if with_h1, at u = (i + t) du, t in (0, 1): one routine for both
+  ! evaluations so that they give the same H, with the basis kept in registers.
+  pure subroutine interpolate(table, i, t, with_h1, h, h1)
+    type(kernel_table), intent(in) :: table
+    integer, intent(in) :: i
+    real(dp), intent(in) :: t
+    logical, intent(in) :: with_h1
+    real(dp), intent(out) :: h, h1
+    real(dp) :: ell(0:max_stencil - 1), x(0:max_stencil - 1)
+    integer :: j
+
+    h1 = 0.0_dp
+    if (table%stencil == 12 .and. table%stencil_left == 5) then
+      call lagrange_basis_12(table%lagrange_weight, t, ell)
+      if (i >= 5) then
+        h = stencil_sum_12(ell, table%h(i - 5:i + 6))
+        if (with_h1) h1 = stencil_sum_12(ell, table%h1(i - 5:i + 6))
+      else
+        call stencil_nodes(table%h, 12, 5, i, .false., x)
+        h = stencil_sum_12(ell, x)
+        if (with_h1) then
+          call stencil_nodes(table%h1, 12, 5, i, .true., x)
+          h1 = stencil_sum_12(ell, x)
+        end if
+      end if
+    else
+      call lagrange_basis(table%lagrange_weight, table%stencil, table%stencil_left, t, ell)
+      call stencil_nodes(table%h, table%stencil, table%stencil_left, i, .false., x)
+      h = 0.0_dp
+      do j = 0, table%stencil - 1
+        h = h + ell(j) * x(j)
+      end do
+      if (with_h1) then
+        call stencil_nodes(table%h1, table%stencil, table%stencil_left, i, .true., x)
+        do j = 0, table%stencil - 1
+          h1 = h1 + ell(j) * x(j)
+        end do
+      end if
+    end if
+  end subroutine interpolate
+
   ! H(u) and H1(u) for any real u (thread-safe: reads the table only).
   elemental subroutine evaluate_kernel_table(table, u, h, h1)
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u
     real(dp), intent(out) :: h, h1
-    real(dp) :: v, t, ell, weight, sum_h, sum_h1, inv, inv2, term, fact
-    integer :: i, k, j
+    real(dp) :: v, t, inv, inv2, term, fact
+    integer :: i, k
 
     v = abs(u)
     if (v <= table%u_max) then
@@ -627,19 +756,8 @@ contains
         h = table%h(i)
         h1 = table%h1(i)
       else
-        ! first barycentric form on the nodes i + k, k = -5..6
-        ell = 1.0_dp
-        sum_h = 0.0_dp
-        sum_h1 = 0.0_dp
-        do k = -table%stencil_left, table%stencil - 1 - table%stencil_left
-          ell = ell * (t - real(k, dp))
-          j = k + table%stencil_left
-          weight = table%lagrange_weight(j) / (t - real(k, dp))
-          sum_h = sum_h + weight * node_value(table%h, i + k, .false.)
-          sum_h1 = sum_h1 + weight * node_value(table%h1, i + k, .true.)
-        end do
-        h = ell * sum_h
-        h1 = ell * sum_h1
+        ! Lagrange form on the nodes i + k, k = -left .. stencil-1-left
+        call interpolate(table, i, t, .true., h, h1)
       end if
     else
       call pole_transforms(table, v, h, h1)
@@ -663,7 +781,7 @@ contains
   elemental real(dp) function evaluate_kernel_h(table, u) result(h)
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u
-    real(dp) :: v, t, ell, sum_h, inv, inv2, term, fact, h1
+    real(dp) :: v, t, inv, inv2, term, fact, h1
     integer :: i, k
 
     v = abs(u)
@@ -674,14 +792,7 @@ contains
       if (t == 0.0_dp) then
         h = table%h(i)
       else
-        ell = 1.0_dp
-        sum_h = 0.0_dp
-        do k = -table%stencil_left, table%stencil - 1 - table%stencil_left
-          ell = ell * (t - real(k, dp))
-          sum_h = sum_h + table%lagrange_weight(k + table%stencil_left) / (t - real(k, dp)) &
-                          * table%h(abs(i + k))
-        end do
-        h = ell * sum_h
+        call interpolate(table, i, t, .false., h, h1)
       end if
     else
       call pole_transforms(table, v, h, h1)
