@@ -39,10 +39,12 @@ int first_refinement_level(double tolerance) {
 
 int next_coarse_level(int coarse, int fine, double difference, double tolerance) {
   if (fine >= kMaxNodesPerPanel - kRefinementStep) return fine;
-  // Whole steps: the levels stay those of the plain schedule (the rounding term grows with p,
-  // and overshooting one step can push it over the tolerance).
+  // Whole steps, rounded down: the levels stay those of the plain schedule, and a jump never
+  // passes the level the plain schedule would end on. The hard cases converge faster than the
+  // rate (up to ~9 per node), and every level beyond the needed one costs an extra solve, a
+  // larger rounding term and a two-table re-solve that may again miss the tolerance.
   const double steps =
-      std::ceil(std::log(difference / tolerance) / std::log(kRatePerNode) / kRefinementStep);
+      std::floor(std::log(difference / tolerance) / std::log(kRatePerNode) / kRefinementStep);
   const int predicted = coarse + kRefinementStep * static_cast<int>(std::min(steps, double(kMaxNodesPerPanel)));
   return std::clamp(predicted, fine, kMaxNodesPerPanel - kRefinementStep);
 }
