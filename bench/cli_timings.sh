@@ -40,7 +40,7 @@ time_task "fit a,F, noise on a and F, w,t free, no start (60 points, a/t to 20)"
   "$cli" fit "$root/data/example_both_a_F.tsv" --columns a,F --radius 2mm --film 1MPa,0.5 \
   --substrate 70GPa,0.22 --free w,t --sigma a=0.3%,F=10uN
 
-# make figures from a built tree, into a fresh folder each run (3 runs: ~3 s each)
+# make figures from a built tree, into a fresh folder each run (3 runs: ~14 s each)
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 figures() {
