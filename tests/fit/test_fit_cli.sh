@@ -9,28 +9,8 @@ set -u
 cli=$1
 generator=$2
 data=$3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
+source "$(dirname "$0")/fit_checks.sh"
 model=(--radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22)
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-ok() { echo "ok   $*"; }
-
-# expect NAME CODE PATTERN -- command...: exit code CODE and stderr matching PATTERN (grep -E).
-expect() {
-  local name=$1 code=$2 pattern=$3
-  shift 4
-  "$@" >"$work/out" 2>"$work/err"
-  local got=$?
-  if [[ $got -ne $code ]]; then
-    fail "$name: exit $got, expected $code; stderr: $(cat "$work/err")"
-  elif [[ -n $pattern ]] && ! grep -Eq -- "$pattern" "$work/err"; then
-    fail "$name: stderr does not match /$pattern/: $(cat "$work/err")"
-  else
-    ok "$name (exit $got${pattern:+, message: $(head -c 200 "$work/err")})"
-  fi
-}
 
 # --- success: header with estimates and standard errors, a columns line, finite numbers ---
 expect "fit a,F" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um
@@ -146,8 +126,4 @@ expect "w runaway, no --sigma: hint" 3 "do not determine w\. No uncertainties we
 expect "undetermined t" 3 "do not determine t" -- \
   "$cli" fit "$data/example_a_F.tsv" --columns a,F --radius 5mm --film 1MPa,0.49 --substrate 1MPa,0.49 --free w,t
 
-if [[ $failures -ne 0 ]]; then
-  echo "FAIL ($failures failures)"
-  exit 1
-fi
-echo "PASS"
+finish
