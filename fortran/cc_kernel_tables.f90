@@ -744,8 +744,8 @@ contains
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u
     real(dp), intent(out) :: h, h1
-    real(dp) :: v, t, inv, inv2, term, fact
-    integer :: i, k
+    real(dp) :: v, t
+    integer :: i
 
     v = abs(u)
     if (v <= table%u_max) then
@@ -760,18 +760,7 @@ contains
         call interpolate(table, i, t, .true., h, h1)
       end if
     else
-      call pole_transforms(table, v, h, h1)
-      inv = 1.0_dp / v
-      inv2 = inv * inv
-      h1 = h1 + 0.5_dp * pi * table%taylor(0)
-      term = inv                                     ! 1/v^(2k+1)
-      fact = 1.0_dp                                  ! (2k)!
-      do k = 0, (max_taylor_order - 1) / 2
-        h1 = h1 + (-1.0_dp)**k * fact * table%taylor(2 * k + 1) * term
-        h = h - (-1.0_dp)**k * fact * real(2 * k + 1, dp) * table%taylor(2 * k + 1) * term * inv
-        term = term * inv2
-        fact = fact * real((2 * k + 1) * (2 * k + 2), dp)
-      end do
+      call far_field(table, v, .true., h, h1)
     end if
     if (u < 0.0_dp) h1 = -h1
   end subroutine evaluate_kernel_table
@@ -781,8 +770,8 @@ contains
   elemental real(dp) function evaluate_kernel_h(table, u) result(h)
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u
-    real(dp) :: v, t, inv, inv2, term, fact, h1
-    integer :: i, k
+    real(dp) :: v, t, h1
+    integer :: i
 
     v = abs(u)
     if (v <= table%u_max) then
@@ -795,17 +784,33 @@ contains
         call interpolate(table, i, t, .false., h, h1)
       end if
     else
-      call pole_transforms(table, v, h, h1)
-      inv = 1.0_dp / v
-      inv2 = inv * inv
-      term = inv
-      fact = 1.0_dp
-      do k = 0, (max_taylor_order - 1) / 2
-        h = h - (-1.0_dp)**k * fact * real(2 * k + 1, dp) * table%taylor(2 * k + 1) * term * inv
-        term = term * inv2
-        fact = fact * real((2 * k + 1) * (2 * k + 2), dp)
-      end do
+      call far_field(table, v, .false., h, h1)
     end if
   end function evaluate_kernel_h
+
+  ! H and (with_h1) H1 beyond the table, v > u_max: the pole terms plus the asymptotic series
+  ! of the smooth remainder (its Taylor coefficients at q = 0); without with_h1, H1 is
+  ! only the pole terms' part (not needed).
+  pure subroutine far_field(table, v, with_h1, h, h1)
+    type(kernel_table), intent(in) :: table
+    real(dp), intent(in) :: v
+    logical, intent(in) :: with_h1
+    real(dp), intent(out) :: h, h1
+    real(dp) :: inv, inv2, term, fact
+    integer :: k
+
+    call pole_transforms(table, v, h, h1)
+    inv = 1.0_dp / v
+    inv2 = inv * inv
+    if (with_h1) h1 = h1 + 0.5_dp * pi * table%taylor(0)
+    term = inv                                     ! 1/v^(2k+1)
+    fact = 1.0_dp                                  ! (2k)!
+    do k = 0, (max_taylor_order - 1) / 2
+      if (with_h1) h1 = h1 + (-1.0_dp)**k * fact * table%taylor(2 * k + 1) * term
+      h = h - (-1.0_dp)**k * fact * real(2 * k + 1, dp) * table%taylor(2 * k + 1) * term * inv
+      term = term * inv2
+      fact = fact * real((2 * k + 1) * (2 * k + 2), dp)
+    end do
+  end subroutine far_field
 
 end module cc_kernel_tables

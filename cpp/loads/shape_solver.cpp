@@ -151,9 +151,7 @@ ShapeVariables ShapeSolver::solve(const IndenterShape& shape, double contact_rad
       v.unknowns = current.unknowns;
       return v;
     }
-    const int next = discretization > tolerance
-                         ? detail::next_coarse_level(coarse_p, p, discretization, tolerance)
-                         : p;
+    const int next = detail::next_coarse_level(coarse_p, p, discretization, tolerance);
     if (next > p) {  // a fresh pair further on
       disc.nodes_per_panel = next;
       previous = detail::solve_shapes(impl_->kernel, a, disc, {load});

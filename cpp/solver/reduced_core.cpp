@@ -38,7 +38,7 @@ int first_refinement_level(double tolerance) {
 }
 
 int next_coarse_level(int coarse, int fine, double difference, double tolerance) {
-  if (fine >= kMaxNodesPerPanel - kRefinementStep) return fine;
+  if (difference <= tolerance || fine >= kMaxNodesPerPanel - kRefinementStep) return fine;
   // Whole steps, rounded down: the levels stay those of the plain schedule, and a jump never
   // passes the level the plain schedule would end on. The hard cases converge faster than the
   // rate (up to ~9 per node), and every level beyond the needed one costs an extra solve, a
@@ -141,9 +141,7 @@ AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolera
       if (!(result.kernel_error < 0.5 * previous_two_table)) return result;
       previous_two_table = result.kernel_error;
     }
-    const int next = result.discretization_error > tolerance
-                         ? next_coarse_level(coarse_p, p, result.discretization_error, tolerance)
-                         : p;
+    const int next = next_coarse_level(coarse_p, p, result.discretization_error, tolerance);
     if (next > p) {  // a fresh pair further on
       disc.nodes_per_panel = next;
       previous = solve_fixed(kernel, a, disc);

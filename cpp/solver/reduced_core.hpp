@@ -93,7 +93,7 @@ constexpr int kRefinementStep = 2;
 int first_refinement_level(double tolerance);
 // After two levels coarse < fine whose difference (the coarse level's error) exceeds the
 // tolerance: the coarse level of the next pair, where the same rate predicts an error <=
-// tolerance; `fine` (a step of one level) when that is no further. A hard case (a compliant
+// tolerance; `fine` (a step of one level) when that is no further or the difference fits. A hard case (a compliant
 // film on a stiff base at large a/t, errors ~1e-2 at p = 8) then skips the levels between.
 int next_coarse_level(int coarse, int fine, double difference, double tolerance);
 
