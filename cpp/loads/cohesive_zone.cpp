@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,36 +20,53 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Points and weights in φ on [0, φa] for integrals over the annulus y = c cos φ in [a, c].
-// Pieces are graded in s = c - y toward the three places where the integrands vary on the
-// kernel's scale (THEORY.md section 13): the zone edge c, the contact edge a and `center`
-// (the point x of k(x, y)); elsewhere they are as long as their distance from the nearest, and no piece spans
-// more than `piece_angle` in φ.
+// Points and weights in φ on [0, φa] for integrals over the annulus y = c cos φ in [a, c],
+// made of Gauss pieces. Pieces are graded in s = c - y toward the places where the integrands
+// vary on the kernel's scale (THEORY.md section 13): the zone edge c, the contact edge a and,
+// for an inner rule, `center` (the point x of k(x, y)); elsewhere they are as long as their
+// distance from the nearest, and no piece spans more than `piece_angle` in φ.
 struct AnnulusRule {
   std::vector<double> phi, weight, y;
   std::vector<double> weight_sin2;  // weight sin²φ: the cohesive weight sqrt(c² - y²) dy / c²
+  std::vector<double> piece_s;      // piece j covers s in [piece_s[j], piece_s[j + 1]]
+  std::vector<double> piece_phi;    // and φ in [piece_phi[j], piece_phi[j + 1]]
+  void clear() {
+    phi.clear();
+    weight.clear();
+    y.clear();
+    weight_sin2.clear();
+    piece_s.clear();
+    piece_phi.clear();
+  }
 };
 
 double phi_of(double c, double s) {  // φ with c - c cos φ = s, without cancellation
   return std::atan2(std::sqrt(s * (2.0 * c - s)), c - s);
 }
 
-void annulus_rule(double c, double s_end, double phi_end, double center, const CohesiveQuadrature& q,
-                  AnnulusRule& rule) {
-  rule.phi.clear();
-  rule.weight.clear();
-  rule.y.clear();
-  rule.weight_sin2.clear();
+// The shortest piece: H varies on the scale of its strip of analyticity (2 for one film).
+double shortest_piece(const KernelSource& kernel, const CohesiveQuadrature& q) {
+  return q.piece_length * std::min(1.0, 0.5 * kernel.analytic_half_width());
+}
+
+// Appends the pieces covering s in [s_begin, s_end] (φ in [phi_begin, phi_end]), graded
+// toward both ends and toward s_center.
+void append_pieces(double c, double s_begin, double phi_begin, double s_end, double phi_end, double s_center,
+                   double shortest, const CohesiveQuadrature& q, AnnulusRule& rule) {
   const GaussRule& gauss = gauss_rule(q.points_per_piece);
-  const double s_center = std::clamp(c - center, 0.0, s_end);
+  s_center = std::clamp(s_center, s_begin, s_end);
   // Leaving a special point a piece may be as long as its distance behind (ρ >= 3 + sqrt(8));
   // approaching one, half the distance ahead, so that no piece ends on the feature.
-  double s = 0.0, phi = 0.0;
+  double s = s_begin, phi = phi_begin;
+  if (rule.piece_s.empty()) {
+    rule.piece_s.push_back(s);
+    rule.piece_phi.push_back(phi);
+  }
   for (int pieces = 0; s < s_end; ++pieces) {
     if (pieces > 100000) throw NumericalError("cohesive zone: annulus quadrature does not terminate");
-    const double behind = s >= s_center ? std::min(s, s - s_center) : s;
+    const double behind = s >= s_center ? std::min(s - s_begin, s - s_center) : s - s_begin;
     const double ahead = s < s_center ? std::min(s_end - s, s_center - s) : s_end - s;
-    double length = std::max(q.piece_length, std::min(behind, 0.5 * ahead));
+    double length = std::max(shortest, std::min(behind, 0.5 * ahead));
     if (s < s_center && s + length > s_center) length = s_center - s;
     double next = s + length;
     if (s_end - next < 0.25 * length) next = s_end;
@@ -71,12 +89,22 @@ void annulus_rule(double c, double s_end, double phi_end, double center, const C
     }
     s = next;
     phi = phi_next;
+    rule.piece_s.push_back(s);
+    rule.piece_phi.push_back(phi);
   }
 }
 
-// b(x_i) = (c²/π) Σ_k w_k sin²φ_k [H(x_i - y_k) + H(x_i + y_k)] for one rule and many x.
-void cohesive_values(const KernelSource& kernel, double c, const AnnulusRule& rule, const double* x,
-                     std::size_t count, double* b) {
+// The rule on the whole annulus s in [0, s_end] (φ in [0, φa]), graded toward c, a and center.
+void annulus_rule(double c, double s_end, double phi_end, double center, double shortest,
+                  const CohesiveQuadrature& q, AnnulusRule& rule) {
+  rule.clear();
+  append_pieces(c, 0.0, 0.0, s_end, phi_end, c - center, shortest, q, rule);
+}
+
+// sums[i] = Σ_k w_k sin²φ_k [H(x_i - y_k) + H(x_i + y_k)] for one rule and many x; the
+// cohesive values are b(x_i) = (c²/π) sums[i].
+void kernel_sums(const KernelSource& kernel, const AnnulusRule& rule, const double* x, std::size_t count,
+                 double* sums) {
   const std::size_t m = rule.y.size();
   std::vector<double> u(2 * m * count), h(2 * m * count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -89,7 +117,64 @@ void cohesive_values(const KernelSource& kernel, double c, const AnnulusRule& ru
   for (std::size_t i = 0; i < count; ++i) {
     double sum = 0.0;
     for (std::size_t k = 0; k < m; ++k) sum += rule.weight_sin2[k] * (h[2 * (i * m + k)] + h[2 * (i * m + k) + 1]);
-    b[i] = c * c / kPi * sum;
+    sums[i] = sum;
+  }
+}
+
+// ρ of the Bernstein ellipse through the point z of the plane in which [-1, 1] is the piece.
+double bernstein_rho(std::complex<double> z) {
+  const std::complex<double> w = z + std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
+  return std::max(std::abs(w), 1.0 / std::abs(w));
+}
+
+// The kernel sums of kernel_sums at the rule's own nodes, x = y_k. k(y_k, y) is singular
+// where y_k - y or y_k + y reaches the edge ±i w of H's strip, in φ at arccos((±y_k + i w)/c).
+// A piece integrates k(y_k, ·) with its own nodes when both points lie outside the piece's
+// Bernstein ellipse ρ = 4 (Gauss error ~ρ^-2p, 1e-17 for p = 14); otherwise it is split into
+// pieces graded toward y_k. k is symmetric: the node-to-node values are evaluated once per pair.
+void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRule& rule, double shortest,
+                          const CohesiveQuadrature& q, double* sums) {
+  constexpr double kRhoMin = 4.0;
+  const std::size_t m = rule.y.size();
+  const std::size_t p = static_cast<std::size_t>(q.points_per_piece);
+  const std::size_t pieces = rule.piece_s.size() - 1;
+  std::vector<double> u(m * (m + 1)), h(m * (m + 1));
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    for (std::size_t l = 0; l <= k; ++l) {
+      u[at++] = rule.y[k] - rule.y[l];
+      u[at++] = rule.y[k] + rule.y[l];
+    }
+  }
+  kernel.evaluate(u.size(), u.data(), h.data());
+  std::vector<double> pair(m * m);  // k(y_k, y_l)
+  at = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    for (std::size_t l = 0; l <= k; ++l, at += 2) pair[k * m + l] = pair[l * m + k] = h[at] + h[at + 1];
+  }
+  const double w = kernel.analytic_half_width();
+  AnnulusRule split;
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::complex<double> near = std::acos(std::complex<double>(rule.y[k], w) / c);
+    const std::complex<double> mirror = std::acos(std::complex<double>(-rule.y[k], w) / c);
+    const double s_k = c - rule.y[k];
+    double sum = 0.0;
+    for (std::size_t j = 0; j < pieces; ++j) {
+      const double mid = 0.5 * (rule.piece_phi[j] + rule.piece_phi[j + 1]);
+      const double half = 0.5 * (rule.piece_phi[j + 1] - rule.piece_phi[j]);
+      const double rho = std::min(bernstein_rho((near - mid) / half), bernstein_rho((mirror - mid) / half));
+      if (rho >= kRhoMin) {
+        for (std::size_t l = j * p; l < (j + 1) * p; ++l) sum += rule.weight_sin2[l] * pair[k * m + l];
+        continue;
+      }
+      split.clear();
+      append_pieces(c, rule.piece_s[j], rule.piece_phi[j], rule.piece_s[j + 1], rule.piece_phi[j + 1], s_k,
+                    shortest, q, split);
+      double part = 0.0;
+      kernel_sums(kernel, split, &rule.y[k], 1, &part);
+      sum += part;
+    }
+    sums[k] = sum;
   }
 }
 
@@ -188,8 +273,9 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
     phi_end = 0.5 * kPi;
   }
   st.c = c;
-  AnnulusRule outer, inner;
-  annulus_rule(c, c_minus_a, phi_end, a, quadrature_, outer);
+  AnnulusRule outer;
+  const double shortest = shortest_piece(kernel_, quadrature_);
+  annulus_rule(c, c_minus_a, phi_end, a, shortest, quadrature_, outer);
   const std::size_t m = outer.y.size();
 
   // Interior: γ = δ γ_fp + γ_s + σ̂ γ_c with (I + K) γ_c = b; regularity fixes δ.
@@ -201,7 +287,8 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
     std::vector<double> points(layout.x);
     points.push_back(a);
     std::vector<double> b(n + 1);
-    cohesive_values(kernel_, c, outer, points.data(), n + 1, b.data());
+    kernel_sums(kernel_, outer, points.data(), n + 1, b.data());
+    for (double& value : b) value *= c * c / kPi;
     std::vector<double> gamma_c(b.begin(), b.begin() + static_cast<long>(n));
     system_->solve(gamma_c.data(), 1);
     const double edge_c = system_->edge_value(gamma_c.data(), b[n]);
@@ -213,11 +300,12 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
   } else {
     const double zero = 0.0;
     double b0 = 0.0;
-    cohesive_values(kernel_, c, outer, &zero, 1, &b0);
+    kernel_sums(kernel_, outer, &zero, 1, &b0);
+    b0 *= c * c / kPi;
     st.delta = -sigma_hat * (c + b0);  // θ(0) = γ(0) + θ_K(0)
   }
 
-  // ∫_0^φa θ_K(c cos φ) dφ, θ_K(x) = row(x)·γ - σ̂ b(x), b graded toward each x.
+  // ∫_0^φa θ_K(c cos φ) dφ, θ_K(x) = row(x)·γ - σ̂ b(x), b at the outer nodes themselves.
   double theta_integral = 0.0;
   {
     std::vector<double> rows;
@@ -225,14 +313,12 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
       rows.resize(m * n);
       system_->kernel_rows(outer.y.data(), m, rows.data());
     }
+    std::vector<double> sums(m);
+    kernel_sums_at_nodes(kernel_, c, outer, shortest, quadrature_, sums.data());
     for (std::size_t k = 0; k < m; ++k) {
       double theta = 0.0;
       for (std::size_t j = 0; j < n; ++j) theta += rows[k * n + j] * gamma[j];
-      annulus_rule(c, c_minus_a, phi_end, outer.y[k], quadrature_, inner);
-      double b = 0.0;
-      cohesive_values(kernel_, c, inner, &outer.y[k], 1, &b);
-      theta -= sigma_hat * b;
-      theta_integral += outer.weight[k] * theta;
+      theta_integral += outer.weight[k] * (theta - sigma_hat * c * c / kPi * sums[k]);
     }
   }
   st.force = 2.0 * integral - sigma_hat * (c * c * phi_end - a * root);

@@ -19,7 +19,8 @@ namespace coatcontact::detail {
 
 struct CohesiveQuadrature {
   int points_per_piece = 14;   // Gauss-Legendre points per annulus piece (in φ)
-  double piece_length = 1.0;   // longest piece in y (units of t; H varies on the scale 2)
+  double piece_length = 1.0;   // piece length in y at the special points (units of t, one film:
+                               // H varies on the scale 2; shrunk with a stack's strip)
   double piece_angle = 0.5;    // longest piece in φ (sin² and cos are entire)
 };
 
