@@ -121,10 +121,13 @@ void kernel_sums(const KernelSource& kernel, const AnnulusRule& rule, const doub
   }
 }
 
-// ρ of the Bernstein ellipse through the point z of the plane in which [-1, 1] is the piece.
-double bernstein_rho(std::complex<double> z) {
+// Whether z (in the plane in which the piece is [-1, 1]) lies outside the Bernstein ellipse
+// ρ; the ellipse lies within |z| <= (ρ + 1/ρ)/2, which decides most points without roots.
+bool outside_ellipse(std::complex<double> z, double rho) {
+  const double semi_major = 0.5 * (rho + 1.0 / rho);
+  if (std::norm(z) > semi_major * semi_major) return true;
   const std::complex<double> w = z + std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
-  return std::max(std::abs(w), 1.0 / std::abs(w));
+  return std::max(std::abs(w), 1.0 / std::abs(w)) >= rho;
 }
 
 // The kernel sums of kernel_sums at the rule's own nodes, x = y_k. k(y_k, y) is singular
@@ -162,8 +165,7 @@ void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRul
     for (std::size_t j = 0; j < pieces; ++j) {
       const double mid = 0.5 * (rule.piece_phi[j] + rule.piece_phi[j + 1]);
       const double half = 0.5 * (rule.piece_phi[j + 1] - rule.piece_phi[j]);
-      const double rho = std::min(bernstein_rho((near - mid) / half), bernstein_rho((mirror - mid) / half));
-      if (rho >= kRhoMin) {
+      if (outside_ellipse((near - mid) / half, kRhoMin) && outside_ellipse((mirror - mid) / half, kRhoMin)) {
         for (std::size_t l = j * p; l < (j + 1) * p; ++l) sum += rule.weight_sin2[l] * pair[k * m + l];
         continue;
       }

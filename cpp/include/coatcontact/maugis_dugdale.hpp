@@ -19,7 +19,7 @@
 namespace coatcontact {
 
 struct MaugisDugdaleOptions {
-  int nodes_per_panel = 20;          // p of the contact discretization (THEORY.md section 4)
+  int nodes_per_panel = 14;          // p of the contact discretization (THEORY.md section 4)
   int annulus_points = 14;           // Gauss points per piece of the cohesive annulus
   double quadrature_accuracy = 1e-13;
   // Pull-off scan: a_bar range (<= 0: [1e-3 min(1, r), 10 max(1, r)], r as adhesion.hpp) and
