@@ -44,15 +44,10 @@ double phi_of(double c, double s) {  // φ with c - c cos φ = s, without cancel
   return std::atan2(std::sqrt(s * (2.0 * c - s)), c - s);
 }
 
-// The shortest piece: H varies on the scale of its strip of analyticity (2 for one film).
-double shortest_piece(const KernelSource& kernel, const CohesiveQuadrature& q) {
-  return q.piece_length * std::min(1.0, 0.5 * kernel.analytic_half_width());
-}
-
 // Appends the pieces covering s in [s_begin, s_end] (φ in [phi_begin, phi_end]), graded
 // toward both ends and toward s_center.
 void append_pieces(double c, double s_begin, double phi_begin, double s_end, double phi_end, double s_center,
-                   double shortest, const CohesiveQuadrature& q, AnnulusRule& rule) {
+                   const CohesiveQuadrature& q, AnnulusRule& rule) {
   const GaussRule& gauss = gauss_rule(q.points_per_piece);
   s_center = std::clamp(s_center, s_begin, s_end);
   // Leaving a special point a piece may be as long as its distance behind (ρ >= 3 + sqrt(8));
@@ -66,7 +61,7 @@ void append_pieces(double c, double s_begin, double phi_begin, double s_end, dou
     if (pieces > 100000) throw NumericalError("cohesive zone: annulus quadrature does not terminate");
     const double behind = s >= s_center ? std::min(s - s_begin, s - s_center) : s - s_begin;
     const double ahead = s < s_center ? std::min(s_end - s, s_center - s) : s_end - s;
-    double length = std::max(shortest, std::min(behind, 0.5 * ahead));
+    double length = std::max(q.piece_length, std::min(behind, 0.5 * ahead));
     if (s < s_center && s + length > s_center) length = s_center - s;
     double next = s + length;
     if (s_end - next < 0.25 * length) next = s_end;
@@ -95,10 +90,10 @@ void append_pieces(double c, double s_begin, double phi_begin, double s_end, dou
 }
 
 // The rule on the whole annulus s in [0, s_end] (φ in [0, φa]), graded toward c, a and center.
-void annulus_rule(double c, double s_end, double phi_end, double center, double shortest,
-                  const CohesiveQuadrature& q, AnnulusRule& rule) {
+void annulus_rule(double c, double s_end, double phi_end, double center, const CohesiveQuadrature& q,
+                  AnnulusRule& rule) {
   rule.clear();
-  append_pieces(c, 0.0, 0.0, s_end, phi_end, c - center, shortest, q, rule);
+  append_pieces(c, 0.0, 0.0, s_end, phi_end, c - center, q, rule);
 }
 
 // sums[i] = Σ_k w_k sin²φ_k [H(x_i - y_k) + H(x_i + y_k)] for one rule and many x; the
@@ -135,7 +130,7 @@ bool outside_ellipse(std::complex<double> z, double rho) {
 // A piece integrates k(y_k, ·) with its own nodes when both points lie outside the piece's
 // Bernstein ellipse ρ = 4 (Gauss error ~ρ^-2p, 1e-17 for p = 14); otherwise it is split into
 // pieces graded toward y_k. k is symmetric: the node-to-node values are evaluated once per pair.
-void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRule& rule, double shortest,
+void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRule& rule,
                           const CohesiveQuadrature& q, double* sums) {
   constexpr double kRhoMin = 4.0;
   const std::size_t m = rule.y.size();
@@ -170,8 +165,8 @@ void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRul
         continue;
       }
       split.clear();
-      append_pieces(c, rule.piece_s[j], rule.piece_phi[j], rule.piece_s[j + 1], rule.piece_phi[j + 1], s_k,
-                    shortest, q, split);
+      append_pieces(c, rule.piece_s[j], rule.piece_phi[j], rule.piece_s[j + 1], rule.piece_phi[j + 1], s_k, q,
+                    split);
       double part = 0.0;
       kernel_sums(kernel, split, &rule.y[k], 1, &part);
       sum += part;
@@ -235,6 +230,7 @@ double brent_root(F&& f, double lo, double hi, double f_lo, double f_hi, double 
 CohesiveZone::CohesiveZone(const KernelSource& kernel, double a, double radius, const Discretization& disc,
                            const CohesiveQuadrature& quadrature)
     : kernel_(kernel), a_(a), radius_(radius), quadrature_(quadrature) {
+  quadrature_.piece_length *= strip_scale(kernel);  // H varies on the scale of its strip
   if (!(a >= 0.0) || !std::isfinite(a) || !(radius > 0.0)) {
     throw InputError("cohesive zone: contact radius a/t = " + short_text(a) + " not allowed");
   }
@@ -276,8 +272,7 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
   }
   st.c = c;
   AnnulusRule outer;
-  const double shortest = shortest_piece(kernel_, quadrature_);
-  annulus_rule(c, c_minus_a, phi_end, a, shortest, quadrature_, outer);
+  annulus_rule(c, c_minus_a, phi_end, a, quadrature_, outer);
   const std::size_t m = outer.y.size();
 
   // Interior: γ = δ γ_fp + γ_s + σ̂ γ_c with (I + K) γ_c = b; regularity fixes δ.
@@ -316,7 +311,7 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
       system_->kernel_rows(outer.y.data(), m, rows.data());
     }
     std::vector<double> sums(m);
-    kernel_sums_at_nodes(kernel_, c, outer, shortest, quadrature_, sums.data());
+    kernel_sums_at_nodes(kernel_, c, outer, quadrature_, sums.data());
     for (std::size_t k = 0; k < m; ++k) {
       double theta = 0.0;
       for (std::size_t j = 0; j < n; ++j) theta += rows[k * n + j] * gamma[j];

@@ -314,8 +314,8 @@ class RowBuilder {
 // analytic only in |Im u| < 2 h_top/T (THEORY.md section 12), so its edge singularities of
 // gamma are nearer the axis and the panels shrink with the strip (unchanged for one film).
 static Discretization scaled_to_strip(const KernelSource& kernel, const Discretization& disc) {
-  const double scale = kernel.analytic_half_width() / 2.0;
-  if (!(scale < 1.0)) return disc;
+  const double scale = strip_scale(kernel);
+  if (scale == 1.0) return disc;
   Discretization scaled = disc;
   scaled.edge_panel *= scale;
   scaled.single_panel_limit *= scale;

@@ -11,6 +11,7 @@
 // integration (the kernel integrated exactly against the panel's interpolating polynomial)
 // where it is not, so the number of unknowns does not grow with ã.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 
 namespace coatcontact::detail {
@@ -27,6 +28,10 @@ class KernelSource {
   // Bound on the absolute error of the H values returned by evaluate().
   virtual double absolute_accuracy() const = 0;
 };
+
+// Lengths set for one film (H analytic in |Im u| < 2) times this: a stack's H is analytic only
+// in |Im u| < 2 h_top/T (THEORY.md section 12), so its lengths shrink with the strip.
+inline double strip_scale(const KernelSource& kernel) { return std::min(1.0, 0.5 * kernel.analytic_half_width()); }
 
 struct Discretization {
   int nodes_per_panel = 14;        // p
