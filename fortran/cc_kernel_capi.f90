@@ -5,7 +5,10 @@
 module cc_kernel_capi
   use, intrinsic :: iso_c_binding
   use cc_elastic_constants, only: dp, material_pair, make_material_pair, CC_OK, CC_ERR_ARGUMENT, &
-                                  CC_ERR_ALLOCATION
+                                  CC_ERR_ALLOCATION, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, &
+                                  CC_INTERNAL_ERROR, CC_ERR_FILM_MODULUS, CC_ERR_FILM_POISSON, &
+                                  CC_ERR_SUBSTRATE_MODULUS, CC_ERR_SUBSTRATE_POISSON, &
+                                  CC_ERR_ACCURACY, CC_ERR_THICKNESS
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
   use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
                               evaluate_kernel_h, n_grid_variants, build_stack_kernel_table_variant, &
@@ -20,10 +23,11 @@ module cc_kernel_capi
   ! "cc_compliance".
 
   integer, parameter :: message_length = 96
-  integer, parameter :: last_status = 10
-  character(kind=c_char, len=message_length), target, save :: messages(0:last_status + 1) = [ &
+  ! Messages of the detail codes CC_ERR_FILM_MODULUS (101) .. CC_ERR_LAYER_COUNT (110), then of
+  ! the classes CC_INPUT_ERROR .. CC_INTERNAL_ERROR, success and an unknown code.
+  integer, parameter :: first_detail = CC_ERR_FILM_MODULUS, last_detail = CC_ERR_LAYER_COUNT
+  character(kind=c_char, len=message_length), target, save :: detail_messages(first_detail:last_detail) = [ &
     character(kind=c_char, len=message_length) :: &
-    "success" // c_null_char, &
     "film Young's modulus must be finite and > 0" // c_null_char, &
     "film Poisson ratio must be finite and in (-1, 0.5]" // c_null_char, &
     "substrate Young's modulus must be finite and > 0" // c_null_char, &
@@ -33,7 +37,13 @@ module cc_kernel_capi
     "out of memory" // c_null_char, &
     "the kernel table could not reach its accuracy target" // c_null_char, &
     "layer thickness must be finite and > 0" // c_null_char, &
-    "number of layers must be between 1 and 1000" // c_null_char, &
+    "number of layers must be between 1 and 1000" // c_null_char]
+  character(kind=c_char, len=message_length), target, save :: other_messages(5) = [ &
+    character(kind=c_char, len=message_length) :: &
+    "success" // c_null_char, &
+    "bad input" // c_null_char, &
+    "the requested accuracy could not be reached" // c_null_char, &
+    "internal error" // c_null_char, &
     "unknown status code" // c_null_char]
 
 contains
@@ -41,12 +51,37 @@ contains
   function capi_status_message(status) result(message) bind(C, name="cc_status_message")
     integer(c_int), value, intent(in) :: status
     type(c_ptr) :: message
-    if (status >= 0 .and. status <= last_status) then
-      message = c_loc(messages(status))
-    else
-      message = c_loc(messages(last_status + 1))
-    end if
+    select case (status)
+    case (first_detail:last_detail)
+      message = c_loc(detail_messages(status))
+    case (CC_OK)
+      message = c_loc(other_messages(1))
+    case (CC_INPUT_ERROR)
+      message = c_loc(other_messages(2))
+    case (CC_NUMERICAL_ERROR)
+      message = c_loc(other_messages(3))
+    case (CC_INTERNAL_ERROR)
+      message = c_loc(other_messages(4))
+    case default
+      message = c_loc(other_messages(5))
+    end select
   end function capi_status_message
+
+  pure integer(c_int) function capi_status_class(status) result(status_class) &
+      bind(C, name="cc_status_class")
+    integer(c_int), value, intent(in) :: status
+    select case (status)
+    case (CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, CC_INTERNAL_ERROR)
+      status_class = status
+    case (CC_ERR_FILM_MODULUS, CC_ERR_FILM_POISSON, CC_ERR_SUBSTRATE_MODULUS, &
+          CC_ERR_SUBSTRATE_POISSON, CC_ERR_ARGUMENT, CC_ERR_THICKNESS, CC_ERR_LAYER_COUNT)
+      status_class = CC_INPUT_ERROR
+    case (CC_ERR_ACCURACY)
+      status_class = CC_NUMERICAL_ERROR
+    case default
+      status_class = CC_INTERNAL_ERROR
+    end select
+  end function capi_status_class
 
   subroutine pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, status)
     real(c_double), intent(in) :: e1, nu1, e0, nu0

@@ -8,18 +8,21 @@ module cc_elastic_constants
 
   integer, parameter, public :: dp = real64
 
-  ! Status codes: must match enum cc_status in fortran/include/coatcontact/cc_kernel.h.
+  ! Status codes: must match enum cc_status in fortran/include/coatcontact/cc_status.h.
   integer, parameter, public :: CC_OK = 0
-  integer, parameter, public :: CC_ERR_FILM_MODULUS = 1
-  integer, parameter, public :: CC_ERR_FILM_POISSON = 2
-  integer, parameter, public :: CC_ERR_SUBSTRATE_MODULUS = 3
-  integer, parameter, public :: CC_ERR_SUBSTRATE_POISSON = 4
-  integer, parameter, public :: CC_ERR_ARGUMENT = 5
-  integer, parameter, public :: CC_ERR_FFT = 6
-  integer, parameter, public :: CC_ERR_ALLOCATION = 7
-  integer, parameter, public :: CC_ERR_ACCURACY = 8
-  integer, parameter, public :: CC_ERR_THICKNESS = 9       ! a stack layer (THEORY.md section 12)
-  integer, parameter, public :: CC_ERR_LAYER_COUNT = 10
+  integer, parameter, public :: CC_INPUT_ERROR = 2           ! classes (cc_status_class)
+  integer, parameter, public :: CC_NUMERICAL_ERROR = 3
+  integer, parameter, public :: CC_INTERNAL_ERROR = 4
+  integer, parameter, public :: CC_ERR_FILM_MODULUS = 101
+  integer, parameter, public :: CC_ERR_FILM_POISSON = 102
+  integer, parameter, public :: CC_ERR_SUBSTRATE_MODULUS = 103
+  integer, parameter, public :: CC_ERR_SUBSTRATE_POISSON = 104
+  integer, parameter, public :: CC_ERR_ARGUMENT = 105
+  integer, parameter, public :: CC_ERR_FFT = 106
+  integer, parameter, public :: CC_ERR_ALLOCATION = 107
+  integer, parameter, public :: CC_ERR_ACCURACY = 108
+  integer, parameter, public :: CC_ERR_THICKNESS = 109       ! a stack layer (THEORY.md section 12)
+  integer, parameter, public :: CC_ERR_LAYER_COUNT = 110
 
   ! Substrate models.
   integer, parameter, public :: MODEL_HOMOGENEOUS = 0      ! film and substrate identical: C = 1

@@ -2,7 +2,8 @@
 # Install test: `cmake --install BUILD --prefix TMP`, then a C and a C++ consumer built against
 # TMP once through find_package(coatcontact) (consumer/CMakeLists.txt) and once through
 # pkg-config; each prints E_eq of film 0.1,0.25 on substrate 1,0.25 at a/t = 1, which must match
-# `CLI reduced` (column E_eq) to 1e-12 relative. So must the installed program's.
+# `CLI reduced` (column E_eq) to 1e-12 relative. So must the installed program's. Every
+# installed header must compile alone and all of them together, C headers as C99 and C++17.
 # Usage: run_install_test.sh BUILD_DIR SOURCE_DIR CLI
 # Tools from the environment (tests/install/CMakeLists.txt sets them): CMAKE, CC, CXX, PKG_CONFIG.
 set -euo pipefail
@@ -67,12 +68,47 @@ config_file=$(find "$prefix" -name coatcontactConfig.cmake)
 [ -n "$pc_file" ] || fail "no coatcontact.pc under $prefix"
 [ -n "$config_file" ] || fail "no coatcontactConfig.cmake under $prefix"
 for f in bin/coatcontact include/coatcontact/coatcontact.h include/coatcontact/reduced.hpp \
-         include/coatcontact/cc_kernel.h share/coatcontact/gnuplot/style.gp; do
+         include/coatcontact/cc_kernel.h include/coatcontact/cc_status.h \
+         share/coatcontact/gnuplot/style.gp; do
   [ -e "$prefix/$f" ] || fail "not installed: $f"
 done
 for f in include/coatcontact/cli_support.hpp include/coatcontact/data_file.hpp; do
   [ ! -e "$prefix/$f" ] || fail "CLI header installed: $f"
 done
+[ "$failures" -eq 0 ] || exit 1
+
+# --- every installed header compiles alone and all together: C headers as C and as C++,
+# C++ headers as C++17, warnings as errors ---
+include_dir=$prefix/include
+mapfile -t c_headers < <(cd "$include_dir" && find coatcontact -name '*.h' | sort)
+mapfile -t cxx_headers < <(cd "$include_dir" && find coatcontact -name '*.hpp' | sort)
+[ "${#c_headers[@]}" -ge 2 ] || fail "fewer than two C headers installed: ${c_headers[*]}"
+[ "${#cxx_headers[@]}" -ge 1 ] || fail "no C++ header installed"
+# compile_header LANGUAGE COMPILER STD HEADER...: one translation unit including HEADER...
+compile_header() {
+  local language=$1 compiler=$2 std=$3 unit
+  shift 3
+  unit=$work/unit.$([ "$language" = c ] && echo c || echo cpp)
+  printf '#include <%s>\n' "$@" > "$unit"
+  printf 'int main(void) { return 0; }\n' >> "$unit"
+  if "$compiler" -std="$std" -Wall -Wextra -pedantic -Werror -fsyntax-only -I"$include_dir" \
+       "$unit" > "$work/header.log" 2>&1; then
+    return 0
+  fi
+  cat "$work/header.log"
+  return 1
+}
+for h in "${c_headers[@]}"; do
+  compile_header c "$cc" c99 "$h" || fail "C header does not compile alone as C: $h"
+  compile_header cxx "$cxx" c++17 "$h" || fail "C header does not compile alone as C++: $h"
+done
+for h in "${cxx_headers[@]}"; do
+  compile_header cxx "$cxx" c++17 "$h" || fail "C++ header does not compile alone: $h"
+done
+compile_header c "$cc" c99 "${c_headers[@]}" || fail "the C headers do not compile together as C"
+compile_header cxx "$cxx" c++17 "${c_headers[@]}" "${cxx_headers[@]}" ||
+  fail "the installed headers do not compile together as C++"
+echo "ok   ${#c_headers[@]} C and ${#cxx_headers[@]} C++ headers compile alone and together"
 [ "$failures" -eq 0 ] || exit 1
 check "installed program" "$("$prefix/bin/coatcontact" "${case_args[@]}" | e_eq_of_table)"
 

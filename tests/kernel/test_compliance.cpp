@@ -361,5 +361,27 @@ int main() {
     check::that(cc_status_message(3) != nullptr && cc_status_message(99) != nullptr, "messages");
   }
 
+  // ---- one status vocabulary (cc_status.h): every detail code has a class and a message of
+  // its own, distinct from the classes' codes 2, 3, 4 ----------------------------------------
+  {
+    const int input_details[] = {CC_ERR_FILM_MODULUS, CC_ERR_FILM_POISSON, CC_ERR_SUBSTRATE_MODULUS,
+                                 CC_ERR_SUBSTRATE_POISSON, CC_ERR_ARGUMENT, CC_ERR_THICKNESS,
+                                 CC_ERR_LAYER_COUNT};
+    for (int code : input_details) {
+      check::that(cc_status_class(code) == CC_INPUT_ERROR, "input detail class");
+      check::that(code != CC_INPUT_ERROR && code != CC_NUMERICAL_ERROR && code != CC_INTERNAL_ERROR,
+                  "detail codes distinct from the classes");
+    }
+    check::that(cc_status_class(CC_ERR_ACCURACY) == CC_NUMERICAL_ERROR, "accuracy class");
+    check::that(cc_status_class(CC_ERR_FFT) == CC_INTERNAL_ERROR, "FFT class");
+    check::that(cc_status_class(CC_ERR_ALLOCATION) == CC_INTERNAL_ERROR, "allocation class");
+    check::that(cc_status_class(CC_OK) == CC_OK, "success class");
+    check::that(cc_status_class(12345) == CC_INTERNAL_ERROR, "unknown code class");
+    const std::string unknown = cc_status_message(12345);
+    for (int code : {CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, CC_INTERNAL_ERROR, CC_ERR_FFT,
+                     CC_ERR_ACCURACY, CC_ERR_LAYER_COUNT})
+      check::that(std::string(cc_status_message(code)) != unknown, "every code has its message");
+  }
+
   return check::exit_code();
 }

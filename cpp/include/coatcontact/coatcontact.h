@@ -29,16 +29,11 @@
 #ifndef COATCONTACT_COATCONTACT_H
 #define COATCONTACT_COATCONTACT_H
 
+#include "coatcontact/cc_status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-enum cc_status {
-  CC_OK = 0,
-  CC_INPUT_ERROR = 2,      /* same codes as the command line's exit status */
-  CC_NUMERICAL_ERROR = 3,
-  CC_INTERNAL_ERROR = 4
-};
 
 /* Message of the last failure in the calling thread ("" after a success); valid until the
  * thread's next call into this interface. */

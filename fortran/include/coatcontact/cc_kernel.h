@@ -5,7 +5,7 @@
  * bonded to a substrate, q = k t) and section 4 (H(u) = int_0^inf [C(q)-1] cos(qu) dq).
  * Implemented by fortran/cc_kernel_capi.f90 (bind(C) shim over the Fortran modules).
  *
- * Conventions: every function returns a status code (CC_OK = 0 on success);
+ * Conventions: every function returns a status code of cc_status.h (CC_OK = 0 on success);
  * scalars are passed by value, arrays with an explicit length (the pointers must be valid for
  * that many doubles; NULL only where a comment allows it); nothing prints or stops.
  * A substrate is rigid when substrate_rigid != 0 (then e0 and nu0 are ignored).
@@ -13,26 +13,11 @@
 #ifndef COATCONTACT_CC_KERNEL_H
 #define COATCONTACT_CC_KERNEL_H
 
+#include "coatcontact/cc_status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-enum cc_status {
-  CC_OK = 0,
-  CC_ERR_FILM_MODULUS = 1,        /* film Young's modulus not finite or <= 0 */
-  CC_ERR_FILM_POISSON = 2,        /* film Poisson ratio outside (-1, 0.5] or not finite */
-  CC_ERR_SUBSTRATE_MODULUS = 3,   /* substrate Young's modulus not finite or <= 0 */
-  CC_ERR_SUBSTRATE_POISSON = 4,   /* substrate Poisson ratio outside (-1, 0.5] */
-  CC_ERR_ARGUMENT = 5,            /* bad array length or order, negative or non-finite q or u, null handle */
-  CC_ERR_FFT = 6,                 /* FFTW could not plan the transform */
-  CC_ERR_ALLOCATION = 7,          /* out of memory */
-  CC_ERR_ACCURACY = 8,            /* the table could not reach its accuracy target */
-  CC_ERR_THICKNESS = 9,           /* a stack layer's thickness not finite or <= 0 */
-  CC_ERR_LAYER_COUNT = 10         /* a stack with fewer than 1 or more than 1000 layers */
-};
-
-/* Short English description of a status code (static string, never NULL). */
-const char *cc_status_message(int status);
 
 /* C(q) at n points q[i] >= 0 (THEORY.md section 3). */
 int cc_compliance(double e1, double nu1, double e0, double nu0, int substrate_rigid,
@@ -47,7 +32,7 @@ int cc_compliance_minus_one(double e1, double nu1, double e0, double nu0, int su
 int cc_compliance_taylor(double e1, double nu1, double e0, double nu0, int substrate_rigid,
                          int order, double *coefficients);
 
-/* (added) Surface compliance of a stack (THEORY.md section 12): n_layers layers, top first
+/* Surface compliance of a stack (THEORY.md section 12): n_layers layers, top first
  * (1 <= n_layers <= 1000), thickness[i] > 0 (any unit: only ratios matter), youngs[i] > 0,
  * poisson[i] in (-1, 0.5]; slip_below[i] != 0 makes the interface BELOW layer i frictionless
  * (below the last layer on a rigid base: a frictionless rigid base, u_z = 0 and s_rz = 0;
