@@ -26,7 +26,7 @@ void BM_TableBuild(benchmark::State& state) {
   const Pair& p = kPairs[state.range(0)];
   for (auto _ : state) {
     coatcontact::KernelTable table(coatcontact::Stack::film_on(film_of(p), substrate_of(p)));
-    benchmark::DoNotOptimize(table.raw());
+    benchmark::DoNotOptimize(table);
   }
 }
 BENCHMARK(BM_TableBuild)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);

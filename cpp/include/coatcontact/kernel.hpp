@@ -94,8 +94,8 @@ inline StackArrays stack_arrays(const Stack& stack) {
   return a;
 }
 
-// C or C - 1 at q: section 3's closed form for one bonded layer (bit for bit today's
-// numbers), section 12's recursion otherwise.
+// C or C - 1 at q: section 3's closed form for one bonded layer (faster than the recursion,
+// which agrees with it to rounding), section 12's recursion otherwise.
 inline int compliance_values(const Stack& stack, const std::vector<double>& q, double* out,
                              bool minus_one, const std::string& context) {
   const int n = checked_size(q.size(), context);
@@ -296,9 +296,6 @@ class KernelTable {
     }
     return i;
   }
-
-  // The film-on-substrate table (H of C, before the indenter's 1/(1 + rho)).
-  const cc_kernel_table* raw() const { return table_.get(); }
 
  private:
   struct Deleter {

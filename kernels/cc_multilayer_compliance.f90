@@ -3,8 +3,8 @@
 ! total thickness; C is normalized by the TOP layer's E*, so C(inf) = 1, C(0) = E_top*/E_base*
 ! (0 on a rigid base).
 !
-! The module is not named like the file: a module name may not equal a binding label
-! (Fortran 2018 19.2), and the C entry point is "cc_stack_compliance" (fortran/cc_kernel_capi.f90).
+! The module is not named cc_stack_compliance like its C entry point (fortran/cc_kernel_capi.f90):
+! a module name may not equal a binding label (Fortran 2018 19.2).
 !
 ! Method (section 12). State s = (U, W, tau_r, tau_z), z down, xi = k z, tau = (s_rz, s_zz)/(mu k)
 ! with mu the shear modulus of the layer the state lives in (so m = 1 in the A of section 12 and
