@@ -24,14 +24,14 @@ install(TARGETS coatcontact_library coatcontact_fortran
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS coatcontact RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
-# Public headers; the CLI's own headers and the GSL error-handler guard (sources only) stay
-# private. detail/format.hpp is installed: kernel.hpp formats its messages with it.
+# Public headers; the CLI's own headers and the GSL helpers (sources only) stay private. detail/format.hpp is installed: kernel.hpp formats its messages with it.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/cpp/include/coatcontact/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/coatcontact
   FILES_MATCHING PATTERN "*.h" PATTERN "*.hpp"
   PATTERN "cli_support.hpp" EXCLUDE
   PATTERN "data_file.hpp" EXCLUDE
-  PATTERN "gsl_handler_off.hpp" EXCLUDE)
+  PATTERN "gsl_handler_off.hpp" EXCLUDE
+  PATTERN "brent.hpp" EXCLUDE)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/fortran/include/coatcontact/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/coatcontact
   FILES_MATCHING PATTERN "*.h")

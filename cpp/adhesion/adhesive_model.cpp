@@ -12,10 +12,6 @@
 // by gsl_root_fsolver_brent on the derivative, which is computed analytically from the
 // interpolant and crosses zero linearly: this meets the relative location tolerance
 // (default 1e-12) on the interpolated curve.
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_min.h>
-#include <gsl/gsl_roots.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -23,6 +19,7 @@
 #include <sstream>
 
 #include "coatcontact/adhesion.hpp"
+#include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
@@ -51,8 +48,6 @@ void check_eta(double eta) {
   }
 }
 
-double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
-
 // Which curve is minimised: P (load control) or D (displacement control).
 enum class Control { kLoad, kDisplacement };
 double value_of(const CurvePoint& p, Control c) { return c == Control::kLoad ? p.load : p.penetration; }
@@ -80,21 +75,12 @@ Located locate_minimum(const std::function<double(double)>& f, const std::functi
     // The minimiser needs f(guess) < f at both ends; at a range end it is skipped.
     const bool bracketed = guess != lo && guess != hi && fx[guess] < fx[lo] && fx[guess] < fx[hi];
     if (bracketed) {
-      std::function<double(double)> fcopy = f;
-      gsl_function F{&call, &fcopy};
-      gsl_min_fminimizer* m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
-      if (m != nullptr && gsl_min_fminimizer_set_with_values(m, &F, x[guess], fx[guess], x[lo], fx[lo],
-                                                             x[hi], fx[hi]) == GSL_SUCCESS) {
-        for (int iter = 0; iter < 200; ++iter) {
-          if (gsl_min_fminimizer_iterate(m) != GSL_SUCCESS) break;
-          const double a = gsl_min_fminimizer_x_lower(m);
-          const double b = gsl_min_fminimizer_x_upper(m);
-          if (gsl_min_test_interval(a, b, 0.0, 1e-10) == GSL_SUCCESS) break;
-        }
-        minimiser_x = gsl_min_fminimizer_x_minimum(m);
-        minimiser_width = gsl_min_fminimizer_x_upper(m) - gsl_min_fminimizer_x_lower(m);
+      const auto minimum = detail::brent_minimum(f, x[lo], fx[lo], x[guess], fx[guess], x[hi], fx[hi],
+                                                 {0.0, 1e-10, 200});
+      if (minimum) {
+        minimiser_x = minimum->x;
+        minimiser_width = minimum->upper - minimum->lower;
       }
-      gsl_min_fminimizer_free(m);
     }
   }
 
@@ -117,24 +103,13 @@ Located locate_minimum(const std::function<double(double)>& f, const std::functi
   } else if (d_hi == 0.0) {
     root = x_hi;
   } else {
-    std::function<double(double)> dcopy = df;
-    gsl_function F{&call, &dcopy};
-    gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (s == nullptr || gsl_root_fsolver_set(s, &F, x_lo, x_hi) != GSL_SUCCESS) {
-      gsl_root_fsolver_free(s);
+    const auto found = detail::brent_root(df, x_lo, x_hi, {0.0, tolerance, 300});
+    if (!found) {
       throw NumericalError("cannot bracket the stationary point of the curve in a_bar [" +
                            format_g(x_lo) + ", " + format_g(x_hi) + "]");
     }
-    bool converged = false;
-    for (int iter = 0; iter < 300 && !converged; ++iter) {
-      if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
-      converged = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 0.0,
-                                         tolerance) == GSL_SUCCESS;
-    }
-    root = gsl_root_fsolver_root(s);
-    const double width = gsl_root_fsolver_x_upper(s) - gsl_root_fsolver_x_lower(s);
-    gsl_root_fsolver_free(s);
-    if (!converged && !(width <= tolerance * std::abs(root))) {
+    root = found->x;
+    if (!found->converged && !(found->upper - found->lower <= tolerance * std::abs(root))) {
       throw NumericalError("root of the derivative not converged to relative " + format_g(tolerance) +
                            " near a_bar = " + format_g(root));
     }

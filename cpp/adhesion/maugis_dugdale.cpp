@@ -14,9 +14,6 @@
 // differentiated implicitly through c(a) (THEORY.md section 13), to ~1e-10.
 #include "coatcontact/maugis_dugdale.hpp"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_min.h>
-
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -27,8 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
-#include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
 #include "cohesive_zone.hpp"
 #include "table_kernel.hpp"
@@ -84,39 +81,12 @@ void start_from(const std::map<double, double>& roots, double x, double& guess, 
   }
 }
 
-double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
-
-// Brent minimiser (GSL) on f over [lo, hi] with f(mid) below both ends. Exceptions thrown by
-// f are carried across the C library and rethrown.
+// Brent minimiser on f over [lo, hi] with f(mid) below both ends; exceptions thrown by f are
+// rethrown. Where GSL refuses the triple, mid.
 double minimise(const std::function<double(double)>& f, double lo, double mid, double hi, double f_lo,
                 double f_mid, double f_hi, double tolerance) {
-  detail::GslHandlerOff guard;
-  std::exception_ptr error;
-  std::function<double(double)> safe = [&](double x) {
-    if (error) return f_hi;
-    try {
-      return f(x);
-    } catch (...) {
-      error = std::current_exception();
-      return f_hi;
-    }
-  };
-  gsl_function F{&call, &safe};
-  gsl_min_fminimizer* m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
-  double x = mid;
-  if (m != nullptr && gsl_min_fminimizer_set_with_values(m, &F, mid, f_mid, lo, f_lo, hi, f_hi) == GSL_SUCCESS) {
-    for (int iter = 0; iter < 200 && !error; ++iter) {
-      if (gsl_min_fminimizer_iterate(m) != GSL_SUCCESS) break;
-      if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m), tolerance, 0.0) ==
-          GSL_SUCCESS) {
-        break;
-      }
-    }
-    x = gsl_min_fminimizer_x_minimum(m);
-  }
-  gsl_min_fminimizer_free(m);
-  if (error) std::rethrow_exception(error);
-  return x;
+  const auto minimum = detail::brent_minimum(f, lo, f_lo, mid, f_mid, hi, f_hi, {tolerance, 0.0, 200});
+  return minimum ? minimum->x : mid;
 }
 
 }  // namespace

@@ -2,9 +2,6 @@
 // adhesionless solutions of any shape (section 11), in SI units, and the pull-offs (section 10).
 #include "coatcontact/shape_contact.hpp"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_min.h>
-
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -12,8 +9,8 @@
 #include <limits>
 #include <sstream>
 
+#include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
-#include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
 
 namespace coatcontact {
@@ -27,8 +24,6 @@ void check_si(double value, const std::string& what) {
     throw InputError(what + " = " + detail::full_precision(value) + " not allowed (need finite and > 0)");
   }
 }
-
-double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
 
 // a with δ0(a) = sqrt(2π a w/E): where adhesion and elasticity balance (the JKR pull-off radius
 // up to a factor of order one). δ0(a)/sqrt(a) increases for every shape here (δ0 ~ a^n, n >= 1
@@ -159,25 +154,10 @@ ShapePulloff ShapeContact::pulloff(double spring, int points_per_decade) const {
       ++best.local_minima;
       // Brent on x = a/a_k in [a_{k-1}, a_{k+1}]/a_k (values near 1: full relative precision).
       std::function<double(double)> objective = [&](double x) { return value(at(x * grid[k]), mode); };
-      gsl_function F{&call, &objective};
-      double x = 1.0;
-      {
-        detail::GslHandlerOff guard;
-        gsl_min_fminimizer* m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
-        if (m != nullptr && gsl_min_fminimizer_set_with_values(m, &F, 1.0, f, grid[k - 1] / grid[k],
-                                                               value(points[k - 1], mode), grid[k + 1] / grid[k],
-                                                               value(points[k + 1], mode)) == GSL_SUCCESS) {
-          for (int iter = 0; iter < 100; ++iter) {
-            if (gsl_min_fminimizer_iterate(m) != GSL_SUCCESS) break;
-            if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m), 1e-10, 0.0) ==
-                GSL_SUCCESS) {
-              break;
-            }
-          }
-          x = gsl_min_fminimizer_x_minimum(m);
-        }
-        gsl_min_fminimizer_free(m);
-      }
+      const auto minimum = detail::brent_minimum(objective, grid[k - 1] / grid[k], value(points[k - 1], mode), 1.0,
+                                                 f, grid[k + 1] / grid[k], value(points[k + 1], mode),
+                                                 {1e-10, 0.0, 100});
+      const double x = minimum ? minimum->x : 1.0;
       const ShapePoint p = at(x * grid[k]);
       if (value(p, mode) < best_value) {
         best_value = value(p, mode);

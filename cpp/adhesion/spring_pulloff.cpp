@@ -2,50 +2,33 @@
 // the contact jumps off where dF/ddelta = -k, i.e. at the minimum of Z(a) = D + P/k_bar along
 // the adhesive curve. Scanned on the grid and range of AdhesiveModel::pulloff (which also
 // gives the two limits exactly), each local minimum located by a root of dZ/da_bar.
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
-
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <sstream>
 
 #include "coatcontact/adhesion.hpp"
+#include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
-#include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
 
 namespace coatcontact {
 
 namespace {
 
-double call(double x, void* params) { return (*static_cast<std::function<double(double)>*>(params))(x); }
-
 // Root of df in [lo, hi] (df(lo) < 0 <= df(hi)) to relative `tolerance`.
 double derivative_root(const std::function<double(double)>& df, double lo, double hi, double tolerance) {
-  detail::GslHandlerOff guard;
   if (df(hi) == 0.0) return hi;
-  std::function<double(double)> copy = df;
-  gsl_function f{&call, &copy};
-  gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (s == nullptr || gsl_root_fsolver_set(s, &f, lo, hi) != GSL_SUCCESS) {
-    gsl_root_fsolver_free(s);
+  const auto found = detail::brent_root(df, lo, hi, {0.0, tolerance, 300});
+  if (!found) {
     throw NumericalError("spring pull-off: cannot bracket dZ/da_bar = 0 in a_bar [" +
                          detail::full_precision(lo) + ", " + detail::full_precision(hi) + "]");
   }
-  bool converged = false;
-  for (int iter = 0; iter < 300 && !converged; ++iter) {
-    if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
-    converged = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 0.0,
-                                       tolerance) == GSL_SUCCESS;
-  }
-  const double root = gsl_root_fsolver_root(s);
-  gsl_root_fsolver_free(s);
-  if (!converged) {
+  if (!found->converged) {
     throw NumericalError("spring pull-off: root of dZ/da_bar not converged near a_bar = " +
-                         detail::full_precision(root));
+                         detail::full_precision(found->x));
   }
-  return root;
+  return found->x;
 }
 
 }  // namespace
