@@ -177,18 +177,21 @@ int run_export(const Args& args) {
                        std::to_string(curves.size()) + (curves.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(curves.size() - 1) + ")"));
     }
     const afm::ForceCurve& curve = curves[index];
-    const std::vector<double> tip = curve.tip_position();
+    // The tip position needs k; a file whose force is stored in newtons may lack it.
+    const bool has_tip = curve.metadata.spring_constant_source != afm::CalibrationSource::kNone;
+    const std::vector<double> tip = has_tip ? curve.tip_position() : std::vector<double>{};
 
     std::vector<std::pair<std::string, std::string>> items = {{"coatcontact afm export", "one AFM force curve in SI units"}};
     add_curve_header(items, curve);
-    items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
+    items.push_back({"tip position", has_tip ? std::string(curve.tip_position_height_name()) + " + force / spring constant"
+                                             : std::string("not available: no spring constant (give --spring-constant)")});
     std::vector<std::string> columns;
     if (!curve.time.empty()) columns.push_back("time_s");
     columns.push_back("segment");
     if (curve.has_height_piezo()) columns.push_back("height_piezo_m");
     if (curve.has_height_measured()) columns.push_back("height_measured_m");
     columns.push_back("force_N");
-    columns.push_back("tip_position_m");
+    if (has_tip) columns.push_back("tip_position_m");
     Output output(output_path);
     std::ostream& out = output.stream();
     write_header(out, items, columns);
@@ -200,7 +203,7 @@ int run_export(const Args& args) {
       if (curve.has_height_piezo()) row.push_back(curve.height_piezo[i]);
       if (curve.has_height_measured()) row.push_back(curve.height_measured[i]);
       row.push_back(curve.force[i]);
-      row.push_back(tip[i]);
+      if (has_tip) row.push_back(tip[i]);
       write_row(out, row, columns);
     }
     output.commit();
