@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/cli_support.hpp"
 #include "commands.hpp"
@@ -31,6 +32,9 @@ const std::vector<OptionSpec> kExportSpec = {
     {"--index", "N", "the curve of a map to export (0-based, default 0; `afm show` lists them)", false},
     spring_constant_option(),
     sensitivity_option(),
+    {"--preprocess", "", "add the baseline-corrected force and the contact point (steps in the header)", false},
+    {"--contact-point", "METHOD", "with --preprocess: piecewise-fit (default, robust to noise) or deviation", false},
+    {"--baseline-fraction", "F", "with --preprocess: leading part of the approach fitted as baseline (default 0.5)", false},
     {"--output", "FILE", "write the curve to FILE (atomically) instead of stdout", false},
 };
 
@@ -148,11 +152,15 @@ int run_export(const Args& args) {
   return run_guarded("afm export", [&]() -> int {
     const Arguments arguments(args, kExportSpec, 1);
     if (arguments.help()) {
-      std::cout << usage("afm export", "FILE [--index N] [--spring-constant K] [--sensitivity S] [--output FILE]",
+      std::cout << usage("afm export", "FILE [--index N] [--spring-constant K] [--sensitivity S] [--preprocess "
+                         "[--contact-point METHOD] [--baseline-fraction F]] [--output FILE]",
                          "One curve of an AFM file as TSV in SI units: time_s (when the file has a\n"
                          "time base), segment (0, 1, ... as listed in the header), the piezo and\n"
                          "measured heights (when recorded), force_N and tip_position_m = height\n"
-                         "(measured, else piezo) + F/k. The header holds all the curve's metadata.\n" +
+                         "(measured, else piezo) + F/k. The header holds all the curve's metadata.\n"
+                         "--preprocess adds force_corrected_N: the force less a baseline offset + tilt\n"
+                         "fitted on the leading part of the approach, and the contact point on the\n"
+                         "tip-position axis; each step is recorded with its parameters.\n" +
                              std::string(kFormats),
                          kExportSpec);
       return kExitSuccess;
@@ -167,6 +175,21 @@ int run_export(const Args& args) {
         throw InputError("--index: '" + *text + "' is not allowed; expected a curve index 0, 1, 2, ...");
       }
       index = static_cast<std::size_t>(value);
+    }
+    const bool preprocess = arguments.has("--preprocess");
+    afm::PreprocessOptions options;
+    if (auto method = arguments.get("--contact-point")) {
+      if (!preprocess) throw InputError("--contact-point: needs --preprocess");
+      if (*method == "piecewise-fit") options.contact_method = afm::ContactPointMethod::kPiecewiseFit;
+      else if (*method == "deviation") options.contact_method = afm::ContactPointMethod::kDeviation;
+      else throw InputError("--contact-point: '" + method->substr(0, 60) + "' is not a method; expected piecewise-fit or deviation");
+    }
+    if (auto fraction = arguments.get("--baseline-fraction")) {
+      if (!preprocess) throw InputError("--baseline-fraction: needs --preprocess");
+      options.baseline_fraction = parse_number(*fraction, "--baseline-fraction");
+      if (!(options.baseline_fraction > 0.0 && options.baseline_fraction < 1.0)) {
+        throw InputError("--baseline-fraction: '" + *fraction + "' is not allowed; expected a number in (0, 1)");
+      }
     }
     register_input(path, "AFM file");
     const auto output_path = arguments.get("--output").value_or("");
@@ -185,6 +208,28 @@ int run_export(const Args& args) {
     add_curve_header(items, curve);
     items.push_back({"tip position", has_tip ? std::string(curve.tip_position_height_name()) + " + force / spring constant"
                                              : std::string("not available: no spring constant (give --spring-constant)")});
+    afm::PreprocessedCurve steps;
+    if (preprocess) {
+      steps = afm::preprocess(curve, options);
+      items.push_back({"step 1, tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
+      items.push_back({"step 2, baseline", "force = offset + slope * tip position, least squares on the first " +
+                                               std::to_string(steps.baseline_points) + " approach points (fraction " +
+                                               format_parameter(options.baseline_fraction, "fraction") + ")"});
+      items.push_back({"baseline offset [N]", format_parameter(steps.baseline_offset, "baseline offset") + " +- " +
+                                                  format_parameter(steps.baseline_offset_error, "error")});
+      items.push_back({"baseline slope [N/m]", format_parameter(steps.baseline_slope, "baseline slope") + " +- " +
+                                                   format_parameter(steps.baseline_slope_error, "error")});
+      items.push_back({"baseline residual sigma [N]", format_parameter(steps.baseline_sigma, "sigma")});
+      std::string method = afm::contact_point_method_name(steps.contact_method);
+      if (steps.contact_method == afm::ContactPointMethod::kDeviation) {
+        method += " (" + format_parameter(options.deviation_sigmas, "sigmas") + " baseline sigmas)";
+      } else {
+        method += " (F = A (z_c - z)^" + format_parameter(options.piecewise_exponent, "exponent") + ")";
+      }
+      items.push_back({"step 3, contact point", method});
+      items.push_back({"contact point [m]", format_parameter(steps.contact_point, "contact point") + " (tip position, point " +
+                                                std::to_string(steps.contact_index) + ")"});
+    }
     std::vector<std::string> columns;
     if (!curve.time.empty()) columns.push_back("time_s");
     columns.push_back("segment");
@@ -192,6 +237,7 @@ int run_export(const Args& args) {
     if (curve.has_height_measured()) columns.push_back("height_measured_m");
     columns.push_back("force_N");
     if (has_tip) columns.push_back("tip_position_m");
+    if (preprocess) columns.push_back("force_corrected_N");
     Output output(output_path);
     std::ostream& out = output.stream();
     write_header(out, items, columns);
@@ -204,6 +250,7 @@ int run_export(const Args& args) {
       if (curve.has_height_measured()) row.push_back(curve.height_measured[i]);
       row.push_back(curve.force[i]);
       if (has_tip) row.push_back(tip[i]);
+      if (preprocess) row.push_back(steps.force_corrected[i]);
       write_row(out, row, columns);
     }
     output.commit();

@@ -53,6 +53,17 @@ grep -q '^# curve index: 3 of 4$' "$work/map3.tsv" || fail "map curve index"
   --spring-constant 0.1 --sensitivity 2e-7 --output "$work/ntmdt.tsv" || fail "NT-MDT with calibration"
 grep -q '^# sensitivity \[m/V\]: 2e-07 (user)$' "$work/ntmdt.tsv" || fail "NT-MDT user sensitivity not recorded"
 
+# Preprocessing: named steps with their parameters in the header, the corrected force column.
+"$cli" afm export "$spot" --preprocess --contact-point deviation --output "$work/pre.tsv" || fail "export --preprocess"
+for line in '^# step 1, tip position: height (measured) + force / spring constant$' '^# step 2, baseline: ' \
+            '^# baseline slope \[N/m\]: ' '^# step 3, contact point: deviation (5 baseline sigmas)$' '^# contact point \[m\]: ' \
+            '^# columns: .*	tip_position_m	force_corrected_N$'; do
+  grep -q "$line" "$work/pre.tsv" || fail "preprocess header lacks $line"
+done
+expect_error 2 "--contact-point" "needs --preprocess" -- afm export "$spot" --contact-point deviation
+expect_error 2 "--contact-point" "expected piecewise-fit or deviation" -- afm export "$spot" --preprocess --contact-point magic
+expect_error 2 "--baseline-fraction" "(0, 1)" -- afm export "$spot" --preprocess --baseline-fraction 1.5
+
 # ---- missing calibration -----------------------------------------------------------------
 cal="$data/fmt-jpk-cl_calibration_force-save-2015.02.04-11.25.21.294.jpk-force"
 expect_error 2 "$cal" "no spring constant and no sensitivity" "--spring-constant" "--sensitivity" -- afm export "$cal"
