@@ -13,6 +13,10 @@ has a time base. `metadata` holds "spring constant" [N/m], "sensitivity" [m/V], 
 "instrument", "date", "time", "path", "curve index", "grid index x", "grid index y",
 "position x", "position y" [m], "point count", ... (the keys a file provides).
 
+preprocess(curve) runs the named steps of the command line's `afm export --preprocess`: tip
+position, baseline offset and tilt on the leading part of the approach, contact point
+("piecewise-fit", robust to noise, or "deviation").
+
 Errors: ValueError naming the file and the reason (unreadable or truncated file, missing
 channel, empty segment, and missing calibration: then pass spring_constant= and/or
 sensitivity=, which override the file's values and are recorded as source "user").
@@ -21,7 +25,7 @@ import math
 
 from . import _afm
 
-__all__ = ["read", "Curve"]
+__all__ = ["read", "preprocess", "Curve"]
 
 
 class Curve:
@@ -74,3 +78,32 @@ def read(path, spring_constant=None, sensitivity=None):
     curves = _afm.read(str(path), _calibration(spring_constant, "spring_constant"),
                        _calibration(sensitivity, "sensitivity"))
     return [Curve(c) for c in curves]
+
+
+def preprocess(curve, contact_point="piecewise-fit", baseline_fraction=0.5, deviation_sigmas=5.0,
+               spring_constant=None):
+    """Preprocessing steps of one curve (a Curve, or any mapping with "force" and "height
+    (measured)" and/or "height (piezo)", plus `segments` or an all-approach curve):
+
+    1. "tip position" = height (measured, else piezo) + force / spring constant [m];
+    2. baseline force = offset + slope * tip position, least squares on the first
+       `baseline_fraction` of the approach points; "force (corrected)" = force - baseline [N];
+    3. "contact point" [m] on the tip-position axis: "piecewise-fit" (F = 0, then A (z_c - z)^1.5,
+       least squares over all the contact-side points; robust to noise) or "deviation" (the first
+       point after which the corrected force stays above `deviation_sigmas` baseline sigmas).
+
+    Returns a dict with those arrays and the steps' parameters ("baseline offset" [N],
+    "baseline slope" [N/m] with their standard errors, "baseline sigma" [N], "contact index")."""
+    metadata = getattr(curve, "metadata", None) or {}
+    k = spring_constant if spring_constant is not None else metadata.get("spring constant")
+    if k is None:
+        raise ValueError("preprocess needs a spring constant: pass spring_constant= (N/m)")
+    force = curve["force"]
+    segments = getattr(curve, "segments", None)
+    if segments is None:
+        segments = [{"kind": "approach", "begin": 0, "end": len(force)}]
+    piezo = curve["height (piezo)"] if "height (piezo)" in curve else None
+    measured = curve["height (measured)"] if "height (measured)" in curve else None
+    return _afm.preprocess(force, piezo, measured, [(s["kind"], s["begin"], s["end"]) for s in segments],
+                           float(k), contact_point, float(baseline_fraction), float(deviation_sigmas),
+                           str(metadata.get("path", "curve")))

@@ -111,3 +111,28 @@ def test_every_file_reads():
     assert counts["fmt-afm-workshop-fd"] in (1, 16)
     qi = cc.afm.read(os.path.join(DATA, "fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data"))
     assert len(qi) == 4 and [c.metadata["grid index x"] for c in qi] == [0, 1, 2, 3]
+
+
+def test_preprocess_agrees_with_cli(cli):
+    header, rows, _ = cli("afm", "export", "data/afm/fmt-jpk-fd_spot3-0192.jpk-force", "--preprocess")
+    curve = cc.afm.read(SPOT)[0]
+    p = cc.afm.preprocess(curve)
+    table = np.array(rows, dtype=float)
+    assert np.array_equal(table[:, -1], p["force (corrected)"])
+    assert np.array_equal(p["tip position"], curve["tip position"])
+    line = [h for h in header if h.startswith("# contact point [m]:")][0]
+    assert float(line.split(":")[1].split()[0]) == p["contact point"]
+    assert p["contact point method"] == "piecewise-fit"
+    approach = curve.segment("approach")
+    assert approach.start + p["baseline points"] <= p["contact index"] < approach.stop
+
+
+def test_preprocess_plain_arrays():
+    z = np.linspace(5e-6, 0.5e-6, 1000)
+    force = 1e-10 + 1e-4 * z + np.where(z < 1e-6, 14.0 * np.clip(1e-6 - z, 0, None) ** 1.5, 0.0)
+    force += np.random.default_rng(1).normal(0, 1e-12, z.size)
+    p = cc.afm.preprocess({"force": force, "height (piezo)": z - force / 0.1}, spring_constant=0.1)
+    assert abs(p["contact point"] - 1e-6) < 5 * (z[0] - z[1])
+    assert abs(p["baseline slope"] - 1e-4) < 4 * p["baseline slope error"]
+    with pytest.raises(ValueError, match="spring constant"):
+        cc.afm.preprocess({"force": force, "height (piezo)": z})
