@@ -55,6 +55,7 @@ std::string next_logical_line(const std::string& text, std::size_t& pos) {
 }
 
 std::string unescape(const std::string& raw) {
+  if (raw.find('\\') == std::string::npos) return raw;
   std::string out;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     const char c = raw[i];

@@ -60,8 +60,21 @@ const std::string* find(const Properties& p, const std::string& key) {
   return it == p.end() ? nullptr : &it->second;
 }
 
+// A segment's own (expanded) properties over its curve's: looked up in that order, so the
+// curve's settings are shared rather than copied into every segment.
+struct SegmentProperties {
+  Properties own;
+  const Properties* curve = nullptr;
+};
+
+const std::string* find(const SegmentProperties& p, const std::string& key) {
+  if (const std::string* v = find(p.own, key)) return v;
+  return find(*p.curve, key);
+}
+
 // The first of `keys` present.
-const std::string* find_any(const Properties& p, std::initializer_list<std::string> keys) {
+template <class P>
+const std::string* find_any(const P& p, std::initializer_list<std::string> keys) {
   for (const auto& key : keys) {
     if (const std::string* v = find(p, key)) return v;
   }
@@ -77,7 +90,8 @@ const std::string* find_suffix(const Properties& p, const std::string& suffix) {
   return nullptr;
 }
 
-double number(const Properties& p, const std::string& key, const Context& where) {
+template <class P>
+double number(const P& p, const std::string& key, const Context& where) {
   const std::string* text = find(p, key);
   if (text == nullptr) fail(where.file, where.entry, "property " + key + " is missing");
   double value = 0.0;
@@ -143,7 +157,7 @@ struct SlotOverride {
 };
 
 // The channel in its calibration slot `slot`, in `unit`.
-std::vector<double> read_channel(const ZipArchive& archive, const Properties& p, const std::string& folder,
+std::vector<double> read_channel(const ZipArchive& archive, const SegmentProperties& p, const std::string& folder,
                                  const std::string& channel, const std::string& slot, const std::string& unit,
                                  std::size_t expected_points, const SlotOverride& overrides, const std::string& file) {
   const std::string c = "channel." + channel + ".";
@@ -245,7 +259,7 @@ std::vector<std::string> split_blanks(const std::string& text) {
 }
 
 // The slot multiplier of vDeflection, if the slot is defined.
-const double* slot_multiplier(const Properties& p, const std::string& slot, double& storage) {
+const double* slot_multiplier(const SegmentProperties& p, const std::string& slot, double& storage) {
   const std::string s = std::string("channel.") + kDeflectionChannel + ".conversion-set.conversion." + slot + ".";
   const std::string* defined = find(p, s + "defined");
   if (defined == nullptr || *defined != "true") return nullptr;
@@ -311,14 +325,14 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
     expand_references(curve_properties, shared);
 
     // Segment folders 0, 1, ... as long as their headers exist.
-    std::vector<Properties> segment_properties;
+    std::vector<SegmentProperties> segment_properties;
     for (std::size_t s = 0;; ++s) {
       const std::string header = folder + "segments/" + std::to_string(s) + "/segment-header.properties";
       if (!archive.has(header)) break;
-      Properties p = curve_properties;
-      Properties own = parse_properties(archive.read(header));
-      expand_references(own, shared);
-      for (auto& [k, v] : own) p[k] = v;
+      SegmentProperties p;
+      p.own = parse_properties(archive.read(header));
+      expand_references(p.own, shared);
+      p.curve = &curve_properties;
       segment_properties.push_back(std::move(p));
     }
     if (segment_properties.empty()) fail(file, folder + "segments/", "no segment headers in the archive");
@@ -361,18 +375,18 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
     for (auto& p : segment_properties) {
       const std::string set = std::string("channel.") + kDeflectionChannel + ".conversion-set.conversion.";
       if (!file_s) {
-        p[set + "distance.defined"] = "true";
-        p[set + "distance.base-calibration-slot"] = "volts";
-        p[set + "distance.scaling.offset"] = "0";
-        p[set + "distance.scaling.multiplier"] = "1";
-        p[set + "distance.scaling.unit.unit"] = "m";
+        p.own[set + "distance.defined"] = "true";
+        p.own[set + "distance.base-calibration-slot"] = "volts";
+        p.own[set + "distance.scaling.offset"] = "0";
+        p.own[set + "distance.scaling.multiplier"] = "1";
+        p.own[set + "distance.scaling.unit.unit"] = "m";
       }
       if (!file_k) {
-        p[set + "force.defined"] = "true";
-        p[set + "force.base-calibration-slot"] = "distance";
-        p[set + "force.scaling.offset"] = "0";
-        p[set + "force.scaling.multiplier"] = "1";
-        p[set + "force.scaling.unit.unit"] = "N";
+        p.own[set + "force.defined"] = "true";
+        p.own[set + "force.base-calibration-slot"] = "distance";
+        p.own[set + "force.scaling.offset"] = "0";
+        p.own[set + "force.scaling.multiplier"] = "1";
+        p.own[set + "force.scaling.unit.unit"] = "N";
       }
     }
 
@@ -407,7 +421,7 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
 
     double start_time = 0.0;
     for (std::size_t s = 0; s < segment_properties.size(); ++s) {
-      const Properties& p = segment_properties[s];
+      const SegmentProperties& p = segment_properties[s];
       const std::string seg_folder = folder + "segments/" + std::to_string(s) + "/";
       const Context where{file, seg_folder + "segment-header.properties"};
       const double points = number(p, "force-segment-header.num-points", where);
