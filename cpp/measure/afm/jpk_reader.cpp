@@ -408,7 +408,7 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
     if (!folder.empty() && optional_number(find_suffix(general, "position-pattern.grid.ilength"), ilength) &&
         optional_number(find_suffix(general, "position-pattern.grid.jlength"), jlength) &&
         optional_number(find_suffix(curve_properties, "header.position-index"), position_index) && ilength >= 1 &&
-        jlength >= 1 && position_index >= 0 && position_index < ilength * jlength) {
+        jlength >= 1 && ilength <= 1e6 && jlength <= 1e6 && position_index >= 0 && position_index < ilength * jlength) {
       const long i = static_cast<long>(ilength), index = static_cast<long>(position_index);
       m.grid_shape_x = i;
       m.grid_shape_y = static_cast<long>(jlength);
