@@ -7,6 +7,8 @@ packages=(
   gfortran g++ cmake make pkg-config
   libgsl-dev liblapack-dev liblapacke-dev libblas-dev libfftw3-dev
   gnuplot-nox python3
+  # the AFM readers (JPK archives, zipped AFM Workshop maps)
+  libzip-dev
   # the Python package and its tests (python/, examples/python/)
   python3-dev python3-numpy pybind11-dev python3-pytest python3-matplotlib
 )

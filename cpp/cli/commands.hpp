@@ -18,6 +18,7 @@ int run_pulloff(const Args& args);   // cmd_adhesive.cpp: normalized pull-off pe
 int run_sphere(const Args& args);    // cmd_adhesive.cpp: adhesive sphere in physical units
 int run_reduced(const Args& args);   // cmd_reduced.cpp: reduced variables Pi_s .. Gamma1 versus a/t
 int run_contact(const Args& args);   // cmd_contact.cpp: any axisymmetric indenter in physical units
+int run_afm(const Args& args);       // cmd_afm.cpp: AFM force curves from instrument files (show, export)
 // The indenter of `--shape SPEC` (sphere:R, cone:BETA, punch:A, power:N,R, blunted-cone:R,BETA,
 // profile:FILE; cmd_contact.cpp), shared by `contact` and `fit`. InputError naming --shape.
 // `profile_end` is set to "FILE:LINE" of a profile's last point.

@@ -26,6 +26,7 @@ const Command kCommands[] = {
     {"pulloff", coatcontact::cli::run_pulloff, "normalized pull-off (load and displacement control) per eta"},
     {"sphere", coatcontact::cli::run_sphere, "adhesive sphere in physical units: a, delta, F and pull-off forces"},
     {"contact", coatcontact::cli::run_contact, "any axisymmetric indenter (cone, power law, blunted cone, profile) in SI units"},
+    {"afm", coatcontact::cli::run_afm, "AFM force curves from instrument files: show, export"},
 };
 
 void print_overview(std::ostream& out) {

@@ -1,0 +1,493 @@
+// JPK force files (.jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series): zip archives of
+// Java .properties headers and raw big-endian channels.
+//  - Layout: "segments/S/..." for one curve; "index/N/header.properties" and
+//    "index/N/segments/S/..." for the curves of a map. "header.properties" at the top holds the
+//    file's settings, "shared-data/header.properties" settings that headers refer to.
+//  - Indirection: a key "A.M.*=N" (M = lcd-info, force-segment-header-info) stands for every
+//    shared key "M.N.rest" as "A.rest"; so a channel's settings appear as "channel.X.data.*"
+//    (inline) or "channel.X.*" (through lcd-info), and both spellings are looked up.
+//  - A channel's raw numbers (encoder type: signed/unsigned short or integer, or float data
+//    without encoder) are scaled to volts by the encoder's offset + multiplier * raw, then by
+//    the conversion chain of calibration slots: each slot is offset + multiplier * (its base
+//    slot), down to the set's base. vDeflection: volts -> distance (multiplier = sensitivity
+//    [m/V]) -> force (multiplier = spring constant [N/m]).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "java_properties.hpp"
+#include "read_support.hpp"
+#include "zip_archive.hpp"
+
+namespace coatcontact::afm::detail {
+
+namespace {
+
+const char* const kPiezoChannels[] = {"height", "head-height"};
+const char* const kMeasuredChannels[] = {"strainGaugeHeight", "capacitiveSensorHeight", "measuredHeight"};
+constexpr const char* kDeflectionChannel = "vDeflection";
+
+struct Context {
+  const std::string& file;
+  std::string entry;  // the properties file or channel in question, for messages
+};
+
+// Replaces every "A.M.*=N" by the shared keys "M.N.rest" as "A.rest".
+void expand_references(Properties& properties, const Properties& shared) {
+  std::vector<std::pair<std::string, std::string>> references;
+  for (const auto& [key, value] : properties) {
+    if (key.size() > 2 && key.compare(key.size() - 2, 2, ".*") == 0) references.emplace_back(key, value);
+  }
+  for (const auto& [key, value] : references) {
+    const std::string stem = key.substr(0, key.size() - 2);  // "channel.height.lcd-info"
+    const std::size_t dot = stem.rfind('.');
+    if (dot == std::string::npos) continue;
+    const std::string head = stem.substr(0, dot);            // "channel.height"
+    const std::string mediator = stem.substr(dot + 1);       // "lcd-info"
+    const std::string prefix = mediator + "." + std::string(trim(value)) + ".";
+    for (auto it = shared.lower_bound(prefix); it != shared.end() && it->first.compare(0, prefix.size(), prefix) == 0; ++it) {
+      properties.emplace(head + "." + it->first.substr(prefix.size()), it->second);
+    }
+  }
+}
+
+const std::string* find(const Properties& p, const std::string& key) {
+  const auto it = p.find(key);
+  return it == p.end() ? nullptr : &it->second;
+}
+
+// A segment's own (expanded) properties over its curve's: looked up in that order, so the
+// curve's settings are shared rather than copied into every segment.
+struct SegmentProperties {
+  Properties own;
+  const Properties* curve = nullptr;
+};
+
+const std::string* find(const SegmentProperties& p, const std::string& key) {
+  if (const std::string* v = find(p.own, key)) return v;
+  return find(*p.curve, key);
+}
+
+// The first of `keys` present.
+template <class P>
+const std::string* find_any(const P& p, std::initializer_list<std::string> keys) {
+  for (const auto& key : keys) {
+    if (const std::string* v = find(p, key)) return v;
+  }
+  return nullptr;
+}
+
+// The value of the first key ending in `suffix` (for settings whose prefix names the file
+// type: force-scan-series., quantitative-imaging-series., force-scan-map., ...).
+const std::string* find_suffix(const Properties& p, const std::string& suffix) {
+  for (const auto& [key, value] : p) {
+    if (key.size() >= suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) return &value;
+  }
+  return nullptr;
+}
+
+template <class P>
+double number(const P& p, const std::string& key, const Context& where) {
+  const std::string* text = find(p, key);
+  if (text == nullptr) fail(where.file, where.entry, "property " + key + " is missing");
+  double value = 0.0;
+  if (!parse_double(*text, value) || !std::isfinite(value)) {
+    fail(where.file, where.entry, "property " + key + " = '" + *text + "' is not a finite number");
+  }
+  return value;
+}
+
+bool optional_number(const std::string* text, double& value) {
+  return text != nullptr && parse_double(*text, value) && std::isfinite(value);
+}
+
+// One linear step: offset + multiplier * base.
+struct Scaling {
+  double offset = 0.0;
+  double multiplier = 1.0;
+};
+
+enum class RawType { kInt16, kUInt16, kInt32, kUInt32, kFloat32, kFloat64 };
+
+std::size_t raw_size(RawType type) {
+  switch (type) {
+    case RawType::kInt16:
+    case RawType::kUInt16: return 2;
+    case RawType::kInt32:
+    case RawType::kUInt32:
+    case RawType::kFloat32: return 4;
+    case RawType::kFloat64: return 8;
+  }
+  return 0;
+}
+
+double decode(const unsigned char* b, RawType type) {
+  switch (type) {
+    case RawType::kInt16: return static_cast<std::int16_t>(static_cast<std::uint16_t>((b[0] << 8) | b[1]));
+    case RawType::kUInt16: return static_cast<std::uint16_t>((b[0] << 8) | b[1]);
+    case RawType::kInt32:
+    case RawType::kUInt32:
+    case RawType::kFloat32: {
+      const std::uint32_t u = (std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) | (std::uint32_t{b[2]} << 8) | b[3];
+      if (type == RawType::kInt32) return static_cast<std::int32_t>(u);
+      if (type == RawType::kUInt32) return u;
+      float f = 0.0f;
+      std::memcpy(&f, &u, 4);
+      return f;
+    }
+    case RawType::kFloat64: {
+      std::uint64_t u = 0;
+      for (int k = 0; k < 8; ++k) u = (u << 8) | b[k];
+      double d = 0.0;
+      std::memcpy(&d, &u, 8);
+      return d;
+    }
+  }
+  return 0.0;
+}
+
+// Calibration values the user supplied replace the slot multipliers of vDeflection.
+struct SlotOverride {
+  std::optional<double> distance_multiplier;  // sensitivity
+  std::optional<double> force_multiplier;     // spring constant
+};
+
+// The channel in its calibration slot `slot`, in `unit`.
+std::vector<double> read_channel(const ZipArchive& archive, const SegmentProperties& p, const std::string& folder,
+                                 const std::string& channel, const std::string& slot, const std::string& unit,
+                                 std::size_t expected_points, const SlotOverride& overrides, const std::string& file) {
+  const std::string c = "channel." + channel + ".";
+  Context where{file, folder + "segment-header.properties"};
+  const std::string* file_name = find_any(p, {c + "data.file.name", c + "file.name"});
+  if (file_name == nullptr) fail(file, where.entry, "no data file named for channel " + channel);
+  const std::string entry = folder + *file_name;
+  const std::string* encoder = find_any(p, {c + "data.encoder.type", c + "encoder.type"});
+  const std::string* data_type = find_any(p, {c + "data.type", c + "type"});
+  RawType type = RawType::kInt16;
+  bool scaled = true;
+  if (encoder != nullptr) {
+    if (*encoder == "signedshort") type = RawType::kInt16;
+    else if (*encoder == "unsignedshort") type = RawType::kUInt16;
+    else if (*encoder == "signedinteger") type = RawType::kInt32;
+    else if (*encoder == "unsignedinteger") type = RawType::kUInt32;
+    else fail(file, entry, "encoder type '" + *encoder + "' of channel " + channel + " is not supported");
+  } else if (data_type != nullptr && (*data_type == "float" || *data_type == "float-data")) {
+    type = RawType::kFloat32;
+    scaled = false;
+  } else if (data_type != nullptr && (*data_type == "double" || *data_type == "double-data")) {
+    type = RawType::kFloat64;
+    scaled = false;
+  } else {
+    fail(file, entry, "channel " + channel + " has neither an encoder nor a float data type");
+  }
+  Scaling encoder_scaling;
+  if (scaled) {
+    const std::string* off = find_any(p, {c + "data.encoder.scaling.offset", c + "encoder.scaling.offset"});
+    const std::string* mul = find_any(p, {c + "data.encoder.scaling.multiplier", c + "encoder.scaling.multiplier"});
+    if (!optional_number(off, encoder_scaling.offset) || !optional_number(mul, encoder_scaling.multiplier)) {
+      fail(file, where.entry, "encoder scaling (offset, multiplier) of channel " + channel + " is missing or not a number");
+    }
+  }
+  // Conversion chain from `slot` down to the base slot.
+  const std::string set = c + "conversion-set.";
+  const std::string* base = find(p, set + "conversions.base");
+  if (base == nullptr) fail(file, where.entry, "channel " + channel + " has no conversion set");
+  std::vector<Scaling> chain;
+  std::string current = slot;
+  while (current != *base) {
+    if (chain.size() > 16) fail(file, where.entry, "conversion slots of channel " + channel + " form a loop");
+    const std::string s = set + "conversion." + current + ".";
+    const std::string* defined = find(p, s + "defined");
+    if (defined == nullptr || *defined != "true") {
+      fail(file, where.entry, "calibration slot '" + current + "' of channel " + channel + " is not defined");
+    }
+    Scaling step;
+    step.offset = number(p, s + "scaling.offset", where);
+    step.multiplier = number(p, s + "scaling.multiplier", where);
+    if (channel == kDeflectionChannel && current == "distance" && overrides.distance_multiplier) {
+      step = Scaling{0.0, *overrides.distance_multiplier};
+    }
+    if (channel == kDeflectionChannel && current == "force" && overrides.force_multiplier) {
+      step = Scaling{0.0, *overrides.force_multiplier};
+    }
+    if (current == slot) {
+      const std::string* u = find_any(p, {s + "scaling.unit.unit", s + "scaling.unit"});
+      if (u == nullptr || *u != unit) {
+        fail(file, where.entry, "slot '" + slot + "' of channel " + channel + " is in '" + (u ? *u : std::string("?")) +
+                                    "', expected " + unit);
+      }
+    }
+    chain.push_back(step);
+    const std::string* next = find(p, s + "base-calibration-slot");
+    if (next == nullptr) fail(file, where.entry, "slot '" + current + "' of channel " + channel + " names no base slot");
+    current = *next;
+  }
+  if (chain.empty()) fail(file, where.entry, "channel " + channel + " has no slot '" + slot + "' above its base");
+
+  if (!archive.has(entry)) fail(file, entry, "channel " + channel + " is missing from the archive");
+  const std::string bytes = archive.read(entry);
+  const std::size_t size = raw_size(type);
+  if (bytes.size() < expected_points * size) {
+    fail(file, entry, "truncated channel: " + std::to_string(bytes.size() / size) + " points, the header says " +
+                          std::to_string(expected_points));
+  }
+  std::vector<double> values(expected_points);
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  for (std::size_t i = 0; i < expected_points; ++i) {
+    double v = decode(data + i * size, type);
+    if (scaled) v = encoder_scaling.offset + encoder_scaling.multiplier * v;
+    for (auto step = chain.rbegin(); step != chain.rend(); ++step) v = step->offset + step->multiplier * v;
+    values[i] = v;
+  }
+  return values;
+}
+
+std::vector<std::string> split_blanks(const std::string& text) {
+  std::vector<std::string> words;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && text[i] == ' ') ++i;
+    const std::size_t start = i;
+    while (i < text.size() && text[i] != ' ') ++i;
+    if (i > start) words.push_back(text.substr(start, i - start));
+  }
+  return words;
+}
+
+// The slot multiplier of vDeflection, if the slot is defined.
+const double* slot_multiplier(const SegmentProperties& p, const std::string& slot, double& storage) {
+  const std::string s = std::string("channel.") + kDeflectionChannel + ".conversion-set.conversion." + slot + ".";
+  const std::string* defined = find(p, s + "defined");
+  if (defined == nullptr || *defined != "true") return nullptr;
+  if (!optional_number(find(p, s + "scaling.multiplier"), storage)) return nullptr;
+  return &storage;
+}
+
+std::string format_of(const std::string& file, const Properties& general) {
+  const std::string* type = find(general, "type");
+  const std::string t = type ? *type : "";
+  if (t == "quantitative-imaging-map") return "JPK QI map (.jpk-qi-data)";
+  if (t == "quantitative-imaging-series") return "JPK QI curve (.jpk-qi-series)";
+  if (t == "force-scan-map") return "JPK force map (.jpk-force-map)";
+  (void)file;
+  return "JPK force curve (.jpk-force)";
+}
+
+}  // namespace
+
+std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& file, const Calibration& user) {
+  const ZipArchive archive(bytes, file);
+  // Curves: "" for a single curve, "index/N/" for the curves of a map (numeric order).
+  std::vector<std::string> curve_folders;
+  std::set<long> indices;
+  bool single = false;
+  for (const auto& name : archive.names()) {
+    if (name.rfind("segments/", 0) == 0) single = true;
+    if (name.rfind("index/", 0) == 0) {
+      const std::size_t slash = name.find('/', 6);
+      const std::string digits = name.substr(6, slash == std::string::npos ? std::string::npos : slash - 6);
+      if (!digits.empty() && digits.size() < 10 && std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
+        indices.insert(std::stol(digits));
+      }
+    }
+  }
+  if (!indices.empty()) {
+    for (long i : indices) curve_folders.push_back("index/" + std::to_string(i) + "/");
+  } else if (single) {
+    curve_folders.push_back("");
+  } else {
+    fail(file, "", "a zip archive without JPK segments (no segments/ or index/ folders)");
+  }
+
+  Properties general;
+  if (archive.has("header.properties")) {
+    general = parse_properties(archive.read("header.properties"));
+  } else if (single) {
+    fail(file, "header.properties", "entry missing from the archive");
+  }
+  Properties shared;
+  if (archive.has("shared-data/header.properties")) shared = parse_properties(archive.read("shared-data/header.properties"));
+  const std::string format = format_of(file, general);
+
+  std::vector<ForceCurve> curves;
+  for (std::size_t ci = 0; ci < curve_folders.size(); ++ci) {
+    const std::string& folder = curve_folders[ci];
+    Properties curve_properties = general;
+    if (!folder.empty()) {
+      if (!archive.has(folder + "header.properties")) fail(file, folder + "header.properties", "entry missing from the archive");
+      Properties own = parse_properties(archive.read(folder + "header.properties"));
+      for (auto& [k, v] : own) curve_properties[k] = v;
+    }
+    expand_references(curve_properties, shared);
+
+    // Segment folders 0, 1, ... as long as their headers exist.
+    std::vector<SegmentProperties> segment_properties;
+    for (std::size_t s = 0;; ++s) {
+      const std::string header = folder + "segments/" + std::to_string(s) + "/segment-header.properties";
+      if (!archive.has(header)) break;
+      SegmentProperties p;
+      p.own = parse_properties(archive.read(header));
+      expand_references(p.own, shared);
+      p.curve = &curve_properties;
+      segment_properties.push_back(std::move(p));
+    }
+    if (segment_properties.empty()) fail(file, folder + "segments/", "no segment headers in the archive");
+
+    // The channels present in every segment decide which heights this curve has.
+    std::vector<std::set<std::string>> lists;
+    for (const auto& p : segment_properties) {
+      const std::string* list = find(p, "channels.list");
+      std::set<std::string> names;
+      if (list) for (auto& w : split_blanks(*list)) names.insert(w);
+      lists.push_back(std::move(names));
+    }
+    const auto in_all = [&](const std::string& name) {
+      return std::all_of(lists.begin(), lists.end(), [&](const std::set<std::string>& l) { return l.count(name) > 0; });
+    };
+    for (std::size_t s = 0; s < lists.size(); ++s) {
+      if (lists[s].count(kDeflectionChannel) == 0) {
+        fail(file, folder + "segments/" + std::to_string(s) + "/", "missing channel vDeflection (the cantilever deflection)");
+      }
+    }
+    std::string piezo, measured;
+    for (const char* name : kPiezoChannels) if (piezo.empty() && in_all(name)) piezo = name;
+    for (const char* name : kMeasuredChannels) if (measured.empty() && in_all(name)) measured = name;
+    if (piezo.empty() && measured.empty()) {
+      fail(file, folder + "segments/", "missing channel: no height (height, head-height) and no measured height (strainGaugeHeight, capacitiveSensorHeight, measuredHeight) in every segment");
+    }
+
+    // Calibration from the first segment's vDeflection slots; the user's values override them.
+    double k_storage = 0.0, s_storage = 0.0;
+    const double* file_k = slot_multiplier(segment_properties.front(), "force", k_storage);
+    const double* file_s = slot_multiplier(segment_properties.front(), "distance", s_storage);
+    const CalibrationChoice calibration = choose_calibration(
+        user, file_k, file_s, true, true, file, folder.empty() ? "" : folder,
+        "vDeflection calibration slots 'distance' and 'force'");
+    SlotOverride overrides;
+    if (calibration.sensitivity_source == CalibrationSource::kUser) overrides.distance_multiplier = calibration.sensitivity;
+    if (calibration.spring_constant_source == CalibrationSource::kUser) overrides.force_multiplier = calibration.spring_constant;
+    // A file lacking a slot the user supplied: the chain volts -> distance -> force is built
+    // from the user's value alone.
+    for (auto& p : segment_properties) {
+      const std::string set = std::string("channel.") + kDeflectionChannel + ".conversion-set.conversion.";
+      if (!file_s) {
+        p.own[set + "distance.defined"] = "true";
+        p.own[set + "distance.base-calibration-slot"] = "volts";
+        p.own[set + "distance.scaling.offset"] = "0";
+        p.own[set + "distance.scaling.multiplier"] = "1";
+        p.own[set + "distance.scaling.unit.unit"] = "m";
+      }
+      if (!file_k) {
+        p.own[set + "force.defined"] = "true";
+        p.own[set + "force.base-calibration-slot"] = "distance";
+        p.own[set + "force.scaling.offset"] = "0";
+        p.own[set + "force.scaling.multiplier"] = "1";
+        p.own[set + "force.scaling.unit.unit"] = "N";
+      }
+    }
+
+    ForceCurve curve;
+    CurveMetadata& m = curve.metadata;
+    set_calibration(m, calibration);
+    m.vendor = "JPK";
+    m.format = format;
+    m.source_file = file;
+    m.entry = folder;
+    m.curve_index = ci;
+    m.curve_count = curve_folders.size();
+    if (const std::string* v = find_suffix(general, "description.instrument")) m.instrument = *v;
+    if (m.instrument.empty()) if (const std::string* v = find_suffix(curve_properties, "description.instrument")) m.instrument = *v;
+    double value = 0.0;
+    if (optional_number(find_suffix(curve_properties, "header.position.x"), value)) m.position_x = value;
+    if (optional_number(find_suffix(curve_properties, "header.position.y"), value)) m.position_y = value;
+    double ilength = 0.0, jlength = 0.0, position_index = 0.0;
+    if (!folder.empty() && optional_number(find_suffix(general, "position-pattern.grid.ilength"), ilength) &&
+        optional_number(find_suffix(general, "position-pattern.grid.jlength"), jlength) &&
+        optional_number(find_suffix(curve_properties, "header.position-index"), position_index) && ilength >= 1 &&
+        jlength >= 1 && ilength <= 1e6 && jlength <= 1e6 && position_index >= 0 && position_index < ilength * jlength) {
+      const long i = static_cast<long>(ilength), index = static_cast<long>(position_index);
+      m.grid_shape_x = i;
+      m.grid_shape_y = static_cast<long>(jlength);
+      m.grid_index_x = index % i;
+      m.grid_index_y = index / i;
+    }
+    m.details.emplace_back("force channel", "vDeflection (slot force)");
+    if (!piezo.empty()) m.details.emplace_back("height (piezo) channel", piezo + " (slot calibrated, else nominal)");
+    if (!measured.empty()) m.details.emplace_back("height (measured) channel", measured + " (slot nominal)");
+
+    double start_time = 0.0;
+    for (std::size_t s = 0; s < segment_properties.size(); ++s) {
+      const SegmentProperties& p = segment_properties[s];
+      const std::string seg_folder = folder + "segments/" + std::to_string(s) + "/";
+      const Context where{file, seg_folder + "segment-header.properties"};
+      const double points = number(p, "force-segment-header.num-points", where);
+      if (!(points >= 0 && points <= 1e9) || points != std::floor(points)) {
+        fail(file, where.entry, "num-points is not a valid count");
+      }
+      const auto n = static_cast<std::size_t>(points);
+      if (n == 0) fail(file, where.entry, "empty segment " + std::to_string(s) + " (num-points = 0)");
+      Segment segment;
+      segment.begin = curve.segments.empty() ? 0 : curve.segments.back().end;
+      segment.end = segment.begin + n;
+      const std::string* style = find_any(p, {"force-segment-header.settings.style", "force-segment-header.settings.segment-settings.style"});
+      if (style && *style == "extend") segment.kind = SegmentKind::kApproach;
+      else if (style && *style == "retract") segment.kind = SegmentKind::kRetract;
+      else if (style && *style == "pause") segment.kind = SegmentKind::kPause;
+      else if (s == 0) segment.kind = SegmentKind::kApproach;
+      else if (s + 1 == segment_properties.size()) segment.kind = SegmentKind::kRetract;
+      else segment.kind = SegmentKind::kPause;
+      if (const std::string* name = find(p, "force-segment-header.name.name")) segment.name = *name;
+      if (!optional_number(find_any(p, {"force-segment-header.duration", "force-segment-header.settings.segment-settings.duration"}), segment.duration) ||
+          !(segment.duration > 0.0)) {
+        fail(file, where.entry, "no segment duration (force-segment-header.duration), so no time axis");
+      }
+      if (s == 0) {
+        if (const std::string* stamp = find(p, "force-segment-header.time-stamp")) {
+          const std::size_t blank = stamp->find(' ');
+          m.date = stamp->substr(0, blank);
+          if (blank != std::string::npos) {
+            const std::size_t second = stamp->find(' ', blank + 1);
+            m.time = stamp->substr(blank + 1, second == std::string::npos ? std::string::npos : second - blank - 1);
+          }
+        }
+      }
+      // Per-channel point counts may be given; they must agree with the segment's.
+      for (const std::string& ch : {std::string(kDeflectionChannel), piezo, measured}) {
+        if (ch.empty()) continue;
+        double channel_points = 0.0;
+        if (optional_number(find(p, "channel." + ch + ".data.num-points"), channel_points) && channel_points != points) {
+          fail(file, where.entry, "channel " + ch + " has " + number_text(channel_points) + " points, the segment " + number_text(points));
+        }
+      }
+      if (calibration.complete) {
+        const auto force = read_channel(archive, p, seg_folder, kDeflectionChannel, "force", "N", n, overrides, file);
+        curve.force.insert(curve.force.end(), force.begin(), force.end());
+      }
+      if (!piezo.empty()) {
+        const std::string set = "channel." + piezo + ".conversion-set.conversion.";
+        const std::string* calibrated = find(p, set + "calibrated.defined");
+        const std::string slot = (calibrated && *calibrated == "true") ? "calibrated" : "nominal";
+        const auto h = read_channel(archive, p, seg_folder, piezo, slot, "m", n, overrides, file);
+        curve.height_piezo.insert(curve.height_piezo.end(), h.begin(), h.end());
+      }
+      if (!measured.empty()) {
+        const auto h = read_channel(archive, p, seg_folder, measured, "nominal", "m", n, overrides, file);
+        curve.height_measured.insert(curve.height_measured.end(), h.begin(), h.end());
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        curve.time.push_back(start_time + segment.duration * static_cast<double>(i) / static_cast<double>(n));
+      }
+      start_time += segment.duration;
+      curve.segments.push_back(segment);
+    }
+    finish_curve(curve, file, folder);
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
+}  // namespace coatcontact::afm::detail

@@ -1,0 +1,29 @@
+// A zip archive held in memory, read through libzip (internal to the AFM readers).
+#pragma once
+#include <string>
+#include <vector>
+
+struct zip;
+
+namespace coatcontact::afm::detail {
+
+class ZipArchive {
+ public:
+  // `bytes` must outlive the archive. InputError naming `file` if it is not a readable zip.
+  ZipArchive(const std::string& bytes, const std::string& file);
+  ~ZipArchive();
+  ZipArchive(const ZipArchive&) = delete;
+  ZipArchive& operator=(const ZipArchive&) = delete;
+
+  const std::vector<std::string>& names() const { return names_; }
+  bool has(const std::string& name) const;
+  // The whole entry; InputError naming the file and entry if it is missing, truncated or corrupt.
+  std::string read(const std::string& name) const;
+
+ private:
+  zip* archive_ = nullptr;
+  std::string file_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace coatcontact::afm::detail
