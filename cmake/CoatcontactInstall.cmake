@@ -37,6 +37,10 @@ install(FILES ${PROJECT_SOURCE_DIR}/fortran/include/coatcontact/cc_kernel.h
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/gnuplot/
   DESTINATION ${CMAKE_INSTALL_DATADIR}/coatcontact/gnuplot)
 
+# The license (BSD-3-Clause) and the citation travel with every installed copy.
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CITATION.cff
+  DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
 # CMake package: targets, config (finds what static libraries need), version.
 install(EXPORT coatcontactTargets
   NAMESPACE coatcontact::
