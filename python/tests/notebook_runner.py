@@ -18,7 +18,9 @@ def kernel_for_this_python():
         os.makedirs(spec_dir)
         with open(os.path.join(spec_dir, "kernel.json"), "w") as f:
             json.dump({"argv": [sys.executable, "-Xfrozen_modules=off", "-m", "ipykernel_launcher", "-f", "{connection_file}"],
-                       "display_name": "coatcontact tests", "language": "python"}, f)
+                       "display_name": "coatcontact tests", "language": "python",
+                       # figures inline (as in Jupyter), whatever MPLBACKEND the tests run with
+                       "env": {"MPLBACKEND": "module://matplotlib_inline.backend_inline"}}, f)
         saved = os.environ.get("JUPYTER_PATH")
         os.environ["JUPYTER_PATH"] = root + (os.pathsep + saved if saved else "")
         try:
