@@ -30,6 +30,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/cpp/include/coatcontact/
   FILES_MATCHING PATTERN "*.h" PATTERN "*.hpp"
   PATTERN "cli_support.hpp" EXCLUDE
   PATTERN "data_file.hpp" EXCLUDE
+  PATTERN "si_text.hpp" EXCLUDE
   PATTERN "detail" EXCLUDE)
 install(FILES ${PROJECT_SOURCE_DIR}/fortran/include/coatcontact/cc_kernel.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/coatcontact)
