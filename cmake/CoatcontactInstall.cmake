@@ -30,6 +30,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/cpp/include/coatcontact/
   FILES_MATCHING PATTERN "*.h" PATTERN "*.hpp"
   PATTERN "cli_support.hpp" EXCLUDE
   PATTERN "data_file.hpp" EXCLUDE
+  PATTERN "si_text.hpp" EXCLUDE
   PATTERN "gsl_handler_off.hpp" EXCLUDE
   PATTERN "brent.hpp" EXCLUDE)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/fortran/include/coatcontact/
@@ -38,6 +39,10 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/fortran/include/coatcontact/
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/gnuplot/
   DESTINATION ${CMAKE_INSTALL_DATADIR}/coatcontact/gnuplot)
+
+# The license (BSD-3-Clause) and the citation travel with every installed copy.
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CITATION.cff
+  DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 # CMake package: targets, config (finds what static libraries need), version.
 install(EXPORT coatcontactTargets

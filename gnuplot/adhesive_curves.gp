@@ -1,7 +1,7 @@
 # Figures 5 and 7: normalized force P = F/(pi w R) versus normalized contact radius
 # a_bar = a/(pi w R^2/E1*)^(1/3) for several eta = t/(pi w R^2/E1*)^(1/3) (paper section 6.2,
 # [EqSolNormF]), with the JKR curve of a homogeneous film material and the two pull-off points.
-# Inputs: adhesive, pulloff, ratio, fignum, film_word, effect.
+# Inputs: adhesive, pulloff, ratio, fignum, film_word, effect; optional key_position.
 
 W = 1000; H = 720
 load gpdir.'/style.gp'
@@ -17,7 +17,9 @@ set ylabel 'P = F / (π w R)   (normalized force)'
 set xrange [0:abar_max]
 set yrange [(P_low < -1.8 ? 1.15 * P_low : -2.1):3]
 set xzeroaxis ls 32
-set key top left
+# Where the key does not cover a curve: fig5.gp moves it (key_position).
+if (!exists('key_position')) key_position = 'top left'
+eval 'set key '.key_position
 
 plot for [i = 1:n_eta] adhesive index (i - 1) using (column(c_abar)):(column(c_P)) \
          with lines ls eta_ls(i) title eta_title(i), \

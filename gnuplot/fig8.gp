@@ -44,7 +44,8 @@ plot -1.5 ls 31 notitle, \
 unset label 1
 
 set title 'displacement control (lowest D on the P(D) curve)'
-set label 1 'JKR  -5/6' at first 2.0, first -5.0/6 offset 0, 0.7 left tc ls 31 front
+# Below the line at the far left, where no curve lies more than 0.012 below -5/6.
+set label 1 'JKR  -5/6' at graph 0.02, first -5.0/6 offset 0, -1.1 left tc ls 31 front
 plot -5.0/6 ls 31 notitle, \
      for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pd)) with lines \
          ls ratio_ls(real(word(ratios, k))) title ratio_text(real(word(ratios, k)))

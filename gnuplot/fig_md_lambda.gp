@@ -24,9 +24,15 @@ near(a, b) = abs(a - b) <= 1e-9 * abs(b)
 
 set multiplot layout 1, 2 title sprintf("Maugis-Dugdale zone on a coating: pull-off force versus λ (load control),  %s", nu_label) \
     font ',14' margins 0.07, 0.97, 0.13, 0.86 spacing 0.08, 0
-set logscale x
-set xrange [l_min : l_max * 3]
-set format x '10^{%L}'
+# The x axis is log10(lambda) on a linear scale, labelled as a log axis, so that the splines
+# through the computed points are smooth in log(lambda) (gnuplot smooths in linear x).
+lg(x) = log10(x)
+set xrange [lg(l_min) : lg(l_max * 3)]
+set xtics () 
+do for [d = floor(lg(l_min)) : ceil(lg(l_max * 3))] {
+    eval sprintf("set xtics add ('10^{%d}' %d)", d, d)
+    do for [m = 2:9] { eval sprintf("set xtics add ('' %.12g 1)", d + lg(m)) }
+}
 set xlabel 'λ = 2σ_0 (R / (π w K^2))^{1/3},   K = 4E_1^*/3'
 set ylabel 'pull-off force  P = F / (π w R)'
 set key top left
@@ -48,13 +54,17 @@ do for [side = 1:2] {
         jkr_values = jkr_values . sprintf(' %.12g', STATS_min)
     }
     plot -2 ls 32 notitle, -1.5 ls 31 notitle, \
-         homogeneous using (column(c_lambda)):(column(c_pl)) with lines ls 31 lw 2.4 \
+         homogeneous using (lg(column(c_lambda))):(column(c_pl)) smooth mcsplines with lines ls 31 lw 2.4 \
              title 'homogeneous (Maugis 1992)', \
          for [k = 1:words(etas)] file \
-             using (near(column(c_eta), real(word(etas, k))) ? column(c_lambda) : NaN):(column(c_pl)) \
-             with linespoints ls eta_ls(k) pt 7 ps 0.6 title sprintf('η = %s', word(etas, k)), \
+             using (near(column(c_eta), real(word(etas, k))) ? lg(column(c_lambda)) : NaN):(column(c_pl)) \
+             smooth mcsplines with lines ls eta_ls(k) title sprintf('η = %s', word(etas, k)), \
+         for [k = 1:words(etas)] file \
+             using (near(column(c_eta), real(word(etas, k))) ? lg(column(c_lambda)) : NaN):(column(c_pl)) \
+             with points ls eta_ls(k) pt 7 ps 0.6 notitle, \
+         NaN with points lc rgb '#555555' pt 7 ps 0.6 title 'computed λ (lines: monotone splines in log λ)', \
          NaN with lines ls 31 lw 1.4 dt 2 title 'JKR on the coating (λ → ∞)', \
-         for [k = 1:words(etas)] '+' using (x = l_max * (1.3 + 0.35 * $0 / 10.0), x):(real(word(jkr_values, k))) \
+         for [k = 1:words(etas)] '+' using (x = l_max * (1.3 + 0.35 * $0 / 10.0), lg(x)):(real(word(jkr_values, k))) \
              every ::0::10 with lines ls eta_ls(k) dt 2 notitle
     unset label 1
     unset label 2

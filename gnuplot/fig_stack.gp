@@ -34,6 +34,7 @@ set title 'three-layer stack vs one-layer approximations'
 set xlabel 'a/T'
 set ylabel 'E_{eq} / E_{top}^*'
 set logscale y
+set yrange [*:40]   # headroom: the key sits above the curves
 set key top left
 plot for [k = 1:3] word(reduced, k) using (column(c_a)):(column(c_e) * scale_e(k)) with lines \
          ls eta_ls(k) dt k title stack_title(k)
@@ -42,7 +43,9 @@ set title 'pull-off, load control'
 set xlabel 'η = T / (π w R^2/E_{top}^*)^{1/3}'
 set ylabel 'P = F / (π w R)'
 unset logscale y
-set key bottom left
+set autoscale y
+set offsets 0, 0, graph 0.5, 0   # headroom for the key above the curves
+set key top right
 plot -1.5 ls 31 title 'JKR, homogeneous', \
      for [k = 1:3] word(pulloff, k) using (column(c_eta) / scale_eta(k)):(column(c_pl)) with linespoints \
          ls eta_ls(k) dt k pt 7 ps 0.6 title stack_title(k)
@@ -50,6 +53,7 @@ plot -1.5 ls 31 title 'JKR, homogeneous', \
 set title sprintf('film E,ν = %s on %s: bonded vs sliding', film, film_base)
 set xlabel 'a/T'
 set ylabel 'E_{eq} / E_{film}^*'
+set offsets 0, 0, 0, 0
 set logscale y
 set key top left
 plot for [k = 1:2] word(slip_reduced, k) using (column(c_a)):(column(c_e)) with lines \
@@ -59,7 +63,8 @@ set title 'pull-off, load control'
 set xlabel 'η = T / (π w R^2/E_{film}^*)^{1/3}'
 set ylabel 'P = F / (π w R)'
 unset logscale y
-set key bottom left
+set offsets 0, 0, graph 0.4, 0
+set key top right
 plot -1.5 ls 31 title 'JKR, homogeneous', \
      for [k = 1:2] word(slip_pulloff, k) using (column(c_eta)):(column(c_pl)) with linespoints \
          ls (k == 1 ? 21 : 22) pt 7 ps 0.6 title slip_title(k)

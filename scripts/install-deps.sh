@@ -11,6 +11,9 @@ packages=(
   libzip-dev
   # the Python package and its tests (python/, examples/python/)
   python3-dev python3-numpy pybind11-dev python3-pytest python3-matplotlib
+  # the notebooks (examples/notebooks/, run headless by nbclient) and the explorer's Jupyter
+  # widget (python -m coatcontact.explore; its window needs a GUI backend such as python3-tk)
+  python3-nbclient python3-ipykernel python3-ipywidgets
 )
 # Optional extras for `make bench` and `make fuzz`; installed when asked for.
 if [ "${COATCONTACT_EXTRAS:-0}" = 1 ]; then

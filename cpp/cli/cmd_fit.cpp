@@ -26,6 +26,7 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/si_text.hpp"
 #include "checks.hpp"
 #include "commands.hpp"
 #include "fit_plot_script.hpp"
@@ -1075,35 +1076,31 @@ int run_fit_body(const Args& args) {
     std::string estimates;
     for (std::size_t which = 0; which < parameter_count; ++which) {
       if (!free[which]) continue;
-      const fit::ParameterKind kind = parameters[which].kind;
-      const double scale = kind == fit::ParameterKind::kWork ? 1e3 : kind == fit::ParameterKind::kThickness ? 1e6 : 1e-6;
-      const char* unit = kind == fit::ParameterKind::kWork ? "mJ/m^2" : kind == fit::ParameterKind::kThickness ? "µm" : "MPa";
+      const std::string unit = parameters[which].kind == fit::ParameterKind::kWork ? "J/m^2" : parameters[which].unit;
       estimates += std::string(estimates.empty() ? "" : ",  ") + parameters[which].name + " = " +
-                   short_number(scale * result.value[which]) + " ± " + short_number(scale * result.standard_error[which]) +
-                   " " + unit;
+                   si_text_with_error(result.value[which], result.standard_error[which], unit);
     }
     const std::string fit_label =
         "fit: " + estimates + "   (n = " + std::to_string(result.points) +
-        (result.weighted ? ", χ^2/(n-p) = " + short_number(result.chi2_per_dof) : ", s = " + short_number(1e6 * result.residual_sigma) + " µN") +
-        (result.has_load_pulloff ? ", pull-off " + short_number(1e3 * result.load_pulloff_force) + " mN" : "") + ")";
+        (result.weighted ? ", χ^2/(n-p) = " + si_text(result.chi2_per_dof, "") : ", s = " + si_text(result.residual_sigma, "N")) +
+        (result.has_load_pulloff ? ", pull-off " + si_text(result.load_pulloff_force, "N") : "") + ")";
     std::string substrate = problem.substrate.rigid ? std::string("rigid substrate")
-                                                    : "E0 = " + short_number(problem.substrate.material.youngs_modulus / 1e9) +
-                                                          " GPa, ν0 = " + short_number(problem.substrate.material.poisson_ratio);
+                                                    : "E0 = " + si_text(problem.substrate.material.youngs_modulus, "Pa") +
+                                                          ", ν0 = " + short_number(problem.substrate.material.poisson_ratio);
     const std::string name = path == "-" ? std::string("stdin") : path.substr(path.find_last_of('/') + 1);
     std::string coating;
     if (stack_given) {
       coating = std::to_string(layer_count) + " layers (";
       for (std::size_t i = 0; i < layer_count; ++i) {
-        coating += (i == 0 ? "" : "; ") + short_number(result.value[fit::thickness_index(i)] * 1e6) + " µm, " +
-                   short_number(result.value[fit::modulus_index(i, layer_count)] / 1e6) + " MPa";
+        coating += (i == 0 ? "" : "; ") + si_text(result.value[fit::thickness_index(i)], "m") + ", " +
+                   si_text(result.value[fit::modulus_index(i, layer_count)], "Pa");
       }
       coating += ")";
     } else {
-      coating = "film E1 = " + short_number(result.value[fit::kFilmModulus] / 1e6) + " MPa (ν1 = " +
-                short_number(problem.film.poisson_ratio) + "), t = " +
-                short_number(result.value[fit::kThickness] * 1e6) + " µm";
+      coating = "film E1 = " + si_text(result.value[fit::kFilmModulus], "Pa") + " (ν1 = " +
+                short_number(problem.film.poisson_ratio) + "), t = " + si_text(result.value[fit::kThickness], "m");
     }
-    const std::string title = name + ": R = " + short_number(problem.sphere_radius * 1e3) + " mm, " + coating + ", " + substrate;
+    const std::string title = name + ": R = " + si_text(problem.sphere_radius, "m") + ", " + coating + ", " + substrate;
     picture = render_fit_plot(table_text.str(), curve_text.str(), x_name, title, fit_label,
                               plot_path->substr(plot_path->rfind('.') + 1), lp_x, result.load_pulloff_force, dp_x,
                               result.displacement_pulloff_force);

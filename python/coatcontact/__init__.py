@@ -47,6 +47,7 @@ import numpy as np
 
 from . import _core
 from ._core import NumericalError
+from ._version import __version__, __license__
 from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
 
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",

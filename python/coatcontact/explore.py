@@ -1,0 +1,381 @@
+"""Interactive explorer of the adhesive contact on a coating: python3 -m coatcontact.explore
+
+A matplotlib window with six sliders -- film over substrate modulus E1/E0, the Poisson ratios
+nu1 and nu0, the film thickness eta = t/(pi w R^2/E1*)^(1/3), the Maugis-Dugdale parameter
+lambda (top of the slider: infinity, the JKR limit) and the spring stiffness k_bar -- and the
+normalized curves P(a_bar) and P(D) (docs/THEORY.md section 5, the paper's [EqSolNormF,
+EqSolNormD]) with the pull-offs under load, displacement and spring control (sections 5, 10)
+and, for finite lambda, the Maugis-Dugdale curve and its pull-off (section 13). The dashed
+curve is JKR on a solid of film material: where the coated curve dips below it, the film
+enhances the pull-off.
+
+In Jupyter, `coatcontact.explore.widget()` gives the same plot with ipywidgets sliders (when
+ipywidgets is installed). Without a display, `--save FILE.png` draws the window into a file.
+
+    python3 -m coatcontact.explore                       # the window
+    python3 -m coatcontact.explore --set ratio=10 --set eta=0.3 --save explorer.png
+    python3 -m coatcontact.explore --time                # time one update per slider
+
+Moving eta or k_bar only reads the interpolated reduced variables of the current stack (about
+a millisecond); moving E1/E0, nu1 or nu0 builds the kernel table and the interpolant of a new
+stack, and a finite lambda solves the cohesive zone at each radius (a few hundred ms each;
+revisited values come from a cache).
+"""
+import argparse
+import functools
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+from . import AdhesiveModel, Stack, maugis_dugdale_curve, maugis_dugdale_pulloff, pulloff_spring
+
+#: The sliders: name -> (label, lowest, highest, start, step, logarithmic). Logarithmic
+#: sliders move log10 of the value. The top of the lambda slider means lambda = inf (JKR).
+SLIDERS = {
+    "ratio": ("E1/E0", 0.01, 100.0, 0.1, 0.05, True),
+    "nu1": ("ν1", 0.0, 0.5, 0.25, 0.01, False),
+    "nu0": ("ν0", 0.0, 0.5, 0.25, 0.01, False),
+    "eta": ("η = t/l", 0.01, 100.0, 1.0, 0.02, True),
+    "lam": ("λ (Maugis)", 0.1, 100.0, math.inf, 0.05, True),
+    "k_bar": ("k̄ (spring)", 0.001, 1000.0, 1.0, 0.05, True),
+}
+DEFAULTS = {name: spec[3] for name, spec in SLIDERS.items()}
+#: Contact radii a_bar of the JKR curves and of the Maugis-Dugdale curve (0: its end, a -> 0).
+A_BAR = np.geomspace(1e-3, 3.5, 400)
+A_BAR_MD = np.concatenate(([0.0], np.geomspace(0.01, 0.25, 8), np.linspace(0.3, 3.0, 46)))
+JKR_LOAD, JKR_DISP = -1.5, -5.0 / 6.0
+
+
+def _slider_position(name, value):
+    """Slider coordinate of a value (log10 for logarithmic sliders; inf -> the top)."""
+    _, lo, hi, _, _, log = SLIDERS[name]
+    if math.isinf(value):
+        value = hi
+    return math.log10(value) if log else value
+
+
+def _slider_value(name, position):
+    """The value at a slider coordinate: the inverse of _slider_position. Lambda at the top
+    of its slider is inf (JKR)."""
+    _, lo, hi, _, step, log = SLIDERS[name]
+    if name == "lam" and position >= math.log10(hi) - 1e-9:
+        return math.inf
+    return 10.0 ** position if log else position
+
+
+def check_parameters(params):
+    """The parameters, completed with DEFAULTS; ValueError naming a wrong one and its range."""
+    out = dict(DEFAULTS)
+    for name, value in params.items():
+        if name not in SLIDERS:
+            raise ValueError("explore: unknown parameter %r (allowed: %s)" % (name, ", ".join(SLIDERS)))
+        value = float(value)
+        label, lo, hi = SLIDERS[name][:3]
+        if not (lo <= value <= hi or (name == "lam" and value == math.inf)):
+            raise ValueError("explore: %s = %g is outside [%g, %g]%s" % (
+                name, value, lo, hi, " (or inf)" if name == "lam" else ""))
+        out[name] = value
+    return out
+
+
+@functools.lru_cache(maxsize=32)
+def _model(ratio, nu1, nu0):
+    # Substrate E0 = 1 and film E1 = ratio: every normalized result depends on ratios only.
+    return AdhesiveModel(Stack(film=(ratio, nu1), substrate=(1.0, nu0)), tol=1e-8)
+
+
+@functools.lru_cache(maxsize=64)
+def _maugis_dugdale(ratio, nu1, nu0, eta, lam):
+    stack = _model(ratio, nu1, nu0).stack
+    curve = maugis_dugdale_curve(stack, eta=eta, lambda_=lam, a_bar=A_BAR_MD)
+    return curve, maugis_dugdale_pulloff(stack, eta=eta, lambda_=lam)
+
+
+def compute(params):
+    """Everything the explorer draws for one set of parameters (see SLIDERS), as a dict:
+    a_bar, P, D (JKR on the coating), P_jkr, D_jkr (homogeneous JKR, film material),
+    pulloff (P, a_bar, D under load, displacement and spring control), and md (curve a_bar,
+    P, D and load-controlled pull-off P, a_bar, D) when lambda is finite, else None."""
+    p = check_parameters(params)
+    model = _model(p["ratio"], p["nu1"], p["nu0"])
+    curve = model.curve(p["eta"], A_BAR)
+    po = model.pulloff([p["eta"]])
+    sp = pulloff_spring(model.stack, eta=p["eta"], k_bar=[p["k_bar"]])
+    out = {
+        "params": p,
+        "a_bar": curve["a_bar"], "P": curve["P"], "D": curve["D"],
+        "P_jkr": 4.0 / 3.0 * A_BAR ** 3 - 2.0 * math.sqrt(2.0) * A_BAR ** 1.5,
+        "D_jkr": A_BAR ** 2 - np.sqrt(2.0 * A_BAR),
+        "pulloff": {
+            "load": (float(po["P_load"][0]), float(po["a_bar_load"][0]), float(po["D_load"][0])),
+            "displacement": (float(po["P_disp"][0]), float(po["a_bar_disp"][0]), float(po["D_disp"][0])),
+            "spring": (float(sp["P"][0]), float(sp["a_bar"][0]), float(sp["D"][0])),
+        },
+        "md": None,
+    }
+    if math.isfinite(p["lam"]):
+        md_curve, md_pulloff = _maugis_dugdale(p["ratio"], p["nu1"], p["nu0"], p["eta"], p["lam"])
+        out["md"] = {"a_bar": md_curve["a_bar"], "P": md_curve["P"], "D": md_curve["D"],
+                     "load": (md_pulloff["P_load"], md_pulloff["a_bar_load"], md_pulloff["D_load"])}
+    return out
+
+
+def _format(name, value):
+    if name == "lam" and math.isinf(value):
+        return "∞ (JKR)"
+    return "%.3g" % value
+
+
+class Explorer:
+    """The two panels P(a_bar), P(D) on a matplotlib Figure, redrawn by set(**params).
+
+    Explorer(figure, sliders=True) also puts one matplotlib Slider per parameter under the
+    panels (the window of `python3 -m coatcontact.explore`); sliders=False leaves them out
+    (the Jupyter widget draws its own). `lines` holds the plotted Line2D objects by name,
+    `data` the result of compute() that they show.
+    """
+
+    def __init__(self, figure, sliders=True, **params):
+        self.figure = figure
+        self.params = check_parameters(params)
+        bottom = 0.36 if sliders else 0.12
+        width = 0.40 if sliders else 0.31   # the widget keeps the right for the legend
+        self.ax_a = figure.add_axes([0.07, bottom, width, 0.80 - bottom + 0.08])
+        self.ax_d = figure.add_axes([0.07 + width + 0.09, bottom, width, 0.80 - bottom + 0.08])
+        styles = {
+            "coated": dict(color="#1f77b4", lw=2.2, label="JKR on the coating"),
+            "jkr": dict(color="0.35", lw=1.2, ls="--", label="JKR, solid of film material"),
+            "md": dict(color="#ff7f0e", lw=1.8, label="Maugis–Dugdale on the coating (λ)"),
+            "load": dict(color="#2ca02c", marker="o", ms=8, ls="none", label="pull-off, load control"),
+            "displacement": dict(color="#9467bd", marker="^", ms=8, ls="none", label="pull-off, displacement control"),
+            "spring": dict(color="#d62728", marker="s", ms=7, ls="none", label="pull-off through the spring k̄"),
+            "md_load": dict(color="#ff7f0e", marker="o", ms=8, ls="none", mfc="none", mew=2,
+                            label="Maugis–Dugdale pull-off, load control"),
+            "spring_line": dict(color="#d62728", lw=1, ls=":", label="spring line, slope −k̄"),
+        }
+        self.lines = {}
+        for ax, panel in ((self.ax_a, "a"), (self.ax_d, "D")):
+            for name in ("jkr", "coated", "md", "load", "displacement", "spring", "md_load"):
+                style = dict(styles[name])
+                if panel == "D":
+                    style.pop("label")
+                self.lines[name + "_" + panel], = ax.plot([], [], **style)
+            ax.axhline(0.0, color="0.6", lw=0.8)
+            ax.grid(True, color="0.92")
+            ax.set_ylabel("P = F / (π w R)")
+        style = dict(styles["spring_line"])
+        self.lines["spring_line_D"], = self.ax_d.plot([], [], **style)
+        self.ax_a.set_xlabel("ā = a / (π w R²/E₁*)^(1/3)")
+        self.ax_d.set_xlabel("D = δ / (π² w² R/E₁*²)^(1/3)")
+        self.ax_a.set_title("force against contact radius")
+        self.ax_d.set_title("force against penetration")
+        handles = [self.lines[n + "_a"] for n in ("coated", "jkr", "md", "load", "displacement", "spring", "md_load")]
+        handles.append(self.lines["spring_line_D"])
+        if sliders:   # beside the sliders, off the curves
+            figure.legend(handles=handles, loc="lower right", bbox_to_anchor=(0.995, 0.01), fontsize=8)
+        else:         # the widget has no room below: to the right of the two panels
+            figure.legend(handles=handles, loc="center right", fontsize=8)
+        self.title = figure.suptitle("")
+        self.sliders = {}
+        if sliders:
+            from matplotlib.widgets import Slider
+            for i, (name, (label, lo, hi, _, step, log)) in enumerate(SLIDERS.items()):
+                ax = figure.add_axes([0.14, 0.25 - 0.04 * i, 0.50, 0.025])
+                s = Slider(ax, ("log10 " if log else "") + label, _slider_position(name, lo),
+                           _slider_position(name, hi), valinit=_slider_position(name, self.params[name]),
+                           valstep=step)
+                s.valtext.set_text(_format(name, self.params[name]))
+                s.on_changed(functools.partial(self._moved, name))
+                self.sliders[name] = s
+        self.update()
+
+    def _moved(self, name, position):
+        value = _slider_value(name, position)
+        self.sliders[name].valtext.set_text(_format(name, value))
+        if value != self.params[name]:
+            self.params[name] = value
+            self.update()
+
+    def set(self, **params):
+        """Moves the named sliders (values, not slider positions) and redraws once."""
+        old = self.params
+        self.params = check_parameters({**self.params, **params})
+        for name, s in self.sliders.items():
+            if self.params[name] == old[name]:
+                continue  # set_val redraws the canvas: only for the sliders that move
+            s.eventson = False
+            s.set_val(_slider_position(name, self.params[name]))
+            s.valtext.set_text(_format(name, self.params[name]))
+            s.eventson = True
+        self.update()
+
+    def update(self):
+        """Recomputes (compute()) and redraws the curves, markers, limits and title."""
+        d = self.data = compute(self.params)
+        p, po = d["params"], d["pulloff"]
+        L = self.lines
+        L["coated_a"].set_data(d["a_bar"], d["P"])
+        L["coated_D"].set_data(d["D"], d["P"])
+        L["jkr_a"].set_data(A_BAR, d["P_jkr"])
+        L["jkr_D"].set_data(d["D_jkr"], d["P_jkr"])
+        for name in ("load", "displacement", "spring"):
+            P, a_bar, D = po[name]
+            L[name + "_a"].set_data([a_bar], [P])
+            L[name + "_D"].set_data([D], [P])
+        P_s, _, D_s = po["spring"]
+        span = np.array([-0.6, 0.6])
+        L["spring_line_D"].set_data(D_s + span, P_s - p["k_bar"] * span)
+        md = d["md"]
+        if md is None:
+            for name in ("md_a", "md_D", "md_load_a", "md_load_D"):
+                L[name].set_data([], [])
+        else:
+            L["md_a"].set_data(md["a_bar"], md["P"])
+            L["md_D"].set_data(md["D"], md["P"])
+            L["md_load_a"].set_data([md["load"][1]], [md["load"][0]])
+            L["md_load_D"].set_data([md["load"][2]], [md["load"][0]])
+        lows = [po["load"][0], po["spring"][0]] + ([md["load"][0]] if md else [])
+        p_low = min(lows)
+        y = (min(-2.1, 1.15 * p_low), 3.0)
+        for ax in (self.ax_a, self.ax_d):
+            ax.set_ylim(*y)
+        self.ax_a.set_xlim(0.0, 3.0)
+        shown = d["P"] <= y[1]
+        d_values = np.concatenate([d["D"][shown], d["D_jkr"][d["P_jkr"] <= y[1]]]
+                                  + ([md["D"][md["P"] <= y[1]]] if md else []))
+        self.ax_d.set_xlim(min(-1.5, d_values.min() - 0.1), max(2.0, d_values.max()))
+        self.title.set_text(
+            "E1/E0 = %s, ν1 = %s, ν0 = %s, η = %s, λ = %s, k̄ = %s\n"
+            "pull-off P: load %.4f (JKR −3/2), displacement %.4f (JKR −5/6), spring %.4f%s"
+            % (_format("ratio", p["ratio"]), _format("nu1", p["nu1"]), _format("nu0", p["nu0"]),
+               _format("eta", p["eta"]), _format("lam", p["lam"]), _format("k_bar", p["k_bar"]),
+               po["load"][0], po["displacement"][0], po["spring"][0],
+               ", Maugis–Dugdale (load) %.4f" % md["load"][0] if md else ""))
+        self.figure.canvas.draw_idle()
+
+
+def widget(**params):
+    """The explorer in Jupyter: ipywidgets sliders over a picture of the two panels.
+
+    Returns an ipywidgets.VBox; its attribute `explorer` is the Explorer it redraws (for
+    tests: set a slider's value and read explorer.data). Needs ipywidgets (Debian
+    python3-ipywidgets); ImportError with that hint otherwise.
+    """
+    try:
+        import ipywidgets
+    except ImportError:
+        raise ImportError("coatcontact.explore.widget needs ipywidgets (Debian: python3-ipywidgets; "
+                          "pip: ipywidgets); without it use python3 -m coatcontact.explore") from None
+    import io
+    from matplotlib.figure import Figure
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    figure = Figure(figsize=(12, 5.2), dpi=80)
+    FigureCanvasAgg(figure)
+    explorer = Explorer(figure, sliders=False, **params)
+    image = ipywidgets.Image(format="png")
+
+    def draw():
+        buffer = io.BytesIO()
+        figure.savefig(buffer, format="png")
+        image.value = buffer.getvalue()
+
+    controls = {}
+
+    def moved(change):
+        values = {n: _slider_value(n, c.value) for n, c in controls.items()}
+        for n, c in controls.items():
+            c.description = "%s = %s" % (SLIDERS[n][0], _format(n, values[n]))
+        explorer.set(**values)
+        draw()
+
+    for name, (label, lo, hi, _, step, log) in SLIDERS.items():
+        c = ipywidgets.FloatSlider(value=_slider_position(name, explorer.params[name]),
+                                   min=_slider_position(name, lo), max=_slider_position(name, hi),
+                                   step=step, readout=False, continuous_update=False,
+                                   description="%s = %s" % (label, _format(name, explorer.params[name])))
+        c.layout.width = "420px"
+        c.style = {"description_width": "150px"} if hasattr(c, "style") else None
+        c.observe(moved, names="value")
+        controls[name] = c
+    draw()
+    box = ipywidgets.VBox([image] + list(controls.values()))
+    box.explorer = explorer
+    box.controls = controls
+    box.image = image
+    return box
+
+
+def _parse_set(text):
+    name, sep, value = text.partition("=")
+    if not sep:
+        raise ValueError("--set: expected NAME=VALUE, got %r" % text)
+    return name.strip(), (math.inf if value.strip() in ("inf", "∞") else float(value))
+
+
+def _time_updates(explorer):
+    """One move per slider to a value not seen before (no cache hit), timed: the library's
+    computation (compute()) and matplotlib's redraw of the window, separately."""
+    steps = {"ratio": 0.2, "nu1": 0.3, "nu0": 0.3, "eta": 0.5, "lam": 1.0, "k_bar": 3.0}
+    explorer.figure.canvas.draw()
+    print("explorer update times (one move per slider, from the start values):")
+    for name, value in steps.items():
+        params = {**explorer.params, name: value}
+        start = time.perf_counter()
+        compute(params)
+        computed = time.perf_counter()
+        explorer.set(**{name: value})
+        explorer.figure.canvas.draw()
+        drawn = time.perf_counter()
+        print("  %-6s -> %-6g compute %7.1f ms, compute again (cached) and draw %7.1f ms"
+              % (name, value, 1e3 * (computed - start), 1e3 * (drawn - computed)))
+        explorer.set(**{name: DEFAULTS[name]})
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python3 -m coatcontact.explore",
+                                     description="Sliders over the adhesive contact of a sphere on a coating "
+                                                 "(normalized curves and pull-offs, docs/THEORY.md sections 5, 10, 13).")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="start value of a slider: %s (lam=inf is JKR)" % ", ".join(SLIDERS))
+    parser.add_argument("--save", metavar="FILE.png", help="draw the window into FILE.png and exit (no display needed)")
+    parser.add_argument("--time", action="store_true", help="time one update per slider and exit")
+    args = parser.parse_args(argv)
+    try:
+        params = check_parameters(dict(_parse_set(s) for s in args.set))
+    except ValueError as error:
+        print("coatcontact.explore: %s" % error, file=sys.stderr)
+        return 2
+    import matplotlib
+    if args.save or args.time:
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    interactive = matplotlib.get_backend().lower() not in ("agg", "pdf", "svg", "ps", "cairo", "template")
+    if not (args.save or args.time or interactive):
+        print("coatcontact.explore: no interactive matplotlib backend (no display?); "
+              "use --save FILE.png, or run with a display", file=sys.stderr)
+        return 2
+    figure = plt.figure(figsize=(13, 8.5))
+    explorer = Explorer(figure, **params)
+    if args.time:
+        _time_updates(explorer)
+    if args.save:
+        # Atomic: a temporary file next to the target, renamed over it.
+        temporary = "%s.tmp%d.png" % (args.save, os.getpid())
+        try:
+            figure.savefig(temporary, dpi=80)
+            os.replace(temporary, args.save)
+        finally:
+            if os.path.exists(temporary):
+                os.remove(temporary)
+        print("wrote %s" % args.save)
+    if not (args.save or args.time):
+        plt.show()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

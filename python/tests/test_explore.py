@@ -1,0 +1,142 @@
+"""The interactive explorer (python3 -m coatcontact.explore), headless: matplotlib's Agg backend
+for the window, a real Jupyter kernel (nbclient) for the ipywidgets version. The plotted data
+must be the library's own values for the slider settings."""
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+matplotlib = pytest.importorskip("matplotlib")
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import coatcontact as cc  # noqa: E402
+from coatcontact import explore  # noqa: E402
+
+
+@pytest.fixture
+def window():
+    figure = plt.figure(figsize=(13, 8.5))
+    yield explore.Explorer(figure)
+    plt.close(figure)
+
+
+def check_plotted(e, ratio, nu1, nu0, eta, lam, k_bar):
+    """The lines of Explorer e against direct library calls for these parameters."""
+    stack = cc.Stack(film=(ratio, nu1), substrate=(1.0, nu0))
+    curve = cc.adhesive_curve(stack, eta=eta, a_bar=explore.A_BAR)
+    x, y = e.lines["coated_a"].get_data()
+    np.testing.assert_array_equal(x, curve["a_bar"])
+    np.testing.assert_array_equal(y, curve["P"])
+    x, y = e.lines["coated_D"].get_data()
+    np.testing.assert_array_equal(x, curve["D"])
+    po = cc.pulloff(stack, eta=[eta])
+    assert e.lines["load_a"].get_data() == ([po["a_bar_load"][0]], [po["P_load"][0]])
+    assert e.lines["displacement_D"].get_data() == ([po["D_disp"][0]], [po["P_disp"][0]])
+    sp = cc.pulloff_spring(stack, eta=eta, k_bar=[k_bar])
+    assert e.lines["spring_D"].get_data() == ([sp["D"][0]], [sp["P"][0]])
+    # The spring line through the jump has slope -k_bar.
+    xs, ys = e.lines["spring_line_D"].get_data()
+    assert (ys[1] - ys[0]) / (xs[1] - xs[0]) == pytest.approx(-k_bar, rel=1e-12)
+    if math.isfinite(lam):
+        md = cc.maugis_dugdale_pulloff(stack, eta=eta, lambda_=lam)
+        assert e.lines["md_load_a"].get_data() == ([md["a_bar_load"]], [md["P_load"]])
+        mc = cc.maugis_dugdale_curve(stack, eta=eta, lambda_=lam, a_bar=explore.A_BAR_MD)
+        np.testing.assert_array_equal(e.lines["md_a"].get_data()[1], mc["P"])
+    else:
+        assert len(e.lines["md_a"].get_data()[0]) == 0
+    return po
+
+
+def test_start_values_are_the_library_values(window):
+    p = window.params
+    assert (p["ratio"], p["eta"], p["lam"]) == (0.1, 1.0, math.inf)
+    po = check_plotted(window, 0.1, 0.25, 0.25, 1.0, math.inf, 1.0)
+    # A soft film at eta = 1 enhances the load-controlled pull-off beyond JKR's -3/2 (THEORY.md
+    # section 6, item 7): the explorer shows a curve that differs from the dashed reference.
+    assert po["P_load"][0] < -1.6
+
+
+def test_set_moves_the_sliders_and_the_curves(window):
+    window.set(ratio=10.0, nu1=0.3, nu0=0.2, eta=0.3, lam=1.0, k_bar=0.1)
+    check_plotted(window, 10.0, 0.3, 0.2, 0.3, 1.0, 0.1)
+    assert window.sliders["ratio"].val == pytest.approx(1.0)
+    assert window.sliders["lam"].val == pytest.approx(0.0)
+    assert "E1/E0 = 10" in window.title.get_text()
+
+
+def test_dragging_a_slider_redraws(window):
+    # What a drag does: the Slider's value changes and its callback fires.
+    window.sliders["eta"].set_val(math.log10(0.3))
+    assert window.params["eta"] == pytest.approx(0.3)
+    check_plotted(window, 0.1, 0.25, 0.25, window.params["eta"], math.inf, 1.0)
+    window.sliders["lam"].set_val(window.sliders["lam"].valmax)   # the top of lambda: JKR
+    assert window.params["lam"] == math.inf
+
+
+def test_bad_parameter_is_named(window):
+    with pytest.raises(ValueError, match=r"eta = 1000 is outside \[0.01, 100\]"):
+        window.set(eta=1000)
+    with pytest.raises(ValueError, match="unknown parameter 'E1'"):
+        explore.check_parameters({"E1": 1})
+
+
+def run_module(*args, cwd):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    return subprocess.run([sys.executable, "-m", "coatcontact.explore", *args], capture_output=True,
+                          text=True, cwd=cwd, env=env)
+
+
+def test_command_saves_a_screenshot(tmp_path):
+    p = run_module("--set", "ratio=0.1", "--set", "eta=0.3", "--set", "lam=1", "--save", "shot.png", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    image = plt.imread(str(tmp_path / "shot.png"))
+    assert image.shape[0] > 500 and image.shape[1] > 800
+    # Not blank: the curves' colours are present.
+    assert np.unique(image.reshape(-1, image.shape[2]), axis=0).shape[0] > 50
+    assert sorted(os.listdir(tmp_path)) == ["shot.png"]
+
+
+def test_command_rejects_bad_values(tmp_path):
+    p = run_module("--set", "eta=0", "--save", "shot.png", cwd=tmp_path)
+    assert p.returncode == 2
+    assert "eta = 0 is outside [0.01, 100]" in p.stderr
+    assert os.listdir(tmp_path) == []
+    p = run_module(cwd=tmp_path)   # Agg: no window to open
+    assert p.returncode == 2 and "--save" in p.stderr
+
+
+def test_jupyter_widget_in_a_kernel(tmp_path):
+    """The ipywidgets version inside a real kernel: moving a slider redraws with the library's
+    values for the new setting."""
+    pytest.importorskip("ipywidgets")
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    from notebook_runner import kernel_for_this_python
+    code = "\n".join([
+        "import math, coatcontact as cc, coatcontact.explore as ex",
+        "w = ex.widget()",
+        "before = w.image.value",
+        "w.controls['eta'].value = math.log10(0.3)",
+        "w.controls['ratio'].value = 1.0",
+        "e = w.explorer",
+        "assert abs(e.params['eta'] - 0.3) < 1e-12 and abs(e.params['ratio'] - 10) < 1e-12, e.params",
+        "po = cc.pulloff(film=(e.params['ratio'], 0.25), substrate=(1, 0.25), eta=[e.params['eta']])",
+        "assert e.lines['load_a'].get_data()[1][0] == po['P_load'][0]",
+        "assert w.image.value != before and w.image.value[:4] == b'\\x89PNG'",
+        "print('widget ok', len(w.image.value))",
+    ])
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)])
+    with kernel_for_this_python() as kernel_name:
+        client = nbclient.NotebookClient(nb, timeout=120, kernel_name=kernel_name,
+                                         resources={"metadata": {"path": str(tmp_path)}})
+        # nbclient 0.7 parses the comm messages of ipywidgets >= 7 only (Debian bookworm has 6);
+        # the widget state is not needed here.
+        client.comm_open_handlers = {}
+        client.store_widget_state = False
+        client.execute()
+    outputs = nb.cells[0].outputs
+    assert any("widget ok" in o.get("text", "") for o in outputs), outputs
