@@ -113,7 +113,7 @@ int run_show(const Args& args) {
                          kShowSpec);
       return kExitSuccess;
     }
-    if (arguments.positionals().size() != 1) throw InputError("afm show: expected one FILE (see --help)");
+    if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
     const std::string path = arguments.positionals().front();
     afm::Calibration calibration = parse_calibration(arguments);
     calibration.allow_missing = true;
@@ -165,7 +165,7 @@ int run_export(const Args& args) {
                          kExportSpec);
       return kExitSuccess;
     }
-    if (arguments.positionals().size() != 1) throw InputError("afm export: expected one FILE (see --help)");
+    if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
     const std::string path = arguments.positionals().front();
     const afm::Calibration calibration = parse_calibration(arguments);
     std::size_t index = 0;
