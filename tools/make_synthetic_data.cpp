@@ -26,6 +26,7 @@
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
+#include "coatcontact/units.hpp"
 
 namespace {
 
@@ -60,13 +61,8 @@ const Option kOptions[] = {
     {"--output", "FILE", "output file (default stdout)", ""},
 };
 
-// Unit suffixes of the values above (SI factor).
-const std::map<std::string, double> kUnits = {
-    {"Pa", 1.0},  {"kPa", 1e3}, {"MPa", 1e6},   {"GPa", 1e9},    {"m", 1.0},  {"mm", 1e-3},
-    {"um", 1e-6}, {"nm", 1e-9}, {"J/m2", 1.0},  {"mJ/m2", 1e-3}, {"N", 1.0},  {"mN", 1e-3},
-    {"uN", 1e-6}, {"nN", 1e-9}, {"\xc2\xb5m", 1e-6}, {"\xc2\xb5N", 1e-6},
-};
-
+// A number with an optional unit of the library's table (units.hpp). The plain product
+// number * factor (not to_si's division) keeps the files of data/ regenerating bit for bit.
 double parse_value(const std::string& text, const std::string& option, bool with_unit) {
   const char* begin = text.c_str();
   char* end = nullptr;
@@ -74,9 +70,9 @@ double parse_value(const std::string& text, const std::string& option, bool with
   const std::string unit(end);
   if (end == begin || !std::isfinite(number)) throw InputError(option + ": '" + text + "' is not a number");
   if (unit.empty()) return number;
-  const auto it = kUnits.find(unit);
-  if (!with_unit || it == kUnits.end()) throw InputError(option + ": unknown unit in '" + text + "'");
-  return number * it->second;
+  const auto info = find_unit(unit);
+  if (!with_unit || !info) throw InputError(option + ": unknown unit in '" + text + "'");
+  return number * info->to_si;
 }
 
 Material parse_material(const std::string& text, const std::string& option) {

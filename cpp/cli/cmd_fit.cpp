@@ -26,6 +26,7 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/measured_curve.hpp"
 #include "checks.hpp"
 #include "commands.hpp"
 #include "fit_plot_script.hpp"
@@ -159,225 +160,42 @@ const char* key_unit(const fit::ParameterInfo& info) {
 
 // ---- columns and data ----------------------------------------------------------------------
 
-// Roles of the data columns: 0 abscissa (a or delta), 1 F, 2 sigma of the abscissa, 3 sigma_F,
-// 4 branch (1 loading, 0 unloading).
-constexpr int kRoles = 5;
-struct ColumnChoice {
-  fit::DataKind kind = fit::DataKind::kRadiusForce;
-  bool legacy = false;                          // "a,F" style: a two-column file
-  bool base = false;                            // z,F: base displacement z = delta + F/k
-  std::array<std::string, kRoles> reference{};  // "2" (1-based position) or a header name; "" unused
-};
-
-ColumnChoice parse_columns(const std::string& text) {
-  ColumnChoice c;
-  const std::map<std::string, std::pair<fit::DataKind, bool>> legacy = {
-      {"a,F", {fit::DataKind::kRadiusForce, false}},      {"F,a", {fit::DataKind::kRadiusForce, true}},
-      {"delta,F", {fit::DataKind::kPenetrationForce, false}}, {"F,delta", {fit::DataKind::kPenetrationForce, true}},
-      {"z,F", {fit::DataKind::kPenetrationForce, false}},     {"F,z", {fit::DataKind::kPenetrationForce, true}}};
-  if (const auto it = legacy.find(text); it != legacy.end()) {
-    c.kind = it->second.first;
-    c.legacy = true;
-    c.base = text.find('z') != std::string::npos;
-    c.reference = {it->second.second ? "2" : "1", it->second.second ? "1" : "2", "", "", ""};
-    return c;
-  }
-  bool has_a = false, has_delta = false, has_z = false;
-  for (const std::string& raw : split(text, ',')) {
-    const std::string item = trim(raw);
-    const auto equals = item.find('=');
-    if (equals == std::string::npos || equals == 0 || equals + 1 == item.size()) {
-      throw InputError("--columns: '" + item + "' is not allowed (a,F, delta,F, F,a, F,delta, or name=position|header "
-                       "name such as a=2,F=5,sigma_F=6)");
-    }
-    const std::string name = trim(item.substr(0, equals));
-    const std::string value = trim(item.substr(equals + 1));
-    int role;
-    if (name == "a" || name == "delta" || name == "z") {
-      role = 0;
-      (name == "a" ? has_a : name == "z" ? has_z : has_delta) = true;
-    } else if (name == "F") {
-      role = 1;
-    } else if (name == "sigma_a" || name == "sigma_delta" || name == "sigma_z") {
-      role = 2;
-    } else if (name == "sigma_F") {
-      role = 3;
-    } else if (name == "branch") {
-      role = 4;
-    } else {
-      throw InputError("--columns: '" + name + "' is not a column name (a, delta, z, F, sigma_a, sigma_delta, sigma_z, sigma_F, branch)");
-    }
-    if (!c.reference[role].empty()) throw InputError("--columns: '" + name + "' is given twice (or with its a/delta/z twin)");
-    c.reference[role] = value;
-  }
-  if (int(has_a) + int(has_delta) + int(has_z) != 1) throw InputError("--columns: name exactly one of a=, delta= and z=");
-  if (c.reference[1].empty()) throw InputError("--columns: F= is missing");
-  c.kind = has_a ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
-  c.base = has_z;
-  return c;
-}
-
-bool is_comment_or_blank(const std::string& line) {
-  const auto first = line.find_first_not_of(" \t\r");
-  return first == std::string::npos || line[first] == '#';
-}
-
-// A unit in a header name: "a (um)", "F [mN]", "w/(mJ/m^2)" is not needed; "^2" is accepted.
-std::optional<std::string> unit_in_name(const std::string& name) {
-  for (const auto& [open, close] : {std::pair<char, char>{'(', ')'}, std::pair<char, char>{'[', ']'}}) {
-    const auto a = name.rfind(open);
-    const auto b = name.rfind(close);
-    if (a != std::string::npos && b != std::string::npos && b > a + 1 && b + 1 >= trim(name).size()) {
-      std::string unit = trim(name.substr(a + 1, b - a - 1));
-      if (const auto caret = unit.find('^'); caret != std::string::npos) unit.erase(caret, 1);
-      return unit;
-    }
-  }
-  return std::nullopt;
-}
-
-std::string bare_name(const std::string& name) {
-  const auto paren = name.find_first_of("([");
-  return trim(paren == std::string::npos ? name : name.substr(0, paren));
+// What a user whose file declares no units needs to know (appended to a refusal).
+std::string no_units_note(bool radius_data) {
+  return std::string("; the file declares no units, so its numbers were read as metres and newtons: add a line "
+                     "'# units: um mN' (or name the columns '") +
+         (radius_data ? "a" : "delta") + " (um)', 'F (mN)')";
 }
 
 struct LoadedData {
   fit::Measurements data;
-  std::vector<double> sigma_x, sigma_f;  // from columns (empty if none)
-  std::vector<double> branch;            // the branch column (empty if none)
-  bool has_units = false;                // "# units:" or units in the column names
+  std::vector<double> branch;  // the branch column (empty if none)
+  bool has_units = false;      // "# units:" or units in the column names
+  std::string units;           // as detected (measure::MeasuredCurve::units)
   std::vector<std::string> declared_columns;
   int declared_line = 0;
 };
 
-LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::DataKind kind) {
-  std::string text;
-  if (path == "-") {
-    std::ostringstream buffer;
-    buffer << std::cin.rdbuf();
-    text = buffer.str();
-  } else {
-    // The checks and messages of read_data_file (the text is needed here first).
-    struct stat info {};
-    if (stat(path.c_str(), &info) != 0) throw InputError(path + ": cannot read data file: " + std::strerror(errno));
-    if (!S_ISREG(info.st_mode)) throw InputError(path + ": not a regular file");
-    if (static_cast<unsigned long long>(info.st_size) > kMaxDataFileBytes) {
-      throw InputError(path + ": larger than " + std::to_string(kMaxDataFileBytes / (1024 * 1024)) +
-                       " MB; refusing to read it");
-    }
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw InputError(path + ": cannot open data file: " + std::strerror(errno));
-    register_input(path, "data file");
-    std::ostringstream buffer;
-    buffer << file.rdbuf();
-    text = buffer.str();
-  }
-  if (text.size() > kMaxDataFileBytes) {
-    throw InputError(std::string(path == "-" ? "stdin" : path) + ": larger than " +
-                     std::to_string(kMaxDataFileBytes / (1024 * 1024)) + " MB; refusing to read it");
-  }
-  const std::string name = path == "-" ? std::string("stdin") : path;
-  // Decimal commas ("0,12<TAB>3,4" or "0,12;3,4"): refused with a hint before the reader
-  // splits them into wrong columns.
-  std::size_t count = 0;
-  {
-    std::istringstream lines(text);
-    std::string line;
-    int number = 0;
-    while (std::getline(lines, line)) {
-      ++number;
-      if (is_comment_or_blank(line)) continue;
-      bool digit_comma_digit = false;
-      for (std::size_t k = 1; k + 1 < line.size(); ++k) {
-        if (line[k] == ',' && std::isdigit(static_cast<unsigned char>(line[k - 1])) &&
-            std::isdigit(static_cast<unsigned char>(line[k + 1]))) {
-          digit_comma_digit = true;
-        }
-      }
-      if (digit_comma_digit && line.find_first_of("\t;") != std::string::npos) {
-        throw InputError(name + ":" + std::to_string(number) + ": the numbers look like they use decimal commas ('" +
-                         trim(line).substr(0, 40) + "'); write decimal points (e.g. sed 's/,/./g' on a tab-separated "
-                         "file) and separate columns by tabs, blanks or commas");
-      }
-      if (count == 0) count = line.find(',') != std::string::npos ? split(line, ',').size() : [&] {
-          std::istringstream fields(line);
-          std::string f;
-          std::size_t k = 0;
-          while (fields >> f) ++k;
-          return k;
-        }();
-    }
-  }
-  if (count == 0) throw InputError(name + ": no data rows");
-  if (choice.legacy && count != 2) {
-    throw InputError(name + ": " + std::to_string(count) + " columns; --columns " +
-                     std::string(kind == fit::DataKind::kRadiusForce ? "a,F" : "delta,F") +
-                     " reads two-column files, name the columns of others (e.g. --columns a=2,F=5)");
-  }
-  DataTable table = read_data_text(text, name, count);
+fit::DataKind data_kind(const measure::CurveColumns& columns) {
+  return columns.abscissa == measure::Abscissa::kRadius ? fit::DataKind::kRadiusForce
+                                                        : fit::DataKind::kPenetrationForce;
+}
+
+LoadedData load_data(const std::string& path, const measure::CurveColumns& columns) {
+  const std::string name = path == "-" ? std::string("stdin") : short_name(path);
+  measure::MeasuredCurve curve = measure::read_curve_text(read_input_text(path), name, columns);
   LoadedData out;
-  out.declared_columns = table.declared_columns;
-  out.declared_line = table.declared_columns_line;
-  out.has_units = !table.units.empty();
-  // Each role's column: a 1-based position or a header name (with or without its unit).
-  std::array<int, kRoles> index{{-1, -1, -1, -1, -1}};
-  const char* role_option[kRoles] = {kind == fit::DataKind::kRadiusForce ? "a" : "delta", "F", "sigma of the abscissa", "sigma_F", "branch"};
-  for (int role = 0; role < kRoles; ++role) {
-    const std::string& ref = choice.reference[role];
-    if (ref.empty()) continue;
-    char* end = nullptr;
-    const long position = std::strtol(ref.c_str(), &end, 10);
-    if (end != ref.c_str() && *end == '\0') {
-      if (position < 1 || position > static_cast<long>(count)) {
-        throw InputError("--columns: " + std::string(role_option[role]) + "=" + ref + " but " + name + " has " +
-                         std::to_string(count) + " columns");
-      }
-      index[role] = static_cast<int>(position - 1);
-    } else {
-      for (std::size_t c = 0; c < table.column_names.size(); ++c) {
-        if (table.column_names[c] == ref || bare_name(table.column_names[c]) == ref) index[role] = static_cast<int>(c);
-      }
-      if (index[role] < 0) {
-        std::string names;
-        for (const auto& n : table.column_names) names += (names.empty() ? "'" : ", '") + n + "'";
-        throw InputError("--columns: no column named '" + ref + "' in " + name +
-                         (names.empty() ? " (it has no header line)" : " (its columns: " + names + ")"));
-      }
-    }
-  }
-  // Units: "# units:" (already applied by the reader) or from the column names.
-  const Quantity role_kind[kRoles] = {Quantity::kLength, Quantity::kForce, Quantity::kLength, Quantity::kForce};
-  for (int role = 0; role < kRoles; ++role) {
-    if (index[role] < 0 || role == 4) continue;  // the branch column is a pure number
-    const std::size_t c = static_cast<std::size_t>(index[role]);
-    std::optional<std::string> unit;
-    if (!table.units.empty()) {
-      unit = table.units[c];
-    } else if (c < table.column_names.size()) {
-      unit = unit_in_name(table.column_names[c]);
-      if (unit) {
-        const auto info = find_unit(*unit);
-        if (!info) throw InputError(name + ": unknown unit '" + *unit + "' in the column name '" + table.column_names[c] + "'");
-        for (double& v : table.columns[c]) v = to_si(v, info->to_si);
-        out.has_units = true;
-      }
-    }
-    if (unit) {
-      const auto info = find_unit(*unit);
-      if (!info || info->kind != role_kind[role]) {
-        throw InputError(name + ": column " + std::to_string(c + 1) + " (" + role_option[role] + ") has the unit '" +
-                         *unit + "', not a " + quantity_name(role_kind[role]) + " (allowed: " +
-                         unit_list(role_kind[role]) + ")");
-      }
-    }
-  }
-  out.data.kind = kind;
-  out.data.abscissa = table.columns[static_cast<std::size_t>(index[0])];
-  out.data.force = table.columns[static_cast<std::size_t>(index[1])];
-  out.data.line_numbers = table.line_numbers;
-  if (index[2] >= 0) out.data.sigma_abscissa = table.columns[static_cast<std::size_t>(index[2])];
-  if (index[3] >= 0) out.data.sigma_force = table.columns[static_cast<std::size_t>(index[3])];
-  if (index[4] >= 0) out.branch = table.columns[static_cast<std::size_t>(index[4])];
+  out.data.kind = data_kind(columns);
+  out.data.abscissa = std::move(curve.x);
+  out.data.force = std::move(curve.force);
+  out.data.line_numbers = std::move(curve.line_numbers);
+  out.data.sigma_abscissa = std::move(curve.sigma_x);
+  out.data.sigma_force = std::move(curve.sigma_force);
+  out.branch = std::move(curve.branch);
+  out.has_units = curve.has_units;
+  out.units = curve.units;
+  out.declared_columns = std::move(curve.declared_columns);
+  out.declared_line = curve.declared_line;
   return out;
 }
 
@@ -400,7 +218,7 @@ double parse_stiffness(const std::string& text) {
 }
 
 // --sigma a=0.3%,F=10uN: per-column uncertainties, relative (%) or absolute (with units).
-void apply_sigma_option(const std::optional<std::string>& text, fit::Measurements& data, const ColumnChoice& choice) {
+void apply_sigma_option(const std::optional<std::string>& text, fit::Measurements& data, const measure::CurveColumns& choice) {
   if (!text) return;
   const bool radius_data = data.kind == fit::DataKind::kRadiusForce;
   for (const std::string& raw : split(*text, ',')) {
@@ -411,7 +229,7 @@ void apply_sigma_option(const std::optional<std::string>& text, fit::Measurement
     }
     const std::string name = trim(item.substr(0, equals));
     const std::string value = trim(item.substr(equals + 1));
-    const std::string x = radius_data ? "a" : choice.base ? "z" : "delta";
+    const std::string x = radius_data ? "a" : choice.abscissa == measure::Abscissa::kBaseDisplacement ? "z" : "delta";
     const bool abscissa = name == x;
     if (!abscissa && name != "F") {
       throw InputError("--sigma: '" + name + "' is not a column of these data (allowed: " + x + ", F)");
@@ -549,10 +367,11 @@ int run_fit_body(const Args& args) {
 
   // ---- columns ----
   const std::string columns = arguments.require("--columns");
-  const ColumnChoice choice = parse_columns(columns);
-  const fit::DataKind kind = choice.kind;
+  const measure::CurveColumns choice = measure::parse_curve_columns(columns);
+  const bool base_data = choice.abscissa == measure::Abscissa::kBaseDisplacement;
+  const fit::DataKind kind = data_kind(choice);
   const bool radius_data = kind == fit::DataKind::kRadiusForce;
-  const std::string x_name = radius_data ? "a" : choice.base ? "z" : "delta";
+  const std::string x_name = radius_data ? "a" : base_data ? "z" : "delta";
 
   // ---- physical parameters ----
   fit::Problem problem;
@@ -613,14 +432,14 @@ int run_fit_body(const Args& args) {
   } else if (arguments.has("--lambda")) {
     throw InputError("--lambda: only with --model md");
   }
-  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis, choice.base, md);
+  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis, base_data, md);
   const std::size_t parameter_count = parameters.size();
   const std::size_t unload_index = fit::unload_work_index(layer_count);
   problem.hysteresis = hysteresis;
   if (const auto text = arguments.get("--spring")) problem.spring_stiffness = parse_stiffness(*text);
   // z,F: the base (piezo) displacement z = delta + F/k; k is a parameter (--spring: its value).
-  problem.base_displacement = choice.base;
-  if (choice.base) {
+  problem.base_displacement = base_data;
+  if (base_data) {
     if (problem.shape) {
       throw InputError("--columns z,F: base-displacement data are fitted with the sphere only (--radius), not --shape");
     }
@@ -655,7 +474,7 @@ int run_fit_body(const Args& args) {
   }
   std::vector<bool> free(parameter_count, false);
   for (const std::string& item : free_items) {
-    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis, choice.base, md);
+    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis, base_data, md);
     if (free[which]) throw InputError("--free: '" + trim(item) + "' is named twice");
     free[which] = true;
   }
@@ -663,8 +482,8 @@ int run_fit_body(const Args& args) {
     throw InputError("--free: name both w_load and w_unload (the two branches' adhesion energies are fitted together)");
   }
   for (std::size_t which = 0; which < parameter_count; ++which) {
-    if ((stack_given || hysteresis || choice.base || md) && free[which]) problem.free_parameters.push_back(which);
-    if (!stack_given && !hysteresis && !choice.base && !md) problem.free[which] = free[which];
+    if ((stack_given || hysteresis || base_data || md) && free[which]) problem.free_parameters.push_back(which);
+    if (!stack_given && !hysteresis && !base_data && !md) problem.free[which] = free[which];
   }
   std::vector<std::optional<double>> start(parameter_count);
   if (const auto text = arguments.get("--start")) {
@@ -674,7 +493,7 @@ int run_fit_body(const Args& args) {
         throw InputError("--start: '" + trim(item) + "' is not name=value (e.g. w=40mJ/m2,t=50um)");
       }
       const std::string name = trim(item.substr(0, equals));
-      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis, choice.base, md);
+      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis, base_data, md);
       if (!free[which]) {
         throw InputError("--start: " + name + " is not free (add it to --free, or fix it with its own option)");
       }
@@ -694,7 +513,7 @@ int run_fit_body(const Args& args) {
       }
     }
   }
-  if (choice.base && start[parameters.size() - 1]) problem.spring_stiffness = *start[parameters.size() - 1];
+  if (base_data && start[parameters.size() - 1]) problem.spring_stiffness = *start[parameters.size() - 1];
   if (md && start[parameters.size() - 1]) problem.lambda = *start[parameters.size() - 1];
   std::optional<double> thickness;
   std::optional<double> work;
@@ -722,17 +541,17 @@ int run_fit_body(const Args& args) {
   check_output_paths({{"--output", arguments.get("--output").value_or("")},
                       {"--curve", arguments.get("--curve").value_or("")},
                       {"--plot", arguments.get("--plot").value_or("")}});
-  const LoadedData loaded = load_data(path, choice, kind);
+  const LoadedData loaded = load_data(path, choice);
   fit::Measurements all = loaded.data;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (radius_data && !(all.abscissa[i] > 0.0)) {
-      throw InputError(path + ":" + std::to_string(all.line_numbers[i]) +
+      throw InputError(short_name(path) + ":" + std::to_string(all.line_numbers[i]) +
                        ": contact radius must be > 0 (got " + short_number(all.abscissa[i]) +
                        "); points out of contact are not on the equilibrium curve, remove them");
     }
     // A contact radius at or above R is not a sphere contact: almost always forgotten units.
     if (!problem.shape && radius_data && all.abscissa[i] >= problem.sphere_radius) {
-      throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
+      throw InputError(short_name(path) + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
                        short_number(all.abscissa[i]) + " m is not below the sphere radius --radius " +
                        short_number(problem.sphere_radius) + " m" +
                        (loaded.has_units ? std::string("")
@@ -743,7 +562,7 @@ int run_fit_body(const Args& args) {
   if (problem.shape && radius_data) {
     for (std::size_t i = 0; i < all.size(); ++i) {
       if (all.abscissa[i] > problem.shape->max_contact_radius()) {
-        throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
+        throw InputError(short_name(path) + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
                          short_number(all.abscissa[i]) + " m exceeds the largest radius of --shape (" +
                          problem.shape->description() + ")");
       }
@@ -753,7 +572,7 @@ int run_fit_body(const Args& args) {
     double largest = 0.0;
     for (double d : all.abscissa) largest = std::max(largest, std::fabs(d));
     if (largest >= problem.sphere_radius) {
-      throw InputError(path + ": penetrations up to " + short_number(largest) + " m exceed the sphere radius --radius " +
+      throw InputError(short_name(path) + ": penetrations up to " + short_number(largest) + " m exceed the sphere radius --radius " +
                        short_number(problem.sphere_radius) + " m; the file declares no units, so its numbers were "
                        "read as metres and newtons: add a line '# units: um mN' (or name the columns 'delta (um)', 'F (mN)')");
     }
@@ -767,7 +586,7 @@ int run_fit_body(const Args& args) {
       for (std::size_t i = 0; i < all.size(); ++i) {
         const double b = loaded.branch[i];
         if (b != 0.0 && b != 1.0) {
-          throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": branch = " + short_number(b) +
+          throw InputError(short_name(path) + ":" + std::to_string(all.line_numbers[i]) + ": branch = " + short_number(b) +
                            " is not allowed (1 for a loading row, 0 for an unloading row)");
         }
         all.unloading[i] = b == 0.0;
@@ -807,11 +626,11 @@ int run_fit_body(const Args& args) {
       problem.work = *work;
     } else {
       // A shape has no sphere radius for the JKR estimate: the search finds w on its own.
-      problem.work = problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius);
+      problem.work = fit::start_work(data, problem);
     }
     if (hysteresis) {
       problem.unload_work = start[unload_index].value_or(
-          work.value_or(problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius)));
+          work.value_or(fit::start_work(data, problem)));
     }
   } else {
     if (!work) throw InputError("w is fixed: give it with --work (or add w to --free)");
@@ -829,34 +648,35 @@ int run_fit_body(const Args& args) {
     start_values.push_back(problem.thickness);
     start_values.push_back(problem.film.youngs_modulus);
   }
-  if (hysteresis) {
-    start_values.push_back(problem.unload_work);
-    if (!(problem.unload_work >= fit::kWorkRange[0] && problem.unload_work <= fit::kWorkRange[1])) {
-      throw InputError(std::string(start[unload_index] ? "--start w_unload" : "--work") + ": w_unload = " +
-                       short_number(problem.unload_work) + " J/m2 is outside the range the fit explores, [" +
-                       short_number(fit::kWorkRange[0]) + ", " + short_number(fit::kWorkRange[1]) + "] J/m2");
-    }
-  }
-  if (choice.base) start_values.push_back(problem.spring_stiffness);  // k, last
+  if (hysteresis) start_values.push_back(problem.unload_work);
+  if (base_data) start_values.push_back(problem.spring_stiffness);  // k, last
   if (md) start_values.push_back(problem.lambda);                     // lambda, last
   const auto source_option = [&](std::size_t which) -> std::string {
     if (start[which]) return "--start " + parameters[which].name;
     return stack_given ? "--layer" : which == fit::kThickness ? "--thickness" : "--film";
   };
-  double total_thickness = 0.0;
-  for (std::size_t i = 0; i < layer_count; ++i) total_thickness += start_values[fit::thickness_index(i)];
-  check_fit_start({choice.legacy ? columns : std::string("a,F"), loaded.declared_columns, loaded.declared_line, path, radius_data, data.abscissa,
-                   problem.work, total_thickness, start_values[fit::modulus_index(0, layer_count)],
-                   free[fit::kWork] ? (start[fit::kWork] ? "--start w" : work ? "--work" : "--radius (with the data's most tensile force, the start value of w)") : "--work",
-                   layer_count == 1 ? source_option(fit::kThickness) : "--layer (their total thickness)",
-                   source_option(fit::modulus_index(0, layer_count))});
-  for (std::size_t i = 1; i < layer_count; ++i) {
-    const std::size_t which = fit::modulus_index(i, layer_count);
-    if (!(start_values[which] >= fit::kModulusRange[0] && start_values[which] <= fit::kModulusRange[1])) {
-      throw InputError(source_option(which) + ": " + parameters[which].name + " = " + short_number(start_values[which]) +
-                       " Pa is outside the range the fit explores, [" + short_number(fit::kModulusRange[0]) + ", " +
-                       short_number(fit::kModulusRange[1]) + "] Pa");
+  check_fit_columns(choice.two_column ? columns : std::string("a,F"), loaded.declared_columns, loaded.declared_line, path);
+  // The library's ranges of the start values; the message names the option that set each.
+  try {
+    fit::check_start(data, problem);
+  } catch (const fit::StartError& error) {
+    const std::size_t which = error.parameter();
+    const bool estimated_work = which == fit::kWork && free[fit::kWork] && !start[fit::kWork] && !work;
+    std::string option;
+    if (which == fit::kWork) {
+      option = !free[fit::kWork] ? "--work"
+               : start[fit::kWork] ? "--start w"
+               : work ? "--work"
+                      : "--radius (with the data's most tensile force, the start value of w)";
+    } else if (hysteresis && which == unload_index) {
+      option = start[unload_index] ? "--start w_unload" : "--work";
+    } else if (which == fit::thickness_index(0)) {
+      option = layer_count == 1 ? source_option(fit::kThickness) : "--layer (their total thickness)";
+    } else {
+      option = source_option(which);
     }
+    throw InputError(option + ": " + error.what() + (estimated_work ? "; give a start value with --start w=..." : "") +
+                     (estimated_work && !loaded.has_units ? no_units_note(radius_data) : ""));
   }
 
   const fit::Result result = [&] {
@@ -881,6 +701,7 @@ int run_fit_body(const Args& args) {
   header.emplace_back("command", command);
   header.emplace_back("data", path);
   header.emplace_back("columns_in_file", columns);
+  header.emplace_back("data_units", loaded.units);
   header.emplace_back("branch", branch == fit::Branch::kAll ? "both" : branch == fit::Branch::kLoading ? "load" : "unload");
   if (hysteresis) {
     const auto unloading_rows = std::count(data.unloading.begin(), data.unloading.end(), true);
@@ -1166,7 +987,7 @@ int run_fit_body(const Args& args) {
     }
     if (result.has_spring_pulloff) {
       std::cout << "  predicted pull-off through the spring k = "
-                << short_number(choice.base ? result.value.back() : problem.spring_stiffness)
+                << short_number(base_data ? result.value.back() : problem.spring_stiffness)
                 << " N/m: " << short_number(result.spring_pulloff_force) << " N\n";
     }
     if (result.second_minimum) {

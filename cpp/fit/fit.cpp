@@ -29,7 +29,6 @@ using internal::Parameters;
 constexpr double kPi = 3.14159265358979323846;
 // Load-controlled JKR pull-off in Maugis units, P = F/(pi w R) (THEORY.md section 6).
 constexpr double kJkrPulloffLoad = -1.5;
-constexpr double kDefaultWork = 0.05;  // J/m2, when no measured force is tensile
 // Effective-variance passes: the weights depend on the slope at the solution; a change of
 // their logarithm below kWeightChange moves the estimates far less than their errors.
 constexpr int kWeightPasses = 5;
@@ -38,6 +37,7 @@ constexpr double kWeightChange = 1e-3;
 // and reported when it ends more than kDistinctMinimum apart in some ln p.
 constexpr double kSecondCostRatio = 3.0;
 constexpr double kDistinctMinimum = 0.05;
+constexpr double kMaxDataValue = 1e100;  // SI
 
 void validate(const Measurements& data, const Problem& problem) {
   const std::size_t n = data.size();
@@ -129,19 +129,26 @@ void validate(const Measurements& data, const Problem& problem) {
   }
   double largest_force = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
+    const std::string where = data.line_numbers.size() == n ? "line " + std::to_string(data.line_numbers[i])
+                                                            : "point " + std::to_string(i + 1);
     if (!std::isfinite(data.abscissa[i]) || !std::isfinite(data.force[i])) {
-      throw InputError("data point " + std::to_string(i + 1) + " is not finite");
+      throw InputError(where + ": the data point is not finite");
+    }
+    // Far beyond any measurement (the CLI's SI bound for every value): refused with its line,
+    // not met as a search that finds nothing.
+    if (std::fabs(data.abscissa[i]) > kMaxDataValue || std::fabs(data.force[i]) > kMaxDataValue) {
+      throw InputError(where + ": " + short_text(data.abscissa[i]) + ", " + short_text(data.force[i]) +
+                       " is outside the allowed range [-1e100, 1e100] (SI units)");
     }
     if (data.kind == DataKind::kRadiusForce && !(data.abscissa[i] > 0.0)) {
-      const std::string where = data.line_numbers.size() == n
-                                    ? "line " + std::to_string(data.line_numbers[i])
-                                    : "point " + std::to_string(i + 1);
       throw InputError(where + ": contact radius must be > 0 (got " + short_text(data.abscissa[i]) + ")");
     }
     largest_force = std::max(largest_force, std::fabs(data.force[i]));
   }
   if (!(largest_force > 0.0)) throw InputError("all measured forces are zero: nothing to fit");
 }
+
+Result fit_validated(const Measurements& data, const Problem& problem);
 
 }  // namespace
 
@@ -200,18 +207,65 @@ Measurements select_branch(const Measurements& data, Branch branch) {
 }
 
 double jkr_work_estimate(const Measurements& data, double sphere_radius) {
-  if (data.force.empty()) return kDefaultWork;
+  if (data.force.empty()) return kDefaultStartWork;
   const double f_min = *std::min_element(data.force.begin(), data.force.end());
   // F_min = kJkrPulloffLoad * (pi w R), the force scale of Contact.
-  return f_min < 0.0 ? f_min / (kJkrPulloffLoad * kPi * sphere_radius) : kDefaultWork;
+  return f_min < 0.0 ? f_min / (kJkrPulloffLoad * kPi * sphere_radius) : kDefaultStartWork;
+}
+
+double start_work(const Measurements& data, const Problem& problem) {
+  return problem.shape ? kDefaultStartWork : jkr_work_estimate(data, problem.sphere_radius);
+}
+
+std::string units_hint(const Measurements& data, const Problem& problem) {
+  if (problem.shape || data.force.empty() || !(problem.sphere_radius > 0.0)) return "";
+  const double f_min = *std::min_element(data.force.begin(), data.force.end());
+  if (!(f_min < 0.0)) return "";
+  const double work = jkr_work_estimate(data, problem.sphere_radius);
+  if (work >= kSearchWork[0] && work <= kSearchWork[1]) return "";
+  return "the most tensile force, F = " + short_text(f_min) + " N, needs w = " + short_text(work) +
+         " J/m2 for a sphere of R = " + short_text(problem.sphere_radius) +
+         " m (JKR pull-off F = -(3/2) pi w R), outside the plausible [" + short_text(kSearchWork[0]) + ", " +
+         short_text(kSearchWork[1]) + "] J/m2: are the units of F and R right?";
+}
+
+void check_start(const Measurements& data, const Problem& problem) {
+  const Parameters hint = internal::problem_parameters(problem);
+  const std::vector<ParameterInfo> names =
+      parameter_list(hint.layers, problem.hysteresis, problem.base_displacement, problem.maugis_dugdale);
+  const std::string hint_text = units_hint(data, problem);
+  for (std::size_t which = 0; which < names.size(); ++which) {
+    const double v = hint.values[which];
+    if (names[which].kind == ParameterKind::kWork && !(v >= kWorkRange[0] && v <= kWorkRange[1])) {
+      throw StartError(which, names[which].name + " = " + short_text(v) + " J/m2 is outside the range the fit explores, [" +
+                                  short_text(kWorkRange[0]) + ", " + short_text(kWorkRange[1]) + "] J/m2" +
+                                  (hint_text.empty() ? "" : "; " + hint_text));
+    }
+    if (names[which].kind == ParameterKind::kModulus && !(v >= kModulusRange[0] && v <= kModulusRange[1])) {
+      throw StartError(which, names[which].name + " = " + short_text(v) + " Pa is outside the range the fit explores, [" +
+                                  short_text(kModulusRange[0]) + ", " + short_text(kModulusRange[1]) + "] Pa");
+    }
+  }
+  if (data.kind == DataKind::kRadiusForce && data.size() > 0) {
+    const auto [lo, hi] = std::minmax_element(data.abscissa.begin(), data.abscissa.end());
+    const double total = hint.total_thickness();
+    const double a_lo = *lo / total, a_hi = *hi / total;
+    if (!(a_lo >= kAOverTRange[0] && a_hi <= kAOverTRange[1])) {
+      throw StartError(thickness_index(0),
+                       std::string(hint.layers == 1 ? "t" : "T") + " = " + short_text(total) +
+                           " m puts the data's contact radii (" + short_text(*lo) + " to " + short_text(*hi) +
+                           " m) at a/t = " + short_text(a_lo) + " to " + short_text(a_hi) + ", outside the range [" +
+                           short_text(kAOverTRange[0]) + ", " + short_text(kAOverTRange[1]) +
+                           "] the model is tabulated for; allowed: t in [" + short_text(*hi / kAOverTRange[1]) + ", " +
+                           short_text(*lo / kAOverTRange[0]) + "] m");
+    }
+  }
 }
 
 Result fit(const Measurements& data, const Problem& problem) {
-  const auto clock_start = std::chrono::steady_clock::now();
   validate(data, problem);
   const std::size_t n = data.size();
-  const std::vector<int> free_index = internal::free_indices(problem);
-  const std::size_t p_count = free_index.size();
+  const std::size_t p_count = internal::free_indices(problem).size();
   if (p_count == 0) {
     throw InputError(problem.layers.empty() ? "no free parameter: name at least one of w, t, E1"
                                             : "no free parameter: name at least one of w, h1..hN, E1..EN");
@@ -221,6 +275,32 @@ Result fit(const Measurements& data, const Problem& problem) {
                      std::to_string(p_count) + " free parameter" + (p_count == 1 ? "" : "s") +
                      ": a fit needs more points than free parameters");
   }
+  // A contact radius at or above R is no sphere contact: almost always a length in the wrong unit.
+  for (std::size_t i = 0; i < n && data.kind == DataKind::kRadiusForce && !problem.shape; ++i) {
+    if (data.abscissa[i] >= problem.sphere_radius) {
+      const std::string where = data.line_numbers.size() == n ? "line " + std::to_string(data.line_numbers[i])
+                                                              : "point " + std::to_string(i + 1);
+      throw InputError(where + ": contact radius a = " + short_text(data.abscissa[i]) +
+                       " m is not below the sphere radius R = " + short_text(problem.sphere_radius) +
+                       " m: are the units right? (lengths in m, forces in N)");
+    }
+  }
+  check_start(data, problem);
+  try {
+    return fit_validated(data, problem);
+  } catch (const NumericalError& error) {
+    const std::string hint_text = units_hint(data, problem);
+    if (hint_text.empty()) throw;
+    throw NumericalError(std::string(error.what()) + "; " + hint_text);
+  }
+}
+
+namespace {
+Result fit_validated(const Measurements& data, const Problem& problem) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const std::size_t n = data.size();
+  const std::vector<int> free_index = internal::free_indices(problem);
+  const std::size_t p_count = free_index.size();
 
   internal::Model model(problem, data);
   const Parameters hint = internal::problem_parameters(problem);
@@ -379,6 +459,8 @@ Result fit(const Measurements& data, const Problem& problem) {
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }
+
+}  // namespace
 
 CurvePoint exact_point(const Problem& problem, double radius) {
   if (problem.shape) throw InputError("exact_point: the sphere only (a shape's model is ShapeContact::at)");

@@ -124,8 +124,7 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   if (is_free(kWork) && !profile_work) {
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
-    const double estimate =
-        f_min < 0.0 && !problem.shape ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
+    const double estimate = f_min < 0.0 && !problem.shape ? jkr_work_estimate(data, problem.sphere_radius) : 0.0;
     const std::vector<double> w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
                                                       : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
     axes.push_back({static_cast<std::size_t>(kWork), w_axis});
