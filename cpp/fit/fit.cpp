@@ -15,6 +15,7 @@
 #include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
 #include "fit_model.hpp"
+#include "sphere_model.hpp"
 #include "least_squares.hpp"
 #include "search.hpp"
 #include "statistics.hpp"
@@ -45,52 +46,16 @@ void validate(const Measurements& data, const Problem& problem) {
   if (!problem.shape && (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius))) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
-  if (problem.hysteresis) {
-    if (data.unloading.size() != n) throw InputError("fit: w_load,w_unload need the branch of every point");
-    const auto unloading_points = static_cast<std::size_t>(std::count(data.unloading.begin(), data.unloading.end(), true));
-    if (unloading_points == 0 || unloading_points == n) {
-      throw InputError(std::string("w_load,w_unload: the data have no ") + (unloading_points == 0 ? "unloading" : "loading") +
-                       " rows; each adhesion energy needs points of its own branch");
-    }
-    if (!(problem.unload_work > 0.0) || !std::isfinite(problem.unload_work)) {
-      throw InputError("adhesion energy of unloading must be > 0 (got " + short_text(problem.unload_work) + ")");
-    }
-    const std::size_t w_unload = unload_work_index(problem.layers.empty() ? 1 : problem.layers.size());
-    const auto named = [&](std::size_t which) {
-      return std::find(problem.free_parameters.begin(), problem.free_parameters.end(), which) != problem.free_parameters.end();
-    };
-    if (!named(kWork) || !named(w_unload)) throw InputError("fit: w_load and w_unload are free together");
-  }
-  if (problem.maugis_dugdale) {
-    if (data.kind != DataKind::kRadiusForce) throw InputError("fit: the Maugis-Dugdale model fits a,F data only");
-    if (problem.shape || problem.base_displacement || problem.hysteresis || !problem.indenter.rigid) {
-      throw InputError("fit: the Maugis-Dugdale model takes a rigid sphere, one w and a,F data");
-    }
-    if (!(problem.lambda >= kLambdaRange[0] && problem.lambda <= kLambdaRange[1])) {
-      throw InputError("fit: lambda = " + short_text(problem.lambda) + " is outside [" + short_text(kLambdaRange[0]) +
-                       ", " + short_text(kLambdaRange[1]) + "]");
-    }
-  }
-  if (problem.base_displacement) {
-    if (data.kind != DataKind::kPenetrationForce) {
-      throw InputError("fit: base-displacement data are z,F data (the penetration kind)");
-    }
-    if (problem.shape) throw InputError("fit: base-displacement (z,F) data with a shape are not supported");
-    if (!(problem.spring_stiffness > 0.0) || !std::isfinite(problem.spring_stiffness)) {
-      throw InputError("fit: z,F data need the spring stiffness k > 0 (got " + short_text(problem.spring_stiffness) + ")");
-    }
-  }
-  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement && !problem.maugis_dugdale) {
-    Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
+  internal::validate_model(data, problem);
+  // Validates the constants.
+  if (problem.layers.empty()) {
+    Stack::film_on(problem.film, problem.substrate, problem.indenter);
   } else {
-    if (problem.layers.empty()) {
-      Stack::film_on(problem.film, problem.substrate, problem.indenter);
-    } else {
-      Stack(problem.layers, problem.substrate, problem.indenter);
-    }
+    Stack(problem.layers, problem.substrate, problem.indenter);
+  }
+  {
     const std::size_t layer_count = problem.layers.empty() ? 1 : problem.layers.size();
-    const std::size_t count =
-        parameter_list(layer_count, problem.hysteresis, problem.base_displacement, problem.maugis_dugdale).size();
+    const std::size_t count = internal::problem_parameters(problem).values.size();
     for (std::size_t which : problem.free_parameters) {
       if (which >= count) {
         throw InputError("fit: free parameter index " + std::to_string(which) + " is outside the " +
@@ -232,7 +197,7 @@ std::string units_hint(const Measurements& data, const Problem& problem) {
 void check_start(const Measurements& data, const Problem& problem) {
   const Parameters hint = internal::problem_parameters(problem);
   const std::vector<ParameterInfo> names =
-      parameter_list(hint.layers, problem.hysteresis, problem.base_displacement, problem.maugis_dugdale);
+      parameter_list(hint.layers, hint.hysteresis, hint.spring, hint.md);
   const std::string hint_text = units_hint(data, problem);
   for (std::size_t which = 0; which < names.size(); ++which) {
     const double v = hint.values[which];
@@ -307,7 +272,7 @@ Result fit_validated(const Measurements& data, const Problem& problem) {
   const std::size_t parameter_count = hint.values.size();
   internal::SearchResult search;
   search.best = hint;
-  if (problem.global_search) search = internal::global_search(model, problem, free_index, hint);
+  if (problem.global_search) search = internal::global_search(model, free_index, hint);
   const double search_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
 
@@ -362,9 +327,8 @@ Result fit_validated(const Measurements& data, const Problem& problem) {
   const std::vector<double> final_scale = weighted ? inv_sigma : scale;
   if (problem.spring_stiffness > 0.0) {
     try {
-      // z,F data: through the fitted (or fixed) k of the parameter vector.
-      const double k = problem.base_displacement ? minimum.values.values.back() : problem.spring_stiffness;
-      if (const auto s = model.spring_pulloff(minimum.values, k)) {
+      // z,F data: through the fitted (or fixed) k of the parameter vector (Model::spring_pulloff).
+      if (const auto s = model.spring_pulloff(minimum.values, problem.spring_stiffness)) {
         result.has_spring_pulloff = true;
         result.spring_pulloff_radius = (*s)[0];
         result.spring_pulloff_penetration = (*s)[1];
@@ -467,7 +431,7 @@ CurvePoint exact_point(const Problem& problem, double radius) {
   const Parameters p = internal::problem_parameters(problem);
   if (!(radius > 0.0) || !(p.total_thickness() > 0.0)) throw InputError("exact_point: a and t must be > 0");
   coatcontact::detail::GslHandlerOff handler_off;
-  const internal::ModelEntry entry(problem, internal::StackKey::of(p));
+  const internal::SphereEntry entry(problem, internal::StackKey::of(p));
   const ContactModel contact(entry.model(), problem.sphere_radius, p);
   const SolverSource source(entry.solver(), problem.solver_tolerance);
   const internal::SiPoint s = contact.exact(source.evaluate({radius / p.total_thickness()}).front(), radius);
@@ -482,7 +446,7 @@ std::vector<CurvePoint> model_curve(const Problem& problem, double radius_min, d
   if (problem.shape) throw InputError("model_curve: the sphere only (a shape's curve is ShapeContact::curve)");
   coatcontact::detail::GslHandlerOff handler_off;
   const Parameters p = internal::problem_parameters(problem);
-  const internal::ModelEntry entry(problem, internal::StackKey::of(p));
+  const internal::SphereEntry entry(problem, internal::StackKey::of(p));
   const ContactModel contact(entry.model(), problem.sphere_radius, p);
   contact.prepare(radius_min, radius_max);
   std::vector<CurvePoint> curve;
