@@ -261,6 +261,63 @@ Result fit(const Measurements& data, const Problem& problem) {
 }
 
 namespace {
+// Residual bootstrap: resample the standardized residuals (centred, inflated by sqrt(n/(n-p))
+// for the fitted degrees of freedom), refit from the estimate with the same weights, take
+// percentiles into result's intervals.
+void bootstrap(internal::Model& model, const Measurements& data, const Problem& problem,
+               const std::vector<int>& free_index, const Parameters& estimate, const std::vector<double>& model_force,
+               const std::vector<double>& final_scale, Result& result) {
+  const std::size_t n = data.size();
+  const std::size_t p_count = free_index.size();
+  const std::size_t parameter_count = estimate.values.size();
+  std::vector<double> e(n);
+  double mean = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    e[i] = result.residual[i] * final_scale[i];
+    mean += e[i] / static_cast<double>(n);
+  }
+  const double inflate = std::sqrt(static_cast<double>(n) / static_cast<double>(n - p_count));
+  for (double& x : e) x = (x - mean) * inflate;
+  std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
+  gsl_rng_set(rng.get(), problem.bootstrap_seed);
+  Measurements resampled = data;
+  model.set_data(resampled);
+  std::vector<std::vector<double>> samples(parameter_count);
+  for (int b = 0; b < problem.bootstrap; ++b) {
+    for (std::size_t i = 0; i < n; ++i) {
+      resampled.force[i] = model_force[i] - e[gsl_rng_uniform_int(rng.get(), n)] / final_scale[i];
+    }
+    try {
+      const internal::Minimum r = internal::minimize(model, problem, free_index, estimate, final_scale, false);
+      for (int which : free_index) samples[which].push_back(r.values.values[which]);
+      ++result.bootstrap_samples;
+    } catch (const NumericalError&) {
+      // A resample the fit cannot follow does not count (bootstrap_samples says how many did).
+    }
+  }
+  model.set_data(data);
+  if (result.bootstrap_samples < std::max(10, problem.bootstrap / 2)) {
+    throw NumericalError("bootstrap: only " + std::to_string(result.bootstrap_samples) + " of " +
+                         std::to_string(problem.bootstrap) + " refits converged; the intervals would mean nothing");
+  }
+  const auto percentile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double position = q * static_cast<double>(v.size() - 1);
+    const std::size_t k = static_cast<std::size_t>(position);
+    const double f = position - static_cast<double>(k);
+    return k + 1 < v.size() ? v[k] * (1.0 - f) + v[k + 1] * f : v[k];
+  };
+  for (auto* v : {&result.interval68_low, &result.interval68_high, &result.interval95_low, &result.interval95_high}) {
+    v->assign(parameter_count, 0.0);
+  }
+  for (int which : free_index) {
+    result.interval68_low[which] = percentile(samples[which], 0.16);
+    result.interval68_high[which] = percentile(samples[which], 0.84);
+    result.interval95_low[which] = percentile(samples[which], 0.025);
+    result.interval95_high[which] = percentile(samples[which], 0.975);
+  }
+}
+
 Result fit_validated(const Measurements& data, const Problem& problem) {
   const auto clock_start = std::chrono::steady_clock::now();
   const std::size_t n = data.size();
@@ -357,56 +414,8 @@ Result fit_validated(const Measurements& data, const Problem& problem) {
     }
   }
 
-  // Residual bootstrap: resample the standardized residuals (centred, inflated by
-  // sqrt(n/(n-p)) for the fitted degrees of freedom), refit from the estimate with the same
-  // weights, take percentiles.
   if (problem.bootstrap > 0) {
-    std::vector<double> e(n);
-    double mean = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      e[i] = result.residual[i] * final_scale[i];
-      mean += e[i] / static_cast<double>(n);
-    }
-    const double inflate = std::sqrt(static_cast<double>(n) / static_cast<double>(n - p_count));
-    for (double& x : e) x = (x - mean) * inflate;
-    std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
-    gsl_rng_set(rng.get(), problem.bootstrap_seed);
-    Measurements resampled = data;
-    model.set_data(resampled);
-    std::vector<std::vector<double>> samples(parameter_count);
-    for (int b = 0; b < problem.bootstrap; ++b) {
-      for (std::size_t i = 0; i < n; ++i) {
-        resampled.force[i] = m.force[i] - e[gsl_rng_uniform_int(rng.get(), n)] / final_scale[i];
-      }
-      try {
-        const internal::Minimum r = internal::minimize(model, problem, free_index, minimum.values, final_scale, false);
-        for (int which : free_index) samples[which].push_back(r.values.values[which]);
-        ++result.bootstrap_samples;
-      } catch (const NumericalError&) {
-        // A resample the fit cannot follow does not count (bootstrap_samples says how many did).
-      }
-    }
-    model.set_data(data);
-    if (result.bootstrap_samples < std::max(10, problem.bootstrap / 2)) {
-      throw NumericalError("bootstrap: only " + std::to_string(result.bootstrap_samples) + " of " +
-                           std::to_string(problem.bootstrap) + " refits converged; the intervals would mean nothing");
-    }
-    const auto percentile = [](std::vector<double> v, double q) {
-      std::sort(v.begin(), v.end());
-      const double position = q * static_cast<double>(v.size() - 1);
-      const std::size_t k = static_cast<std::size_t>(position);
-      const double f = position - static_cast<double>(k);
-      return k + 1 < v.size() ? v[k] * (1.0 - f) + v[k + 1] * f : v[k];
-    };
-    for (auto* v : {&result.interval68_low, &result.interval68_high, &result.interval95_low, &result.interval95_high}) {
-      v->assign(parameter_count, 0.0);
-    }
-    for (int which : free_index) {
-      result.interval68_low[which] = percentile(samples[which], 0.16);
-      result.interval68_high[which] = percentile(samples[which], 0.84);
-      result.interval95_low[which] = percentile(samples[which], 0.025);
-      result.interval95_high[which] = percentile(samples[which], 0.975);
-    }
+    bootstrap(model, data, problem, free_index, minimum.values, m.force, final_scale, result);
   }
   result.model_radius = m.radius;
   result.model_penetration = m.penetration;

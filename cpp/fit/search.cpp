@@ -49,6 +49,118 @@ std::vector<double> inverse_sigma(const Measurements& data, const ModelAtData& m
   return out;
 }
 
+// Cost (weighted or scaled sum of squares) of one grid point; w profiled when asked: F = A - B
+// sqrt(w) at fixed a, one weighted linear fit per group of points with their own w.
+struct GridCost {
+  Model& model;
+  const Measurements& data;
+  bool profile_work;
+  std::vector<std::size_t> works;  // the w parameters, one per group
+  std::vector<int> group;          // each point's index into works
+  double unweighted;
+  int evaluations = 0;
+
+  std::pair<double, Parameters> operator()(Parameters p) {
+    const int groups = static_cast<int>(works.size());
+  try {
+    if (!profile_work) {
+      const ModelAtData m = model.at_data(p);
+      ++evaluations;
+      std::vector<double> scale = inverse_sigma(data, m);
+      double cost = 0.0;
+      for (std::size_t i = 0; i < data.size(); ++i) {
+        cost += std::pow((m.force[i] - data.force[i]) * (scale.empty() ? unweighted : scale[i]), 2);
+      }
+      return {cost, p};
+    }
+    Parameters p1 = p, p2 = p;
+    for (std::size_t which : works) {
+      p1.values[which] = kProbeWork[0];
+      p2.values[which] = kProbeWork[1];
+    }
+    const ModelAtData m1 = model.at_data(p1);
+    const ModelAtData m2 = model.at_data(p2);
+    evaluations += 2;
+    const double s1 = std::sqrt(kProbeWork[0]), s2 = std::sqrt(kProbeWork[1]);
+    const std::size_t n = data.size();
+    std::vector<double> A(n), B(n), Ax(n), Bx(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      B[i] = (m1.force[i] - m2.force[i]) / (s2 - s1);
+      A[i] = m1.force[i] + B[i] * s1;
+      Bx[i] = (m1.force_x[i] - m2.force_x[i]) / (s2 - s1);
+      Ax[i] = m1.force_x[i] + Bx[i] * s1;
+    }
+    // Weighted linear fit for s = sqrt(w) (one per group); the effective-variance weights
+    // depend on s, so refresh them a few times.
+    std::vector<double> s;
+    for (std::size_t which : works) s.push_back(std::sqrt(p.values[which]));
+    double cost = kInf;
+    ModelAtData at_s;
+    at_s.force_x.resize(n);
+    for (int pass = 0; pass < 3; ++pass) {
+      for (std::size_t i = 0; i < n; ++i) at_s.force_x[i] = Ax[i] - Bx[i] * s[group[i]];
+      std::vector<double> scale = inverse_sigma(data, at_s);
+      if (scale.empty()) scale.assign(n, unweighted);
+      for (int g = 0; g < groups; ++g) {
+        double num = 0.0, den = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (group[i] != g) continue;
+          const double u = scale[i] * scale[i];
+          num += u * B[i] * (A[i] - data.force[i]);
+          den += u * B[i] * B[i];
+        }
+        if (!(den > 0.0)) return {kInf, p};
+        s[g] = std::clamp(num / den, std::sqrt(kSearchWork[0]), std::sqrt(kSearchWork[1]));
+      }
+      cost = 0.0;
+      for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s[group[i]] - data.force[i]) * scale[i], 2);
+    }
+    for (int g = 0; g < groups; ++g) p.values[works[static_cast<std::size_t>(g)]] = s[g] * s[g];
+    return {cost, p};
+  } catch (const NumericalError&) {
+    return {kInf, p};  // outside the model's range: not a candidate
+  }
+  }
+};
+
+// A free parameter along whose axis the cost does not move is not determined by the data (e.g. t
+// when film and substrate are alike): say which, before the solve wanders off. k: the best point.
+void refuse_flat_axes(const std::vector<SearchAxis>& axes, const std::vector<std::size_t>& stride,
+                      const std::vector<double>& cost, std::size_t k, const std::vector<ParameterInfo>& names,
+                      std::size_t layers) {
+  const std::size_t dims = axes.size();
+  const auto coordinate = [&](std::size_t q, std::size_t d) { return (q / stride[d]) % axes[d].values.size(); };
+  const auto flat = [&](std::size_t d) {
+    double lo = kInf, hi = 0.0;
+    std::size_t finite = 0;
+    const std::size_t base = k - coordinate(k, d) * stride[d];
+    for (std::size_t j = 0; j < axes[d].values.size(); ++j) {
+      const double c = cost[base + j * stride[d]];
+      if (!std::isfinite(c)) continue;  // not evaluated (or not evaluable)
+      ++finite;
+      lo = std::min(lo, c);
+      hi = std::max(hi, c);
+    }
+    return finite > 1 && hi - lo <= kFlatCost * hi;
+  };
+  // Thicknesses first, then moduli (w is not checked: its axis exists only for delta,F data).
+  for (const ParameterKind kind : {ParameterKind::kThickness, ParameterKind::kModulus}) {
+    for (std::size_t d = 0; d < dims; ++d) {
+      const ParameterInfo& info = names[axes[d].which];
+      if (info.kind != kind || axes[d].values.size() < 2 || !flat(d)) continue;
+      if (kind == ParameterKind::kModulus) {
+        throw NumericalError("the data do not determine " + info.name + ": the fit does not change over " +
+                             info.name + " within a factor " +
+                             std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
+      }
+      throw NumericalError("the data do not determine " + info.name + ": the fit does not change for " + info.name +
+                           " from " + std::to_string(axes[d].values.front()) + " to " +
+                           std::to_string(axes[d].values.back()) + " m; fix it" +
+                           (layers == 1 ? " with --thickness" : " (leave it out of --free)"));
+    }
+  }
+}
+
 SearchResult global_search(Model& model, const std::vector<int>& free_index, const Parameters& hint) {
   const Measurements& data = model.data();
   const bool radius_data = data.kind == DataKind::kRadiusForce;
@@ -114,71 +226,9 @@ SearchResult global_search(Model& model, const std::vector<int>& free_index, con
       group[i] = static_cast<int>(std::find(works.begin(), works.end(), of_point[i]) - works.begin());
     }
   }
-  const int groups = static_cast<int>(works.size());
 
   SearchResult result;
-  // Cost (weighted or scaled sum of squares) of one grid point; w profiled when asked.
-  const auto evaluate = [&](Parameters p) -> std::pair<double, Parameters> {
-    try {
-      if (!profile_work) {
-        const ModelAtData m = model.at_data(p);
-        ++result.evaluations;
-        std::vector<double> scale = inverse_sigma(data, m);
-        double cost = 0.0;
-        for (std::size_t i = 0; i < data.size(); ++i) {
-          cost += std::pow((m.force[i] - data.force[i]) * (scale.empty() ? unweighted : scale[i]), 2);
-        }
-        return {cost, p};
-      }
-      Parameters p1 = p, p2 = p;
-      for (std::size_t which : works) {
-        p1.values[which] = kProbeWork[0];
-        p2.values[which] = kProbeWork[1];
-      }
-      const ModelAtData m1 = model.at_data(p1);
-      const ModelAtData m2 = model.at_data(p2);
-      result.evaluations += 2;
-      const double s1 = std::sqrt(kProbeWork[0]), s2 = std::sqrt(kProbeWork[1]);
-      const std::size_t n = data.size();
-      std::vector<double> A(n), B(n), Ax(n), Bx(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        B[i] = (m1.force[i] - m2.force[i]) / (s2 - s1);
-        A[i] = m1.force[i] + B[i] * s1;
-        Bx[i] = (m1.force_x[i] - m2.force_x[i]) / (s2 - s1);
-        Ax[i] = m1.force_x[i] + Bx[i] * s1;
-      }
-      // Weighted linear fit for s = sqrt(w) (one per group); the effective-variance weights
-      // depend on s, so refresh them a few times.
-      std::vector<double> s;
-      for (std::size_t which : works) s.push_back(std::sqrt(p.values[which]));
-      double cost = kInf;
-      ModelAtData at_s;
-      at_s.force_x.resize(n);
-      for (int pass = 0; pass < 3; ++pass) {
-        for (std::size_t i = 0; i < n; ++i) at_s.force_x[i] = Ax[i] - Bx[i] * s[group[i]];
-        std::vector<double> scale = inverse_sigma(data, at_s);
-        if (scale.empty()) scale.assign(n, unweighted);
-        for (int g = 0; g < groups; ++g) {
-          double num = 0.0, den = 0.0;
-          for (std::size_t i = 0; i < n; ++i) {
-            if (group[i] != g) continue;
-            const double u = scale[i] * scale[i];
-            num += u * B[i] * (A[i] - data.force[i]);
-            den += u * B[i] * B[i];
-          }
-          if (!(den > 0.0)) return {kInf, p};
-          s[g] = std::clamp(num / den, std::sqrt(kSearchWork[0]), std::sqrt(kSearchWork[1]));
-        }
-        cost = 0.0;
-        for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s[group[i]] - data.force[i]) * scale[i], 2);
-      }
-      for (int g = 0; g < groups; ++g) p.values[works[static_cast<std::size_t>(g)]] = s[g] * s[g];
-      return {cost, p};
-    } catch (const NumericalError&) {
-      return {kInf, p};  // outside the model's range: not a candidate
-    }
-  };
-
+  GridCost evaluate{model, data, profile_work, works, group, unweighted};
   // The grid: index k = mixed radix over the axes, the last one fastest.
   const std::size_t dims = axes.size();
   std::vector<std::size_t> stride(dims, 1);
@@ -234,40 +284,7 @@ SearchResult global_search(Model& model, const std::vector<int>& free_index, con
     throw NumericalError("the global search found no parameters at which the model can be evaluated for these data");
   }
   std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return cost[a] < cost[b]; });
-  // A free parameter along whose axis the cost does not move is not determined by the data
-  // (e.g. t when film and substrate are alike): say which, before the solve wanders off.
-  {
-    const std::size_t k = minima[0];
-    const auto flat = [&](std::size_t d) {
-      double lo = kInf, hi = 0.0;
-      std::size_t finite = 0;
-      const std::size_t base = k - coordinate(k, d) * stride[d];
-      for (std::size_t j = 0; j < axes[d].values.size(); ++j) {
-        const double c = cost[base + j * stride[d]];
-        if (!std::isfinite(c)) continue;  // not evaluated (or not evaluable)
-        ++finite;
-        lo = std::min(lo, c);
-        hi = std::max(hi, c);
-      }
-      return finite > 1 && hi - lo <= kFlatCost * hi;
-    };
-    // Thicknesses first, then moduli (w is not checked: its axis exists only for delta,F data).
-    for (const ParameterKind kind : {ParameterKind::kThickness, ParameterKind::kModulus}) {
-      for (std::size_t d = 0; d < dims; ++d) {
-        const ParameterInfo& info = names[axes[d].which];
-        if (info.kind != kind || axes[d].values.size() < 2 || !flat(d)) continue;
-        if (kind == ParameterKind::kModulus) {
-          throw NumericalError("the data do not determine " + info.name + ": the fit does not change over " +
-                               info.name + " within a factor " +
-                               std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
-        }
-        throw NumericalError("the data do not determine " + info.name + ": the fit does not change for " + info.name +
-                             " from " + std::to_string(axes[d].values.front()) + " to " +
-                             std::to_string(axes[d].values.back()) + " m; fix it" +
-                             (layers == 1 ? " with --thickness" : " (leave it out of --free)"));
-      }
-    }
-  }
+  refuse_flat_axes(axes, stride, cost, minima[0], names, layers);
   result.best = point[minima[0]];
   result.best_cost = cost[minima[0]];
   if (minima.size() > 1) {
@@ -281,6 +298,7 @@ SearchResult global_search(Model& model, const std::vector<int>& free_index, con
     result.best = hint_point;
     result.best_cost = hint_cost;
   }
+  result.evaluations = evaluate.evaluations;
   return result;
 }
 
