@@ -26,6 +26,7 @@
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
+#include "coatcontact/units.hpp"
 
 namespace {
 
@@ -60,13 +61,8 @@ const Option kOptions[] = {
     {"--output", "FILE", "output file (default stdout)", ""},
 };
 
-// Unit suffixes of the values above (SI factor).
-const std::map<std::string, double> kUnits = {
-    {"Pa", 1.0},  {"kPa", 1e3}, {"MPa", 1e6},   {"GPa", 1e9},    {"m", 1.0},  {"mm", 1e-3},
-    {"um", 1e-6}, {"nm", 1e-9}, {"J/m2", 1.0},  {"mJ/m2", 1e-3}, {"N", 1.0},  {"mN", 1e-3},
-    {"uN", 1e-6}, {"nN", 1e-9}, {"\xc2\xb5m", 1e-6}, {"\xc2\xb5N", 1e-6},
-};
-
+// A number with an optional unit of the library's table (units.hpp). The plain product
+// number * factor (not to_si's division) keeps the files of data/ regenerating bit for bit.
 double parse_value(const std::string& text, const std::string& option, bool with_unit) {
   const char* begin = text.c_str();
   char* end = nullptr;
@@ -74,9 +70,9 @@ double parse_value(const std::string& text, const std::string& option, bool with
   const std::string unit(end);
   if (end == begin || !std::isfinite(number)) throw InputError(option + ": '" + text + "' is not a number");
   if (unit.empty()) return number;
-  const auto it = kUnits.find(unit);
-  if (!with_unit || it == kUnits.end()) throw InputError(option + ": unknown unit in '" + text + "'");
-  return number * it->second;
+  const auto info = find_unit(unit);
+  if (!with_unit || !info) throw InputError(option + ": unknown unit in '" + text + "'");
+  return number * info->to_si;
 }
 
 Material parse_material(const std::string& text, const std::string& option) {
@@ -194,70 +190,93 @@ std::string text(const char* format, double value) {
   return line;
 }
 
-int run(const std::vector<std::string>& args) {
-  const Arguments arguments(args);
-  if (arguments.help()) {
-    print_help();
-    return 0;
-  }
-  const std::string kind = arguments.get("--kind");
-  if (kind != "a,F" && kind != "delta,F") {
-    throw InputError("--kind: '" + kind + "' is not allowed (a,F or delta,F)");
-  }
-  const bool radius_data = kind == "a,F";
-  const double R = parse_value(arguments.get("--radius"), "--radius", true);
+// The options, parsed and checked.
+struct Settings {
+  std::string kind;
+  bool radius_data = true;
+  double R = 0.0;
   std::vector<Layer> layers;
-  for (const std::string& text : arguments.get_all("--layer")) layers.push_back(parse_layer(text));
-  const Material film = parse_material(arguments.get("--film"), "--film");
+  Material film;
   Substrate substrate;
+  double t = 0.0, w = 0.0, w_unload = 0.0;
+  bool branch_column = false;
+  double sigma = 0.0, max_factor = 0.0;
+  bool noise_x_relative = false;
+  double noise_x = 0.0, range_lo = 0.0, range_hi = 0.0;
+  bool pure_noise = false;
+  int points = 0;
+  unsigned long seed = 0;
+};
+
+Settings parse_settings(const Arguments& arguments) {
+  Settings s;
+  s.kind = arguments.get("--kind");
+  if (s.kind != "a,F" && s.kind != "delta,F") {
+    throw InputError("--kind: '" + s.kind + "' is not allowed (a,F or delta,F)");
+  }
+  s.radius_data = s.kind == "a,F";
+  s.R = parse_value(arguments.get("--radius"), "--radius", true);
+  for (const std::string& text : arguments.get_all("--layer")) s.layers.push_back(parse_layer(text));
+  s.film = parse_material(arguments.get("--film"), "--film");
   if (arguments.get("--substrate") == "rigid") {
-    substrate.rigid = true;
+    s.substrate.rigid = true;
   } else {
-    substrate.material = parse_material(arguments.get("--substrate"), "--substrate");
+    s.substrate.material = parse_material(arguments.get("--substrate"), "--substrate");
   }
-  double t = parse_value(arguments.get("--thickness"), "--thickness", true);
-  if (!layers.empty()) {
-    t = 0.0;  // the layers carry the lengths; T = sum h is the unit
-    for (const Layer& layer : layers) t += layer.thickness;
+  s.t = parse_value(arguments.get("--thickness"), "--thickness", true);
+  if (!s.layers.empty()) {
+    s.t = 0.0;  // the layers carry the lengths; T = sum h is the unit
+    for (const Layer& layer : s.layers) s.t += layer.thickness;
   }
-  const double w = parse_value(arguments.get("--work"), "--work", true);
+  s.w = parse_value(arguments.get("--work"), "--work", true);
   const std::string unload_text = arguments.get("--work-unload");
-  const double w_unload = unload_text.empty() ? w : parse_value(unload_text, "--work-unload", true);
+  s.w_unload = unload_text.empty() ? s.w : parse_value(unload_text, "--work-unload", true);
   const std::string branch_text = arguments.get("--branch-column");
   if (branch_text != "yes" && branch_text != "no") throw InputError("--branch-column: '" + branch_text + "' is not yes or no");
-  const bool branch_column = branch_text == "yes";
-  const double sigma = parse_value(arguments.get("--noise"), "--noise", true);
+  s.branch_column = branch_text == "yes";
+  s.sigma = parse_value(arguments.get("--noise"), "--noise", true);
   const double seed_value = parse_value(arguments.get("--seed"), "--seed", false);
   const double points_value = parse_value(arguments.get("--points"), "--points", false);
-  const double max_factor = parse_value(arguments.get("--max-over-pulloff"), "--max-over-pulloff", false);
-  if (!(sigma >= 0.0)) throw InputError("--noise: must be >= 0");
+  s.max_factor = parse_value(arguments.get("--max-over-pulloff"), "--max-over-pulloff", false);
+  if (!(s.sigma >= 0.0)) throw InputError("--noise: must be >= 0");
   if (seed_value < 0 || seed_value != std::floor(seed_value) || seed_value > 4e9) {
     throw InputError("--seed: must be an integer in [0, 4e9]");
   }
   if (points_value < 3 || points_value != std::floor(points_value) || points_value > 100000) {
     throw InputError("--points: must be an integer in [3, 100000]");
   }
-  if (!(max_factor > 1.0 && max_factor < 100.0)) throw InputError("--max-over-pulloff: must be in (1, 100)");
+  if (!(s.max_factor > 1.0 && s.max_factor < 100.0)) throw InputError("--max-over-pulloff: must be in (1, 100)");
   // Noise on the abscissa: relative ("0.3%") or absolute (with a unit).
   const std::string noise_x_text = arguments.get("--noise-x");
-  const bool noise_x_relative = !noise_x_text.empty() && noise_x_text.back() == '%';
-  const double noise_x =
-      noise_x_relative ? 0.01 * parse_value(noise_x_text.substr(0, noise_x_text.size() - 1), "--noise-x", false)
+  s.noise_x_relative = !noise_x_text.empty() && noise_x_text.back() == '%';
+  s.noise_x =
+      s.noise_x_relative ? 0.01 * parse_value(noise_x_text.substr(0, noise_x_text.size() - 1), "--noise-x", false)
                        : parse_value(noise_x_text, "--noise-x", true);
-  if (!(noise_x >= 0.0)) throw InputError("--noise-x: must be >= 0");
-  double range_lo = 0.0, range_hi = 0.0;
+  if (!(s.noise_x >= 0.0)) throw InputError("--noise-x: must be >= 0");
   if (const std::string range = arguments.get("--a-range"); !range.empty()) {
     const auto comma = range.find(',');
     if (comma == std::string::npos) throw InputError("--a-range: '" + range + "' is not a_min,a_max");
-    range_lo = parse_value(range.substr(0, comma), "--a-range", true);
-    range_hi = parse_value(range.substr(comma + 1), "--a-range", true);
-    if (!(range_lo > 0.0 && range_hi > range_lo)) throw InputError("--a-range: need 0 < a_min < a_max");
+    s.range_lo = parse_value(range.substr(0, comma), "--a-range", true);
+    s.range_hi = parse_value(range.substr(comma + 1), "--a-range", true);
+    if (!(s.range_lo > 0.0 && s.range_hi > s.range_lo)) throw InputError("--a-range: need 0 < a_min < a_max");
   }
   const std::string signal = arguments.get("--signal");
   if (signal != "model" && signal != "none") throw InputError("--signal: '" + signal + "' is not allowed (model or none)");
-  const bool pure_noise = signal == "none";
-  const int points = static_cast<int>(points_value);
-  const unsigned long seed = static_cast<unsigned long>(seed_value);
+  s.pure_noise = signal == "none";
+  s.points = static_cast<int>(points_value);
+  s.seed = static_cast<unsigned long>(seed_value);
+  return s;
+}
+
+int run(const std::vector<std::string>& args) {
+  const Arguments arguments(args);
+  if (arguments.help()) {
+    print_help();
+    return 0;
+  }
+  const Settings settings = parse_settings(arguments);
+  const auto& [kind, radius_data, R, layers, film, substrate, t, w, w_unload, branch_column, sigma, max_factor,
+               noise_x_relative, noise_x, range_lo, range_hi, pure_noise, points, seed] = settings;
   const double tolerance = 1e-9;  // the kernel table limits the solver to ~1e-10
 
   const ReducedSolver solver(layers.empty() ? Stack::film_on(film, substrate) : Stack(layers, substrate));

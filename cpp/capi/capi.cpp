@@ -14,10 +14,12 @@
 
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
+#include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
 #include "coatcontact/indenter_shape.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
+#include "coatcontact/measured_curve.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/shape_contact.hpp"
 #include "coatcontact/shape_solver.hpp"
@@ -538,6 +540,270 @@ int cc_fit_stack(const cc_stack* stack, int kind, int n, const double* x, const 
     std::copy(r.value.begin(), r.value.end(), values);
     std::copy(r.standard_error.begin(), r.standard_error.end(), standard_errors);
     if (residual_sigma != nullptr) *residual_sigma = r.residual_sigma;
+  });
+}
+
+namespace {
+
+namespace fit = coatcontact::fit;
+
+bool names_work_pair(const std::string& names) {
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = names.find(',', start);
+    const std::string name = names.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (name == "w_load" || name == "w_unload") return true;
+    if (comma == std::string::npos) return false;
+    start = comma + 1;
+  }
+}
+
+std::vector<fit::ParameterInfo> request_parameters(const coatcontact::Stack& stack, const cc_fit_request& r) {
+  const char* names = r.free_names != nullptr ? r.free_names : "w";
+  return fit::parameter_list(stack.layers().size(), names_work_pair(names), r.kind == CC_FIT_BASE_FORCE,
+                             r.model == CC_FIT_MAUGIS_DUGDALE);
+}
+
+void check_request(const cc_fit_request* r, const char* function) {
+  require(r, function, "request");
+  if (r->kind != CC_FIT_RADIUS_FORCE && r->kind != CC_FIT_PENETRATION_FORCE && r->kind != CC_FIT_BASE_FORCE) {
+    throw InputError(std::string(function) + ": kind = " + std::to_string(r->kind) +
+                     " is none of CC_FIT_RADIUS_FORCE (0), CC_FIT_PENETRATION_FORCE (1), CC_FIT_BASE_FORCE (2)");
+  }
+  if (r->model != CC_FIT_JKR && r->model != CC_FIT_MAUGIS_DUGDALE) {
+    throw InputError(std::string(function) + ": model = " + std::to_string(r->model) +
+                     " is neither CC_FIT_JKR (0) nor CC_FIT_MAUGIS_DUGDALE (1)");
+  }
+}
+
+// The data and the problem of a request (the library's fit::Problem, the C request's fields).
+std::pair<fit::Measurements, fit::Problem> request_problem(const coatcontact::Stack& stack, const cc_fit_request& r) {
+  const std::size_t count = count_of(r.n, "cc_fit_run");
+  require(r.x, "cc_fit_run", "request->x");
+  require(r.force, "cc_fit_run", "request->force");
+  fit::Measurements data;
+  data.kind = r.kind == CC_FIT_RADIUS_FORCE ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
+  data.abscissa.assign(r.x, r.x + count);
+  data.force.assign(r.force, r.force + count);
+  if (r.sigma_x != nullptr) data.sigma_abscissa.assign(r.sigma_x, r.sigma_x + count);
+  if (r.sigma_force != nullptr) data.sigma_force.assign(r.sigma_force, r.sigma_force + count);
+  const std::vector<fit::ParameterInfo> list = request_parameters(stack, r);
+  fit::Problem problem;
+  problem.hysteresis = list.front().name == "w_load";
+  problem.base_displacement = r.kind == CC_FIT_BASE_FORCE;
+  problem.maugis_dugdale = r.model == CC_FIT_MAUGIS_DUGDALE;
+  if (problem.hysteresis) {
+    if (r.unloading != nullptr) {
+      for (std::size_t i = 0; i < count; ++i) data.unloading.push_back(r.unloading[i] != 0);
+    } else {
+      data.unloading = fit::unloading_by_order(data);
+    }
+  }
+  problem.sphere_radius = r.sphere_radius;
+  if (r.shape != nullptr) problem.shape = r.shape->shape;
+  if (stack.layers().size() == 1) {
+    problem.film = stack.top();
+    problem.thickness = stack.layers().front().thickness;
+  } else {
+    problem.layers = stack.layers();
+  }
+  problem.substrate = stack.substrate();
+  problem.indenter = stack.indenter();
+  problem.spring_stiffness = r.spring_stiffness;
+  problem.lambda = r.lambda > 0.0 ? r.lambda : 1.0;
+  problem.bootstrap = r.bootstrap;
+  problem.bootstrap_seed = r.seed != 0 ? r.seed : 1;
+  const std::string names = r.free_names != nullptr ? r.free_names : "w";
+  std::string allowed;
+  for (const auto& info : list) allowed += (allowed.empty() ? "" : ", ") + info.name;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = names.find(',', start);
+    std::string name = names.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (list.size() > 1 && stack.layers().size() == 1 && name == "h1") name = "t";
+    std::size_t which = list.size();
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (list[k].name == name) which = k;
+    }
+    if (which == list.size()) {
+      throw InputError("cc_fit_run: free_names: '" + name + "' is not a parameter of this fit (allowed: " + allowed + ")");
+    }
+    problem.free_parameters.push_back(which);
+    if (which < static_cast<std::size_t>(fit::kParameterCount)) problem.free[which] = true;
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (std::find(problem.free_parameters.begin(), problem.free_parameters.end(), 0u) == problem.free_parameters.end()) {
+    problem.free[fit::kWork] = false;
+  }
+  const double estimate = fit::start_work(data, problem);
+  problem.work = r.work > 0.0 ? r.work : estimate;
+  problem.unload_work = r.unload_work > 0.0 ? r.unload_work : problem.work;
+  return {std::move(data), std::move(problem)};
+}
+
+void copy_triple(double a, double b, double c, double out[3]) {
+  out[0] = a;
+  out[1] = b;
+  out[2] = c;
+}
+
+}  // namespace
+
+int cc_fit_parameter_names(const cc_stack* stack, const cc_fit_request* request, char* names, int size, int* count) {
+  return guarded([&] {
+    require(stack, "cc_fit_parameter_names", "stack");
+    check_request(request, "cc_fit_parameter_names");
+    require(names, "cc_fit_parameter_names", "names");
+    const std::vector<fit::ParameterInfo> list = request_parameters(build(*stack), *request);
+    std::string text;
+    for (const auto& info : list) text += (text.empty() ? "" : ",") + info.name;
+    if (size < 1 || text.size() + 1 > static_cast<std::size_t>(size)) {
+      throw InputError("cc_fit_parameter_names: size = " + std::to_string(size) + " holds fewer than the " +
+                       std::to_string(text.size() + 1) + " bytes of the names");
+    }
+    std::copy(text.begin(), text.end(), names);
+    names[text.size()] = '\0';
+    if (count != nullptr) *count = static_cast<int>(list.size());
+  });
+}
+
+int cc_fit_run(const cc_stack* stack, const cc_fit_request* request, int parameter_count, double* values,
+               double* standard_errors, double* start, double* correlation, double* interval68, double* interval95,
+               double* model_force, double* model_x, cc_fit_summary* summary) {
+  return guarded([&] {
+    require(stack, "cc_fit_run", "stack");
+    check_request(request, "cc_fit_run");
+    require(values, "cc_fit_run", "values");
+    require(standard_errors, "cc_fit_run", "standard_errors");
+    const coatcontact::Stack built = build(*stack);
+    const auto [data, problem] = request_problem(built, *request);
+    const std::size_t p = request_parameters(built, *request).size();
+    if (parameter_count != static_cast<int>(p)) {
+      throw InputError("cc_fit_run: parameter_count = " + std::to_string(parameter_count) + " but this fit has " +
+                       std::to_string(p) + " parameters (cc_fit_parameter_names)");
+    }
+    const fit::Result r = fit::fit(data, problem);
+    copy_out(r.value, values);
+    copy_out(r.standard_error, standard_errors);
+    if (start != nullptr) {
+      // The hints and fixed values, in the order of the parameter vector.
+      std::vector<double> hint{problem.work};
+      const std::vector<coatcontact::Layer> layers =
+          problem.layers.empty() ? std::vector<coatcontact::Layer>{{problem.thickness, problem.film}} : problem.layers;
+      for (const auto& layer : layers) hint.push_back(layer.thickness);
+      for (const auto& layer : layers) hint.push_back(layer.material.youngs_modulus);
+      if (problem.hysteresis) hint.push_back(problem.unload_work);
+      if (problem.base_displacement) hint.push_back(problem.spring_stiffness);
+      if (problem.maugis_dugdale) hint.push_back(problem.lambda);
+      copy_out(hint, start);
+    }
+    if (correlation != nullptr) {
+      for (std::size_t i = 0; i < p; ++i) copy_out(r.correlation[i], correlation + i * p);
+    }
+    const auto intervals = [&](const std::vector<double>& low, const std::vector<double>& high, double* out) {
+      if (out == nullptr) return;
+      for (std::size_t i = 0; i < p; ++i) {
+        out[2 * i] = low.empty() ? 0.0 : low[i];
+        out[2 * i + 1] = high.empty() ? 0.0 : high[i];
+      }
+    };
+    intervals(r.interval68_low, r.interval68_high, interval68);
+    intervals(r.interval95_low, r.interval95_high, interval95);
+    if (model_force != nullptr) copy_out(r.model_force, model_force);
+    if (model_x != nullptr) copy_out(r.model_radius, model_x);
+    if (summary != nullptr) {
+      cc_fit_summary s{};
+      s.parameter_count = static_cast<int>(p);
+      s.points = static_cast<int>(r.points);
+      s.iterations = r.iterations;
+      s.weighted = r.weighted ? 1 : 0;
+      s.residual_norm = r.residual_norm;
+      s.residual_sigma = r.residual_sigma;
+      s.r_squared = r.r_squared;
+      s.chi2_per_dof = r.chi2_per_dof;
+      s.has_load_pulloff = r.has_load_pulloff ? 1 : 0;
+      copy_triple(r.load_pulloff_force, r.load_pulloff_radius, r.load_pulloff_penetration, s.load_pulloff);
+      s.has_displacement_pulloff = r.displacement_pulloff_radius > 0.0 ? 1 : 0;
+      copy_triple(r.displacement_pulloff_force, r.displacement_pulloff_radius, r.displacement_pulloff_penetration,
+                  s.displacement_pulloff);
+      s.has_spring_pulloff = r.has_spring_pulloff ? 1 : 0;
+      copy_triple(r.spring_pulloff_force, r.spring_pulloff_radius, r.spring_pulloff_penetration, s.spring_pulloff);
+      s.bootstrap_samples = r.bootstrap_samples;
+      *summary = s;
+    }
+  });
+}
+
+// ---- measured force curves ----------------------------------------------------------------
+
+struct cc_curve {
+  coatcontact::measure::MeasuredCurve curve;
+};
+
+int cc_curve_read(const char* path, const char* columns, cc_curve** curve) {
+  return guarded([&] {
+    require(path, "cc_curve_read", "path");
+    require(columns, "cc_curve_read", "columns");
+    require(curve, "cc_curve_read", "curve");
+    *curve = nullptr;
+    const auto choice = coatcontact::measure::parse_curve_columns(columns, "columns");
+    auto made = std::make_unique<cc_curve>();
+    made->curve = coatcontact::measure::read_curve_text(coatcontact::read_file_text(path),
+                                                        coatcontact::short_name(path), choice);
+    *curve = made.release();
+  });
+}
+
+void cc_curve_destroy(cc_curve* curve) { delete curve; }
+
+int cc_curve_size(const cc_curve* curve, int* rows, int* kind) {
+  return guarded([&] {
+    require(curve, "cc_curve_size", "curve");
+    if (rows != nullptr) *rows = static_cast<int>(curve->curve.force.size());
+    if (kind != nullptr) {
+      const auto a = curve->curve.abscissa;
+      *kind = a == coatcontact::measure::Abscissa::kRadius        ? CC_FIT_RADIUS_FORCE
+              : a == coatcontact::measure::Abscissa::kPenetration ? CC_FIT_PENETRATION_FORCE
+                                                                  : CC_FIT_BASE_FORCE;
+    }
+  });
+}
+
+int cc_curve_column(const cc_curve* curve, int column, double* out) {
+  return guarded([&] {
+    require(curve, "cc_curve_column", "curve");
+    require(out, "cc_curve_column", "out");
+    const coatcontact::measure::MeasuredCurve& c = curve->curve;
+    const std::vector<double>* values = nullptr;
+    std::vector<double> lines;
+    switch (column) {
+      case CC_CURVE_X: values = &c.x; break;
+      case CC_CURVE_F: values = &c.force; break;
+      case CC_CURVE_SIGMA_X: values = &c.sigma_x; break;
+      case CC_CURVE_SIGMA_F: values = &c.sigma_force; break;
+      case CC_CURVE_BRANCH: values = &c.branch; break;
+      case CC_CURVE_LINE:
+        lines.assign(c.line_numbers.begin(), c.line_numbers.end());
+        values = &lines;
+        break;
+      default: throw InputError("cc_curve_column: column = " + std::to_string(column) + " is not a cc_curve_column");
+    }
+    if (values->empty()) throw InputError("cc_curve_column: the file has no column " + std::to_string(column));
+    copy_out(*values, out);
+  });
+}
+
+int cc_curve_units(const cc_curve* curve, char* text, int size) {
+  return guarded([&] {
+    require(curve, "cc_curve_units", "curve");
+    require(text, "cc_curve_units", "text");
+    const std::string& units = curve->curve.units;
+    if (size < 1 || units.size() + 1 > static_cast<std::size_t>(size)) {
+      throw InputError("cc_curve_units: size = " + std::to_string(size) + " is too small");
+    }
+    std::copy(units.begin(), units.end(), text);
+    text[units.size()] = '\0';
   });
 }
 

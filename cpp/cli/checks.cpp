@@ -9,7 +9,6 @@
 
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
-#include "coatcontact/fit.hpp"
 
 namespace coatcontact::cli {
 namespace {
@@ -19,11 +18,6 @@ std::string show(double v) {
   s << v;
   return s.str();
 }
-
-// The fit's own ranges (fit.hpp), so a start the fit would refuse is refused before the data are read.
-constexpr const double (&kFitWork)[2] = fit::kWorkRange;
-constexpr const double (&kFitModulus)[2] = fit::kModulusRange;
-constexpr const double (&kFitAOverT)[2] = fit::kAOverTRange;
 
 // Solver evaluations per decade of a/t in the interpolation table (TableOptions::order + 1).
 constexpr double kEvaluationsPerDecade = 25.0;
@@ -115,37 +109,17 @@ std::vector<std::string> sphere_physics_warnings(const std::vector<double>& a, c
   return warnings;
 }
 
-void check_fit_start(const FitStart& s) {
+void check_fit_columns(const std::string& columns, const std::vector<std::string>& declared, int declared_line,
+                       const std::string& data_path) {
   // --columns against the file's own "# columns:" line (only names this program knows).
-  if (s.declared_columns.size() == 2) {
-    const auto known = [](const std::string& n) { return n == "a" || n == "delta" || n == "F"; };
-    if (known(s.declared_columns[0]) && known(s.declared_columns[1])) {
-      const std::string declared = s.declared_columns[0] + "," + s.declared_columns[1];
-      if (declared != s.columns) {
-        throw InputError("--columns: '" + s.columns + "' does not match the data file's column line '# columns: " +
-                         s.declared_columns[0] + " " + s.declared_columns[1] + "' (" + s.data_path + ":" +
-                         std::to_string(s.declared_line) + "); allowed: --columns " + declared);
-      }
-    }
-  }
-  if (!(s.work >= kFitWork[0] && s.work <= kFitWork[1])) {
-    throw InputError(s.work_option + ": w = " + show(s.work) + " J/m2 is outside the range the fit explores, [" +
-                     show(kFitWork[0]) + ", " + show(kFitWork[1]) + "] J/m2" +
-                     (s.work_option.rfind("--radius", 0) == 0 ? "; give a start value with --start w=..." : ""));
-  }
-  if (!(s.film_modulus >= kFitModulus[0] && s.film_modulus <= kFitModulus[1])) {
-    throw InputError(s.modulus_option + ": E1 = " + show(s.film_modulus) + " Pa is outside the range the fit explores, [" +
-                     show(kFitModulus[0]) + ", " + show(kFitModulus[1]) + "] Pa");
-  }
-  if (s.radius_data && !s.radii.empty()) {
-    const auto [lo, hi] = std::minmax_element(s.radii.begin(), s.radii.end());
-    const double a_lo = *lo / s.thickness, a_hi = *hi / s.thickness;
-    if (!(a_lo >= kFitAOverT[0] && a_hi <= kFitAOverT[1])) {
-      throw InputError(s.thickness_option + ": t = " + show(s.thickness) + " m puts the data's contact radii (" +
-                       show(*lo) + " to " + show(*hi) + " m) at a/t = " + show(a_lo) + " to " + show(a_hi) +
-                       ", outside the range [1e-05, 1e+05] the model is tabulated for; allowed: t in [" +
-                       show(*hi / kFitAOverT[1]) + ", " + show(*lo / kFitAOverT[0]) + "] m");
-    }
+  if (declared.size() != 2) return;
+  const auto known = [](const std::string& n) { return n == "a" || n == "delta" || n == "F"; };
+  if (!known(declared[0]) || !known(declared[1])) return;
+  const std::string pair = declared[0] + "," + declared[1];
+  if (pair != columns) {
+    throw InputError("--columns: '" + columns + "' does not match the data file's column line '# columns: " +
+                     declared[0] + " " + declared[1] + "' (" + short_name(data_path) + ":" + std::to_string(declared_line) +
+                     "); allowed: --columns " + pair);
   }
 }
 

@@ -41,20 +41,9 @@ std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Conta
 std::vector<std::string> sphere_physics_warnings(const std::vector<double>& a, const std::vector<double>& delta,
                                                  const std::vector<double>& force, const SphereLimits& limits);
 
-// `fit` start values against the fit's own parameter ranges (w in [1e-9, 1e4] J/m2, E1 in
-// [1e-2, 1e13] Pa, a/t of a,F data in [1e-5, 1e5]: the bounds of cpp/fit/fit.cpp), and
-// --columns against a "# columns:" line of the data file. `*_option` names where each value
-// came from ("--start w", "--work", ...).
-struct FitStart {
-  std::string columns;                      // --columns as given
-  std::vector<std::string> declared_columns;
-  int declared_line = 0;
-  std::string data_path;
-  bool radius_data = true;
-  std::vector<double> radii;                // a [m] of a,F data
-  double work = 0.0, thickness = 0.0, film_modulus = 0.0;
-  std::string work_option, thickness_option, modulus_option;
-};
-void check_fit_start(const FitStart& start);
+// `fit`: --columns against a "# columns:" line of the data file (the start values are checked by
+// the fit library, fit::check_start).
+void check_fit_columns(const std::string& columns, const std::vector<std::string>& declared, int declared_line,
+                       const std::string& data_path);
 
 }  // namespace coatcontact::cli

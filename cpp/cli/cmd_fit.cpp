@@ -26,6 +26,7 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/measured_curve.hpp"
 #include "coatcontact/si_text.hpp"
 #include "checks.hpp"
 #include "commands.hpp"
@@ -160,225 +161,42 @@ const char* key_unit(const fit::ParameterInfo& info) {
 
 // ---- columns and data ----------------------------------------------------------------------
 
-// Roles of the data columns: 0 abscissa (a or delta), 1 F, 2 sigma of the abscissa, 3 sigma_F,
-// 4 branch (1 loading, 0 unloading).
-constexpr int kRoles = 5;
-struct ColumnChoice {
-  fit::DataKind kind = fit::DataKind::kRadiusForce;
-  bool legacy = false;                          // "a,F" style: a two-column file
-  bool base = false;                            // z,F: base displacement z = delta + F/k
-  std::array<std::string, kRoles> reference{};  // "2" (1-based position) or a header name; "" unused
-};
-
-ColumnChoice parse_columns(const std::string& text) {
-  ColumnChoice c;
-  const std::map<std::string, std::pair<fit::DataKind, bool>> legacy = {
-      {"a,F", {fit::DataKind::kRadiusForce, false}},      {"F,a", {fit::DataKind::kRadiusForce, true}},
-      {"delta,F", {fit::DataKind::kPenetrationForce, false}}, {"F,delta", {fit::DataKind::kPenetrationForce, true}},
-      {"z,F", {fit::DataKind::kPenetrationForce, false}},     {"F,z", {fit::DataKind::kPenetrationForce, true}}};
-  if (const auto it = legacy.find(text); it != legacy.end()) {
-    c.kind = it->second.first;
-    c.legacy = true;
-    c.base = text.find('z') != std::string::npos;
-    c.reference = {it->second.second ? "2" : "1", it->second.second ? "1" : "2", "", "", ""};
-    return c;
-  }
-  bool has_a = false, has_delta = false, has_z = false;
-  for (const std::string& raw : split(text, ',')) {
-    const std::string item = trim(raw);
-    const auto equals = item.find('=');
-    if (equals == std::string::npos || equals == 0 || equals + 1 == item.size()) {
-      throw InputError("--columns: '" + item + "' is not allowed (a,F, delta,F, F,a, F,delta, or name=position|header "
-                       "name such as a=2,F=5,sigma_F=6)");
-    }
-    const std::string name = trim(item.substr(0, equals));
-    const std::string value = trim(item.substr(equals + 1));
-    int role;
-    if (name == "a" || name == "delta" || name == "z") {
-      role = 0;
-      (name == "a" ? has_a : name == "z" ? has_z : has_delta) = true;
-    } else if (name == "F") {
-      role = 1;
-    } else if (name == "sigma_a" || name == "sigma_delta" || name == "sigma_z") {
-      role = 2;
-    } else if (name == "sigma_F") {
-      role = 3;
-    } else if (name == "branch") {
-      role = 4;
-    } else {
-      throw InputError("--columns: '" + name + "' is not a column name (a, delta, z, F, sigma_a, sigma_delta, sigma_z, sigma_F, branch)");
-    }
-    if (!c.reference[role].empty()) throw InputError("--columns: '" + name + "' is given twice (or with its a/delta/z twin)");
-    c.reference[role] = value;
-  }
-  if (int(has_a) + int(has_delta) + int(has_z) != 1) throw InputError("--columns: name exactly one of a=, delta= and z=");
-  if (c.reference[1].empty()) throw InputError("--columns: F= is missing");
-  c.kind = has_a ? fit::DataKind::kRadiusForce : fit::DataKind::kPenetrationForce;
-  c.base = has_z;
-  return c;
-}
-
-bool is_comment_or_blank(const std::string& line) {
-  const auto first = line.find_first_not_of(" \t\r");
-  return first == std::string::npos || line[first] == '#';
-}
-
-// A unit in a header name: "a (um)", "F [mN]", "w/(mJ/m^2)" is not needed; "^2" is accepted.
-std::optional<std::string> unit_in_name(const std::string& name) {
-  for (const auto& [open, close] : {std::pair<char, char>{'(', ')'}, std::pair<char, char>{'[', ']'}}) {
-    const auto a = name.rfind(open);
-    const auto b = name.rfind(close);
-    if (a != std::string::npos && b != std::string::npos && b > a + 1 && b + 1 >= trim(name).size()) {
-      std::string unit = trim(name.substr(a + 1, b - a - 1));
-      if (const auto caret = unit.find('^'); caret != std::string::npos) unit.erase(caret, 1);
-      return unit;
-    }
-  }
-  return std::nullopt;
-}
-
-std::string bare_name(const std::string& name) {
-  const auto paren = name.find_first_of("([");
-  return trim(paren == std::string::npos ? name : name.substr(0, paren));
+// What a user whose file declares no units needs to know (appended to a refusal).
+std::string no_units_note(bool radius_data) {
+  return std::string("; the file declares no units, so its numbers were read as metres and newtons: add a line "
+                     "'# units: um mN' (or name the columns '") +
+         (radius_data ? "a" : "delta") + " (um)', 'F (mN)')";
 }
 
 struct LoadedData {
   fit::Measurements data;
-  std::vector<double> sigma_x, sigma_f;  // from columns (empty if none)
-  std::vector<double> branch;            // the branch column (empty if none)
-  bool has_units = false;                // "# units:" or units in the column names
+  std::vector<double> branch;  // the branch column (empty if none)
+  bool has_units = false;      // "# units:" or units in the column names
+  std::string units;           // as detected (measure::MeasuredCurve::units)
   std::vector<std::string> declared_columns;
   int declared_line = 0;
 };
 
-LoadedData load_data(const std::string& path, const ColumnChoice& choice, fit::DataKind kind) {
-  std::string text;
-  if (path == "-") {
-    std::ostringstream buffer;
-    buffer << std::cin.rdbuf();
-    text = buffer.str();
-  } else {
-    // The checks and messages of read_data_file (the text is needed here first).
-    struct stat info {};
-    if (stat(path.c_str(), &info) != 0) throw InputError(path + ": cannot read data file: " + std::strerror(errno));
-    if (!S_ISREG(info.st_mode)) throw InputError(path + ": not a regular file");
-    if (static_cast<unsigned long long>(info.st_size) > kMaxDataFileBytes) {
-      throw InputError(path + ": larger than " + std::to_string(kMaxDataFileBytes / (1024 * 1024)) +
-                       " MB; refusing to read it");
-    }
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw InputError(path + ": cannot open data file: " + std::strerror(errno));
-    register_input(path, "data file");
-    std::ostringstream buffer;
-    buffer << file.rdbuf();
-    text = buffer.str();
-  }
-  if (text.size() > kMaxDataFileBytes) {
-    throw InputError(std::string(path == "-" ? "stdin" : path) + ": larger than " +
-                     std::to_string(kMaxDataFileBytes / (1024 * 1024)) + " MB; refusing to read it");
-  }
-  const std::string name = path == "-" ? std::string("stdin") : path;
-  // Decimal commas ("0,12<TAB>3,4" or "0,12;3,4"): refused with a hint before the reader
-  // splits them into wrong columns.
-  std::size_t count = 0;
-  {
-    std::istringstream lines(text);
-    std::string line;
-    int number = 0;
-    while (std::getline(lines, line)) {
-      ++number;
-      if (is_comment_or_blank(line)) continue;
-      bool digit_comma_digit = false;
-      for (std::size_t k = 1; k + 1 < line.size(); ++k) {
-        if (line[k] == ',' && std::isdigit(static_cast<unsigned char>(line[k - 1])) &&
-            std::isdigit(static_cast<unsigned char>(line[k + 1]))) {
-          digit_comma_digit = true;
-        }
-      }
-      if (digit_comma_digit && line.find_first_of("\t;") != std::string::npos) {
-        throw InputError(name + ":" + std::to_string(number) + ": the numbers look like they use decimal commas ('" +
-                         trim(line).substr(0, 40) + "'); write decimal points (e.g. sed 's/,/./g' on a tab-separated "
-                         "file) and separate columns by tabs, blanks or commas");
-      }
-      if (count == 0) count = line.find(',') != std::string::npos ? split(line, ',').size() : [&] {
-          std::istringstream fields(line);
-          std::string f;
-          std::size_t k = 0;
-          while (fields >> f) ++k;
-          return k;
-        }();
-    }
-  }
-  if (count == 0) throw InputError(name + ": no data rows");
-  if (choice.legacy && count != 2) {
-    throw InputError(name + ": " + std::to_string(count) + " columns; --columns " +
-                     std::string(kind == fit::DataKind::kRadiusForce ? "a,F" : "delta,F") +
-                     " reads two-column files, name the columns of others (e.g. --columns a=2,F=5)");
-  }
-  DataTable table = read_data_text(text, name, count);
+fit::DataKind data_kind(const measure::CurveColumns& columns) {
+  return columns.abscissa == measure::Abscissa::kRadius ? fit::DataKind::kRadiusForce
+                                                        : fit::DataKind::kPenetrationForce;
+}
+
+LoadedData load_data(const std::string& path, const measure::CurveColumns& columns) {
+  const std::string name = path == "-" ? std::string("stdin") : short_name(path);
+  measure::MeasuredCurve curve = measure::read_curve_text(read_input_text(path), name, columns);
   LoadedData out;
-  out.declared_columns = table.declared_columns;
-  out.declared_line = table.declared_columns_line;
-  out.has_units = !table.units.empty();
-  // Each role's column: a 1-based position or a header name (with or without its unit).
-  std::array<int, kRoles> index{{-1, -1, -1, -1, -1}};
-  const char* role_option[kRoles] = {kind == fit::DataKind::kRadiusForce ? "a" : "delta", "F", "sigma of the abscissa", "sigma_F", "branch"};
-  for (int role = 0; role < kRoles; ++role) {
-    const std::string& ref = choice.reference[role];
-    if (ref.empty()) continue;
-    char* end = nullptr;
-    const long position = std::strtol(ref.c_str(), &end, 10);
-    if (end != ref.c_str() && *end == '\0') {
-      if (position < 1 || position > static_cast<long>(count)) {
-        throw InputError("--columns: " + std::string(role_option[role]) + "=" + ref + " but " + name + " has " +
-                         std::to_string(count) + " columns");
-      }
-      index[role] = static_cast<int>(position - 1);
-    } else {
-      for (std::size_t c = 0; c < table.column_names.size(); ++c) {
-        if (table.column_names[c] == ref || bare_name(table.column_names[c]) == ref) index[role] = static_cast<int>(c);
-      }
-      if (index[role] < 0) {
-        std::string names;
-        for (const auto& n : table.column_names) names += (names.empty() ? "'" : ", '") + n + "'";
-        throw InputError("--columns: no column named '" + ref + "' in " + name +
-                         (names.empty() ? " (it has no header line)" : " (its columns: " + names + ")"));
-      }
-    }
-  }
-  // Units: "# units:" (already applied by the reader) or from the column names.
-  const Quantity role_kind[kRoles] = {Quantity::kLength, Quantity::kForce, Quantity::kLength, Quantity::kForce};
-  for (int role = 0; role < kRoles; ++role) {
-    if (index[role] < 0 || role == 4) continue;  // the branch column is a pure number
-    const std::size_t c = static_cast<std::size_t>(index[role]);
-    std::optional<std::string> unit;
-    if (!table.units.empty()) {
-      unit = table.units[c];
-    } else if (c < table.column_names.size()) {
-      unit = unit_in_name(table.column_names[c]);
-      if (unit) {
-        const auto info = find_unit(*unit);
-        if (!info) throw InputError(name + ": unknown unit '" + *unit + "' in the column name '" + table.column_names[c] + "'");
-        for (double& v : table.columns[c]) v = to_si(v, info->to_si);
-        out.has_units = true;
-      }
-    }
-    if (unit) {
-      const auto info = find_unit(*unit);
-      if (!info || info->kind != role_kind[role]) {
-        throw InputError(name + ": column " + std::to_string(c + 1) + " (" + role_option[role] + ") has the unit '" +
-                         *unit + "', not a " + quantity_name(role_kind[role]) + " (allowed: " +
-                         unit_list(role_kind[role]) + ")");
-      }
-    }
-  }
-  out.data.kind = kind;
-  out.data.abscissa = table.columns[static_cast<std::size_t>(index[0])];
-  out.data.force = table.columns[static_cast<std::size_t>(index[1])];
-  out.data.line_numbers = table.line_numbers;
-  if (index[2] >= 0) out.data.sigma_abscissa = table.columns[static_cast<std::size_t>(index[2])];
-  if (index[3] >= 0) out.data.sigma_force = table.columns[static_cast<std::size_t>(index[3])];
-  if (index[4] >= 0) out.branch = table.columns[static_cast<std::size_t>(index[4])];
+  out.data.kind = data_kind(columns);
+  out.data.abscissa = std::move(curve.x);
+  out.data.force = std::move(curve.force);
+  out.data.line_numbers = std::move(curve.line_numbers);
+  out.data.sigma_abscissa = std::move(curve.sigma_x);
+  out.data.sigma_force = std::move(curve.sigma_force);
+  out.branch = std::move(curve.branch);
+  out.has_units = curve.has_units;
+  out.units = curve.units;
+  out.declared_columns = std::move(curve.declared_columns);
+  out.declared_line = curve.declared_line;
   return out;
 }
 
@@ -401,7 +219,7 @@ double parse_stiffness(const std::string& text) {
 }
 
 // --sigma a=0.3%,F=10uN: per-column uncertainties, relative (%) or absolute (with units).
-void apply_sigma_option(const std::optional<std::string>& text, fit::Measurements& data, const ColumnChoice& choice) {
+void apply_sigma_option(const std::optional<std::string>& text, fit::Measurements& data, const measure::CurveColumns& choice) {
   if (!text) return;
   const bool radius_data = data.kind == fit::DataKind::kRadiusForce;
   for (const std::string& raw : split(*text, ',')) {
@@ -412,7 +230,7 @@ void apply_sigma_option(const std::optional<std::string>& text, fit::Measurement
     }
     const std::string name = trim(item.substr(0, equals));
     const std::string value = trim(item.substr(equals + 1));
-    const std::string x = radius_data ? "a" : choice.base ? "z" : "delta";
+    const std::string x = radius_data ? "a" : choice.abscissa == measure::Abscissa::kBaseDisplacement ? "z" : "delta";
     const bool abscissa = name == x;
     if (!abscissa && name != "F") {
       throw InputError("--sigma: '" + name + "' is not a column of these data (allowed: " + x + ", F)");
@@ -507,6 +325,695 @@ std::string render_fit_plot(const std::string& table, const std::string& curve, 
   return picture;
 }
 
+// Everything one `fit` run reads, fits and writes, filled in order by the steps below.
+struct FitRun {
+  FitRun(const Args& a, const Arguments& parsed) : args(a), arguments(parsed) {}
+  const Args& args;
+  const Arguments& arguments;
+  std::string path, columns, x_name, output_path;
+  measure::CurveColumns choice;
+  bool base_data = false, radius_data = true, stack_given = false, hysteresis = false, md = false;
+  fit::DataKind kind = fit::DataKind::kRadiusForce;
+  fit::Problem problem;
+  std::size_t layer_count = 1, parameter_count = 0, unload_index = 0;
+  std::vector<std::string> free_items;
+  std::vector<fit::ParameterInfo> parameters;
+  std::vector<bool> free;
+  std::vector<std::optional<double>> start;  // --start, in the order of the parameter vector
+  std::optional<double> thickness, work;     // --thickness, --work
+  fit::Branch branch = fit::Branch::kAll;
+  LoadedData loaded;
+  fit::Measurements all, data;  // the file's rows, and the selected branch
+  std::string branch_source;
+  std::vector<double> start_values;  // hints and fixed values, in the order of the parameter vector
+  fit::Result result;
+  std::vector<std::pair<std::string, std::string>> header;
+  std::vector<std::string> out_columns;
+  std::optional<std::string> curve_path, plot_path;
+  std::ostringstream curve_text, table_text;
+  std::string picture;
+};
+
+
+// The data kind, the indenter, the stack, the model (--model, --lambda, --spring) and the
+// run options (--bootstrap, --seed, --plot).
+void parse_model(FitRun& r) {
+  // ---- columns ----
+  r.columns = r.arguments.require("--columns");
+  r.choice = measure::parse_curve_columns(r.columns);
+  r.base_data = r.choice.abscissa == measure::Abscissa::kBaseDisplacement;
+  r.kind = data_kind(r.choice);
+  r.radius_data = r.kind == fit::DataKind::kRadiusForce;
+  r.x_name = r.radius_data ? "a" : r.base_data ? "z" : "delta";
+
+  // ---- physical parameters ----
+  if (const auto text = r.arguments.get("--shape")) {
+    if (r.arguments.has("--radius")) {
+      throw InputError("--shape and --radius exclude each other (a sphere is --radius R or --shape sphere:R)");
+    }
+    if (r.arguments.has("--curve") || r.arguments.has("--plot")) {
+      throw InputError("--shape: --curve and --plot draw the sphere's interpolated curve only; the fitted table "
+                       "(--output) has the model at every data point");
+    }
+    std::string profile_end;
+    r.problem.shape = parse_shape(*text, profile_end);
+  } else {
+    if (!r.arguments.has("--radius")) throw InputError("missing required option --radius R (or --shape SPEC) (see --help)");
+    r.problem.sphere_radius = parse_quantity(r.arguments.require("--radius"), Quantity::kLength, "--radius");
+  }
+  // --film (one film of thickness t) or --layer, repeated (a stack whose layers carry their
+  // thicknesses); parse_stack refuses both together and checks the constants.
+  r.stack_given = r.arguments.has("--layer");
+  {
+    const Stack stack = parse_stack(r.arguments);
+    if (r.stack_given) {
+      if (r.arguments.has("--thickness")) {
+        throw InputError("--thickness: cannot be combined with --layer (the layers carry their thicknesses; "
+                         "fit one with --free h1..hN)");
+      }
+      r.problem.layers = stack.layers();
+    } else {
+      r.problem.film = stack.top();
+    }
+    r.problem.substrate = stack.substrate();
+    r.problem.indenter = stack.indenter();
+  }
+  r.layer_count = r.stack_given ? r.problem.layers.size() : 1;
+  // Loading and unloading with their own adhesion energy (JKR hysteresis): named in --free.
+  r.free_items = split(r.arguments.get("--free").value_or("w"), ',');
+  r.hysteresis = std::any_of(r.free_items.begin(), r.free_items.end(), [](const std::string& item) {
+    return trim(item) == "w_load" || trim(item) == "w_unload";
+  });
+  // --model md: the Maugis-Dugdale zone (lambda last in the parameter vector; --lambda its value).
+  r.md = false;
+  if (const auto text = r.arguments.get("--model")) {
+    if (*text == "md") {
+      r.md = true;
+    } else if (*text != "jkr") {
+      throw InputError("--model: '" + *text + "' is not allowed (jkr, the default, or md: Maugis-Dugdale)");
+    }
+  }
+  if (r.md) {
+    r.problem.maugis_dugdale = true;
+    if (!r.radius_data) throw InputError("--model md: fits a,F data only (--columns a,F)");
+    if (r.problem.shape) throw InputError("--model md: the Maugis-Dugdale zone is fitted for the sphere only, not --shape");
+    if (r.hysteresis) throw InputError("--model md: one adhesion energy only (not w_load,w_unload)");
+    if (!r.problem.indenter.rigid) throw InputError("--model md: a rigid sphere only (not --indenter)");
+    if (r.arguments.has("--spring")) throw InputError("--model md: no spring pull-off (leave out --spring)");
+    if (const auto text = r.arguments.get("--lambda")) r.problem.lambda = parse_lambda(*text, "--lambda");
+  } else if (r.arguments.has("--lambda")) {
+    throw InputError("--lambda: only with --model md");
+  }
+  r.parameters = fit::parameter_list(r.layer_count, r.hysteresis, r.base_data, r.md);
+  r.parameter_count = r.parameters.size();
+  r.unload_index = fit::unload_work_index(r.layer_count);
+  r.problem.hysteresis = r.hysteresis;
+  if (const auto text = r.arguments.get("--spring")) r.problem.spring_stiffness = parse_stiffness(*text);
+  // z,F: the base (piezo) displacement z = delta + F/k; k is a parameter (--spring: its value).
+  r.problem.base_displacement = r.base_data;
+  if (r.base_data) {
+    if (r.problem.shape) {
+      throw InputError("--columns z,F: base-displacement data are fitted with the sphere only (--radius), not --shape");
+    }
+    if (!r.arguments.has("--spring")) {
+      throw InputError("--columns z,F: give the spring stiffness with --spring k (its value when fixed, the start of "
+                       "the search when --free names k)");
+    }
+  }
+  if (const auto text = r.arguments.get("--bootstrap")) {
+    char* end = nullptr;
+    const long n = std::strtol(text->c_str(), &end, 10);
+    if (end == text->c_str() || *end != '\0' || n < 10 || n > 100000) {
+      throw InputError("--bootstrap: '" + *text + "' is not an integer in [10, 100000]");
+    }
+    r.problem.bootstrap = static_cast<int>(n);
+  }
+  if (const auto text = r.arguments.get("--seed")) {
+    char* end = nullptr;
+    const long long n = std::strtoll(text->c_str(), &end, 10);
+    if (end == text->c_str() || *end != '\0' || n < 0 || n > 4000000000LL) {
+      throw InputError("--seed: '" + *text + "' is not an integer in [0, 4e9]");
+    }
+    if (!r.arguments.get("--bootstrap")) throw InputError("--seed: only used with --bootstrap");
+    r.problem.bootstrap_seed = static_cast<unsigned long>(n);
+  }
+  if (const auto text = r.arguments.get("--plot")) {
+    const auto dot = text->rfind('.');
+    const std::string extension = dot == std::string::npos ? "" : text->substr(dot + 1);
+    if (extension != "png" && extension != "pdf") {
+      throw InputError("--plot: '" + *text + "' must end in .png or .pdf (the format follows the extension)");
+    }
+  }
+}
+
+// --free, --start, --thickness, --work, --branch.
+void parse_parameters(FitRun& r) {
+  r.free.assign(r.parameter_count, false);
+  for (const std::string& item : r.free_items) {
+    const int which = parameter_index(trim(item), "--free", r.layer_count, r.stack_given, r.hysteresis, r.base_data, r.md);
+    if (r.free[which]) throw InputError("--free: '" + trim(item) + "' is named twice");
+    r.free[which] = true;
+  }
+  if (r.hysteresis && !(r.free[fit::kWork] && r.free[r.unload_index])) {
+    throw InputError("--free: name both w_load and w_unload (the two branches' adhesion energies are fitted together)");
+  }
+  for (std::size_t which = 0; which < r.parameter_count; ++which) {
+    if ((r.stack_given || r.hysteresis || r.base_data || r.md) && r.free[which]) r.problem.free_parameters.push_back(which);
+    if (!r.stack_given && !r.hysteresis && !r.base_data && !r.md) r.problem.free[which] = r.free[which];
+  }
+  r.start.assign(r.parameter_count, std::nullopt);
+  if (const auto text = r.arguments.get("--start")) {
+    for (const std::string& item : split(*text, ',')) {
+      const auto equals = item.find('=');
+      if (equals == std::string::npos) {
+        throw InputError("--start: '" + trim(item) + "' is not name=value (e.g. w=40mJ/m2,t=50um)");
+      }
+      const std::string name = trim(item.substr(0, equals));
+      const int which = parameter_index(name, "--start", r.layer_count, r.stack_given, r.hysteresis, r.base_data, r.md);
+      if (!r.free[which]) {
+        throw InputError("--start: " + name + " is not free (add it to --free, or fix it with its own option)");
+      }
+      if (r.start[which]) throw InputError("--start: " + name + " is given twice");
+      if (r.parameters[which].kind == fit::ParameterKind::kLambda) {
+        r.start[which] = parse_lambda(item.substr(equals + 1), "--start lambda");
+      } else if (r.parameters[which].kind == fit::ParameterKind::kSpring) {
+        try {
+          r.start[which] = parse_stiffness(item.substr(equals + 1));
+        } catch (const InputError& error) {
+          std::string message = error.what();
+          if (message.rfind("--spring: ", 0) == 0) message = message.substr(10);
+          throw InputError("--start k: " + message);
+        }
+      } else {
+        r.start[which] = parse_quantity(item.substr(equals + 1), parameter_kind(r.parameters[which]), "--start " + name);
+      }
+    }
+  }
+  if (r.base_data && r.start[r.parameters.size() - 1]) r.problem.spring_stiffness = *r.start[r.parameters.size() - 1];
+  if (r.md && r.start[r.parameters.size() - 1]) r.problem.lambda = *r.start[r.parameters.size() - 1];
+  if (const auto text = r.arguments.get("--thickness")) r.thickness = parse_quantity(*text, Quantity::kLength, "--thickness");
+  if (const auto text = r.arguments.get("--work")) r.work = parse_quantity(*text, Quantity::kEnergy, "--work");
+  r.branch = fit::Branch::kAll;
+  if (const auto text = r.arguments.get("--branch"); text && r.hysteresis && *text != "both") {
+    throw InputError("--branch: '" + *text + "' keeps one branch, but w_load,w_unload need both (leave --branch out)");
+  }
+  if (r.choice.reference[4].size() > 0 && !r.hysteresis) {
+    throw InputError("--columns: branch=" + r.choice.reference[4] +
+                     " is read only when the branches have their own adhesion energies (--free w_load,w_unload)");
+  }
+  if (const auto text = r.arguments.get("--branch")) {
+    if (*text == "load") {
+      r.branch = fit::Branch::kLoading;
+    } else if (*text == "unload") {
+      r.branch = fit::Branch::kUnloading;
+    } else if (*text != "both") {
+      throw InputError("--branch: '" + *text + "' is not allowed (load, unload or both)");
+    }
+  }
+}
+
+// The data file through the measure floor, the checks that need --radius or --shape, --sigma,
+// the branch of each row.
+void read_data(FitRun& r) {
+  // ---- data ----
+  check_output_paths({{"--output", r.arguments.get("--output").value_or("")},
+                      {"--curve", r.arguments.get("--curve").value_or("")},
+                      {"--plot", r.arguments.get("--plot").value_or("")}});
+  r.loaded = load_data(r.path, r.choice);
+  r.all = r.loaded.data;
+  for (std::size_t i = 0; i < r.all.size(); ++i) {
+    if (r.radius_data && !(r.all.abscissa[i] > 0.0)) {
+      throw InputError(short_name(r.path) + ":" + std::to_string(r.all.line_numbers[i]) +
+                       ": contact radius must be > 0 (got " + short_number(r.all.abscissa[i]) +
+                       "); points out of contact are not on the equilibrium curve, remove them");
+    }
+    // A contact radius at or above R is not a sphere contact: almost always forgotten units.
+    if (!r.problem.shape && r.radius_data && r.all.abscissa[i] >= r.problem.sphere_radius) {
+      throw InputError(short_name(r.path) + ":" + std::to_string(r.all.line_numbers[i]) + ": contact radius a = " +
+                       short_number(r.all.abscissa[i]) + " m is not below the sphere radius --radius " +
+                       short_number(r.problem.sphere_radius) + " m" +
+                       (r.loaded.has_units ? std::string("")
+                                         : "; the file declares no units, so its numbers were read as metres and "
+                                           "newtons: add a line '# units: um mN' (or name the columns 'a (um)', 'F (mN)')"));
+    }
+  }
+  if (r.problem.shape && r.radius_data) {
+    for (std::size_t i = 0; i < r.all.size(); ++i) {
+      if (r.all.abscissa[i] > r.problem.shape->max_contact_radius()) {
+        throw InputError(short_name(r.path) + ":" + std::to_string(r.all.line_numbers[i]) + ": contact radius a = " +
+                         short_number(r.all.abscissa[i]) + " m exceeds the largest radius of --shape (" +
+                         r.problem.shape->description() + ")");
+      }
+    }
+  }
+  if (!r.problem.shape && !r.radius_data && !r.loaded.has_units) {
+    double largest = 0.0;
+    for (double d : r.all.abscissa) largest = std::max(largest, std::fabs(d));
+    if (largest >= r.problem.sphere_radius) {
+      throw InputError(short_name(r.path) + ": penetrations up to " + short_number(largest) + " m exceed the sphere radius --radius " +
+                       short_number(r.problem.sphere_radius) + " m; the file declares no units, so its numbers were "
+                       "read as metres and newtons: add a line '# units: um mN' (or name the columns 'delta (um)', 'F (mN)')");
+    }
+  }
+  apply_sigma_option(r.arguments.get("--sigma"), r.all, r.choice);
+  // The branch of each row: the branch column (1 loading, 0 unloading), else the row order.
+  if (r.hysteresis) {
+    if (!r.loaded.branch.empty()) {
+      r.all.unloading.assign(r.all.size(), false);
+      for (std::size_t i = 0; i < r.all.size(); ++i) {
+        const double b = r.loaded.branch[i];
+        if (b != 0.0 && b != 1.0) {
+          throw InputError(short_name(r.path) + ":" + std::to_string(r.all.line_numbers[i]) + ": branch = " + short_number(b) +
+                           " is not allowed (1 for a loading row, 0 for an unloading row)");
+        }
+        r.all.unloading[i] = b == 0.0;
+      }
+      r.branch_source = "the branch column (1 loading, 0 unloading)";
+    } else {
+      r.all.unloading = fit::unloading_by_order(r.all);
+      r.branch_source = std::string("the row order (loading up to the largest ") + (r.radius_data ? "a" : "delta") +
+                      ", unloading after it)";
+    }
+  }
+  r.data = fit::select_branch(r.all, r.branch);
+}
+
+// The hint (free) or value (fixed) of every parameter; the library checks their ranges.
+void set_start_values(FitRun& r) {
+  // ---- start values / fixed values ----
+  if (r.stack_given) {
+    // The layers' given values are the hints of the free ones (or --start) and fix the others.
+    for (std::size_t which = 0; which < r.parameter_count; ++which) {
+      if (!r.start[which] || which == fit::kWork) continue;
+      const fit::ParameterInfo& info = r.parameters[which];
+      Layer& layer = r.problem.layers[info.layer];
+      (info.kind == fit::ParameterKind::kThickness ? layer.thickness : layer.material.youngs_modulus) = *r.start[which];
+    }
+  } else if (r.free[fit::kThickness]) {
+    // Without a hint the search needs none: t ~ the middle of the contact radii (a/t ~ 1).
+    double middle = 0.0;
+    for (double x : r.data.abscissa) middle = std::max(middle, std::fabs(x));
+    if (!r.radius_data && !r.problem.shape) middle = std::sqrt(r.problem.sphere_radius * middle);
+    r.problem.thickness = r.start[fit::kThickness].value_or(r.thickness.value_or(0.3 * middle));
+  } else {
+    if (!r.thickness) throw InputError("t is fixed: give it with --thickness (or add t to --free)");
+    r.problem.thickness = *r.thickness;
+  }
+  if (r.free[fit::kWork]) {
+    if (r.start[fit::kWork]) {
+      r.problem.work = *r.start[fit::kWork];
+    } else if (r.work) {
+      r.problem.work = *r.work;
+    } else {
+      // A shape has no sphere radius for the JKR estimate: the search finds w on its own.
+      r.problem.work = fit::start_work(r.data, r.problem);
+    }
+    if (r.hysteresis) {
+      r.problem.unload_work = r.start[r.unload_index].value_or(
+          r.work.value_or(fit::start_work(r.data, r.problem)));
+    }
+  } else {
+    if (!r.work) throw InputError("w is fixed: give it with --work (or add w to --free)");
+    r.problem.work = *r.work;
+  }
+  if (!r.stack_given && r.free[fit::kFilmModulus] && r.start[fit::kFilmModulus]) {
+    r.problem.film.youngs_modulus = *r.start[fit::kFilmModulus];
+  }
+  // The hint (free) or fixed value of every parameter, in the order of the parameter vector.
+  r.start_values = {r.problem.work};
+  if (r.stack_given) {
+    for (const Layer& layer : r.problem.layers) r.start_values.push_back(layer.thickness);
+    for (const Layer& layer : r.problem.layers) r.start_values.push_back(layer.material.youngs_modulus);
+  } else {
+    r.start_values.push_back(r.problem.thickness);
+    r.start_values.push_back(r.problem.film.youngs_modulus);
+  }
+  if (r.hysteresis) r.start_values.push_back(r.problem.unload_work);
+  if (r.base_data) r.start_values.push_back(r.problem.spring_stiffness);  // k, last
+  if (r.md) r.start_values.push_back(r.problem.lambda);                     // lambda, last
+  const auto source_option = [&](std::size_t which) -> std::string {
+    if (r.start[which]) return "--start " + r.parameters[which].name;
+    return r.stack_given ? "--layer" : which == fit::kThickness ? "--thickness" : "--film";
+  };
+  check_fit_columns(r.choice.two_column ? r.columns : std::string("a,F"), r.loaded.declared_columns, r.loaded.declared_line, r.path);
+  // The library's ranges of the start values; the message names the option that set each.
+  try {
+    fit::check_start(r.data, r.problem);
+  } catch (const fit::StartError& error) {
+    const std::size_t which = error.parameter();
+    const bool estimated_work = which == fit::kWork && r.free[fit::kWork] && !r.start[fit::kWork] && !r.work;
+    std::string option;
+    if (which == fit::kWork) {
+      option = !r.free[fit::kWork] ? "--work"
+               : r.start[fit::kWork] ? "--start w"
+               : r.work ? "--work"
+                      : "--radius (with the data's most tensile force, the start value of w)";
+    } else if (r.hysteresis && which == r.unload_index) {
+      option = r.start[r.unload_index] ? "--start w_unload" : "--work";
+    } else if (which == fit::thickness_index(0)) {
+      option = r.layer_count == 1 ? source_option(fit::kThickness) : "--layer (their total thickness)";
+    } else {
+      option = source_option(which);
+    }
+    throw InputError(option + ": " + error.what() + (estimated_work ? "; give a start value with --start w=..." : "") +
+                     (estimated_work && !r.loaded.has_units ? no_units_note(r.radius_data) : ""));
+  }
+}
+
+// The one library call.
+void run_library_fit(FitRun& r) {
+  r.result = [&] {
+    try {
+      return fit::fit(r.data, r.problem);
+    } catch (const NumericalError& error) {
+      // An unweighted fit assumes an exact abscissa; scatter in a (or delta) near the steep
+      // part of the curve then drags w to the edge of its range. Say so and how to fix it.
+      const std::string what = error.what();
+      const bool runaway = what.find("the data do not determine w") != std::string::npos;
+      if (!runaway || !r.data.sigma_abscissa.empty() || !r.data.sigma_force.empty()) throw;
+      throw NumericalError(what + ". No uncertainties were given: if " + r.x_name +
+                           " is noisy, that noise may dominate an unweighted fit in force; give both, e.g. --sigma " +
+                           r.x_name + "=2%,F=1uN (or sigma columns), to weight each point by its effective variance");
+    }
+  }();
+}
+
+// The header of the table and the curve.
+void make_header(FitRun& r) {
+  // ---- output ----
+  std::string command = "coatcontact fit";
+  for (const auto& a : r.args) command += " " + a;
+  r.header.emplace_back("command", command);
+  r.header.emplace_back("data", r.path);
+  r.header.emplace_back("columns_in_file", r.columns);
+  r.header.emplace_back("data_units", r.loaded.units);
+  r.header.emplace_back("branch", r.branch == fit::Branch::kAll ? "both" : r.branch == fit::Branch::kLoading ? "load" : "unload");
+  if (r.hysteresis) {
+    const auto unloading_rows = std::count(r.data.unloading.begin(), r.data.unloading.end(), true);
+    r.header.emplace_back("branches", std::to_string(r.data.size() - static_cast<std::size_t>(unloading_rows)) + " loading rows (w_load), " +
+                                        std::to_string(unloading_rows) + " unloading rows (w_unload), from " + r.branch_source +
+                                        "; pull-offs predicted with w_unload");
+  }
+  r.header.emplace_back("points", std::to_string(r.result.points) + " (of " + std::to_string(r.all.size()) + " in the file)");
+  if (r.problem.shape) {
+    r.header.emplace_back("indenter_shape", r.problem.shape->description());
+  } else {
+    r.header.emplace_back("sphere_radius_m", number(r.problem.sphere_radius));
+  }
+  if (r.stack_given) {
+    std::string layers_text;
+    for (std::size_t i = 0; i < r.layer_count; ++i) {
+      const Layer& layer = r.problem.layers[i];
+      const std::string k = std::to_string(i + 1);
+      layers_text += (i == 0 ? "" : "; ") + std::string("h") + k + " = " + number(layer.thickness) + " m" +
+                     (r.free[fit::thickness_index(i)] ? " (free)" : "") + ", E" + k + " = " +
+                     number(layer.material.youngs_modulus) + " Pa" +
+                     (r.free[fit::modulus_index(i, r.layer_count)] ? " (free)" : "") + ", nu" + k + " = " +
+                     number(layer.material.poisson_ratio) + (layer.slip_below ? ", slip below" : "");
+    }
+    r.header.emplace_back("layers", std::to_string(r.layer_count) + " (top first; given values, hints of the free ones): " +
+                                      layers_text);
+  } else {
+    r.header.emplace_back("film_nu1", number(r.problem.film.poisson_ratio));
+  }
+  r.header.emplace_back("substrate", r.problem.substrate.rigid ? std::string("rigid")
+                                                           : "E0 = " + number(r.problem.substrate.material.youngs_modulus) +
+                                                                 " Pa, nu0 = " + number(r.problem.substrate.material.poisson_ratio));
+  std::string free_names;
+  for (std::size_t which = 0; which < r.parameter_count; ++which) {
+    if (!r.free[which]) continue;
+    free_names += (free_names.empty() ? "" : ",") + r.parameters[which].name;
+  }
+  r.header.emplace_back("free", free_names);
+  for (std::size_t which = 0; which < r.parameter_count; ++which) {
+    const std::string& name = r.parameters[which].name;
+    r.header.emplace_back(name + "_" + key_unit(r.parameters[which]), number(r.result.value[which]));
+    if (r.free[which]) {
+      r.header.emplace_back(name + "_stderr_" + key_unit(r.parameters[which]), number(r.result.standard_error[which]));
+      r.header.emplace_back(name + "_hint_" + key_unit(r.parameters[which]), number(r.start_values[which]));
+    } else {
+      r.header.emplace_back(name + "_status", "fixed");
+    }
+  }
+  for (std::size_t a = 0; a < r.parameter_count; ++a) {
+    for (std::size_t b = a + 1; b < r.parameter_count; ++b) {
+      if (r.free[a] && r.free[b]) {
+        r.header.emplace_back("correlation_" + r.parameters[a].name + "_" + r.parameters[b].name,
+                            number(r.result.correlation[a][b]));
+      }
+    }
+  }
+  if (r.problem.bootstrap > 0) {
+    for (std::size_t which = 0; which < r.parameter_count; ++which) {
+      if (!r.free[which]) continue;
+      const std::string name = r.parameters[which].name + "_";
+      r.header.emplace_back(name + "interval68_" + key_unit(r.parameters[which]),
+                          number(r.result.interval68_low[which]) + " " + number(r.result.interval68_high[which]));
+      r.header.emplace_back(name + "interval95_" + key_unit(r.parameters[which]),
+                          number(r.result.interval95_low[which]) + " " + number(r.result.interval95_high[which]));
+    }
+    r.header.emplace_back("bootstrap", std::to_string(r.result.bootstrap_samples) + " of " + std::to_string(r.problem.bootstrap) +
+                                         " residual resamples refitted (seed " + std::to_string(r.problem.bootstrap_seed) +
+                                         "), percentile intervals");
+  }
+  r.header.emplace_back("indenter", r.problem.indenter.rigid ? std::string("rigid")
+                                                         : "E2 = " + number(r.problem.indenter.material.youngs_modulus) +
+                                                               " Pa, nu2 = " + number(r.problem.indenter.material.poisson_ratio));
+  if (r.result.weighted) {
+    r.header.emplace_back("weights", "effective variance sigma_F^2 + (dF/d" + r.x_name + ")^2 sigma_" + r.x_name +
+                                       "^2 (dF/d" + r.x_name + " along the fitted curve)");
+    r.header.emplace_back("chi2", number(r.result.chi2));
+    r.header.emplace_back("chi2_per_dof", number(r.result.chi2_per_dof));
+    if (r.result.chi2_per_dof > 2.0 || r.result.chi2_per_dof < 0.5) {
+      r.header.emplace_back("warning", "chi2/(n-p) = " + short_number(r.result.chi2_per_dof) +
+                                         " is far from 1: the stated uncertainties do not match the scatter, and "
+                                         "the standard errors (which trust them) are off by sqrt(chi2/(n-p))");
+    }
+  } else {
+    r.header.emplace_back("weights", "none: residuals in F, noise level from the scatter; the errors assume exact " +
+                                       r.x_name + " (give --sigma " + r.x_name + "=..,F=.. if " + r.x_name + " is measured)");
+  }
+  r.header.emplace_back("global_search", std::to_string(r.result.search_evaluations) + " model evaluations over log-parameters, " +
+                                          short_number(r.result.search_seconds) + " s");
+  if (r.result.second_minimum) {
+    std::string text;
+    for (std::size_t which = 0; which < r.parameter_count; ++which) {
+      if (!r.free[which]) continue;
+      text += std::string(text.empty() ? "" : ", ") + r.parameters[which].name + " = " +
+              short_number(r.result.second_value[which]) + " " + r.parameters[which].unit;
+    }
+    r.header.emplace_back("second_minimum", text + " (cost " + short_number(r.result.second_cost_ratio) + " x the best)");
+  }
+  if (r.problem.spring_stiffness > 0.0) {
+    if (r.result.has_spring_pulloff) {
+      r.header.emplace_back("spring_pulloff_F_N", number(r.result.spring_pulloff_force));
+      r.header.emplace_back("spring_pulloff_a_m", number(r.result.spring_pulloff_radius));
+      r.header.emplace_back("spring_pulloff_delta_m", number(r.result.spring_pulloff_penetration));
+    } else {
+      r.header.emplace_back("spring_pulloff", "not found inside the scanned range of the fitted model");
+    }
+  }
+  if (r.result.has_load_pulloff) {
+    r.header.emplace_back("load_pulloff_F_N", number(r.result.load_pulloff_force));
+    r.header.emplace_back("load_pulloff_a_m", number(r.result.load_pulloff_radius));
+    r.header.emplace_back("load_pulloff_delta_m", number(r.result.load_pulloff_penetration));
+  }
+  r.header.emplace_back("residual_norm_N", number(r.result.residual_norm));
+  r.header.emplace_back("residual_sigma_N", number(r.result.residual_sigma));
+  r.header.emplace_back("r_squared", number(r.result.r_squared));
+  r.header.emplace_back("iterations", std::to_string(r.result.iterations));
+  r.header.emplace_back("converged", r.result.converged ? "yes (" + r.result.stop_reason + ")" : "no");
+  r.header.emplace_back("interpolation_error_N", number(r.result.interpolation_error));
+  r.header.emplace_back("interpolation_error_over_sigma", number(r.result.interpolation_error / r.result.residual_sigma));
+  r.header.emplace_back("solver_tolerance", number(r.result.solver_tolerance));
+  r.header.emplace_back("solver_calls", std::to_string(r.result.solver_calls));
+  r.header.emplace_back("fit_seconds", short_number(r.result.seconds));
+  if (r.result.displacement_pulloff_radius > 0.0) {
+    r.header.emplace_back("displacement_pulloff_a_m", number(r.result.displacement_pulloff_radius));
+    r.header.emplace_back("displacement_pulloff_delta_m", number(r.result.displacement_pulloff_penetration));
+    r.header.emplace_back("displacement_pulloff_F_N", number(r.result.displacement_pulloff_force));
+  }
+  std::size_t clamped = 0;
+  for (bool c : r.result.clamped) clamped += c ? 1 : 0;
+  if (!r.radius_data) {
+    r.header.emplace_back("model_branch", "a >= a_c (first minimum of delta(a)); points with delta < delta(a_c): "
+                                        + std::to_string(clamped) + " (taken at a_c)");
+  }
+  r.out_columns = 
+      r.radius_data ? std::vector<std::string>{"line", "a_m", "F_data_N", "F_model_N", "residual_N", "sigma_eff_N"}
+                  : std::vector<std::string>{"line", "delta_m", "F_data_N", "a_model_m", "F_model_N", "residual_N",
+                                             "clamped", "sigma_eff_N"};
+  if (r.hysteresis) r.out_columns.push_back("branch");  // 1 loading, 0 unloading
+}
+
+// The fitted curve (for --curve and --plot); every file is produced in memory first (the plot by
+// gnuplot) so a failure leaves no half-written set of files.
+void make_curve(FitRun& r) {
+  // The curve (for --curve and --plot), then the table; every file is produced in memory
+  // first (the plot by gnuplot) so a failure leaves no half-written set of files.
+  r.curve_path = r.arguments.get("--curve");
+  r.plot_path = r.arguments.get("--plot");
+  const std::vector<std::string> curve_columns{"a_m", "delta_m", "F_N"};
+  if (r.curve_path || r.plot_path) {
+    fit::Problem fitted = r.problem;
+    // With two adhesion energies the curve is the unloading one (the pull-offs' w).
+    fitted.work = r.result.value[r.hysteresis ? r.unload_index : static_cast<std::size_t>(fit::kWork)];
+    fitted.hysteresis = false;
+    if (r.stack_given) {
+      for (std::size_t i = 0; i < r.layer_count; ++i) {
+        fitted.layers[i].thickness = r.result.value[fit::thickness_index(i)];
+        fitted.layers[i].material.youngs_modulus = r.result.value[fit::modulus_index(i, r.layer_count)];
+      }
+    } else {
+      fitted.thickness = r.result.value[fit::kThickness];
+      fitted.film.youngs_modulus = r.result.value[fit::kFilmModulus];
+    }
+    double a_lo = *std::min_element(r.result.model_radius.begin(), r.result.model_radius.end());
+    const double a_hi = 1.05 * *std::max_element(r.result.model_radius.begin(), r.result.model_radius.end());
+    if (r.result.displacement_pulloff_radius > 0.0) a_lo = std::min(a_lo, r.result.displacement_pulloff_radius);
+    if (r.result.has_load_pulloff) a_lo = std::min(a_lo, r.result.load_pulloff_radius);
+    a_lo *= r.radius_data ? 0.9 : 0.3;
+    const std::vector<fit::CurvePoint> curve = fit::model_curve(fitted, a_lo, a_hi, 200);
+    auto curve_header = r.header;
+    curve_header.emplace_back("curve", std::string("fitted model, 200 points log-spaced in a") + (r.hysteresis ? " (with w_unload)" : ""));
+    write_header(r.curve_text, curve_header, curve_columns);
+    for (const auto& p : curve) write_row(r.curve_text, {p.radius, p.penetration, p.force}, curve_columns);
+  }
+}
+
+// The data table with the model at every point.
+void make_table(FitRun& r) {
+  write_header(r.table_text, r.header, r.out_columns);
+  for (std::size_t i = 0; i < r.data.size(); ++i) {
+    const double line = r.data.line_numbers.empty() ? static_cast<double>(i + 1) : r.data.line_numbers[i];
+    // sigma_eff: the weight's sigma, or the residual standard deviation of an unweighted fit.
+    const double sigma = r.result.weighted ? r.result.sigma_effective[i] : r.result.residual_sigma;
+    std::vector<double> row =
+        r.radius_data ? std::vector<double>{line, r.data.abscissa[i], r.data.force[i], r.result.model_force[i], r.result.residual[i], sigma}
+                    : std::vector<double>{line, r.data.abscissa[i], r.data.force[i], r.result.model_radius[i], r.result.model_force[i],
+                                          r.result.residual[i], r.result.clamped[i] ? 1.0 : 0.0, sigma};
+    if (r.hysteresis) row.push_back(r.data.unloading[i] ? 0.0 : 1.0);
+    write_row(r.table_text, row, r.out_columns);
+  }
+}
+
+// --plot: gnuplot on the table and the curve.
+void make_picture(FitRun& r) {
+  if (r.plot_path) {
+    const double nan = std::nan("");
+    const double lp_x = r.result.has_load_pulloff ? (r.radius_data ? r.result.load_pulloff_radius : r.result.load_pulloff_penetration) : nan;
+    const double dp_x = r.result.displacement_pulloff_radius > 0.0
+                            ? (r.radius_data ? r.result.displacement_pulloff_radius : r.result.displacement_pulloff_penetration)
+                            : nan;
+    std::string estimates;
+    for (std::size_t which = 0; which < r.parameter_count; ++which) {
+      if (!r.free[which]) continue;
+      const std::string unit = r.parameters[which].kind == fit::ParameterKind::kWork ? "J/m^2" : r.parameters[which].unit;
+      estimates += std::string(estimates.empty() ? "" : ",  ") + r.parameters[which].name + " = " +
+                   si_text_with_error(r.result.value[which], r.result.standard_error[which], unit);
+    }
+    const std::string fit_label =
+        "fit: " + estimates + "   (n = " + std::to_string(r.result.points) +
+        (r.result.weighted ? ", χ^2/(n-p) = " + si_text(r.result.chi2_per_dof, "") : ", s = " + si_text(r.result.residual_sigma, "N")) +
+        (r.result.has_load_pulloff ? ", pull-off " + si_text(r.result.load_pulloff_force, "N") : "") + ")";
+    std::string substrate = r.problem.substrate.rigid ? std::string("rigid substrate")
+                                                      : "E0 = " + si_text(r.problem.substrate.material.youngs_modulus, "Pa") +
+                                                            ", ν0 = " + short_number(r.problem.substrate.material.poisson_ratio);
+    const std::string name = r.path == "-" ? std::string("stdin") : r.path.substr(r.path.find_last_of('/') + 1);
+    std::string coating;
+    if (r.stack_given) {
+      coating = std::to_string(r.layer_count) + " layers (";
+      for (std::size_t i = 0; i < r.layer_count; ++i) {
+        coating += (i == 0 ? "" : "; ") + si_text(r.result.value[fit::thickness_index(i)], "m") + ", " +
+                   si_text(r.result.value[fit::modulus_index(i, r.layer_count)], "Pa");
+      }
+      coating += ")";
+    } else {
+      coating = "film E1 = " + si_text(r.result.value[fit::kFilmModulus], "Pa") + " (ν1 = " +
+                short_number(r.problem.film.poisson_ratio) + "), t = " + si_text(r.result.value[fit::kThickness], "m");
+    }
+    const std::string title = name + ": R = " + si_text(r.problem.sphere_radius, "m") + ", " + coating + ", " + substrate;
+    r.picture = render_fit_plot(r.table_text.str(), r.curve_text.str(), r.x_name, title, fit_label,
+                              r.plot_path->substr(r.plot_path->rfind('.') + 1), lp_x, r.result.load_pulloff_force, dp_x,
+                              r.result.displacement_pulloff_force);
+  }
+}
+
+// Every output, all or none.
+void write_outputs(FitRun& r) {
+  r.output_path = r.arguments.get("--output").value_or("");
+  std::unique_ptr<Output> plot_output;
+  if (r.plot_path) {
+    plot_output = std::make_unique<Output>(*r.plot_path, "--plot");
+    plot_output->stream().write(r.picture.data(), static_cast<std::streamsize>(r.picture.size()));
+  }
+  std::unique_ptr<Output> curve_output;
+  if (r.curve_path) {
+    curve_output = std::make_unique<Output>(*r.curve_path, "--curve");
+    curve_output->stream() << r.curve_text.str();
+  }
+  Output output(r.output_path);
+  output.stream() << r.table_text.str();
+  if (plot_output) plot_output->commit();
+  if (curve_output) curve_output->commit();
+  output.commit();
+}
+
+// The table went to a file: a short human-readable summary on stdout.
+void print_summary(FitRun& r) {
+  if (!r.output_path.empty()) {
+    // The table went to a file: a short human-readable summary on stdout.
+    std::cout << "coatcontact fit: " << r.result.points << " points (" << r.x_name << ",F), "
+              << r.result.free_count << " free parameter" << (r.result.free_count == 1 ? "" : "s") << ", converged ("
+              << r.result.stop_reason << ") after " << r.result.iterations << " iterations\n";
+    std::size_t width = 0;
+    for (const auto& info : r.parameters) width = std::max(width, info.name.size());
+    for (std::size_t which = 0; which < r.parameter_count; ++which) {
+      std::cout << "  " << r.parameters[which].name << std::string(width - r.parameters[which].name.size(), ' ') << " = "
+                << short_number(r.result.value[which]) << " " << r.parameters[which].unit;
+      if (r.free[which]) {
+        std::cout << " +- " << short_number(r.result.standard_error[which]) << " (standard error)";
+        if (r.problem.bootstrap > 0) {
+          std::cout << ", bootstrap 68 % [" << short_number(r.result.interval68_low[which]) << ", "
+                    << short_number(r.result.interval68_high[which]) << "]";
+        }
+      } else {
+        std::cout << " (fixed)";
+      }
+      std::cout << "\n";
+    }
+    std::cout << "  residual norm " << short_number(r.result.residual_norm) << " N, sigma "
+              << short_number(r.result.residual_sigma) << " N, R^2 " << short_number(r.result.r_squared)
+              << ", interpolation error " << order_of_magnitude_bound(r.result.interpolation_error / r.result.residual_sigma)
+              << " sigma\n";
+    if (r.result.weighted) {
+      std::cout << "  weighted by sigma_F^2 + (dF/d" << r.x_name << ")^2 sigma_" << r.x_name
+                << "^2: chi2/(n-p) = " << short_number(r.result.chi2_per_dof) << "\n";
+    } else {
+      std::cout << "  unweighted: the errors assume exact " << r.x_name << " (give --sigma if it is measured)\n";
+    }
+    if (r.result.has_load_pulloff) {
+      std::cout << "  predicted pull-off: " << short_number(r.result.load_pulloff_force) << " N under load control";
+      if (r.result.displacement_pulloff_radius > 0.0) {
+        std::cout << ", " << short_number(r.result.displacement_pulloff_force) << " N under displacement control";
+      }
+      std::cout << "\n";
+    }
+    if (r.result.has_spring_pulloff) {
+      std::cout << "  predicted pull-off through the spring k = "
+                << short_number(r.base_data ? r.result.value.back() : r.problem.spring_stiffness)
+                << " N/m: " << short_number(r.result.spring_pulloff_force) << " N\n";
+    }
+    if (r.result.second_minimum) {
+      std::cout << "  note: a second minimum at";
+      for (std::size_t which = 0; which < r.parameter_count; ++which) {
+        if (r.free[which]) std::cout << " " << r.parameters[which].name << " = " << short_number(r.result.second_value[which]);
+      }
+      std::cout << " (cost " << short_number(r.result.second_cost_ratio) << " x the best)\n";
+    }
+  }
+}
+
 int run_fit_body(const Args& args) {
   const auto& spec = fit_options();
   Arguments arguments(args, spec, 1);
@@ -546,634 +1053,19 @@ int run_fit_body(const Args& args) {
   if (arguments.positionals().size() != 1) {
     throw InputError("give exactly one data file (coatcontact fit DATA --columns ...)");
   }
-  const std::string path = arguments.positionals()[0];
-
-  // ---- columns ----
-  const std::string columns = arguments.require("--columns");
-  const ColumnChoice choice = parse_columns(columns);
-  const fit::DataKind kind = choice.kind;
-  const bool radius_data = kind == fit::DataKind::kRadiusForce;
-  const std::string x_name = radius_data ? "a" : choice.base ? "z" : "delta";
-
-  // ---- physical parameters ----
-  fit::Problem problem;
-  if (const auto text = arguments.get("--shape")) {
-    if (arguments.has("--radius")) {
-      throw InputError("--shape and --radius exclude each other (a sphere is --radius R or --shape sphere:R)");
-    }
-    if (arguments.has("--curve") || arguments.has("--plot")) {
-      throw InputError("--shape: --curve and --plot draw the sphere's interpolated curve only; the fitted table "
-                       "(--output) has the model at every data point");
-    }
-    std::string profile_end;
-    problem.shape = parse_shape(*text, profile_end);
-  } else {
-    if (!arguments.has("--radius")) throw InputError("missing required option --radius R (or --shape SPEC) (see --help)");
-    problem.sphere_radius = parse_quantity(arguments.require("--radius"), Quantity::kLength, "--radius");
-  }
-  // --film (one film of thickness t) or --layer, repeated (a stack whose layers carry their
-  // thicknesses); parse_stack refuses both together and checks the constants.
-  const bool stack_given = arguments.has("--layer");
-  {
-    const Stack stack = parse_stack(arguments);
-    if (stack_given) {
-      if (arguments.has("--thickness")) {
-        throw InputError("--thickness: cannot be combined with --layer (the layers carry their thicknesses; "
-                         "fit one with --free h1..hN)");
-      }
-      problem.layers = stack.layers();
-    } else {
-      problem.film = stack.top();
-    }
-    problem.substrate = stack.substrate();
-    problem.indenter = stack.indenter();
-  }
-  const std::size_t layer_count = stack_given ? problem.layers.size() : 1;
-  // Loading and unloading with their own adhesion energy (JKR hysteresis): named in --free.
-  const std::vector<std::string> free_items = split(arguments.get("--free").value_or("w"), ',');
-  const bool hysteresis = std::any_of(free_items.begin(), free_items.end(), [](const std::string& item) {
-    return trim(item) == "w_load" || trim(item) == "w_unload";
-  });
-  // --model md: the Maugis-Dugdale zone (lambda last in the parameter vector; --lambda its value).
-  bool md = false;
-  if (const auto text = arguments.get("--model")) {
-    if (*text == "md") {
-      md = true;
-    } else if (*text != "jkr") {
-      throw InputError("--model: '" + *text + "' is not allowed (jkr, the default, or md: Maugis-Dugdale)");
-    }
-  }
-  if (md) {
-    problem.maugis_dugdale = true;
-    if (!radius_data) throw InputError("--model md: fits a,F data only (--columns a,F)");
-    if (problem.shape) throw InputError("--model md: the Maugis-Dugdale zone is fitted for the sphere only, not --shape");
-    if (hysteresis) throw InputError("--model md: one adhesion energy only (not w_load,w_unload)");
-    if (!problem.indenter.rigid) throw InputError("--model md: a rigid sphere only (not --indenter)");
-    if (arguments.has("--spring")) throw InputError("--model md: no spring pull-off (leave out --spring)");
-    if (const auto text = arguments.get("--lambda")) problem.lambda = parse_lambda(*text, "--lambda");
-  } else if (arguments.has("--lambda")) {
-    throw InputError("--lambda: only with --model md");
-  }
-  const std::vector<fit::ParameterInfo> parameters = fit::parameter_list(layer_count, hysteresis, choice.base, md);
-  const std::size_t parameter_count = parameters.size();
-  const std::size_t unload_index = fit::unload_work_index(layer_count);
-  problem.hysteresis = hysteresis;
-  if (const auto text = arguments.get("--spring")) problem.spring_stiffness = parse_stiffness(*text);
-  // z,F: the base (piezo) displacement z = delta + F/k; k is a parameter (--spring: its value).
-  problem.base_displacement = choice.base;
-  if (choice.base) {
-    if (problem.shape) {
-      throw InputError("--columns z,F: base-displacement data are fitted with the sphere only (--radius), not --shape");
-    }
-    if (!arguments.has("--spring")) {
-      throw InputError("--columns z,F: give the spring stiffness with --spring k (its value when fixed, the start of "
-                       "the search when --free names k)");
-    }
-  }
-  if (const auto text = arguments.get("--bootstrap")) {
-    char* end = nullptr;
-    const long n = std::strtol(text->c_str(), &end, 10);
-    if (end == text->c_str() || *end != '\0' || n < 10 || n > 100000) {
-      throw InputError("--bootstrap: '" + *text + "' is not an integer in [10, 100000]");
-    }
-    problem.bootstrap = static_cast<int>(n);
-  }
-  if (const auto text = arguments.get("--seed")) {
-    char* end = nullptr;
-    const long long n = std::strtoll(text->c_str(), &end, 10);
-    if (end == text->c_str() || *end != '\0' || n < 0 || n > 4000000000LL) {
-      throw InputError("--seed: '" + *text + "' is not an integer in [0, 4e9]");
-    }
-    if (!arguments.get("--bootstrap")) throw InputError("--seed: only used with --bootstrap");
-    problem.bootstrap_seed = static_cast<unsigned long>(n);
-  }
-  if (const auto text = arguments.get("--plot")) {
-    const auto dot = text->rfind('.');
-    const std::string extension = dot == std::string::npos ? "" : text->substr(dot + 1);
-    if (extension != "png" && extension != "pdf") {
-      throw InputError("--plot: '" + *text + "' must end in .png or .pdf (the format follows the extension)");
-    }
-  }
-  std::vector<bool> free(parameter_count, false);
-  for (const std::string& item : free_items) {
-    const int which = parameter_index(trim(item), "--free", layer_count, stack_given, hysteresis, choice.base, md);
-    if (free[which]) throw InputError("--free: '" + trim(item) + "' is named twice");
-    free[which] = true;
-  }
-  if (hysteresis && !(free[fit::kWork] && free[unload_index])) {
-    throw InputError("--free: name both w_load and w_unload (the two branches' adhesion energies are fitted together)");
-  }
-  for (std::size_t which = 0; which < parameter_count; ++which) {
-    if ((stack_given || hysteresis || choice.base || md) && free[which]) problem.free_parameters.push_back(which);
-    if (!stack_given && !hysteresis && !choice.base && !md) problem.free[which] = free[which];
-  }
-  std::vector<std::optional<double>> start(parameter_count);
-  if (const auto text = arguments.get("--start")) {
-    for (const std::string& item : split(*text, ',')) {
-      const auto equals = item.find('=');
-      if (equals == std::string::npos) {
-        throw InputError("--start: '" + trim(item) + "' is not name=value (e.g. w=40mJ/m2,t=50um)");
-      }
-      const std::string name = trim(item.substr(0, equals));
-      const int which = parameter_index(name, "--start", layer_count, stack_given, hysteresis, choice.base, md);
-      if (!free[which]) {
-        throw InputError("--start: " + name + " is not free (add it to --free, or fix it with its own option)");
-      }
-      if (start[which]) throw InputError("--start: " + name + " is given twice");
-      if (parameters[which].kind == fit::ParameterKind::kLambda) {
-        start[which] = parse_lambda(item.substr(equals + 1), "--start lambda");
-      } else if (parameters[which].kind == fit::ParameterKind::kSpring) {
-        try {
-          start[which] = parse_stiffness(item.substr(equals + 1));
-        } catch (const InputError& error) {
-          std::string message = error.what();
-          if (message.rfind("--spring: ", 0) == 0) message = message.substr(10);
-          throw InputError("--start k: " + message);
-        }
-      } else {
-        start[which] = parse_quantity(item.substr(equals + 1), parameter_kind(parameters[which]), "--start " + name);
-      }
-    }
-  }
-  if (choice.base && start[parameters.size() - 1]) problem.spring_stiffness = *start[parameters.size() - 1];
-  if (md && start[parameters.size() - 1]) problem.lambda = *start[parameters.size() - 1];
-  std::optional<double> thickness;
-  std::optional<double> work;
-  if (const auto text = arguments.get("--thickness")) thickness = parse_quantity(*text, Quantity::kLength, "--thickness");
-  if (const auto text = arguments.get("--work")) work = parse_quantity(*text, Quantity::kEnergy, "--work");
-  fit::Branch branch = fit::Branch::kAll;
-  if (const auto text = arguments.get("--branch"); text && hysteresis && *text != "both") {
-    throw InputError("--branch: '" + *text + "' keeps one branch, but w_load,w_unload need both (leave --branch out)");
-  }
-  if (choice.reference[4].size() > 0 && !hysteresis) {
-    throw InputError("--columns: branch=" + choice.reference[4] +
-                     " is read only when the branches have their own adhesion energies (--free w_load,w_unload)");
-  }
-  if (const auto text = arguments.get("--branch")) {
-    if (*text == "load") {
-      branch = fit::Branch::kLoading;
-    } else if (*text == "unload") {
-      branch = fit::Branch::kUnloading;
-    } else if (*text != "both") {
-      throw InputError("--branch: '" + *text + "' is not allowed (load, unload or both)");
-    }
-  }
-
-  // ---- data ----
-  check_output_paths({{"--output", arguments.get("--output").value_or("")},
-                      {"--curve", arguments.get("--curve").value_or("")},
-                      {"--plot", arguments.get("--plot").value_or("")}});
-  const LoadedData loaded = load_data(path, choice, kind);
-  fit::Measurements all = loaded.data;
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    if (radius_data && !(all.abscissa[i] > 0.0)) {
-      throw InputError(path + ":" + std::to_string(all.line_numbers[i]) +
-                       ": contact radius must be > 0 (got " + short_number(all.abscissa[i]) +
-                       "); points out of contact are not on the equilibrium curve, remove them");
-    }
-    // A contact radius at or above R is not a sphere contact: almost always forgotten units.
-    if (!problem.shape && radius_data && all.abscissa[i] >= problem.sphere_radius) {
-      throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
-                       short_number(all.abscissa[i]) + " m is not below the sphere radius --radius " +
-                       short_number(problem.sphere_radius) + " m" +
-                       (loaded.has_units ? std::string("")
-                                         : "; the file declares no units, so its numbers were read as metres and "
-                                           "newtons: add a line '# units: um mN' (or name the columns 'a (um)', 'F (mN)')"));
-    }
-  }
-  if (problem.shape && radius_data) {
-    for (std::size_t i = 0; i < all.size(); ++i) {
-      if (all.abscissa[i] > problem.shape->max_contact_radius()) {
-        throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": contact radius a = " +
-                         short_number(all.abscissa[i]) + " m exceeds the largest radius of --shape (" +
-                         problem.shape->description() + ")");
-      }
-    }
-  }
-  if (!problem.shape && !radius_data && !loaded.has_units) {
-    double largest = 0.0;
-    for (double d : all.abscissa) largest = std::max(largest, std::fabs(d));
-    if (largest >= problem.sphere_radius) {
-      throw InputError(path + ": penetrations up to " + short_number(largest) + " m exceed the sphere radius --radius " +
-                       short_number(problem.sphere_radius) + " m; the file declares no units, so its numbers were "
-                       "read as metres and newtons: add a line '# units: um mN' (or name the columns 'delta (um)', 'F (mN)')");
-    }
-  }
-  apply_sigma_option(arguments.get("--sigma"), all, choice);
-  // The branch of each row: the branch column (1 loading, 0 unloading), else the row order.
-  std::string branch_source;
-  if (hysteresis) {
-    if (!loaded.branch.empty()) {
-      all.unloading.assign(all.size(), false);
-      for (std::size_t i = 0; i < all.size(); ++i) {
-        const double b = loaded.branch[i];
-        if (b != 0.0 && b != 1.0) {
-          throw InputError(path + ":" + std::to_string(all.line_numbers[i]) + ": branch = " + short_number(b) +
-                           " is not allowed (1 for a loading row, 0 for an unloading row)");
-        }
-        all.unloading[i] = b == 0.0;
-      }
-      branch_source = "the branch column (1 loading, 0 unloading)";
-    } else {
-      all.unloading = fit::unloading_by_order(all);
-      branch_source = std::string("the row order (loading up to the largest ") + (radius_data ? "a" : "delta") +
-                      ", unloading after it)";
-    }
-  }
-  const fit::Measurements data = fit::select_branch(all, branch);
-
-  // ---- start values / fixed values ----
-  if (stack_given) {
-    // The layers' given values are the hints of the free ones (or --start) and fix the others.
-    for (std::size_t which = 0; which < parameter_count; ++which) {
-      if (!start[which] || which == fit::kWork) continue;
-      const fit::ParameterInfo& info = parameters[which];
-      Layer& layer = problem.layers[info.layer];
-      (info.kind == fit::ParameterKind::kThickness ? layer.thickness : layer.material.youngs_modulus) = *start[which];
-    }
-  } else if (free[fit::kThickness]) {
-    // Without a hint the search needs none: t ~ the middle of the contact radii (a/t ~ 1).
-    double middle = 0.0;
-    for (double x : data.abscissa) middle = std::max(middle, std::fabs(x));
-    if (!radius_data && !problem.shape) middle = std::sqrt(problem.sphere_radius * middle);
-    problem.thickness = start[fit::kThickness].value_or(thickness.value_or(0.3 * middle));
-  } else {
-    if (!thickness) throw InputError("t is fixed: give it with --thickness (or add t to --free)");
-    problem.thickness = *thickness;
-  }
-  if (free[fit::kWork]) {
-    if (start[fit::kWork]) {
-      problem.work = *start[fit::kWork];
-    } else if (work) {
-      problem.work = *work;
-    } else {
-      // A shape has no sphere radius for the JKR estimate: the search finds w on its own.
-      problem.work = problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius);
-    }
-    if (hysteresis) {
-      problem.unload_work = start[unload_index].value_or(
-          work.value_or(problem.shape ? 0.05 : fit::jkr_work_estimate(data, problem.sphere_radius)));
-    }
-  } else {
-    if (!work) throw InputError("w is fixed: give it with --work (or add w to --free)");
-    problem.work = *work;
-  }
-  if (!stack_given && free[fit::kFilmModulus] && start[fit::kFilmModulus]) {
-    problem.film.youngs_modulus = *start[fit::kFilmModulus];
-  }
-  // The hint (free) or fixed value of every parameter, in the order of the parameter vector.
-  std::vector<double> start_values{problem.work};
-  if (stack_given) {
-    for (const Layer& layer : problem.layers) start_values.push_back(layer.thickness);
-    for (const Layer& layer : problem.layers) start_values.push_back(layer.material.youngs_modulus);
-  } else {
-    start_values.push_back(problem.thickness);
-    start_values.push_back(problem.film.youngs_modulus);
-  }
-  if (hysteresis) {
-    start_values.push_back(problem.unload_work);
-    if (!(problem.unload_work >= fit::kWorkRange[0] && problem.unload_work <= fit::kWorkRange[1])) {
-      throw InputError(std::string(start[unload_index] ? "--start w_unload" : "--work") + ": w_unload = " +
-                       short_number(problem.unload_work) + " J/m2 is outside the range the fit explores, [" +
-                       short_number(fit::kWorkRange[0]) + ", " + short_number(fit::kWorkRange[1]) + "] J/m2");
-    }
-  }
-  if (choice.base) start_values.push_back(problem.spring_stiffness);  // k, last
-  if (md) start_values.push_back(problem.lambda);                     // lambda, last
-  const auto source_option = [&](std::size_t which) -> std::string {
-    if (start[which]) return "--start " + parameters[which].name;
-    return stack_given ? "--layer" : which == fit::kThickness ? "--thickness" : "--film";
-  };
-  double total_thickness = 0.0;
-  for (std::size_t i = 0; i < layer_count; ++i) total_thickness += start_values[fit::thickness_index(i)];
-  check_fit_start({choice.legacy ? columns : std::string("a,F"), loaded.declared_columns, loaded.declared_line, path, radius_data, data.abscissa,
-                   problem.work, total_thickness, start_values[fit::modulus_index(0, layer_count)],
-                   free[fit::kWork] ? (start[fit::kWork] ? "--start w" : work ? "--work" : "--radius (with the data's most tensile force, the start value of w)") : "--work",
-                   layer_count == 1 ? source_option(fit::kThickness) : "--layer (their total thickness)",
-                   source_option(fit::modulus_index(0, layer_count))});
-  for (std::size_t i = 1; i < layer_count; ++i) {
-    const std::size_t which = fit::modulus_index(i, layer_count);
-    if (!(start_values[which] >= fit::kModulusRange[0] && start_values[which] <= fit::kModulusRange[1])) {
-      throw InputError(source_option(which) + ": " + parameters[which].name + " = " + short_number(start_values[which]) +
-                       " Pa is outside the range the fit explores, [" + short_number(fit::kModulusRange[0]) + ", " +
-                       short_number(fit::kModulusRange[1]) + "] Pa");
-    }
-  }
-
-  const fit::Result result = [&] {
-    try {
-      return fit::fit(data, problem);
-    } catch (const NumericalError& error) {
-      // An unweighted fit assumes an exact abscissa; scatter in a (or delta) near the steep
-      // part of the curve then drags w to the edge of its range. Say so and how to fix it.
-      const std::string what = error.what();
-      const bool runaway = what.find("the data do not determine w") != std::string::npos;
-      if (!runaway || !data.sigma_abscissa.empty() || !data.sigma_force.empty()) throw;
-      throw NumericalError(what + ". No uncertainties were given: if " + x_name +
-                           " is noisy, that noise may dominate an unweighted fit in force; give both, e.g. --sigma " +
-                           x_name + "=2%,F=1uN (or sigma columns), to weight each point by its effective variance");
-    }
-  }();
-
-  // ---- output ----
-  std::vector<std::pair<std::string, std::string>> header;
-  std::string command = "coatcontact fit";
-  for (const auto& a : args) command += " " + a;
-  header.emplace_back("command", command);
-  header.emplace_back("data", path);
-  header.emplace_back("columns_in_file", columns);
-  header.emplace_back("branch", branch == fit::Branch::kAll ? "both" : branch == fit::Branch::kLoading ? "load" : "unload");
-  if (hysteresis) {
-    const auto unloading_rows = std::count(data.unloading.begin(), data.unloading.end(), true);
-    header.emplace_back("branches", std::to_string(data.size() - static_cast<std::size_t>(unloading_rows)) + " loading rows (w_load), " +
-                                        std::to_string(unloading_rows) + " unloading rows (w_unload), from " + branch_source +
-                                        "; pull-offs predicted with w_unload");
-  }
-  header.emplace_back("points", std::to_string(result.points) + " (of " + std::to_string(all.size()) + " in the file)");
-  if (problem.shape) {
-    header.emplace_back("indenter_shape", problem.shape->description());
-  } else {
-    header.emplace_back("sphere_radius_m", number(problem.sphere_radius));
-  }
-  if (stack_given) {
-    std::string layers_text;
-    for (std::size_t i = 0; i < layer_count; ++i) {
-      const Layer& layer = problem.layers[i];
-      const std::string k = std::to_string(i + 1);
-      layers_text += (i == 0 ? "" : "; ") + std::string("h") + k + " = " + number(layer.thickness) + " m" +
-                     (free[fit::thickness_index(i)] ? " (free)" : "") + ", E" + k + " = " +
-                     number(layer.material.youngs_modulus) + " Pa" +
-                     (free[fit::modulus_index(i, layer_count)] ? " (free)" : "") + ", nu" + k + " = " +
-                     number(layer.material.poisson_ratio) + (layer.slip_below ? ", slip below" : "");
-    }
-    header.emplace_back("layers", std::to_string(layer_count) + " (top first; given values, hints of the free ones): " +
-                                      layers_text);
-  } else {
-    header.emplace_back("film_nu1", number(problem.film.poisson_ratio));
-  }
-  header.emplace_back("substrate", problem.substrate.rigid ? std::string("rigid")
-                                                           : "E0 = " + number(problem.substrate.material.youngs_modulus) +
-                                                                 " Pa, nu0 = " + number(problem.substrate.material.poisson_ratio));
-  std::string free_names;
-  for (std::size_t which = 0; which < parameter_count; ++which) {
-    if (!free[which]) continue;
-    free_names += (free_names.empty() ? "" : ",") + parameters[which].name;
-  }
-  header.emplace_back("free", free_names);
-  for (std::size_t which = 0; which < parameter_count; ++which) {
-    const std::string& name = parameters[which].name;
-    header.emplace_back(name + "_" + key_unit(parameters[which]), number(result.value[which]));
-    if (free[which]) {
-      header.emplace_back(name + "_stderr_" + key_unit(parameters[which]), number(result.standard_error[which]));
-      header.emplace_back(name + "_hint_" + key_unit(parameters[which]), number(start_values[which]));
-    } else {
-      header.emplace_back(name + "_status", "fixed");
-    }
-  }
-  for (std::size_t a = 0; a < parameter_count; ++a) {
-    for (std::size_t b = a + 1; b < parameter_count; ++b) {
-      if (free[a] && free[b]) {
-        header.emplace_back("correlation_" + parameters[a].name + "_" + parameters[b].name,
-                            number(result.correlation[a][b]));
-      }
-    }
-  }
-  if (problem.bootstrap > 0) {
-    for (std::size_t which = 0; which < parameter_count; ++which) {
-      if (!free[which]) continue;
-      const std::string name = parameters[which].name + "_";
-      header.emplace_back(name + "interval68_" + key_unit(parameters[which]),
-                          number(result.interval68_low[which]) + " " + number(result.interval68_high[which]));
-      header.emplace_back(name + "interval95_" + key_unit(parameters[which]),
-                          number(result.interval95_low[which]) + " " + number(result.interval95_high[which]));
-    }
-    header.emplace_back("bootstrap", std::to_string(result.bootstrap_samples) + " of " + std::to_string(problem.bootstrap) +
-                                         " residual resamples refitted (seed " + std::to_string(problem.bootstrap_seed) +
-                                         "), percentile intervals");
-  }
-  header.emplace_back("indenter", problem.indenter.rigid ? std::string("rigid")
-                                                         : "E2 = " + number(problem.indenter.material.youngs_modulus) +
-                                                               " Pa, nu2 = " + number(problem.indenter.material.poisson_ratio));
-  if (result.weighted) {
-    header.emplace_back("weights", "effective variance sigma_F^2 + (dF/d" + x_name + ")^2 sigma_" + x_name +
-                                       "^2 (dF/d" + x_name + " along the fitted curve)");
-    header.emplace_back("chi2", number(result.chi2));
-    header.emplace_back("chi2_per_dof", number(result.chi2_per_dof));
-    if (result.chi2_per_dof > 2.0 || result.chi2_per_dof < 0.5) {
-      header.emplace_back("warning", "chi2/(n-p) = " + short_number(result.chi2_per_dof) +
-                                         " is far from 1: the stated uncertainties do not match the scatter, and "
-                                         "the standard errors (which trust them) are off by sqrt(chi2/(n-p))");
-    }
-  } else {
-    header.emplace_back("weights", "none: residuals in F, noise level from the scatter; the errors assume exact " +
-                                       x_name + " (give --sigma " + x_name + "=..,F=.. if " + x_name + " is measured)");
-  }
-  header.emplace_back("global_search", std::to_string(result.search_evaluations) + " model evaluations over log-parameters, " +
-                                          short_number(result.search_seconds) + " s");
-  if (result.second_minimum) {
-    std::string text;
-    for (std::size_t which = 0; which < parameter_count; ++which) {
-      if (!free[which]) continue;
-      text += std::string(text.empty() ? "" : ", ") + parameters[which].name + " = " +
-              short_number(result.second_value[which]) + " " + parameters[which].unit;
-    }
-    header.emplace_back("second_minimum", text + " (cost " + short_number(result.second_cost_ratio) + " x the best)");
-  }
-  if (problem.spring_stiffness > 0.0) {
-    if (result.has_spring_pulloff) {
-      header.emplace_back("spring_pulloff_F_N", number(result.spring_pulloff_force));
-      header.emplace_back("spring_pulloff_a_m", number(result.spring_pulloff_radius));
-      header.emplace_back("spring_pulloff_delta_m", number(result.spring_pulloff_penetration));
-    } else {
-      header.emplace_back("spring_pulloff", "not found inside the scanned range of the fitted model");
-    }
-  }
-  if (result.has_load_pulloff) {
-    header.emplace_back("load_pulloff_F_N", number(result.load_pulloff_force));
-    header.emplace_back("load_pulloff_a_m", number(result.load_pulloff_radius));
-    header.emplace_back("load_pulloff_delta_m", number(result.load_pulloff_penetration));
-  }
-  header.emplace_back("residual_norm_N", number(result.residual_norm));
-  header.emplace_back("residual_sigma_N", number(result.residual_sigma));
-  header.emplace_back("r_squared", number(result.r_squared));
-  header.emplace_back("iterations", std::to_string(result.iterations));
-  header.emplace_back("converged", result.converged ? "yes (" + result.stop_reason + ")" : "no");
-  header.emplace_back("interpolation_error_N", number(result.interpolation_error));
-  header.emplace_back("interpolation_error_over_sigma", number(result.interpolation_error / result.residual_sigma));
-  header.emplace_back("solver_tolerance", number(result.solver_tolerance));
-  header.emplace_back("solver_calls", std::to_string(result.solver_calls));
-  header.emplace_back("fit_seconds", short_number(result.seconds));
-  if (result.displacement_pulloff_radius > 0.0) {
-    header.emplace_back("displacement_pulloff_a_m", number(result.displacement_pulloff_radius));
-    header.emplace_back("displacement_pulloff_delta_m", number(result.displacement_pulloff_penetration));
-    header.emplace_back("displacement_pulloff_F_N", number(result.displacement_pulloff_force));
-  }
-  std::size_t clamped = 0;
-  for (bool c : result.clamped) clamped += c ? 1 : 0;
-  if (!radius_data) {
-    header.emplace_back("model_branch", "a >= a_c (first minimum of delta(a)); points with delta < delta(a_c): "
-                                        + std::to_string(clamped) + " (taken at a_c)");
-  }
-  std::vector<std::string> out_columns =
-      radius_data ? std::vector<std::string>{"line", "a_m", "F_data_N", "F_model_N", "residual_N", "sigma_eff_N"}
-                  : std::vector<std::string>{"line", "delta_m", "F_data_N", "a_model_m", "F_model_N", "residual_N",
-                                             "clamped", "sigma_eff_N"};
-  if (hysteresis) out_columns.push_back("branch");  // 1 loading, 0 unloading
-
-  // The curve (for --curve and --plot), then the table; every file is produced in memory
-  // first (the plot by gnuplot) so a failure leaves no half-written set of files.
-  const std::optional<std::string> curve_path = arguments.get("--curve");
-  const std::optional<std::string> plot_path = arguments.get("--plot");
-  const std::vector<std::string> curve_columns{"a_m", "delta_m", "F_N"};
-  std::ostringstream curve_text;
-  if (curve_path || plot_path) {
-    fit::Problem fitted = problem;
-    // With two adhesion energies the curve is the unloading one (the pull-offs' w).
-    fitted.work = result.value[hysteresis ? unload_index : static_cast<std::size_t>(fit::kWork)];
-    fitted.hysteresis = false;
-    if (stack_given) {
-      for (std::size_t i = 0; i < layer_count; ++i) {
-        fitted.layers[i].thickness = result.value[fit::thickness_index(i)];
-        fitted.layers[i].material.youngs_modulus = result.value[fit::modulus_index(i, layer_count)];
-      }
-    } else {
-      fitted.thickness = result.value[fit::kThickness];
-      fitted.film.youngs_modulus = result.value[fit::kFilmModulus];
-    }
-    double a_lo = *std::min_element(result.model_radius.begin(), result.model_radius.end());
-    const double a_hi = 1.05 * *std::max_element(result.model_radius.begin(), result.model_radius.end());
-    if (result.displacement_pulloff_radius > 0.0) a_lo = std::min(a_lo, result.displacement_pulloff_radius);
-    if (result.has_load_pulloff) a_lo = std::min(a_lo, result.load_pulloff_radius);
-    a_lo *= radius_data ? 0.9 : 0.3;
-    const std::vector<fit::CurvePoint> curve = fit::model_curve(fitted, a_lo, a_hi, 200);
-    auto curve_header = header;
-    curve_header.emplace_back("curve", std::string("fitted model, 200 points log-spaced in a") + (hysteresis ? " (with w_unload)" : ""));
-    write_header(curve_text, curve_header, curve_columns);
-    for (const auto& p : curve) write_row(curve_text, {p.radius, p.penetration, p.force}, curve_columns);
-  }
-
-  std::ostringstream table_text;
-  write_header(table_text, header, out_columns);
-  for (std::size_t i = 0; i < data.size(); ++i) {
-    const double line = data.line_numbers.empty() ? static_cast<double>(i + 1) : data.line_numbers[i];
-    // sigma_eff: the weight's sigma, or the residual standard deviation of an unweighted fit.
-    const double sigma = result.weighted ? result.sigma_effective[i] : result.residual_sigma;
-    std::vector<double> row =
-        radius_data ? std::vector<double>{line, data.abscissa[i], data.force[i], result.model_force[i], result.residual[i], sigma}
-                    : std::vector<double>{line, data.abscissa[i], data.force[i], result.model_radius[i], result.model_force[i],
-                                          result.residual[i], result.clamped[i] ? 1.0 : 0.0, sigma};
-    if (hysteresis) row.push_back(data.unloading[i] ? 0.0 : 1.0);
-    write_row(table_text, row, out_columns);
-  }
-
-  std::string picture;
-  if (plot_path) {
-    const double nan = std::nan("");
-    const double lp_x = result.has_load_pulloff ? (radius_data ? result.load_pulloff_radius : result.load_pulloff_penetration) : nan;
-    const double dp_x = result.displacement_pulloff_radius > 0.0
-                            ? (radius_data ? result.displacement_pulloff_radius : result.displacement_pulloff_penetration)
-                            : nan;
-    std::string estimates;
-    for (std::size_t which = 0; which < parameter_count; ++which) {
-      if (!free[which]) continue;
-      const std::string unit = parameters[which].kind == fit::ParameterKind::kWork ? "J/m^2" : parameters[which].unit;
-      estimates += std::string(estimates.empty() ? "" : ",  ") + parameters[which].name + " = " +
-                   si_text_with_error(result.value[which], result.standard_error[which], unit);
-    }
-    const std::string fit_label =
-        "fit: " + estimates + "   (n = " + std::to_string(result.points) +
-        (result.weighted ? ", χ^2/(n-p) = " + si_text(result.chi2_per_dof, "") : ", s = " + si_text(result.residual_sigma, "N")) +
-        (result.has_load_pulloff ? ", pull-off " + si_text(result.load_pulloff_force, "N") : "") + ")";
-    std::string substrate = problem.substrate.rigid ? std::string("rigid substrate")
-                                                    : "E0 = " + si_text(problem.substrate.material.youngs_modulus, "Pa") +
-                                                          ", ν0 = " + short_number(problem.substrate.material.poisson_ratio);
-    const std::string name = path == "-" ? std::string("stdin") : path.substr(path.find_last_of('/') + 1);
-    std::string coating;
-    if (stack_given) {
-      coating = std::to_string(layer_count) + " layers (";
-      for (std::size_t i = 0; i < layer_count; ++i) {
-        coating += (i == 0 ? "" : "; ") + si_text(result.value[fit::thickness_index(i)], "m") + ", " +
-                   si_text(result.value[fit::modulus_index(i, layer_count)], "Pa");
-      }
-      coating += ")";
-    } else {
-      coating = "film E1 = " + si_text(result.value[fit::kFilmModulus], "Pa") + " (ν1 = " +
-                short_number(problem.film.poisson_ratio) + "), t = " + si_text(result.value[fit::kThickness], "m");
-    }
-    const std::string title = name + ": R = " + si_text(problem.sphere_radius, "m") + ", " + coating + ", " + substrate;
-    picture = render_fit_plot(table_text.str(), curve_text.str(), x_name, title, fit_label,
-                              plot_path->substr(plot_path->rfind('.') + 1), lp_x, result.load_pulloff_force, dp_x,
-                              result.displacement_pulloff_force);
-  }
-
-  const std::string output_path = arguments.get("--output").value_or("");
-  std::unique_ptr<Output> plot_output;
-  if (plot_path) {
-    plot_output = std::make_unique<Output>(*plot_path, "--plot");
-    plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-  }
-  std::unique_ptr<Output> curve_output;
-  if (curve_path) {
-    curve_output = std::make_unique<Output>(*curve_path, "--curve");
-    curve_output->stream() << curve_text.str();
-  }
-  Output output(output_path);
-  output.stream() << table_text.str();
-  if (plot_output) plot_output->commit();
-  if (curve_output) curve_output->commit();
-  output.commit();
-
-  if (!output_path.empty()) {
-    // The table went to a file: a short human-readable summary on stdout.
-    std::cout << "coatcontact fit: " << result.points << " points (" << x_name << ",F), "
-              << result.free_count << " free parameter" << (result.free_count == 1 ? "" : "s") << ", converged ("
-              << result.stop_reason << ") after " << result.iterations << " iterations\n";
-    std::size_t width = 0;
-    for (const auto& info : parameters) width = std::max(width, info.name.size());
-    for (std::size_t which = 0; which < parameter_count; ++which) {
-      std::cout << "  " << parameters[which].name << std::string(width - parameters[which].name.size(), ' ') << " = "
-                << short_number(result.value[which]) << " " << parameters[which].unit;
-      if (free[which]) {
-        std::cout << " +- " << short_number(result.standard_error[which]) << " (standard error)";
-        if (problem.bootstrap > 0) {
-          std::cout << ", bootstrap 68 % [" << short_number(result.interval68_low[which]) << ", "
-                    << short_number(result.interval68_high[which]) << "]";
-        }
-      } else {
-        std::cout << " (fixed)";
-      }
-      std::cout << "\n";
-    }
-    std::cout << "  residual norm " << short_number(result.residual_norm) << " N, sigma "
-              << short_number(result.residual_sigma) << " N, R^2 " << short_number(result.r_squared)
-              << ", interpolation error " << order_of_magnitude_bound(result.interpolation_error / result.residual_sigma)
-              << " sigma\n";
-    if (result.weighted) {
-      std::cout << "  weighted by sigma_F^2 + (dF/d" << x_name << ")^2 sigma_" << x_name
-                << "^2: chi2/(n-p) = " << short_number(result.chi2_per_dof) << "\n";
-    } else {
-      std::cout << "  unweighted: the errors assume exact " << x_name << " (give --sigma if it is measured)\n";
-    }
-    if (result.has_load_pulloff) {
-      std::cout << "  predicted pull-off: " << short_number(result.load_pulloff_force) << " N under load control";
-      if (result.displacement_pulloff_radius > 0.0) {
-        std::cout << ", " << short_number(result.displacement_pulloff_force) << " N under displacement control";
-      }
-      std::cout << "\n";
-    }
-    if (result.has_spring_pulloff) {
-      std::cout << "  predicted pull-off through the spring k = "
-                << short_number(choice.base ? result.value.back() : problem.spring_stiffness)
-                << " N/m: " << short_number(result.spring_pulloff_force) << " N\n";
-    }
-    if (result.second_minimum) {
-      std::cout << "  note: a second minimum at";
-      for (std::size_t which = 0; which < parameter_count; ++which) {
-        if (free[which]) std::cout << " " << parameters[which].name << " = " << short_number(result.second_value[which]);
-      }
-      std::cout << " (cost " << short_number(result.second_cost_ratio) << " x the best)\n";
-    }
-  }
+  FitRun r(args, arguments);
+  r.path = arguments.positionals()[0];
+  parse_model(r);
+  parse_parameters(r);
+  read_data(r);
+  set_start_values(r);
+  run_library_fit(r);
+  make_header(r);
+  make_curve(r);
+  make_table(r);
+  make_picture(r);
+  write_outputs(r);
+  print_summary(r);
   return kExitSuccess;
 }
 

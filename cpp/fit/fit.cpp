@@ -15,6 +15,7 @@
 #include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
 #include "fit_model.hpp"
+#include "sphere_model.hpp"
 #include "least_squares.hpp"
 #include "search.hpp"
 #include "statistics.hpp"
@@ -29,7 +30,6 @@ using internal::Parameters;
 constexpr double kPi = 3.14159265358979323846;
 // Load-controlled JKR pull-off in Maugis units, P = F/(pi w R) (THEORY.md section 6).
 constexpr double kJkrPulloffLoad = -1.5;
-constexpr double kDefaultWork = 0.05;  // J/m2, when no measured force is tensile
 // Effective-variance passes: the weights depend on the slope at the solution; a change of
 // their logarithm below kWeightChange moves the estimates far less than their errors.
 constexpr int kWeightPasses = 5;
@@ -38,6 +38,7 @@ constexpr double kWeightChange = 1e-3;
 // and reported when it ends more than kDistinctMinimum apart in some ln p.
 constexpr double kSecondCostRatio = 3.0;
 constexpr double kDistinctMinimum = 0.05;
+constexpr double kMaxDataValue = 1e100;  // SI
 
 void validate(const Measurements& data, const Problem& problem) {
   const std::size_t n = data.size();
@@ -45,52 +46,16 @@ void validate(const Measurements& data, const Problem& problem) {
   if (!problem.shape && (!(problem.sphere_radius > 0.0) || !std::isfinite(problem.sphere_radius))) {
     throw InputError("sphere radius must be > 0 (got " + short_text(problem.sphere_radius) + ")");
   }
-  if (problem.hysteresis) {
-    if (data.unloading.size() != n) throw InputError("fit: w_load,w_unload need the branch of every point");
-    const auto unloading_points = static_cast<std::size_t>(std::count(data.unloading.begin(), data.unloading.end(), true));
-    if (unloading_points == 0 || unloading_points == n) {
-      throw InputError(std::string("w_load,w_unload: the data have no ") + (unloading_points == 0 ? "unloading" : "loading") +
-                       " rows; each adhesion energy needs points of its own branch");
-    }
-    if (!(problem.unload_work > 0.0) || !std::isfinite(problem.unload_work)) {
-      throw InputError("adhesion energy of unloading must be > 0 (got " + short_text(problem.unload_work) + ")");
-    }
-    const std::size_t w_unload = unload_work_index(problem.layers.empty() ? 1 : problem.layers.size());
-    const auto named = [&](std::size_t which) {
-      return std::find(problem.free_parameters.begin(), problem.free_parameters.end(), which) != problem.free_parameters.end();
-    };
-    if (!named(kWork) || !named(w_unload)) throw InputError("fit: w_load and w_unload are free together");
-  }
-  if (problem.maugis_dugdale) {
-    if (data.kind != DataKind::kRadiusForce) throw InputError("fit: the Maugis-Dugdale model fits a,F data only");
-    if (problem.shape || problem.base_displacement || problem.hysteresis || !problem.indenter.rigid) {
-      throw InputError("fit: the Maugis-Dugdale model takes a rigid sphere, one w and a,F data");
-    }
-    if (!(problem.lambda >= kLambdaRange[0] && problem.lambda <= kLambdaRange[1])) {
-      throw InputError("fit: lambda = " + short_text(problem.lambda) + " is outside [" + short_text(kLambdaRange[0]) +
-                       ", " + short_text(kLambdaRange[1]) + "]");
-    }
-  }
-  if (problem.base_displacement) {
-    if (data.kind != DataKind::kPenetrationForce) {
-      throw InputError("fit: base-displacement data are z,F data (the penetration kind)");
-    }
-    if (problem.shape) throw InputError("fit: base-displacement (z,F) data with a shape are not supported");
-    if (!(problem.spring_stiffness > 0.0) || !std::isfinite(problem.spring_stiffness)) {
-      throw InputError("fit: z,F data need the spring stiffness k > 0 (got " + short_text(problem.spring_stiffness) + ")");
-    }
-  }
-  if (problem.layers.empty() && !problem.hysteresis && !problem.base_displacement && !problem.maugis_dugdale) {
-    Stack::film_on(problem.film, problem.substrate, problem.indenter);  // validates the constants
+  internal::validate_model(data, problem);
+  // Validates the constants.
+  if (problem.layers.empty()) {
+    Stack::film_on(problem.film, problem.substrate, problem.indenter);
   } else {
-    if (problem.layers.empty()) {
-      Stack::film_on(problem.film, problem.substrate, problem.indenter);
-    } else {
-      Stack(problem.layers, problem.substrate, problem.indenter);
-    }
+    Stack(problem.layers, problem.substrate, problem.indenter);
+  }
+  {
     const std::size_t layer_count = problem.layers.empty() ? 1 : problem.layers.size();
-    const std::size_t count =
-        parameter_list(layer_count, problem.hysteresis, problem.base_displacement, problem.maugis_dugdale).size();
+    const std::size_t count = internal::problem_parameters(problem).values.size();
     for (std::size_t which : problem.free_parameters) {
       if (which >= count) {
         throw InputError("fit: free parameter index " + std::to_string(which) + " is outside the " +
@@ -129,19 +94,26 @@ void validate(const Measurements& data, const Problem& problem) {
   }
   double largest_force = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
+    const std::string where = data.line_numbers.size() == n ? "line " + std::to_string(data.line_numbers[i])
+                                                            : "point " + std::to_string(i + 1);
     if (!std::isfinite(data.abscissa[i]) || !std::isfinite(data.force[i])) {
-      throw InputError("data point " + std::to_string(i + 1) + " is not finite");
+      throw InputError(where + ": the data point is not finite");
+    }
+    // Far beyond any measurement (the CLI's SI bound for every value): refused with its line,
+    // not met as a search that finds nothing.
+    if (std::fabs(data.abscissa[i]) > kMaxDataValue || std::fabs(data.force[i]) > kMaxDataValue) {
+      throw InputError(where + ": " + short_text(data.abscissa[i]) + ", " + short_text(data.force[i]) +
+                       " is outside the allowed range [-1e100, 1e100] (SI units)");
     }
     if (data.kind == DataKind::kRadiusForce && !(data.abscissa[i] > 0.0)) {
-      const std::string where = data.line_numbers.size() == n
-                                    ? "line " + std::to_string(data.line_numbers[i])
-                                    : "point " + std::to_string(i + 1);
       throw InputError(where + ": contact radius must be > 0 (got " + short_text(data.abscissa[i]) + ")");
     }
     largest_force = std::max(largest_force, std::fabs(data.force[i]));
   }
   if (!(largest_force > 0.0)) throw InputError("all measured forces are zero: nothing to fit");
 }
+
+Result fit_validated(const Measurements& data, const Problem& problem);
 
 }  // namespace
 
@@ -200,18 +172,65 @@ Measurements select_branch(const Measurements& data, Branch branch) {
 }
 
 double jkr_work_estimate(const Measurements& data, double sphere_radius) {
-  if (data.force.empty()) return kDefaultWork;
+  if (data.force.empty()) return kDefaultStartWork;
   const double f_min = *std::min_element(data.force.begin(), data.force.end());
   // F_min = kJkrPulloffLoad * (pi w R), the force scale of Contact.
-  return f_min < 0.0 ? f_min / (kJkrPulloffLoad * kPi * sphere_radius) : kDefaultWork;
+  return f_min < 0.0 ? f_min / (kJkrPulloffLoad * kPi * sphere_radius) : kDefaultStartWork;
+}
+
+double start_work(const Measurements& data, const Problem& problem) {
+  return problem.shape ? kDefaultStartWork : jkr_work_estimate(data, problem.sphere_radius);
+}
+
+std::string units_hint(const Measurements& data, const Problem& problem) {
+  if (problem.shape || data.force.empty() || !(problem.sphere_radius > 0.0)) return "";
+  const double f_min = *std::min_element(data.force.begin(), data.force.end());
+  if (!(f_min < 0.0)) return "";
+  const double work = jkr_work_estimate(data, problem.sphere_radius);
+  if (work >= kSearchWork[0] && work <= kSearchWork[1]) return "";
+  return "the most tensile force, F = " + short_text(f_min) + " N, needs w = " + short_text(work) +
+         " J/m2 for a sphere of R = " + short_text(problem.sphere_radius) +
+         " m (JKR pull-off F = -(3/2) pi w R), outside the plausible [" + short_text(kSearchWork[0]) + ", " +
+         short_text(kSearchWork[1]) + "] J/m2: are the units of F and R right?";
+}
+
+void check_start(const Measurements& data, const Problem& problem) {
+  const Parameters hint = internal::problem_parameters(problem);
+  const std::vector<ParameterInfo> names =
+      parameter_list(hint.layers, hint.hysteresis, hint.spring, hint.md);
+  const std::string hint_text = units_hint(data, problem);
+  for (std::size_t which = 0; which < names.size(); ++which) {
+    const double v = hint.values[which];
+    if (names[which].kind == ParameterKind::kWork && !(v >= kWorkRange[0] && v <= kWorkRange[1])) {
+      throw StartError(which, names[which].name + " = " + short_text(v) + " J/m2 is outside the range the fit explores, [" +
+                                  short_text(kWorkRange[0]) + ", " + short_text(kWorkRange[1]) + "] J/m2" +
+                                  (hint_text.empty() ? "" : "; " + hint_text));
+    }
+    if (names[which].kind == ParameterKind::kModulus && !(v >= kModulusRange[0] && v <= kModulusRange[1])) {
+      throw StartError(which, names[which].name + " = " + short_text(v) + " Pa is outside the range the fit explores, [" +
+                                  short_text(kModulusRange[0]) + ", " + short_text(kModulusRange[1]) + "] Pa");
+    }
+  }
+  if (data.kind == DataKind::kRadiusForce && data.size() > 0) {
+    const auto [lo, hi] = std::minmax_element(data.abscissa.begin(), data.abscissa.end());
+    const double total = hint.total_thickness();
+    const double a_lo = *lo / total, a_hi = *hi / total;
+    if (!(a_lo >= kAOverTRange[0] && a_hi <= kAOverTRange[1])) {
+      throw StartError(thickness_index(0),
+                       std::string(hint.layers == 1 ? "t" : "T") + " = " + short_text(total) +
+                           " m puts the data's contact radii (" + short_text(*lo) + " to " + short_text(*hi) +
+                           " m) at a/t = " + short_text(a_lo) + " to " + short_text(a_hi) + ", outside the range [" +
+                           short_text(kAOverTRange[0]) + ", " + short_text(kAOverTRange[1]) +
+                           "] the model is tabulated for; allowed: t in [" + short_text(*hi / kAOverTRange[1]) + ", " +
+                           short_text(*lo / kAOverTRange[0]) + "] m");
+    }
+  }
 }
 
 Result fit(const Measurements& data, const Problem& problem) {
-  const auto clock_start = std::chrono::steady_clock::now();
   validate(data, problem);
   const std::size_t n = data.size();
-  const std::vector<int> free_index = internal::free_indices(problem);
-  const std::size_t p_count = free_index.size();
+  const std::size_t p_count = internal::free_indices(problem).size();
   if (p_count == 0) {
     throw InputError(problem.layers.empty() ? "no free parameter: name at least one of w, t, E1"
                                             : "no free parameter: name at least one of w, h1..hN, E1..EN");
@@ -221,13 +240,96 @@ Result fit(const Measurements& data, const Problem& problem) {
                      std::to_string(p_count) + " free parameter" + (p_count == 1 ? "" : "s") +
                      ": a fit needs more points than free parameters");
   }
+  // A contact radius at or above R is no sphere contact: almost always a length in the wrong unit.
+  for (std::size_t i = 0; i < n && data.kind == DataKind::kRadiusForce && !problem.shape; ++i) {
+    if (data.abscissa[i] >= problem.sphere_radius) {
+      const std::string where = data.line_numbers.size() == n ? "line " + std::to_string(data.line_numbers[i])
+                                                              : "point " + std::to_string(i + 1);
+      throw InputError(where + ": contact radius a = " + short_text(data.abscissa[i]) +
+                       " m is not below the sphere radius R = " + short_text(problem.sphere_radius) +
+                       " m: are the units right? (lengths in m, forces in N)");
+    }
+  }
+  check_start(data, problem);
+  try {
+    return fit_validated(data, problem);
+  } catch (const NumericalError& error) {
+    const std::string hint_text = units_hint(data, problem);
+    if (hint_text.empty()) throw;
+    throw NumericalError(std::string(error.what()) + "; " + hint_text);
+  }
+}
+
+namespace {
+// Residual bootstrap: resample the standardized residuals (centred, inflated by sqrt(n/(n-p))
+// for the fitted degrees of freedom), refit from the estimate with the same weights, take
+// percentiles into result's intervals.
+void bootstrap(internal::Model& model, const Measurements& data, const Problem& problem,
+               const std::vector<int>& free_index, const Parameters& estimate, const std::vector<double>& model_force,
+               const std::vector<double>& final_scale, Result& result) {
+  const std::size_t n = data.size();
+  const std::size_t p_count = free_index.size();
+  const std::size_t parameter_count = estimate.values.size();
+  std::vector<double> e(n);
+  double mean = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    e[i] = result.residual[i] * final_scale[i];
+    mean += e[i] / static_cast<double>(n);
+  }
+  const double inflate = std::sqrt(static_cast<double>(n) / static_cast<double>(n - p_count));
+  for (double& x : e) x = (x - mean) * inflate;
+  std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
+  gsl_rng_set(rng.get(), problem.bootstrap_seed);
+  Measurements resampled = data;
+  model.set_data(resampled);
+  std::vector<std::vector<double>> samples(parameter_count);
+  for (int b = 0; b < problem.bootstrap; ++b) {
+    for (std::size_t i = 0; i < n; ++i) {
+      resampled.force[i] = model_force[i] - e[gsl_rng_uniform_int(rng.get(), n)] / final_scale[i];
+    }
+    try {
+      const internal::Minimum r = internal::minimize(model, problem, free_index, estimate, final_scale, false);
+      for (int which : free_index) samples[which].push_back(r.values.values[which]);
+      ++result.bootstrap_samples;
+    } catch (const NumericalError&) {
+      // A resample the fit cannot follow does not count (bootstrap_samples says how many did).
+    }
+  }
+  model.set_data(data);
+  if (result.bootstrap_samples < std::max(10, problem.bootstrap / 2)) {
+    throw NumericalError("bootstrap: only " + std::to_string(result.bootstrap_samples) + " of " +
+                         std::to_string(problem.bootstrap) + " refits converged; the intervals would mean nothing");
+  }
+  const auto percentile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double position = q * static_cast<double>(v.size() - 1);
+    const std::size_t k = static_cast<std::size_t>(position);
+    const double f = position - static_cast<double>(k);
+    return k + 1 < v.size() ? v[k] * (1.0 - f) + v[k + 1] * f : v[k];
+  };
+  for (auto* v : {&result.interval68_low, &result.interval68_high, &result.interval95_low, &result.interval95_high}) {
+    v->assign(parameter_count, 0.0);
+  }
+  for (int which : free_index) {
+    result.interval68_low[which] = percentile(samples[which], 0.16);
+    result.interval68_high[which] = percentile(samples[which], 0.84);
+    result.interval95_low[which] = percentile(samples[which], 0.025);
+    result.interval95_high[which] = percentile(samples[which], 0.975);
+  }
+}
+
+Result fit_validated(const Measurements& data, const Problem& problem) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const std::size_t n = data.size();
+  const std::vector<int> free_index = internal::free_indices(problem);
+  const std::size_t p_count = free_index.size();
 
   internal::Model model(problem, data);
   const Parameters hint = internal::problem_parameters(problem);
   const std::size_t parameter_count = hint.values.size();
   internal::SearchResult search;
   search.best = hint;
-  if (problem.global_search) search = internal::global_search(model, problem, free_index, hint);
+  if (problem.global_search) search = internal::global_search(model, free_index, hint);
   const double search_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
 
@@ -282,9 +384,8 @@ Result fit(const Measurements& data, const Problem& problem) {
   const std::vector<double> final_scale = weighted ? inv_sigma : scale;
   if (problem.spring_stiffness > 0.0) {
     try {
-      // z,F data: through the fitted (or fixed) k of the parameter vector.
-      const double k = problem.base_displacement ? minimum.values.values.back() : problem.spring_stiffness;
-      if (const auto s = model.spring_pulloff(minimum.values, k)) {
+      // z,F data: through the fitted (or fixed) k of the parameter vector (Model::spring_pulloff).
+      if (const auto s = model.spring_pulloff(minimum.values, problem.spring_stiffness)) {
         result.has_spring_pulloff = true;
         result.spring_pulloff_radius = (*s)[0];
         result.spring_pulloff_penetration = (*s)[1];
@@ -313,56 +414,8 @@ Result fit(const Measurements& data, const Problem& problem) {
     }
   }
 
-  // Residual bootstrap: resample the standardized residuals (centred, inflated by
-  // sqrt(n/(n-p)) for the fitted degrees of freedom), refit from the estimate with the same
-  // weights, take percentiles.
   if (problem.bootstrap > 0) {
-    std::vector<double> e(n);
-    double mean = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      e[i] = result.residual[i] * final_scale[i];
-      mean += e[i] / static_cast<double>(n);
-    }
-    const double inflate = std::sqrt(static_cast<double>(n) / static_cast<double>(n - p_count));
-    for (double& x : e) x = (x - mean) * inflate;
-    std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> rng(gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free);
-    gsl_rng_set(rng.get(), problem.bootstrap_seed);
-    Measurements resampled = data;
-    model.set_data(resampled);
-    std::vector<std::vector<double>> samples(parameter_count);
-    for (int b = 0; b < problem.bootstrap; ++b) {
-      for (std::size_t i = 0; i < n; ++i) {
-        resampled.force[i] = m.force[i] - e[gsl_rng_uniform_int(rng.get(), n)] / final_scale[i];
-      }
-      try {
-        const internal::Minimum r = internal::minimize(model, problem, free_index, minimum.values, final_scale, false);
-        for (int which : free_index) samples[which].push_back(r.values.values[which]);
-        ++result.bootstrap_samples;
-      } catch (const NumericalError&) {
-        // A resample the fit cannot follow does not count (bootstrap_samples says how many did).
-      }
-    }
-    model.set_data(data);
-    if (result.bootstrap_samples < std::max(10, problem.bootstrap / 2)) {
-      throw NumericalError("bootstrap: only " + std::to_string(result.bootstrap_samples) + " of " +
-                           std::to_string(problem.bootstrap) + " refits converged; the intervals would mean nothing");
-    }
-    const auto percentile = [](std::vector<double> v, double q) {
-      std::sort(v.begin(), v.end());
-      const double position = q * static_cast<double>(v.size() - 1);
-      const std::size_t k = static_cast<std::size_t>(position);
-      const double f = position - static_cast<double>(k);
-      return k + 1 < v.size() ? v[k] * (1.0 - f) + v[k + 1] * f : v[k];
-    };
-    for (auto* v : {&result.interval68_low, &result.interval68_high, &result.interval95_low, &result.interval95_high}) {
-      v->assign(parameter_count, 0.0);
-    }
-    for (int which : free_index) {
-      result.interval68_low[which] = percentile(samples[which], 0.16);
-      result.interval68_high[which] = percentile(samples[which], 0.84);
-      result.interval95_low[which] = percentile(samples[which], 0.025);
-      result.interval95_high[which] = percentile(samples[which], 0.975);
-    }
+    bootstrap(model, data, problem, free_index, minimum.values, m.force, final_scale, result);
   }
   result.model_radius = m.radius;
   result.model_penetration = m.penetration;
@@ -380,12 +433,14 @@ Result fit(const Measurements& data, const Problem& problem) {
   return result;
 }
 
+}  // namespace
+
 CurvePoint exact_point(const Problem& problem, double radius) {
   if (problem.shape) throw InputError("exact_point: the sphere only (a shape's model is ShapeContact::at)");
   const Parameters p = internal::problem_parameters(problem);
   if (!(radius > 0.0) || !(p.total_thickness() > 0.0)) throw InputError("exact_point: a and t must be > 0");
   coatcontact::detail::GslHandlerOff handler_off;
-  const internal::ModelEntry entry(problem, internal::StackKey::of(p));
+  const internal::SphereEntry entry(problem, internal::StackKey::of(p));
   const ContactModel contact(entry.model(), problem.sphere_radius, p);
   const SolverSource source(entry.solver(), problem.solver_tolerance);
   const internal::SiPoint s = contact.exact(source.evaluate({radius / p.total_thickness()}).front(), radius);
@@ -400,7 +455,7 @@ std::vector<CurvePoint> model_curve(const Problem& problem, double radius_min, d
   if (problem.shape) throw InputError("model_curve: the sphere only (a shape's curve is ShapeContact::curve)");
   coatcontact::detail::GslHandlerOff handler_off;
   const Parameters p = internal::problem_parameters(problem);
-  const internal::ModelEntry entry(problem, internal::StackKey::of(p));
+  const internal::SphereEntry entry(problem, internal::StackKey::of(p));
   const ContactModel contact(entry.model(), problem.sphere_radius, p);
   contact.prepare(radius_min, radius_max);
   std::vector<CurvePoint> curve;

@@ -17,7 +17,6 @@ namespace {
 // Grid density: t needs the finest (the cost has one narrow valley in ln t); E1 costs a table
 // per value and w (gridded for delta,F data only) costs full evaluations, so they get fewer.
 constexpr double kPointsPerDecade = 4.0;
-constexpr double kCoarsePointsPerDecade = 2.0;
 // Below this a/t (of the largest contact radius) the interpolant stays within its fast decades
 // (they are decades of a/t: [1, 10) is the last cheap one).
 constexpr double kCheapAOverT = 10.0;
@@ -29,13 +28,6 @@ constexpr double kSigmaFloor = 1e-9;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Relative change of the cost along an axis below which that parameter counts as undetermined.
 constexpr double kFlatCost = 1e-6;
-
-std::vector<double> log_axis(double lo, double hi, double per_decade = kPointsPerDecade) {
-  const int count = std::max(2, static_cast<int>(std::ceil(per_decade * std::log10(hi / lo))) + 1);
-  std::vector<double> axis;
-  for (int k = 0; k < count; ++k) axis.push_back(lo * std::pow(hi / lo, k / static_cast<double>(count - 1)));
-  return axis;
-}
 
 double max_abs_force(const Measurements& data) {
   double m = 0.0;
@@ -57,8 +49,119 @@ std::vector<double> inverse_sigma(const Measurements& data, const ModelAtData& m
   return out;
 }
 
-SearchResult global_search(Model& model, const Problem& problem, const std::vector<int>& free_index,
-                           const Parameters& hint) {
+// Cost (weighted or scaled sum of squares) of one grid point; w profiled when asked: F = A - B
+// sqrt(w) at fixed a, one weighted linear fit per group of points with their own w.
+struct GridCost {
+  Model& model;
+  const Measurements& data;
+  bool profile_work;
+  std::vector<std::size_t> works;  // the w parameters, one per group
+  std::vector<int> group;          // each point's index into works
+  double unweighted;
+  int evaluations = 0;
+
+  std::pair<double, Parameters> operator()(Parameters p) {
+    const int groups = static_cast<int>(works.size());
+  try {
+    if (!profile_work) {
+      const ModelAtData m = model.at_data(p);
+      ++evaluations;
+      std::vector<double> scale = inverse_sigma(data, m);
+      double cost = 0.0;
+      for (std::size_t i = 0; i < data.size(); ++i) {
+        cost += std::pow((m.force[i] - data.force[i]) * (scale.empty() ? unweighted : scale[i]), 2);
+      }
+      return {cost, p};
+    }
+    Parameters p1 = p, p2 = p;
+    for (std::size_t which : works) {
+      p1.values[which] = kProbeWork[0];
+      p2.values[which] = kProbeWork[1];
+    }
+    const ModelAtData m1 = model.at_data(p1);
+    const ModelAtData m2 = model.at_data(p2);
+    evaluations += 2;
+    const double s1 = std::sqrt(kProbeWork[0]), s2 = std::sqrt(kProbeWork[1]);
+    const std::size_t n = data.size();
+    std::vector<double> A(n), B(n), Ax(n), Bx(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      B[i] = (m1.force[i] - m2.force[i]) / (s2 - s1);
+      A[i] = m1.force[i] + B[i] * s1;
+      Bx[i] = (m1.force_x[i] - m2.force_x[i]) / (s2 - s1);
+      Ax[i] = m1.force_x[i] + Bx[i] * s1;
+    }
+    // Weighted linear fit for s = sqrt(w) (one per group); the effective-variance weights
+    // depend on s, so refresh them a few times.
+    std::vector<double> s;
+    for (std::size_t which : works) s.push_back(std::sqrt(p.values[which]));
+    double cost = kInf;
+    ModelAtData at_s;
+    at_s.force_x.resize(n);
+    for (int pass = 0; pass < 3; ++pass) {
+      for (std::size_t i = 0; i < n; ++i) at_s.force_x[i] = Ax[i] - Bx[i] * s[group[i]];
+      std::vector<double> scale = inverse_sigma(data, at_s);
+      if (scale.empty()) scale.assign(n, unweighted);
+      for (int g = 0; g < groups; ++g) {
+        double num = 0.0, den = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (group[i] != g) continue;
+          const double u = scale[i] * scale[i];
+          num += u * B[i] * (A[i] - data.force[i]);
+          den += u * B[i] * B[i];
+        }
+        if (!(den > 0.0)) return {kInf, p};
+        s[g] = std::clamp(num / den, std::sqrt(kSearchWork[0]), std::sqrt(kSearchWork[1]));
+      }
+      cost = 0.0;
+      for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s[group[i]] - data.force[i]) * scale[i], 2);
+    }
+    for (int g = 0; g < groups; ++g) p.values[works[static_cast<std::size_t>(g)]] = s[g] * s[g];
+    return {cost, p};
+  } catch (const NumericalError&) {
+    return {kInf, p};  // outside the model's range: not a candidate
+  }
+  }
+};
+
+// A free parameter along whose axis the cost does not move is not determined by the data (e.g. t
+// when film and substrate are alike): say which, before the solve wanders off. k: the best point.
+void refuse_flat_axes(const std::vector<SearchAxis>& axes, const std::vector<std::size_t>& stride,
+                      const std::vector<double>& cost, std::size_t k, const std::vector<ParameterInfo>& names,
+                      std::size_t layers) {
+  const std::size_t dims = axes.size();
+  const auto coordinate = [&](std::size_t q, std::size_t d) { return (q / stride[d]) % axes[d].values.size(); };
+  const auto flat = [&](std::size_t d) {
+    double lo = kInf, hi = 0.0;
+    std::size_t finite = 0;
+    const std::size_t base = k - coordinate(k, d) * stride[d];
+    for (std::size_t j = 0; j < axes[d].values.size(); ++j) {
+      const double c = cost[base + j * stride[d]];
+      if (!std::isfinite(c)) continue;  // not evaluated (or not evaluable)
+      ++finite;
+      lo = std::min(lo, c);
+      hi = std::max(hi, c);
+    }
+    return finite > 1 && hi - lo <= kFlatCost * hi;
+  };
+  // Thicknesses first, then moduli (w is not checked: its axis exists only for delta,F data).
+  for (const ParameterKind kind : {ParameterKind::kThickness, ParameterKind::kModulus}) {
+    for (std::size_t d = 0; d < dims; ++d) {
+      const ParameterInfo& info = names[axes[d].which];
+      if (info.kind != kind || axes[d].values.size() < 2 || !flat(d)) continue;
+      if (kind == ParameterKind::kModulus) {
+        throw NumericalError("the data do not determine " + info.name + ": the fit does not change over " +
+                             info.name + " within a factor " +
+                             std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
+      }
+      throw NumericalError("the data do not determine " + info.name + ": the fit does not change for " + info.name +
+                           " from " + std::to_string(axes[d].values.front()) + " to " +
+                           std::to_string(axes[d].values.back()) + " m; fix it" +
+                           (layers == 1 ? " with --thickness" : " (leave it out of --free)"));
+    }
+  }
+}
+
+SearchResult global_search(Model& model, const std::vector<int>& free_index, const Parameters& hint) {
   const Measurements& data = model.data();
   const bool radius_data = data.kind == DataKind::kRadiusForce;
   const auto is_free = [&](std::size_t which) {
@@ -66,6 +169,7 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   };
   const double unweighted = 1.0 / max_abs_force(data);
   const std::vector<ParameterInfo>& names = model.names();
+  const ForceModel& force_model = model.force_model();
   const std::size_t layers = hint.layers;
 
   // Range of contact radii: measured (a,F), or sqrt(R delta) of Hertz at the largest |delta|.
@@ -76,31 +180,13 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
   } else {
     double d = 0.0;
     for (double x : data.abscissa) d = std::max(d, std::fabs(x));
-    if (problem.shape) {
-      // delta0(a) = |delta|: the adhesionless radius of the largest penetration (bisection in ln a).
-      double lo = 1e-15, hi = std::min(1.0, problem.shape->max_contact_radius());
-      if (problem.shape->flat() || problem.shape->delta0(hi) <= d) {
-        lo = hi;
-      } else {
-        for (int i = 0; i < 200 && hi / lo > 1.0 + 1e-9; ++i) {
-          const double mid = std::sqrt(lo * hi);
-          (problem.shape->delta0(mid) < d ? lo : hi) = mid;
-        }
-      }
-      a_hi = hi;
-    } else {
-      a_hi = std::sqrt(problem.sphere_radius * d);
-    }
+    a_hi = force_model.adhesionless_radius(d);
     a_lo = 0.1 * a_hi;
   }
 
   // One axis per free parameter, the slowest first: the moduli and the layer thicknesses
   // (each value builds its own table), then the one film's t, then w.
-  struct Axis {
-    std::size_t which;
-    std::vector<double> values;
-  };
-  std::vector<Axis> axes;
+  std::vector<SearchAxis> axes;
   for (std::size_t i = 0; i < layers; ++i) {
     const std::size_t which = modulus_index(i, layers);
     if (!is_free(which)) continue;
@@ -115,105 +201,34 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
       axes.push_back({which, log_axis(h / kSearchThicknessFactor, h * kSearchThicknessFactor, kCoarsePointsPerDecade)});
     }
   } else if (is_free(kThickness)) {
-    axes.push_back({static_cast<std::size_t>(kThickness), log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0])});
+    axes.push_back({static_cast<std::size_t>(kThickness),
+                    log_axis(a_hi / kSearchAOverT[1], a_lo / kSearchAOverT[0], kPointsPerDecade)});
   }
-  // (Maugis-Dugdale: F is not linear in sqrt(w) at fixed a; w gets an axis.)
-  const bool profile_work = is_free(kWork) && radius_data && !problem.maugis_dugdale;
-  // Two adhesion energies (w_load, w_unload): each branch's points depend on their own only.
-  const std::size_t unload_index = hint.hysteresis ? unload_work_index(layers) : 0;
+  // (Where F is not linear in sqrt(w) at fixed a, as in the Maugis-Dugdale zone, w gets an axis.)
+  const bool profile_work = is_free(kWork) && radius_data && force_model.work_separates();
+  // One adhesion energy per group of points (w_load, w_unload: each branch's points depend on
+  // their own only).
+  const std::vector<std::size_t> works = force_model.work_parameters(hint);
   if (is_free(kWork) && !profile_work) {
     // Around the load-controlled JKR estimate when the data are tensile somewhere.
-    const double f_min = *std::min_element(data.force.begin(), data.force.end());
-    const double estimate =
-        f_min < 0.0 && !problem.shape ? f_min / (-1.5 * M_PI * problem.sphere_radius) : 0.0;
+    const double estimate = force_model.work_estimate(data);
     const std::vector<double> w_axis = estimate > 0.0 ? log_axis(estimate / 10.0, estimate * 10.0, kCoarsePointsPerDecade)
                                                       : log_axis(1e-3, 1.0, kCoarsePointsPerDecade);
-    axes.push_back({static_cast<std::size_t>(kWork), w_axis});
-    if (hint.hysteresis) axes.push_back({unload_index, w_axis});
+    for (std::size_t which : works) axes.push_back({which, w_axis});
   }
-  // The spring of z,F data (last in the parameter vector): within kSearchSpringFactor of its hint.
-  if (hint.spring && is_free(hint.values.size() - 1)) {
-    const double k = hint.stiffness();
-    axes.push_back({hint.values.size() - 1, log_axis(k / kSearchSpringFactor, k * kSearchSpringFactor, kCoarsePointsPerDecade)});
-  }
-  if (hint.md && is_free(hint.values.size() - 1)) {
-    const double lambda = hint.lambda();
-    axes.push_back({hint.values.size() - 1,
-                    log_axis(std::max(kLambdaRange[0], lambda / kSearchLambdaFactor),
-                             std::min(kLambdaRange[1], lambda * kSearchLambdaFactor), kCoarsePointsPerDecade)});
-  }
-  // The group of each point for the profiled w: 0, or 1 on the unloading branch.
+  // The model's own parameters (k of z,F data, Maugis-Dugdale's lambda), around their hints.
+  force_model.add_search_axes(hint, free_index, axes);
+  // The group of each point for the profiled w: the index of its w in `works`.
   std::vector<int> group(data.size(), 0);
-  if (hint.hysteresis) {
-    for (std::size_t i = 0; i < data.size(); ++i) group[i] = data.unloading[i] ? 1 : 0;
+  {
+    const std::vector<std::size_t> of_point = force_model.work_parameter_of_points(hint, data);
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      group[i] = static_cast<int>(std::find(works.begin(), works.end(), of_point[i]) - works.begin());
+    }
   }
-  const int groups = hint.hysteresis ? 2 : 1;
 
   SearchResult result;
-  // Cost (weighted or scaled sum of squares) of one grid point; w profiled when asked.
-  const auto evaluate = [&](Parameters p) -> std::pair<double, Parameters> {
-    try {
-      if (!profile_work) {
-        const ModelAtData m = model.at_data(p);
-        ++result.evaluations;
-        std::vector<double> scale = inverse_sigma(data, m);
-        double cost = 0.0;
-        for (std::size_t i = 0; i < data.size(); ++i) {
-          cost += std::pow((m.force[i] - data.force[i]) * (scale.empty() ? unweighted : scale[i]), 2);
-        }
-        return {cost, p};
-      }
-      Parameters p1 = p, p2 = p;
-      p1.values[kWork] = kProbeWork[0];
-      p2.values[kWork] = kProbeWork[1];
-      if (p.hysteresis) {
-        p1.values[unload_index] = kProbeWork[0];
-        p2.values[unload_index] = kProbeWork[1];
-      }
-      const ModelAtData m1 = model.at_data(p1);
-      const ModelAtData m2 = model.at_data(p2);
-      result.evaluations += 2;
-      const double s1 = std::sqrt(kProbeWork[0]), s2 = std::sqrt(kProbeWork[1]);
-      const std::size_t n = data.size();
-      std::vector<double> A(n), B(n), Ax(n), Bx(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        B[i] = (m1.force[i] - m2.force[i]) / (s2 - s1);
-        A[i] = m1.force[i] + B[i] * s1;
-        Bx[i] = (m1.force_x[i] - m2.force_x[i]) / (s2 - s1);
-        Ax[i] = m1.force_x[i] + Bx[i] * s1;
-      }
-      // Weighted linear fit for s = sqrt(w) (one per group); the effective-variance weights
-      // depend on s, so refresh them a few times.
-      double s[2] = {std::sqrt(p.work()), std::sqrt(p.unload_work())};
-      double cost = kInf;
-      ModelAtData at_s;
-      at_s.force_x.resize(n);
-      for (int pass = 0; pass < 3; ++pass) {
-        for (std::size_t i = 0; i < n; ++i) at_s.force_x[i] = Ax[i] - Bx[i] * s[group[i]];
-        std::vector<double> scale = inverse_sigma(data, at_s);
-        if (scale.empty()) scale.assign(n, unweighted);
-        for (int g = 0; g < groups; ++g) {
-          double num = 0.0, den = 0.0;
-          for (std::size_t i = 0; i < n; ++i) {
-            if (group[i] != g) continue;
-            const double u = scale[i] * scale[i];
-            num += u * B[i] * (A[i] - data.force[i]);
-            den += u * B[i] * B[i];
-          }
-          if (!(den > 0.0)) return {kInf, p};
-          s[g] = std::clamp(num / den, std::sqrt(kSearchWork[0]), std::sqrt(kSearchWork[1]));
-        }
-        cost = 0.0;
-        for (std::size_t i = 0; i < n; ++i) cost += std::pow((A[i] - B[i] * s[group[i]] - data.force[i]) * scale[i], 2);
-      }
-      p.values[kWork] = s[0] * s[0];
-      if (p.hysteresis) p.values[unload_index] = s[1] * s[1];
-      return {cost, p};
-    } catch (const NumericalError&) {
-      return {kInf, p};  // outside the model's range: not a candidate
-    }
-  };
-
+  GridCost evaluate{model, data, profile_work, works, group, unweighted};
   // The grid: index k = mixed radix over the axes, the last one fastest.
   const std::size_t dims = axes.size();
   std::vector<std::size_t> stride(dims, 1);
@@ -269,40 +284,7 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     throw NumericalError("the global search found no parameters at which the model can be evaluated for these data");
   }
   std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return cost[a] < cost[b]; });
-  // A free parameter along whose axis the cost does not move is not determined by the data
-  // (e.g. t when film and substrate are alike): say which, before the solve wanders off.
-  {
-    const std::size_t k = minima[0];
-    const auto flat = [&](std::size_t d) {
-      double lo = kInf, hi = 0.0;
-      std::size_t finite = 0;
-      const std::size_t base = k - coordinate(k, d) * stride[d];
-      for (std::size_t j = 0; j < axes[d].values.size(); ++j) {
-        const double c = cost[base + j * stride[d]];
-        if (!std::isfinite(c)) continue;  // not evaluated (or not evaluable)
-        ++finite;
-        lo = std::min(lo, c);
-        hi = std::max(hi, c);
-      }
-      return finite > 1 && hi - lo <= kFlatCost * hi;
-    };
-    // Thicknesses first, then moduli (w is not checked: its axis exists only for delta,F data).
-    for (const ParameterKind kind : {ParameterKind::kThickness, ParameterKind::kModulus}) {
-      for (std::size_t d = 0; d < dims; ++d) {
-        const ParameterInfo& info = names[axes[d].which];
-        if (info.kind != kind || axes[d].values.size() < 2 || !flat(d)) continue;
-        if (kind == ParameterKind::kModulus) {
-          throw NumericalError("the data do not determine " + info.name + ": the fit does not change over " +
-                               info.name + " within a factor " +
-                               std::to_string(static_cast<int>(kSearchModulusFactor)) + " of the given value; fix it");
-        }
-        throw NumericalError("the data do not determine " + info.name + ": the fit does not change for " + info.name +
-                             " from " + std::to_string(axes[d].values.front()) + " to " +
-                             std::to_string(axes[d].values.back()) + " m; fix it" +
-                             (layers == 1 ? " with --thickness" : " (leave it out of --free)"));
-      }
-    }
-  }
+  refuse_flat_axes(axes, stride, cost, minima[0], names, layers);
   result.best = point[minima[0]];
   result.best_cost = cost[minima[0]];
   if (minima.size() > 1) {
@@ -316,6 +298,7 @@ SearchResult global_search(Model& model, const Problem& problem, const std::vect
     result.best = hint_point;
     result.best_cost = hint_cost;
   }
+  result.evaluations = evaluate.evaluations;
   return result;
 }
 

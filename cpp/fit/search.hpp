@@ -23,7 +23,6 @@ std::vector<double> inverse_sigma(const Measurements& data, const ModelAtData& m
 // Grid over ln t and ln E1 (when free); w is profiled out for a,F data (F = A - B sqrt(w) at
 // fixed a and t: one weighted linear fit per grid point) and gridded for delta,F data. `hint`
 // (the user's values) is evaluated too. NumericalError when no grid point can be evaluated.
-SearchResult global_search(Model& model, const Problem& problem, const std::vector<int>& free_index,
-                           const Parameters& hint);
+SearchResult global_search(Model& model, const std::vector<int>& free_index, const Parameters& hint);
 
 }  // namespace coatcontact::fit::internal

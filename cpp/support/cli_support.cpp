@@ -15,71 +15,6 @@
 #include "number_text.hpp"
 
 namespace coatcontact {
-namespace detail {
-
-std::string_view trim_blanks(std::string_view text) {
-  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
-  while (!text.empty() && blank(text.front())) text.remove_prefix(1);
-  while (!text.empty() && blank(text.back())) text.remove_suffix(1);
-  return text;
-}
-
-NumberStatus parse_decimal(std::string_view text, double& value) {
-  if (text.empty()) return NumberStatus::kNotNumber;
-  // from_chars takes no '+'; accept one in front of a digit or '.' (not "+-1", not "++1").
-  if (text.front() == '+') {
-    text.remove_prefix(1);
-    if (text.empty() || text.front() == '+' || text.front() == '-') return NumberStatus::kNotNumber;
-  }
-  // Only the characters of decimal notation: rules out "nan", "inf", "0x1p3" up front, so the
-  // message can say which of the two it was.
-  for (char c : text) {
-    const bool decimal = (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' ||
-                         c == '+' || c == '-';
-    if (!decimal) {
-      std::string lower;
-      for (char d : text) lower.push_back(static_cast<char>(d >= 'A' && d <= 'Z' ? d - 'A' + 'a' : d));
-      if (!lower.empty() && lower.front() == '-') lower.erase(0, 1);
-      if (lower == "nan" || lower == "inf" || lower == "infinity" || lower.rfind("nan(", 0) == 0) {
-        return NumberStatus::kNotFinite;
-      }
-      return NumberStatus::kNotNumber;
-    }
-  }
-  double parsed = 0.0;
-  const char* first = text.data();
-  const char* last = text.data() + text.size();
-  const auto result = std::from_chars(first, last, parsed, std::chars_format::general);
-  if (result.ec == std::errc::invalid_argument) return NumberStatus::kNotNumber;
-  if (result.ptr != last) return NumberStatus::kNotNumber;
-  if (result.ec == std::errc::result_out_of_range) return NumberStatus::kOutOfRange;
-  if (!std::isfinite(parsed)) return NumberStatus::kOutOfRange;
-  if (parsed != 0.0 && std::fabs(parsed) < std::numeric_limits<double>::min()) return NumberStatus::kSubnormal;
-  value = parsed;
-  return NumberStatus::kOk;
-}
-
-std::string quote(std::string_view text) {
-  constexpr std::size_t kMaxShown = 60;
-  std::string out = "'";
-  const std::size_t shown = std::min(text.size(), kMaxShown);
-  for (std::size_t i = 0; i < shown; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    // Printable ASCII and UTF-8 bytes (so "µm" stays readable); control bytes escaped.
-    if ((c >= 0x20 && c < 0x7f) || c >= 0x80) {
-      out.push_back(static_cast<char>(c));
-    } else {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "\\x%02x", c);
-      out += hex;
-    }
-  }
-  if (text.size() > kMaxShown) out += "...";
-  out += "'";
-  return out;
-}
-
-}  // namespace detail
 
 namespace cli {
 namespace {
@@ -111,34 +46,7 @@ std::string number_problem(NumberStatus status, std::string_view text) {
   }
 }
 
-struct UnitRow {
-  const char* spelling;
-  Quantity kind;
-  double to_si;
-};
-
-// Case-sensitive SI spellings; µ is accepted as U+00B5 (micro sign) and U+03BC (Greek mu).
-constexpr UnitRow kUnits[] = {
-    {"Pa", Quantity::kPressure, 1.0},       {"kPa", Quantity::kPressure, 1e3},
-    {"MPa", Quantity::kPressure, 1e6},      {"GPa", Quantity::kPressure, 1e9},
-    {"m", Quantity::kLength, 1.0},          {"cm", Quantity::kLength, 1e-2},
-    {"mm", Quantity::kLength, 1e-3},
-    {"um", Quantity::kLength, 1e-6},        {"\xc2\xb5m", Quantity::kLength, 1e-6},
-    {"\xce\xbcm", Quantity::kLength, 1e-6}, {"nm", Quantity::kLength, 1e-9},
-    {"J/m2", Quantity::kEnergy, 1.0},       {"mJ/m2", Quantity::kEnergy, 1e-3},
-    {"J/m^2", Quantity::kEnergy, 1.0},      {"mJ/m^2", Quantity::kEnergy, 1e-3},
-    {"N/m", Quantity::kEnergy, 1.0},        {"mN/m", Quantity::kEnergy, 1e-3},
-    {"N", Quantity::kForce, 1.0},           {"mN", Quantity::kForce, 1e-3},
-    {"uN", Quantity::kForce, 1e-6},         {"\xc2\xb5N", Quantity::kForce, 1e-6},
-    {"\xce\xbcN", Quantity::kForce, 1e-6},  {"nN", Quantity::kForce, 1e-9},
-};
-
 }  // namespace
-
-double to_si(double value, double unit_to_si) {
-  // 1e-3, 1e-6, 1e-9 are not exact doubles, but their inverses round to exact integers.
-  return unit_to_si < 1.0 ? value / std::round(1.0 / unit_to_si) : value * unit_to_si;
-}
 
 namespace {
 
@@ -351,33 +259,6 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
     start = comma + 1;
   }
   return values;
-}
-
-const char* quantity_name(Quantity kind) {
-  switch (kind) {
-    case Quantity::kPressure: return "pressure";
-    case Quantity::kLength: return "length";
-    case Quantity::kEnergy: return "energy per area";
-    case Quantity::kForce: return "force";
-  }
-  return "quantity";
-}
-
-std::string unit_list(Quantity kind) {
-  switch (kind) {
-    case Quantity::kPressure: return "Pa kPa MPa GPa";
-    case Quantity::kLength: return "m cm mm um \xc2\xb5m nm";
-    case Quantity::kEnergy: return "J/m2 mJ/m2 J/m^2 mJ/m^2 N/m mN/m";
-    case Quantity::kForce: return "N mN uN \xc2\xb5N nN";
-  }
-  return "";
-}
-
-std::optional<UnitInfo> find_unit(const std::string& unit) {
-  for (const auto& row : kUnits) {
-    if (unit == row.spelling) return UnitInfo{row.kind, row.to_si};
-  }
-  return std::nullopt;
 }
 
 double parse_quantity(const std::string& text, Quantity kind, const std::string& option) {

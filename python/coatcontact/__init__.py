@@ -340,73 +340,154 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
     return out
 
 
-_FIT_NAMES = ("w", "t", "E1")
-_FIT_UNITS = {"w": "J/m^2", "t": "m", "E1": "Pa"}
+_FIT_KINDS = {"a": "FIT_RADIUS_FORCE", "delta": "FIT_PENETRATION_FORCE", "z": "FIT_BASE_FORCE"}
 
 
-def fit(x, F, *, kind="a", radius, film, substrate, thickness, work=None, free=("w",),
-        indenter=None, curve_points=200):
-    """Least-squares fit of measured (a, F) or (delta, F) data (residuals in force).
+def _fit_unit(name):
+    if name.startswith("w"):
+        return "J/m^2"
+    if name == "k":
+        return "N/m"
+    if name == "lambda":
+        return ""
+    return "Pa" if name.startswith("E") else "m"
 
-    x, F       arrays: contact radius a [m] (> 0; kind="a") or penetration delta [m]
-               (kind="delta"), and force F [N], compressive positive.
-    radius     sphere radius R [m].  film  (E1 [Pa], nu1): E1 is the start value if fitted.
-    substrate  (E0 [Pa], nu0) or "rigid".  thickness  t [m]: fixed value or start value.
-    work       w [J/m^2]: fixed value or start value; default (when w is free) from the most
-               tensile force through the JKR pull-off F_min = -(3/2) pi w R, as the CLI.
-    free       names among "w", "t", "E1" (default ("w",)); the others are fixed.
 
-    Returns a dict: estimates and errors (dicts by name: w [J/m^2], t [m], E1 [Pa]; error 0
-    for fixed ones), covariance and correlation (3 x 3 arrays in the order w, t, E1),
-    free (the names), residual_norm [N], residual_sigma [N], r_squared, iterations,
-    converged, points, displacement_pulloff (a [m], delta [m], F [N] of the fitted model),
-    curve (the fitted model: a, delta, F on curve_points radii) and, for kind="a", F_model
-    and residual (F_model - F) at the data points.
-    Raises ValueError for bad input, NumericalError when the fit does not converge, the
-    parameters are not identifiable or the model does not describe the data (R^2 < 0.5).
+def _fit_sigma(value, values, name):
+    """One uncertainty entry of sigma=: a number [SI], an array per point, or "p%" of |values|."""
+    if isinstance(value, str):
+        text = value.strip()
+        if not text.endswith("%"):
+            raise ValueError("sigma %s: %r is neither a number nor a percentage such as '0.3%%'" % (name, value))
+        try:
+            percent = float(text[:-1])
+        except ValueError:
+            raise ValueError("sigma %s: %r is not a percentage such as '0.3%%'" % (name, value)) from None
+        if not (0.0 < percent < 100.0):
+            raise ValueError("sigma %s: %r is not a percentage in (0, 100)" % (name, value))
+        return 0.01 * percent * np.abs(values)
+    out = np.asarray(value, dtype=float)
+    if out.ndim == 0:
+        out = np.full(values.shape, float(out))
+    return np.ascontiguousarray(out.ravel())
+
+
+def _fit_shape(shape):
+    if shape is None:
+        return None
+    if shape[0] == "profile":
+        return _core.make_profile(np.asarray(shape[1], dtype=float), np.asarray(shape[2], dtype=float))
+    params = [float(v) for v in shape[1:]] + [0.0]
+    return _core.make_shape(shape[0], params[0], params[1])
+
+
+def fit(x, F, *, kind="a", radius=None, shape=None, film, substrate, thickness, work=None, free=("w",),
+        indenter=None, sigma=None, branch=None, unload_work=None, spring=None, model="jkr", lambda_=None,
+        bootstrap=0, seed=1, curve_points=200):
+    """Least-squares fit of measured (a, F), (delta, F) or (z, F) data (residuals in force): the
+    library call behind `coatcontact fit`, with the same models and the same numbers.
+
+    x, F       arrays: contact radius a [m] (> 0; kind="a"), penetration delta [m]
+               (kind="delta") or base displacement z = delta + F/k [m] of a sphere on the
+               spring k (kind="z", spring= required), and force F [N], compressive positive.
+    radius     sphere radius R [m]; or shape= any indenter as in shape_contact: ("sphere", R),
+               ("cone", beta), ("punch", A), ("power", n, R), ("blunted-cone", R, beta),
+               ("profile", r, z) (its own parameters fixed; the model is solved at every point).
+    film       (E1 [Pa], nu1): E1 is the start value if fitted.  substrate (E0, nu0) or "rigid".
+    thickness  t [m]: fixed value or start value.
+    work       w [J/m^2]: fixed value or start value; default (when w is free) the library's
+               start value (from the most tensile force through the JKR pull-off, as the CLI).
+    free       names among "w", "t", "E1"; "w_load", "w_unload" in place of "w" give the loading
+               and unloading rows their own w (branch= says which row is which, 1 loading,
+               0 unloading; default: the rows after the largest x unload); "k" with kind="z";
+               "lambda" with model="md". A sequence or a comma-separated string; default w.
+    sigma      uncertainties: {"a": .., "F": ..} (the abscissa's name, or "F"), each a number
+               [m or N], an array per point, or a percentage string "0.3%": residuals weighted by
+               the effective variance sigma_F^2 + (dF/dx)^2 sigma_x^2, chi2_per_dof reported.
+    spring     k [N/m]: the spring of z,F data (fixed, or the start of k when free); for other
+               data, report the pull-off through it.
+    model      "jkr" (default) or "md": a Maugis-Dugdale zone with lambda_ (fixed, or the start of
+               lambda when free; default 1), a,F data of a rigid sphere.
+    bootstrap  residual-bootstrap refits (0: none; seed: of the resampling): interval68/95.
+
+    Returns a dict: names (all parameters in order), estimates, errors, start and units (dicts
+    by name; error 0 for fixed ones), correlation and covariance (arrays in the order of
+    names), free (the names), residual_norm [N], residual_sigma [N], r_squared, weighted,
+    chi2_per_dof, iterations, converged, points, load_pulloff and displacement_pulloff (dicts
+    a [m], delta [m], F [N] of the fitted model; under load control None when the curve has
+    no interior minimum), spring_pulloff (with spring=, else None), F_model, a_model and
+    residual (F_model - F) at the data points, interval68/interval95 (dicts of (low, high),
+    with bootstrap) and, for the sphere and JKR, curve (the fitted model on curve_points radii).
+    Raises ValueError for bad input (as the CLI's exit 2, with the same message), NumericalError
+    when the fit does not converge, the parameters are not identifiable or the model does not
+    describe the data (R^2 < 0.5).
     """
-    if kind not in ("a", "delta"):
-        raise ValueError("fit: kind %r is neither 'a' nor 'delta'" % (kind,))
+    if kind not in _FIT_KINDS:
+        raise ValueError("fit: kind %r is none of 'a', 'delta', 'z'" % (kind,))
+    if model not in ("jkr", "md"):
+        raise ValueError("model: %r is neither 'jkr' nor 'md' (Maugis-Dugdale)" % (model,))
+    if (radius is None) == (shape is None):
+        raise ValueError("radius: give the sphere radius radius=R or an indenter shape=(...), not both")
     if isinstance(free, str):
         free = tuple(s.strip() for s in free.split(","))
-    mask = 0
-    for name in free:
-        if name not in _FIT_NAMES:
-            raise ValueError("fit: free parameter %r is not one of w, t, E1" % (name,))
-        mask |= 1 << _FIT_NAMES.index(name)
+    free = tuple(free)
     x = np.ascontiguousarray(np.asarray(x, dtype=float).ravel())
     F = np.ascontiguousarray(np.asarray(F, dtype=float).ravel())
-    if work is None:
-        if "w" not in free:
-            raise ValueError("w is fixed: give it with work=... (or add 'w' to free)")
-        # The CLI's start value (fit::jkr_work_estimate).
-        f_min = float(F.min()) if F.size else 0.0
-        work = f_min / (-1.5 * math.pi * radius) if f_min < 0.0 else 0.05
-    stack = Stack(film, substrate=substrate, indenter=indenter)
-    kind_code = _core.FIT_RADIUS_FORCE if kind == "a" else _core.FIT_PENETRATION_FORCE
-    r = _core.fit(stack._core, kind_code, x, F, float(radius), float(thickness), float(work), mask)
-
+    empty = np.zeros(0)
+    sigma_x = sigma_F = empty
+    for name, value in (sigma or {}).items():
+        if name == "F":
+            sigma_F = _fit_sigma(value, F, name)
+        elif name == kind:
+            sigma_x = _fit_sigma(value, x, name)
+        else:
+            raise ValueError("sigma: %r is not a column of these data (allowed: %s, F)" % (name, kind))
+    unloading = empty if branch is None else np.ascontiguousarray(1.0 - np.asarray(branch, dtype=float).ravel())
+    if work is None and "w" not in free and "w_load" not in free:
+        raise ValueError("w is fixed: give it with work=... (or add 'w' to free)")
+    # The C interface takes the layer's thickness as a length (the fixed value or the hint of t).
+    stack = Stack(layers=[(float(thickness), film[0], film[1])], substrate=substrate, indenter=indenter)
+    r = _core.fit_run(stack._core, getattr(_core, _FIT_KINDS[kind]), x, F, sigma_x, sigma_F, unloading,
+                      0.0 if radius is None else float(radius), _fit_shape(shape), ",".join(free),
+                      0.0 if work is None else float(work), 0.0 if unload_work is None else float(unload_work),
+                      0.0 if spring is None else float(spring),
+                      _core.FIT_MAUGIS_DUGDALE if model == "md" else _core.FIT_JKR,
+                      0.0 if lambda_ is None else float(lambda_), int(bootstrap), int(seed))
+    names = tuple(r["names"].split(","))
     value, error, corr = r["value"], r["standard_error"], r["correlation"]
+    free_names = tuple(n for n in names if n in free or (n == "t" and "h1" in free))
     out = {
-        "estimates": {n: float(value[i]) for i, n in enumerate(_FIT_NAMES)},
-        "errors": {n: float(error[i]) for i, n in enumerate(_FIT_NAMES)},
-        "units": dict(_FIT_UNITS),
+        "names": names,
+        "estimates": {n: float(value[i]) for i, n in enumerate(names)},
+        "errors": {n: float(error[i]) for i, n in enumerate(names)},
+        "start": {n: float(r["start"][i]) for i, n in enumerate(names)},
+        "units": {n: _fit_unit(n) for n in names},
         "correlation": corr,
         "covariance": corr * np.outer(error, error),
-        "free": tuple(n for i, n in enumerate(_FIT_NAMES) if mask >> i & 1),
-        "start": {"w": float(work), "t": float(thickness), "E1": float(film[0])},
+        "free": free_names,
+        "converged": True,
     }
-    for k in ("points", "residual_norm", "residual_sigma", "r_squared", "iterations", "converged"):
+    for k in ("points", "residual_norm", "residual_sigma", "r_squared", "iterations", "weighted", "chi2_per_dof"):
         out[k] = r[k]
-    out["displacement_pulloff"] = dict(zip(("a", "delta", "F"), map(float, r["displacement_pulloff"])))
-
-    # The fitted curve: the same model at the estimates, through the SI contact.
-    fitted = Stack((value[2], film[1]), substrate=substrate, indenter=indenter)
-    c = Contact(_model(fitted, _DEFAULT_TOL), radius, value[1], value[0])
-    out["curve"] = c.curve(curve_points)
-    if kind == "a":
-        out["F_model"] = c.at(x)["F"]
-        out["residual"] = out["F_model"] - F
+    as_point = lambda p: None if p is None else dict(zip(("F", "a", "delta"), map(float, p)))
+    out["load_pulloff"] = as_point(r["load_pulloff"])
+    out["displacement_pulloff"] = as_point(r["displacement_pulloff"]) or {"F": 0.0, "a": 0.0, "delta": 0.0}
+    out["spring_pulloff"] = as_point(r["spring_pulloff"])
+    out["F_model"] = r["F_model"]
+    out["a_model"] = r["a_model"]
+    out["residual"] = r["F_model"] - F
+    if bootstrap:
+        out["bootstrap_samples"] = r["bootstrap_samples"]
+        for key in ("interval68", "interval95"):
+            out[key] = {n: (float(r[key][i, 0]), float(r[key][i, 1])) for i, n in enumerate(names) if n in free_names}
+    if shape is None and model == "jkr":
+        # The fitted curve: the same model at the estimates (w_unload with two energies), through
+        # the SI contact.
+        est = out["estimates"]
+        fitted = Stack((est["E1"], film[1]), substrate=substrate, indenter=indenter)
+        w = est.get("w_unload", est.get("w", est.get("w_load")))
+        c = Contact(_model(fitted, _DEFAULT_TOL), radius, est["t"], w)
+        out["curve"] = c.curve(curve_points)
     return out
 
 

@@ -342,6 +342,77 @@ Shape make_profile(const InArray& r, const InArray& z) {
   return Shape{std::shared_ptr<cc_shape>(s, cc_shape_destroy)};
 }
 
+// The fit with every model of the CLI (cc_fit_run). Empty arrays stand for "not given"; the
+// Python layer maps its keyword arguments to these positional ones.
+py::dict fit_run(const Stack& stack, int kind, const InArray& x, const InArray& force, const InArray& sigma_x,
+                 const InArray& sigma_force, const InArray& unloading, double radius, const Shape* shape,
+                 const std::string& free_names, double work, double unload_work, double spring, int model,
+                 double lambda, int bootstrap, unsigned long seed) {
+  const int n = count_of(x);
+  if (count_of(force) != n) throw py::value_error("F: " + std::to_string(force.shape(0)) + " forces for " + std::to_string(n) + " x values");
+  for (const auto* a : {&sigma_x, &sigma_force, &unloading}) {
+    if (count_of(*a) != 0 && count_of(*a) != n) throw py::value_error("fit: a per-point array differs in length from x");
+  }
+  std::vector<int> branch;
+  for (py::ssize_t i = 0; i < unloading.shape(0); ++i) branch.push_back(unloading.at(i) != 0.0 ? 1 : 0);
+  cc_fit_request request{};
+  request.kind = kind;
+  request.n = n;
+  request.x = x.data();
+  request.force = force.data();
+  request.sigma_x = sigma_x.shape(0) > 0 ? sigma_x.data() : nullptr;
+  request.sigma_force = sigma_force.shape(0) > 0 ? sigma_force.data() : nullptr;
+  request.unloading = branch.empty() ? nullptr : branch.data();
+  request.sphere_radius = radius;
+  request.shape = shape != nullptr ? shape->handle.get() : nullptr;
+  request.free_names = free_names.c_str();
+  request.work = work;
+  request.unload_work = unload_work;
+  request.spring_stiffness = spring;
+  request.model = model;
+  request.lambda = lambda;
+  request.bootstrap = bootstrap;
+  request.seed = seed;
+  std::vector<char> names(65536);
+  int p = 0;
+  call_held([&] { return cc_fit_parameter_names(stack.handle.get(), &request, names.data(), static_cast<int>(names.size()), &p); });
+  py::array_t<double> value(p), error(p), start(p), correlation({p, p}), i68({p, 2}), i95({p, 2}), f_model(n), a_model(n);
+  cc_fit_summary summary{};
+  double* pv = value.mutable_data();
+  double* pe = error.mutable_data();
+  double* ps = start.mutable_data();
+  double* pc = correlation.mutable_data();
+  double* p68 = i68.mutable_data();
+  double* p95 = i95.mutable_data();
+  double* pf = f_model.mutable_data();
+  double* pa = a_model.mutable_data();
+  call_released([&] { return cc_fit_run(stack.handle.get(), &request, p, pv, pe, ps, pc, p68, p95, pf, pa, &summary); });
+  const auto triple = [](const double* v) { return py::make_tuple(v[0], v[1], v[2]); };
+  py::dict d;
+  d["names"] = std::string(names.data());
+  d["value"] = value;
+  d["standard_error"] = error;
+  d["start"] = start;
+  d["correlation"] = correlation;
+  d["interval68"] = i68;
+  d["interval95"] = i95;
+  d["F_model"] = f_model;
+  d["a_model"] = a_model;
+  d["points"] = summary.points;
+  d["iterations"] = summary.iterations;
+  d["weighted"] = summary.weighted != 0;
+  d["residual_norm"] = summary.residual_norm;
+  d["residual_sigma"] = summary.residual_sigma;
+  d["r_squared"] = summary.r_squared;
+  d["chi2_per_dof"] = summary.chi2_per_dof;
+  d["load_pulloff"] = summary.has_load_pulloff ? py::object(triple(summary.load_pulloff)) : py::object(py::none());
+  d["displacement_pulloff"] =
+      summary.has_displacement_pulloff ? py::object(triple(summary.displacement_pulloff)) : py::object(py::none());
+  d["spring_pulloff"] = summary.has_spring_pulloff ? py::object(triple(summary.spring_pulloff)) : py::object(py::none());
+  d["bootstrap_samples"] = summary.bootstrap_samples;
+  return d;
+}
+
 struct ShapeContact {
   std::shared_ptr<cc_shape_contact> handle;
   ShapeContact(const Stack& stack, const Shape& shape, double thickness, double work, double tolerance) {
@@ -430,6 +501,9 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("fit", &fit);
   m.def("fit_stack", &fit_stack);
+  m.attr("FIT_BASE_FORCE") = static_cast<int>(CC_FIT_BASE_FORCE);
+  m.attr("FIT_JKR") = static_cast<int>(CC_FIT_JKR);
+  m.attr("FIT_MAUGIS_DUGDALE") = static_cast<int>(CC_FIT_MAUGIS_DUGDALE);
 
   m.def("pulloff_spring", &pulloff_spring);
   py::class_<MaugisDugdale>(m, "MaugisDugdale")
@@ -438,6 +512,7 @@ PYBIND11_MODULE(_core, m) {
       .def("pulloff", &MaugisDugdale::pulloff);
   py::class_<Shape>(m, "Shape");
   m.def("make_shape", &make_shape);
+  m.def("fit_run", &fit_run);
   m.def("make_profile", &make_profile);
   py::class_<ShapeContact>(m, "ShapeContact")
       .def(py::init<const Stack&, const Shape&, double, double, double>())

@@ -539,6 +539,88 @@ static void test_beyond_the_paper(void) {
   cc_stack_destroy(homogeneous);
 }
 
+/* cc_fit_run (every model of the fit behind one request) against cc_fit on the same data, its
+ * parameter names, its errors; cc_curve_read on a small file with units. */
+static void test_fit_run_and_curve(void) {
+  double curve[kCurvePoints * CC_CONTACT_COLUMNS], x[kCurvePoints], force[kCurvePoints];
+  double values[4], errors[4], start[4], model_force[kCurvePoints], column[2];
+  char names[64], units[128];
+  cc_stack *film = film_stack(kE1, kNu, kE0, kNu, 0), *one = NULL;
+  cc_reduced_solver *solver = solver_of(film);
+  cc_adhesive_model *model = NULL;
+  cc_contact *contact = NULL;
+  cc_fit_result fit;
+  cc_fit_request request;
+  cc_fit_summary summary;
+  cc_curve *measured = NULL;
+  int i, count = 0, rows = 0, kind = -1;
+  char path[] = "/tmp/cc_capi_curve.XXXXXX";
+  FILE *file;
+
+  check("fit_run: model", cc_adhesive_model_create(solver, 1e-10, &model) == CC_OK);
+  check("fit_run: contact", cc_contact_create(model, kRadius, kThickness, kWork, &contact) == CC_OK);
+  check("fit_run: curve", cc_contact_curve(contact, kCurvePoints, curve) == CC_OK);
+  for (i = 0; i < kCurvePoints; ++i) {
+    x[i] = curve[CC_CONTACT_COLUMNS * i];
+    force[i] = curve[CC_CONTACT_COLUMNS * i + 2];
+  }
+  cc_contact_destroy(contact);
+  cc_adhesive_model_destroy(model);
+  cc_reduced_solver_destroy(solver);
+  check("fit_run: cc_fit", cc_fit(film, CC_FIT_RADIUS_FORCE, kCurvePoints, x, force, kRadius, 0.7 * kThickness,
+                                  1.3 * kWork, CC_FIT_FREE_WORK | CC_FIT_FREE_THICKNESS, &fit) == CC_OK);
+  check("fit_run: one SI layer", cc_stack_create(&one) == CC_OK && cc_stack_add_layer(one, 0.7 * kThickness, kE1, kNu, 0) == CC_OK &&
+                                     cc_stack_set_substrate(one, kE0, kNu) == CC_OK);
+  memset(&request, 0, sizeof request);
+  request.kind = CC_FIT_RADIUS_FORCE;
+  request.n = kCurvePoints;
+  request.x = x;
+  request.force = force;
+  request.sphere_radius = kRadius;
+  request.free_names = "w,t";
+  request.work = 1.3 * kWork;
+  check("fit_run: names", cc_fit_parameter_names(one, &request, names, sizeof names, &count) == CC_OK &&
+                              strcmp(names, "w,t,E1") == 0 && count == 3);
+  check("fit_run: status", cc_fit_run(one, &request, 3, values, errors, start, NULL, NULL, NULL, model_force, NULL,
+                                      &summary) == CC_OK);
+  check("fit_run = cc_fit: w, t", values[0] == fit.value[CC_FIT_WORK] && values[1] == fit.value[CC_FIT_THICKNESS]);
+  check("fit_run = cc_fit: errors", errors[0] == fit.standard_error[CC_FIT_WORK] && errors[2] == 0.0);
+  check("fit_run: start values", start[0] == 1.3 * kWork && start[1] == 0.7 * kThickness && start[2] == kE1);
+  check("fit_run: both pull-offs", summary.has_load_pulloff && summary.has_displacement_pulloff &&
+                                       summary.displacement_pulloff[0] == fit.displacement_pulloff[2] &&
+                                       summary.displacement_pulloff[1] == fit.displacement_pulloff[0] &&
+                                       summary.load_pulloff[0] < summary.displacement_pulloff[0]);
+  check("fit_run: model force", close_to(model_force[kCurvePoints / 2], force[kCurvePoints / 2], 1e-6));
+  request.free_names = "w_load,w_unload";
+  check("fit_run: names of two energies", cc_fit_parameter_names(one, &request, names, sizeof names, &count) == CC_OK &&
+                                              strcmp(names, "w_load,t,E1,w_unload") == 0 && count == 4);
+  request.free_names = "w,k";
+  check_error("fit_run: k of a,F data", cc_fit_run(one, &request, 3, values, errors, NULL, NULL, NULL, NULL, NULL, NULL,
+                                                   NULL), CC_INPUT_ERROR, "free_names");
+  request.kind = 7;
+  check_error("fit_run: kind 7", cc_fit_run(one, &request, 3, values, errors, NULL, NULL, NULL, NULL, NULL, NULL, NULL),
+              CC_INPUT_ERROR, "kind");
+
+  /* A measured curve in um and mN. */
+  i = mkstemp(path);
+  check("curve: temporary file", i >= 0);
+  file = fdopen(i, "w");
+  fputs("# units: um mN\na\tF\n1.5\t2\n3\t-4\n", file);
+  fclose(file);
+  check("curve: read", cc_curve_read(path, "a,F", &measured) == CC_OK);
+  check("curve: size", cc_curve_size(measured, &rows, &kind) == CC_OK && rows == 2 && kind == CC_FIT_RADIUS_FORCE);
+  check("curve: a in m", cc_curve_column(measured, CC_CURVE_X, column) == CC_OK && column[0] == 1.5e-6 && column[1] == 3e-6);
+  check("curve: F in N", cc_curve_column(measured, CC_CURVE_F, column) == CC_OK && column[1] == -4e-3);
+  check("curve: units", cc_curve_units(measured, units, sizeof units) == CC_OK && strstr(units, "a um") != NULL);
+  check_error("curve: no sigma column", cc_curve_column(measured, CC_CURVE_SIGMA_F, column), CC_INPUT_ERROR, "no column");
+  cc_curve_destroy(measured);
+  check_error("curve: bad columns", cc_curve_read(path, "a,G", &measured), CC_INPUT_ERROR, "columns");
+  remove(path);
+  check_error("curve: missing file", cc_curve_read(path, "a,F", &measured), CC_INPUT_ERROR, "cannot read");
+  cc_stack_destroy(one);
+  cc_stack_destroy(film);
+}
+
 int main(int argc, char **argv) {
   if (argc != 2) {
     printf("usage: test_capi E_EQ_FROM_THE_COMMAND_LINE\n");
@@ -548,6 +630,7 @@ int main(int argc, char **argv) {
   test_homogeneous_adhesion();
   test_contact_and_fit();
   test_fit_stack();
+  test_fit_run_and_curve();
   test_errors();
   test_beyond_the_paper();
   if (failures == 0) {

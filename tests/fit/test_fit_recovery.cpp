@@ -44,7 +44,7 @@ constexpr double kInterpolationOverSigma = 0.01;
 
 fit::Measurements load(const std::string& path, fit::DataKind kind) {
   const DataTable table = read_data_file(path, 2, {kind == fit::DataKind::kRadiusForce, false},
-                                         {cli::Quantity::kLength, cli::Quantity::kForce});
+                                         {Quantity::kLength, Quantity::kForce});
   fit::Measurements m;
   m.kind = kind;
   m.abscissa = table.columns[0];

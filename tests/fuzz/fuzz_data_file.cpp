@@ -31,10 +31,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t columns = 1 + (selector & 3u);
   std::vector<bool> nonnegative(columns);
   for (std::size_t c = 0; c < columns; ++c) nonnegative[c] = ((selector >> (2 + c)) & 1u) != 0;
-  std::vector<std::optional<cli::Quantity>> kinds;
+  std::vector<std::optional<Quantity>> kinds;
   if ((selector & 0x80u) != 0) {
     // depth, load, then dimensionless columns
-    kinds = {cli::Quantity::kLength, cli::Quantity::kForce, std::nullopt, std::nullopt};
+    kinds = {Quantity::kLength, Quantity::kForce, std::nullopt, std::nullopt};
     kinds.resize(columns);
   }
   const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);

@@ -14,7 +14,7 @@ using coatcontact::DataTable;
 using coatcontact::InputError;
 using coatcontact::read_data_file;
 using coatcontact::read_data_text;
-using coatcontact::cli::Quantity;
+using coatcontact::Quantity;
 
 namespace {
 

@@ -12,8 +12,10 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/stack.hpp"
+#include "coatcontact/units.hpp"
 
 namespace coatcontact::cli {
 
@@ -39,23 +41,15 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
 //   kPressure: Pa kPa MPa GPa     kLength: m mm um µm nm     kEnergy: J/m2 mJ/m2
 //   kForce:    N mN uN µN nN
 // A bare number is SI. The value (after conversion to SI) must be finite and > 0.
-enum class Quantity { kPressure, kLength, kEnergy, kForce };
+using coatcontact::Quantity;
 double parse_quantity(const std::string& text, Quantity kind, const std::string& option);
 
-// The unit tables behind parse_quantity (also used for "# units:" lines of data files).
-struct UnitInfo {
-  Quantity kind;
-  double to_si;  // SI value of one unit
-};
-// value * to_si, correctly rounded for the decimal prefixes: sub-units divide by the exact
-// power of ten (50 um -> 5e-05, not 4.9999999999999996e-05).
-double to_si(double value, double unit_to_si);
-// The unit spelled exactly `unit` ("um", "MPa", ...), or nullopt if there is none.
-std::optional<UnitInfo> find_unit(const std::string& unit);
-// "pressure", "length", "energy per area", "force".
-const char* quantity_name(Quantity kind);
-// The allowed spellings of `kind`, e.g. "Pa kPa MPa GPa".
-std::string unit_list(Quantity kind);
+// The unit table behind parse_quantity (coatcontact/units.hpp, the library's).
+using coatcontact::find_unit;
+using coatcontact::quantity_name;
+using coatcontact::to_si;
+using coatcontact::unit_list;
+using coatcontact::UnitInfo;
 
 // "E,nu" with E > 0 (unit suffix allowed, as a pressure) and -1 < nu <= 0.5.
 Material parse_material(const std::string& text, const std::string& option);
@@ -163,6 +157,13 @@ class Output {
 
 // An input file of this command (e.g. "data file"): no Output may write to it.
 void register_input(const std::string& path, const std::string& what);
+// A data table of the measure floor (data_file.hpp) read as an input of this command: the file
+// is registered (register_input), so no output replaces it.
+DataTable read_data_file(const std::string& path, std::size_t expected_columns, const std::vector<bool>& nonnegative = {},
+                         const std::vector<std::optional<Quantity>>& kinds = {});
+// The text of a command's data file (registered as an input), or of stdin for "-" (bounded
+// while it is read: kMaxDataFileBytes).
+std::string read_input_text(const std::string& path);
 // The checks of the Output constructor without creating anything, so a command can refuse a
 // bad target before a long computation. `outputs`: (option, path) pairs, also checked
 // against each other (empty path: stdout).

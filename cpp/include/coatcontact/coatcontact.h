@@ -234,6 +234,82 @@ int cc_shape_contact_curve(const cc_shape_contact *contact, int n, const double 
 int cc_shape_contact_pulloff(const cc_shape_contact *contact, double spring_stiffness,
                              double out[CC_SHAPE_PULLOFF_COLUMNS]);
 
+/* ---- the fit with every model of `coatcontact fit` (coatcontact/fit.hpp) -----------------
+ * Data: (a, F), (delta, F), or (z, F) with z = delta + F/k the base displacement of a sphere on
+ * a spring k. Models: JKR on the sphere, any shape (cc_shape), Maugis-Dugdale (lambda), the
+ * loading and unloading branches with their own w (free_names with w_load,w_unload). The
+ * stack's layer thicknesses are lengths [m]; they and the moduli are the fixed values or the
+ * hints of the free ones. Everything zero or NULL that is not needed. */
+#define CC_FIT_BASE_FORCE 2 /* kind: (z, F), z = delta + F/k through the spring of spring_stiffness */
+enum cc_fit_model { CC_FIT_JKR = 0, CC_FIT_MAUGIS_DUGDALE = 1 };
+typedef struct cc_fit_request {
+  int kind;                  /* CC_FIT_RADIUS_FORCE, CC_FIT_PENETRATION_FORCE or CC_FIT_BASE_FORCE */
+  int n;                     /* data points */
+  const double *x;           /* a, delta or z [m] */
+  const double *force;       /* F [N], compressive positive */
+  const double *sigma_x;     /* standard uncertainty of each x [m], or NULL */
+  const double *sigma_force; /* of each F [N], or NULL (neither: an unweighted fit) */
+  const int *unloading;      /* per point 1 on the unloading branch, 0 loading; NULL: the rows after
+                                the largest x (read only with w_load,w_unload free) */
+  double sphere_radius;      /* R [m] (unused with a shape) */
+  const cc_shape *shape;     /* NULL: the sphere */
+  const char *free_names;    /* comma-separated, from cc_fit_parameter_names ("w", "w,t,E1",
+                                "w_load,w_unload", "w,k", "w,lambda", "w,h2,E1", ...) */
+  double work;               /* w [J/m^2]: fixed, or hint; 0: the library's start value */
+  double unload_work;        /* w_unload hint; 0: as work */
+  double spring_stiffness;   /* k [N/m]: the spring of (z, F) data (hint if k is free); for other
+                                data > 0 reports the pull-off through it; 0: none */
+  int model;                 /* CC_FIT_JKR or CC_FIT_MAUGIS_DUGDALE */
+  double lambda;             /* Maugis's lambda: fixed, or hint; 0: 1 */
+  int bootstrap;             /* residual-bootstrap refits (0: none) */
+  unsigned long seed;        /* of the bootstrap resampling (0: 1) */
+} cc_fit_request;
+
+typedef struct cc_fit_summary {
+  int parameter_count;
+  int points;
+  int iterations;
+  int weighted;              /* sigmas were given: chi2_per_dof is meaningful */
+  double residual_norm;      /* sqrt(RSS) [N] */
+  double residual_sigma;     /* sqrt(RSS/(n - free parameters)) [N] */
+  double r_squared;
+  double chi2_per_dof;
+  int has_load_pulloff;      /* the pull-offs of the fitted model: F [N], a [m], delta [m] */
+  double load_pulloff[3];
+  int has_displacement_pulloff;
+  double displacement_pulloff[3];
+  int has_spring_pulloff;
+  double spring_pulloff[3];
+  int bootstrap_samples;     /* refits that converged */
+} cc_fit_summary;
+
+/* The parameters of `request` on `stack`, comma-separated in the order of cc_fit_run's arrays,
+ * into names (size bytes with the final NUL); count (may be NULL): how many. */
+int cc_fit_parameter_names(const cc_stack *stack, const cc_fit_request *request, char *names, int size,
+                           int *count);
+/* values, standard_errors, start (hints and fixed values; may be NULL): parameter_count doubles;
+ * correlation (may be NULL): parameter_count^2, row-major; interval68, interval95 (may be NULL):
+ * 2 parameter_count doubles, low and high of each (bootstrap); model_force, model_x (may be
+ * NULL): n doubles, the model's F and contact radius a [m] at each point. */
+int cc_fit_run(const cc_stack *stack, const cc_fit_request *request, int parameter_count, double *values,
+               double *standard_errors, double *start, double *correlation, double *interval68,
+               double *interval95, double *model_force, double *model_x, cc_fit_summary *summary);
+
+/* ---- measured force curves (coatcontact/measured_curve.hpp) -------------------------------
+ * A data file (TSV/CSV, '#' comments, "# units:" or units in column names) read into SI. columns
+ * as the CLI's --columns: "a,F", "delta,F", "z,F" or "a=2,F=5,sigma_F=6,branch=7". */
+typedef struct cc_curve cc_curve;
+enum cc_curve_column { CC_CURVE_X = 0, CC_CURVE_F = 1, CC_CURVE_SIGMA_X = 2, CC_CURVE_SIGMA_F = 3,
+                       CC_CURVE_BRANCH = 4, CC_CURVE_LINE = 5 };
+int cc_curve_read(const char *path, const char *columns, cc_curve **curve);
+void cc_curve_destroy(cc_curve *curve);
+/* Rows; the kind (CC_FIT_RADIUS_FORCE, CC_FIT_PENETRATION_FORCE or CC_FIT_BASE_FORCE). */
+int cc_curve_size(const cc_curve *curve, int *rows, int *kind);
+/* The column's values (rows doubles); CC_INPUT_ERROR when the file has no such column. */
+int cc_curve_column(const cc_curve *curve, int column, double *out);
+/* The units as read ("a um, F mN (from the '# units:' line)"), into text (size bytes). */
+int cc_curve_units(const cc_curve *curve, char *text, int size);
+
 #ifdef __cplusplus
 }
 #endif

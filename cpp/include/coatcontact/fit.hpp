@@ -40,6 +40,7 @@
 
 #include <memory>
 
+#include "coatcontact/errors.hpp"
 #include "coatcontact/indenter_shape.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/stack.hpp"
@@ -234,10 +235,35 @@ struct Result {
 
 Result fit(const Measurements& data, const Problem& problem);
 
+// The start values of a problem (the hints of its free parameters, the values of its fixed
+// ones) against the ranges the fit explores: w and w_unload in kWorkRange, every E_i in
+// kModulusRange, the a/t (a/T) of a,F data in kAOverTRange. fit() checks them first; a caller
+// that maps its own option names to the parameters catches StartError, which names the
+// parameter by its index in the parameter vector.
+class StartError : public InputError {
+ public:
+  StartError(std::size_t parameter, const std::string& what) : InputError(what), parameter_(parameter) {}
+  std::size_t parameter() const { return parameter_; }
+
+ private:
+  std::size_t parameter_;
+};
+void check_start(const Measurements& data, const Problem& problem);
+
+// What the data imply when they look like a unit mix-up, or "" when they look plausible: for
+// the sphere, the w that the most tensile force needs under JKR (F = -(3/2) pi w R) when it is
+// outside kSearchWork ("... needs w = 2.1e+04 J/m2 ...: are the units of F and R right?").
+// fit() appends it to a failure; callers append it to their own refusals.
+std::string units_hint(const Measurements& data, const Problem& problem);
+
 // Start value of w from the most tensile measured force through the JKR load-controlled
 // pull-off F_min = -(3/2) pi w R (THEORY.md section 6; the film shifts the pull-off, but the
 // estimate is close enough to start from); 50 mJ/m2 if no force is tensile.
 double jkr_work_estimate(const Measurements& data, double sphere_radius);
+// The start value of w when none is given: jkr_work_estimate for the sphere; for a shape (no
+// sphere radius) kDefaultStartWork, the search then finds w on its own.
+constexpr double kDefaultStartWork = 0.05;  // J/m2
+double start_work(const Measurements& data, const Problem& problem);
 
 // The model curve for fixed parameters (used by fit() and for plotting/tests).
 struct CurvePoint {

@@ -1,4 +1,5 @@
-// Reader for measured data tables (format described in data_file.hpp).
+// Reader for measured data tables (format described in data_file.hpp): the measure floor's
+// table of numbers, below every reader of a particular kind of measurement.
 #include "coatcontact/data_file.hpp"
 
 #include <sys/stat.h>
@@ -7,9 +8,11 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <istream>
 #include <iterator>
 #include <string_view>
 
+#include "coatcontact/units.hpp"
 #include "number_text.hpp"
 
 namespace coatcontact {
@@ -19,13 +22,21 @@ using detail::NumberStatus;
 using detail::quote;
 using detail::trim_blanks;
 
+// The separator of a line: ',' when it has one, else ';' (the CSV of spreadsheets set to a
+// decimal-comma locale), else runs of blanks (0).
+char separator_of(std::string_view line) {
+  if (line.find(',') != std::string_view::npos) return ',';
+  if (line.find(';') != std::string_view::npos) return ';';
+  return 0;
+}
+
 std::vector<std::string_view> split_fields(std::string_view line, bool& has_empty_field) {
   std::vector<std::string_view> fields;
   has_empty_field = false;
-  if (line.find(',') != std::string_view::npos) {
+  if (const char separator = separator_of(line); separator != 0) {
     std::size_t start = 0;
     for (;;) {
-      const std::size_t comma = line.find(',', start);
+      const std::size_t comma = line.find(separator, start);
       const std::string_view field =
           trim_blanks(line.substr(start, comma == std::string_view::npos ? comma : comma - start));
       if (field.empty()) has_empty_field = true;
@@ -48,9 +59,8 @@ std::vector<std::string_view> split_fields(std::string_view line, bool& has_empt
 class Reader {
  public:
   Reader(const std::string& name, std::size_t expected_columns, const std::vector<bool>& nonnegative,
-         const std::vector<std::optional<cli::Quantity>>& kinds)
+         const std::vector<std::optional<Quantity>>& kinds)
       : name_(name), columns_(expected_columns), nonnegative_(nonnegative), kinds_(kinds) {
-    if (expected_columns == 0) throw std::invalid_argument("read_data: expected_columns must be >= 1");
     if (!nonnegative.empty() && nonnegative.size() != expected_columns) {
       throw std::invalid_argument("read_data: nonnegative flags do not match expected_columns");
     }
@@ -119,6 +129,7 @@ class Reader {
         !any_status(status, NumberStatus::kNotFinite) && !any_status(status, NumberStatus::kOutOfRange) &&
         !any_status(status, NumberStatus::kSubnormal)) {
       // Header: names only.
+      adopt_column_count(fields.size());
       if (fields.size() != columns_) {
         fail(line_number, "header has " + std::to_string(fields.size()) + " column names, expected " +
                               std::to_string(columns_));
@@ -128,6 +139,7 @@ class Reader {
     }
 
     if (has_empty_field) fail(line_number, "empty field (two separators in a row or at the end of the line)");
+    adopt_column_count(fields.size());
     if (fields.size() != columns_) {
       fail(line_number, "expected " + std::to_string(columns_) + " columns, found " +
                             std::to_string(fields.size()));
@@ -154,6 +166,13 @@ class Reader {
     }
     for (std::size_t c = 0; c < columns_; ++c) table_.columns[c].push_back(values[c]);
     table_.line_numbers.push_back(line_number);
+  }
+
+  // expected_columns 0: the first header, units line or data row sets the count.
+  void adopt_column_count(std::size_t count) {
+    if (columns_ != 0) return;
+    columns_ = count;
+    table_.columns.resize(count);
   }
 
   static bool any_status(const std::vector<NumberStatus>& status, NumberStatus wanted) {
@@ -186,6 +205,7 @@ class Reader {
     bool has_empty_field = false;
     const std::vector<std::string_view> units = split_fields(trim_blanks(comment.substr(kKey.size())), has_empty_field);
     if (has_empty_field) fail(line_number, "empty unit in the units line");
+    adopt_column_count(units.size());
     if (units.size() != columns_) {
       fail(line_number, "units line has " + std::to_string(units.size()) + " units, expected " +
                             std::to_string(columns_) + " (one per column)");
@@ -196,20 +216,20 @@ class Reader {
       // has_kind: the caller says what column c is; dimensionless when kind is absent.
       const bool checked = !kinds_.empty();
       const bool has_kind = checked && kinds_[c].has_value();
-      const cli::Quantity kind = has_kind ? kinds_[c].value() : cli::Quantity::kLength;
+      const Quantity kind = has_kind ? kinds_[c].value() : Quantity::kLength;
       if (unit == "-" || unit == "1") {
         if (has_kind) {
-          fail(line_number, "column " + std::to_string(c + 1) + " is a " + cli::quantity_name(kind) +
-                                ", it needs a unit (" + cli::unit_list(kind) + "), not " + quote(unit));
+          fail(line_number, "column " + std::to_string(c + 1) + " is a " + quantity_name(kind) +
+                                ", it needs a unit (" + unit_list(kind) + "), not " + quote(unit));
         }
         continue;
       }
-      const auto info = cli::find_unit(unit);
+      const auto info = find_unit(unit);
       if (!info) fail(line_number, "unknown unit " + quote(unit) + " for column " + std::to_string(c + 1));
       if (checked && (!has_kind || info->kind != kind)) {
         fail(line_number, "unit " + quote(unit) + " of column " + std::to_string(c + 1) + " is a " +
-                              cli::quantity_name(info->kind) + " unit, expected " +
-                              (has_kind ? std::string(cli::quantity_name(kind)) + " (" + cli::unit_list(kind) + ")"
+                              quantity_name(info->kind) + " unit, expected " +
+                              (has_kind ? std::string(quantity_name(kind)) + " (" + unit_list(kind) + ")"
                                         : std::string("a dimensionless column ('-')")));
       }
       factors_[c] = info->to_si;
@@ -222,7 +242,7 @@ class Reader {
     if (factors_.empty()) return;
     for (std::size_t c = 0; c < columns_; ++c) {
       for (std::size_t r = 0; r < table_.rows(); ++r) {
-        const double si = cli::to_si(table_.columns[c][r], factors_[c]);
+        const double si = to_si(table_.columns[c][r], factors_[c]);
         if (!std::isfinite(si)) {
           fail(table_.line_numbers[r], column_label(c) + ": value " + detail::number_string(table_.columns[c][r]) +
                                            " " + table_.units[c] + " is too large in SI units");
@@ -235,7 +255,7 @@ class Reader {
   std::string name_;
   std::size_t columns_;
   std::vector<bool> nonnegative_;
-  std::vector<std::optional<cli::Quantity>> kinds_;
+  std::vector<std::optional<Quantity>> kinds_;
   DataTable table_;
   std::vector<double> factors_;
   int units_line_ = 0;
@@ -246,28 +266,55 @@ class Reader {
 
 DataTable read_data_text(const std::string& text, const std::string& name,
                          std::size_t expected_columns, const std::vector<bool>& nonnegative,
-                         const std::vector<std::optional<cli::Quantity>>& kinds) {
+                         const std::vector<std::optional<Quantity>>& kinds) {
   return Reader(name, expected_columns, nonnegative, kinds).read(text);
+}
+
+std::string read_file_text(const std::string& path) {
+  struct stat info {};
+  if (stat(path.c_str(), &info) != 0) {
+    throw InputError(short_name(path) + ": cannot read data file: " + std::strerror(errno));
+  }
+  if (!S_ISREG(info.st_mode)) throw InputError(short_name(path) + ": not a regular file");
+  if (static_cast<unsigned long long>(info.st_size) > kMaxDataFileBytes) {
+    throw InputError(short_name(path) + ": larger than " + std::to_string(kMaxDataFileBytes / (1024 * 1024)) +
+                     " MB; refusing to read it");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(short_name(path) + ": cannot open data file: " + std::strerror(errno));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(short_name(path) + ": read error");
+  return text;
+}
+
+std::string read_stream_text(std::istream& in, const std::string& name) {
+  // Read in pieces and stop one byte past the limit: an endless stream (cat /dev/zero) is
+  // refused after 100 MB, not read until memory runs out.
+  std::string text;
+  std::vector<char> piece(1 << 16);
+  while (in) {
+    in.read(piece.data(), static_cast<std::streamsize>(piece.size()));
+    text.append(piece.data(), static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxDataFileBytes) {
+      throw InputError(name + ": larger than " + std::to_string(kMaxDataFileBytes / (1024 * 1024)) +
+                       " MB; refusing to read more");
+    }
+  }
+  if (in.bad()) throw InputError(name + ": read error");
+  return text;
+}
+
+std::string short_name(const std::string& text) {
+  constexpr std::size_t kMaxShown = 200;
+  if (text.size() <= kMaxShown) return text;
+  return text.substr(0, kMaxShown / 2) + "...(" + std::to_string(text.size()) + " characters)..." +
+         text.substr(text.size() - kMaxShown / 2);
 }
 
 DataTable read_data_file(const std::string& path, std::size_t expected_columns,
                          const std::vector<bool>& nonnegative,
-                         const std::vector<std::optional<cli::Quantity>>& kinds) {
-  struct stat info {};
-  if (stat(path.c_str(), &info) != 0) {
-    throw InputError(path + ": cannot read data file: " + std::strerror(errno));
-  }
-  if (!S_ISREG(info.st_mode)) throw InputError(path + ": not a regular file");
-  if (static_cast<unsigned long long>(info.st_size) > kMaxDataFileBytes) {
-    throw InputError(path + ": larger than " + std::to_string(kMaxDataFileBytes / (1024 * 1024)) +
-                     " MB; refusing to read it");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open data file: " + std::strerror(errno));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path + ": read error");
-  cli::register_input(path, "data file");  // no output of this command may replace it
-  return read_data_text(text, path, expected_columns, nonnegative, kinds);
+                         const std::vector<std::optional<Quantity>>& kinds) {
+  return read_data_text(read_file_text(path), short_name(path), expected_columns, nonnegative, kinds);
 }
 
 }  // namespace coatcontact

@@ -1,0 +1,133 @@
+"""coatcontact.fit does what `coatcontact fit` does (issue 28): uncertainties, loading and
+unloading branches, any indenter shape, base-displacement data through a spring, the
+Maugis-Dugdale zone, both pull-offs, and the library's start value of w; the numbers equal the
+CLI's to the last printed digit (the CLI prints 17 significant digits: bit equality)."""
+import os
+
+import numpy as np
+import pytest
+
+import coatcontact as cc
+
+MATERIAL = dict(film=(1e6, 0.49), substrate=(70e9, 0.22), thickness=50e-6)
+CLI_MATERIAL = ["--film", "1MPa,0.49", "--substrate", "70GPa,0.22", "--thickness", "50um"]
+
+
+def values_of(header):
+    return dict(l[2:].split(": ", 1) for l in header if ": " in l)
+
+
+def same(printed, value):
+    return float(printed) == float(value)
+
+
+def example(source_dir, name):
+    """The example data of data/ in SI, divided as the CLI divides "# units: um mN"."""
+    x, F = np.loadtxt(os.path.join(source_dir, "data", name), unpack=True)
+    return x / 1e6, F / 1e3
+
+
+def write_si(path, x, F):
+    with open(path, "w") as f:
+        for xi, fi in zip(x, F):
+            f.write("%.17g\t%.17g\n" % (xi, fi))
+
+
+def assert_estimates_equal(values, r):
+    for name in r["free"]:
+        unit = {"J/m^2": "J_per_m2", "N/m": "N_per_m", "": "1"}.get(r["units"][name], r["units"][name])
+        assert same(values["%s_%s" % (name, unit)], r["estimates"][name]), name
+        assert same(values["%s_stderr_%s" % (name, unit)], r["errors"][name]), name
+
+
+def test_fit_sigma_and_both_pulloffs_equal_cli(cli, source_dir):
+    header, _, _ = cli("fit", "data/example_a_F.tsv", "--columns", "a,F", "--radius", "5mm", *CLI_MATERIAL,
+                       "--sigma", "a=0.3%,F=10uN")
+    values = values_of(header)
+    a, F = example(source_dir, "example_a_F.tsv")
+    r = cc.fit(a, F, radius=5e-3, **MATERIAL, sigma={"a": "0.3%", "F": 10e-6})
+    assert_estimates_equal(values, r)
+    assert r["weighted"] and same(values["chi2_per_dof"], r["chi2_per_dof"])
+    assert same(values["load_pulloff_F_N"], r["load_pulloff"]["F"])
+    assert same(values["load_pulloff_a_m"], r["load_pulloff"]["a"])
+    assert same(values["displacement_pulloff_F_N"], r["displacement_pulloff"]["F"])
+    assert same(values["displacement_pulloff_a_m"], r["displacement_pulloff"]["a"])
+    # The start value of w is the library's (one JKR estimate for the CLI and Python).
+    assert same(values["w_hint_J_per_m2"], r["start"]["w"])
+
+
+def test_fit_branches_equal_cli(cli, source_dir):
+    header, _, _ = cli("fit", "data/example_a_F.tsv", "--columns", "a,F", "--radius", "5mm", *CLI_MATERIAL,
+                       "--free", "w_load,w_unload")
+    values = values_of(header)
+    a, F = example(source_dir, "example_a_F.tsv")
+    r = cc.fit(a, F, radius=5e-3, **MATERIAL, free="w_load,w_unload")
+    assert r["names"] == ("w_load", "t", "E1", "w_unload")
+    assert_estimates_equal(values, r)
+    # The same rows given as a branch column (1 loading, 0 unloading: the row order's split).
+    branch = np.where(np.arange(a.size) <= np.argmax(a), 1, 0)
+    b = cc.fit(a, F, radius=5e-3, **MATERIAL, free="w_load,w_unload", branch=branch)
+    assert b["estimates"] == r["estimates"]
+
+
+def test_fit_spring_equals_cli(cli, source_dir, tmp_path):
+    # z = delta + F/k of the example delta,F data on a spring of 1000 N/m; k free.
+    delta, F = example(source_dir, "example_delta_F.tsv")
+    z = delta + F / 1e3
+    path = str(tmp_path / "z.tsv")
+    write_si(path, z, F)
+    header, _, _ = cli("fit", path, "--columns", "z,F", "--radius", "5mm", *CLI_MATERIAL, "--spring", "800",
+                       "--free", "w,k", "--sigma", "F=10uN")
+    values = values_of(header)
+    r = cc.fit(z, F, kind="z", radius=5e-3, **MATERIAL, spring=800.0, free="w,k", sigma={"F": 10e-6})
+    assert r["names"][-1] == "k"
+    assert_estimates_equal(values, r)
+    assert r["estimates"]["k"] == pytest.approx(1e3, rel=0.05)
+    assert same(values["spring_pulloff_F_N"], r["spring_pulloff"]["F"])
+
+
+def test_fit_shape_equals_cli(cli, source_dir, tmp_path):
+    # The sphere as a shape (solved at every point): 10 of the example's loading rows.
+    a, F = example(source_dir, "example_a_F.tsv")
+    rows = np.arange(0, 40, 4)
+    path = str(tmp_path / "a.tsv")
+    write_si(path, a[rows], F[rows])
+    header, _, _ = cli("fit", path, "--columns", "a,F", "--shape", "sphere:5mm", *CLI_MATERIAL)
+    values = values_of(header)
+    r = cc.fit(a[rows], F[rows], shape=("sphere", 5e-3), **MATERIAL)
+    assert_estimates_equal(values, r)
+    assert "curve" not in r
+
+
+def test_fit_maugis_dugdale_equals_cli(cli, source_dir, tmp_path):
+    # Eight of the example's loading rows, lambda fixed: one solve per point and trial.
+    a, F = example(source_dir, "example_a_F.tsv")
+    rows = np.arange(4, 40, 5)
+    path = str(tmp_path / "a.tsv")
+    write_si(path, a[rows], F[rows])
+    header, _, _ = cli("fit", path, "--columns", "a,F", "--radius", "5mm", *CLI_MATERIAL, "--model", "md",
+                       "--lambda", "3")
+    values = values_of(header)
+    r = cc.fit(a[rows], F[rows], radius=5e-3, **MATERIAL, model="md", lambda_=3.0)
+    assert r["names"][-1] == "lambda" and r["estimates"]["lambda"] == 3.0
+    assert_estimates_equal(values, r)
+
+
+def test_fit_unit_mixup_is_explained(source_dir):
+    # a in um read as m: the same words as the CLI's (a is not below the sphere radius).
+    a, F = example(source_dir, "example_a_F.tsv")
+    with pytest.raises(ValueError, match="are the units right"):
+        cc.fit(a * 1e6, F, radius=5e-3, **MATERIAL)
+    # F in mN read as N: the pull-off needs an implausible w.
+    with pytest.raises((ValueError, cc.NumericalError), match="are the units of F and R right"):
+        cc.fit(a, F * 1e3, radius=5e-3, **MATERIAL)
+
+
+def test_fit_bad_options_are_value_errors(source_dir):
+    a, F = example(source_dir, "example_a_F.tsv")
+    with pytest.raises(ValueError, match="sigma"):
+        cc.fit(a, F, radius=5e-3, **MATERIAL, sigma={"delta": 1e-6})
+    with pytest.raises(ValueError, match="not both"):
+        cc.fit(a, F, radius=5e-3, shape=("sphere", 5e-3), **MATERIAL)
+    with pytest.raises(ValueError, match="free_names"):
+        cc.fit(a, F, radius=5e-3, **MATERIAL, free="w,k")
