@@ -460,7 +460,7 @@ std::string gnuplot_string(const std::string& text) {
 // file atomically). InputError when gnuplot is missing or fails.
 std::string render_fit_plot(const std::string& table, const std::string& curve, const std::string& x_name,
                             const std::string& title, const std::string& fit_label, const std::string& term,
-                            double lp_x, double lp_f, double dp_x, double dp_f) {
+                            double lp_x, double lp_f, double dp_x, double dp_f, double spring_k) {
   const char* tmp = std::getenv("TMPDIR");
   std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/coatcontact-plot.XXXXXX";
   std::vector<char> buffer(pattern.begin(), pattern.end());
@@ -487,7 +487,7 @@ std::string render_fit_plot(const std::string& table, const std::string& curve, 
                                gnuplot_string(dir + "/curve.tsv") + "; xname='" + x_name + "'; term='" + term +
                                "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(fit_label) +
                                "; lp_x=" + value(lp_x) + "; lp_F=" + value(lp_f) + "; dp_x=" + value(dp_x) +
-                               "; dp_F=" + value(dp_f);
+                               "; dp_F=" + value(dp_f) + "; spring_k=" + value(spring_k);
   save("settings.gp", settings + "\n");
   const std::string command = "gnuplot '" + dir + "/settings.gp' '" + dir + "/fit_plot.gp' 2>'" + dir + "/err'";
   FILE* pipe = popen(command.c_str(), "r");
@@ -1069,9 +1069,18 @@ int run_fit_body(const Args& args) {
   std::string picture;
   if (plot_path) {
     const double nan = std::nan("");
-    const double lp_x = result.has_load_pulloff ? (radius_data ? result.load_pulloff_radius : result.load_pulloff_penetration) : nan;
+    // z,F data are drawn against the base displacement z = delta + F/k (THEORY.md section 10):
+    // the model curve and the pull-offs too.
+    const double spring_k = choice.base ? result.value[fit::spring_index(layer_count, hysteresis)] : nan;
+    const auto abscissa = [&](double radius, double penetration, double force) {
+      return radius_data ? radius : choice.base ? penetration + force / spring_k : penetration;
+    };
+    const double lp_x = result.has_load_pulloff
+                            ? abscissa(result.load_pulloff_radius, result.load_pulloff_penetration, result.load_pulloff_force)
+                            : nan;
     const double dp_x = result.displacement_pulloff_radius > 0.0
-                            ? (radius_data ? result.displacement_pulloff_radius : result.displacement_pulloff_penetration)
+                            ? abscissa(result.displacement_pulloff_radius, result.displacement_pulloff_penetration,
+                                       result.displacement_pulloff_force)
                             : nan;
     std::string estimates;
     for (std::size_t which = 0; which < parameter_count; ++which) {
@@ -1103,7 +1112,7 @@ int run_fit_body(const Args& args) {
     const std::string title = name + ": R = " + si_text(problem.sphere_radius, "m") + ", " + coating + ", " + substrate;
     picture = render_fit_plot(table_text.str(), curve_text.str(), x_name, title, fit_label,
                               plot_path->substr(plot_path->rfind('.') + 1), lp_x, result.load_pulloff_force, dp_x,
-                              result.displacement_pulloff_force);
+                              result.displacement_pulloff_force, spring_k);
   }
 
   const std::string output_path = arguments.get("--output").value_or("");
