@@ -8,10 +8,13 @@
 #   plottitle, fitlabel  title lines built from the user's parameters and estimates
 #   term                 'png' or 'pdf'
 #   lp_x, lp_F, dp_x, dp_F  pull-offs (load, displacement control) in SI; NaN when absent
+#   spring_k             for xname 'z': the spring [N/m]; the model is drawn at z = delta + F/k
 if (term eq 'pdf') { set terminal pdfcairo size 7.5in,7.5in enhanced font 'Sans,9' } \
 else { set terminal pngcairo size 1100,1100 enhanced font 'Sans,11' }
 set encoding utf8
 xcol_curve = (xname eq 'a') ? 1 : 2
+# The model's abscissa: a, delta, or the base displacement z = delta + F/k.
+model_x(delta_or_a, F) = (xname eq 'z') ? delta_or_a + F / spring_k : delta_or_a
 set style line 1 lc rgb '#1f77b4' pt 6 ps 0.8 lw 1.2   # data
 set style line 2 lc rgb '#d62728' lw 2                 # model
 set style line 3 lc rgb '#2ca02c' pt 7 ps 1.6          # load-controlled pull-off
@@ -26,13 +29,15 @@ si_name(e) = e == -15 ? 'f' : e == -12 ? 'p' : e == -9 ? 'n' : e == -6 ? 'µ' : 
 stats fitfile using 2:3 nooutput
 x_big = STATS_max_x; F_big = (abs(STATS_min_y) > abs(STATS_max_y)) ? abs(STATS_min_y) : abs(STATS_max_y)
 F_data_min = STATS_min_y
-stats curvefile using (column(xcol_curve)) nooutput
+stats curvefile using (model_x(column(xcol_curve), $3)) nooutput
 x_lo = (xname eq 'a') ? STATS_min : 0; x_hi = STATS_max
 if (xname eq 'a') { stats fitfile using 2 nooutput; if (STATS_min < x_lo) { x_lo = STATS_min } }
 if (x_big > x_hi) { x_hi = x_big }
 x_e = si_exp(x_hi); x_s = 10.0 ** -x_e
 F_e = si_exp(F_big); F_s = 10.0 ** -F_e
-xlabel_text = (xname eq 'a') ? sprintf('contact radius a (%sm)', si_name(x_e)) : sprintf('penetration δ (%sm)', si_name(x_e))
+xlabel_text = (xname eq 'a') ? sprintf('contact radius a (%sm)', si_name(x_e)) : \
+              (xname eq 'z') ? sprintf('base displacement z = δ + F/k (%sm)', si_name(x_e)) : \
+              sprintf('penetration δ (%sm)', si_name(x_e))
 # The low-force panel: from below the most tensile of data and pull-offs to a few times its size.
 F_neg = F_data_min
 if (lp_F == lp_F && lp_F < F_neg) { F_neg = lp_F }
@@ -71,7 +76,7 @@ set format x ''
 set ylabel sprintf('force F (%sN)', si_name(F_e))
 set key top left box opaque
 set title fitlabel font ',10'
-plot curvefile u (column(xcol_curve)*x_s):($3*F_s) w l ls 2 t 'fitted model', \
+plot curvefile u (model_x(column(xcol_curve), $3)*x_s):($3*F_s) w l ls 2 t 'fitted model', \
      fitfile u ($2*x_s):($3*F_s) w p ls 1 t 'data', \
      '+' u (lp_x*x_s):(lp_F*F_s) every ::0::0 w p ls 3 t 'pull-off, load control', \
      '+' u (dp_x*x_s):(dp_F*F_s) every ::0::0 w p ls 4 t 'pull-off, displacement control', \
@@ -84,7 +89,7 @@ set ylabel sprintf('force F (%sN)', si_name(L_e))
 set yrange [-1.35 * F_neg * L_s : 3 * F_neg * L_s]
 set title 'low-force region: tensile points and the predicted pull-offs' font ',10'
 set key off
-plot curvefile u (column(xcol_curve)*x_s):($3*L_s) w l ls 2, \
+plot curvefile u (model_x(column(xcol_curve), $3)*x_s):($3*L_s) w l ls 2, \
      fitfile u ($2*x_s):($3*L_s) w p ls 1, \
      '+' u (lp_x*x_s):(lp_F*L_s) every ::0::0 w p ls 3, \
      '+' u (dp_x*x_s):(dp_F*L_s) every ::0::0 w p ls 4, \

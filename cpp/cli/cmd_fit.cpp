@@ -278,7 +278,7 @@ std::string gnuplot_string(const std::string& text) {
 // file atomically). InputError when gnuplot is missing or fails.
 std::string render_fit_plot(const std::string& table, const std::string& curve, const std::string& x_name,
                             const std::string& title, const std::string& fit_label, const std::string& term,
-                            double lp_x, double lp_f, double dp_x, double dp_f) {
+                            double lp_x, double lp_f, double dp_x, double dp_f, double spring_k) {
   const char* tmp = std::getenv("TMPDIR");
   std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/coatcontact-plot.XXXXXX";
   std::vector<char> buffer(pattern.begin(), pattern.end());
@@ -305,7 +305,7 @@ std::string render_fit_plot(const std::string& table, const std::string& curve, 
                                gnuplot_string(dir + "/curve.tsv") + "; xname='" + x_name + "'; term='" + term +
                                "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(fit_label) +
                                "; lp_x=" + value(lp_x) + "; lp_F=" + value(lp_f) + "; dp_x=" + value(dp_x) +
-                               "; dp_F=" + value(dp_f);
+                               "; dp_F=" + value(dp_f) + "; spring_k=" + value(spring_k);
   save("settings.gp", settings + "\n");
   const std::string command = "gnuplot '" + dir + "/settings.gp' '" + dir + "/fit_plot.gp' 2>'" + dir + "/err'";
   FILE* pipe = popen(command.c_str(), "r");
@@ -901,9 +901,19 @@ void make_table(FitRun& r) {
 void make_picture(FitRun& r) {
   if (r.plot_path) {
     const double nan = std::nan("");
-    const double lp_x = r.result.has_load_pulloff ? (r.radius_data ? r.result.load_pulloff_radius : r.result.load_pulloff_penetration) : nan;
+    // z,F data are drawn against the base displacement z = delta + F/k (THEORY.md section 10):
+    // the model curve and the pull-offs too.
+    const double spring_k = r.base_data ? r.result.value[fit::spring_index(r.layer_count, r.hysteresis)] : nan;
+    const auto abscissa = [&](double radius, double penetration, double force) {
+      return r.radius_data ? radius : r.base_data ? penetration + force / spring_k : penetration;
+    };
+    const double lp_x = r.result.has_load_pulloff
+                            ? abscissa(r.result.load_pulloff_radius, r.result.load_pulloff_penetration,
+                                       r.result.load_pulloff_force)
+                            : nan;
     const double dp_x = r.result.displacement_pulloff_radius > 0.0
-                            ? (r.radius_data ? r.result.displacement_pulloff_radius : r.result.displacement_pulloff_penetration)
+                            ? abscissa(r.result.displacement_pulloff_radius, r.result.displacement_pulloff_penetration,
+                                       r.result.displacement_pulloff_force)
                             : nan;
     std::string estimates;
     for (std::size_t which = 0; which < r.parameter_count; ++which) {
@@ -935,7 +945,7 @@ void make_picture(FitRun& r) {
     const std::string title = name + ": R = " + si_text(r.problem.sphere_radius, "m") + ", " + coating + ", " + substrate;
     r.picture = render_fit_plot(r.table_text.str(), r.curve_text.str(), r.x_name, title, fit_label,
                               r.plot_path->substr(r.plot_path->rfind('.') + 1), lp_x, r.result.load_pulloff_force, dp_x,
-                              r.result.displacement_pulloff_force);
+                              r.result.displacement_pulloff_force, spring_k);
   }
 }
 
