@@ -26,6 +26,7 @@ const Command kCommands[] = {
     {"pulloff", coatcontact::cli::run_pulloff, "normalized pull-off (load and displacement control) per eta"},
     {"sphere", coatcontact::cli::run_sphere, "adhesive sphere in physical units: a, delta, F and pull-off forces"},
     {"contact", coatcontact::cli::run_contact, "any axisymmetric indenter (cone, power law, blunted cone, profile) in SI units"},
+    {"kinetics", coatcontact::cli::run_kinetics, "rate-dependent adhesion: crack kinetics at the edge, driven through a spring"},
 };
 
 void print_overview(std::ostream& out) {

@@ -51,7 +51,9 @@ from ._core import NumericalError
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
            "stack_parameter_names", "pulloff_spring",
-           "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "REDUCED_KEYS"]
+           "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "REDUCED_KEYS"]
+
+from .kinetics import kinetics  # noqa: E402  (section 14)
 
 NumericalError.__doc__ = ("A result could not be delivered to its tolerance (the command "
                           "line's exit status 3); a RuntimeError.")
