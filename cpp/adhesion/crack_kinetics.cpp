@@ -36,6 +36,7 @@ struct Local {
   double a = 0.0;
   double p_h = 0.0, d_h = 0.0, k = 0.0, gamma = 0.0;
   double dp_h = 0.0, dd_h = 0.0, dk = 0.0;
+  double dlog_gamma = 0.0;  // d ln Gamma(1)/d ln a_bar
 };
 
 Local local_at(const AdhesiveModel& model, double eta, double a_bar) {
@@ -49,6 +50,7 @@ Local local_at(const AdhesiveModel& model, double eta, double a_bar) {
   l.dp_h = l.p_h * (3.0 + r.dlog_pi_s) / a_bar;
   l.dd_h = l.d_h * (2.0 + r.dlog_delta_s) / a_bar;
   l.dk = l.k * (1.0 + r.dlog_e_eq) / a_bar;
+  l.dlog_gamma = r.dlog_gamma1;
   return l;
 }
 
@@ -57,6 +59,7 @@ Local local_at(const AdhesiveModel& model, double eta, double a_bar) {
 struct Mechanics {
   double d = 0.0, load = 0.0, penetration = 0.0, z = 0.0, g = 0.0;
   double dload_da = 0.0, dload_dx = 0.0, dpen_da = 0.0, dpen_dx = 0.0;
+  double dd_da = 0.0, dd_dx = 0.0, dg_da = 0.0, dg_dx = 0.0;  // of d and G/w
 };
 
 struct Drive {
@@ -82,6 +85,11 @@ Mechanics mechanics(const Local& l, const Drive& drive, double x) {
   m.penetration = l.d_h + m.d;
   m.z = drive.load_control ? m.penetration : m.penetration + drive.compliance * m.load;
   m.g = l.gamma * l.gamma * m.d * m.d / (2.0 * l.a);
+  m.dd_da = dd_da;
+  m.dd_dx = dd_dx;
+  // G/w = Gamma^2 d^2/(2 a): d ln(G/w)/d a_bar = 2 d'/d + 2 Gamma'/Gamma - 1/a_bar.
+  m.dg_da = l.gamma * l.gamma / (2.0 * l.a) * (2.0 * m.d * dd_da) + m.g * (2.0 * l.dlog_gamma / l.a - 1.0 / l.a);
+  m.dg_dx = l.gamma * l.gamma / (2.0 * l.a) * (2.0 * m.d * dd_dx);
   m.dpen_da = l.dd_h + dd_da;
   m.dpen_dx = dd_dx;
   if (drive.load_control) {
@@ -99,6 +107,15 @@ double edge_speed(const KineticLaw& law, const Mechanics& m) {
   const double g = m.d >= 0.0 ? 0.0 : m.g;
   if (g > 1.0) return -std::pow(g - 1.0, 1.0 / law.n);
   return law.speed_ratio_adv * std::pow(1.0 - g, 1.0 / law.n_adv);
+}
+
+// d(edge speed)/d(G/w): the Jacobian of the stepper needs it exactly; a finite difference
+// across G = w (where the law has a kink in its curvature) stalls the Newton iteration.
+double edge_speed_slope(const KineticLaw& law, const Mechanics& m) {
+  if (m.d >= 0.0) return 0.0;
+  const double g = m.g;
+  if (g > 1.0) return -(1.0 / law.n) * std::pow(g - 1.0 + 1e-300, 1.0 / law.n - 1.0);
+  return -(law.speed_ratio_adv / law.n_adv) * std::pow(1.0 - g + 1e-300, 1.0 / law.n_adv - 1.0);
 }
 
 // X_H(a_bar): the drive on the adhesionless curve, and its derivative.
@@ -180,7 +197,7 @@ class Engine {
     drive_.compliance = (k_bar == 0.0 || std::isinf(k_bar)) ? 0.0 : 1.0 / k_bar;
     k_bar_ = k_bar;
     const double r = model.stack().substrate_length_ratio();
-    a_end_ = options.a_bar_end > 0.0 ? options.a_bar_end : 1e-3 * std::min(1.0, r);
+    a_end_ = options.a_bar_end > 0.0 ? options.a_bar_end : 1e-2 * std::min(1.0, r);
     a_max_ = options.a_bar_max > 0.0 ? options.a_bar_max : 100.0 * std::max(1.0, r);
     if (!(a_end_ / eta >= kMinimumScaled && a_max_ / eta <= kMaximumScaled)) {
       throw InputError("kinetics: eta = " + full_precision(eta) + " puts the contact radii [" +
@@ -295,7 +312,7 @@ class Engine {
     double a = state_.a;
     bool done = false;
     for (;;) {
-      double next = a * 1.02;
+      double next = a * 1.1;
       if (next > a_max_) {
         throw InputError("protocol segment " + std::to_string(segment_index_ + 1) +
                          " (approach): target load " + full_precision(target) +
@@ -367,19 +384,28 @@ class Engine {
     return std::isfinite(f[0]) && std::isfinite(f[1]) && std::isfinite(f[2]) ? GSL_SUCCESS : GSL_EBADFUNC;
   }
   static int jacobian(double tau, const double y[], double* dfdy, double dfdt[], void* params) {
-    double f0[3], f1[3];
-    if (rhs(tau, y, f0, params) != GSL_SUCCESS) return GSL_EBADFUNC;
-    const double h = 1e-7;
-    double yh[3] = {y[0] + h, y[1], y[2]};
-    if (rhs(tau, yh, f1, params) != GSL_SUCCESS) return GSL_EBADFUNC;
-    for (int i = 0; i < 3; ++i) {
-      dfdy[i * 3 + 0] = (f1[i] - f0[i]) / h;
-      dfdy[i * 3 + 1] = 0.0;
-      dfdy[i * 3 + 2] = 0.0;
-    }
-    const double ht = 1e-7 * std::max(std::fabs(tau), 1e-3);
-    if (rhs(tau + ht, y, f1, params) != GSL_SUCCESS) return GSL_EBADFUNC;
-    for (int i = 0; i < 3; ++i) dfdt[i] = (f1[i] - f0[i]) / ht;
+    const auto* e = static_cast<const Engine*>(params);
+    const double a = std::exp(y[0]);
+    if (!std::isfinite(a) || a <= 0.0) return GSL_EBADFUNC;
+    const Local l = local_at(e->model_, e->eta_, a);
+    const Mechanics m = mechanics(l, e->drive_, e->drive_at(tau));
+    const double adot = edge_speed(e->law_, m);
+    const double slope = edge_speed_slope(e->law_, m);
+    const double dadot_da = slope * m.dg_da;  // at fixed X
+    const double dadot_dx = slope * m.dg_dx;
+    const double g = m.d >= 0.0 ? 0.0 : m.g;
+    // Rows: u = ln a_bar, W, dissipation; columns u, W, dissipation (W and dissipation are
+    // quadratures: their columns vanish). Second derivatives of D are dropped in the W row.
+    dfdy[0] = dadot_da - adot / a;
+    const double dpen = m.dpen_da * adot + m.dpen_dx * e->rate_;
+    dfdy[3] = e->drive_.load_control ? a * (m.dload_da * dpen + m.load * m.dpen_da * dadot_da)
+                                     : a * m.dload_da * e->rate_;
+    dfdy[6] = -2.0 * a * ((g - 1.0) * (adot + a * dadot_da) + (m.d >= 0.0 ? 0.0 : m.dg_da) * a * adot);
+    for (int i : {1, 2, 4, 5, 7, 8}) dfdy[i] = 0.0;
+    dfdt[0] = dadot_dx * e->rate_ / a;
+    dfdt[1] = e->drive_.load_control ? e->rate_ * (dpen + m.load * m.dpen_da * dadot_dx)
+                                     : m.dload_dx * e->rate_ * e->rate_;
+    dfdt[2] = -2.0 * a * ((g - 1.0) * a * dadot_dx + (m.d >= 0.0 ? 0.0 : m.dg_dx) * a * adot) * e->rate_;
     return GSL_SUCCESS;
   }
 

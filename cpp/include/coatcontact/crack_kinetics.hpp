@@ -36,8 +36,7 @@ struct DriveSegment {
 struct KineticsOptions {
   double relative_tolerance = 1e-9;  // of the stepper (gsl_odeiv2 msbdf), on a_bar
   double absolute_tolerance = 1e-12;
-  // Contact is lost when a_bar falls to this value (<= 0: 1e-3 min(1, r), the low end of the
-  // pull-off scan).
+  // Contact is lost when a_bar falls to this value (<= 0: 1e-2 min(1, r), section 14).
   double a_bar_end = 0.0;
   // Upper a_bar bound of an approach (<= 0: 100 max(1, r)); an approach past it is InputError.
   double a_bar_max = 0.0;
