@@ -116,20 +116,63 @@ std::vector<KineticsSegmentSI> parse_protocol(const std::string& text, bool load
   return protocol;
 }
 
+// The same segments in reduced units: plain numbers (rate > 0, load P, time tau).
+std::vector<DriveSegment> parse_reduced_protocol(const std::string& text) {
+  const std::string option = "--protocol";
+  std::vector<DriveSegment> protocol;
+  for (const std::string& raw : split_on(text, ',')) {
+    const std::vector<std::string> f = split_on(trim(raw), ':');
+    const std::string kind = trim(f[0]);
+    DriveSegment s;
+    auto rate = [&](const std::string& t) {
+      const double v = parse_number(t, option);
+      if (!(v > 0.0)) throw InputError(option + ": rate '" + t + "' not allowed (need a reduced rate > 0)");
+      return v;
+    };
+    if (kind == "approach" && f.size() == 3) {
+      s.kind = DriveSegment::Kind::kApproach;
+      s.rate = rate(f[1]);
+      s.target_load = parse_number(f[2], option);
+      s.has_target = true;
+    } else if (kind == "dwell" && f.size() == 2) {
+      s.kind = DriveSegment::Kind::kDwell;
+      s.duration = parse_number(f[1], option);
+      if (!(s.duration > 0.0)) throw InputError(option + ": dwell '" + f[1] + "' not allowed (need tau > 0)");
+    } else if (kind == "retract" && (f.size() == 2 || f.size() == 3)) {
+      s.kind = DriveSegment::Kind::kRetract;
+      s.rate = rate(f[1]);
+      if (f.size() == 3) {
+        s.target_load = parse_number(f[2], option);
+        s.has_target = true;
+      }
+    } else {
+      throw InputError(option + ": segment '" + raw + "' not understood; expected approach:RATE:P, dwell:TAU, "
+                       "retract:RATE[:P] (reduced units, with --eta)");
+    }
+    protocol.push_back(s);
+  }
+  return protocol;
+}
+
 const std::vector<OptionSpec> kSpec = {
-    {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", true},
+    {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", false},
     {"--thickness", "t", "film thickness (m, or with a unit); not with --layer", false},
     film_option(),
     layer_option(true),
     substrate_option(),
     indenter_option(),
-    {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true},
-    {"--v-star", "V", "speed v* of the receding law G - w = w (|v|/v*)^n (m/s, or um/s nm/s mm/s)", true},
+    {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", false},
+    {"--v-star", "V", "speed v* of the receding law G - w = w (|v|/v*)^n (m/s, or um/s nm/s mm/s)", false},
     {"--n", "N", "exponent n > 0 of the receding law", true},
     {"--v-star-adv", "V", "speed v_a* of the advancing law w - G = w (v/v_a*)^n_adv (default v*)", false},
     {"--n-adv", "N", "exponent n_adv > 0 of the advancing law (default n)", false},
     {"--spring", "k", "spring stiffness in N/m between base and sphere; 0 is load control (then speeds are "
-                      "force rates, N/s), inf displacement control", true},
+                      "force rates, N/s), inf displacement control", false},
+    {"--eta", "ETA", "reduced run (THEORY.md section 14): film thickness over L_a; then --k-bar and a protocol in "
+                     "reduced units (rates dZ/dtau or dP/dtau, loads P, times tau) replace --radius, "
+                     "--thickness, --work, --v-star and --spring", false},
+    {"--k-bar", "K", "reduced spring stiffness k L_D/(pi w R) with --eta: 0 load control, inf displacement "
+                     "control", false},
     {"--protocol", "SEGMENTS", "approach:SPEED:FORCE,dwell:TIME,retract:SPEED[:FORCE],... starting at first "
                                "contact and ending with a retract until contact is lost (e.g. "
                                "approach:1um/s:1mN,dwell:1s,retract:10um/s)", true},
@@ -149,6 +192,102 @@ double parse_spring(const std::string& text) {
   return k;
 }
 
+ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::time_point started) {
+  for (const char* option : {"--radius", "--thickness", "--work", "--v-star", "--spring"}) {
+    if (args.has(option)) {
+      throw InputError(std::string(option) + ": not with --eta (a reduced run; see --help)");
+    }
+  }
+  const std::string eta_text = args.require("--eta");
+  const double eta = parse_number(eta_text, "--eta");
+  if (!(eta >= kMinimumScaled && eta <= kMaximumScaled)) {
+    throw InputError("--eta: value '" + eta_text + "' not allowed (need 1e-6 <= eta <= 1e6)");
+  }
+  const Stack stack = parse_stack(args);
+  if (args.has("--layer")) throw InputError("--layer: not with --eta (give --film)");
+  KineticLaw law;
+  auto exponent = [&](const std::string& option) {
+    const std::string text = args.require(option);
+    const double n = parse_number(text, option);
+    if (!(n > 0.0 && n <= 100.0)) throw InputError(option + ": value '" + text + "' not allowed (need 0 < n <= 100)");
+    return n;
+  };
+  law.n = exponent("--n");
+  law.n_adv = args.has("--n-adv") ? exponent("--n-adv") : law.n;
+  if (const auto text = args.get("--v-star-adv")) {
+    law.speed_ratio_adv = parse_number(*text, "--v-star-adv");
+    if (!(law.speed_ratio_adv > 0.0)) {
+      throw InputError("--v-star-adv: value '" + *text + "' not allowed (with --eta: v_a*/v* > 0)");
+    }
+  }
+  const std::string k_text = args.require("--k-bar");
+  const double k_bar = trim(k_text) == "inf" ? HUGE_VAL : parse_number(k_text, "--k-bar");
+  if (!(k_bar >= 0.0)) throw InputError("--k-bar: value '" + k_text + "' not allowed (need >= 0, or inf)");
+  const std::vector<DriveSegment> protocol = parse_reduced_protocol(args.require("--protocol"));
+  std::vector<double> rates;
+  if (const auto text = args.get("--retract-speeds")) rates = parse_list(*text, "--retract-speeds");
+  for (double v : rates) {
+    if (!(v > 0.0)) throw InputError("--retract-speeds: " + num(v) + " not allowed (need rates > 0)");
+  }
+  double tol = kDefaultTolerance;
+  if (const auto text = args.get("--tol")) {
+    tol = parse_number(*text, "--tol");
+    if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
+      throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 0.1)");
+    }
+  }
+  const std::string output_path = args.get("--output").value_or("");
+  check_output_path(output_path, "--output");
+  const ReducedSolver solver(stack);
+  const AdhesiveModel model(solver, tol);
+  std::vector<KineticsResult> runs;
+  try {
+    runs = rates.empty() ? std::vector<KineticsResult>{simulate_kinetics(model, eta, law, k_bar, protocol)}
+                         : sweep_kinetics(model, eta, law, k_bar, protocol, rates);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    throw InputError((message.rfind("protocol", 0) == 0 ? "--protocol: " : "") + message);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  Header h{{"command", "kinetics"}};
+  add_material_header(h, stack);
+  h.emplace_back("units", "reduced (THEORY.md section 14): a_bar = a/L_a, D = delta/L_D, Z = z/L_D, "
+                          "P = F/(pi w R), tau = t v*/L_a");
+  h.emplace_back("eta = t/L_a", num(eta));
+  h.emplace_back("k_bar", std::isinf(k_bar) ? std::string("inf (displacement control)")
+                          : k_bar == 0.0    ? std::string("0 (load control: rates are dP/dtau)")
+                                            : num(k_bar));
+  h.emplace_back("n, n_adv, v_a*/v*", num(law.n) + ", " + num(law.n_adv) + ", " + num(law.speed_ratio_adv));
+  h.emplace_back("protocol", args.require("--protocol"));
+  h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+  Output out(output_path);
+  std::ostream& os = out.stream();
+  if (rates.empty()) {
+    const KineticsResult& r = runs.front();
+    h.emplace_back("pull-off P, tau, a_bar", num(r.pulloff.load) + ", " + num(r.pulloff.tau) + ", " +
+                                                 num(r.pulloff.a_bar));
+    h.emplace_back("loss of contact P, tau, a_bar", num(r.loss.load) + ", " + num(r.loss.tau) + ", " +
+                                                        num(r.loss.a_bar));
+    h.emplace_back("drive work, dissipation [pi w L_a^2]", num(r.work) + ", " + num(r.dissipation));
+    h.emplace_back("ODE steps (gsl_odeiv2 msbdf)", std::to_string(r.steps));
+    const std::vector<std::string> columns = {"tau", "Z", "D", "a_bar", "P", "G_over_w", "segment"};
+    write_header(os, h, columns);
+    for (const KineticsSample& p : r.samples) {
+      write_row(os, {p.tau, p.z, p.penetration, p.a_bar, p.load, p.g_over_w, p.segment + 1.0}, columns);
+    }
+  } else {
+    const std::vector<std::string> columns = {"V", "P_pulloff", "tau_pulloff", "a_bar_pulloff", "P_loss",
+                                              "tau_loss"};
+    write_header(os, h, columns);
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const KineticsResult& r = runs[i];
+      write_row(os, {rates[i], r.pulloff.load, r.pulloff.tau, r.pulloff.a_bar, r.loss.load, r.loss.tau}, columns);
+    }
+  }
+  out.commit();
+  return kExitSuccess;
+}
+
 }  // namespace
 
 int run_kinetics(const Args& raw) {
@@ -157,7 +296,9 @@ int run_kinetics(const Args& raw) {
     if (args.help()) {
       std::cout << usage("kinetics",
                          "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w "
-                         "--v-star V --n N --spring k --protocol SEGMENTS [--retract-speeds LIST]",
+                         "--v-star V --n N --spring k --protocol SEGMENTS [--retract-speeds LIST]\n"
+                         "       coatcontact kinetics --eta ETA --film E1,nu1 --substrate E0,nu0|rigid --n N "
+                         "--k-bar K --protocol SEGMENTS [--retract-speeds LIST]",
                          "Rate-dependent JKR adhesion of a sphere on a coating (THEORY.md section 14): the\n"
                          "contact edge moves at the speed the crack-kinetics law gives for G - w, the base\n"
                          "moves z(t) through a spring (F = k (z - delta)). Prints t, z, delta, a, F, G from\n"
@@ -168,6 +309,13 @@ int run_kinetics(const Args& raw) {
       return kExitSuccess;
     }
     const auto started = std::chrono::steady_clock::now();
+    if (args.has("--eta")) return run_reduced_kinetics(args, started);
+    for (const char* option : {"--radius", "--work", "--v-star", "--spring"}) {
+      if (!args.has(option)) {
+        throw InputError(std::string("missing required option ") + option + " (or --eta for a reduced run)");
+      }
+    }
+    if (args.has("--k-bar")) throw InputError("--k-bar: only with --eta (use --spring in N/m)");
     KineticsSetupSI setup;
     setup.radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
     const double film_thickness =

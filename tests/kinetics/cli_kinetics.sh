@@ -38,4 +38,12 @@ expect2 --protocol $base --protocol approach:1um/s:1mN,dwell:1s
 expect2 --protocol $base --protocol approach:1um/s:1mN,hold:1s,retract:1um/s
 expect2 --spring --film 1e6,0.49 --substrate 70e9,0.22 --radius 2e-3 --thickness 50e-6 --work 0.04 --v-star 1e-6 --n 0.6 --spring -5 --protocol approach:1um/s:1mN,retract:1um/s
 expect2 --retract-speeds $base --protocol approach:1um/s:1mN,retract:1um/s --retract-speeds 1um/s,-2um/s
+# Reduced runs (--eta): SI options refused, --k-bar needs --eta.
+red="--eta 1 --film 0.1,0.25 --substrate 1,0.25 --n 0.6"
+"$cli" kinetics $red --k-bar 1 --protocol approach:1:1,dwell:1,retract:1 --output "$tmp/red.tsv" ||
+  { echo "FAIL: reduced run"; fail=1; }
+grep -q '^# columns: tau	Z	D	a_bar	P	G_over_w	segment' "$tmp/red.tsv" || { echo "FAIL: reduced columns"; fail=1; }
+expect2 --radius $red --k-bar 1 --radius 1mm --protocol approach:1:1,retract:1
+expect2 --k-bar $base --k-bar 1 --protocol approach:1um/s:1mN,retract:1um/s
+expect2 --k-bar $red --k-bar -1 --protocol approach:1:1,retract:1
 exit $fail
