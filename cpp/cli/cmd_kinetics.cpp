@@ -192,6 +192,26 @@ double parse_spring(const std::string& text) {
   return k;
 }
 
+// --tol: the solver's relative tolerance (default 1e-8).
+double solver_tolerance(const Arguments& args) {
+  double tol = kDefaultTolerance;
+  if (const auto text = args.get("--tol")) {
+    tol = parse_number(*text, "--tol");
+    if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
+      throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 0.1)");
+    }
+  }
+  return tol;
+}
+
+// A kinetic exponent: 0 < n <= 100.
+double parse_exponent(const Arguments& args, const std::string& option) {
+  const std::string text = args.require(option);
+  const double n = parse_number(text, option);
+  if (!(n > 0.0 && n <= 100.0)) throw InputError(option + ": value '" + text + "' not allowed (need 0 < n <= 100)");
+  return n;
+}
+
 ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::time_point started) {
   for (const char* option : {"--radius", "--thickness", "--work", "--v-star", "--spring"}) {
     if (args.has(option)) {
@@ -206,12 +226,7 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
   const Stack stack = parse_stack(args);
   if (args.has("--layer")) throw InputError("--layer: not with --eta (give --film)");
   KineticLaw law;
-  auto exponent = [&](const std::string& option) {
-    const std::string text = args.require(option);
-    const double n = parse_number(text, option);
-    if (!(n > 0.0 && n <= 100.0)) throw InputError(option + ": value '" + text + "' not allowed (need 0 < n <= 100)");
-    return n;
-  };
+  auto exponent = [&](const std::string& option) { return parse_exponent(args, option); };
   law.n = exponent("--n");
   law.n_adv = args.has("--n-adv") ? exponent("--n-adv") : law.n;
   if (const auto text = args.get("--v-star-adv")) {
@@ -229,13 +244,7 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
   for (double v : rates) {
     if (!(v > 0.0)) throw InputError("--retract-speeds: " + num(v) + " not allowed (need rates > 0)");
   }
-  double tol = kDefaultTolerance;
-  if (const auto text = args.get("--tol")) {
-    tol = parse_number(*text, "--tol");
-    if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
-      throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 0.1)");
-    }
-  }
+  const double tol = solver_tolerance(args);
   const std::string output_path = args.get("--output").value_or("");
   check_output_path(output_path, "--output");
   const ReducedSolver solver(stack);
@@ -324,14 +333,7 @@ int run_kinetics(const Args& raw) {
     setup.thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
     setup.work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
     setup.v_star = positive_speed(args.require("--v-star"), false, "--v-star");
-    auto exponent = [&](const std::string& option) {
-      const std::string text = args.require(option);
-      const double n = parse_number(text, option);
-      if (!(n > 0.0 && n <= 100.0)) {
-        throw InputError(option + ": value '" + text + "' not allowed (need 0 < n <= 100)");
-      }
-      return n;
-    };
+    auto exponent = [&](const std::string& option) { return parse_exponent(args, option); };
     setup.n = exponent("--n");
     if (args.has("--v-star-adv")) setup.v_star_adv = positive_speed(*args.get("--v-star-adv"), false, "--v-star-adv");
     if (args.has("--n-adv")) setup.n_adv = exponent("--n-adv");
@@ -348,13 +350,7 @@ int run_kinetics(const Args& raw) {
         }
       }
     }
-    double tol = kDefaultTolerance;
-    if (const auto text = args.get("--tol")) {
-      tol = parse_number(*text, "--tol");
-      if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
-        throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 0.1)");
-      }
-    }
+    const double tol = solver_tolerance(args);
     const std::string output_path = args.get("--output").value_or("");
     check_output_path(output_path, "--output");
 

@@ -23,6 +23,8 @@ Functions
                     finite interaction zone, lambda = 2 sigma0 (R/(pi w K^2))^(1/3) (section 13)
     shape_contact   any axisymmetric indenter in SI units: sphere, cone, punch, power law,
                     blunted cone, measured profile (section 11)
+    kinetics        rate-dependent adhesion: crack kinetics at the contact edge, driven
+                    through a spring, from first contact to the loss of contact (section 14)
 
 Classes
     Stack           film (layers), substrate or "rigid", indenter (sections 1, 9, 12)
