@@ -155,7 +155,30 @@ GP_fig_stack   = $(GP_common); layers='$(STACK_LAYERS)'; base='$(STACK_SUBSTRATE
                  slip_reduced='$(foreach m,$(SLIP_MODELS),$(call data,slipreduced_$(m)))'; \
                  slip_pulloff='$(foreach m,$(SLIP_MODELS),$(call data,slippulloff_$(m)))'
 
-FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig13 fig_md_lambda fig_stack
+# Rate-dependent adhesion (THEORY.md section 14): pull-off against the retract rate on the soft
+# and stiff films and the homogeneous solid, and P(D) loops on the soft film at three rates.
+# Reduced units; defaults here so that a conf file without them still works.
+KIN_ETA      ?= 1
+KIN_N        ?= 0.6
+KIN_K_BAR    ?= 1
+KIN_PROTOCOL ?= approach:1:1,dwell:1
+KIN_SPEEDS   ?= 1e-4:1e4:25
+KIN_LOOPS    ?= 0.01 1 100
+KIN_RATIOS   := $(SOFT_RATIO) $(STIFF_RATIO) 1
+kin_args = kinetics $(call materials,$(1)) --eta $(KIN_ETA) --n $(KIN_N) --k-bar $(KIN_K_BAR)
+$(foreach r,$(KIN_RATIOS),$(eval \
+  CMD_kinsweep_E$(r) := $(call kin_args,$(r)) --protocol $(KIN_PROTOCOL),retract:1 --retract-speeds $(KIN_SPEEDS)))
+$(foreach v,$(KIN_LOOPS),$(eval \
+  CMD_kinloop_V$(v) := $(call kin_args,$(SOFT_RATIO)) --protocol $(KIN_PROTOCOL),retract:$(v)))
+DATA_fig_kinetics = $(foreach r,$(KIN_RATIOS),$(call data,kinsweep_E$(r))) \
+                    $(foreach v,$(KIN_LOOPS),$(call data,kinloop_V$(v)))
+GP_fig_kinetics   = $(GP_common); ratios='$(KIN_RATIOS)'; speeds='$(KIN_LOOPS)'; n=$(KIN_N); \
+                    k_bar=$(KIN_K_BAR); eta=$(KIN_ETA); \
+                    sweeps='$(foreach r,$(KIN_RATIOS),$(call data,kinsweep_E$(r)))'; \
+                    loops='$(foreach v,$(KIN_LOOPS),$(call data,kinloop_V$(v)))'
+
+FIGURE_NAMES := fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig13 fig_md_lambda fig_stack \
+                fig_kinetics
 FIGURE_FILES := $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf)
 
 # Helper scripts loaded by the figure scripts.
@@ -178,7 +201,7 @@ figures: build
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
 
 figures-only: $(FIGURE_FILES)
-	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png, fig_stack.png and .pdf   data: $(DATA_DIR)/*.tsv"
+	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png, fig_stack.png, fig_kinetics.png and .pdf   data: $(DATA_DIR)/*.tsv"
 	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
 
 figures-data: $(PULLOFF_FILES) $(foreach f,$(FIGURE_NAMES),$(DATA_$(f)))
@@ -225,5 +248,6 @@ DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_po
   $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous \
   mdcurves mdcurves_jkr \
   $(foreach m,$(STACK_MODELS),stackreduced_$(m) stackpulloff_$(m)) \
-  $(foreach m,$(SLIP_MODELS),slipreduced_$(m) slippulloff_$(m))
+  $(foreach m,$(SLIP_MODELS),slipreduced_$(m) slippulloff_$(m)) \
+  $(foreach r,$(KIN_RATIOS),kinsweep_E$(r)) $(foreach v,$(KIN_LOOPS),kinloop_V$(v))
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):

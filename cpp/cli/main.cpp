@@ -27,6 +27,7 @@ const Command kCommands[] = {
     {"sphere", coatcontact::cli::run_sphere, "adhesive sphere in physical units: a, delta, F and pull-off forces"},
     {"contact", coatcontact::cli::run_contact, "any axisymmetric indenter (cone, power law, blunted cone, profile) in SI units"},
     {"afm", coatcontact::cli::run_afm, "AFM force curves from instrument files: show, export"},
+    {"kinetics", coatcontact::cli::run_kinetics, "rate-dependent adhesion: crack kinetics at the edge, driven through a spring"},
 };
 
 void print_overview(std::ostream& out) {

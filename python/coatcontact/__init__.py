@@ -23,6 +23,8 @@ Functions
                     finite interaction zone, lambda = 2 sigma0 (R/(pi w K^2))^(1/3) (section 13)
     shape_contact   any axisymmetric indenter in SI units: sphere, cone, punch, power law,
                     blunted cone, measured profile (section 11)
+    kinetics        rate-dependent adhesion: crack kinetics at the contact edge, driven
+                    through a spring, from first contact to the loss of contact (section 14)
 
 Classes
     Stack           film (layers), substrate or "rigid", indenter (sections 1, 9, 12)
@@ -53,7 +55,9 @@ from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
            "stack_parameter_names", "pulloff_spring",
-           "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "REDUCED_KEYS"]
+           "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "REDUCED_KEYS"]
+
+from .kinetics import kinetics  # noqa: E402  (section 14)
 
 NumericalError.__doc__ = ("A result could not be delivered to its tolerance (the command "
                           "line's exit status 3); a RuntimeError.")

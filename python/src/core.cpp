@@ -16,6 +16,8 @@
 
 namespace py = pybind11;
 
+void register_kinetics(py::module_& m);  // kinetics.cpp
+
 namespace {
 
 // Mapped to coatcontact.NumericalError (a RuntimeError) at module import.
@@ -519,4 +521,5 @@ PYBIND11_MODULE(_core, m) {
       .def("default_range", &ShapeContact::default_range)
       .def("curve", &ShapeContact::curve)
       .def("pulloff", &ShapeContact::pulloff);
+  register_kinetics(m);
 }

@@ -1,0 +1,433 @@
+// `coatcontact kinetics`: rate-dependent JKR adhesion of a sphere on a coating, the contact
+// edge obeying a crack-kinetics law, driven through a spring (THEORY.md section 14).
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/cli_support.hpp"
+#include "coatcontact/contact.hpp"
+#include "coatcontact/crack_kinetics.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/reduced.hpp"
+#include "commands.hpp"
+
+namespace coatcontact::cli {
+
+namespace {
+
+using Header = std::vector<std::pair<std::string, std::string>>;
+
+std::string num(double v) { return format_parameter(v, "header value"); }
+
+std::vector<std::string> split_on(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = text.find(separator, start);
+    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return parts;
+    start = end + 1;
+  }
+}
+
+std::string trim(const std::string& s) {
+  const std::size_t b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+// A number with one of `units` (suffix, optionally after one space); bare numbers are SI.
+double with_unit(const std::string& raw, const std::vector<std::pair<std::string, double>>& units,
+                 const std::string& option, const std::string& what) {
+  const std::string text = trim(raw);
+  for (const auto& [suffix, factor] : units) {
+    if (text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      const std::string number = trim(text.substr(0, text.size() - suffix.size()));
+      if (!number.empty() && (std::isdigit(static_cast<unsigned char>(number.back())) || number.back() == '.')) {
+        return to_si(parse_number(number, option), factor);
+      }
+    }
+  }
+  try {
+    return parse_number(text, option);
+  } catch (const InputError&) {
+    std::string allowed;
+    for (const auto& u : units) allowed += (allowed.empty() ? "" : " ") + u.first;
+    throw InputError(option + ": " + what + " '" + raw + "' not understood (a number, optionally with a unit: " +
+                     allowed + ")");
+  }
+}
+
+const std::vector<std::pair<std::string, double>> kSpeedUnits = {
+    {"nm/s", 1e-9}, {"um/s", 1e-6}, {"µm/s", 1e-6}, {"mm/s", 1e-3}, {"m/s", 1.0}};
+const std::vector<std::pair<std::string, double>> kForceRateUnits = {
+    {"nN/s", 1e-9}, {"uN/s", 1e-6}, {"µN/s", 1e-6}, {"mN/s", 1e-3}, {"N/s", 1.0}};
+const std::vector<std::pair<std::string, double>> kTimeUnits = {{"ms", 1e-3}, {"s", 1.0}, {"min", 60.0}};
+const std::vector<std::pair<std::string, double>> kForceUnits = {
+    {"nN", 1e-9}, {"uN", 1e-6}, {"µN", 1e-6}, {"mN", 1e-3}, {"N", 1.0}};
+
+double positive_speed(const std::string& text, bool load_control, const std::string& option) {
+  const double v = with_unit(text, load_control ? kForceRateUnits : kSpeedUnits, option,
+                             load_control ? "force rate" : "speed");
+  if (!(v > 0.0 && std::isfinite(v))) {
+    throw InputError(option + ": " + std::string(load_control ? "force rate" : "speed") + " '" + text +
+                     "' not allowed (need a finite value > 0" + (load_control ? " N/s" : " m/s") + ")");
+  }
+  return v;
+}
+
+// "approach:V:F,dwell:T,retract:V[:F]" (V a speed, or a force rate under load control).
+std::vector<KineticsSegmentSI> parse_protocol(const std::string& text, bool load_control) {
+  const std::string option = "--protocol";
+  const std::string expected = "expected segments approach:SPEED:FORCE, dwell:TIME, retract:SPEED[:FORCE], "
+                               "separated by commas";
+  std::vector<KineticsSegmentSI> protocol;
+  for (const std::string& raw : split_on(text, ',')) {
+    const std::vector<std::string> f = split_on(trim(raw), ':');
+    const std::string kind = trim(f[0]);
+    KineticsSegmentSI s;
+    auto force = [&](const std::string& t) { return with_unit(t, kForceUnits, option, "force"); };
+    if (kind == "approach" && f.size() == 3) {
+      s.kind = DriveSegment::Kind::kApproach;
+      s.speed = positive_speed(f[1], load_control, option);
+      s.target_force = force(f[2]);
+      s.has_target = true;
+    } else if (kind == "dwell" && f.size() == 2) {
+      s.kind = DriveSegment::Kind::kDwell;
+      s.duration = with_unit(f[1], kTimeUnits, option, "time");
+      if (!(s.duration > 0.0)) {
+        throw InputError(option + ": dwell time '" + f[1] + "' not allowed (need a time > 0 s)");
+      }
+    } else if (kind == "retract" && (f.size() == 2 || f.size() == 3)) {
+      s.kind = DriveSegment::Kind::kRetract;
+      s.speed = positive_speed(f[1], load_control, option);
+      if (f.size() == 3) {
+        s.target_force = force(f[2]);
+        s.has_target = true;
+      }
+    } else {
+      throw InputError(option + ": segment '" + raw + "' not understood; " + expected);
+    }
+    protocol.push_back(s);
+  }
+  return protocol;
+}
+
+// The same segments in reduced units: plain numbers (rate > 0, load P, time tau).
+std::vector<DriveSegment> parse_reduced_protocol(const std::string& text) {
+  const std::string option = "--protocol";
+  std::vector<DriveSegment> protocol;
+  for (const std::string& raw : split_on(text, ',')) {
+    const std::vector<std::string> f = split_on(trim(raw), ':');
+    const std::string kind = trim(f[0]);
+    DriveSegment s;
+    auto rate = [&](const std::string& t) {
+      const double v = parse_number(t, option);
+      if (!(v > 0.0)) throw InputError(option + ": rate '" + t + "' not allowed (need a reduced rate > 0)");
+      return v;
+    };
+    if (kind == "approach" && f.size() == 3) {
+      s.kind = DriveSegment::Kind::kApproach;
+      s.rate = rate(f[1]);
+      s.target_load = parse_number(f[2], option);
+      s.has_target = true;
+    } else if (kind == "dwell" && f.size() == 2) {
+      s.kind = DriveSegment::Kind::kDwell;
+      s.duration = parse_number(f[1], option);
+      if (!(s.duration > 0.0)) throw InputError(option + ": dwell '" + f[1] + "' not allowed (need tau > 0)");
+    } else if (kind == "retract" && (f.size() == 2 || f.size() == 3)) {
+      s.kind = DriveSegment::Kind::kRetract;
+      s.rate = rate(f[1]);
+      if (f.size() == 3) {
+        s.target_load = parse_number(f[2], option);
+        s.has_target = true;
+      }
+    } else {
+      throw InputError(option + ": segment '" + raw + "' not understood; expected approach:RATE:P, dwell:TAU, "
+                       "retract:RATE[:P] (reduced units, with --eta)");
+    }
+    protocol.push_back(s);
+  }
+  return protocol;
+}
+
+const std::vector<OptionSpec> kSpec = {
+    {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", false},
+    {"--thickness", "t", "film thickness (m, or with a unit); not with --layer", false},
+    film_option(),
+    layer_option(true),
+    substrate_option(),
+    indenter_option(),
+    {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", false},
+    {"--v-star", "V", "speed v* of the receding law G - w = w (|v|/v*)^n (m/s, or um/s nm/s mm/s)", false},
+    {"--n", "N", "exponent n > 0 of the receding law", true},
+    {"--v-star-adv", "V", "speed v_a* of the advancing law w - G = w (v/v_a*)^n_adv (default v*)", false},
+    {"--n-adv", "N", "exponent n_adv > 0 of the advancing law (default n)", false},
+    {"--spring", "k", "spring stiffness in N/m between base and sphere; 0 is load control (then speeds are "
+                      "force rates, N/s), inf displacement control", false},
+    {"--eta", "ETA", "reduced run (THEORY.md section 14): film thickness over L_a; then --k-bar and a protocol in "
+                     "reduced units (rates dZ/dtau or dP/dtau, loads P, times tau) replace --radius, "
+                     "--thickness, --work, --v-star and --spring", false},
+    {"--k-bar", "K", "reduced spring stiffness k L_D/(pi w R) with --eta: 0 load control, inf displacement "
+                     "control", false},
+    {"--protocol", "SEGMENTS", "approach:SPEED:FORCE,dwell:TIME,retract:SPEED[:FORCE],... starting at first "
+                               "contact and ending with a retract until contact is lost (e.g. "
+                               "approach:1um/s:1mN,dwell:1s,retract:10um/s)", true},
+    {"--retract-speeds", "LIST", "sweep the last retract's speed: v1,v2,... (units allowed) or MIN:MAX:N in "
+                                 "m/s (log-spaced); prints one pull-off row per speed", false},
+    {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
+    {"--output", "FILE", "write to FILE atomically instead of stdout", false},
+};
+
+double parse_spring(const std::string& text) {
+  if (trim(text) == "inf") return HUGE_VAL;
+  const double k = parse_number(text, "--spring");
+  if (!(k >= 0.0)) {
+    throw InputError("--spring: value '" + text + "' not allowed (need a stiffness >= 0 in N/m, 0 for load "
+                     "control, or inf for displacement control)");
+  }
+  return k;
+}
+
+// --tol: the solver's relative tolerance (default 1e-8).
+double solver_tolerance(const Arguments& args) {
+  double tol = kDefaultTolerance;
+  if (const auto text = args.get("--tol")) {
+    tol = parse_number(*text, "--tol");
+    if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
+      throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 0.1)");
+    }
+  }
+  return tol;
+}
+
+// A kinetic exponent: 0 < n <= 100.
+double parse_exponent(const Arguments& args, const std::string& option) {
+  const std::string text = args.require(option);
+  const double n = parse_number(text, option);
+  if (!(n > 0.0 && n <= 100.0)) throw InputError(option + ": value '" + text + "' not allowed (need 0 < n <= 100)");
+  return n;
+}
+
+ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::time_point started) {
+  for (const char* option : {"--radius", "--thickness", "--work", "--v-star", "--spring"}) {
+    if (args.has(option)) {
+      throw InputError(std::string(option) + ": not with --eta (a reduced run; see --help)");
+    }
+  }
+  const std::string eta_text = args.require("--eta");
+  const double eta = parse_number(eta_text, "--eta");
+  if (!(eta >= kMinimumScaled && eta <= kMaximumScaled)) {
+    throw InputError("--eta: value '" + eta_text + "' not allowed (need 1e-6 <= eta <= 1e6)");
+  }
+  const Stack stack = parse_stack(args);
+  if (args.has("--layer")) throw InputError("--layer: not with --eta (give --film)");
+  KineticLaw law;
+  auto exponent = [&](const std::string& option) { return parse_exponent(args, option); };
+  law.n = exponent("--n");
+  law.n_adv = args.has("--n-adv") ? exponent("--n-adv") : law.n;
+  if (const auto text = args.get("--v-star-adv")) {
+    law.speed_ratio_adv = parse_number(*text, "--v-star-adv");
+    if (!(law.speed_ratio_adv > 0.0)) {
+      throw InputError("--v-star-adv: value '" + *text + "' not allowed (with --eta: v_a*/v* > 0)");
+    }
+  }
+  const std::string k_text = args.require("--k-bar");
+  const double k_bar = trim(k_text) == "inf" ? HUGE_VAL : parse_number(k_text, "--k-bar");
+  if (!(k_bar >= 0.0)) throw InputError("--k-bar: value '" + k_text + "' not allowed (need >= 0, or inf)");
+  const std::vector<DriveSegment> protocol = parse_reduced_protocol(args.require("--protocol"));
+  std::vector<double> rates;
+  if (const auto text = args.get("--retract-speeds")) rates = parse_list(*text, "--retract-speeds");
+  for (double v : rates) {
+    if (!(v > 0.0)) throw InputError("--retract-speeds: " + num(v) + " not allowed (need rates > 0)");
+  }
+  const double tol = solver_tolerance(args);
+  const std::string output_path = args.get("--output").value_or("");
+  check_output_path(output_path, "--output");
+  const ReducedSolver solver(stack);
+  const AdhesiveModel model(solver, tol);
+  std::vector<KineticsResult> runs;
+  try {
+    runs = rates.empty() ? std::vector<KineticsResult>{simulate_kinetics(model, eta, law, k_bar, protocol)}
+                         : sweep_kinetics(model, eta, law, k_bar, protocol, rates);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    throw InputError((message.rfind("protocol", 0) == 0 ? "--protocol: " : "") + message);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  Header h{{"command", "kinetics"}};
+  add_material_header(h, stack);
+  h.emplace_back("units", "reduced (THEORY.md section 14): a_bar = a/L_a, D = delta/L_D, Z = z/L_D, "
+                          "P = F/(pi w R), tau = t v*/L_a");
+  h.emplace_back("eta = t/L_a", num(eta));
+  h.emplace_back("k_bar", std::isinf(k_bar) ? std::string("inf (displacement control)")
+                          : k_bar == 0.0    ? std::string("0 (load control: rates are dP/dtau)")
+                                            : num(k_bar));
+  h.emplace_back("n, n_adv, v_a*/v*", num(law.n) + ", " + num(law.n_adv) + ", " + num(law.speed_ratio_adv));
+  h.emplace_back("protocol", args.require("--protocol"));
+  h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+  Output out(output_path);
+  std::ostream& os = out.stream();
+  if (rates.empty()) {
+    const KineticsResult& r = runs.front();
+    h.emplace_back("pull-off P, tau, a_bar", num(r.pulloff.load) + ", " + num(r.pulloff.tau) + ", " +
+                                                 num(r.pulloff.a_bar));
+    h.emplace_back("loss of contact P, tau, a_bar", num(r.loss.load) + ", " + num(r.loss.tau) + ", " +
+                                                        num(r.loss.a_bar));
+    h.emplace_back("drive work, dissipation [pi w L_a^2]", num(r.work) + ", " + num(r.dissipation));
+    h.emplace_back("ODE steps (gsl_odeiv2 msbdf)", std::to_string(r.steps));
+    const std::vector<std::string> columns = {"tau", "Z", "D", "a_bar", "P", "G_over_w", "segment"};
+    write_header(os, h, columns);
+    for (const KineticsSample& p : r.samples) {
+      write_row(os, {p.tau, p.z, p.penetration, p.a_bar, p.load, p.g_over_w, p.segment + 1.0}, columns);
+    }
+  } else {
+    const std::vector<std::string> columns = {"V", "P_pulloff", "tau_pulloff", "a_bar_pulloff", "P_loss",
+                                              "tau_loss"};
+    write_header(os, h, columns);
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const KineticsResult& r = runs[i];
+      write_row(os, {rates[i], r.pulloff.load, r.pulloff.tau, r.pulloff.a_bar, r.loss.load, r.loss.tau}, columns);
+    }
+  }
+  out.commit();
+  return kExitSuccess;
+}
+
+}  // namespace
+
+int run_kinetics(const Args& raw) {
+  return run_guarded("kinetics", [&]() {
+    const Arguments args(raw, kSpec);
+    if (args.help()) {
+      std::cout << usage("kinetics",
+                         "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w "
+                         "--v-star V --n N --spring k --protocol SEGMENTS [--retract-speeds LIST]\n"
+                         "       coatcontact kinetics --eta ETA --film E1,nu1 --substrate E0,nu0|rigid --n N "
+                         "--k-bar K --protocol SEGMENTS [--retract-speeds LIST]",
+                         "Rate-dependent JKR adhesion of a sphere on a coating (THEORY.md section 14): the\n"
+                         "contact edge moves at the speed the crack-kinetics law gives for G - w, the base\n"
+                         "moves z(t) through a spring (F = k (z - delta)). Prints t, z, delta, a, F, G from\n"
+                         "first contact to the loss of contact, with the pull-off (most tensile force of the\n"
+                         "last retract) and the loss of contact in the header; with --retract-speeds one\n"
+                         "pull-off row per retract speed instead.",
+                         kSpec);
+      return kExitSuccess;
+    }
+    const auto started = std::chrono::steady_clock::now();
+    if (args.has("--eta")) return run_reduced_kinetics(args, started);
+    for (const char* option : {"--radius", "--work", "--v-star", "--spring"}) {
+      if (!args.has(option)) {
+        throw InputError(std::string("missing required option ") + option + " (or --eta for a reduced run)");
+      }
+    }
+    if (args.has("--k-bar")) throw InputError("--k-bar: only with --eta (use --spring in N/m)");
+    KineticsSetupSI setup;
+    setup.radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
+    const double film_thickness =
+        args.has("--layer") ? 0.0 : parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
+    const Stack stack = parse_stack(args);
+    setup.thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
+    setup.work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
+    setup.v_star = positive_speed(args.require("--v-star"), false, "--v-star");
+    auto exponent = [&](const std::string& option) { return parse_exponent(args, option); };
+    setup.n = exponent("--n");
+    if (args.has("--v-star-adv")) setup.v_star_adv = positive_speed(*args.get("--v-star-adv"), false, "--v-star-adv");
+    if (args.has("--n-adv")) setup.n_adv = exponent("--n-adv");
+    setup.spring = parse_spring(args.require("--spring"));
+    const bool load_control = setup.spring == 0.0;
+    setup.protocol = parse_protocol(args.require("--protocol"), load_control);
+    std::vector<double> speeds;
+    if (const auto text = args.get("--retract-speeds")) {
+      if (text->find(':') != std::string::npos) {
+        speeds = parse_list(*text, "--retract-speeds");
+      } else {
+        for (const std::string& item : split_on(*text, ',')) {
+          speeds.push_back(positive_speed(item, load_control, "--retract-speeds"));
+        }
+      }
+    }
+    const double tol = solver_tolerance(args);
+    const std::string output_path = args.get("--output").value_or("");
+    check_output_path(output_path, "--output");
+
+    const ReducedSolver solver(stack);
+    const AdhesiveModel model(solver, tol);
+    KineticsScales scales;
+    try {
+      scales = kinetics_scales(model, setup);
+    } catch (const InputError& e) {
+      throw InputError("--radius, --thickness, --work, --film: " + std::string(e.what()));
+    }
+    std::vector<KineticsResultSI> runs;
+    try {
+      runs = simulate_kinetics_si(model, setup, speeds, speeds.empty());
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      throw InputError((message.rfind("protocol", 0) == 0 ? "--protocol: " : "") + message);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+    Header h{{"command", "kinetics"}};
+    h.emplace_back("sphere radius R [m]", num(setup.radius));
+    h.emplace_back("film thickness t [m]", num(setup.thickness));
+    h.emplace_back("work of adhesion w [J/m2]", num(setup.work));
+    add_material_header(h, stack);
+    h.emplace_back("kinetic law", "receding G - w = w (|v|/v*)^n, advancing w - G = w (v/v_a*)^n_adv "
+                                  "(THEORY.md section 14)");
+    h.emplace_back("v* [m/s]", num(setup.v_star));
+    h.emplace_back("n", num(setup.n));
+    h.emplace_back("v_a* [m/s]", num(setup.v_star_adv > 0.0 ? setup.v_star_adv : setup.v_star));
+    h.emplace_back("n_adv", num(setup.n_adv > 0.0 ? setup.n_adv : setup.n));
+    h.emplace_back("drive", load_control ? std::string("load control (force ramp)")
+                            : std::isinf(setup.spring) ? std::string("displacement control")
+                                                       : "spring k = " + num(setup.spring) + " N/m, F = k (z - delta)");
+    h.emplace_back("protocol", args.require("--protocol"));
+    h.emplace_back("length scale L_a = (pi w R^2/E1*)^(1/3) [m]", num(scales.length));
+    h.emplace_back("penetration scale L_D = L_a^2/R [m]", num(scales.penetration));
+    h.emplace_back("force scale pi w R [N]", num(scales.force));
+    h.emplace_back("time scale L_a/v* [s]", num(scales.time));
+    h.emplace_back("eta = t/L_a", num(scales.eta));
+    if (!load_control) h.emplace_back("k_bar = k L_D/(pi w R)", num(scales.k_bar));
+    h.emplace_back(load_control ? "reduced force rate dP/dtau per N/s" : "reduced base speed dZ/dtau per m/s",
+                   num(scales.drive_rate));
+    h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+    Output out(output_path);
+    std::ostream& os = out.stream();
+    if (speeds.empty()) {
+      const KineticsResultSI& r = runs.front();
+      h.emplace_back("pull-off (most tensile force of the last retract) [N]", num(r.pulloff.force));
+      h.emplace_back("pull-off time [s]", num(r.pulloff.time));
+      h.emplace_back("pull-off contact radius [m]", num(r.pulloff.radius));
+      h.emplace_back("loss of contact force [N]", num(r.loss.force));
+      h.emplace_back("loss of contact time [s]", num(r.loss.time));
+      h.emplace_back("loss of contact radius (a_bar_end L_a) [m]", num(r.loss.radius));
+      h.emplace_back("drive work, dissipation [pi w L_a^2]",
+                     num(r.reduced.work) + ", " + num(r.reduced.dissipation));
+      h.emplace_back("ODE steps (gsl_odeiv2 msbdf)", std::to_string(r.reduced.steps));
+      for (const auto& w : r.reduced.warnings) h.emplace_back("warning", w);
+      const std::vector<std::string> columns = {"t_s", "z_m", "delta_m", "a_m", "F_N", "G_J_m2"};
+      write_header(os, h, columns);
+      for (std::size_t i = 0; i < r.t.size(); ++i) {
+        write_row(os, {r.t[i], r.z[i], r.delta[i], r.a[i], r.force[i], r.g[i]}, columns);
+      }
+    } else {
+      const std::string unit = load_control ? "N_s" : "m_s";
+      const std::vector<std::string> columns = {"V_" + unit, "F_pulloff_N", "t_pulloff_s", "a_pulloff_m",
+                                                "F_loss_N", "t_loss_s", "V_reduced", "P_pulloff"};
+      write_header(os, h, columns);
+      for (const KineticsResultSI& r : runs) {
+        write_row(os, {r.retract_speed, r.pulloff.force, r.pulloff.time, r.pulloff.radius, r.loss.force,
+                       r.loss.time, r.retract_speed * scales.drive_rate, r.reduced.pulloff.load},
+                  columns);
+      }
+    }
+    out.commit();
+    return kExitSuccess;
+  });
+}
+
+}  // namespace coatcontact::cli

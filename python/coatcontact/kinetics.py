@@ -1,0 +1,63 @@
+"""Rate-dependent adhesion: crack kinetics at the JKR contact edge, driven through a spring
+(docs/THEORY.md section 14)."""
+import numpy as np
+
+from . import _core
+from ._core import NumericalError  # noqa: F401  (raised by _core.kinetics)
+
+
+def _segment(item):
+    if not isinstance(item, (tuple, list)) or not item:
+        raise ValueError("protocol: each segment is a tuple, e.g. ('approach', 1e-6, 1e-3), got %r" % (item,))
+    kind = item[0]
+    values = [float(v) for v in item[1:]]
+    if kind == "approach" and len(values) == 2:
+        return ("approach", values[0], 0.0, values[1], True)
+    if kind == "dwell" and len(values) == 1:
+        return ("dwell", 0.0, values[0], 0.0, False)
+    if kind == "retract" and len(values) in (1, 2):
+        return ("retract", values[0], 0.0, values[1] if len(values) == 2 else 0.0, len(values) == 2)
+    raise ValueError("protocol: segment %r not understood; expected ('approach', speed, force), "
+                     "('dwell', time) or ('retract', speed[, force])" % (item,))
+
+
+def kinetics(*, film, substrate, radius, thickness, work, v_star, n, spring, protocol,
+             v_star_adv=None, n_adv=None, retract_speeds=None, tol=1e-8):
+    """Rate-dependent JKR adhesion of a sphere on a coating (section 14).
+
+    film        (E1 [Pa], nu1);  substrate  (E0 [Pa], nu0) or "rigid".
+    radius      sphere radius R [m];  thickness  coating thickness t [m];  work  w [J/m^2].
+    v_star, n   receding edge: G - w = w (|v|/v_star)^n  (v_star [m/s], n > 0).
+    v_star_adv, n_adv
+                advancing edge: w - G = w (v/v_star_adv)^n_adv (default: the receding values).
+    spring      k [N/m] between the base and the sphere, F = k (z - delta); 0 is load control
+                (speeds are then force rates in N/s), math.inf displacement control.
+    protocol    list of ("approach", speed, force), ("dwell", time), ("retract", speed[, force]),
+                from first contact; the last is a retract until contact is lost.
+    retract_speeds
+                optional array: run once per speed of the last retract (the part before it is
+                simulated once) and return only the pull-offs, under "sweep".
+
+    Returns a dict: t [s], z [m], delta [m], a [m], F [N], G [J/m^2] (arrays, F compressive
+    positive); pulloff (F, t, a: the most tensile force of the last retract); loss (F, t, a
+    where contact is lost); work, dissipation (reduced, pi w l^2); scales (l, delta_scale,
+    F_scale, t_scale = l/v_star, eta, k_bar, drive_rate). With retract_speeds: scales and
+    sweep (arrays V, F, t, a, F_loss, t_loss and the reduced pull-off P).
+    """
+    e1, nu1 = (float(v) for v in film)
+    if isinstance(substrate, str):
+        if substrate != "rigid":
+            raise ValueError("substrate: expected (E0, nu0) or 'rigid', got %r" % substrate)
+        rigid, e0, nu0 = True, 1.0, 0.0
+    else:
+        rigid = False
+        e0, nu0 = (float(v) for v in substrate)
+    segments = [_segment(item) for item in protocol]
+    speeds = [] if retract_speeds is None else [float(v) for v in np.atleast_1d(retract_speeds)]
+    return _core.kinetics(e1, nu1, rigid, e0, nu0, float(radius), float(thickness), float(work),
+                          float(v_star), float(n), 0.0 if v_star_adv is None else float(v_star_adv),
+                          0.0 if n_adv is None else float(n_adv), float(spring), segments, speeds,
+                          float(tol))
+
+
+__all__ = ["kinetics"]

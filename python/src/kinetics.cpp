@@ -1,0 +1,146 @@
+// coatcontact._core.kinetics: rate-dependent adhesion (THEORY.md section 14) for Python. Built
+// on the C++ library directly (the crack-kinetics run has no C API yet); the Python layer
+// (coatcontact/kinetics.py) adds keyword arguments and the protocol's spelling.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "coatcontact/crack_kinetics.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/reduced.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+using Segment = std::tuple<std::string, double, double, double, bool>;  // kind, speed, duration, force, has
+
+py::array_t<double> array_of(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+py::dict event(const coatcontact::KineticsEventSI& e) {
+  py::dict d;
+  d["F"] = e.force;
+  d["t"] = e.time;
+  d["a"] = e.radius;
+  return d;
+}
+
+py::dict kinetics(py::object numerical_error, double film_e, double film_nu, bool rigid, double sub_e, double sub_nu,
+                  double radius, double thickness, double work, double v_star, double n, double v_star_adv,
+                  double n_adv, double spring, const std::vector<Segment>& protocol,
+                  const std::vector<double>& retract_speeds, double tol) {
+  using namespace coatcontact;
+  KineticsSetupSI setup;
+  setup.radius = radius;
+  setup.thickness = thickness;
+  setup.work = work;
+  setup.v_star = v_star;
+  setup.n = n;
+  setup.v_star_adv = v_star_adv;
+  setup.n_adv = n_adv;
+  setup.spring = spring;
+  for (const auto& [kind, speed, duration, force, has] : protocol) {
+    KineticsSegmentSI s;
+    if (kind == "approach") s.kind = DriveSegment::Kind::kApproach;
+    else if (kind == "dwell") s.kind = DriveSegment::Kind::kDwell;
+    else if (kind == "retract") s.kind = DriveSegment::Kind::kRetract;
+    else throw py::value_error("protocol: unknown segment '" + kind + "' (approach, dwell or retract)");
+    s.speed = speed;
+    s.duration = duration;
+    s.target_force = force;
+    s.has_target = has;
+    setup.protocol.push_back(s);
+  }
+  std::vector<KineticsResultSI> runs;
+  KineticsScales scales;
+  std::string input_message, numerical_message;
+  {
+    py::gil_scoped_release release;
+    try {
+      Material film{film_e, film_nu};
+      Substrate substrate;
+      substrate.rigid = rigid;
+      substrate.material = Material{sub_e, sub_nu};
+      const Stack stack = Stack::film_on(film, substrate);
+      const ReducedSolver solver(stack);
+      const AdhesiveModel model(solver, tol);
+      scales = kinetics_scales(model, setup);
+      runs = simulate_kinetics_si(model, setup, retract_speeds, retract_speeds.empty());
+    } catch (const InputError& e) {
+      input_message = e.what();
+    } catch (const NumericalError& e) {
+      numerical_message = e.what();
+    }
+  }
+  if (!input_message.empty()) throw py::value_error(input_message);
+  if (!numerical_message.empty()) {
+    PyErr_SetString(numerical_error.ptr(), numerical_message.c_str());
+    throw py::error_already_set();
+  }
+  py::dict out;
+  py::dict sc;
+  sc["l"] = scales.length;
+  sc["delta_scale"] = scales.penetration;
+  sc["F_scale"] = scales.force;
+  sc["t_scale"] = scales.time;
+  sc["eta"] = scales.eta;
+  sc["k_bar"] = scales.k_bar;
+  sc["drive_rate"] = scales.drive_rate;
+  out["scales"] = sc;
+  if (retract_speeds.empty()) {
+    const KineticsResultSI& r = runs.front();
+    out["t"] = array_of(r.t);
+    out["z"] = array_of(r.z);
+    out["delta"] = array_of(r.delta);
+    out["a"] = array_of(r.a);
+    out["F"] = array_of(r.force);
+    out["G"] = array_of(r.g);
+    out["pulloff"] = event(r.pulloff);
+    out["loss"] = event(r.loss);
+    out["work"] = r.reduced.work;
+    out["dissipation"] = r.reduced.dissipation;
+    out["steps"] = r.reduced.steps;
+  } else {
+    std::vector<double> v, f, t, a, fl, tl, p;
+    for (const KineticsResultSI& r : runs) {
+      v.push_back(r.retract_speed);
+      f.push_back(r.pulloff.force);
+      t.push_back(r.pulloff.time);
+      a.push_back(r.pulloff.radius);
+      fl.push_back(r.loss.force);
+      tl.push_back(r.loss.time);
+      p.push_back(r.reduced.pulloff.load);
+    }
+    py::dict s;
+    s["V"] = array_of(v);
+    s["F"] = array_of(f);
+    s["t"] = array_of(t);
+    s["a"] = array_of(a);
+    s["F_loss"] = array_of(fl);
+    s["t_loss"] = array_of(tl);
+    s["P"] = array_of(p);
+    out["sweep"] = s;
+  }
+  return out;
+}
+
+}  // namespace
+
+void register_kinetics(py::module_& m) {
+  m.def("kinetics", [m](double film_e, double film_nu, bool rigid, double sub_e, double sub_nu, double radius,
+                        double thickness, double work, double v_star, double n, double v_star_adv, double n_adv,
+                        double spring, const std::vector<Segment>& protocol,
+                        const std::vector<double>& retract_speeds, double tol) {
+    return kinetics(m.attr("NumericalError"), film_e, film_nu, rigid, sub_e, sub_nu, radius, thickness, work,
+                    v_star, n, v_star_adv, n_adv, spring, protocol, retract_speeds, tol);
+  });
+}
