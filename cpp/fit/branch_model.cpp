@@ -18,15 +18,7 @@ class BranchModel : public ForceModel {
   // Each branch's points with their own w, merged back into the data's order.
   ModelAtData evaluate(const Parameters& p, const Measurements& data, bool with_pulloff) override {
     const std::size_t n = data.size();
-    ModelAtData out;
-    out.radius.resize(n);
-    out.penetration.resize(n);
-    out.force.resize(n);
-    out.force_lnw.resize(n);
-    out.force_lnt.resize(n);
-    out.slope.resize(n);
-    out.force_x.resize(n);
-    out.clamped.resize(n);
+    ModelAtData out = ModelAtData::zeros(n);
     for (const bool unloading : {false, true}) {
       Measurements part;
       part.kind = data.kind;

@@ -81,6 +81,13 @@ struct ModelAtData {
   double pulloff_radius = 0.0, pulloff_penetration = 0.0, pulloff_force = 0.0;
   bool has_load_pulloff = false;
   double load_pulloff_radius = 0.0, load_pulloff_penetration = 0.0, load_pulloff_force = 0.0;
+  // n points, every value 0 (false), no pull-off.
+  static ModelAtData zeros(std::size_t n) {
+    ModelAtData m;
+    for (auto* v : {&m.radius, &m.penetration, &m.force, &m.force_lnw, &m.force_lnt, &m.slope, &m.force_x}) v->assign(n, 0.0);
+    m.clamped.assign(n, false);
+    return m;
+  }
 };
 
 // One axis of the global search's grid: a parameter and its values.

@@ -22,18 +22,7 @@ using coatcontact::detail::short_text;
 constexpr double kMinAOverT = kAOverTRange[0];
 constexpr double kMaxAOverT = kAOverTRange[1];
 
-class MaugisDugdaleEntry {
- public:
-  MaugisDugdaleEntry(const Problem& problem, const StackKey& key)
-      : key_(key), model_(std::make_unique<MaugisDugdaleModel>(stack_of(problem, key))) {}
-  const MaugisDugdaleModel& model() const { return *model_; }
-  const StackKey& key() const { return key_; }
-  long source_evaluations() const { return 0; }
-
- private:
-  StackKey key_;
-  std::unique_ptr<MaugisDugdaleModel> model_;
-};
+using MaugisDugdaleEntry = SolverEntry<MaugisDugdaleModel>;
 
 class MaugisDugdaleFit : public ForceModel {
  public:
@@ -79,7 +68,7 @@ class MaugisDugdaleFit : public ForceModel {
 // section 13), from MaugisDugdaleModel::curve at the measured radii.
 ModelAtData MaugisDugdaleFit::evaluate(const Parameters& p, const Measurements& data, bool with_pulloff) {
   constexpr double kPi = 3.14159265358979323846;
-  const MaugisDugdaleModel& md = cache_.get(p).model();
+  const MaugisDugdaleModel& md = cache_.get(p).solver();
   const double radius = problem_.sphere_radius;
   const double work = p.work();
   const double l = std::cbrt(kPi * work * radius * radius / md.stack().reference_modulus());
@@ -87,15 +76,9 @@ ModelAtData MaugisDugdaleFit::evaluate(const Parameters& p, const Measurements& 
   const double eta = p.total_thickness() / l;
   const double lambda = p.lambda();
   const std::size_t n = data.size();
-  ModelAtData out;
+  // force_lnw and force_lnt stay 0: every derivative is differenced.
+  ModelAtData out = ModelAtData::zeros(n);
   out.radius = data.abscissa;
-  out.penetration.resize(n);
-  out.force.resize(n);
-  out.force_lnw.assign(n, 0.0);  // not used: every derivative is differenced in force_derivatives
-  out.force_lnt.assign(n, 0.0);
-  out.slope.assign(n, 0.0);
-  out.force_x.assign(n, 0.0);
-  out.clamped.assign(n, false);
   std::vector<double> a_bar(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double x = data.abscissa[i] / p.total_thickness();

@@ -25,18 +25,7 @@ constexpr double kMinAOverT = kAOverTRange[0];
 constexpr double kMaxAOverT = kAOverTRange[1];
 
 // One stack: the shape floor's solver on it (no table, no interpolant).
-class ShapeEntry {
- public:
-  ShapeEntry(const Problem& problem, const StackKey& key)
-      : key_(key), solver_(std::make_unique<ShapeSolver>(stack_of(problem, key))) {}
-  const ShapeSolver& solver() const { return *solver_; }
-  const StackKey& key() const { return key_; }
-  long source_evaluations() const { return 0; }
-
- private:
-  StackKey key_;
-  std::unique_ptr<ShapeSolver> solver_;
-};
+using ShapeEntry = SolverEntry<ShapeSolver>;
 
 class ShapeModel : public ForceModel {
  public:
@@ -85,15 +74,7 @@ ModelAtData ShapeModel::evaluate(const Parameters& p, const Measurements& data, 
   const ShapeContact contact = contact_at(p);
   const double total_thickness = p.total_thickness();
   const std::size_t n = data.size();
-  ModelAtData out;
-  out.radius.resize(n);
-  out.penetration.resize(n);
-  out.force.resize(n);
-  out.force_lnw.resize(n);
-  out.force_lnt.assign(n, 0.0);  // not used: t is differenced in force_derivatives
-  out.slope.assign(n, 0.0);
-  out.force_x.assign(n, 0.0);
-  out.clamped.assign(n, false);
+  ModelAtData out = ModelAtData::zeros(n);  // force_lnt stays 0: t is differenced
   const auto check_radius = [&](double a) {
     const double x = a / total_thickness;
     if (!(x >= kMinAOverT && x <= kMaxAOverT)) {

@@ -172,15 +172,7 @@ std::array<double, 2> SphereModel::pulloffs(const ContactModel& cm, const Parame
 ModelAtData SphereModel::evaluate(const Parameters& p, const Measurements& data, bool with_pulloff) {
   const ContactModel cm(cache_.get(p).model(), problem_.sphere_radius, p);
   const std::size_t n = data.size();
-  ModelAtData out;
-  out.radius.resize(n);
-  out.penetration.resize(n);
-  out.force.resize(n);
-  out.force_lnw.resize(n);
-  out.force_lnt.resize(n);
-  out.slope.assign(n, 0.0);
-  out.force_x.assign(n, 0.0);
-  out.clamped.assign(n, false);
+  ModelAtData out = ModelAtData::zeros(n);
   const bool radius_data = data.kind == DataKind::kRadiusForce;
   std::array<double, 2> start{0.0, 0.0};
   if (!radius_data || with_pulloff) start = pulloffs(cm, p, radius_data, out);

@@ -12,6 +12,22 @@
 
 namespace coatcontact::fit::internal {
 
+// The entry of a model solved at every point: its solver (ShapeSolver, MaugisDugdaleModel) on
+// the stack, no table.
+template <class Solver>
+class SolverEntry {
+ public:
+  SolverEntry(const Problem& problem, const StackKey& key)
+      : key_(key), solver_(std::make_unique<Solver>(stack_of(problem, key))) {}
+  const Solver& solver() const { return *solver_; }
+  const StackKey& key() const { return key_; }
+  long source_evaluations() const { return 0; }
+
+ private:
+  StackKey key_;
+  std::unique_ptr<Solver> solver_;
+};
+
 template <class Entry>
 class StackCache {
  public:

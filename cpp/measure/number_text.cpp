@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "coatcontact/detail/format.hpp"
 #include "number_text.hpp"
 
 namespace coatcontact::detail {
@@ -74,13 +75,6 @@ std::string quote(std::string_view text) {
 }
 
 
-std::string number_string(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  const auto result =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 17);
-  return std::string(buffer, result.ptr);
-}
+std::string number_string(double value) { return full_precision(value); }
 
 }  // namespace coatcontact::detail
