@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,29 +72,71 @@ FixedSolve solve_fixed(const KernelSource& kernel, double a, const Discretizatio
   return result;
 }
 
+namespace {
+
+// One level of the refinement, or nothing when the level is unresolved: its discrete operator
+// is singular or so nearly singular that the flat punch's edge value comes out non-positive
+// or non-finite. The continuous I + K is positive definite, but its smallest eigenvalue is
+// about min C(q) (E1*/E0* for a compliant film on a stiff base, ~1e-5), and where the level's
+// discretization error is larger than that, a discrete eigenvalue can come near zero at an
+// isolated (ã, p) (docs/solver.md, Refinement). The next level is then tried.
+struct LevelSolver {
+  const KernelSource& kernel;
+  double a;
+  Discretization disc;
+  std::exception_ptr last_failure;
+
+  std::optional<FixedSolve> operator()(int p) {
+    disc.nodes_per_panel = p;
+    try {
+      return solve_fixed(kernel, a, disc);
+    } catch (const NumericalError&) {
+      last_failure = std::current_exception();
+      return std::nullopt;
+    }
+  }
+};
+
+}  // namespace
+
 AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolerance,
                              const IndependentKernel& independent, double bound_limit) {
-  Discretization disc;
-  disc.quadrature_accuracy = std::clamp(1e-4 * tolerance, 1e-14, 1e-11);
+  Discretization base;
+  base.quadrature_accuracy = std::clamp(1e-4 * tolerance, 1e-14, 1e-11);
+  LevelSolver solve_level{kernel, a, base, nullptr};
   int coarse_p = first_refinement_level(tolerance);
-  disc.nodes_per_panel = coarse_p;
-  FixedSolve previous = solve_fixed(kernel, a, disc);
+  std::optional<FixedSolve> previous = solve_level(coarse_p);
   AdaptiveSolve result;
-  if (previous.kernel_error > bound_limit) {  // the caller would not keep this solve
-    result.kernel_bound = previous.kernel_error;
-    result.kernel_error = previous.kernel_error;
-    result.rounding_error = previous.rounding_error;
-    result.unknowns = previous.unknowns;
+  if (previous && previous->kernel_error > bound_limit) {  // the caller would not keep this solve
+    result.kernel_bound = previous->kernel_error;
+    result.kernel_error = previous->kernel_error;
+    result.rounding_error = previous->rounding_error;
+    result.unknowns = previous->unknowns;
     result.nodes_per_panel = coarse_p;
     result.error_estimate = std::numeric_limits<double>::infinity();
     return result;
   }
+  bool any_pair = false;
   double previous_two_table = std::numeric_limits<double>::infinity();
   for (int p = coarse_p + kRefinementStep; p <= kMaxNodesPerPanel;) {
-    disc.nodes_per_panel = p;
-    FixedSolve current = solve_fixed(kernel, a, disc);
+    if (!previous) {  // an unresolved coarse level: the next level starts the pair
+      previous = solve_level(p);
+      coarse_p = p;
+      p += kRefinementStep;
+      continue;
+    }
+    std::optional<FixedSolve> solved = solve_level(p);
+    if (!solved) {  // an unresolved fine level: a fresh pair above it
+      previous.reset();
+      coarse_p = p;
+      p += kRefinementStep;
+      continue;
+    }
+    const FixedSolve& current = *solved;
+    any_pair = true;
+    const Discretization& disc = solve_level.disc;
     result.values = current.values;
-    result.discretization_error = max_relative_difference(previous.values, current.values);
+    result.discretization_error = max_relative_difference(previous->values, current.values);
     result.discretization_error = std::max(result.discretization_error, current.consistency);
     result.kernel_bound = current.kernel_error;
     result.rounding_error = current.rounding_error;
@@ -127,13 +171,18 @@ AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolera
       result.converged = true;
       return result;
     }
-    // The rounding term and the coherent bound do not shrink with p: stop when they alone are
-    // too large. The two-table difference also carries the quadrature's sampling of the
+    // The rounding term and the coherent bound do not shrink with p once the discretization
+    // resolves the operator: stop when they alone are too large at both levels of the pair.
+    // At one level alone they may be a near-singular discrete operator (LevelSolver): its
+    // condition number was 1e4 times its neighbours' (E1*/E0* = 1.8e-5, ã = 262.87, p = 10).
+    // The two-table difference also carries the quadrature's sampling of the
     // table's grid-scale errors, which falls with p (measured: 1e-8 at p = 20, 8e-10 at 24,
     // incompressible film on a rigid substrate, a/t = 300): refine while it halves per level.
-    if (result.rounding_error > tolerance) return result;
+    const double rounding_floor = std::min(previous->rounding_error, current.rounding_error);
+    const double bound_floor = std::min(previous->kernel_error, current.kernel_error);
+    if (rounding_floor > tolerance) return result;
     if (result.kernel_error_kind == KernelErrorKind::kCoherentBound &&
-        result.kernel_error + result.rounding_error > tolerance) {
+        bound_floor + rounding_floor > tolerance) {
       return result;
     }
     if (result.kernel_error_kind == KernelErrorKind::kTwoTable &&
@@ -143,14 +192,15 @@ AdaptiveSolve solve_adaptive(const KernelSource& kernel, double a, double tolera
     }
     const int next = next_coarse_level(coarse_p, p, result.discretization_error, tolerance);
     if (next > p) {  // a fresh pair further on
-      disc.nodes_per_panel = next;
-      previous = solve_fixed(kernel, a, disc);
+      previous = solve_level(next);
     } else {
       previous = current;
     }
     coarse_p = next;
     p = next + kRefinementStep;
   }
+  // Every level unresolved: the reason of the last one (NumericalError).
+  if (!any_pair && solve_level.last_failure) std::rethrow_exception(solve_level.last_failure);
   return result;
 }
 
