@@ -167,7 +167,7 @@ ShapeVariables ShapeSolver::solve(const IndenterShape& shape, double contact_rad
       kernel_term = detail::kTwoTableSafety * difference;
     }
     estimate = discretization + kernel_term + current.rounding_error;
-    if (estimate <= tolerance) {
+    if (estimate <= tolerance && detail::conditioned_alike(previous->rounding_error, current.rounding_error)) {
       ShapeVariables v;
       v.a_over_t = a;
       v.e_eq = current.e_eq;

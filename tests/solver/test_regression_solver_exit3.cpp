@@ -12,6 +12,10 @@
 //   regression_loose_tolerance_edge_value: the coarse first level of a loose tolerance gave a
 //     negative flat-punch edge value, which aborted the solve instead of refining (1 MPa,
 //     nu 0.5 on a rigid substrate, a/t = 36.5314, tol 1e-2 and 1e-3: "edge value -427.351").
+//   regression_loose_tolerance_estimate_below_error: a pair whose fine level was nearly
+//     singular was accepted, and its error exceeded the estimate (1 MPa, nu 0.5 on a rigid
+//     base at tol 1e-2, a/t = 253.34: error 3.4e-3, estimate 1.1e-3; nu 0.49, a/t = 472.24 at
+//     tol 1e-4: error 1.9e-6, estimate 1.6e-6).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -97,8 +101,14 @@ int main(int argc, char** argv) {
     check_case({2e6, 0.5, 70e9, 0.22, 717.0, kDefaultTolerance});
   } else if (which == "loose_tolerance_edge_value") {
     for (double tol : {1e-1, 1e-2, 1e-3, 1e-5, 1e-8}) check_case({1e6, 0.5, 0.0, 0.0, 36.5314, tol});
+  } else if (which == "loose_tolerance_estimate_below_error") {
+    for (double a : {253.34, 266.673, 306.672}) check_case({1e6, 0.5, 0.0, 0.0, a, 1e-2});
+    check_case({1e6, 0.49, 0.0, 0.0, 472.24142275425231, 1e-4});
   } else {
-    std::fprintf(stderr, "usage: %s isolated_exit3_pdms_on_glass | loose_tolerance_edge_value\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s isolated_exit3_pdms_on_glass | loose_tolerance_edge_value | "
+                 "loose_tolerance_estimate_below_error\n",
+                 argv[0]);
     return 2;
   }
   return check::exit_code();
