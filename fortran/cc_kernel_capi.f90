@@ -8,7 +8,7 @@ module cc_kernel_capi
                                   CC_ERR_ALLOCATION, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, &
                                   CC_INTERNAL_ERROR, CC_ERR_FILM_MODULUS, CC_ERR_FILM_POISSON, &
                                   CC_ERR_SUBSTRATE_MODULUS, CC_ERR_SUBSTRATE_POISSON, &
-                                  CC_ERR_ACCURACY, CC_ERR_THICKNESS
+                                  CC_ERR_ACCURACY, CC_ERR_THICKNESS, CC_INTERRUPTED
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
   use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
                               evaluate_kernel_h, n_grid_variants, build_stack_kernel_table_variant, &
@@ -38,12 +38,13 @@ module cc_kernel_capi
     "the kernel table could not reach its accuracy target" // c_null_char, &
     "layer thickness must be finite and > 0" // c_null_char, &
     "number of layers must be between 1 and 1000" // c_null_char]
-  character(kind=c_char, len=message_length), target, save :: other_messages(5) = [ &
+  character(kind=c_char, len=message_length), target, save :: other_messages(6) = [ &
     character(kind=c_char, len=message_length) :: &
     "success" // c_null_char, &
     "bad input" // c_null_char, &
     "the requested accuracy could not be reached" // c_null_char, &
     "internal error" // c_null_char, &
+    "interrupted by the progress hook" // c_null_char, &
     "unknown status code" // c_null_char]
 
 contains
@@ -62,8 +63,10 @@ contains
       message = c_loc(other_messages(3))
     case (CC_INTERNAL_ERROR)
       message = c_loc(other_messages(4))
-    case default
+    case (CC_INTERRUPTED)
       message = c_loc(other_messages(5))
+    case default
+      message = c_loc(other_messages(6))
     end select
   end function capi_status_message
 
@@ -71,7 +74,7 @@ contains
       bind(C, name="cc_status_class")
     integer(c_int), value, intent(in) :: status
     select case (status)
-    case (CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, CC_INTERNAL_ERROR)
+    case (CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, CC_INTERNAL_ERROR, CC_INTERRUPTED)
       status_class = status
     case (CC_ERR_FILM_MODULUS, CC_ERR_FILM_POISSON, CC_ERR_SUBSTRATE_MODULUS, &
           CC_ERR_SUBSTRATE_POISSON, CC_ERR_ARGUMENT, CC_ERR_THICKNESS, CC_ERR_LAYER_COUNT)

@@ -13,6 +13,7 @@ module cc_elastic_constants
   integer, parameter, public :: CC_INPUT_ERROR = 2           ! classes (cc_status_class)
   integer, parameter, public :: CC_NUMERICAL_ERROR = 3
   integer, parameter, public :: CC_INTERNAL_ERROR = 4
+  integer, parameter, public :: CC_INTERRUPTED = 5
   integer, parameter, public :: CC_ERR_FILM_MODULUS = 101
   integer, parameter, public :: CC_ERR_FILM_POISSON = 102
   integer, parameter, public :: CC_ERR_SUBSTRATE_MODULUS = 103

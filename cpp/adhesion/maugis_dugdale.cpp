@@ -27,6 +27,7 @@
 #include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
+#include "parallel.hpp"
 #include "cohesive_zone.hpp"
 #include "table_kernel.hpp"
 
@@ -327,22 +328,10 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
 
 std::vector<MaugisDugdalePulloff> MaugisDugdaleModel::pulloffs(
     const std::vector<std::pair<double, double>>& eta_lambda) const {
-  const long count = static_cast<long>(eta_lambda.size());
   std::vector<MaugisDugdalePulloff> results(eta_lambda.size());
-  std::vector<std::exception_ptr> errors(eta_lambda.size());
   // Each pull-off (~0.1-1 s) is independent and deterministic.
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-  for (long i = 0; i < count; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    try {
-      results[k] = pulloff(eta_lambda[k].first, eta_lambda[k].second);
-    } catch (...) {
-      errors[k] = std::current_exception();
-    }
-  }
-  for (const auto& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+  detail::parallel_for(eta_lambda.size(),
+                       [&](std::size_t k) { results[k] = pulloff(eta_lambda[k].first, eta_lambda[k].second); });
   return results;
 }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <functional>
 #include <limits>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
+#include "parallel.hpp"
 
 namespace coatcontact {
 
@@ -70,21 +70,8 @@ ShapePoint ShapeContact::at(double a) const {
 
 std::vector<ShapePoint> ShapeContact::curve(const std::vector<double>& radii) const {
   for (double a : radii) check_si(a, "contact radius");
-  const long count = static_cast<long>(radii.size());
   std::vector<ShapePoint> out(radii.size());
-  std::vector<std::exception_ptr> errors(radii.size());
-  // No parallel region for a single radius: starting it costs more than the solve.
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-  for (long i = 0; i < count; ++i) {
-    try {
-      out[static_cast<std::size_t>(i)] = at(radii[static_cast<std::size_t>(i)]);
-    } catch (...) {
-      errors[static_cast<std::size_t>(i)] = std::current_exception();
-    }
-  }
-  for (const auto& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+  detail::parallel_for(radii.size(), [&](std::size_t i) { out[i] = at(radii[i]); });
   return out;
 }
 

@@ -20,6 +20,7 @@
 #include "coatcontact/indenter_shape.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/measured_curve.hpp"
+#include "coatcontact/progress.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/shape_contact.hpp"
 #include "coatcontact/shape_solver.hpp"
@@ -83,6 +84,9 @@ int guarded(Body&& body) {
   } catch (const coatcontact::NumericalError& e) {
     last_error = e.what();
     return CC_NUMERICAL_ERROR;
+  } catch (const coatcontact::Interrupted& e) {
+    last_error = e.what();
+    return CC_INTERRUPTED;
   } catch (const std::bad_alloc&) {
     last_error = "out of memory";
     return CC_INTERNAL_ERROR;
@@ -193,6 +197,16 @@ int make_shape(const char* function, cc_shape** shape, Make&& make) {
 extern "C" {
 
 const char* cc_last_error_message(void) { return last_error.c_str(); }
+
+void cc_set_progress_hook(cc_progress_hook hook, void* user) {
+  if (hook == nullptr) {
+    coatcontact::exchange_progress_hook({});
+    return;
+  }
+  coatcontact::exchange_progress_hook([hook, user](std::size_t done, std::size_t total) {
+    return hook(user, static_cast<long>(done), static_cast<long>(total)) == 0;
+  });
+}
 
 // ---- stack ------------------------------------------------------------------------------
 

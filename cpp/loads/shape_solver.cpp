@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
+#include <limits>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "coatcontact/detail/format.hpp"
@@ -117,14 +120,40 @@ ShapeVariables ShapeSolver::solve(const IndenterShape& shape, double contact_rad
 
   detail::Discretization disc;
   disc.quadrature_accuracy = std::clamp(1e-4 * tolerance, 1e-14, 1e-11);
-  int coarse_p = detail::first_refinement_level(tolerance);
-  disc.nodes_per_panel = coarse_p;
-  detail::ShapeSolve previous = detail::solve_shapes(impl_->kernel, a, disc, {load});
-  double estimate = 0.0;
-  for (int p = coarse_p + detail::kRefinementStep; p <= detail::kMaxNodesPerPanel;) {
+  // A level whose discrete operator is singular or nearly so (non-positive flat-punch edge
+  // value: an unresolved coarse level, docs/solver.md, Refinement) is skipped as in the
+  // reduced solver's loop; its NumericalError is reported only if no level resolves.
+  std::exception_ptr last_failure;
+  auto solve_level = [&](int p) -> std::optional<detail::ShapeSolve> {
     disc.nodes_per_panel = p;
-    const detail::ShapeSolve current = detail::solve_shapes(impl_->kernel, a, disc, {load});
-    const double discretization = std::max(max_difference(values_of(previous), values_of(current)),
+    try {
+      return detail::solve_shapes(impl_->kernel, a, disc, {load});
+    } catch (const NumericalError&) {
+      last_failure = std::current_exception();
+      return std::nullopt;
+    }
+  };
+  int coarse_p = detail::first_refinement_level(tolerance);
+  std::optional<detail::ShapeSolve> previous = solve_level(coarse_p);
+  double estimate = std::numeric_limits<double>::infinity();
+  bool any_pair = false;
+  for (int p = coarse_p + detail::kRefinementStep; p <= detail::kMaxNodesPerPanel;) {
+    if (!previous) {  // an unresolved coarse level: the next level starts the pair
+      previous = solve_level(p);
+      coarse_p = p;
+      p += detail::kRefinementStep;
+      continue;
+    }
+    const std::optional<detail::ShapeSolve> solved = solve_level(p);
+    if (!solved) {  // an unresolved fine level: a fresh pair above it
+      previous.reset();
+      coarse_p = p;
+      p += detail::kRefinementStep;
+      continue;
+    }
+    any_pair = true;
+    const detail::ShapeSolve& current = *solved;
+    const double discretization = std::max(max_difference(values_of(*previous), values_of(current)),
                                            current.consistency);
     double kernel_term = current.kernel_error;
     if (kernel_term > 0.1 * tolerance && discretization + current.rounding_error <= tolerance &&
@@ -138,7 +167,7 @@ ShapeVariables ShapeSolver::solve(const IndenterShape& shape, double contact_rad
       kernel_term = detail::kTwoTableSafety * difference;
     }
     estimate = discretization + kernel_term + current.rounding_error;
-    if (estimate <= tolerance) {
+    if (estimate <= tolerance && detail::conditioned_alike(previous->rounding_error, current.rounding_error)) {
       ShapeVariables v;
       v.a_over_t = a;
       v.e_eq = current.e_eq;
@@ -153,14 +182,14 @@ ShapeVariables ShapeSolver::solve(const IndenterShape& shape, double contact_rad
     }
     const int next = detail::next_coarse_level(coarse_p, p, discretization, tolerance);
     if (next > p) {  // a fresh pair further on
-      disc.nodes_per_panel = next;
-      previous = detail::solve_shapes(impl_->kernel, a, disc, {load});
+      previous = solve_level(next);
     } else {
       previous = current;
     }
     coarse_p = next;
     p = next + detail::kRefinementStep;
   }
+  if (!any_pair && last_failure) std::rethrow_exception(last_failure);
   std::ostringstream message;
   message.precision(3);
   message << "shape solve at a/t = " << detail::full_precision(a) << ": the error estimate " << estimate

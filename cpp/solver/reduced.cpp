@@ -4,13 +4,13 @@
 
 #include <array>
 #include <cmath>
-#include <exception>
 #include <mutex>
 #include <sstream>
 #include <utility>
 
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
+#include "parallel.hpp"
 #include "reduced_core.hpp"
 #include "table_kernel.hpp"
 
@@ -132,22 +132,9 @@ std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_
                                                    double tolerance) const {
   // Check everything first, so that bad input fails before any work.
   for (double a : a_over_t) check_arguments(a, tolerance);
-  const long count = static_cast<long>(a_over_t.size());
   std::vector<ReducedVariables> results(a_over_t.size());
-  std::vector<std::exception_ptr> errors(a_over_t.size());
   // Each radius is independent and deterministic: the parallel result equals the serial one.
-  // No parallel region for a single radius: starting it costs more than the solve.
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-  for (long i = 0; i < count; ++i) {
-    try {
-      results[static_cast<std::size_t>(i)] = solve(a_over_t[static_cast<std::size_t>(i)], tolerance);
-    } catch (...) {
-      errors[static_cast<std::size_t>(i)] = std::current_exception();
-    }
-  }
-  for (const auto& error : errors) {
-    if (error) std::rethrow_exception(error);  // the first failing radius, as in a serial loop
-  }
+  detail::parallel_for(a_over_t.size(), [&](std::size_t i) { results[i] = solve(a_over_t[i], tolerance); });
   return results;
 }
 

@@ -97,6 +97,11 @@ int first_refinement_level(double tolerance);
 // film on a stiff base at large a/t, errors ~1e-2 at p = 8) then skips the levels between.
 int next_coarse_level(int coarse, int fine, double difference, double tolerance);
 
+// Whether a pair of levels may be accepted, from their rounding terms ε_machine cond_∞: not
+// when the fine level is far worse conditioned than the coarse one (a near-singular discrete
+// operator, whose error the pair's difference does not bound; docs/solver.md, Refinement).
+bool conditioned_alike(double coarse_rounding, double fine_rounding);
+
 // Never throws for lack of convergence (converged = false, estimate set); throws
 // NumericalError only if a linear system fails. The kernel term is the coherent bound when
 // that is <= tolerance / 10; otherwise, once the discretization has converged, kTwoTableSafety

@@ -44,6 +44,8 @@ its tolerance. No function returns NaN.
 """
 import functools
 import math
+import sys
+import time
 
 import numpy as np
 
@@ -158,6 +160,33 @@ def _stack(stack, film, substrate, indenter):
     return Stack(film, substrate=substrate, indenter=indenter)
 
 
+class _ProgressLine:
+    """progress=True: "done/total" on stderr, redrawn at most every 0.2 s and at the end."""
+
+    def __init__(self):
+        self._last = 0.0
+
+    def __call__(self, done, total):
+        now = time.monotonic()
+        if done < total and now - self._last < 0.2:
+            return
+        self._last = now
+        sys.stderr.write("\rcoatcontact: %d/%d%s" % (done, total, "\n" if done >= total else ""))
+        sys.stderr.flush()
+
+
+def _progress(progress):
+    # None: no reports; True: a line on stderr; else a callable(done, total) (its exception,
+    # like Ctrl-C, stops the call and is raised).
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        return _ProgressLine()
+    if not callable(progress):
+        raise ValueError("progress must be None, True or a callable(done, total)")
+    return progress
+
+
 def _tolerance(tol):
     # 0 is the C interface's "default"; Python callers say 1e-8 and mean it.
     return float(tol)
@@ -173,16 +202,17 @@ class ReducedSolver:
         self.stack = stack
         self._core = _core.Solver(stack._core)
 
-    def solve(self, a_over_t, tol=_DEFAULT_TOL):
+    def solve(self, a_over_t, tol=_DEFAULT_TOL, progress=None):
         """Reduced variables at each contact radius over coating thickness a/t in (0, 1e8].
 
         Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS: a_over_t;
         Pi_s, Delta_s (adhesionless sphere); Pi_c, Delta_c (cone); E_eq (flat-punch
         stiffness over E*); Gamma1 (edge stress intensity); error_estimate (bound on the
         largest relative error of the six, <= tol). tol in [1e-13, 1e-1].
+        progress: see reduced(). Ctrl-C stops the call between radii (KeyboardInterrupt).
         """
         x = np.asarray(a_over_t, dtype=float)
-        table = self._core.sweep(np.ascontiguousarray(x.ravel()), _tolerance(tol))
+        table = self._core.sweep(np.ascontiguousarray(x.ravel()), _tolerance(tol), _progress(progress))
         return {k: table[:, i].reshape(x.shape) for i, k in enumerate(REDUCED_KEYS)}
 
 
@@ -220,8 +250,12 @@ class AdhesiveModel:
         table = self._core.curve(float(eta), np.ascontiguousarray(x.ravel()))
         return {k: table[:, i].reshape(x.shape) for i, k in enumerate(("a_bar", "a_over_t", "P", "D"))}
 
-    def pulloff(self, eta):
+    def pulloff(self, eta, progress=None):
         """Pull-off at each eta: the minimum of P(a_bar) (load control) and of D (displacement).
+
+        progress: None, True (a progress line on stderr) or a callable(done, total), called
+        after each eta. Ctrl-C stops the call (KeyboardInterrupt), also inside the first
+        call's build of the model's interpolant.
 
         Returns a dict of arrays of the shape of eta: eta, P_load, a_bar_load, D_load,
         P_disp, a_bar_disp, D_disp, and flags (bitmask: 1 several load minima, 2 no interior
@@ -229,7 +263,7 @@ class AdhesiveModel:
         a/t). Homogeneous limit: P_load = -3/2, P_disp = -5/6.
         """
         x = np.asarray(eta, dtype=float)
-        table, flags = self._core.pulloff(np.ascontiguousarray(x.ravel()))
+        table, flags = self._core.pulloff(np.ascontiguousarray(x.ravel()), _progress(progress))
         out = {"eta": x.copy()}
         out.update({k: table[:, i].reshape(x.shape) for i, k in enumerate(_PULLOFF_KEYS)})
         out["flags"] = flags.reshape(x.shape)
@@ -287,7 +321,8 @@ def _model(stack, tol):
     return AdhesiveModel(stack, tol)
 
 
-def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, tol=_DEFAULT_TOL):
+def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, tol=_DEFAULT_TOL,
+            progress=None):
     """Reduced variables of the coated-substrate contact (sections 4-5), one per radius.
 
     reduced(stack, a_over_t=...) or reduced(film=(E1, nu1), substrate=(E0, nu0) | "rigid",
@@ -300,9 +335,12 @@ def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, t
     of `coatcontact reduced`: a_over_t, Pi_s, Delta_s (adhesionless sphere), Pi_c, Delta_c
     (cone), E_eq (flat-punch stiffness over E*), Gamma1 (edge stress intensity, section 6),
     error_estimate (bound on the largest relative error of the six; <= tol).
-    Raises ValueError for input out of range, NumericalError when tol cannot be met.
+    progress  None, True (a progress line on stderr) or a callable(done, total) called
+              between radii (an exception it raises stops the call and is raised).
+    Raises ValueError for input out of range, NumericalError when tol cannot be met,
+    KeyboardInterrupt on Ctrl-C (checked between radii).
     """
-    return _solver(_stack(stack, film, substrate, indenter)).solve(a_over_t, tol)
+    return _solver(_stack(stack, film, substrate, indenter)).solve(a_over_t, tol, progress)
 
 
 def adhesive_curve(stack=None, *, film=None, substrate=None, indenter=None, eta, a_bar=None,
@@ -319,11 +357,13 @@ def adhesive_curve(stack=None, *, film=None, substrate=None, indenter=None, eta,
     return _model(_stack(stack, film, substrate, indenter), float(tol)).curve(eta, a_bar, points)
 
 
-def pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, tol=_DEFAULT_TOL):
+def pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, tol=_DEFAULT_TOL,
+            progress=None):
     """Normalized pull-off at each eta (section 5): dict of arrays eta, P_load, a_bar_load,
     D_load (minimum of P, load control), P_disp, a_bar_disp, D_disp (minimum of D,
-    displacement control), flags (see AdhesiveModel.pulloff). JKR: -3/2 and -5/6."""
-    return _model(_stack(stack, film, substrate, indenter), float(tol)).pulloff(eta)
+    displacement control), flags (see AdhesiveModel.pulloff). JKR: -3/2 and -5/6.
+    progress as in AdhesiveModel.pulloff (per eta); Ctrl-C raises KeyboardInterrupt."""
+    return _model(_stack(stack, film, substrate, indenter), float(tol)).pulloff(eta, progress)
 
 
 def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thickness, work,

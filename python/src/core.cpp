@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -49,6 +50,48 @@ void call_released(Call&& call) {
   check(status, message);
 }
 
+// Ctrl-C and progress during a long C call (cc_set_progress_hook): the library calls the hook
+// on this thread between units of work (radii, pull-offs); it takes the GIL, runs Python's
+// signal handlers (KeyboardInterrupt) and the progress callback. A Python exception there
+// stops the call (CC_INTERRUPTED) and is raised when the call returns.
+struct Monitor {
+  py::object progress;        // None or callable(done, total)
+  bool report_sweeps = true;  // pass the library's sweeps' own progress to `progress`
+  std::exception_ptr error;
+
+  int step(long done, long total, bool report) {
+    py::gil_scoped_acquire gil;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (report && !progress.is_none()) progress(done, total);
+    } catch (...) {
+      error = std::current_exception();
+      return 1;
+    }
+    return 0;
+  }
+  static int hook(void* user, long done, long total) {
+    auto* self = static_cast<Monitor*>(user);
+    return self->step(done, total, self->report_sweeps);
+  }
+};
+
+// call_released with the monitor's hook installed for the call.
+template <typename Call>
+void call_monitored(Monitor& monitor, Call&& call) {
+  int status;
+  std::string message;
+  {
+    py::gil_scoped_release release;
+    cc_set_progress_hook(&Monitor::hook, &monitor);
+    status = call();
+    cc_set_progress_hook(nullptr, nullptr);
+    if (status != CC_OK) message = cc_last_error_message();
+  }
+  if (monitor.error) std::rethrow_exception(monitor.error);
+  check(status, message);
+}
+
 template <typename Call>
 void call_held(Call&& call) {
   const int status = call();
@@ -83,13 +126,14 @@ struct Solver {
     call_released([&] { return cc_reduced_solver_create(stack.handle.get(), &s); });
     handle.reset(s, cc_reduced_solver_destroy);
   }
-  py::array_t<double> sweep(const InArray& a_over_t, double tolerance) const {
+  py::array_t<double> sweep(const InArray& a_over_t, double tolerance, py::object progress) const {
     const int n = count_of(a_over_t);
     auto out = rows(n, CC_REDUCED_COLUMNS);
     const double* in = a_over_t.data();
     double* o = out.mutable_data();
+    Monitor monitor{std::move(progress), true, nullptr};
     // One radius: solve() spares the parallel region's start-up (identical numbers).
-    call_released([&] {
+    call_monitored(monitor, [&] {
       return n == 1 ? cc_reduced_solver_solve(handle.get(), in[0], tolerance, o)
                     : cc_reduced_solver_sweep(handle.get(), n, in, tolerance, o);
     });
@@ -145,18 +189,21 @@ struct Model {
     return out;
   }
   // One row per eta: the six pull-off columns and the warning flags.
-  py::tuple pulloff(const InArray& eta) const {
+  // Progress is reported per eta (the sweeps inside a pull-off only check for signals).
+  py::tuple pulloff(const InArray& eta, py::object progress) const {
     const int n = count_of(eta);
     auto out = rows(n, CC_PULLOFF_COLUMNS);
     py::array_t<int> flags(static_cast<py::ssize_t>(n));
     const double* in = eta.data();
     double* o = out.mutable_data();
     int* f = flags.mutable_data();
-    call_released([&] {
+    Monitor monitor{std::move(progress), false, nullptr};
+    call_monitored(monitor, [&] {
       std::lock_guard<std::mutex> guard(*lock);
       for (int i = 0; i < n; ++i) {
         const int status = cc_pulloff(handle.get(), in[i], o + CC_PULLOFF_COLUMNS * i, f + i);
         if (status != CC_OK) return status;
+        if (monitor.step(i + 1, n, true) != 0) return static_cast<int>(CC_INTERRUPTED);
       }
       return static_cast<int>(CC_OK);
     });
@@ -485,14 +532,14 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<Solver>(m, "Solver")
       .def(py::init<const Stack&>())
-      .def("sweep", &Solver::sweep)
+      .def("sweep", &Solver::sweep, py::arg("a_over_t"), py::arg("tolerance"), py::arg("progress") = py::none())
       .def("time_c_call", &Solver::time_c_call);
 
   py::class_<Model>(m, "Model")
       .def(py::init<const Solver&, double>())
       .def("default_range", &Model::default_range)
       .def("curve", &Model::curve)
-      .def("pulloff", &Model::pulloff);
+      .def("pulloff", &Model::pulloff, py::arg("eta"), py::arg("progress") = py::none());
 
   py::class_<Contact>(m, "Contact")
       .def(py::init<const Model&, double, double, double>())

@@ -69,7 +69,7 @@ struct Pair {
 };
 
 // The points that may stop with NumericalError at the default tolerance (2 of 990): an
-// incompressible film on a rigid substrate beyond a/t ~ 280, where the condition number grows
+// incompressible film on a rigid substrate beyond a/t ~ 220-300, where the condition number grows
 // like (a/t)^3 (lubrication limit; docs/limits.md).
 struct KnownFailure {
   double ratio, nu1, a_over_t;

@@ -376,9 +376,10 @@ int main() {
     check::that(cc_status_class(CC_ERR_FFT) == CC_INTERNAL_ERROR, "FFT class");
     check::that(cc_status_class(CC_ERR_ALLOCATION) == CC_INTERNAL_ERROR, "allocation class");
     check::that(cc_status_class(CC_OK) == CC_OK, "success class");
+    check::that(cc_status_class(CC_INTERRUPTED) == CC_INTERRUPTED, "interrupted class");
     check::that(cc_status_class(12345) == CC_INTERNAL_ERROR, "unknown code class");
     const std::string unknown = cc_status_message(12345);
-    for (int code : {CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, CC_INTERNAL_ERROR, CC_ERR_FFT,
+    for (int code : {CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, CC_INTERNAL_ERROR, CC_INTERRUPTED, CC_ERR_FFT,
                      CC_ERR_ACCURACY, CC_ERR_LAYER_COUNT})
       check::that(std::string(cc_status_message(code)) != unknown, "every code has its message");
   }

@@ -39,6 +39,15 @@ extern "C" {
  * thread's next call into this interface. */
 const char *cc_last_error_message(void);
 
+/* Progress and interruption of long calls (sweeps of radii, curves, pull-offs): `hook`, if
+ * not NULL, is called by the calling thread's later calls, on that thread, between units of
+ * work (one radius, one pull-off) with the units done and the total of the current sweep
+ * (a call may run several sweeps). A non-zero return stops the call: it returns
+ * CC_INTERRUPTED. Set per thread; NULL removes it. In a process forked from the one that
+ * loaded the library, sweeps run serially (an OpenMP runtime does not survive fork). */
+typedef int (*cc_progress_hook)(void *user, long done, long total);
+void cc_set_progress_hook(cc_progress_hook hook, void *user);
+
 /* ---- stack: the elastic system (THEORY.md sections 1, 9, 12) ----------------------------
  *
  * Layers are added top first; thicknesses are in any unit, only their ratios enter (the

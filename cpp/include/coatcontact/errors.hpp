@@ -18,6 +18,12 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A long call stopped by its progress hook (coatcontact/progress.hpp), e.g. on Ctrl-C in Python.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 enum ExitCode : int { kExitSuccess = 0, kExitUsage = 2, kExitNumerical = 3 };
 
 }  // namespace coatcontact

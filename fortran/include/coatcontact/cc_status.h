@@ -4,7 +4,8 @@
  * Every function of both headers returns one of these codes. The three classes are the
  * command line's exit statuses: CC_INPUT_ERROR (2) a value outside its allowed range or a
  * bad argument, CC_NUMERICAL_ERROR (3) an accuracy target that could not be met,
- * CC_INTERNAL_ERROR (4) out of memory or an unexpected failure. The kernel functions of
+ * CC_INTERNAL_ERROR (4) out of memory or an unexpected failure; CC_INTERRUPTED (5) a call stopped
+ * on request by the calling thread's progress hook (cc_set_progress_hook in coatcontact.h). The kernel functions of
  * cc_kernel.h report a detail code (101 and up) that says which argument was refused;
  * cc_status_class() maps it to its class, cc_status_message() describes any code.
  * The Fortran constants are in kernels/cc_elastic_constants.f90 and must match.
@@ -21,6 +22,7 @@ enum cc_status {
   CC_INPUT_ERROR = 2,
   CC_NUMERICAL_ERROR = 3,
   CC_INTERNAL_ERROR = 4,
+  CC_INTERRUPTED = 5,             /* stopped by the thread's progress hook (coatcontact.h) */
   /* details of the kernel functions; class in brackets */
   CC_ERR_FILM_MODULUS = 101,      /* [input] film Young's modulus not finite or <= 0 */
   CC_ERR_FILM_POISSON = 102,      /* [input] film Poisson ratio outside (-1, 0.5] or not finite */
@@ -37,8 +39,8 @@ enum cc_status {
 /* Short English description of any status code (static string, never NULL). */
 const char *cc_status_message(int status);
 
-/* The class of a status: CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR or CC_INTERNAL_ERROR
- * (an unknown code is CC_INTERNAL_ERROR). */
+/* The class of a status: CC_OK, CC_INPUT_ERROR, CC_NUMERICAL_ERROR, CC_INTERNAL_ERROR or
+ * CC_INTERRUPTED (an unknown code is CC_INTERNAL_ERROR). */
 int cc_status_class(int status);
 
 #ifdef __cplusplus

@@ -1,0 +1,96 @@
+// parallel_for (parallel.hpp), the thread's progress hook and the fork rule
+// (coatcontact/progress.hpp).
+#include "parallel.hpp"
+
+#include <pthread.h>
+
+#include <atomic>
+#include <exception>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/errors.hpp"
+#include "coatcontact/progress.hpp"
+
+namespace coatcontact {
+
+namespace {
+
+thread_local ProgressHook current_hook;
+
+std::atomic<bool> forked_child{false};
+
+void mark_forked_child() { forked_child.store(true); }
+
+// Registered when the library is loaded (this file is linked whenever a sweep is).
+const int fork_handler_registered = pthread_atfork(nullptr, nullptr, mark_forked_child);
+
+}  // namespace
+
+ProgressHook exchange_progress_hook(ProgressHook hook) {
+  ProgressHook previous = std::move(current_hook);
+  current_hook = std::move(hook);
+  return previous;
+}
+
+ScopedProgressHook::ScopedProgressHook(ProgressHook hook) : previous_(exchange_progress_hook(std::move(hook))) {}
+
+ScopedProgressHook::~ScopedProgressHook() { exchange_progress_hook(std::move(previous_)); }
+
+// Without the fork handler (pthread_atfork failed, never seen) nothing can be known.
+bool parallel_sweeps_allowed() { return fork_handler_registered != 0 || !forked_child.load(); }
+
+namespace detail {
+
+void parallel_for(std::size_t count, const std::function<void(std::size_t index)>& body) {
+  std::vector<std::exception_ptr> errors(count);
+  const ProgressHook hook = current_hook;  // the calling thread's (a copy: the hook may replace it)
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<std::size_t> done{0};
+  std::atomic<bool> stop{false};
+  std::size_t last_reported = 0;  // written by the calling thread only
+  auto report = [&](std::size_t finished) {
+    bool go_on = false;
+    try {
+      go_on = hook(finished, count);
+    } catch (...) {
+      go_on = false;
+    }
+    last_reported = finished;
+    if (!go_on) stop.store(true);
+  };
+  auto unit = [&](std::size_t i) {
+    if (stop.load(std::memory_order_relaxed)) return;
+    try {
+      body(i);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+    const std::size_t finished = done.fetch_add(1) + 1;
+    // Only the calling thread runs the hook (a binding's signal check must run there).
+    if (hook && std::this_thread::get_id() == caller) report(finished);
+  };
+  // No parallel region for a single unit: starting it costs more than the work.
+  if (count > 1 && parallel_sweeps_allowed()) {
+    const long n = static_cast<long>(count);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (long i = 0; i < n; ++i) unit(static_cast<std::size_t>(i));
+  } else {
+    for (std::size_t i = 0; i < count; ++i) unit(i);
+  }
+  // The last unit may have finished on another thread: the hook always sees the end.
+  if (hook && !stop.load() && last_reported < count) report(count);
+  if (stop.load()) {
+    throw Interrupted("interrupted after " + std::to_string(done.load()) + " of " + std::to_string(count) +
+                      " units of work");
+  }
+  for (const auto& error : errors) {
+    if (error) std::rethrow_exception(error);  // the first failing unit, as in a serial loop
+  }
+}
+
+}  // namespace detail
+
+}  // namespace coatcontact
