@@ -400,6 +400,23 @@ int cc_contact_at(cc_contact* contact, int n, const double* a, double* out) {
   });
 }
 
+int cc_contact_validity(const cc_contact* contact, int n, const double* rows, const char** warnings) {
+  thread_local std::string text;
+  return guarded([&] {
+    require(contact, "cc_contact_validity", "contact");
+    require(warnings, "cc_contact_validity", "warnings");
+    const std::size_t count = count_of(n, "cc_contact_validity");
+    if (count > 0) require(rows, "cc_contact_validity", "rows");
+    std::vector<coatcontact::Contact::Point> curve(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      curve[i] = {rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]};
+    }
+    text.clear();
+    for (const std::string& w : contact->contact.validity_warnings(curve)) text += w + "\n";
+    *warnings = text.c_str();
+  });
+}
+
 int cc_contact_pulloff(cc_contact* contact, double out[CC_PULLOFF_COLUMNS], int* flags) {
   return guarded([&] {
     require(contact, "cc_contact_pulloff", "contact");

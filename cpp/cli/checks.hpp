@@ -9,6 +9,7 @@
 
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
+#include "coatcontact/limits.hpp"
 #include "coatcontact/reduced.hpp"
 
 namespace coatcontact::cli {
@@ -21,25 +22,12 @@ constexpr double kMaxWorkSeconds = 1800.0;
 double plan_table_work(const ReducedSolver& solver, double tolerance, double a_over_t_min,
                        double a_over_t_max, const std::string& options);
 
-// `sphere`: the limits of the model in physical units.
-struct SphereLimits {
-  double radius = 0.0;                 // R [m]: paraboloid approximation needs a <= 0.1 R
-  double thickness = 0.0;              // t [m]: penetration beyond t leaves the film
-  double film_reduced_modulus = 0.0;   // E1* [Pa]: mean pressure near E1* is not linear elastic
-};
-constexpr double kMaxContactRadiusOverR = 0.1;
-constexpr double kMaxPressureOverModulus = 0.1;
-
 // Default contact radii of `sphere` (a_bar, log-spaced, `points` of them): [lo, hi], with hi
-// lowered to the largest a_bar at which the curve is still inside every SphereLimits limit
-// (kept as given when even lo is outside; the warnings then say so).
-std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere,
-                                         const SphereLimits& limits, double lo, double hi,
-                                         std::size_t points);
-
-// One message per limit that the curve (SI: a [m], delta [m], F [N]) exceeds.
-std::vector<std::string> sphere_physics_warnings(const std::vector<double>& a, const std::vector<double>& delta,
-                                                 const std::vector<double>& force, const SphereLimits& limits);
+// lowered to the largest a_bar at which the curve is still inside every validity limit
+// (limits.hpp; kept as given when even lo is outside: the warnings then say so), but never
+// below `reach` (the pull-off's a_bar, so the curve reaches the pull-off it reports).
+std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere, double lo, double hi,
+                                         double reach, std::size_t points);
 
 // `fit` start values against the fit's own parameter ranges (w in [1e-9, 1e4] J/m2, E1 in
 // [1e-2, 1e13] Pa, a/t of a,F data in [1e-5, 1e5]: the bounds of cpp/fit/fit.cpp), and

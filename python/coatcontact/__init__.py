@@ -42,13 +42,14 @@ its tolerance. No function returns NaN.
 """
 import functools
 import math
+import warnings
 
 import numpy as np
 
 from . import _core
 from ._core import NumericalError
 
-__all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",
+__all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError", "ValidityWarning",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
            "stack_parameter_names", "pulloff_spring",
            "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "REDUCED_KEYS"]
@@ -153,8 +154,28 @@ def _stack(stack, film, substrate, indenter):
 
 
 def _tolerance(tol):
-    # 0 is the C interface's "default"; Python callers say 1e-8 and mean it.
-    return float(tol)
+    # The C interface reads 0 as "the default"; a Python caller's tol is checked against the
+    # documented range instead, so tol=0 (or nan) is refused, not silently replaced.
+    value = float(tol)
+    if not (_MIN_TOL <= value <= _MAX_TOL):
+        raise ValueError("tol = %r not allowed (need %g <= tol <= %g)" % (tol, _MIN_TOL, _MAX_TOL))
+    return value
+
+
+_MIN_TOL = 1e-13
+_MAX_TOL = 1e-1
+
+
+class ValidityWarning(UserWarning):
+    """A curve leaves the model's validity limits (a > 0.1 R, a past the sphere's radius,
+    penetration above the coating thickness, mean pressure above 0.1 E*); the messages come
+    from the library (coatcontact/limits.hpp), the same as the command-line warnings."""
+
+
+def _warn_validity(core_contact, out):
+    rows = np.column_stack([np.ravel(out["a"]), np.ravel(out["delta"]), np.ravel(out["F"])])
+    for message in core_contact.validity(np.ascontiguousarray(rows, dtype=float)).splitlines():
+        warnings.warn(message, ValidityWarning, stacklevel=3)
 
 
 class ReducedSolver:
@@ -327,12 +348,15 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
     radius     sphere radius R [m];  thickness  coating thickness t [m];
     work       work of adhesion w [J/m^2];  film/substrate/indenter moduli in Pa.
     a          contact radii [m]; default `points` radii over the model's default a_bar range.
+    A curve beyond the model's validity limits (a > 0.1 R, delta > t, F/(pi a^2) > 0.1 E*)
+    raises a ValidityWarning per limit (warnings.warn), as `coatcontact sphere` warns.
     Returns a dict: a [m], delta [m], F [N] (arrays, F compressive positive); scales
     (l [m], delta_scale = l^2/R [m], F_scale = pi w R [N], eta = t/l); pulloff (F_load [N],
     a_load [m], delta_load [m], F_disp, a_disp, delta_disp, flags).
     """
-    c = Contact(_model(_stack(stack, film, substrate, indenter), float(tol)), radius, thickness, work)
+    c = Contact(_model(_stack(stack, film, substrate, indenter), _tolerance(tol)), radius, thickness, work)
     out = c.at(a) if a is not None else c.curve(points)
+    _warn_validity(c._core, out)
     out["scales"] = c.scales
     out["pulloff"] = c.pulloff()
     return out

@@ -209,6 +209,17 @@ struct Contact {
     });
     return py::make_tuple(out, flags);
   }
+  // The library's validity warnings (coatcontact/limits.hpp) of rows a, delta, F: one per line.
+  std::string validity(const InArray& rows) const {
+    if (rows.ndim() != 2 || rows.shape(1) != CC_CONTACT_COLUMNS) {
+      throw py::value_error("contact validity: expected rows of a, delta, F");
+    }
+    if (rows.shape(0) > 0x7fffffff) throw py::value_error("array too long for the C interface (n > 2^31-1)");
+    const int n = static_cast<int>(rows.shape(0));
+    const char* text = nullptr;
+    call_held([&] { return cc_contact_validity(handle.get(), n, rows.data(), &text); });
+    return text ? std::string(text) : std::string();
+  }
 };
 
 py::dict fit(const Stack& stack, int kind, const InArray& x, const InArray& force, double radius,
@@ -426,7 +437,8 @@ PYBIND11_MODULE(_core, m) {
       .def("scales", &Contact::scales)
       .def("curve", &Contact::curve)
       .def("at", &Contact::at)
-      .def("pulloff", &Contact::pulloff);
+      .def("pulloff", &Contact::pulloff)
+      .def("validity", &Contact::validity);
 
   m.def("fit", &fit);
   m.def("fit_stack", &fit_stack);

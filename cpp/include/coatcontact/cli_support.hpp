@@ -27,6 +27,10 @@ namespace coatcontact::cli {
 //  - A unit suffix is case-sensitive and follows the number directly or after exactly one
 //    space: "2MPa", "2 MPa". No suffix means SI.
 
+// `text` in single quotes for a message, control bytes escaped; a text over 60 bytes is cut
+// there and followed by "..." and its length, so a huge argument is never echoed whole.
+std::string quoted(const std::string& text);
+
 // A finite floating-point number, the whole string (no trailing text). `option` names the
 // option in messages, e.g. "--tol".
 double parse_number(const std::string& text, const std::string& option);
@@ -35,12 +39,23 @@ double parse_number(const std::string& text, const std::string& option);
 // N >= 1 integer; N = 1 requires MIN == MAX). Empty lists and empty items are rejected.
 std::vector<double> parse_list(const std::string& text, const std::string& option);
 
+// Largest number of rows (product of the lists a command combines) one run may compute:
+// each list alone may hold 1e6 values, and 1e7 rows of a TSV table are ~1 GB of output.
+inline constexpr double kMaxRows = 1e7;
+// InputError naming the options, their sizes and the limit when the product of the list sizes
+// (e.g. {{"--eta", 1000}, {"--a-bar", 1000000}}) exceeds kMaxRows; checked before any work.
+void check_rows(const std::vector<std::pair<std::string, std::size_t>>& lists);
+
 // Physical quantity with an optional unit suffix; returns SI.
-//   kPressure: Pa kPa MPa GPa     kLength: m mm um µm nm     kEnergy: J/m2 mJ/m2
+//   kPressure: Pa kPa MPa GPa     kLength: m mm um µm nm     kEnergy: J/m2 mJ/m2 (m^2, m²)
 //   kForce:    N mN uN µN nN
 // A bare number is SI. The value (after conversion to SI) must be finite and > 0.
 enum class Quantity { kPressure, kLength, kEnergy, kForce };
 double parse_quantity(const std::string& text, Quantity kind, const std::string& option);
+
+// A list of quantities: "v1,v2,..." (a unit allowed on each item) or "MIN:MAX:N" (a unit
+// allowed on MIN and on MAX; N log-spaced points as parse_list). Returns SI.
+std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, const std::string& option);
 
 // The unit tables behind parse_quantity (also used for "# units:" lines of data files).
 struct UnitInfo {
