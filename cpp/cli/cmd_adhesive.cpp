@@ -106,6 +106,15 @@ std::string join(const std::vector<double>& values) {
   return s;
 }
 
+// The Dugdale zone is solved for a rigid indenter only: an elastic one is refused, not dropped.
+void refuse_elastic_indenter(const Stack& stack, const std::string& zone_option) {
+  if (!stack.indenter().rigid) {
+    throw InputError("--indenter: an elastic indenter is not available with " + zone_option +
+                     " (the Maugis-Dugdale zone is implemented for a rigid indenter only, THEORY.md section 13); "
+                     "omit --indenter (rigid), or omit " + zone_option + " (JKR)");
+  }
+}
+
 // --tol sets the accuracy of the JKR blocks (lambda = inf) only: with every lambda finite it
 // would be silently unused, so it is refused.
 void refuse_unused_tol(const Arguments& args, const std::vector<double>& lambdas) {
@@ -170,7 +179,10 @@ int run_adhesive(const Args& raw) {
     check_rows({{"--eta", etas.size()},
                 {"--a-bar", a_bar.empty() ? std::size_t{400} : a_bar.size()},
                 {"--lambda", lambdas ? lambdas->size() : std::size_t{1}}});
-    if (lambdas) refuse_unused_tol(args, *lambdas);
+    if (lambdas) {
+      refuse_unused_tol(args, *lambdas);
+      refuse_elastic_indenter(stack, "--lambda");
+    }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol);
@@ -238,7 +250,10 @@ int run_pulloff(const Args& raw) {
     if (const auto text = args.get("--spring-bar")) {
       check_rows({{"--eta", etas.size()}, {"--spring-bar", parse_spring_bar(*text, "--spring-bar").size()}});
     }
-    if (lambdas) refuse_unused_tol(args, *lambdas);
+    if (lambdas) {
+      refuse_unused_tol(args, *lambdas);
+      refuse_elastic_indenter(stack, "--lambda");
+    }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       write_md_pulloff(out.stream(), stack, etas, *lambdas, tol);
@@ -355,6 +370,7 @@ int run_sphere(const Args& raw) {
         throw InputError("--tol: not used with --cohesive-stress/--range (the Maugis-Dugdale zone is solved per "
                          "contact radius to a fixed accuracy, THEORY.md section 13); omit --tol");
       }
+      refuse_elastic_indenter(stack, args.has("--range") ? "--range" : "--cohesive-stress");
       write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points, contact_radii);
       out.commit();
       return 0;

@@ -158,7 +158,7 @@ def _tolerance(tol):
     # documented range instead, so tol=0 (or nan) is refused, not silently replaced.
     value = float(tol)
     if not (_MIN_TOL <= value <= _MAX_TOL):
-        raise ValueError("tol = %r not allowed (need %g <= tol <= %g)" % (tol, _MIN_TOL, _MAX_TOL))
+        raise ValueError("tolerance tol = %r not allowed (need %g <= tol <= %g)" % (tol, _MIN_TOL, _MAX_TOL))
     return value
 
 

@@ -74,6 +74,10 @@ silently_ignored_options)
   expect_error "--tol" adhesive "${M[@]}" --lambda 1 --a-bar 1 --tol 1e-6
   expect_error "--tol" sphere --radius 5um --thickness 1um --film 1GPa,0.3 --substrate 10GPa,0.25 --work 50mJ/m2 \
     --cohesive-stress 10MPa --points 3 --tol 1e-6
+  # An elastic indenter with a Dugdale zone: refused naming --indenter (the zone is rigid-only).
+  expect_error "--indenter" pulloff "${M[@]}" --lambda 1 --indenter 2GPa,0.3
+  expect_error "--indenter" sphere --radius 5um --thickness 1um --film 1GPa,0.3 --substrate 10GPa,0.25 \
+    --work 50mJ/m2 --cohesive-stress 10MPa --points 3 --indenter 2GPa,0.3
   # --tol is used when a JKR block (lambda = inf) is in the list; --spring-bar without --lambda.
   run 0 pulloff "${M[@]}" --lambda 1,inf --tol 1e-6 && ok "--tol with a JKR block"
   run 0 pulloff "${M[@]}" --spring-bar 0.044 && {
