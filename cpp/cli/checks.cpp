@@ -62,6 +62,28 @@ double plan_table_work(const ReducedSolver& solver, double tolerance, double a_o
   return estimate;
 }
 
+void plan_md_work(const MaugisDugdaleModel& md, double eta, double lambda, double a_bar, double evaluations,
+                  bool parallel, const std::string& options) {
+  // The first solve also builds the kernel table: time the second.
+  auto start = std::chrono::steady_clock::now();
+  try {
+    md.point(eta, lambda, a_bar);
+    start = std::chrono::steady_clock::now();
+    md.point(eta, lambda, 0.999 * a_bar);
+  } catch (const NumericalError&) {
+    return;  // the run itself reports the point it cannot solve
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double threads = parallel ? std::max(1u, std::thread::hardware_concurrency()) : 1.0;
+  const double estimate = seconds * evaluations / threads;
+  if (estimate > kMaxWorkSeconds) {
+    throw InputError(options + ": estimated run time " + show(std::round(estimate)) + " s (" + show(evaluations) +
+                     " Maugis-Dugdale solves at ~" + show(seconds) + " s each) is over the limit of " +
+                     show(kMaxWorkSeconds) + " s; allowed: fewer values or points");
+  }
+  progress_set_estimate(estimate);
+}
+
 std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere, double lo, double hi,
                                          double reach, std::size_t points) {
   // Scan 32 points per decade for the first a_bar past a limit; the curve then ends below it.

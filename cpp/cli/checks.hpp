@@ -10,6 +10,7 @@
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/limits.hpp"
+#include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
 
 namespace coatcontact::cli {
@@ -21,6 +22,14 @@ namespace coatcontact::cli {
 constexpr double kMaxWorkSeconds = 1800.0;
 double plan_table_work(const ReducedSolver& solver, double tolerance, double a_over_t_min,
                        double a_over_t_max, const std::string& options);
+
+// Work estimate of Maugis-Dugdale solves (one per contact radius): times one point at
+// (eta, lambda, a_bar) and refuses, naming `options`, `evaluations` such points estimated
+// above kMaxWorkSeconds (divided among the threads when they run in parallel).
+void plan_md_work(const MaugisDugdaleModel& md, double eta, double lambda, double a_bar, double evaluations,
+                  bool parallel, const std::string& options);
+// Point evaluations of one Maugis-Dugdale pull-off (the log scan and the refinement of its minima).
+constexpr double kMdPulloffEvaluations = 100.0;
 
 // Default contact radii of `sphere` (a_bar, log-spaced, `points` of them): [lo, hi], with hi
 // lowered to the largest a_bar at which the curve is still inside every validity limit

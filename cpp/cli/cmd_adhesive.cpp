@@ -176,9 +176,10 @@ int run_adhesive(const Args& raw) {
     std::vector<double> a_bar;
     if (const auto text = args.get("--a-bar")) a_bar = parse_scaled_list(*text, "--a-bar");
     const auto lambdas = parse_lambdas(args);
-    check_rows({{"--eta", etas.size()},
-                {"--a-bar", a_bar.empty() ? std::size_t{400} : a_bar.size()},
-                {"--lambda", lambdas ? lambdas->size() : std::size_t{1}}});
+    std::vector<std::pair<std::string, std::size_t>> lists = {
+        {"--eta", etas.size()}, {"--a-bar", a_bar.empty() ? std::size_t{400} : a_bar.size()}};
+    if (lambdas) lists.emplace_back("--lambda", lambdas->size());
+    check_rows(lists);
     if (lambdas) {
       refuse_unused_tol(args, *lambdas);
       refuse_elastic_indenter(stack, "--lambda");
@@ -246,7 +247,7 @@ int run_pulloff(const Args& raw) {
       throw InputError("--spring-bar: not available with --lambda (the pull-off through a spring is computed for "
                        "JKR only, THEORY.md section 10); omit --spring-bar, or --lambda for JKR");
     }
-    check_rows({{"--eta", etas.size()}, {"--lambda", lambdas ? lambdas->size() : std::size_t{1}}});
+    if (lambdas) check_rows({{"--eta", etas.size()}, {"--lambda", lambdas->size()}});
     if (const auto text = args.get("--spring-bar")) {
       check_rows({{"--eta", etas.size()}, {"--spring-bar", parse_spring_bar(*text, "--spring-bar").size()}});
     }

@@ -2,6 +2,8 @@
 // section 13; lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3).
 #include "lambda_options.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -15,6 +17,7 @@
 #include "coatcontact/errors.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
+#include "checks.hpp"
 
 namespace coatcontact::cli {
 
@@ -106,6 +109,17 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
         const auto [lo, hi] = jkr.default_curve_range();
         return log_spaced(lo, hi, 400);
       }() : a_bar_given;
+  {
+    double finite = 0.0, lambda0 = 0.0;
+    for (double lambda : lambdas) {
+      if (!std::isinf(lambda)) {
+        finite += 1.0;
+        lambda0 = lambda;
+      }
+    }
+    plan_md_work(md, etas.front(), lambda0, *std::max_element(a_bar.begin(), a_bar.end()),
+                 finite * static_cast<double>(etas.size() * a_bar.size()), false, "--eta, --lambda and --a-bar");
+  }
   struct Block {
     double eta, lambda;
     std::vector<std::vector<double>> rows;
@@ -166,6 +180,10 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
     for (double lambda : lambdas) {
       if (!std::isinf(lambda)) finite.emplace_back(eta, lambda);
     }
+  }
+  if (!finite.empty()) {
+    plan_md_work(md, finite.front().first, finite.front().second, 1.0,
+                 kMdPulloffEvaluations * static_cast<double>(finite.size()), true, "--eta and --lambda");
   }
   const std::vector<MaugisDugdalePulloff> md_results = md.pulloffs(finite);
   std::size_t next = 0;
@@ -264,6 +282,9 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
     a_bar.push_back(a / length);
   }
   if (a_bar.empty()) a_bar = log_spaced(0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r), points);
+  plan_md_work(md, eta, lambda, *std::max_element(a_bar.begin(), a_bar.end()),
+               static_cast<double>(a_bar.size()) + kMdPulloffEvaluations, false,
+               contact_radii.empty() ? "--points" : "--contact-radius");
   const std::vector<MaugisDugdalePoint> curve = md.curve(eta, lambda, a_bar);
   const MaugisDugdalePulloff p = md.pulloff(eta, lambda);
   const double to_maugis = std::cbrt(4.0 / 3.0);

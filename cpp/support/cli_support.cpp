@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <new>
 #include <iostream>
 #include <ostream>
 #include <set>
@@ -770,6 +771,13 @@ int run_guarded(const std::string& command, const std::function<int()>& body) {
   } catch (const NumericalError& error) {
     progress_pause();
     std::cerr << prefix << "numerical failure: " << error.what() << "\n";
+    return kExitNumerical;
+  } catch (const std::bad_alloc&) {
+    // Inputs are bounded before work starts (check_rows, list and file limits); what is left
+    // is a machine with less memory than the request needs: say so, not "std::bad_alloc".
+    progress_pause();
+    std::cerr << prefix << "not enough memory for this request; nothing was written (ask for fewer points, "
+                           "a narrower range, or run on a machine with more memory)\n";
     return kExitNumerical;
   } catch (const std::exception& error) {
     progress_pause();

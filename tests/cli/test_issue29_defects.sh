@@ -157,6 +157,22 @@ unbounded_list_products)
     --spring-bar 0.01:10:1000
   expect_error "--eta x --lambda" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 0.1:10:100000 \
     --lambda 0.01:10:1000
+  # Maugis-Dugdale rows each cost a solve: their run time is estimated and bounded up front.
+  expect_error "estimated run time" adhesive --film 1MPa,0.49 --substrate 70GPa,0.22 --eta 0.1:10:10 --lambda 1 \
+    --a-bar 0.01:10:1000000
+  # Under a memory cap a request within the limits that still does not fit says so in words
+  # (it printed "internal error: std::bad_alloc"). Skipped for sanitizer builds (they reserve
+  # far more address space than any cap).
+  if ! ldd "$cli" 2>/dev/null | grep -q 'libasan\|libtsan'; then
+    (ulimit -v 400000; timeout 100 "$cli" adhesive --film 0.1,0.25 --substrate 1,0.25 --eta 0.1:10:25 \
+      --a-bar 0.01:10:400000 >out 2>err)
+    rc=$?
+    if [ "$rc" -eq 3 ] && grep -q "not enough memory" err && ! grep -q "bad_alloc" err && [ ! -s out ]; then
+      ok "memory cap: $(cut -c1-120 err)"
+    else
+      fail "memory cap: exit $rc, $(head -c 300 err)"
+    fi
+  fi
   # a >> R refused before any solve (it ran 14-49 s and exited 3).
   start=$(date +%s)
   expect_error "--contact-radius" sphere --radius 5um --thickness 1um --film 1GPa,0.3 --substrate 10GPa,0.25 \
