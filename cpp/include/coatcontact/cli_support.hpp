@@ -141,7 +141,9 @@ std::string usage(const std::string& command, const std::string& synopsis,
 
 // ---- output ----------------------------------------------------------------------
 
-// Output to stdout (empty path, "-" or /dev/stdout) or to a file written atomically: the data
+// Output to stdout (empty path, "-" or /dev/stdout), to another descriptor open in this
+// process (/dev/stderr, /dev/fd/N, /proc/self/fd/N: written to it, so O_APPEND is kept; one
+// open for reading only or not open is refused), or to a file written atomically: the data
 // go to a temporary file in the same folder, renamed over `path` by commit(). If commit() is
 // never called (error, exception) the temporary file is removed; it is also removed if the
 // process gets SIGINT or SIGTERM. The temporary file is "<path>.tmp.XXXXXX"; the committed
@@ -152,9 +154,12 @@ std::string usage(const std::string& command, const std::string& synopsis,
 //  - a symbolic link to a regular file replaces that file and keeps the link; a dangling
 //    link is refused;
 //  - a path that is (same device and inode, or same resolved name) an input registered with
-//    register_input() or the file of another live Output is refused.
+//    register_input(), the regular file standard input is redirected from, or the file of
+//    another live Output is refused; so are two Outputs on one stream.
 // All or none: while several Outputs are alive, commit() only completes the data; the last
-// commit() publishes all of them (stdout first, then the renames). An Output destroyed
+// commit() publishes all of them (streams first, then the renames; with several files each
+// existing target first gets a hard link "<path>.old.XXXXXX", which proves it can be replaced
+// before any is, and restores it if a later rename fails). An Output destroyed
 // without commit() cancels the others. Stdout is held in memory until then, so a failure
 // leaves nothing on stdout; a failed write of stdout is an InputError (exit 2).
 // Signal cleanup: the first file Output installs SIGINT/SIGTERM handlers (only where the
