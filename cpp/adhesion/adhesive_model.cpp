@@ -202,16 +202,7 @@ std::vector<CurvePoint> AdhesiveModel::curve_solved(double eta, const std::vecto
   std::vector<CurvePoint> out;
   out.reserve(a_bar.size());
   for (std::size_t i = 0; i < solved.size(); ++i) {
-    const ReducedVariables& v = solved[i];
-    ReducedPoint r;
-    r.a_over_t = v.a_over_t;
-    r.pi_s = v.pi_s;
-    r.delta_s = v.delta_s;
-    r.pi_c = v.pi_c;
-    r.delta_c = v.delta_c;
-    r.e_eq = v.e_eq;
-    r.gamma1 = v.gamma1;
-    CurvePoint p = law_->point(r, eta, a_bar[i]);
+    CurvePoint p = law_->point(reduced_point_of(solved[i]), eta, a_bar[i]);
     p.dload = 0.0;
     p.dpenetration = 0.0;
     out.push_back(p);

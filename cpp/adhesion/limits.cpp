@@ -63,6 +63,20 @@ MaugisScales maugis_scales(double radius, double thickness, double work, double 
   return s;
 }
 
+std::vector<double> scaled_contact_radii(const std::vector<double>& a, const MaugisScales& s) {
+  std::vector<double> a_bar;
+  a_bar.reserve(a.size());
+  for (double radius : a) {
+    if (!(radius / s.length >= kMinimumScaled && radius / s.length <= kMaximumScaled)) {
+      throw InputError("contact radius " + show(radius) + " m is not allowed; every a must be in [" +
+                       show(kMinimumScaled * s.length) + ", " + show(kMaximumScaled * s.length) +
+                       "] m (1e-6 to 1e6 times the length scale)");
+    }
+    a_bar.push_back(radius / s.length);
+  }
+  return a_bar;
+}
+
 double maugis_lambda(const MaugisScales& s, double cohesive_stress) {
   check_positive(cohesive_stress, "adhesive stress sigma0");
   const double k = maugis_k(s);

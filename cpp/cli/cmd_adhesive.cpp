@@ -383,18 +383,10 @@ int run_sphere(const Args& raw) {
     // commands accept; say which options to change when they do not.
     const Contact sphere = with_options("--radius, --thickness, --work, --film",
                                         [&] { return Contact(model, radius, thickness, work); });
-    const double length = sphere.length_scale();
     const double eta = sphere.eta();
     const auto [lo, hi] = model.default_curve_range();
-    std::vector<double> a_bar;
-    for (double a : contact_radii) {
-      if (!(a / length >= kMinimumScaled && a / length <= kMaximumScaled)) {
-        throw InputError("--contact-radius: " + short_num(a) + " m is not allowed; every a must be in [" +
-                         short_num(kMinimumScaled * length) + ", " + short_num(kMaximumScaled * length) +
-                         "] m (1e-6 to 1e6 times the length scale)");
-      }
-      a_bar.push_back(a / length);
-    }
+    std::vector<double> a_bar =
+        with_options("--contact-radius", [&] { return scaled_contact_radii(contact_radii, sphere.scales()); });
     const double a_bar_min = a_bar.empty() ? lo : std::min(lo, *std::min_element(a_bar.begin(), a_bar.end()));
     const double a_bar_max = a_bar.empty() ? hi : std::max(hi, *std::max_element(a_bar.begin(), a_bar.end()));
     // Probe what the request needs: the pull-off scan's a/t range with the curve's, and when

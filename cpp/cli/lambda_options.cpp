@@ -273,13 +273,10 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
   const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
   const double r = stack.substrate_length_ratio();
   std::vector<double> a_bar;
-  for (double a : contact_radii) {
-    if (!(a / length >= kMinimumScaled && a / length <= kMaximumScaled)) {
-      throw InputError("--contact-radius: " + num(a) + " m is not allowed; every a must be in [" +
-                       num(kMinimumScaled * length) + ", " + num(kMaximumScaled * length) +
-                       "] m (1e-6 to 1e6 times the length scale)");
-    }
-    a_bar.push_back(a / length);
+  try {
+    a_bar = scaled_contact_radii(contact_radii, scales);
+  } catch (const InputError& e) {
+    throw InputError("--contact-radius: " + std::string(e.what()));
   }
   if (a_bar.empty()) a_bar = log_spaced(0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r), points);
   plan_md_work(md, eta, lambda, *std::max_element(a_bar.begin(), a_bar.end()),

@@ -429,7 +429,9 @@ void check_descriptor(const Output::Impl& probe, int fd) {
 // Two outputs of one command on one stream would interleave: refused.
 void check_stream_unique(const Output::Impl& probe, int fd) {
   for (const Output::Impl* other : live_outputs()) {
-    if ((other->target == Target::kStdout || other->target == Target::kDescriptor) && other->stream_fd == fd) {
+    // A committed output has written its stream; one still pending would interleave.
+    if ((other->target == Target::kStdout || other->target == Target::kDescriptor) && other->stream_fd == fd &&
+        !other->committed) {
       probe.fail("is " + descriptor_name(fd) + ", also the target of " + other->option + " (" + quoted(other->path) +
                      "); two outputs of a command cannot share one stream", 0);
     }

@@ -606,6 +606,8 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     a          contact radii [m] (default `points` log-spaced over the default range).
     Returns a dict: a, delta, F, delta_H, F_H (arrays, adhesive then adhesionless at the same
     a) and pulloff: F, a, delta under load, displacement (and spring) control.
+    A curve beyond the validity limits (delta > t, F/(pi a^2) > 0.1 E*, and for a sphere
+    a > 0.1 R) raises a ValidityWarning per limit, as `coatcontact contact` warns.
     """
     kind = shape[0]
     if kind == "profile":
@@ -619,6 +621,8 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
         lo, hi = c.default_range()
         a = np.geomspace(lo, hi, points)
     rows = c.curve(np.atleast_1d(np.asarray(a, dtype=float)))
+    for message in c.validity(np.ascontiguousarray(rows, dtype=float)).splitlines():
+        warnings.warn(message, ValidityWarning, stacklevel=2)
     out = {key: rows[:, i] for i, key in enumerate(("a", "delta", "F", "delta_H", "F_H"))}
     p = c.pulloff(float(spring))
     out["pulloff"] = {"F_load": p[0], "a_load": p[1], "delta_load": p[2],

@@ -381,6 +381,18 @@ struct ShapeContact {
     call_released([&] { return cc_shape_contact_pulloff(handle.get(), spring_stiffness, o); });
     return out;
   }
+  // The library's validity warnings of curve rows (a, delta, F, delta_H, F_H): one per line.
+  std::string validity(const InArray& rows) const {
+    if (rows.ndim() != 2 || rows.shape(1) != CC_SHAPE_CURVE_COLUMNS) {
+      throw py::value_error("shape contact validity: expected rows of a, delta, F, delta_H, F_H");
+    }
+    if (rows.shape(0) > 0x7fffffff) throw py::value_error("array too long for the C interface (n > 2^31-1)");
+    const char* text = nullptr;
+    call_held([&] {
+      return cc_shape_contact_validity(handle.get(), static_cast<int>(rows.shape(0)), rows.data(), &text);
+    });
+    return text ? std::string(text) : std::string();
+  }
 };
 
 }  // namespace
@@ -455,5 +467,6 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<const Stack&, const Shape&, double, double, double>())
       .def("default_range", &ShapeContact::default_range)
       .def("curve", &ShapeContact::curve)
-      .def("pulloff", &ShapeContact::pulloff);
+      .def("pulloff", &ShapeContact::pulloff)
+      .def("validity", &ShapeContact::validity);
 }

@@ -33,3 +33,15 @@ def test_regression_python_contact_inside_limits_is_quiet():
     with warnings.catch_warnings():
         warnings.simplefilter("error", cc.ValidityWarning)
         cc.contact(**PAIR, radius=2e-3, thickness=50e-6, work=0.05, a=[1e-5, 2e-5])
+
+
+def test_regression_python_shape_contact_validity_warnings():
+    # The paraboloid of `contact --shape sphere:2mm`, and a cone pushed past a 1 um film.
+    with pytest.warns(cc.ValidityWarning) as record:
+        cc.shape_contact(**PAIR, shape=("sphere", 2e-3), thickness=50e-6, work=0.05, a=[1e-4, 3e-3])
+    assert any("past the sphere's own radius" in str(w.message) for w in record)
+    with pytest.warns(cc.ValidityWarning, match="penetration reaches"):
+        cc.shape_contact(**PAIR, shape=("cone", 1.22), thickness=1e-6, work=0.05, a=[1e-5, 1e-4])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", cc.ValidityWarning)
+        cc.shape_contact(**PAIR, shape=("sphere", 2e-3), thickness=50e-6, work=0.05, a=[1e-5, 2e-5])

@@ -240,6 +240,10 @@ void cc_shape_contact_destroy(cc_shape_contact *contact);
 /* range[0..1]: contact radii [m] holding both JKR pull-offs (film and base modulus). */
 int cc_shape_contact_default_range(const cc_shape_contact *contact, double range[2]);
 int cc_shape_contact_curve(const cc_shape_contact *contact, int n, const double *a, double *out);
+/* The validity limits (as cc_contact_validity; a paraboloid's are a sphere's of its radius) against
+ * n rows of cc_shape_contact_curve (CC_SHAPE_CURVE_COLUMNS each). *warnings: per-thread text, one
+ * message per line, "" inside every limit, valid until the next call of this function. */
+int cc_shape_contact_validity(const cc_shape_contact *contact, int n, const double *rows, const char **warnings);
 /* spring_stiffness k [N/m] (0: none; the spring columns are then 0). */
 int cc_shape_contact_pulloff(const cc_shape_contact *contact, double spring_stiffness,
                              double out[CC_SHAPE_PULLOFF_COLUMNS]);

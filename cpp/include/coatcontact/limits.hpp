@@ -36,6 +36,10 @@ MaugisScales maugis_scales(double radius, double thickness, double work, double 
 // kMaximumRangeOverThickness t or a lambda outside the allowed range.
 MaugisScales maugis_scales(double radius, double thickness, double work, double modulus, double cohesive_stress);
 
+// a_bar = a/l of each contact radius a [m]; InputError unless every a_bar lies in
+// [kMinimumScaled, kMaximumScaled] (the range of the normalized curves).
+std::vector<double> scaled_contact_radii(const std::vector<double>& a, const MaugisScales& scales);
+
 // lambda from sigma0 [Pa] and back (InputError unless sigma0, resp. lambda, is finite and > 0).
 double maugis_lambda(const MaugisScales& scales, double cohesive_stress);
 double maugis_cohesive_stress(const MaugisScales& scales, double lambda);
