@@ -130,6 +130,37 @@ void add_pulloff_warnings(Header& h, const Pulloff& p) {
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
 }
 
+// The curve of `sphere` through the table. The table is built a decade of a/t at a time: when
+// the decade holding the requested radii reaches beyond what the solver can deliver at `tol`
+// (`solve_alone`: the probe found the request's own radii servable), each radius is solved on
+// its own and `note` says so.
+std::vector<CurvePoint> sphere_curve(const AdhesiveModel& model, double eta, const std::vector<double>& a_bar,
+                                     bool solve_alone, double tol, std::string& note) {
+  try {
+    return model.curve(eta, a_bar);
+  } catch (const NumericalError& e) {
+    if (!solve_alone) throw;
+    note = "solved at each contact radius at tolerance " + num(tol) +
+           " (the interpolation table's decade of a/t around these radii cannot be built: " + e.what() + ")";
+    return model.curve_solved(eta, a_bar);
+  }
+}
+
+// The pull-off of `sphere` in SI units, header lines.
+void add_sphere_pulloff(Header& h, const Contact& sphere, const Pulloff& pulloff) {
+  h.emplace_back("pull-off force, load control [N]", num(sphere.pulloff_force_load()));
+  h.emplace_back("pull-off contact radius, load control [m]", num(pulloff.load_control.a_bar * sphere.length_scale()));
+  h.emplace_back("pull-off penetration, load control [m]",
+                 num(pulloff.load_control.penetration * sphere.penetration_scale()));
+  h.emplace_back("pull-off force, displacement control [N]", num(sphere.pulloff_force_disp()));
+  h.emplace_back("pull-off contact radius, displacement control [m]",
+                 num(pulloff.displacement_control.a_bar * sphere.length_scale()));
+  h.emplace_back("pull-off penetration, displacement control [m]",
+                 num(pulloff.displacement_control.penetration * sphere.penetration_scale()));
+  h.emplace_back("normalized pull-off P (load, displacement)",
+                 num(pulloff.load_control.load) + ", " + num(pulloff.displacement_control.load));
+}
+
 // Options and inputs shared by `adhesive` and `pulloff`: the material pair, the eta list and
 // the solver tolerance.
 std::vector<OptionSpec> normalized_options() {
@@ -409,21 +440,9 @@ int run_sphere(const Args& raw) {
       const double reach = std::max(pulloff->load_control.a_bar, pulloff->displacement_control.a_bar);
       a_bar = sphere_default_a_bar(model, sphere, lo, hi, reach, points);
     }
-    // The table is built a decade of a/t at a time: when the decade holding the requested radii
-    // reaches beyond what the solver can deliver at --tol, each radius is solved on its own.
     std::string solved_note;
-    std::vector<CurvePoint> curve;
-    try {
-      curve = model.curve(sphere.eta(), a_bar);
-    } catch (const NumericalError& e) {
-      if (!pulloff_missing.empty()) {
-        curve = model.curve_solved(sphere.eta(), a_bar);
-        solved_note = std::string("solved at each contact radius at tolerance ") + num(tol) +
-                      " (the interpolation table's decade of a/t around these radii cannot be built: " + e.what() + ")";
-      } else {
-        throw;
-      }
-    }
+    const std::vector<CurvePoint> curve =
+        sphere_curve(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note);
     std::vector<Contact::Point> si;
     for (const auto& p : curve) {
       si.push_back({p.a_bar * sphere.length_scale(), p.penetration * sphere.penetration_scale(),
@@ -441,18 +460,7 @@ int run_sphere(const Args& raw) {
     h.emplace_back("force scale pi w R [N]", num(sphere.force_scale()));
     h.emplace_back("eta = t/length scale", num(sphere.eta()));
     if (pulloff) {
-      h.emplace_back("pull-off force, load control [N]", num(sphere.pulloff_force_load()));
-      h.emplace_back("pull-off contact radius, load control [m]",
-                     num(pulloff->load_control.a_bar * sphere.length_scale()));
-      h.emplace_back("pull-off penetration, load control [m]",
-                     num(pulloff->load_control.penetration * sphere.penetration_scale()));
-      h.emplace_back("pull-off force, displacement control [N]", num(sphere.pulloff_force_disp()));
-      h.emplace_back("pull-off contact radius, displacement control [m]",
-                     num(pulloff->displacement_control.a_bar * sphere.length_scale()));
-      h.emplace_back("pull-off penetration, displacement control [m]",
-                     num(pulloff->displacement_control.penetration * sphere.penetration_scale()));
-      h.emplace_back("normalized pull-off P (load, displacement)",
-                     num(pulloff->load_control.load) + ", " + num(pulloff->displacement_control.load));
+      add_sphere_pulloff(h, sphere, *pulloff);
     } else {
       h.emplace_back("pull-off", "not computed: its scan over a_bar [" + num(0.1 * a_bar_min) + ", " +
                                      num(a_bar_max) + "] needs radii the solver cannot serve (" + pulloff_missing +
