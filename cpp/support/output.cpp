@@ -287,6 +287,7 @@ struct Output::Impl {
   int stream_fd = -1;      // kStdout, kDescriptor: the descriptor written at publish
   FileId id;
   std::string backup_path; // a hard link to the file being replaced, until all are published
+  int backup_slot = -1;    // its signal-cleanup slot
   bool replaced = false;   // renamed into place (undone by roll_back)
   int fd = -1;
   int slot = -1;
@@ -372,8 +373,10 @@ void Output::Impl::keep_backup() {
     if (probe < 0) fail("cannot create a file beside it to keep the old contents", errno);
     close(probe);
     unlink(name.c_str());
+    SignalBlock block;  // linked and registered as one step, so a signal never leaves it behind
     if (link(write_path.c_str(), name.c_str()) == 0) {
       backup_path = name;
+      backup_slot = register_pending(name);
       return;
     }
     if (errno != EEXIST) fail("cannot be replaced (no other output of this command was written)", errno);
@@ -386,6 +389,8 @@ void Output::Impl::roll_back() {
   if (!backup_path.empty()) {
     rename(backup_path.c_str(), write_path.c_str());
     backup_path.clear();
+    unregister_pending(backup_slot);
+    backup_slot = -1;
   } else {
     unlink(write_path.c_str());  // the file was new
   }
@@ -395,6 +400,8 @@ void Output::Impl::roll_back() {
 void Output::Impl::drop_backup() {
   if (!backup_path.empty()) unlink(backup_path.c_str());
   backup_path.clear();
+  unregister_pending(backup_slot);
+  backup_slot = -1;
 }
 
 void Output::Impl::rename_into_place() {
