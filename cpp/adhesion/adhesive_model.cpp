@@ -165,6 +165,26 @@ std::pair<double, double> AdhesiveModel::default_curve_range() const {
   return {0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r)};
 }
 
+std::vector<CurvePoint> AdhesiveModel::curve_solved(double eta, const std::vector<double>& a_bar) const {
+  check_eta(eta);
+  if (a_bar.empty()) throw InputError("empty a_bar list");
+  std::vector<double> a_over_t;
+  for (double a : a_bar) {
+    check_positive(a, "a_bar");
+    a_over_t.push_back(a / eta);
+  }
+  const std::vector<ReducedVariables> solved = source_->evaluate(a_over_t);
+  std::vector<CurvePoint> out;
+  out.reserve(a_bar.size());
+  for (std::size_t i = 0; i < solved.size(); ++i) {
+    CurvePoint p = law_->point(reduced_point_of(solved[i]), eta, a_bar[i]);
+    p.dload = 0.0;
+    p.dpenetration = 0.0;
+    out.push_back(p);
+  }
+  return out;
+}
+
 std::vector<CurvePoint> AdhesiveModel::curve(double eta, const std::vector<double>& a_bar) const {
   check_eta(eta);
   if (a_bar.empty()) throw InputError("empty a_bar list");

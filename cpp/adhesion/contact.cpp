@@ -12,8 +12,6 @@ namespace coatcontact {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 void check_si(double value, const char* what) {
   if (!(value > 0.0 && std::isfinite(value))) {
     throw InputError(std::string(what) + " = " + detail::full_precision(value) +
@@ -33,25 +31,26 @@ std::vector<double> log_spaced(double lo, double hi, std::size_t n) {
 }
 
 Contact::Contact(const AdhesiveModel& model, double radius, double thickness, double work_of_adhesion)
-    : model_(model), radius_(radius), thickness_(thickness), work_(work_of_adhesion) {
-  check_si(radius, "sphere radius");
-  check_si(thickness, "film thickness");
-  check_si(work_of_adhesion, "work of adhesion");
-  // l = (pi w R^2 / E*)^(1/3): a = a_bar l, t = eta l.
-  length_scale_ = std::cbrt(kPi * work_ * radius_ * radius_ / model_.stack().reference_modulus());
-  if (!(std::isfinite(length_scale_) && length_scale_ > 0.0)) {
-    throw InputError("the adhesive length (pi w R^2/E1*)^(1/3) = " +
-                     detail::short_text(length_scale_) + " is not a finite positive number");
-  }
-  const double scaled = eta();
-  if (!(scaled >= kMinimumScaled && scaled <= kMaximumScaled)) {
-    throw InputError("eta = t/(pi w R^2/E1*)^(1/3) = " +
-                     detail::short_text(scaled) + " is outside the allowed range [" +
-                     detail::short_text(kMinimumScaled) + ", " + detail::short_text(kMaximumScaled) + "]");
-  }
+    : model_(model),
+      scales_(maugis_scales(radius, thickness, work_of_adhesion, model.stack().reference_modulus())) {}
+
+ValidityLimits Contact::validity_limits() const {
+  ValidityLimits limits;
+  limits.thickness = scales_.thickness;
+  limits.modulus = scales_.modulus;
+  limits.sphere_radius = scales_.radius;
+  return limits;
 }
 
-double Contact::force_scale() const { return kPi * work_ * radius_; }
+std::vector<std::string> Contact::validity_warnings(const std::vector<Point>& curve) const {
+  std::vector<double> a, delta, force;
+  for (const Point& p : curve) {
+    a.push_back(p.radius);
+    delta.push_back(p.penetration);
+    force.push_back(p.force);
+  }
+  return coatcontact::validity_warnings(a, delta, force, validity_limits());
+}
 
 std::vector<Contact::Point> Contact::default_curve(std::size_t points) const {
   const auto [lo, hi] = model_.default_curve_range();
@@ -66,12 +65,12 @@ std::vector<Contact::Point> Contact::default_curve(std::size_t points) const {
 
 double Contact::force(double contact_radius) const {
   check_si(contact_radius, "contact radius");
-  return force_scale() * model_.point(eta(), contact_radius / length_scale_).load;
+  return force_scale() * model_.point(eta(), contact_radius / length_scale()).load;
 }
 
 double Contact::penetration(double contact_radius) const {
   check_si(contact_radius, "contact radius");
-  return penetration_scale() * model_.point(eta(), contact_radius / length_scale_).penetration;
+  return penetration_scale() * model_.point(eta(), contact_radius / length_scale()).penetration;
 }
 
 const Pulloff& Contact::pulloff() const {

@@ -104,6 +104,18 @@ ReducedTable::ReducedTable(const ReducedSource& source, TableOptions options)
 
 ReducedTable::~ReducedTable() = default;
 
+ReducedPoint reduced_point_of(const ReducedVariables& v) {
+  ReducedPoint r;
+  r.a_over_t = v.a_over_t;
+  r.pi_s = v.pi_s;
+  r.delta_s = v.delta_s;
+  r.pi_c = v.pi_c;
+  r.delta_c = v.delta_c;
+  r.e_eq = v.e_eq;
+  r.gamma1 = v.gamma1;
+  return r;
+}
+
 std::size_t ReducedTable::segments() const { return segments_.size(); }
 double ReducedTable::interpolation_error_estimate() const { return interpolation_error_; }
 double ReducedTable::source_error_estimate() const { return source_error_; }

@@ -174,4 +174,24 @@ ShapePulloff ShapeContact::pulloff(double spring, int points_per_decade) const {
   return result;
 }
 
+ValidityLimits ShapeContact::validity_limits(double sphere_radius) const {
+  ValidityLimits limits;
+  limits.thickness = thickness_;
+  limits.modulus = modulus_;
+  limits.sphere_radius = sphere_radius;
+  limits.max_contact_radius = shape_->max_contact_radius();
+  return limits;
+}
+
+std::vector<std::string> ShapeContact::validity_warnings(const std::vector<ShapePoint>& curve,
+                                                         double sphere_radius) const {
+  std::vector<double> a, delta, force;
+  for (const ShapePoint& p : curve) {
+    a.push_back(p.radius);
+    delta.push_back(p.penetration);
+    force.push_back(p.force);
+  }
+  return coatcontact::validity_warnings(a, delta, force, validity_limits(sphere_radius));
+}
+
 }  // namespace coatcontact

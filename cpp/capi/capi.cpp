@@ -60,11 +60,13 @@ struct cc_md_model {
 
 struct cc_shape {
   std::shared_ptr<const coatcontact::IndenterShape> shape;
+  double sphere_radius = 0.0;  // R of a paraboloid (its validity limits are a sphere's), else 0
 };
 
 struct cc_shape_contact {
   std::shared_ptr<const coatcontact::ShapeSolver> solver;
   std::shared_ptr<const coatcontact::IndenterShape> shape;
+  double sphere_radius = 0.0;
   std::unique_ptr<coatcontact::ShapeContact> contact;
 };
 
@@ -413,6 +415,23 @@ int cc_contact_at(cc_contact* contact, int n, const double* a, double* out) {
     require(a, "cc_contact_at", "a");
     require(out, "cc_contact_at", "out");
     copy_out(contact_rows(contact->contact, std::vector<double>(a, a + count)), out);
+  });
+}
+
+int cc_contact_validity(const cc_contact* contact, int n, const double* rows, const char** warnings) {
+  thread_local std::string text;
+  return guarded([&] {
+    require(contact, "cc_contact_validity", "contact");
+    require(warnings, "cc_contact_validity", "warnings");
+    const std::size_t count = count_of(n, "cc_contact_validity");
+    if (count > 0) require(rows, "cc_contact_validity", "rows");
+    std::vector<coatcontact::Contact::Point> curve(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      curve[i] = {rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]};
+    }
+    text.clear();
+    for (const std::string& w : contact->contact.validity_warnings(curve)) text += w + "\n";
+    *warnings = text.c_str();
   });
 }
 
@@ -883,7 +902,10 @@ int cc_md_pulloff(const cc_md_model* model, double eta, double lambda,
 // ---- shapes and their SI contact --------------------------------------------------------
 
 int cc_shape_paraboloid(double radius, cc_shape** shape) {
-  return make_shape("cc_shape_paraboloid", shape, [&] { return coatcontact::make_paraboloid(radius); });
+  const int status =
+      make_shape("cc_shape_paraboloid", shape, [&] { return coatcontact::make_paraboloid(radius); });
+  if (status == CC_OK) (*shape)->sphere_radius = radius;
+  return status;
 }
 int cc_shape_cone(double beta, cc_shape** shape) {
   return make_shape("cc_shape_cone", shape, [&] { return coatcontact::make_cone(beta); });
@@ -918,6 +940,7 @@ int cc_shape_contact_create(const cc_stack* stack, const cc_shape* shape, double
     auto handle = std::make_unique<cc_shape_contact>();
     handle->solver = std::make_shared<const coatcontact::ShapeSolver>(build(*stack));
     handle->shape = shape->shape;
+    handle->sphere_radius = shape->sphere_radius;
     handle->contact = std::make_unique<coatcontact::ShapeContact>(
         *handle->solver, handle->shape, thickness, work_of_adhesion, tolerance_or_default(tolerance));
     *contact = handle.release();
@@ -933,6 +956,25 @@ int cc_shape_contact_default_range(const cc_shape_contact* contact, double range
     const auto [lo, hi] = contact->contact->default_range();
     range[0] = lo;
     range[1] = hi;
+  });
+}
+
+int cc_shape_contact_validity(const cc_shape_contact* contact, int n, const double* rows, const char** warnings) {
+  thread_local std::string text;
+  return guarded([&] {
+    require(contact, "cc_shape_contact_validity", "contact");
+    require(warnings, "cc_shape_contact_validity", "warnings");
+    const std::size_t count = count_of(n, "cc_shape_contact_validity");
+    if (count > 0) require(rows, "cc_shape_contact_validity", "rows");
+    std::vector<coatcontact::ShapePoint> curve(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      curve[i].radius = rows[CC_SHAPE_CURVE_COLUMNS * i];
+      curve[i].penetration = rows[CC_SHAPE_CURVE_COLUMNS * i + 1];
+      curve[i].force = rows[CC_SHAPE_CURVE_COLUMNS * i + 2];
+    }
+    text.clear();
+    for (const std::string& w : contact->contact->validity_warnings(curve, contact->sphere_radius)) text += w + "\n";
+    *warnings = text.c_str();
   });
 }
 

@@ -56,57 +56,51 @@ double plan_table_work(const ReducedSolver& solver, double tolerance, double a_o
   return estimate;
 }
 
-std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere,
-                                         const SphereLimits& limits, double lo, double hi,
-                                         std::size_t points) {
+void plan_md_work(const MaugisDugdaleModel& md, double eta, double lambda, double a_bar, double evaluations,
+                  bool parallel, const std::string& options) {
+  // The first solve also builds the kernel table: time the second.
+  auto start = std::chrono::steady_clock::now();
+  try {
+    md.point(eta, lambda, a_bar);
+    start = std::chrono::steady_clock::now();
+    md.point(eta, lambda, 0.999 * a_bar);
+  } catch (const NumericalError&) {
+    return;  // the run itself reports the point it cannot solve
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double threads = parallel ? std::max(1u, std::thread::hardware_concurrency()) : 1.0;
+  const double estimate = seconds * evaluations / threads;
+  if (estimate > kMaxWorkSeconds) {
+    throw InputError(options + ": estimated run time " + show(std::round(estimate)) + " s (" + show(evaluations) +
+                     " Maugis-Dugdale solves at ~" + show(seconds) + " s each) is over the limit of " +
+                     show(kMaxWorkSeconds) + " s; allowed: fewer values or points");
+  }
+  progress_set_estimate(estimate);
+}
+
+std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere, double lo, double hi,
+                                         double reach, std::size_t points) {
   // Scan 32 points per decade for the first a_bar past a limit; the curve then ends below it.
+  const ValidityLimits limits = sphere.validity_limits();
   const double l = sphere.length_scale();
   const std::size_t scan = std::max<std::size_t>(8, static_cast<std::size_t>(32 * std::log10(hi / lo)));
   double last_inside = 0.0;
   for (std::size_t k = 0; k < scan; ++k) {
     const double a_bar = lo * std::pow(hi / lo, static_cast<double>(k) / static_cast<double>(scan - 1));
     const CurvePoint p = model.point(sphere.eta(), a_bar);
-    const double a = a_bar * l;
-    const double delta = p.penetration * sphere.penetration_scale();
-    const double force = p.load * sphere.force_scale();
-    const bool inside = a <= kMaxContactRadiusOverR * limits.radius && delta <= limits.thickness &&
-                        force / (M_PI * a * a) <= kMaxPressureOverModulus * limits.film_reduced_modulus;
-    if (!inside) break;
+    if (!within_validity(a_bar * l, p.penetration * sphere.penetration_scale(), p.load * sphere.force_scale(),
+                         limits)) {
+      break;
+    }
     last_inside = a_bar;
   }
-  if (last_inside > lo) hi = std::min(hi, last_inside);
+  if (last_inside > lo) hi = std::min(hi, std::max(last_inside, reach));
   std::vector<double> v(points);
   for (std::size_t k = 0; k < points; ++k) {
     v[k] = lo * std::pow(hi / lo, static_cast<double>(k) / static_cast<double>(points - 1));
   }
   v.back() = hi;
   return v;
-}
-
-std::vector<std::string> sphere_physics_warnings(const std::vector<double>& a, const std::vector<double>& delta,
-                                                 const std::vector<double>& force, const SphereLimits& limits) {
-  std::vector<std::string> warnings;
-  double a_max = 0.0, delta_max = -INFINITY, p_max = -INFINITY;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    a_max = std::max(a_max, a[i]);
-    delta_max = std::max(delta_max, delta[i]);
-    p_max = std::max(p_max, force[i] / (M_PI * a[i] * a[i]));
-  }
-  if (delta_max > limits.thickness) {
-    warnings.push_back("penetration reaches " + show(delta_max) + " m, more than the film thickness t = " +
-                       show(limits.thickness) + " m: the sphere would pass through the film");
-  }
-  if (a_max > kMaxContactRadiusOverR * limits.radius) {
-    warnings.push_back("contact radius reaches " + show(a_max) + " m, above 0.1 R = " +
-                       show(kMaxContactRadiusOverR * limits.radius) +
-                       " m: the paraboloid approximation of the sphere no longer holds");
-  }
-  if (p_max > kMaxPressureOverModulus * limits.film_reduced_modulus) {
-    warnings.push_back("mean pressure F/(pi a^2) reaches " + show(p_max) + " Pa, above 0.1 E1* = " +
-                       show(kMaxPressureOverModulus * limits.film_reduced_modulus) +
-                       " Pa: strains this large are beyond linear elasticity");
-  }
-  return warnings;
 }
 
 void check_fit_columns(const std::string& columns, const std::vector<std::string>& declared, int declared_line,

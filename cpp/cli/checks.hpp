@@ -9,6 +9,8 @@
 
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
+#include "coatcontact/limits.hpp"
+#include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
 
 namespace coatcontact::cli {
@@ -21,25 +23,20 @@ constexpr double kMaxWorkSeconds = 1800.0;
 double plan_table_work(const ReducedSolver& solver, double tolerance, double a_over_t_min,
                        double a_over_t_max, const std::string& options);
 
-// `sphere`: the limits of the model in physical units.
-struct SphereLimits {
-  double radius = 0.0;                 // R [m]: paraboloid approximation needs a <= 0.1 R
-  double thickness = 0.0;              // t [m]: penetration beyond t leaves the film
-  double film_reduced_modulus = 0.0;   // E1* [Pa]: mean pressure near E1* is not linear elastic
-};
-constexpr double kMaxContactRadiusOverR = 0.1;
-constexpr double kMaxPressureOverModulus = 0.1;
+// Work estimate of Maugis-Dugdale solves (one per contact radius): times one point at
+// (eta, lambda, a_bar) and refuses, naming `options`, `evaluations` such points estimated
+// above kMaxWorkSeconds (divided among the threads when they run in parallel).
+void plan_md_work(const MaugisDugdaleModel& md, double eta, double lambda, double a_bar, double evaluations,
+                  bool parallel, const std::string& options);
+// Point evaluations of one Maugis-Dugdale pull-off (the log scan and the refinement of its minima).
+constexpr double kMdPulloffEvaluations = 100.0;
 
 // Default contact radii of `sphere` (a_bar, log-spaced, `points` of them): [lo, hi], with hi
-// lowered to the largest a_bar at which the curve is still inside every SphereLimits limit
-// (kept as given when even lo is outside; the warnings then say so).
-std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere,
-                                         const SphereLimits& limits, double lo, double hi,
-                                         std::size_t points);
-
-// One message per limit that the curve (SI: a [m], delta [m], F [N]) exceeds.
-std::vector<std::string> sphere_physics_warnings(const std::vector<double>& a, const std::vector<double>& delta,
-                                                 const std::vector<double>& force, const SphereLimits& limits);
+// lowered to the largest a_bar at which the curve is still inside every validity limit
+// (limits.hpp; kept as given when even lo is outside: the warnings then say so), but never
+// below `reach` (the pull-off's a_bar, so the curve reaches the pull-off it reports).
+std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere, double lo, double hi,
+                                         double reach, std::size_t points);
 
 // `fit`: --columns against a "# columns:" line of the data file (the start values are checked by
 // the fit library, fit::check_start).

@@ -58,7 +58,7 @@ double parse_tolerance(const Arguments& args) {
   try {
     check_tolerance(tol);
   } catch (const InputError&) {
-    throw InputError("--tol: value '" + *text + "' not allowed (need " + short_num(kMinimumTolerance) +
+    throw InputError("--tol: value " + quoted(*text) + " not allowed (need " + short_num(kMinimumTolerance) +
                      " <= T <= " + short_num(kMaximumTolerance) + ")");
   }
   return tol;
@@ -69,7 +69,7 @@ std::vector<double> parse_scaled_list(const std::string& text, const std::string
   std::vector<double> values = parse_list(text, option);
   for (double v : values) {
     if (!(v >= kMinimumScaled && v <= kMaximumScaled)) {
-      throw InputError(option + ": value " + short_num(v) + " in '" + text + "' not allowed (every value must be in [" +
+      throw InputError(option + ": value " + short_num(v) + " in " + quoted(text) + " not allowed (every value must be in [" +
                        short_num(kMinimumScaled) + ", " + short_num(kMaximumScaled) + "])");
     }
   }
@@ -106,8 +106,59 @@ std::string join(const std::vector<double>& values) {
   return s;
 }
 
+// The Dugdale zone is solved for a rigid indenter only: an elastic one is refused, not dropped.
+void refuse_elastic_indenter(const Stack& stack, const std::string& zone_option) {
+  if (!stack.indenter().rigid) {
+    throw InputError("--indenter: an elastic indenter is not available with " + zone_option +
+                     " (the Maugis-Dugdale zone is implemented for a rigid indenter only, THEORY.md section 13); "
+                     "omit --indenter (rigid), or omit " + zone_option + " (JKR)");
+  }
+}
+
+// --tol sets the accuracy of the JKR blocks (lambda = inf) only: with every lambda finite it
+// would be silently unused, so it is refused.
+void refuse_unused_tol(const Arguments& args, const std::vector<double>& lambdas) {
+  if (!args.has("--tol")) return;
+  for (double lambda : lambdas) {
+    if (std::isinf(lambda)) return;
+  }
+  throw InputError("--tol: not used with a finite --lambda (the Maugis-Dugdale zone is solved per contact radius "
+                   "to a fixed accuracy, THEORY.md section 13; --tol sets the JKR blocks, lambda = inf); omit --tol");
+}
+
 void add_pulloff_warnings(Header& h, const Pulloff& p) {
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
+}
+
+// The curve of `sphere` through the table. The table is built a decade of a/t at a time: when
+// the decade holding the requested radii reaches beyond what the solver can deliver at `tol`
+// (`solve_alone`: the probe found the request's own radii servable), each radius is solved on
+// its own and `note` says so.
+std::vector<CurvePoint> sphere_curve(const AdhesiveModel& model, double eta, const std::vector<double>& a_bar,
+                                     bool solve_alone, double tol, std::string& note) {
+  try {
+    return model.curve(eta, a_bar);
+  } catch (const NumericalError& e) {
+    if (!solve_alone) throw;
+    note = "solved at each contact radius at tolerance " + num(tol) +
+           " (the interpolation table's decade of a/t around these radii cannot be built: " + e.what() + ")";
+    return model.curve_solved(eta, a_bar);
+  }
+}
+
+// The pull-off of `sphere` in SI units, header lines.
+void add_sphere_pulloff(Header& h, const Contact& sphere, const Pulloff& pulloff) {
+  h.emplace_back("pull-off force, load control [N]", num(sphere.pulloff_force_load()));
+  h.emplace_back("pull-off contact radius, load control [m]", num(pulloff.load_control.a_bar * sphere.length_scale()));
+  h.emplace_back("pull-off penetration, load control [m]",
+                 num(pulloff.load_control.penetration * sphere.penetration_scale()));
+  h.emplace_back("pull-off force, displacement control [N]", num(sphere.pulloff_force_disp()));
+  h.emplace_back("pull-off contact radius, displacement control [m]",
+                 num(pulloff.displacement_control.a_bar * sphere.length_scale()));
+  h.emplace_back("pull-off penetration, displacement control [m]",
+                 num(pulloff.displacement_control.penetration * sphere.penetration_scale()));
+  h.emplace_back("normalized pull-off P (load, displacement)",
+                 num(pulloff.load_control.load) + ", " + num(pulloff.displacement_control.load));
 }
 
 // Options and inputs shared by `adhesive` and `pulloff`: the material pair, the eta list and
@@ -156,6 +207,14 @@ int run_adhesive(const Args& raw) {
     std::vector<double> a_bar;
     if (const auto text = args.get("--a-bar")) a_bar = parse_scaled_list(*text, "--a-bar");
     const auto lambdas = parse_lambdas(args);
+    std::vector<std::pair<std::string, std::size_t>> lists = {
+        {"--eta", etas.size()}, {"--a-bar", a_bar.empty() ? std::size_t{400} : a_bar.size()}};
+    if (lambdas) lists.emplace_back("--lambda", lambdas->size());
+    check_rows(lists);
+    if (lambdas) {
+      refuse_unused_tol(args, *lambdas);
+      refuse_elastic_indenter(stack, "--lambda");
+    }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol);
@@ -215,6 +274,18 @@ int run_pulloff(const Args& raw) {
     }
     const auto [stack, etas, tol] = parse_normalized_inputs(args);
     const auto lambdas = parse_lambdas(args);
+    if (lambdas && args.has("--spring-bar")) {
+      throw InputError("--spring-bar: not available with --lambda (the pull-off through a spring is computed for "
+                       "JKR only, THEORY.md section 10); omit --spring-bar, or --lambda for JKR");
+    }
+    if (lambdas) check_rows({{"--eta", etas.size()}, {"--lambda", lambdas->size()}});
+    if (const auto text = args.get("--spring-bar")) {
+      check_rows({{"--eta", etas.size()}, {"--spring-bar", parse_spring_bar(*text, "--spring-bar").size()}});
+    }
+    if (lambdas) {
+      refuse_unused_tol(args, *lambdas);
+      refuse_elastic_indenter(stack, "--lambda");
+    }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       write_md_pulloff(out.stream(), stack, etas, *lambdas, tol);
@@ -312,18 +383,26 @@ int run_sphere(const Args& raw) {
     if (const auto text = args.get("--points")) {
       const double n = parse_number(*text, "--points");
       if (!(n >= 2 && n <= 1e6 && n == std::floor(n))) {
-        throw InputError("--points: value '" + *text + "' not allowed (need an integer, 2 <= N <= 1000000)");
+        throw InputError("--points: value " + quoted(*text) + " not allowed (need an integer, 2 <= N <= 1000000)");
       }
       points = static_cast<std::size_t>(n);
     }
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
+    std::vector<double> contact_radii;
+    if (const auto text = args.get("--contact-radius")) {
+      if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
+      contact_radii = parse_quantity_list(*text, Quantity::kLength, "--contact-radius");
+      // A contact wider than the sphere is no sphere at all: refused before any solve.
+      with_options("--contact-radius with --radius", [&] { check_sphere_contact_radii(contact_radii, radius); });
+    }
     Output out(args.get("--output").value_or(""));
     if (sigma0) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
-      std::vector<double> contact_radii;
-      if (const auto text = args.get("--contact-radius")) {
-        if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
-        contact_radii = parse_list(*text, "--contact-radius");
+      // The zone's accuracy is fixed by its discretization (MaugisDugdaleOptions), not by --tol.
+      if (args.has("--tol")) {
+        throw InputError("--tol: not used with --cohesive-stress/--range (the Maugis-Dugdale zone is solved per "
+                         "contact radius to a fixed accuracy, THEORY.md section 13); omit --tol");
       }
+      refuse_elastic_indenter(stack, args.has("--range") ? "--range" : "--cohesive-stress");
       write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points, contact_radii);
       out.commit();
       return 0;
@@ -335,36 +414,41 @@ int run_sphere(const Args& raw) {
     // commands accept; say which options to change when they do not.
     const Contact sphere = with_options("--radius, --thickness, --work, --film",
                                         [&] { return Contact(model, radius, thickness, work); });
-    const double length = sphere.length_scale();
     const double eta = sphere.eta();
     const auto [lo, hi] = model.default_curve_range();
-    std::vector<double> a_bar;
-    if (const auto text = args.get("--contact-radius")) {
-      if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
-      for (double a : parse_list(*text, "--contact-radius")) {
-        if (!(a / length >= kMinimumScaled && a / length <= kMaximumScaled)) {
-          throw InputError("--contact-radius: " + short_num(a) + " m is not allowed; every a must be in [" +
-                           short_num(kMinimumScaled * length) + ", " + short_num(kMaximumScaled * length) +
-                           "] m (1e-6 to 1e6 times the length scale)");
-        }
-        a_bar.push_back(a / length);
-      }
-    }
+    std::vector<double> a_bar =
+        with_options("--contact-radius", [&] { return scaled_contact_radii(contact_radii, sphere.scales()); });
     const double a_bar_min = a_bar.empty() ? lo : std::min(lo, *std::min_element(a_bar.begin(), a_bar.end()));
     const double a_bar_max = a_bar.empty() ? hi : std::max(hi, *std::max_element(a_bar.begin(), a_bar.end()));
-    plan_table_work(solver, tol, 0.1 * a_bar_min / eta, a_bar_max / eta,
-                    "--tol " + num(tol) + " with --thickness, --radius, --work, --film");
-    const SphereLimits limits{radius, thickness, stack.reference_modulus()};
-    if (a_bar.empty()) a_bar = sphere_default_a_bar(model, sphere, limits, lo, hi, points);
-    const std::vector<CurvePoint> curve = model.curve(sphere.eta(), a_bar);
-    const Pulloff& pulloff = sphere.pulloff();
-    std::vector<double> a_si, delta_si, force_si;
-    for (const auto& p : curve) {
-      a_si.push_back(p.a_bar * sphere.length_scale());
-      delta_si.push_back(p.penetration * sphere.penetration_scale());
-      force_si.push_back(p.load * sphere.force_scale());
+    // Probe what the request needs: the pull-off scan's a/t range with the curve's, and when
+    // the solver cannot serve the pull-off's part, the curve's own range alone; the pull-off
+    // is then left out and the header says why.
+    const std::string probe_options = "--tol " + num(tol) + " with --thickness, --radius, --work, --film";
+    std::string pulloff_missing;
+    try {
+      plan_table_work(solver, tol, 0.1 * a_bar_min / eta, a_bar_max / eta, probe_options);
+    } catch (const InputError& e) {
+      if (a_bar.empty()) throw;
+      plan_table_work(solver, tol, *std::min_element(a_bar.begin(), a_bar.end()) / eta,
+                      *std::max_element(a_bar.begin(), a_bar.end()) / eta, probe_options);
+      pulloff_missing = e.what();
     }
-    const std::vector<std::string> warnings = sphere_physics_warnings(a_si, delta_si, force_si, limits);
+    const Pulloff* pulloff = nullptr;
+    if (pulloff_missing.empty()) pulloff = &sphere.pulloff();
+    if (a_bar.empty()) {
+      // The curve ends inside the validity limits, but not before the pull-off it reports.
+      const double reach = std::max(pulloff->load_control.a_bar, pulloff->displacement_control.a_bar);
+      a_bar = sphere_default_a_bar(model, sphere, lo, hi, reach, points);
+    }
+    std::string solved_note;
+    const std::vector<CurvePoint> curve =
+        sphere_curve(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note);
+    std::vector<Contact::Point> si;
+    for (const auto& p : curve) {
+      si.push_back({p.a_bar * sphere.length_scale(), p.penetration * sphere.penetration_scale(),
+                    p.load * sphere.force_scale()});
+    }
+    const std::vector<std::string> warnings = sphere.validity_warnings(si);
 
     Header h{{"command", "sphere"}};
     h.emplace_back("sphere radius R [m]", num(radius));
@@ -375,21 +459,21 @@ int run_sphere(const Args& raw) {
     h.emplace_back("penetration scale (pi^2 w^2 R/E1*^2)^(1/3) [m]", num(sphere.penetration_scale()));
     h.emplace_back("force scale pi w R [N]", num(sphere.force_scale()));
     h.emplace_back("eta = t/length scale", num(sphere.eta()));
-    h.emplace_back("pull-off force, load control [N]", num(sphere.pulloff_force_load()));
-    h.emplace_back("pull-off contact radius, load control [m]",
-                   num(pulloff.load_control.a_bar * sphere.length_scale()));
-    h.emplace_back("pull-off penetration, load control [m]",
-                   num(pulloff.load_control.penetration * sphere.penetration_scale()));
-    h.emplace_back("pull-off force, displacement control [N]", num(sphere.pulloff_force_disp()));
-    h.emplace_back("pull-off contact radius, displacement control [m]",
-                   num(pulloff.displacement_control.a_bar * sphere.length_scale()));
-    h.emplace_back("pull-off penetration, displacement control [m]",
-                   num(pulloff.displacement_control.penetration * sphere.penetration_scale()));
-    h.emplace_back("normalized pull-off P (load, displacement)",
-                   num(pulloff.load_control.load) + ", " + num(pulloff.displacement_control.load));
-    describe_table(h, model, tol);
-    add_pulloff_warnings(h, pulloff);
+    if (pulloff) {
+      add_sphere_pulloff(h, sphere, *pulloff);
+    } else {
+      h.emplace_back("pull-off", "not computed: its scan over a_bar [" + num(0.1 * a_bar_min) + ", " +
+                                     num(a_bar_max) + "] needs radii the solver cannot serve (" + pulloff_missing +
+                                     "); the curve at the requested radii is complete");
+    }
+    if (solved_note.empty()) {
+      describe_table(h, model, tol);
+    } else {
+      h.emplace_back("reduced variables", solved_note);
+    }
+    if (pulloff) add_pulloff_warnings(h, *pulloff);
     progress_pause();
+    if (!pulloff) std::cerr << "coatcontact sphere: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";
     for (const auto& w : warnings) {
       h.emplace_back("warning", w);
       std::cerr << "coatcontact sphere: warning: " << w << "\n";
@@ -397,7 +481,7 @@ int run_sphere(const Args& raw) {
     const std::vector<std::string> columns = {"a_m", "delta_m", "F_N"};
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (std::size_t i = 0; i < curve.size(); ++i) write_row(os, {a_si[i], delta_si[i], force_si[i]}, columns);
+    for (const auto& p : si) write_row(os, {p.radius, p.penetration, p.force}, columns);
     out.commit();
     return 0;
   });

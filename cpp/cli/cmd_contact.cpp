@@ -11,6 +11,7 @@
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/limits.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/shape_contact.hpp"
 #include "commands.hpp"
@@ -64,18 +65,26 @@ std::shared_ptr<const IndenterShape> named(const std::string& text, Make&& make)
   } catch (const InputError& e) {
     std::string message = e.what();
     if (message.rfind("--shape: ", 0) == 0) message = message.substr(9);  // named once
-    throw InputError("--shape: '" + text + "': " + message);
+    throw InputError("--shape: " + quoted(text) + ": " + message);
   }
 }
 
-// "v1,v2,..." with length units per item, or "MIN:MAX:N" (log-spaced, in m).
-std::vector<double> parse_radii(const std::string& text) {
-  if (text.find(':') != std::string::npos) return parse_list(text, "--contact-radius");
-  std::vector<double> radii;
-  for (const std::string& item : split(text, ',')) {
-    radii.push_back(parse_quantity(item, Quantity::kLength, "--contact-radius"));
+// The radius R of "sphere:R" (the paraboloid stands for a sphere: its validity limits apply),
+// 0 for every other shape.
+double sphere_radius_of(const std::string& shape_text) {
+  const std::string prefix = "sphere:";
+  if (shape_text.rfind(prefix, 0) != 0) return 0.0;
+  return parse_quantity(shape_text.substr(prefix.size()), Quantity::kLength, "--shape");
+}
+
+// Spring stiffness k [N/m]: a number in the range every SI quantity has ([1e-100, 1e100]).
+double parse_spring(const std::string& text) {
+  const double k = parse_number(text, "--spring");
+  if (!(k >= 1e-100 && k <= 1e100)) {
+    throw InputError("--spring: value " + quoted(text) +
+                     " not allowed (need a stiffness in N/m in [1e-100, 1e100], the range of every SI quantity)");
   }
-  return radii;
+  return k;
 }
 
 std::string jump_text(const ShapeJump& j) {
@@ -94,8 +103,8 @@ const std::vector<OptionSpec> kSpec = {
     substrate_option(),
     indenter_option(),
     {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true},
-    {"--spring", "k", "spring stiffness in N/m (cantilever, machine frame): adds the spring-controlled pull-off", false},
-    {"--contact-radius", "LIST", "contact radii: v1,v2,... (units allowed) or MIN:MAX:N in m (log-spaced)", false},
+    {"--spring", "k", "spring stiffness in N/m, in [1e-100, 1e100] (cantilever, machine frame): adds the spring-controlled pull-off", false},
+    {"--contact-radius", "LIST", "contact radii: v1,v2,... or MIN:MAX:N (log-spaced); m, or with a unit (mm um nm)", false},
     {"--points", "N", "number of contact radii over the default range (default 100; not with --contact-radius)", false},
     {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
@@ -109,13 +118,13 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   const std::size_t colon = text.find(':');
   const std::string expected =
       "expected sphere:R, cone:BETA, punch:A, power:N,R, blunted-cone:R,BETA or profile:FILE";
-  if (colon == std::string::npos) throw InputError(option + ": '" + text + "' has no parameters; " + expected);
+  if (colon == std::string::npos) throw InputError(option + ": " + quoted(text) + " has no parameters; " + expected);
   const std::string kind = text.substr(0, colon);
   const std::string rest = text.substr(colon + 1);
   const std::vector<std::string> items = split(rest, ',');
   auto count = [&](std::size_t n) {
     if (items.size() != n) {
-      throw InputError(option + ": '" + text + "' needs " + std::to_string(n) + " parameter(s); " + expected);
+      throw InputError(option + ": " + quoted(text) + " needs " + std::to_string(n) + " parameter(s); " + expected);
     }
   };
   auto length = [&](const std::string& item) { return parse_quantity(item, Quantity::kLength, option); };
@@ -135,7 +144,7 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
     count(2);
     const double n = parse_number(items[0], option);
     if (!(n > 0.0 && n <= 100.0)) {
-      throw InputError(option + ": '" + text + "': exponent N = " + items[0] + " not allowed (need 0 < N <= 100)");
+      throw InputError(option + ": " + quoted(text) + ": exponent N = " + items[0] + " not allowed (need 0 < N <= 100)");
     }
     return named(text, [&] { return make_power_law(n, length(items[1])); });
   }
@@ -144,13 +153,13 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
     return named(text, [&] { return make_blunted_cone(length(items[0]), parse_angle(items[1], option)); });
   }
   if (kind == "profile") {
-    if (rest.empty()) throw InputError(option + ": '" + text + "' names no file; " + expected);
+    if (rest.empty()) throw InputError(option + ": " + quoted(text) + " names no file; " + expected);
     // Columns r z (lengths; "# units:" converts them to SI), as the fit's data files.
     const DataTable table = read_data_file(rest, 2, {true, false}, {Quantity::kLength, Quantity::kLength});
     profile_end = rest + ":" + std::to_string(table.line_numbers.back());
     return make_measured_profile(table.columns[0], table.columns[1], rest, table.line_numbers);
   }
-  throw InputError(option + ": unknown shape '" + kind + "' in '" + text + "'; " + expected);
+  throw InputError(option + ": unknown shape " + quoted(kind) + " in " + quoted(text) + "; " + expected);
 }
 
 int run_contact(const Args& raw) {
@@ -176,17 +185,12 @@ int run_contact(const Args& raw) {
     const double thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
     const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
     double spring = 0.0;
-    if (const auto text = args.get("--spring")) {
-      spring = parse_number(*text, "--spring");
-      if (!(spring > 0.0)) {
-        throw InputError("--spring: value '" + *text + "' not allowed (need a stiffness > 0 in N/m)");
-      }
-    }
+    if (const auto text = args.get("--spring")) spring = parse_spring(*text);
     double tol = kDefaultTolerance;
     if (const auto text = args.get("--tol")) {
       tol = parse_number(*text, "--tol");
       if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
-        throw InputError("--tol: value '" + *text + "' not allowed (need 1e-13 <= T <= 0.1)");
+        throw InputError("--tol: value " + quoted(*text) + " not allowed (need 1e-13 <= T <= 0.1)");
       }
     }
     if (args.has("--contact-radius") && args.has("--points")) {
@@ -196,14 +200,22 @@ int run_contact(const Args& raw) {
     if (const auto text = args.get("--points")) {
       const double n = parse_number(*text, "--points");
       if (!(n >= 2 && n <= 1e6 && n == std::floor(n))) {
-        throw InputError("--points: value '" + *text + "' not allowed (need an integer, 2 <= N <= 1000000)");
+        throw InputError("--points: value " + quoted(*text) + " not allowed (need an integer, 2 <= N <= 1000000)");
       }
       points = static_cast<std::size_t>(n);
     }
     std::vector<double> radii;
-    if (const auto text = args.get("--contact-radius")) radii = parse_radii(*text);
+    if (const auto text = args.get("--contact-radius")) {
+      radii = parse_quantity_list(*text, Quantity::kLength, "--contact-radius");
+    }
     std::string profile_end;
     const auto shape = parse_shape(args.require("--shape"), profile_end);
+    const double sphere_radius = sphere_radius_of(args.require("--shape"));
+    try {
+      check_sphere_contact_radii(radii, sphere_radius);
+    } catch (const InputError& e) {
+      throw InputError("--contact-radius with --shape: " + std::string(e.what()));
+    }
     for (double a : radii) {
       if (a > shape->max_contact_radius()) {
         throw InputError((profile_end.empty() ? "" : profile_end + ": ") + "--contact-radius: " + num(a) +
@@ -250,6 +262,11 @@ int run_contact(const Args& raw) {
     h.emplace_back("pull-off scan", "contact radii [" + num(pulloff.scan_min) + ", " + num(pulloff.scan_max) +
                                         "] m, 24 per decade, every local minimum refined (Brent)");
     for (const auto& w : pulloff.warnings) h.emplace_back("warning", w);
+    progress_pause();
+    for (const auto& w : contact.validity_warnings(curve, sphere_radius)) {
+      h.emplace_back("warning", w);
+      std::cerr << "coatcontact contact: warning: " << w << "\n";
+    }
     h.emplace_back("solver tolerance", num(tol));
     h.emplace_back("solver error estimate (relative, max over rows)", num(worst));
     h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));

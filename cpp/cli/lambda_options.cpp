@@ -2,7 +2,10 @@
 // section 13; lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3).
 #include "lambda_options.hpp"
 
+#include <algorithm>
+
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <ostream>
 #include <sstream>
@@ -14,13 +17,13 @@
 #include "coatcontact/errors.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
+#include "checks.hpp"
 
 namespace coatcontact::cli {
 
 namespace {
 
 using Header = std::vector<std::pair<std::string, std::string>>;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const char* const kNormalization =
@@ -48,18 +51,12 @@ std::string join(const std::vector<double>& values) {
   return s;
 }
 
-std::string lambda_range_text() {
-  std::ostringstream s;
-  s << "[" << kMinimumLambda << ", " << kMaximumLambda << "] or inf";
-  return s.str();
-}
-
+// The library's lambda check with the option and the text it came from.
 void check_lambda(double lambda, const std::string& option, const std::string& text) {
-  if (!(lambda >= kMinimumLambda && lambda <= kMaximumLambda)) {
-    std::ostringstream s;
-    s << option << ": lambda " << lambda << (text.empty() ? "" : " from '" + text + "'")
-      << " not allowed (need " << lambda_range_text() << ")";
-    throw InputError(s.str());
+  try {
+    coatcontact::check_lambda(lambda, text.empty() ? "" : "from " + quoted(text) + "");
+  } catch (const InputError& e) {
+    throw InputError(option + ": " + e.what());
   }
 }
 
@@ -90,7 +87,7 @@ std::optional<std::vector<double>> parse_lambdas(const Arguments& args) {
       const std::string trimmed = first == std::string::npos ? "" : item.substr(first, last - first + 1);
       values.push_back(trimmed == "inf" ? kInf : parse_number(trimmed, "--lambda"));
     }
-    if (count == 0 || text->back() == ',') throw InputError("--lambda: empty item in '" + *text + "'");
+    if (count == 0 || text->back() == ',') throw InputError("--lambda: empty item in " + quoted(*text) + "");
   }
   for (double v : values) {
     if (!std::isinf(v)) {
@@ -112,6 +109,17 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
         const auto [lo, hi] = jkr.default_curve_range();
         return log_spaced(lo, hi, 400);
       }() : a_bar_given;
+  {
+    double finite = 0.0, lambda0 = 0.0;
+    for (double lambda : lambdas) {
+      if (!std::isinf(lambda)) {
+        finite += 1.0;
+        lambda0 = lambda;
+      }
+    }
+    plan_md_work(md, etas.front(), lambda0, *std::max_element(a_bar.begin(), a_bar.end()),
+                 finite * static_cast<double>(etas.size() * a_bar.size()), false, "--eta, --lambda and --a-bar");
+  }
   struct Block {
     double eta, lambda;
     std::vector<std::vector<double>> rows;
@@ -172,6 +180,10 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
     for (double lambda : lambdas) {
       if (!std::isinf(lambda)) finite.emplace_back(eta, lambda);
     }
+  }
+  if (!finite.empty()) {
+    plan_md_work(md, finite.front().first, finite.front().second, 1.0,
+                 kMdPulloffEvaluations * static_cast<double>(finite.size()), true, "--eta and --lambda");
   }
   const std::vector<MaugisDugdalePulloff> md_results = md.pulloffs(finite);
   std::size_t next = 0;
@@ -235,50 +247,41 @@ std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& 
   if (!stress && !range) return std::nullopt;
   if (stress && range) throw InputError("--cohesive-stress and --range: give one of them, not both");
   const std::string option = stress ? "--cohesive-stress" : "--range";
-  double sigma0, h0;
-  if (stress) {
-    sigma0 = parse_quantity(*stress, Quantity::kPressure, option);
-    h0 = work / sigma0;
-  } else {
-    h0 = parse_quantity(*range, Quantity::kLength, option);
-    sigma0 = work / h0;
+  const double sigma0 = stress ? parse_quantity(*stress, Quantity::kPressure, option)
+                               : work / parse_quantity(*range, Quantity::kLength, option);
+  try {
+    maugis_scales(radius, thickness, work, stack.reference_modulus(), sigma0);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    // eta out of range is reported by the sphere itself, naming the options behind eta.
+    if (message.rfind("eta", 0) != 0) throw InputError(option + ": " + message);
   }
-  if (!(h0 <= kMaximumRangeOverThickness * thickness)) {
-    std::ostringstream s;
-    s << option << ": the range h0 = w/sigma0 = " << h0 << " m exceeds " << kMaximumRangeOverThickness
-      << " film thicknesses (" << kMaximumRangeOverThickness * thickness << " m)";
-    throw InputError(s.str());
-  }
-  const double k = 4.0 * stack.reference_modulus() / 3.0;
-  const double lambda = 2.0 * sigma0 * std::cbrt(radius / (kPi * work * k * k));
-  check_lambda(lambda, option, "");
   return sigma0;
 }
 
 void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double thickness, double work,
                      double sigma0, std::size_t points, const std::vector<double>& contact_radii) {
-  const double e = stack.reference_modulus();
-  const double length = std::cbrt(kPi * work * radius * radius / e);
-  const double eta = thickness / length;
-  if (!(eta >= kMinimumScaled && eta <= kMaximumScaled)) {
-    throw InputError("--radius, --thickness, --work, --film: eta = t/(pi w R^2/E1*)^(1/3) = " + num(eta) +
-                     " is outside the allowed range [1e-06, 1e+06]");
-  }
-  const double k = 4.0 * e / 3.0;
-  const double lambda = 2.0 * sigma0 * std::cbrt(radius / (kPi * work * k * k));
-  const double penetration = length * length / radius, force = kPi * work * radius;
+  const MaugisScales scales = [&] {
+    try {
+      return maugis_scales(radius, thickness, work, stack.reference_modulus(), sigma0);
+    } catch (const InputError& e) {
+      throw InputError("--radius, --thickness, --work, --film: " + std::string(e.what()));
+    }
+  }();
+  const double length = scales.length, eta = scales.eta, lambda = scales.lambda;
+  const double penetration = scales.penetration, force = scales.force;
   const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
   const double r = stack.substrate_length_ratio();
   std::vector<double> a_bar;
-  for (double a : contact_radii) {
-    if (!(a / length >= kMinimumScaled && a / length <= kMaximumScaled)) {
-      throw InputError("--contact-radius: " + num(a) + " m is not allowed; every a must be in [" +
-                       num(kMinimumScaled * length) + ", " + num(kMaximumScaled * length) +
-                       "] m (1e-6 to 1e6 times the length scale)");
-    }
-    a_bar.push_back(a / length);
+  try {
+    a_bar = scaled_contact_radii(contact_radii, scales);
+  } catch (const InputError& e) {
+    throw InputError("--contact-radius: " + std::string(e.what()));
   }
   if (a_bar.empty()) a_bar = log_spaced(0.01 * std::min(1.0, r), 10.0 * std::max(1.0, r), points);
+  plan_md_work(md, eta, lambda, *std::max_element(a_bar.begin(), a_bar.end()),
+               static_cast<double>(a_bar.size()) + kMdPulloffEvaluations, false,
+               contact_radii.empty() ? "--points" : "--contact-radius");
   const std::vector<MaugisDugdalePoint> curve = md.curve(eta, lambda, a_bar);
   const MaugisDugdalePulloff p = md.pulloff(eta, lambda);
   const double to_maugis = std::cbrt(4.0 / 3.0);
@@ -310,6 +313,21 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
                                                 num(p.curve_end.penetration * penetration) + " m, c = " +
                                                 num(p.curve_end.c_bar * length) + " m");
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
+  std::vector<double> a_si, delta_si, force_si;
+  for (const MaugisDugdalePoint& q : curve) {
+    a_si.push_back(q.a_bar * length);
+    delta_si.push_back(q.penetration * penetration);
+    force_si.push_back(q.load * force);
+  }
+  ValidityLimits limits;
+  limits.thickness = thickness;
+  limits.modulus = scales.modulus;
+  limits.sphere_radius = radius;
+  progress_pause();
+  for (const auto& w : validity_warnings(a_si, delta_si, force_si, limits)) {
+    h.emplace_back("warning", w);
+    std::cerr << "coatcontact sphere: warning: " << w << "\n";
+  }
   const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "c_m"};
   write_header(os, h, columns);
   for (const MaugisDugdalePoint& q : curve) {

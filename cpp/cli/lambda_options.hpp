@@ -7,14 +7,10 @@
 #include <vector>
 
 #include "coatcontact/cli_support.hpp"
+#include "coatcontact/limits.hpp"
 #include "coatcontact/stack.hpp"
 
 namespace coatcontact::cli {
-
-// Allowed lambda (besides inf = JKR): below 1e-3 the DMT limit holds to 1e-3 and the zone
-// reaches 1e3 contact radii; above 1e4 the JKR limit holds to ~1e-9.
-inline constexpr double kMinimumLambda = 1e-3;
-inline constexpr double kMaximumLambda = 1e4;
 
 OptionSpec lambda_option();
 // The --lambda list; nullopt when absent or every value is inf (then JKR, today's output).
@@ -27,8 +23,8 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
 
 std::vector<OptionSpec> cohesive_options();
 // sigma0 [Pa] from --cohesive-stress or w/--range; nullopt when neither is given. InputError
-// naming the option for both given, a range above kMaximumRangeOverThickness film
-// thicknesses, or a lambda outside [kMinimumLambda, kMaximumLambda].
+// naming the option for both given, or the library's (limits.hpp) for a range above
+// kMaximumRangeOverThickness film thicknesses or a lambda outside [kMinimumLambda, kMaximumLambda].
 std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& stack, double radius,
                                             double thickness, double work);
 // contact_radii [m]: the radii of the curve; empty: `points` log-spaced over the default range.

@@ -37,12 +37,12 @@ std::vector<double> parse_spring_bar(const std::string& text, const std::string&
     }
     const double k = parse_number(value, option);  // names the option and the value
     if (!(k >= 0.0)) {
-      throw InputError(option + ": value '" + value + "' not allowed (k_bar must be >= 0, or inf)");
+      throw InputError(option + ": value " + quoted(value) + " not allowed (k_bar must be >= 0, or inf)");
     }
     values.push_back(k);
   }
   if (values.empty() || text.back() == ',') {
-    throw InputError(option + ": '" + text + "' is not a list of stiffnesses (e.g. 0,0.1,1,inf)");
+    throw InputError(option + ": " + quoted(text) + " is not a list of stiffnesses (e.g. 0,0.1,1,inf)");
   }
   return values;
 }

@@ -23,6 +23,7 @@ constexpr UnitRow kUnits[] = {
     {"\xce\xbcm", Quantity::kLength, 1e-6}, {"nm", Quantity::kLength, 1e-9},
     {"J/m2", Quantity::kEnergy, 1.0},       {"mJ/m2", Quantity::kEnergy, 1e-3},
     {"J/m^2", Quantity::kEnergy, 1.0},      {"mJ/m^2", Quantity::kEnergy, 1e-3},
+    {"J/m\xc2\xb2", Quantity::kEnergy, 1.0}, {"mJ/m\xc2\xb2", Quantity::kEnergy, 1e-3},
     {"N/m", Quantity::kEnergy, 1.0},        {"mN/m", Quantity::kEnergy, 1e-3},
     {"N", Quantity::kForce, 1.0},           {"mN", Quantity::kForce, 1e-3},
     {"uN", Quantity::kForce, 1e-6},         {"\xc2\xb5N", Quantity::kForce, 1e-6},
@@ -50,7 +51,7 @@ std::string unit_list(Quantity kind) {
   switch (kind) {
     case Quantity::kPressure: return "Pa kPa MPa GPa";
     case Quantity::kLength: return "m cm mm um \xc2\xb5m nm";
-    case Quantity::kEnergy: return "J/m2 mJ/m2 J/m^2 mJ/m^2 N/m mN/m";
+    case Quantity::kEnergy: return "J/m2 mJ/m2 J/m^2 mJ/m^2 J/m\xc2\xb2 mJ/m\xc2\xb2 N/m mN/m";
     case Quantity::kForce: return "N mN uN \xc2\xb5N nN";
   }
   return "";

@@ -7,11 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <new>
 #include <iostream>
 #include <ostream>
 #include <set>
 #include <sstream>
 
+#include "coatcontact/detail/format.hpp"
 #include "number_text.hpp"
 
 namespace coatcontact {
@@ -167,6 +169,28 @@ std::string one_line(const std::string& text) {
 
 // ---- value parsers ---------------------------------------------------------------
 
+void check_rows(const std::vector<std::pair<std::string, std::size_t>>& lists) {
+  double rows = 1.0;
+  std::string names, sizes;
+  for (const auto& [option, size] : lists) {
+    rows *= static_cast<double>(size);
+    names += (names.empty() ? "" : " x ") + option;
+    sizes += (sizes.empty() ? "" : " x ") + std::to_string(size);
+  }
+  if (rows > kMaxRows) {
+    std::ostringstream s;
+    s << names << ": " << sizes << " = " << rows << " rows is over the limit of " << kMaxRows
+      << " rows per run; allowed: fewer values in these lists, or several runs";
+    throw InputError(s.str());
+  }
+}
+
+std::string quoted(const std::string& text) {
+  std::string out = quote(text);
+  if (text.size() > 60) out += " (" + std::to_string(text.size()) + " bytes)";
+  return out;
+}
+
 double parse_number(const std::string& text, const std::string& option) {
   const std::string_view trimmed = trim_blanks(text);
   double value = 0.0;
@@ -259,6 +283,43 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
     start = comma + 1;
   }
   return values;
+}
+
+std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, const std::string& option) {
+  const std::string_view whole = trim_blanks(text);
+  if (whole.find(':') == std::string_view::npos) {
+    if (whole.empty()) fail(option, std::string("empty value; ") + kListExpected);
+    std::vector<double> values;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t comma = whole.find(',', start);
+      const std::string_view item = whole.substr(start, comma == std::string_view::npos ? comma : comma - start);
+      if (trim_blanks(item).empty()) fail(option, quote(whole) + " has an empty item; " + kListExpected);
+      if (values.size() >= kMaxListPoints) fail(option, "more than " + std::to_string(kMaxListPoints) + " items");
+      values.push_back(parse_quantity_impl(item, kind, option, quantity_name(kind)));
+      if (comma == std::string_view::npos) return values;
+      start = comma + 1;
+    }
+  }
+  // MIN:MAX:N with a unit on MIN and MAX each: the SI bounds go through parse_list's spacing
+  // (exact text of the doubles, so "1e-9:1e-7:3" and "1nm:100nm:3" give the same points).
+  const std::size_t first = whole.find(':');
+  const std::size_t second = whole.find(':', first + 1);
+  if (second == std::string_view::npos || whole.find(':', second + 1) != std::string_view::npos) {
+    fail(option, quote(whole) + " is not MIN:MAX:N; " + kListExpected);
+  }
+  const double min = parse_quantity_impl(whole.substr(0, first), kind, option, "MIN");
+  const double max = parse_quantity_impl(whole.substr(first + 1, second - first - 1), kind, option, "MAX");
+  const std::string si = detail::full_precision(min) + ":" + detail::full_precision(max) + ":" +
+                         std::string(whole.substr(second + 1));
+  try {
+    return parse_list(si, option);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    const std::string prefix = option + ": ";
+    throw InputError(prefix + "in " + quote(whole) + " (SI " + si + "): " +
+                     (message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message));
+  }
 }
 
 double parse_quantity(const std::string& text, Quantity kind, const std::string& option) {
@@ -590,6 +651,13 @@ int run_guarded(const std::string& command, const std::function<int()>& body) {
   } catch (const NumericalError& error) {
     progress_pause();
     std::cerr << prefix << "numerical failure: " << error.what() << "\n";
+    return kExitNumerical;
+  } catch (const std::bad_alloc&) {
+    // Inputs are bounded before work starts (check_rows, list and file limits); what is left
+    // is a machine with less memory than the request needs: say so, not "std::bad_alloc".
+    progress_pause();
+    std::cerr << prefix << "not enough memory for this request; nothing was written (ask for fewer points, "
+                           "a narrower range, or run on a machine with more memory)\n";
     return kExitNumerical;
   } catch (const std::exception& error) {
     progress_pause();

@@ -174,9 +174,37 @@ std::string base_of(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// Where an output goes: stdout ("-", /dev/stdout), a device written in place (/dev/null), or
-// a regular file replaced atomically.
-enum class Target { kStdout, kDirect, kFile };
+// Where an output goes: stdout ("-", /dev/stdout), another descriptor already open in this
+// process (/dev/stderr, /dev/fd/N, /proc/self/fd/N: written to that descriptor, so a shell's
+// ">>" keeps appending), a device written in place (/dev/null), or a regular file replaced
+// atomically.
+enum class Target { kStdout, kDescriptor, kDirect, kFile };
+
+// The descriptor a path names, or -1 for a path that is not a descriptor name: 1 for "", "-"
+// and /dev/stdout, 2 for /dev/stderr, N for /dev/fd/N and /proc/self/fd/N.
+int descriptor_of(const std::string& path) {
+  if (path.empty() || path == "-" || path == "/dev/stdout") return 1;
+  if (path == "/dev/stderr") return 2;
+  for (const char* prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    const std::string p(prefix);
+    if (path.size() > p.size() && path.size() <= p.size() + 6 && path.compare(0, p.size(), p) == 0) {
+      int n = 0;
+      for (std::size_t i = p.size(); i < path.size(); ++i) {
+        if (path[i] < '0' || path[i] > '9') return -1;
+        n = n * 10 + (path[i] - '0');
+      }
+      return n;
+    }
+  }
+  return -1;
+}
+
+// "standard output", "standard error" or "descriptor N", for messages.
+std::string descriptor_name(int fd) {
+  if (fd == 1) return "standard output";
+  if (fd == 2) return "standard error";
+  return "descriptor " + std::to_string(fd);
+}
 
 // Identity of a path for same-file checks: device and inode when it exists, else the
 // resolved folder plus the name (two spellings of one new file compare equal).
@@ -218,7 +246,7 @@ std::vector<InputRecord>& inputs() {
 
 const char* kAllowedTargets =
     "allowed: a regular file (new or existing, replaced atomically), '-' or /dev/stdout for "
-    "standard output, /dev/null";
+    "standard output, /dev/stderr or /dev/fd/N of a descriptor open for writing, /dev/null";
 
 std::string file_type(mode_t mode) {
   if (S_ISCHR(mode)) return "a character device";
@@ -236,6 +264,14 @@ bool injected_write_failure(const std::string& path) {
   return value != nullptr && path == value;
 }
 
+// Test hook: COATCONTACT_TEST_RENAME_FAILURE=<path as given> makes that output's final rename
+// fail with EPERM (an immutable file, another user's file in a sticky folder), so tests can
+// check the roll-back of the outputs already published without root.
+bool injected_rename_failure(const std::string& path) {
+  const char* value = std::getenv("COATCONTACT_TEST_RENAME_FAILURE");
+  return value != nullptr && path == value;
+}
+
 }  // namespace
 
 void register_input(const std::string& path, const std::string& what) {
@@ -248,7 +284,11 @@ struct Output::Impl {
   std::string write_path; // where the file is renamed to (a symlink's target)
   std::string temp_path;
   Target target = Target::kFile;
+  int stream_fd = -1;      // kStdout, kDescriptor: the descriptor written at publish
   FileId id;
+  std::string backup_path; // a hard link to the file being replaced, until all are published
+  int backup_slot = -1;    // its signal-cleanup slot
+  bool replaced = false;   // renamed into place (undone by roll_back)
   int fd = -1;
   int slot = -1;
   bool complete = false;   // every byte is in the temporary file (or memory)
@@ -258,11 +298,14 @@ struct Output::Impl {
   std::ostringstream memory;  // stdout and in-place devices: published at commit
 
   [[noreturn]] void fail(const std::string& what, int error_number) const {
-    throw InputError(option + ": output file '" + path + "': " + what +
+    throw InputError(option + ": output file " + quoted(path) + ": " + what +
                      (error_number != 0 ? std::string(": ") + std::strerror(error_number) : ""));
   }
   void publish_memory();
+  void keep_backup();
   void rename_into_place();
+  void roll_back();
+  void drop_backup();
 };
 
 namespace {
@@ -290,6 +333,19 @@ void Output::Impl::publish_memory() {
     }
     return;
   }
+  if (target == Target::kDescriptor) {
+    if (stream_fd == 2) std::cerr.flush();
+    FdBuffer writer(stream_fd);
+    std::ostream stream(&writer);
+    stream << text;
+    stream.flush();
+    const int error_number = writer.flush_all() ? 0 : writer.error();
+    if (error_number != 0 || injected_write_failure(path)) {
+      throw InputError(option + ": cannot write to " + descriptor_name(stream_fd) + " (" + quoted(path) + ")" +
+                       ": " + std::strerror(error_number != 0 ? error_number : ENOSPC));
+    }
+    return;
+  }
   // In place (no O_CREAT, no O_TRUNC): a device is never replaced.
   const int direct = open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
   if (direct < 0) fail("cannot open", errno);
@@ -302,10 +358,58 @@ void Output::Impl::publish_memory() {
   if (error_number != 0 || injected_write_failure(path)) fail("write failed", error_number != 0 ? error_number : ENOSPC);
 }
 
+// Before any output of the command is replaced, each existing target gets a hard link
+// "<path>.old.XXXXXX" beside it: making it proves the file can be replaced (an immutable file,
+// or another user's file in a sticky folder, refuses the link as it would refuse the rename),
+// and it is what roll_back() restores if a later output cannot be published.
+void Output::Impl::keep_backup() {
+  struct stat info {};
+  if (lstat(write_path.c_str(), &info) != 0) return;  // a new file: nothing to keep
+  install_handlers_once();
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    std::string name = write_path + ".old.XXXXXX";
+    // A unique name from mkstemp, then replaced by the link (link() never overwrites).
+    const int probe = mkstemp(name.data());
+    if (probe < 0) fail("cannot create a file beside it to keep the old contents", errno);
+    close(probe);
+    unlink(name.c_str());
+    SignalBlock block;  // linked and registered as one step, so a signal never leaves it behind
+    if (link(write_path.c_str(), name.c_str()) == 0) {
+      backup_path = name;
+      backup_slot = register_pending(name);
+      return;
+    }
+    if (errno != EEXIST) fail("cannot be replaced (no other output of this command was written)", errno);
+  }
+  fail("cannot be replaced: no free name for keeping the old contents", EEXIST);
+}
+
+void Output::Impl::roll_back() {
+  if (!replaced) return;
+  if (!backup_path.empty()) {
+    rename(backup_path.c_str(), write_path.c_str());
+    backup_path.clear();
+    unregister_pending(backup_slot);
+    backup_slot = -1;
+  } else {
+    unlink(write_path.c_str());  // the file was new
+  }
+  replaced = false;
+}
+
+void Output::Impl::drop_backup() {
+  if (!backup_path.empty()) unlink(backup_path.c_str());
+  backup_path.clear();
+  unregister_pending(backup_slot);
+  backup_slot = -1;
+}
+
 void Output::Impl::rename_into_place() {
+  if (injected_rename_failure(path)) fail("cannot rename the temporary file into place", EPERM);
   if (rename(temp_path.c_str(), write_path.c_str()) != 0) {
     fail("cannot rename the temporary file into place", errno);
   }
+  replaced = true;
   unregister_pending(slot);
   slot = -1;
   // Make the rename itself durable (best effort: some file systems refuse fsync on folders).
@@ -316,11 +420,42 @@ void Output::Impl::rename_into_place() {
   }
 }
 
+namespace {
+
+// The descriptor `fd` must be open for writing to be an output.
+void check_descriptor(const Output::Impl& probe, int fd) {
+  const int flags = fcntl(fd, F_GETFL);
+  if (flags < 0) {
+    probe.fail("names " + descriptor_name(fd) + ", which is not open in this process; " + kAllowedTargets, 0);
+  }
+  if ((flags & O_ACCMODE) == O_RDONLY) {
+    probe.fail("names " + descriptor_name(fd) + ", which is open for reading only; " + kAllowedTargets, 0);
+  }
+}
+
+// Two outputs of one command on one stream would interleave: refused.
+void check_stream_unique(const Output::Impl& probe, int fd) {
+  for (const Output::Impl* other : live_outputs()) {
+    // A committed output has written its stream; one still pending would interleave.
+    if ((other->target == Target::kStdout || other->target == Target::kDescriptor) && other->stream_fd == fd &&
+        !other->committed) {
+      probe.fail("is " + descriptor_name(fd) + ", also the target of " + other->option + " (" + quoted(other->path) +
+                     "); two outputs of a command cannot share one stream", 0);
+    }
+  }
+}
+
+}  // namespace
+
 void check_output_path(const std::string& path, const std::string& option) {
   Output::Impl probe;
   probe.option = option;
   probe.path = path;
-  if (path.empty() || path == "-" || path == "/dev/stdout") return;
+  if (const int fd = descriptor_of(path); fd >= 0) {
+    if (fd != 1) check_descriptor(probe, fd);
+    check_stream_unique(probe, fd);
+    return;
+  }
   struct stat info {};
   if (path == "/dev/null" && stat(path.c_str(), &info) == 0 && S_ISCHR(info.st_mode)) return;
   if (path.back() == '/') probe.fail("is a folder name, expected a file name", 0);
@@ -339,12 +474,19 @@ void check_output_path(const std::string& path, const std::string& option) {
   } else {
     const std::string folder = folder_of(path);
     if (stat(folder.c_str(), &info) != 0) {
-      if (errno == ENOENT || errno == ENOTDIR) probe.fail("folder '" + folder + "' does not exist", 0);
-      probe.fail("cannot access folder '" + folder + "'", errno);
+      if (errno == ENOENT || errno == ENOTDIR) probe.fail("folder " + quoted(folder) + " does not exist", 0);
+      probe.fail("cannot access folder " + quoted(folder), errno);
     }
-    if (!S_ISDIR(info.st_mode)) probe.fail("'" + folder + "' is not a folder", 0);
+    if (!S_ISDIR(info.st_mode)) probe.fail(quoted(folder) + " is not a folder", 0);
   }
   const FileId id = file_id(path);
+  // Standard input redirected from a file ("< data.tsv") is that file: never replaced.
+  struct stat in_info {};
+  if (id.exists && fstat(0, &in_info) == 0 && S_ISREG(in_info.st_mode) && in_info.st_dev == id.device &&
+      in_info.st_ino == id.inode) {
+    probe.fail("is the file standard input is read from (the same file); an output never replaces an input, "
+               "choose another name", 0);
+  }
   for (const auto& input : inputs()) {
     if (input.id == id) {
       probe.fail("is the " + input.what + " '" + input.path +
@@ -362,16 +504,25 @@ void check_output_path(const std::string& path, const std::string& option) {
 void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     check_output_path(outputs[i].second, outputs[i].first);
-    if (outputs[i].second.empty() || outputs[i].second == "-" || outputs[i].second == "/dev/stdout" ||
-        outputs[i].second == "/dev/null") {
+    // An empty path is an option not given; "-" and descriptor names are streams.
+    const int fd = outputs[i].second.empty() ? -1 : descriptor_of(outputs[i].second);
+    if (fd >= 0) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (!outputs[j].second.empty() && descriptor_of(outputs[j].second) == fd) {
+          throw InputError(outputs[i].first + ": output " + quoted(outputs[i].second) + " is " + descriptor_name(fd) +
+                           ", also the target of " + outputs[j].first + " (" + quoted(outputs[j].second) +
+                           "); two outputs of a command cannot share one stream");
+        }
+      }
       continue;
     }
+    if (outputs[i].second.empty() || outputs[i].second == "/dev/null") continue;
     for (std::size_t j = 0; j < i; ++j) {
       if (outputs[j].second.empty()) continue;
       if (file_id(outputs[j].second) == file_id(outputs[i].second)) {
-        throw InputError(outputs[i].first + ": output file '" + outputs[i].second + "' is also the file of " +
-                         outputs[j].first + " ('" + outputs[j].second +
-                         "'); each output of a command needs its own file");
+        throw InputError(outputs[i].first + ": output file " + quoted(outputs[i].second) + " is also the file of " +
+                         outputs[j].first + " (" + quoted(outputs[j].second) +
+                         "); each output of a command needs its own file");
       }
     }
   }
@@ -382,8 +533,9 @@ Output::Output(const std::string& path, const std::string& option) : impl_(std::
   impl_->path = path;
   check_output_path(path, option);  // before creating anything, so a bad path leaves no trace
   struct stat info {};
-  if (path.empty() || path == "-" || path == "/dev/stdout") {
-    impl_->target = Target::kStdout;
+  if (const int fd = descriptor_of(path); fd >= 0) {
+    impl_->target = fd == 1 ? Target::kStdout : Target::kDescriptor;
+    impl_->stream_fd = fd;
   } else if (path == "/dev/null" && stat(path.c_str(), &info) == 0 && S_ISCHR(info.st_mode)) {
     impl_->target = Target::kDirect;
   }
@@ -407,7 +559,7 @@ Output::Output(const std::string& path, const std::string& option) : impl_(std::
   {
     SignalBlock block;  // created and registered as one step, as far as signals can tell
     impl_->fd = mkstemp(temp.data());
-    if (impl_->fd < 0) impl_->fail("cannot create a file in folder '" + folder + "'", errno);
+    if (impl_->fd < 0) impl_->fail("cannot create a file in folder " + quoted(folder), errno);
     impl_->temp_path = temp;
     impl_->slot = register_pending(temp);
   }
@@ -468,14 +620,38 @@ void Output::commit() {
     if (!other->complete) return;
   }
   progress_pause();
-  // Streams first (they can fail and cannot be undone), then the cheap renames.
-  for (Output::Impl* other : live) {
-    if (other->target != Target::kFile) other->publish_memory();
+  std::size_t files = 0;
+  for (const Output::Impl* other : live) files += other->target == Target::kFile ? 1 : 0;
+  // Several files: check that every one can be replaced before replacing any.
+  const auto drop_backups = [&] {
+    for (Output::Impl* other : live) other->drop_backup();
+  };
+  if (files > 1) {
+    try {
+      for (Output::Impl* other : live) {
+        if (other->target == Target::kFile) other->keep_backup();
+      }
+    } catch (...) {
+      drop_backups();
+      throw;
+    }
   }
-  for (Output::Impl* other : live) {
-    if (other->target == Target::kFile) other->rename_into_place();
-    other->committed = true;
+  // Streams first (they can fail and cannot be undone), then the cheap renames; a failed
+  // rename puts back every file already replaced.
+  try {
+    for (Output::Impl* other : live) {
+      if (other->target != Target::kFile) other->publish_memory();
+    }
+    for (Output::Impl* other : live) {
+      if (other->target == Target::kFile) other->rename_into_place();
+    }
+  } catch (...) {
+    for (Output::Impl* other : live) other->roll_back();
+    drop_backups();
+    throw;
   }
+  drop_backups();
+  for (Output::Impl* other : live) other->committed = true;
 }
 
 }  // namespace coatcontact::cli

@@ -46,6 +46,7 @@ import functools
 import math
 import sys
 import time
+import warnings
 
 import numpy as np
 
@@ -54,7 +55,7 @@ from ._core import NumericalError
 from ._version import __version__, __license__
 from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
 
-__all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError",
+__all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError", "ValidityWarning",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
            "stack_parameter_names", "pulloff_spring",
            "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "REDUCED_KEYS"]
@@ -188,8 +189,28 @@ def _progress(progress):
 
 
 def _tolerance(tol):
-    # 0 is the C interface's "default"; Python callers say 1e-8 and mean it.
-    return float(tol)
+    # The C interface reads 0 as "the default"; a Python caller's tol is checked against the
+    # documented range instead, so tol=0 (or nan) is refused, not silently replaced.
+    value = float(tol)
+    if not (_MIN_TOL <= value <= _MAX_TOL):
+        raise ValueError("tolerance tol = %r not allowed (need %g <= tol <= %g)" % (tol, _MIN_TOL, _MAX_TOL))
+    return value
+
+
+_MIN_TOL = 1e-13
+_MAX_TOL = 1e-1
+
+
+class ValidityWarning(UserWarning):
+    """A curve leaves the model's validity limits (a > 0.1 R, a past the sphere's radius,
+    penetration above the coating thickness, mean pressure above 0.1 E*); the messages come
+    from the library (coatcontact/limits.hpp), the same as the command-line warnings."""
+
+
+def _warn_validity(core_contact, out):
+    rows = np.column_stack([np.ravel(out["a"]), np.ravel(out["delta"]), np.ravel(out["F"])])
+    for message in core_contact.validity(np.ascontiguousarray(rows, dtype=float)).splitlines():
+        warnings.warn(message, ValidityWarning, stacklevel=3)
 
 
 class ReducedSolver:
@@ -373,12 +394,15 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
     radius     sphere radius R [m];  thickness  coating thickness t [m];
     work       work of adhesion w [J/m^2];  film/substrate/indenter moduli in Pa.
     a          contact radii [m]; default `points` radii over the model's default a_bar range.
+    A curve beyond the model's validity limits (a > 0.1 R, delta > t, F/(pi a^2) > 0.1 E*)
+    raises a ValidityWarning per limit (warnings.warn), as `coatcontact sphere` warns.
     Returns a dict: a [m], delta [m], F [N] (arrays, F compressive positive); scales
     (l [m], delta_scale = l^2/R [m], F_scale = pi w R [N], eta = t/l); pulloff (F_load [N],
     a_load [m], delta_load [m], F_disp, a_disp, delta_disp, flags).
     """
-    c = Contact(_model(_stack(stack, film, substrate, indenter), float(tol)), radius, thickness, work)
+    c = Contact(_model(_stack(stack, film, substrate, indenter), _tolerance(tol)), radius, thickness, work)
     out = c.at(a) if a is not None else c.curve(points)
+    _warn_validity(c._core, out)
     out["scales"] = c.scales
     out["pulloff"] = c.pulloff()
     return out
@@ -709,6 +733,8 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     a          contact radii [m] (default `points` log-spaced over the default range).
     Returns a dict: a, delta, F, delta_H, F_H (arrays, adhesive then adhesionless at the same
     a) and pulloff: F, a, delta under load, displacement (and spring) control.
+    A curve beyond the validity limits (delta > t, F/(pi a^2) > 0.1 E*, and for a sphere
+    a > 0.1 R) raises a ValidityWarning per limit, as `coatcontact contact` warns.
     """
     kind = shape[0]
     if kind == "profile":
@@ -722,6 +748,8 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
         lo, hi = c.default_range()
         a = np.geomspace(lo, hi, points)
     rows = c.curve(np.atleast_1d(np.asarray(a, dtype=float)))
+    for message in c.validity(np.ascontiguousarray(rows, dtype=float)).splitlines():
+        warnings.warn(message, ValidityWarning, stacklevel=2)
     out = {key: rows[:, i] for i, key in enumerate(("a", "delta", "F", "delta_H", "F_H"))}
     p = c.pulloff(float(spring))
     out["pulloff"] = {"F_load": p[0], "a_load": p[1], "delta_load": p[2],

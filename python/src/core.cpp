@@ -258,6 +258,17 @@ struct Contact {
     });
     return py::make_tuple(out, flags);
   }
+  // The library's validity warnings (coatcontact/limits.hpp) of rows a, delta, F: one per line.
+  std::string validity(const InArray& rows) const {
+    if (rows.ndim() != 2 || rows.shape(1) != CC_CONTACT_COLUMNS) {
+      throw py::value_error("contact validity: expected rows of a, delta, F");
+    }
+    if (rows.shape(0) > 0x7fffffff) throw py::value_error("array too long for the C interface (n > 2^31-1)");
+    const int n = static_cast<int>(rows.shape(0));
+    const char* text = nullptr;
+    call_held([&] { return cc_contact_validity(handle.get(), n, rows.data(), &text); });
+    return text ? std::string(text) : std::string();
+  }
 };
 
 py::dict fit(const Stack& stack, int kind, const InArray& x, const InArray& force, double radius,
@@ -490,6 +501,18 @@ struct ShapeContact {
     call_released([&] { return cc_shape_contact_pulloff(handle.get(), spring_stiffness, o); });
     return out;
   }
+  // The library's validity warnings of curve rows (a, delta, F, delta_H, F_H): one per line.
+  std::string validity(const InArray& rows) const {
+    if (rows.ndim() != 2 || rows.shape(1) != CC_SHAPE_CURVE_COLUMNS) {
+      throw py::value_error("shape contact validity: expected rows of a, delta, F, delta_H, F_H");
+    }
+    if (rows.shape(0) > 0x7fffffff) throw py::value_error("array too long for the C interface (n > 2^31-1)");
+    const char* text = nullptr;
+    call_held([&] {
+      return cc_shape_contact_validity(handle.get(), static_cast<int>(rows.shape(0)), rows.data(), &text);
+    });
+    return text ? std::string(text) : std::string();
+  }
 };
 
 }  // namespace
@@ -546,7 +569,8 @@ PYBIND11_MODULE(_core, m) {
       .def("scales", &Contact::scales)
       .def("curve", &Contact::curve)
       .def("at", &Contact::at)
-      .def("pulloff", &Contact::pulloff);
+      .def("pulloff", &Contact::pulloff)
+      .def("validity", &Contact::validity);
 
   m.def("fit", &fit);
   m.def("fit_stack", &fit_stack);
@@ -567,6 +591,7 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<const Stack&, const Shape&, double, double, double>())
       .def("default_range", &ShapeContact::default_range)
       .def("curve", &ShapeContact::curve)
-      .def("pulloff", &ShapeContact::pulloff);
+      .def("pulloff", &ShapeContact::pulloff)
+      .def("validity", &ShapeContact::validity);
   register_kinetics(m);
 }

@@ -120,6 +120,10 @@ class AdhesiveModel {
   // P, D and their derivatives at a_bar for film thickness eta (both > 0, finite).
   CurvePoint point(double eta, double a_bar) const;
   std::vector<CurvePoint> curve(double eta, const std::vector<double>& a_bar) const;
+  // P and D at each a_bar from its own solve of the reduced variables, without the table: for
+  // radii whose table decade reaches beyond what the source can deliver (the table is built a
+  // whole decade of a/t at a time). dload and dpenetration are not set (0).
+  std::vector<CurvePoint> curve_solved(double eta, const std::vector<double>& a_bar) const;
   // Pull-off under load and displacement control; NumericalError if it cannot be located.
   Pulloff pulloff(double eta) const;
   // Pull-off through a spring (cpp/adhesion/spring_pulloff.cpp). k_bar >= 0 or +inf; the two

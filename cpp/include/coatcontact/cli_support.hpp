@@ -29,6 +29,10 @@ namespace coatcontact::cli {
 //  - A unit suffix is case-sensitive and follows the number directly or after exactly one
 //    space: "2MPa", "2 MPa". No suffix means SI.
 
+// `text` in single quotes for a message, control bytes escaped; a text over 60 bytes is cut
+// there and followed by "..." and its length, so a huge argument is never echoed whole.
+std::string quoted(const std::string& text);
+
 // A finite floating-point number, the whole string (no trailing text). `option` names the
 // option in messages, e.g. "--tol".
 double parse_number(const std::string& text, const std::string& option);
@@ -37,8 +41,15 @@ double parse_number(const std::string& text, const std::string& option);
 // N >= 1 integer; N = 1 requires MIN == MAX). Empty lists and empty items are rejected.
 std::vector<double> parse_list(const std::string& text, const std::string& option);
 
+// Largest number of rows (product of the lists a command combines) one run may compute:
+// each list alone may hold 1e6 values, and 1e7 rows of a TSV table are ~1 GB of output.
+inline constexpr double kMaxRows = 1e7;
+// InputError naming the options, their sizes and the limit when the product of the list sizes
+// (e.g. {{"--eta", 1000}, {"--a-bar", 1000000}}) exceeds kMaxRows; checked before any work.
+void check_rows(const std::vector<std::pair<std::string, std::size_t>>& lists);
+
 // Physical quantity with an optional unit suffix; returns SI.
-//   kPressure: Pa kPa MPa GPa     kLength: m mm um µm nm     kEnergy: J/m2 mJ/m2
+//   kPressure: Pa kPa MPa GPa     kLength: m mm um µm nm     kEnergy: J/m2 mJ/m2 (m^2, m²)
 //   kForce:    N mN uN µN nN
 // A bare number is SI. The value (after conversion to SI) must be finite and > 0.
 using coatcontact::Quantity;
@@ -50,6 +61,10 @@ using coatcontact::quantity_name;
 using coatcontact::to_si;
 using coatcontact::unit_list;
 using coatcontact::UnitInfo;
+
+// A list of quantities: "v1,v2,..." (a unit allowed on each item) or "MIN:MAX:N" (a unit
+// allowed on MIN and on MAX; N log-spaced points as parse_list). Returns SI.
+std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, const std::string& option);
 
 // "E,nu" with E > 0 (unit suffix allowed, as a pressure) and -1 < nu <= 0.5.
 Material parse_material(const std::string& text, const std::string& option);
@@ -120,7 +135,9 @@ std::string usage(const std::string& command, const std::string& synopsis,
 
 // ---- output ----------------------------------------------------------------------
 
-// Output to stdout (empty path, "-" or /dev/stdout) or to a file written atomically: the data
+// Output to stdout (empty path, "-" or /dev/stdout), to another descriptor open in this
+// process (/dev/stderr, /dev/fd/N, /proc/self/fd/N: written to it, so O_APPEND is kept; one
+// open for reading only or not open is refused), or to a file written atomically: the data
 // go to a temporary file in the same folder, renamed over `path` by commit(). If commit() is
 // never called (error, exception) the temporary file is removed; it is also removed if the
 // process gets SIGINT or SIGTERM. The temporary file is "<path>.tmp.XXXXXX"; the committed
@@ -131,9 +148,12 @@ std::string usage(const std::string& command, const std::string& synopsis,
 //  - a symbolic link to a regular file replaces that file and keeps the link; a dangling
 //    link is refused;
 //  - a path that is (same device and inode, or same resolved name) an input registered with
-//    register_input() or the file of another live Output is refused.
+//    register_input(), the regular file standard input is redirected from, or the file of
+//    another live Output is refused; so are two Outputs on one stream.
 // All or none: while several Outputs are alive, commit() only completes the data; the last
-// commit() publishes all of them (stdout first, then the renames). An Output destroyed
+// commit() publishes all of them (streams first, then the renames; with several files each
+// existing target first gets a hard link "<path>.old.XXXXXX", which proves it can be replaced
+// before any is, and restores it if a later rename fails). An Output destroyed
 // without commit() cancels the others. Stdout is held in memory until then, so a failure
 // leaves nothing on stdout; a failed write of stdout is an InputError (exit 2).
 // Signal cleanup: the first file Output installs SIGINT/SIGTERM handlers (only where the

@@ -149,6 +149,11 @@ int cc_contact_at(cc_contact *contact, int n, const double *a, double *out);
 /* out: 0 F_load [N]  1 a_load [m]  2 delta_load [m]  3 F_disp  4 a_disp  5 delta_disp;
  * flags as for cc_pulloff (may be NULL). */
 int cc_contact_pulloff(cc_contact *contact, double out[CC_PULLOFF_COLUMNS], int *flags);
+/* The validity limits of the library (coatcontact/limits.hpp: a > 0.1 R, a past R, delta > t,
+ * mean pressure > 0.1 E*) against n rows of a curve (CC_CONTACT_COLUMNS each, as cc_contact_at
+ * gives). *warnings is set to a per-thread text with one message per line, "" when the curve
+ * stays inside every limit; it stays valid until the next call of this function in the thread. */
+int cc_contact_validity(const cc_contact *contact, int n, const double *rows, const char **warnings);
 
 /* ---- fit of measured data (coatcontact/fit.hpp) -------------------------------------------
  *
@@ -239,6 +244,10 @@ void cc_shape_contact_destroy(cc_shape_contact *contact);
 /* range[0..1]: contact radii [m] holding both JKR pull-offs (film and base modulus). */
 int cc_shape_contact_default_range(const cc_shape_contact *contact, double range[2]);
 int cc_shape_contact_curve(const cc_shape_contact *contact, int n, const double *a, double *out);
+/* The validity limits (as cc_contact_validity; a paraboloid's are a sphere's of its radius) against
+ * n rows of cc_shape_contact_curve (CC_SHAPE_CURVE_COLUMNS each). *warnings: per-thread text, one
+ * message per line, "" inside every limit, valid until the next call of this function. */
+int cc_shape_contact_validity(const cc_shape_contact *contact, int n, const double *rows, const char **warnings);
 /* spring_stiffness k [N/m] (0: none; the spring columns are then 0). */
 int cc_shape_contact_pulloff(const cc_shape_contact *contact, double spring_stiffness,
                              double out[CC_SHAPE_PULLOFF_COLUMNS]);

@@ -2,25 +2,31 @@
 // Maugis scales, their allowed range, the curve's default range and the pull-off forces.
 #pragma once
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "coatcontact/adhesion.hpp"
+#include "coatcontact/limits.hpp"
 
 namespace coatcontact {
 
 // Rigid sphere of radius R on a coating of thickness t, work of adhesion w (SI units, all > 0).
 // Keeps a reference to `model`, which must outlive it.
-// Maugis scales: length l = (pi w R^2/E*)^(1/3), penetration l^2/R, force pi w R; eta = t/l.
-// InputError (naming the inputs that produced it) unless l is finite and eta lies in
-// [kMinimumScaled, kMaximumScaled].
+// Maugis scales (limits.hpp): length l = (pi w R^2/E*)^(1/3), penetration l^2/R, force pi w R;
+// eta = t/l. InputError (naming the inputs that produced it) unless l is finite and eta lies
+// in [kMinimumScaled, kMaximumScaled].
 class Contact {
  public:
   Contact(const AdhesiveModel& model, double radius, double thickness, double work_of_adhesion);
 
-  double length_scale() const { return length_scale_; }
-  double penetration_scale() const { return length_scale_ * length_scale_ / radius_; }
-  double force_scale() const;
-  double eta() const { return thickness_ / length_scale_; }
+  const MaugisScales& scales() const { return scales_; }
+  double length_scale() const { return scales_.length; }
+  double penetration_scale() const { return scales_.penetration; }
+  double force_scale() const { return scales_.force; }
+  double eta() const { return scales_.eta; }
+  // The limits of a sphere of this radius on this coating (limits.hpp), and the warnings of a
+  // curve against them.
+  ValidityLimits validity_limits() const;
 
   // SI points of the curve at the default a_bar range (AdhesiveModel::default_curve_range).
   struct Point {
@@ -29,6 +35,7 @@ class Contact {
     double force = 0.0;        // F [N], compressive positive
   };
   std::vector<Point> default_curve(std::size_t points) const;
+  std::vector<std::string> validity_warnings(const std::vector<Point>& curve) const;
 
   double force(double contact_radius) const;        // F [N], compressive positive
   double penetration(double contact_radius) const;  // delta [m]
@@ -39,8 +46,7 @@ class Contact {
 
  private:
   const AdhesiveModel& model_;
-  double radius_, thickness_, work_;
-  double length_scale_;
+  MaugisScales scales_;
   mutable std::unique_ptr<Pulloff> pulloff_;
 };
 

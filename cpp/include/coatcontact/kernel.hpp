@@ -131,7 +131,11 @@ inline void check_stack_table_supported(const Stack& stack) {
   const double fraction = stack.layers().front().thickness / stack.total_thickness();
   const int refinement = cc_kernel_stack_max_refinement();
   if (fraction * refinement < 1.0) {
-    throw InputError("the top layer is " + detail::short_text(fraction) +
+    // Six digits can round a fraction just under 1/refinement up to it ("0.03125 of T");
+    // then all seventeen show that it is below.
+    std::string shown = detail::short_text(fraction);
+    if (std::stod(shown) * refinement >= 1.0) shown = detail::full_precision(fraction);
+    throw InputError("the top layer is " + shown +
                      " of the stack's total thickness T; kernel tables need at least 1/" +
                      std::to_string(refinement) + " (their grid grows like T/h_top, THEORY.md "
                      "section 12): give the top layer (--layer) at least T/" +

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/limits.hpp"
 #include "coatcontact/stack.hpp"
 
 namespace coatcontact {
@@ -88,9 +89,5 @@ class MaugisDugdaleModel {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// Largest range h0 = w/sigma0 accepted, in units of the coating thickness (the SI commands):
-// beyond it the zone would reach 1e6 film thicknesses and the film is irrelevant.
-inline constexpr double kMaximumRangeOverThickness = 1e6;
 
 }  // namespace coatcontact

@@ -54,6 +54,9 @@ struct ReducedPoint {
          dlog_e_eq = 0.0, dlog_gamma1 = 0.0;
 };
 
+// The values of solved reduced variables as a ReducedPoint (the log-derivatives are 0).
+ReducedPoint reduced_point_of(const ReducedVariables& v);
+
 struct TableOptions {
   // Chebyshev order per segment in u = ln(a/t) (order + 1 source evaluations per segment).
   std::size_t order = 24;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "coatcontact/indenter_shape.hpp"
+#include "coatcontact/limits.hpp"
 #include "coatcontact/shape_solver.hpp"
 
 namespace coatcontact {
@@ -56,6 +57,12 @@ class ShapeContact {
   std::pair<double, double> default_range() const;
   // spring_stiffness k [N/m] > 0 adds spring control; 0 for none.
   ShapePulloff pulloff(double spring_stiffness, int points_per_decade = 24) const;
+
+  // The validity limits of this contact (limits.hpp): the coating thickness, the reference
+  // modulus, the shape's largest radius and, for a paraboloid standing for a sphere, its
+  // radius `sphere_radius` (0: none); and the warnings of a curve against them.
+  ValidityLimits validity_limits(double sphere_radius = 0.0) const;
+  std::vector<std::string> validity_warnings(const std::vector<ShapePoint>& curve, double sphere_radius = 0.0) const;
 
   const IndenterShape& shape() const { return *shape_; }
   double reference_modulus() const { return modulus_; }
