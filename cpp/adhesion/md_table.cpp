@@ -25,6 +25,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kTwoD = 4;  // d, f, g_r, g_s
 constexpr int kOneD = 2;  // delta_h, force_h
+constexpr double kOneDRefinement = 8.0;
 
 // T - atan T without cancellation (series below T = 0.1: T^17/17 is 1e-14 of T^3/3).
 double tan_minus_angle(double t) {
@@ -56,6 +57,13 @@ struct Spline1d {
   gsl_spline* spline = nullptr;
   ~Spline1d() { gsl_spline_free(spline); }
 };
+
+// Index of the interval of the sorted grid g holding v (clamped to the first and last).
+std::size_t cell_of(const std::vector<double>& g, double v) {
+  const auto it = std::upper_bound(g.begin(), g.end(), v);
+  const auto k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - g.begin() - 1, 0));
+  return std::min(k, g.size() - 2);
+}
 
 std::vector<double> grid(double lo, double hi, double step) {
   const int half = std::max(2, static_cast<int>(std::ceil((hi - lo) / (2.0 * step))));
@@ -101,8 +109,11 @@ CohesiveFunctions homogeneous_functions(double a, double excess) {
 struct MaugisDugdaleTable::Grids {
   // x = ln(a/t); τ in [0, 1] maps to s = ln(c/a - 1) = s_min + τ (s_max(x) - s_min).
   std::vector<double> x, tau, x_coarse, tau_coarse;
+  std::vector<double> x1, x1_coarse;  // the 1-D functions' grid, kOneDRefinement times finer
   std::vector<double> z[kTwoD], z_coarse[kTwoD], y[kOneD], y_coarse[kOneD];
   Spline2d fine[kTwoD], coarse[kTwoD];
+  // Largest |fine - coarse| in each coarse cell (2-D: index i + j (cx - 1)) or interval.
+  std::vector<double> cell_error[kTwoD], interval_error[kOneD];
   Spline1d fine1[kOneD], coarse1[kOneD];
   double seconds = 0.0;
 };
@@ -133,7 +144,6 @@ void MaugisDugdaleTable::build() const {
     g->tau = grid(0.0, 1.0, options_.step / widest);
     const std::size_t nx = g->x.size(), ns = g->tau.size();
     for (int k = 0; k < kTwoD; ++k) g->z[k].assign(nx * ns, 0.0);
-    for (int k = 0; k < kOneD; ++k) g->y[k].assign(nx, 0.0);
     std::vector<std::exception_ptr> errors(nx);
     // One factorization per contact radius; the radii are independent.
 #pragma omp parallel for schedule(dynamic, 1)
@@ -150,11 +160,29 @@ void MaugisDugdaleTable::build() const {
           to_array_2d(v, value);
           to_array_2d(h, hom);
           for (int k = 0; k < kTwoD; ++k) g->z[k][j * nx + i] = value[k] / hom[k];
-          if (j == 0) {
-            g->y[0][i] = v.delta_h / h.delta_h;
-            g->y[1][i] = v.force_h / h.force_h;
-          }
         }
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+    for (const auto& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
+    // The 1-D functions δ_H, F_H: one adhesionless solve per radius (any c), cheap, so on a
+    // finer grid.
+    g->x1 = grid(g->x.front(), g->x.back(), options_.step / kOneDRefinement);
+    const std::size_t n1 = g->x1.size();
+    for (int k = 0; k < kOneD; ++k) g->y[k].assign(n1, 0.0);
+    errors.assign(n1, nullptr);
+#pragma omp parallel for schedule(dynamic, 4)
+    for (long il = 0; il < static_cast<long>(n1); ++il) {
+      const auto i = static_cast<std::size_t>(il);
+      try {
+        const double a = std::exp(g->x1[i]);
+        const CohesiveState st = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).evaluate(0.0, 1e-3);
+        const CohesiveFunctions h = homogeneous_functions(a, 1e-3);
+        g->y[0][i] = st.delta / h.delta_h;
+        g->y[1][i] = st.force / h.force_h;
       } catch (...) {
         errors[i] = std::current_exception();
       }
@@ -180,14 +208,55 @@ void MaugisDugdaleTable::build() const {
         throw NumericalError("Maugis-Dugdale table: GSL refused the 2-D spline");
       }
     }
+    for (std::size_t i = 0; i < n1; i += 2) g->x1_coarse.push_back(g->x1[i]);
+    const std::size_t c1 = g->x1_coarse.size();
     for (int k = 0; k < kOneD; ++k) {
-      for (std::size_t i = 0; i < nx; i += 2) g->y_coarse[k].push_back(g->y[k][i]);
-      g->fine1[k].spline = gsl_spline_alloc(gsl_interp_cspline, nx);
-      g->coarse1[k].spline = gsl_spline_alloc(gsl_interp_cspline, cx);
+      for (std::size_t i = 0; i < n1; i += 2) g->y_coarse[k].push_back(g->y[k][i]);
+      g->fine1[k].spline = gsl_spline_alloc(gsl_interp_cspline, n1);
+      g->coarse1[k].spline = gsl_spline_alloc(gsl_interp_cspline, c1);
       if (!g->fine1[k].spline || !g->coarse1[k].spline ||
-          gsl_spline_init(g->fine1[k].spline, g->x.data(), g->y[k].data(), nx) != 0 ||
-          gsl_spline_init(g->coarse1[k].spline, g->x_coarse.data(), g->y_coarse[k].data(), cx) != 0) {
+          gsl_spline_init(g->fine1[k].spline, g->x1.data(), g->y[k].data(), n1) != 0 ||
+          gsl_spline_init(g->coarse1[k].spline, g->x1_coarse.data(), g->y_coarse[k].data(), c1) != 0) {
         throw NumericalError("Maugis-Dugdale table: GSL refused the 1-D spline");
+      }
+    }
+    // Error maps: |fine - coarse| sampled on a 5 x 5 grid inside each coarse cell (which
+    // includes the fine nodes between the coarse ones); its largest value is the cell's.
+    constexpr int kSamples = 5;
+    for (int k = 0; k < kTwoD; ++k) {
+      g->cell_error[k].assign((cx - 1) * (cs - 1), 0.0);
+      for (std::size_t j = 0; j + 1 < cs; ++j) {
+        for (std::size_t i = 0; i + 1 < cx; ++i) {
+          double worst = 0.0;
+          for (int p = 1; p < kSamples; ++p) {
+            for (int q = 1; q < kSamples; ++q) {
+              const double x = g->x_coarse[i] + (g->x_coarse[i + 1] - g->x_coarse[i]) * p / kSamples;
+              const double t = g->tau_coarse[j] + (g->tau_coarse[j + 1] - g->tau_coarse[j]) * q / kSamples;
+              worst = std::max(worst, std::abs(gsl_spline2d_eval(g->fine[k].spline, x, t, nullptr, nullptr) -
+                                               gsl_spline2d_eval(g->coarse[k].spline, x, t, nullptr, nullptr)));
+            }
+          }
+          for (std::size_t p = 2 * i; p <= 2 * i + 2; ++p) {
+            for (std::size_t q = 2 * j; q <= 2 * j + 2; ++q) {
+              const double at_node = g->z[k][q * nx + p];
+              worst = std::max(worst, std::abs(at_node - gsl_spline2d_eval(g->coarse[k].spline, g->x[p], g->tau[q],
+                                                                           nullptr, nullptr)));
+            }
+          }
+          g->cell_error[k][j * (cx - 1) + i] = worst;
+        }
+      }
+    }
+    for (int k = 0; k < kOneD; ++k) {
+      g->interval_error[k].assign(c1 - 1, 0.0);
+      for (std::size_t i = 0; i + 1 < c1; ++i) {
+        double worst = 0.0;
+        for (int p = 1; p < 2 * kSamples; ++p) {
+          const double x = g->x1_coarse[i] + (g->x1_coarse[i + 1] - g->x1_coarse[i]) * p / (2 * kSamples);
+          worst = std::max(worst, std::abs(gsl_spline_eval(g->fine1[k].spline, x, nullptr) -
+                                           gsl_spline_eval(g->coarse1[k].spline, x, nullptr)));
+        }
+        g->interval_error[k][i] = worst;
       }
     }
     g->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -227,14 +296,17 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   // Clamped: the logarithms of end values may round just outside the grid.
   const double x = std::clamp(std::log(a), g.x.front(), g.x.back());
   const double tau = std::clamp((std::log(excess) - s_min) / (s_max - s_min), 0.0, 1.0);
+  const std::size_t cell_x = cell_of(g.x_coarse, x), cell_s = cell_of(g.tau_coarse, tau),
+                    cell_1 = cell_of(g.x1_coarse, x);
   const CohesiveFunctions hom = homogeneous_functions(a, excess);
   double hom2[kTwoD], value[kTwoD], error[kTwoD];
   to_array_2d(hom, hom2);
   for (int k = 0; k < kTwoD; ++k) {
     const double r = gsl_spline2d_eval(g.fine[k].spline, x, tau, nullptr, nullptr);
-    const double rc = gsl_spline2d_eval(g.coarse[k].spline, x, tau, nullptr, nullptr);
     value[k] = r * hom2[k];
-    error[k] = (options_.error_factor * std::abs(r - rc) + options_.source_noise * std::abs(r)) * std::abs(hom2[k]);
+    error[k] = (options_.error_factor * g.cell_error[k][cell_s * (g.x_coarse.size() - 1) + cell_x] +
+                options_.source_noise * std::abs(r)) *
+               std::abs(hom2[k]);
   }
   MdTableValue out;
   from_array_2d(value, out.value);
@@ -243,9 +315,9 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   double v1[kOneD], e1[kOneD];
   for (int k = 0; k < kOneD; ++k) {
     const double r = gsl_spline_eval(g.fine1[k].spline, x, nullptr);
-    const double rc = gsl_spline_eval(g.coarse1[k].spline, x, nullptr);
     v1[k] = r * hom1[k];
-    e1[k] = (options_.error_factor * std::abs(r - rc) + options_.source_noise * std::abs(r)) * std::abs(hom1[k]);
+    e1[k] = (options_.error_factor * g.interval_error[k][cell_1] + options_.source_noise * std::abs(r)) *
+            std::abs(hom1[k]);
   }
   out.value.delta_h = v1[0];
   out.value.force_h = v1[1];
