@@ -151,11 +151,11 @@ struct MaugisDugdaleModel::Impl {
     p.lambda = lambda;
     p.a_bar = a_bar;
     p.a_over_t = a;
-    if (table && a > 0.0) {
-      if (const auto st = table->solve(sigma_hat, h0, a)) {
+    if (table) {
+      if (const auto st = a > 0.0 ? table->solve(sigma_hat, h0, a) : table->solve_end(sigma_hat, h0)) {
         if (excess != nullptr) *excess = st->excess;
-        p.m = 1.0 + st->excess;
-        p.c_bar = eta * a * (1.0 + st->excess);
+        p.m = a > 0.0 ? 1.0 + st->excess : std::numeric_limits<double>::infinity();
+        p.c_bar = eta * (a > 0.0 ? a * (1.0 + st->excess) : st->excess);
         p.load = eta * eta * eta * st->force;
         p.penetration = eta * eta * st->delta;
         return p;

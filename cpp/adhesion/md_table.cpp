@@ -106,6 +106,15 @@ CohesiveFunctions homogeneous_functions(double a, double excess) {
   return h;
 }
 
+CohesiveFunctions homogeneous_end_functions(double c) {
+  CohesiveFunctions h;
+  h.d = -c;
+  h.f = -0.5 * kPi * c * c;
+  h.g_r = 0.5 * c * c;
+  h.g_s = c * (1.0 - 2.0 / kPi);
+  return h;
+}
+
 struct MaugisDugdaleTable::Grids {
   // x = ln(a/t); τ in [0, 1] maps to s = ln(c/a - 1) = s_min + τ (s_max(x) - s_min).
   std::vector<double> x, tau, x_coarse, tau_coarse;
@@ -115,6 +124,9 @@ struct MaugisDugdaleTable::Grids {
   // Largest |fine - coarse| in each coarse cell (2-D: index i + j (cx - 1)) or interval.
   std::vector<double> cell_error[kTwoD], interval_error[kOneD];
   Spline1d fine1[kOneD], coarse1[kOneD];
+  // The end of the curve a = 0 against ln(c/t): d, f, g_r, g_s as ratios.
+  std::vector<double> xe, xe_coarse, ye[kTwoD], ye_coarse[kTwoD], end_error[kTwoD];
+  Spline1d fine_end[kTwoD], coarse_end[kTwoD];
   double seconds = 0.0;
 };
 
@@ -208,6 +220,30 @@ void MaugisDugdaleTable::build() const {
         throw NumericalError("Maugis-Dugdale table: GSL refused the 2-D spline");
       }
     }
+    // The end of the curve, a = 0 (no contact system), on a grid twice as fine as the table's.
+    g->xe = grid(std::log(options_.end_c_over_t_min), std::log(options_.c_over_t_max), 0.5 * options_.step);
+    const std::size_t ne = g->xe.size();
+    for (int k = 0; k < kTwoD; ++k) g->ye[k].assign(ne, 0.0);
+    errors.assign(ne, nullptr);
+    {
+      const CohesiveZone end_zone(kernel_, 0.0, 1.0, disc_, quadrature_);
+#pragma omp parallel for schedule(dynamic, 1)
+      for (long il = 0; il < static_cast<long>(ne); ++il) {
+        const auto i = static_cast<std::size_t>(il);
+        try {
+          const double c = std::exp(g->xe[i]);
+          double value[kTwoD], hom[kTwoD];
+          to_array_2d(cohesive_functions(end_zone, c), value);
+          to_array_2d(homogeneous_end_functions(c), hom);
+          for (int k = 0; k < kTwoD; ++k) g->ye[k][i] = value[k] / hom[k];
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    }
+    for (const auto& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
     for (std::size_t i = 0; i < n1; i += 2) g->x1_coarse.push_back(g->x1[i]);
     const std::size_t c1 = g->x1_coarse.size();
     for (int k = 0; k < kOneD; ++k) {
@@ -218,6 +254,18 @@ void MaugisDugdaleTable::build() const {
           gsl_spline_init(g->fine1[k].spline, g->x1.data(), g->y[k].data(), n1) != 0 ||
           gsl_spline_init(g->coarse1[k].spline, g->x1_coarse.data(), g->y_coarse[k].data(), c1) != 0) {
         throw NumericalError("Maugis-Dugdale table: GSL refused the 1-D spline");
+      }
+    }
+    for (std::size_t i = 0; i < ne; i += 2) g->xe_coarse.push_back(g->xe[i]);
+    const std::size_t ce = g->xe_coarse.size();
+    for (int k = 0; k < kTwoD; ++k) {
+      for (std::size_t i = 0; i < ne; i += 2) g->ye_coarse[k].push_back(g->ye[k][i]);
+      g->fine_end[k].spline = gsl_spline_alloc(gsl_interp_cspline, ne);
+      g->coarse_end[k].spline = gsl_spline_alloc(gsl_interp_cspline, ce);
+      if (!g->fine_end[k].spline || !g->coarse_end[k].spline ||
+          gsl_spline_init(g->fine_end[k].spline, g->xe.data(), g->ye[k].data(), ne) != 0 ||
+          gsl_spline_init(g->coarse_end[k].spline, g->xe_coarse.data(), g->ye_coarse[k].data(), ce) != 0) {
+        throw NumericalError("Maugis-Dugdale table: GSL refused the spline of the curve's end");
       }
     }
     // Error maps: |fine - coarse| sampled on a 5 x 5 grid inside each coarse cell (which
@@ -257,6 +305,18 @@ void MaugisDugdaleTable::build() const {
                                            gsl_spline_eval(g->coarse1[k].spline, x, nullptr)));
         }
         g->interval_error[k][i] = worst;
+      }
+    }
+    for (int k = 0; k < kTwoD; ++k) {
+      g->end_error[k].assign(ce - 1, 0.0);
+      for (std::size_t i = 0; i + 1 < ce; ++i) {
+        double worst = 0.0;
+        for (int p = 1; p < 2 * kSamples; ++p) {
+          const double x = g->xe_coarse[i] + (g->xe_coarse[i + 1] - g->xe_coarse[i]) * p / (2 * kSamples);
+          worst = std::max(worst, std::abs(gsl_spline_eval(g->fine_end[k].spline, x, nullptr) -
+                                           gsl_spline_eval(g->coarse_end[k].spline, x, nullptr)));
+        }
+        g->end_error[k][i] = worst;
       }
     }
     g->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -354,6 +414,47 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   st.excess_error = e * s_error;
   st.delta_error = v.error.delta_h + sigma_hat * v.error.d + std::abs(d_s) * s_error;
   st.force_error = v.error.force_h + sigma_hat * v.error.f + std::abs(f_s) * s_error;
+  return st;
+}
+
+std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, double h0) const {
+  build();
+  const Grids& g = *grids_;
+  const double lo = g.xe.front(), hi = g.xe.back();
+  // Values and error estimates of d, f, g_r, g_s at u = ln(c/t).
+  auto eval = [&](double u, double* value, double* error) {
+    u = std::clamp(u, lo, hi);
+    const std::size_t cell = cell_of(g.xe_coarse, u);
+    double hom[kTwoD];
+    to_array_2d(homogeneous_end_functions(std::exp(u)), hom);
+    for (int k = 0; k < kTwoD; ++k) {
+      const double r = gsl_spline_eval(g.fine_end[k].spline, u, nullptr);
+      value[k] = r * hom[k];
+      error[k] = (options_.error_factor * g.end_error[k][cell] + options_.source_noise * std::abs(r)) * std::abs(hom[k]);
+    }
+  };
+  auto residual = [&](double u) {
+    double v[kTwoD], e[kTwoD];
+    eval(u, v, e);
+    return v[2] + sigma_hat * v[3] - h0;
+  };
+  const auto root = brent_root(residual, lo, hi, {1e-13, 0.0, 200});
+  if (!root) return std::nullopt;
+  const double u = root->x, step = 1e-5;
+  double v[kTwoD], e[kTwoD], vp[kTwoD], vm[kTwoD], scratch[kTwoD];
+  eval(u, v, e);
+  const double up = std::min(u + step, hi), um = std::max(u - step, lo);
+  eval(up, vp, scratch);
+  eval(um, vm, scratch);
+  const double h_u = (vp[2] - vm[2] + sigma_hat * (vp[3] - vm[3])) / (up - um);
+  const double u_error = (e[2] + sigma_hat * e[3]) / std::abs(h_u);
+  MdTableState st;
+  st.excess = std::exp(u);
+  st.delta = sigma_hat * v[0];
+  st.force = sigma_hat * v[1];
+  st.excess_error = st.excess * u_error;
+  st.delta_error = sigma_hat * (e[0] + std::abs((vp[0] - vm[0]) / (up - um)) * u_error);
+  st.force_error = sigma_hat * (e[1] + std::abs((vp[1] - vm[1]) / (up - um)) * u_error);
   return st;
 }
 

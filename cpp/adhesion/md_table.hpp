@@ -34,12 +34,16 @@ struct CohesiveFunctions {
 CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess);
 // The homogeneous closed forms (Maugis), free of cancellation as excess -> 0.
 CohesiveFunctions homogeneous_functions(double a, double excess);
+// The same at the end of the curve, a = 0, zone radius c (d, f, g_r, g_s only).
+CohesiveFunctions homogeneous_end_functions(double c);
 
 struct MdTableOptions {
   double a_over_t_min = 1e-3, a_over_t_max = 1e3;
   // c/a - 1 from excess_min; c/t up to c_over_t_max (at least 10 a_over_t_max). The zone of the
   // curve's end is c/t ~ 1.5 lambda^-1/2 / eta: 1e4 covers lambda >= 1e-3 with eta >= 0.01.
   double excess_min = 1e-9, c_over_t_max = 1e4;
+  // The end of the curve (a = 0) is tabulated in ln(c/t) from end_c_over_t_min to c_over_t_max.
+  double end_c_over_t_min = 1e-5;
   double step = 0.3;  // node spacing in x = ln(a/t) and (at most) in s = ln(c/a - 1), fine grid
   // The error estimate of a value is error_factor times the largest |fine - coarse| in its
   // coarse cell (coarse: every other node), plus the direct solve's own relative noise.
@@ -76,6 +80,9 @@ class MaugisDugdaleTable {
   bool covers(double a, double excess) const;
   // InputError outside the table (see covers()).
   MdTableValue at(double a, double excess) const;
+  // The end of the curve a = 0: root c of g_R + σ̂ g_σ = h0 in ln c; `excess` holds c (as
+  // CohesiveState). nullopt if the root lies outside [end_c_over_t_min, c_over_t_max].
+  std::optional<MdTableState> solve_end(double sigma_hat, double h0) const;
   // Largest c/a - 1 in the table at a.
   double excess_max(double a) const;
   // nullopt if a is outside the table or the root lies outside its excess range.

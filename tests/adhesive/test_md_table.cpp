@@ -143,6 +143,18 @@ int main() {
       }
     }
     std::printf("homogeneous table states vs Maugis's closed form: worst difference %.2e\n", worst);
+    for (double lambda : {0.01, 1.0, 30.0}) {
+      const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
+      const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+      const auto st = table.solve_end(sigma_hat, h0);
+      const std::string at = " lambda=" + g(lambda);
+      if (!check::that(st.has_value(), "homogeneous end of the curve from the table" + at)) continue;
+      const maugis::State want = maugis::end_of_curve(lambda);
+      check::close(eta * eta * eta * st->force, want.load, check::tier::kInterpolation,
+                   "homogeneous table P(a -> 0) vs Maugis" + at, 1.0);
+      check::close(eta * eta * st->delta * k23, want.penetration, check::tier::kInterpolation,
+                   "homogeneous table Delta_M(a -> 0) vs Maugis" + at, 1.0);
+    }
   }
 
   // 4. Table against the direct solve, each within the table's error estimate.
@@ -156,7 +168,7 @@ int main() {
       std::vector<double> etas;
       double a_max, c_max;
     };
-    int compared = 0, outside = 0;
+    int compared = 0, compared_end = 0, outside = 0;
     for (const Named& s : {Named{&soft, "soft film", {0.3, 3.0}, 50.0, 1e4},
                            Named{&stiff, "stiff film", {0.3, 3.0}, 50.0, 1e4},
                            Named{&rigid_base, "rigid base nu=0.5", {0.3, 3.0}, 50.0, 1e4},
@@ -175,6 +187,23 @@ int main() {
         for (double lambda : {1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3}) {
           const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
           const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+          {  // the end of the curve, a = 0
+            const auto st = table.solve_end(sigma_hat, h0);
+            const std::string at = std::string(" ") + s.name + " eta=" + g(eta) + " lambda=" + g(lambda) + " a=0";
+            if (st) {
+              const detail::CohesiveZone zone(kernel, 0.0, 1.0, disc, quadrature);
+              const detail::CohesiveState want = zone.solve(sigma_hat, h0, st->excess, 0.05);
+              check::below(std::abs(st->excess - want.excess), st->excess_error + kDirectNoise * want.excess,
+                           "c within its error estimate" + at);
+              check::below(std::abs(st->delta - want.delta), st->delta_error + kDirectNoise * std::abs(want.delta),
+                           "delta within its error estimate" + at);
+              check::below(std::abs(st->force - want.force), st->force_error + kDirectNoise * std::abs(want.force),
+                           "F within its error estimate" + at);
+              ++compared_end;
+            } else {
+              ++outside;
+            }
+          }
           for (double a_bar : {0.01, 0.1, 1.0, 10.0}) {
             const double a = a_bar / eta;
             const auto st = table.solve(sigma_hat, h0, a);
@@ -205,7 +234,8 @@ int main() {
       std::printf("%s: worst |table - direct| / estimate %.3f; worst error of m %.2e, P %.2e, D %.2e (relative to max(|value|, 1))\n",
                   s.name, worst_ratio, worst_m, worst_p, worst_d);
     }
-    std::printf("table vs direct: %d points compared, %d outside the table's range\n", compared, outside);
+    std::printf("table vs direct: %d points and %d curve ends compared, %d outside the table's range\n", compared,
+                compared_end, outside);
     check::that(compared >= 100, "at least 100 points compared (got " + std::to_string(compared) + ")");
   }
   // 5. Pull-offs through the table (MaugisDugdaleOptions::use_table) against the direct ones:

@@ -32,8 +32,8 @@ struct MaugisDugdaleOptions {
   double location_tolerance = 1e-7;
   // Points from the reduced table of the cohesive zone (THEORY.md section 13, "The cohesive
   // zone as a table"), built once per model on first use, wherever it covers a/t in
-  // [table_a_over_t_min, table_a_over_t_max] and the root c/a - 1 (c/t <= 1e4); the direct
-  // solve elsewhere and at a = 0. Values then differ from the direct ones by the table's error
+  // [table_a_over_t_min, table_a_over_t_max] and the root c/a - 1 (c/t <= 1e4), and at the
+  // end a = 0 (c/t in [1e-5, 1e4]); the direct solve elsewhere. Values then differ from the direct ones by the table's error
   // (~1e-5 relative, measured in tests/adhesive/test_md_table.cpp); the pull-off location is
   // the minimiser's (location_tolerance), without the implicit-derivative refinement.
   bool use_table = false;
