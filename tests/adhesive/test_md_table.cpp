@@ -244,7 +244,7 @@ int main() {
     constexpr double kTableTier = 1e-3;
     MaugisDugdaleOptions with_table;
     with_table.use_table = true;
-    with_table.table_a_over_t_min = 1e-3;
+    with_table.table_a_over_t_min = 1e-4;
     with_table.table_a_over_t_max = 50.0;
     const MaugisDugdaleModel direct(soft), tabled(soft, with_table);
     for (auto [eta, lambda] : {std::pair{1.0, 1.0}, std::pair{0.3, 0.1}, std::pair{3.0, 10.0}}) {

@@ -37,7 +37,7 @@ struct MaugisDugdaleOptions {
   // (~1e-5 relative, measured in tests/adhesive/test_md_table.cpp); the pull-off location is
   // the minimiser's (location_tolerance), without the implicit-derivative refinement.
   bool use_table = false;
-  double table_a_over_t_min = 1e-3;
+  double table_a_over_t_min = 1e-4;
   double table_a_over_t_max = 1e2;
 };
 
