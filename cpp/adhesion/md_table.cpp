@@ -26,6 +26,8 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kTwoD = 4;  // d, f, g_r, g_s
 constexpr int kOneD = 2;  // delta_h, force_h
 constexpr double kOneDRefinement = 8.0;
+// Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
+constexpr int kSamples = 5;
 
 // T - atan T without cancellation (series below T = 0.1: T^17/17 is 1e-14 of T^3/3).
 double tan_minus_angle(double t) {
@@ -63,6 +65,28 @@ std::size_t cell_of(const std::vector<double>& g, double v) {
   const auto it = std::upper_bound(g.begin(), g.end(), v);
   const auto k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - g.begin() - 1, 0));
   return std::min(k, g.size() - 2);
+}
+
+// Cubic splines of y against x on all nodes and on every other node (x_coarse), and the
+// largest |fine - coarse| in each coarse interval: the error estimate of the fine one.
+void fit_pair(const std::vector<double>& x, const std::vector<double>& x_coarse, const std::vector<double>& y,
+              std::vector<double>& y_coarse, Spline1d& fine, Spline1d& coarse, std::vector<double>& error) {
+  y_coarse.clear();
+  for (std::size_t i = 0; i < x.size(); i += 2) y_coarse.push_back(y[i]);
+  fine.spline = gsl_spline_alloc(gsl_interp_cspline, x.size());
+  coarse.spline = gsl_spline_alloc(gsl_interp_cspline, x_coarse.size());
+  if (!fine.spline || !coarse.spline || gsl_spline_init(fine.spline, x.data(), y.data(), x.size()) != 0 ||
+      gsl_spline_init(coarse.spline, x_coarse.data(), y_coarse.data(), x_coarse.size()) != 0) {
+    throw NumericalError("Maugis-Dugdale table: GSL refused a 1-D spline");
+  }
+  error.assign(x_coarse.size() - 1, 0.0);
+  for (std::size_t i = 0; i + 1 < x_coarse.size(); ++i) {
+    for (int p = 1; p < 2 * kSamples; ++p) {
+      const double v = x_coarse[i] + (x_coarse[i + 1] - x_coarse[i]) * p / (2 * kSamples);
+      error[i] = std::max(error[i], std::abs(gsl_spline_eval(fine.spline, v, nullptr) -
+                                             gsl_spline_eval(coarse.spline, v, nullptr)));
+    }
+  }
 }
 
 std::vector<double> grid(double lo, double hi, double step) {
@@ -245,32 +269,15 @@ void MaugisDugdaleTable::build() const {
       if (e) std::rethrow_exception(e);
     }
     for (std::size_t i = 0; i < n1; i += 2) g->x1_coarse.push_back(g->x1[i]);
-    const std::size_t c1 = g->x1_coarse.size();
     for (int k = 0; k < kOneD; ++k) {
-      for (std::size_t i = 0; i < n1; i += 2) g->y_coarse[k].push_back(g->y[k][i]);
-      g->fine1[k].spline = gsl_spline_alloc(gsl_interp_cspline, n1);
-      g->coarse1[k].spline = gsl_spline_alloc(gsl_interp_cspline, c1);
-      if (!g->fine1[k].spline || !g->coarse1[k].spline ||
-          gsl_spline_init(g->fine1[k].spline, g->x1.data(), g->y[k].data(), n1) != 0 ||
-          gsl_spline_init(g->coarse1[k].spline, g->x1_coarse.data(), g->y_coarse[k].data(), c1) != 0) {
-        throw NumericalError("Maugis-Dugdale table: GSL refused the 1-D spline");
-      }
+      fit_pair(g->x1, g->x1_coarse, g->y[k], g->y_coarse[k], g->fine1[k], g->coarse1[k], g->interval_error[k]);
     }
     for (std::size_t i = 0; i < ne; i += 2) g->xe_coarse.push_back(g->xe[i]);
-    const std::size_t ce = g->xe_coarse.size();
     for (int k = 0; k < kTwoD; ++k) {
-      for (std::size_t i = 0; i < ne; i += 2) g->ye_coarse[k].push_back(g->ye[k][i]);
-      g->fine_end[k].spline = gsl_spline_alloc(gsl_interp_cspline, ne);
-      g->coarse_end[k].spline = gsl_spline_alloc(gsl_interp_cspline, ce);
-      if (!g->fine_end[k].spline || !g->coarse_end[k].spline ||
-          gsl_spline_init(g->fine_end[k].spline, g->xe.data(), g->ye[k].data(), ne) != 0 ||
-          gsl_spline_init(g->coarse_end[k].spline, g->xe_coarse.data(), g->ye_coarse[k].data(), ce) != 0) {
-        throw NumericalError("Maugis-Dugdale table: GSL refused the spline of the curve's end");
-      }
+      fit_pair(g->xe, g->xe_coarse, g->ye[k], g->ye_coarse[k], g->fine_end[k], g->coarse_end[k], g->end_error[k]);
     }
     // Error maps: |fine - coarse| sampled on a 5 x 5 grid inside each coarse cell (which
     // includes the fine nodes between the coarse ones); its largest value is the cell's.
-    constexpr int kSamples = 5;
     for (int k = 0; k < kTwoD; ++k) {
       g->cell_error[k].assign((cx - 1) * (cs - 1), 0.0);
       for (std::size_t j = 0; j + 1 < cs; ++j) {
@@ -293,30 +300,6 @@ void MaugisDugdaleTable::build() const {
           }
           g->cell_error[k][j * (cx - 1) + i] = worst;
         }
-      }
-    }
-    for (int k = 0; k < kOneD; ++k) {
-      g->interval_error[k].assign(c1 - 1, 0.0);
-      for (std::size_t i = 0; i + 1 < c1; ++i) {
-        double worst = 0.0;
-        for (int p = 1; p < 2 * kSamples; ++p) {
-          const double x = g->x1_coarse[i] + (g->x1_coarse[i + 1] - g->x1_coarse[i]) * p / (2 * kSamples);
-          worst = std::max(worst, std::abs(gsl_spline_eval(g->fine1[k].spline, x, nullptr) -
-                                           gsl_spline_eval(g->coarse1[k].spline, x, nullptr)));
-        }
-        g->interval_error[k][i] = worst;
-      }
-    }
-    for (int k = 0; k < kTwoD; ++k) {
-      g->end_error[k].assign(ce - 1, 0.0);
-      for (std::size_t i = 0; i + 1 < ce; ++i) {
-        double worst = 0.0;
-        for (int p = 1; p < 2 * kSamples; ++p) {
-          const double x = g->xe_coarse[i] + (g->xe_coarse[i + 1] - g->xe_coarse[i]) * p / (2 * kSamples);
-          worst = std::max(worst, std::abs(gsl_spline_eval(g->fine_end[k].spline, x, nullptr) -
-                                           gsl_spline_eval(g->coarse_end[k].spline, x, nullptr)));
-        }
-        g->end_error[k][i] = worst;
       }
     }
     g->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
