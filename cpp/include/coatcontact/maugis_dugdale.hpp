@@ -31,6 +31,16 @@ struct MaugisDugdaleOptions {
   double a_bar_max = 0.0;
   int scan_points_per_decade = 8;
   double location_tolerance = 1e-7;
+  // Points from the reduced table of the cohesive zone (THEORY.md section 13, "The cohesive
+  // zone as a table"), built once per model on first use, wherever it covers a/t in
+  // [table_a_over_t_min, table_a_over_t_max] and the root c/a - 1 (c/t <= 1e4), and at the
+  // end a = 0 (c/t in [1e-5, 1e4]); the direct solve elsewhere. Values then differ from the
+  // direct ones by the table's error (tests/adhesive/test_md_table.cpp: P and D to ~6e-5,
+  // m to ~4e-4); the pull-off location is the minimiser's (location_tolerance), without the
+  // implicit-derivative refinement.
+  bool use_table = false;
+  double table_a_over_t_min = 1e-4;
+  double table_a_over_t_max = 1e2;
 };
 
 // One point of the curve; a_bar = 0 is the end of the curve (contact shrunk to a point at

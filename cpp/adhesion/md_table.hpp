@@ -1,0 +1,107 @@
+// The reduced table of the Maugis-Dugdale cohesive zone (THEORY.md section 13, "The cohesive
+// zone as a table"): at fixed (a, c) the zone is linear in its loads 1/R, δ and σ̂, so
+//   δ = δ_H(a)/R + σ̂ d(a, c),   F = F_H(a)/R + σ̂ f(a, c),   h(c) = g_R(a, c)/R + σ̂ g_σ(a, c).
+// The four 2-D functions are tabulated once per stack as ratios to their homogeneous closed
+// forms against x = ln(a/t) and τ = (s - s_min)/(s_max(x) - s_min), s = ln(c/a - 1), where
+// s_max(x) keeps c below c_over_t_max (GSL bicubic gsl_spline2d), with an error
+// estimate from a second interpolant on every other node. Units as cohesive_zone.hpp (t = 1,
+// E1* = 1, R = 1). Library-private (not installed).
+//
+// Thread safety: the table is built on first use under std::call_once; afterwards every
+// const member function may run concurrently.
+#pragma once
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "cohesive_zone.hpp"
+#include "factored_system.hpp"
+#include "kernel_source.hpp"
+
+namespace coatcontact::detail {
+
+// The functions of the zone at one (a, c = a (1 + excess)), R = 1.
+struct CohesiveFunctions {
+  double delta_h = 0.0;  // adhesionless penetration δ_H = a² Δ_s(a)       (1-D)
+  double force_h = 0.0;  // adhesionless load F_H = a³ Π_s(a)/2            (1-D)
+  double d = 0.0;        // penetration per unit σ̂ (edge condition solved for δ)
+  double f = 0.0;        // load per unit σ̂
+  double g_r = 0.0;      // gap at c per unit 1/R (adhesionless solution)
+  double g_s = 0.0;      // gap at c per unit σ̂
+};
+
+// From two direct solves of `zone` (σ̂ = 0 and a large σ̂) at c/a - 1 = excess.
+CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess);
+// The homogeneous closed forms (Maugis), free of cancellation as excess -> 0.
+CohesiveFunctions homogeneous_functions(double a, double excess);
+// The same at the end of the curve, a = 0, zone radius c (d, f, g_r, g_s only).
+CohesiveFunctions homogeneous_end_functions(double c);
+
+struct MdTableOptions {
+  double a_over_t_min = 1e-3, a_over_t_max = 1e3;
+  // c/a - 1 from excess_min; c/t up to c_over_t_max (at least 10 a_over_t_max). The zone of the
+  // curve's end is c/t ~ 1.5 lambda^-1/2 / eta: 1e4 covers lambda >= 1e-3 with eta >= 0.01.
+  double excess_min = 1e-9, c_over_t_max = 1e4;
+  // The end of the curve (a = 0) is tabulated in ln(c/t) from end_c_over_t_min to c_over_t_max.
+  double end_c_over_t_min = 1e-5;
+  double step = 0.3;  // node spacing in x = ln(a/t) and (at most) in s = ln(c/a - 1), fine grid
+  // The error estimate of a value is error_factor times the largest |fine - coarse| in its
+  // coarse cell (coarse: every other node), plus the direct solve's own relative noise.
+  // Cubic interpolation makes the fine error ~1/16 of that difference; the pointwise
+  // difference alone can vanish by chance (measured: errors up to 2.7 times it), the cell's
+  // largest cannot.
+  double error_factor = 1.0;
+  double source_noise = 1e-11;
+};
+
+// The table's answer at (a, excess): values and absolute error estimates.
+struct MdTableValue {
+  CohesiveFunctions value;
+  CohesiveFunctions error;
+};
+
+// The Maugis-Dugdale state at contact radius a from the table: root s of
+// g_R + σ̂ g_σ = h0 (R = 1) by Brent, δ and F reconstructed, each with its error estimate
+// (the functions' errors plus the shift of the root they cause).
+struct MdTableState {
+  double excess = 0.0, delta = 0.0, force = 0.0;
+  double excess_error = 0.0, delta_error = 0.0, force_error = 0.0;
+};
+
+class MaugisDugdaleTable {
+ public:
+  // kernel must outlive the table. Nothing is solved until the first query.
+  MaugisDugdaleTable(const KernelSource& kernel, const Discretization& disc, const CohesiveQuadrature& quadrature,
+                     const MdTableOptions& options = {});
+  ~MaugisDugdaleTable();
+  MaugisDugdaleTable(const MaugisDugdaleTable&) = delete;
+  MaugisDugdaleTable& operator=(const MaugisDugdaleTable&) = delete;
+
+  bool covers(double a, double excess) const;
+  // InputError outside the table (see covers()).
+  MdTableValue at(double a, double excess) const;
+  // The end of the curve a = 0: root c of g_R + σ̂ g_σ = h0 in ln c; `excess` holds c (as
+  // CohesiveState). nullopt if the root lies outside [end_c_over_t_min, c_over_t_max].
+  std::optional<MdTableState> solve_end(double sigma_hat, double h0) const;
+  // Largest c/a - 1 in the table at a.
+  double excess_max(double a) const;
+  // nullopt if a is outside the table or the root lies outside its excess range.
+  std::optional<MdTableState> solve(double sigma_hat, double h0, double a) const;
+
+  void build() const;            // builds now (otherwise on first use)
+  double build_seconds() const;  // wall time of the build
+  int nodes_x() const;
+  int nodes_s() const;
+  const MdTableOptions& options() const { return options_; }
+
+ private:
+  struct Grids;
+  const KernelSource& kernel_;
+  Discretization disc_;
+  CohesiveQuadrature quadrature_;
+  MdTableOptions options_;
+  mutable std::once_flag once_;
+  mutable std::unique_ptr<Grids> grids_;
+};
+
+}  // namespace coatcontact::detail
