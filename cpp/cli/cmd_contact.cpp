@@ -210,6 +210,10 @@ int run_contact(const Args& raw) {
     }
     std::string profile_end;
     const auto shape = parse_shape(args.require("--shape"), profile_end);
+    if (shape->flat() && args.has("--points")) {
+      throw InputError("--points: a flat punch has one contact radius, its own (" + shape->description() +
+                       "); omit --points, or give --contact-radius");
+    }
     const double sphere_radius = sphere_radius_of(args.require("--shape"));
     try {
       check_sphere_contact_radii(radii, sphere_radius);

@@ -26,6 +26,7 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/limits.hpp"
 #include "coatcontact/measured_curve.hpp"
 #include "coatcontact/si_text.hpp"
 #include "checks.hpp"
@@ -848,6 +849,33 @@ void make_header(FitRun& r) {
 
 // The fitted curve (for --curve and --plot); every file is produced in memory first (the plot by
 // gnuplot) so a failure leaves no half-written set of files.
+// The fitted model at the data points against the validity limits of the library (limits.hpp,
+// as every SI command): a header line and a line on stderr for each limit it exceeds.
+void add_validity_warnings(FitRun& r) {
+  std::vector<Layer> layers = r.problem.layers;
+  if (r.stack_given) {
+    for (std::size_t i = 0; i < r.layer_count; ++i) {
+      layers[i].thickness = r.result.value[fit::thickness_index(i)];
+      layers[i].material.youngs_modulus = r.result.value[fit::modulus_index(i, r.layer_count)];
+    }
+  } else {
+    Material film = r.problem.film;
+    film.youngs_modulus = r.result.value[fit::kFilmModulus];
+    layers = {Layer{r.result.value[fit::kThickness], film, false}};
+  }
+  const Stack fitted(layers, r.problem.substrate, r.problem.indenter);
+  ValidityLimits limits;
+  for (const Layer& layer : layers) limits.thickness += layer.thickness;
+  limits.modulus = fitted.reference_modulus();
+  limits.sphere_radius = r.problem.shape ? 0.0 : r.problem.sphere_radius;
+  limits.max_contact_radius = r.problem.shape ? r.problem.shape->max_contact_radius() : 0.0;
+  for (const std::string& w :
+       validity_warnings(r.result.model_radius, r.result.model_penetration, r.result.model_force, limits)) {
+    r.header.emplace_back("warning", "fitted model: " + w);
+    std::cerr << "coatcontact fit: warning: fitted model: " << w << "\n";
+  }
+}
+
 void make_curve(FitRun& r) {
   // The curve (for --curve and --plot), then the table; every file is produced in memory
   // first (the plot by gnuplot) so a failure leaves no half-written set of files.
@@ -1071,6 +1099,7 @@ int run_fit_body(const Args& args) {
   set_start_values(r);
   run_library_fit(r);
   make_header(r);
+  add_validity_warnings(r);
   make_curve(r);
   make_table(r);
   make_picture(r);

@@ -74,6 +74,9 @@ silently_ignored_options)
   expect_error "--tol" adhesive "${M[@]}" --lambda 1 --a-bar 1 --tol 1e-6
   expect_error "--tol" sphere --radius 5um --thickness 1um --film 1GPa,0.3 --substrate 10GPa,0.25 --work 50mJ/m2 \
     --cohesive-stress 10MPa --points 3 --tol 1e-6
+  # A flat punch has one contact radius: --points would be dropped.
+  expect_error "--points" contact --shape punch:10um --thickness 1um --film 1MPa,0.49 --substrate 70GPa,0.22 \
+    --work 50mJ/m2 --points 50
   # An elastic indenter with a Dugdale zone: refused naming --indenter (the zone is rigid-only).
   expect_error "--indenter" pulloff "${M[@]}" --lambda 1 --indenter 2GPa,0.3
   expect_error "--indenter" sphere --radius 5um --thickness 1um --film 1GPa,0.3 --substrate 10GPa,0.25 \

@@ -28,8 +28,11 @@ done
 [ "$(grep -vc '^#' "$work/p")" = 3 ] || fail "pulloff --spring-bar: 3 rows expected"
 grep -q "k_bar	P_spring	a_bar_spring	D_spring$" "$work/p" || fail "pulloff --spring-bar columns"
 for shape in sphere:5um cone:70deg punch:1um power:3,5um blunted-cone:50nm,70deg; do
+  # A flat punch has one contact radius, its own: --points is refused for it (issue 29, defect 5).
+  points=(--points=10)
+  [ "${shape%%:*}" = punch ] && points=()
   "$cli" contact --shape=$shape --thickness=1um --film=1GPa,0.3 --substrate=10GPa,0.25 --work=50mJ/m2 \
-    --points=10 --spring=1 >"$work/c" 2>"$work/e" || fail "contact --shape=$shape: $(cat "$work/e")"
+    "${points[@]}" --spring=1 >"$work/c" 2>"$work/e" || fail "contact --shape=$shape: $(cat "$work/e")"
   grep -q "^# pull-off force, spring control \[N\]" "$work/c" || fail "contact $shape: no spring line"
   grep -q "^# columns: a_m	delta_m	F_N	delta_H_m	F_H_N$" "$work/c" || fail "contact $shape: columns"
 done
