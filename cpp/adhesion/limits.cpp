@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
@@ -13,7 +14,7 @@ namespace coatcontact {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 std::string show(double v) { return detail::short_text(v); }
 

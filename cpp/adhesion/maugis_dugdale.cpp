@@ -12,6 +12,7 @@
 // a_bar only to ~location_tolerance (the minimum value itself to ~its square plus the noise
 // of the root c(a), ~1e-13); the location is then refined as the root of dP/da_bar (dD/da_bar)
 // differentiated implicitly through c(a) (THEORY.md section 13), to ~1e-10.
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 
 #include <algorithm>
@@ -36,7 +37,7 @@ namespace coatcontact {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 // First bracket step in ln(c/a - 1) from a guess interpolated between neighbouring a_bar.
 constexpr double kNearStep = 0.05;
 constexpr double kMinNearStep = 1e-7;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
@@ -22,7 +23,7 @@ namespace coatcontact::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 constexpr int kTwoD = 4;  // d, f, g_r, g_s
 constexpr int kOneD = 2;  // delta_h, force_h
 constexpr double kOneDRefinement = 8.0;

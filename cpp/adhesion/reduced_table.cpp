@@ -25,6 +25,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/reduced_table.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
@@ -49,7 +50,7 @@ std::vector<double> cheb_nodes(std::size_t order, double a, double b) {
   const double bma = 0.5 * (b - a);
   const double bpa = 0.5 * (b + a);
   for (std::size_t k = 0; k <= order; ++k) {
-    const double y = std::cos(M_PI * (static_cast<double>(k) + 0.5) / static_cast<double>(order + 1));
+    const double y = std::cos(detail::kPi * (static_cast<double>(k) + 0.5) / static_cast<double>(order + 1));
     nodes[k] = y * bma + bpa;
   }
   return nodes;

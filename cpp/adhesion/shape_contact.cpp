@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
@@ -17,7 +18,7 @@ namespace coatcontact {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 void check_si(double value, const std::string& what) {
   if (!(value > 0.0 && std::isfinite(value))) {

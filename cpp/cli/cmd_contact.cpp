@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
@@ -20,7 +21,7 @@ namespace coatcontact::cli {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 constexpr std::size_t kDefaultPoints = 100;
 
 using Header = std::vector<std::pair<std::string, std::string>>;
