@@ -437,19 +437,22 @@ ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time
   if (r.free[fit::kKinSpeed] && r.free[fit::kKinExponent]) {
     h.emplace_back("correlation v_star, n", num(r.correlation[fit::kKinSpeed][fit::kKinExponent]));
   }
-  h.emplace_back("points, curves", std::to_string(r.points) + ", " + std::to_string(curves.size()));
+  h.emplace_back("points fitted (up to each pull-off), rows, curves",
+                 std::to_string(r.points) + ", " + std::to_string(r.model_force.size()) + ", " + std::to_string(curves.size()));
   h.emplace_back("R^2", num(r.r_squared));
   h.emplace_back(r.weighted ? "chi2/dof" : "residual sigma [N]", num(r.weighted ? r.chi2_per_dof : r.residual_sigma));
   h.emplace_back("iterations, simulations", std::to_string(r.iterations) + ", " + std::to_string(r.solver_calls));
   h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
   Output out(output_path);
   std::ostream& os = out.stream();
-  const std::vector<std::string> table_columns = {"curve", "t_s", "F_N", "F_model_N", "residual_N"};
+  // fitted 0: after the curve's pull-off, outside the residual (THEORY.md section 14, fitting).
+  const std::vector<std::string> table_columns = {"curve", "t_s", "F_N", "F_model_N", "residual_N", "fitted"};
   write_header(os, h, table_columns);
   std::size_t i = 0;
   for (std::size_t c = 0; c < curves.size(); ++c) {
     for (std::size_t k = 0; k < curves[c].time.size(); ++k, ++i) {
-      write_row(os, {c + 1.0, curves[c].time[k], curves[c].force[k], r.model_force[i], r.residual[i]}, table_columns);
+      write_row(os, {c + 1.0, curves[c].time[k], curves[c].force[k], r.model_force[i], r.residual[i],
+                     r.clamped[i] ? 0.0 : 1.0}, table_columns);
     }
   }
   out.commit();

@@ -15,6 +15,7 @@
 #include <exception>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,8 @@ struct KineticsContext {
   std::vector<double> scale;  // per point: 1/sigma, or 1/max|F|
   std::exception_ptr error;
   long simulations = 0;
+  long evaluations_done = 0;  // residual evaluations that ran
+  long failed_steps = 0;      // trial steps the simulation could not run (kFailedStepResidual)
 
   std::array<double, kKineticsParameterCount> parameters(const gsl_vector* x) const {
     auto p = start;
@@ -58,8 +61,11 @@ struct KineticsContext {
 // events; 0 after the loss of contact (the sphere hangs free on its spring).
 std::vector<double> force_at(const KineticsResultSI& run, const std::vector<double>& times) {
   std::vector<double> t, f;
+  // States closer than this in time (an event next to a step) count as one: the cubic's slopes
+  // divide by the spacing.
+  const double merge = 1e-12 * std::max(run.t.back() - run.t.front(), 0.0);
   for (std::size_t i = 0; i < run.t.size(); ++i) {
-    if (!t.empty() && !(run.t[i] > t.back())) {
+    if (!t.empty() && !(run.t[i] > t.back() + merge)) {
       f.back() = run.force[i];  // an event at the time of a step: its state is the later one
       continue;
     }
@@ -77,15 +83,36 @@ std::vector<double> force_at(const KineticsResultSI& run, const std::vector<doub
     out.push_back(time > t.back() ? 0.0
                                   : gsl_interp_eval(interp.get(), t.data(), f.data(), std::max(time, t.front()),
                                                     accel.get()));
+    if (!std::isfinite(out.back())) throw NumericalError("kinetics fit: the interpolated model force is not finite");
   }
   return out;
+}
+
+bool same_segment(const KineticsSegmentSI& a, const KineticsSegmentSI& b) {
+  return a.kind == b.kind && a.speed == b.speed && a.duration == b.duration && a.target_force == b.target_force &&
+         a.has_target == b.has_target;
+}
+
+// Whether every curve has the first one's spring and protocol up to the speed of the last
+// retract: then the approach and dwell are simulated once per evaluation (sweep_kinetics).
+bool shared_prefix(const std::vector<KineticsCurve>& curves) {
+  const KineticsCurve& first = curves.front();
+  for (const KineticsCurve& c : curves) {
+    if (c.spring != first.spring || c.protocol.size() != first.protocol.size()) return false;
+    for (std::size_t k = 0; k < c.protocol.size(); ++k) {
+      KineticsSegmentSI segment = c.protocol[k];
+      if (k + 1 == c.protocol.size()) segment.speed = first.protocol[k].speed;
+      if (!same_segment(segment, first.protocol[k])) return false;
+    }
+  }
+  return true;
 }
 
 // The model force at every point of every curve (in order) for parameters p.
 std::vector<double> model_forces(KineticsContext& ctx, const std::array<double, kKineticsParameterCount>& p) {
   const KineticsFitProblem& problem = *ctx.problem;
-  std::vector<double> out;
-  for (const KineticsCurve& curve : *ctx.curves) {
+  const std::vector<KineticsCurve>& curves = *ctx.curves;
+  const auto setup_of = [&](const KineticsCurve& curve) {
     KineticsSetupSI setup;
     setup.radius = problem.radius;
     setup.work = p[kKinWork];
@@ -96,9 +123,22 @@ std::vector<double> model_forces(KineticsContext& ctx, const std::array<double, 
     setup.n_adv = problem.n_adv;
     setup.spring = curve.spring;
     setup.protocol = curve.protocol;
-    const std::vector<KineticsResultSI> runs = simulate_kinetics_si(*ctx.model, setup, {}, true, problem.options);
-    ++ctx.simulations;
-    const std::vector<double> f = force_at(runs.front(), curve.time);
+    return setup;
+  };
+  std::vector<KineticsResultSI> runs;
+  if (curves.size() > 1 && shared_prefix(curves)) {
+    std::vector<double> speeds;
+    for (const KineticsCurve& c : curves) speeds.push_back(c.protocol.back().speed);
+    runs = simulate_kinetics_si(*ctx.model, setup_of(curves.front()), speeds, true, problem.options);
+  } else {
+    for (const KineticsCurve& curve : curves) {
+      runs.push_back(simulate_kinetics_si(*ctx.model, setup_of(curve), {}, true, problem.options).front());
+    }
+  }
+  ctx.simulations += static_cast<long>(curves.size());
+  std::vector<double> out;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const std::vector<double> f = force_at(runs[c], curves[c].time);
     out.insert(out.end(), f.begin(), f.end());
   }
   return out;
@@ -126,6 +166,11 @@ std::vector<double> measured_forces(const std::vector<KineticsCurve>& curves) {
   return out;
 }
 
+// Scaled residual of every point where a trial step leaves the parameters at which the
+// simulation can run (e.g. an event it cannot bracket far from the data): a cost far above any
+// reachable one, so the trust region rejects the step and shrinks instead of stopping.
+constexpr double kFailedStepResidual = 1e6;
+
 int residual_callback(const gsl_vector* x, void* params, gsl_vector* f) {
   auto* ctx = static_cast<KineticsContext*>(params);
   try {
@@ -137,6 +182,15 @@ int residual_callback(const gsl_vector* x, void* params, gsl_vector* f) {
         ++i;
       }
     }
+    ++ctx->evaluations_done;
+    return GSL_SUCCESS;
+  } catch (const std::runtime_error&) {  // InputError, NumericalError of the simulation
+    if (ctx->evaluations_done == 0) {  // the start itself: nothing to fall back on
+      ctx->error = std::current_exception();
+      return GSL_EBADFUNC;
+    }
+    gsl_vector_set_all(f, kFailedStepResidual);
+    ++ctx->failed_steps;
     return GSL_SUCCESS;
   } catch (...) {
     ctx->error = std::current_exception();
@@ -327,6 +381,18 @@ Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>
   std::vector<double> inv_sigma;
   if (weighted) inv_sigma = ctx.scale;
   internal::fill_statistics(data, result.model_force, derivatives(ctx, estimate), ctx.free_index, inv_sigma, result);
+  // Per point of the measured curves, the run-offs included (marked: not in the residual).
+  ctx.curves = &measured_curves;
+  result.model_force = model_forces(ctx, estimate);
+  result.residual.clear();
+  result.clamped.clear();
+  std::size_t i = 0;
+  for (std::size_t c = 0; c < measured_curves.size(); ++c) {
+    for (std::size_t k = 0; k < measured_curves[c].force.size(); ++k, ++i) {
+      result.residual.push_back(result.model_force[i] - measured_curves[c].force[k]);
+      result.clamped.push_back(k >= curves[c].force.size());
+    }
+  }
   result.solver_calls = ctx.simulations;  // kinetics simulations (one per curve and evaluation)
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;

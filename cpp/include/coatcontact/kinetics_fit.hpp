@@ -43,8 +43,11 @@ struct KineticsFitProblem {
   int max_iterations = 100;
 };
 
-// Fitted values, standard errors, correlations, residuals, R^2 (Result's fields; parameters are
-// the four of KineticsParameter, model_force the model at every point of the curves in order).
+// Fitted values, standard errors, correlations, R^2, chi2 (Result's fields; parameters are the
+// four of KineticsParameter). The residual is each curve's points up to its measured pull-off
+// (its most tensile force); model_force and residual are given for every point of the curves in
+// order, and `clamped` marks the points after a pull-off, which are not in the residual;
+// `points` counts the fitted ones, solver_calls the kinetics simulations.
 // InputError: a bad curve or protocol (named by its index), fewer points than free parameters,
 // v_star and n both free with one retract speed only (one speed determines only the rate
 // factor (v/v*)^n of that speed, section 14, fitting). NumericalError: no convergence, or parameters
