@@ -35,6 +35,28 @@ py::dict event(const coatcontact::KineticsEventSI& e) {
   return d;
 }
 
+// Runs `body` without the GIL; its InputError becomes ValueError, its NumericalError the
+// module's NumericalError (raised with the GIL held again).
+template <class Body>
+void without_gil(const py::object& numerical_error, Body&& body) {
+  std::string input_message, numerical_message;
+  {
+    py::gil_scoped_release release;
+    try {
+      body();
+    } catch (const coatcontact::InputError& e) {
+      input_message = e.what();
+    } catch (const coatcontact::NumericalError& e) {
+      numerical_message = e.what();
+    }
+  }
+  if (!input_message.empty()) throw py::value_error(input_message);
+  if (!numerical_message.empty()) {
+    PyErr_SetString(numerical_error.ptr(), numerical_message.c_str());
+    throw py::error_already_set();
+  }
+}
+
 std::vector<coatcontact::KineticsSegmentSI> segments_of(const std::vector<Segment>& protocol) {
   using coatcontact::DriveSegment;
   std::vector<coatcontact::KineticsSegmentSI> out;
@@ -91,22 +113,8 @@ py::dict kinetics_fit(py::object numerical_error, double film_e, double film_nu,
     data.push_back(std::move(c));
   }
   fit::Result r;
-  std::string input_message, numerical_message;
-  {
-    py::gil_scoped_release release;
-    try {
-      r = fit::fit_kinetics(film_stack(film_e, film_nu, rigid, sub_e, sub_nu), data, problem);
-    } catch (const InputError& e) {
-      input_message = e.what();
-    } catch (const NumericalError& e) {
-      numerical_message = e.what();
-    }
-  }
-  if (!input_message.empty()) throw py::value_error(input_message);
-  if (!numerical_message.empty()) {
-    PyErr_SetString(numerical_error.ptr(), numerical_message.c_str());
-    throw py::error_already_set();
-  }
+  without_gil(numerical_error,
+              [&] { r = fit::fit_kinetics(film_stack(film_e, film_nu, rigid, sub_e, sub_nu), data, problem); });
   py::dict out;
   std::vector<std::string> names;
   for (const auto& info : r.parameters) names.push_back(info.name);
@@ -144,44 +152,15 @@ py::dict kinetics(py::object numerical_error, double film_e, double film_nu, boo
   setup.v_star_adv = v_star_adv;
   setup.n_adv = n_adv;
   setup.spring = spring;
-  for (const auto& [kind, speed, duration, force, has] : protocol) {
-    KineticsSegmentSI s;
-    if (kind == "approach") s.kind = DriveSegment::Kind::kApproach;
-    else if (kind == "dwell") s.kind = DriveSegment::Kind::kDwell;
-    else if (kind == "retract") s.kind = DriveSegment::Kind::kRetract;
-    else throw py::value_error("protocol: unknown segment '" + kind + "' (approach, dwell or retract)");
-    s.speed = speed;
-    s.duration = duration;
-    s.target_force = force;
-    s.has_target = has;
-    setup.protocol.push_back(s);
-  }
+  setup.protocol = segments_of(protocol);
   std::vector<KineticsResultSI> runs;
   KineticsScales scales;
-  std::string input_message, numerical_message;
-  {
-    py::gil_scoped_release release;
-    try {
-      Material film{film_e, film_nu};
-      Substrate substrate;
-      substrate.rigid = rigid;
-      substrate.material = Material{sub_e, sub_nu};
-      const Stack stack = Stack::film_on(film, substrate);
-      const ReducedSolver solver(stack);
-      const AdhesiveModel model(solver, tol);
-      scales = kinetics_scales(model, setup);
-      runs = simulate_kinetics_si(model, setup, retract_speeds, retract_speeds.empty());
-    } catch (const InputError& e) {
-      input_message = e.what();
-    } catch (const NumericalError& e) {
-      numerical_message = e.what();
-    }
-  }
-  if (!input_message.empty()) throw py::value_error(input_message);
-  if (!numerical_message.empty()) {
-    PyErr_SetString(numerical_error.ptr(), numerical_message.c_str());
-    throw py::error_already_set();
-  }
+  without_gil(numerical_error, [&] {
+    const ReducedSolver solver(film_stack(film_e, film_nu, rigid, sub_e, sub_nu));
+    const AdhesiveModel model(solver, tol);
+    scales = kinetics_scales(model, setup);
+    runs = simulate_kinetics_si(model, setup, retract_speeds, retract_speeds.empty());
+  });
   py::dict out;
   py::dict sc;
   sc["l"] = scales.length;
