@@ -10,7 +10,9 @@
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/crack_kinetics.hpp"
+#include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/kinetics_fit.hpp"
 #include "coatcontact/reduced.hpp"
 #include "commands.hpp"
 
@@ -178,6 +180,11 @@ const std::vector<OptionSpec> kSpec = {
                                "approach:1um/s:1mN,dwell:1s,retract:10um/s)", true},
     {"--retract-speeds", "LIST", "sweep the last retract's speed: v1,v2,... (units allowed) or MIN:MAX:N in "
                                  "m/s (log-spaced); prints one pull-off row per speed", false},
+    {"--fit", "FILE", "fit the law to measured curves instead of simulating: FILE has columns curve t F [sigma_F] "
+                      "(curve 1..N, t in s since first contact, F in N; units by a '# units:' line); each curve "
+                      "runs --protocol with its retract at its entry of --retract-speeds; --work, --v-star, --n "
+                      "are start values (THEORY.md section 14, fitting)", false},
+    {"--free", "LIST", "with --fit: the fitted parameters among w, v_star, n, t (default w,v_star,n)", false},
     {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
 };
@@ -297,6 +304,161 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
   return kExitSuccess;
 }
 
+// The SI run's stack and setup (--radius .. --protocol), in the order the options are checked.
+struct SiSetup {
+  Stack stack;
+  KineticsSetupSI setup;
+};
+
+SiSetup parse_si_setup(const Arguments& args) {
+  KineticsSetupSI setup;
+  setup.radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
+  const double film_thickness =
+      args.has("--layer") ? 0.0 : parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
+  Stack stack = parse_stack(args);
+  setup.thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
+  setup.work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
+  setup.v_star = positive_speed(args.require("--v-star"), false, "--v-star");
+  auto exponent = [&](const std::string& option) { return parse_exponent(args, option); };
+  setup.n = exponent("--n");
+  if (args.has("--v-star-adv")) setup.v_star_adv = positive_speed(*args.get("--v-star-adv"), false, "--v-star-adv");
+  if (args.has("--n-adv")) setup.n_adv = exponent("--n-adv");
+  setup.spring = parse_spring(args.require("--spring"));
+  setup.protocol = parse_protocol(args.require("--protocol"), setup.spring == 0.0);
+  return {std::move(stack), std::move(setup)};
+}
+
+// --fit FILE: the curves (columns curve t F [sigma_F]; curve numbers 1..N in any row order),
+// each driven by --protocol with its retract at the curve's entry of --retract-speeds.
+std::vector<fit::KineticsCurve> read_fit_curves(const Arguments& args, const KineticsSetupSI& setup) {
+  const std::string path = args.require("--fit");
+  DataTable table;
+  try {
+    table = read_data_file(path, 0);
+  } catch (const InputError& e) {
+    throw InputError("--fit: " + std::string(e.what()));
+  }
+  const std::size_t columns = table.columns.size();
+  if (columns != 3 && columns != 4) {
+    throw InputError("--fit: " + short_name(path) + " has " + std::to_string(columns) +
+                     " columns; expected curve t F [sigma_F] (curve number, time in s since first contact, force in N, "
+                     "its uncertainty)");
+  }
+  std::vector<fit::KineticsCurve> curves;
+  for (std::size_t row = 0; row < table.rows(); ++row) {
+    const double index = table.columns[0][row];
+    const std::string where = "--fit: " + short_name(path) + ":" + std::to_string(table.line_numbers[row]) + ": ";
+    if (!(index >= 1.0 && index <= 1000.0 && index == std::floor(index))) {
+      throw InputError(where + "curve number " + num(index) + " not allowed (need an integer 1..1000)");
+    }
+    const auto c = static_cast<std::size_t>(index);
+    if (c > curves.size()) curves.resize(c);
+    curves[c - 1].time.push_back(table.columns[1][row]);
+    curves[c - 1].force.push_back(table.columns[2][row]);
+    if (columns == 4) curves[c - 1].sigma_force.push_back(table.columns[3][row]);
+  }
+  std::vector<double> speeds;
+  const bool load_control = setup.spring == 0.0;
+  if (const auto text = args.get("--retract-speeds")) {
+    for (const std::string& item : split_on(*text, ',')) speeds.push_back(positive_speed(item, load_control, "--retract-speeds"));
+    if (speeds.size() != curves.size()) {
+      throw InputError("--retract-speeds: " + std::to_string(speeds.size()) + " speeds for the " +
+                       std::to_string(curves.size()) + " curves of --fit (one per curve, in curve order)");
+    }
+  }
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    if (curves[c].time.empty()) {
+      throw InputError("--fit: " + short_name(path) + " has no rows of curve " + std::to_string(c + 1) +
+                       " (curves are numbered 1..N)");
+    }
+    curves[c].protocol = setup.protocol;
+    curves[c].spring = setup.spring;
+    if (!speeds.empty()) curves[c].protocol.back().speed = speeds[c];
+  }
+  return curves;
+}
+
+ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time_point started) {
+  const SiSetup parsed = parse_si_setup(args);
+  const KineticsSetupSI& setup = parsed.setup;
+  if (setup.protocol.back().kind != DriveSegment::Kind::kRetract || setup.protocol.back().has_target) {
+    throw InputError("--protocol: with --fit the last segment is the retract until contact is lost (retract:SPEED)");
+  }
+  fit::KineticsFitProblem problem;
+  problem.radius = setup.radius;
+  problem.thickness = setup.thickness;
+  problem.work = setup.work;
+  problem.v_star = setup.v_star;
+  problem.n = setup.n;
+  problem.v_star_adv = setup.v_star_adv;
+  problem.n_adv = setup.n_adv;
+  problem.solver_tolerance = solver_tolerance(args);
+  if (const auto text = args.get("--free")) {
+    problem.free = {{false, false, false, false}};
+    for (const std::string& raw : split_on(*text, ',')) {
+      const std::string name = trim(raw);
+      int which = -1;
+      for (int j = 0; j < fit::kKineticsParameterCount; ++j) {
+        if (name == fit::kinetics_parameter_name(j)) which = j;
+      }
+      if (which < 0) throw InputError("--free: '" + name + "' not allowed (names among w, v_star, n, t)");
+      problem.free[static_cast<std::size_t>(which)] = true;
+    }
+  }
+  const std::vector<fit::KineticsCurve> curves = read_fit_curves(args, setup);
+  const std::string output_path = args.get("--output").value_or("");
+  check_output_path(output_path, "--output");
+  fit::Result r;
+  try {
+    r = fit::fit_kinetics(parsed.stack, curves, problem);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    throw InputError((message.find("v_star and n") != std::string::npos ? "--retract-speeds, --free: " : "--fit: ") +
+                     message);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  Header h{{"command", "kinetics --fit"}};
+  h.emplace_back("sphere radius R [m]", num(setup.radius));
+  add_material_header(h, parsed.stack);
+  h.emplace_back("model", "crack kinetics, receding G - w = w (|v|/v*)^n (THEORY.md section 14, fitting); "
+                          "residual F at the measured times");
+  h.emplace_back("protocol", args.require("--protocol"));
+  std::string speeds;
+  for (const auto& c : curves) speeds += (speeds.empty() ? "" : ", ") + num(c.protocol.back().speed);
+  h.emplace_back("retract speed of each curve", speeds);
+  h.emplace_back("drive", setup.spring == 0.0 ? std::string("load control (force ramp)")
+                          : std::isinf(setup.spring) ? std::string("displacement control")
+                                                     : "spring k = " + num(setup.spring) + " N/m");
+  for (std::size_t j = 0; j < r.parameters.size(); ++j) {
+    const auto& info = r.parameters[j];
+    const std::string unit = std::string(info.unit).empty() ? "" : " [" + std::string(info.unit) + "]";
+    h.emplace_back(info.name + unit, num(r.value[j]) + (r.free[j] ? " +- " + num(r.standard_error[j]) : " (fixed)"));
+  }
+  if (r.free[fit::kKinSpeed] && r.free[fit::kKinExponent]) {
+    h.emplace_back("correlation v_star, n", num(r.correlation[fit::kKinSpeed][fit::kKinExponent]));
+  }
+  h.emplace_back("points fitted (up to each pull-off), rows, curves",
+                 std::to_string(r.points) + ", " + std::to_string(r.model_force.size()) + ", " + std::to_string(curves.size()));
+  h.emplace_back("R^2", num(r.r_squared));
+  h.emplace_back(r.weighted ? "chi2/dof" : "residual sigma [N]", num(r.weighted ? r.chi2_per_dof : r.residual_sigma));
+  h.emplace_back("iterations, simulations", std::to_string(r.iterations) + ", " + std::to_string(r.solver_calls));
+  h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+  Output out(output_path);
+  std::ostream& os = out.stream();
+  // fitted 0: after the curve's pull-off, outside the residual (THEORY.md section 14, fitting).
+  const std::vector<std::string> table_columns = {"curve", "t_s", "F_N", "F_model_N", "residual_N", "fitted"};
+  write_header(os, h, table_columns);
+  std::size_t i = 0;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    for (std::size_t k = 0; k < curves[c].time.size(); ++k, ++i) {
+      write_row(os, {c + 1.0, curves[c].time[k], curves[c].force[k], r.model_force[i], r.residual[i],
+                     r.clamped[i] ? 0.0 : 1.0}, table_columns);
+    }
+  }
+  out.commit();
+  return kExitSuccess;
+}
+
 }  // namespace
 
 int run_kinetics(const Args& raw) {
@@ -306,6 +468,8 @@ int run_kinetics(const Args& raw) {
       std::cout << usage("kinetics",
                          "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w "
                          "--v-star V --n N --spring k --protocol SEGMENTS [--retract-speeds LIST]\n"
+                         "       coatcontact kinetics --fit FILE [--free w,v_star,n] (and the options above; "
+                         "--retract-speeds: one per curve)\n"
                          "       coatcontact kinetics --eta ETA --film E1,nu1 --substrate E0,nu0|rigid --n N "
                          "--k-bar K --protocol SEGMENTS [--retract-speeds LIST]",
                          "Rate-dependent JKR adhesion of a sphere on a coating (THEORY.md section 14): the\n"
@@ -325,21 +489,12 @@ int run_kinetics(const Args& raw) {
       }
     }
     if (args.has("--k-bar")) throw InputError("--k-bar: only with --eta (use --spring in N/m)");
-    KineticsSetupSI setup;
-    setup.radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
-    const double film_thickness =
-        args.has("--layer") ? 0.0 : parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
-    const Stack stack = parse_stack(args);
-    setup.thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
-    setup.work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
-    setup.v_star = positive_speed(args.require("--v-star"), false, "--v-star");
-    auto exponent = [&](const std::string& option) { return parse_exponent(args, option); };
-    setup.n = exponent("--n");
-    if (args.has("--v-star-adv")) setup.v_star_adv = positive_speed(*args.get("--v-star-adv"), false, "--v-star-adv");
-    if (args.has("--n-adv")) setup.n_adv = exponent("--n-adv");
-    setup.spring = parse_spring(args.require("--spring"));
+    if (args.has("--fit")) return run_kinetics_fit(args, started);
+    if (args.has("--free")) throw InputError("--free: only with --fit");
+    const SiSetup parsed = parse_si_setup(args);
+    const Stack& stack = parsed.stack;
+    const KineticsSetupSI& setup = parsed.setup;
     const bool load_control = setup.spring == 0.0;
-    setup.protocol = parse_protocol(args.require("--protocol"), load_control);
     std::vector<double> speeds;
     if (const auto text = args.get("--retract-speeds")) {
       if (text->find(':') != std::string::npos) {

@@ -25,6 +25,7 @@ Functions
                     blunted cone, measured profile (section 11)
     kinetics        rate-dependent adhesion: crack kinetics at the contact edge, driven
                     through a spring, from first contact to the loss of contact (section 14)
+    kinetics_fit    w, v*, n from force-time curves at several retract speeds (section 14)
 
 Classes
     Stack           film (layers), substrate or "rigid", indenter (sections 1, 9, 12)
@@ -58,9 +59,10 @@ from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError", "ValidityWarning",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
            "stack_parameter_names", "pulloff_spring",
-           "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "REDUCED_KEYS"]
+           "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "kinetics_fit",
+           "REDUCED_KEYS"]
 
-from .kinetics import kinetics  # noqa: E402  (section 14)
+from .kinetics import kinetics, kinetics_fit  # noqa: E402  (section 14)
 
 NumericalError.__doc__ = ("A result could not be delivered to its tolerance (the command "
                           "line's exit status 3); a RuntimeError.")

@@ -21,6 +21,16 @@ def _segment(item):
                      "('dwell', time) or ('retract', speed[, force])" % (item,))
 
 
+def _materials(film, substrate):
+    e1, nu1 = (float(v) for v in film)
+    if isinstance(substrate, str):
+        if substrate != "rigid":
+            raise ValueError("substrate: expected (E0, nu0) or 'rigid', got %r" % substrate)
+        return e1, nu1, True, 1.0, 0.0
+    e0, nu0 = (float(v) for v in substrate)
+    return e1, nu1, False, e0, nu0
+
+
 def kinetics(*, film, substrate, radius, thickness, work, v_star, n, spring, protocol,
              v_star_adv=None, n_adv=None, retract_speeds=None, tol=1e-8):
     """Rate-dependent JKR adhesion of a sphere on a coating (section 14).
@@ -44,14 +54,7 @@ def kinetics(*, film, substrate, radius, thickness, work, v_star, n, spring, pro
     F_scale, t_scale = l/v_star, eta, k_bar, drive_rate). With retract_speeds: scales and
     sweep (arrays V, F, t, a, F_loss, t_loss and the reduced pull-off P).
     """
-    e1, nu1 = (float(v) for v in film)
-    if isinstance(substrate, str):
-        if substrate != "rigid":
-            raise ValueError("substrate: expected (E0, nu0) or 'rigid', got %r" % substrate)
-        rigid, e0, nu0 = True, 1.0, 0.0
-    else:
-        rigid = False
-        e0, nu0 = (float(v) for v in substrate)
+    e1, nu1, rigid, e0, nu0 = _materials(film, substrate)
     segments = [_segment(item) for item in protocol]
     speeds = [] if retract_speeds is None else [float(v) for v in np.atleast_1d(retract_speeds)]
     return _core.kinetics(e1, nu1, rigid, e0, nu0, float(radius), float(thickness), float(work),
@@ -60,4 +63,47 @@ def kinetics(*, film, substrate, radius, thickness, work, v_star, n, spring, pro
                           float(tol))
 
 
-__all__ = ["kinetics"]
+_FIT_NAMES = ("w", "v_star", "n", "t")
+
+
+def kinetics_fit(*, film, substrate, radius, thickness, work, v_star, n, curves,
+                 free=("w", "v_star", "n"), v_star_adv=None, n_adv=None, tol=1e-8):
+    """Fit the crack-kinetics law to force-time curves at several retract speeds (section 14,
+    "Fitting the law to curves at several speeds"); the CLI's `coatcontact kinetics --fit`.
+
+    film, substrate, radius, thickness, v_star_adv, n_adv, tol: as kinetics().
+    work, v_star, n
+                start values of the free parameters, values of the fixed ones.
+    curves      list of dicts, one per measured curve: "protocol" (as kinetics(), from first
+                contact, ending with the retract), "spring" k [N/m], "t" [s since first
+                contact], "F" [N], optional "sigma_F" [N] (all curves or none).
+    free        names among "w", "v_star", "n", "t". v_star and n together need curves at two
+                retract speeds at least (ValueError otherwise).
+
+    Returns a dict: names, values, errors, free (per parameter, in the order w, v_star, n, t),
+    correlation, F_model and residual (all points of all curves in order), r_squared,
+    chi2_per_dof (None without sigma_F), residual_sigma, iterations, simulations, seconds.
+    """
+    e1, nu1, rigid, e0, nu0 = _materials(film, substrate)
+    unknown = [name for name in free if name not in _FIT_NAMES]
+    if unknown:
+        raise ValueError("free: unknown parameter %r (allowed: w, v_star, n, t)" % unknown[0])
+    packed = []
+    for index, curve in enumerate(curves):
+        missing = [key for key in ("protocol", "spring", "t", "F") if key not in curve]
+        if missing:
+            raise ValueError("curves[%d]: missing %r (need protocol, spring, t, F)" % (index, missing[0]))
+        sigma = curve.get("sigma_F")
+        packed.append(([_segment(item) for item in curve["protocol"]], float(curve["spring"]),
+                       [float(v) for v in np.atleast_1d(curve["t"])],
+                       [float(v) for v in np.atleast_1d(curve["F"])],
+                       [] if sigma is None else [float(v) for v in np.atleast_1d(sigma)]))
+    result = _core.kinetics_fit(e1, nu1, rigid, e0, nu0, float(radius), float(thickness), float(work),
+                                float(v_star), float(n), 0.0 if v_star_adv is None else float(v_star_adv),
+                                0.0 if n_adv is None else float(n_adv), packed,
+                                [name in free for name in _FIT_NAMES], float(tol))
+    result["values"] = np.asarray(result["values"])
+    return result
+
+
+__all__ = ["kinetics", "kinetics_fit"]

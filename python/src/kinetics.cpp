@@ -12,6 +12,7 @@
 
 #include "coatcontact/crack_kinetics.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/kinetics_fit.hpp"
 #include "coatcontact/reduced.hpp"
 
 namespace py = pybind11;
@@ -34,6 +35,109 @@ py::dict event(const coatcontact::KineticsEventSI& e) {
   return d;
 }
 
+// Runs `body` without the GIL; its InputError becomes ValueError, its NumericalError the
+// module's NumericalError (raised with the GIL held again).
+template <class Body>
+void without_gil(const py::object& numerical_error, Body&& body) {
+  std::string input_message, numerical_message;
+  {
+    py::gil_scoped_release release;
+    try {
+      body();
+    } catch (const coatcontact::InputError& e) {
+      input_message = e.what();
+    } catch (const coatcontact::NumericalError& e) {
+      numerical_message = e.what();
+    }
+  }
+  if (!input_message.empty()) throw py::value_error(input_message);
+  if (!numerical_message.empty()) {
+    PyErr_SetString(numerical_error.ptr(), numerical_message.c_str());
+    throw py::error_already_set();
+  }
+}
+
+std::vector<coatcontact::KineticsSegmentSI> segments_of(const std::vector<Segment>& protocol) {
+  using coatcontact::DriveSegment;
+  std::vector<coatcontact::KineticsSegmentSI> out;
+  for (const auto& [kind, speed, duration, force, has] : protocol) {
+    coatcontact::KineticsSegmentSI s;
+    if (kind == "approach") s.kind = DriveSegment::Kind::kApproach;
+    else if (kind == "dwell") s.kind = DriveSegment::Kind::kDwell;
+    else if (kind == "retract") s.kind = DriveSegment::Kind::kRetract;
+    else throw py::value_error("protocol: unknown segment '" + kind + "' (approach, dwell or retract)");
+    s.speed = speed;
+    s.duration = duration;
+    s.target_force = force;
+    s.has_target = has;
+    out.push_back(s);
+  }
+  return out;
+}
+
+coatcontact::Stack film_stack(double film_e, double film_nu, bool rigid, double sub_e, double sub_nu) {
+  coatcontact::Material film{film_e, film_nu};
+  coatcontact::Substrate substrate;
+  substrate.rigid = rigid;
+  substrate.material = coatcontact::Material{sub_e, sub_nu};
+  return coatcontact::Stack::film_on(film, substrate);
+}
+
+// One measured curve: protocol, spring k, t, F, sigma_F (empty: unweighted).
+using Curve = std::tuple<std::vector<Segment>, double, std::vector<double>, std::vector<double>, std::vector<double>>;
+
+py::dict kinetics_fit(py::object numerical_error, double film_e, double film_nu, bool rigid, double sub_e,
+                      double sub_nu, double radius, double thickness, double work, double v_star, double n,
+                      double v_star_adv, double n_adv, const std::vector<Curve>& curves,
+                      const std::vector<bool>& free, double tol) {
+  using namespace coatcontact;
+  if (free.size() != static_cast<std::size_t>(fit::kKineticsParameterCount)) throw py::value_error("free: four flags");
+  fit::KineticsFitProblem problem;
+  problem.radius = radius;
+  problem.thickness = thickness;
+  problem.work = work;
+  problem.v_star = v_star;
+  problem.n = n;
+  problem.v_star_adv = v_star_adv;
+  problem.n_adv = n_adv;
+  problem.solver_tolerance = tol;
+  for (int j = 0; j < fit::kKineticsParameterCount; ++j) problem.free[static_cast<std::size_t>(j)] = free[j];
+  std::vector<fit::KineticsCurve> data;
+  for (const auto& [protocol, spring, t, f, sigma] : curves) {
+    fit::KineticsCurve c;
+    c.protocol = segments_of(protocol);
+    c.spring = spring;
+    c.time = t;
+    c.force = f;
+    c.sigma_force = sigma;
+    data.push_back(std::move(c));
+  }
+  fit::Result r;
+  without_gil(numerical_error,
+              [&] { r = fit::fit_kinetics(film_stack(film_e, film_nu, rigid, sub_e, sub_nu), data, problem); });
+  py::dict out;
+  std::vector<std::string> names;
+  for (const auto& info : r.parameters) names.push_back(info.name);
+  out["names"] = names;
+  out["values"] = array_of(r.value);
+  out["errors"] = array_of(r.standard_error);
+  out["free"] = r.free;
+  out["correlation"] = r.correlation;
+  out["F_model"] = array_of(r.model_force);
+  out["residual"] = array_of(r.residual);
+  out["r_squared"] = r.r_squared;
+  if (r.weighted) {
+    out["chi2_per_dof"] = r.chi2_per_dof;
+  } else {
+    out["chi2_per_dof"] = py::none();
+  }
+  out["residual_sigma"] = r.residual_sigma;
+  out["iterations"] = r.iterations;
+  out["simulations"] = r.solver_calls;
+  out["seconds"] = r.seconds;
+  return out;
+}
+
 py::dict kinetics(py::object numerical_error, double film_e, double film_nu, bool rigid, double sub_e, double sub_nu,
                   double radius, double thickness, double work, double v_star, double n, double v_star_adv,
                   double n_adv, double spring, const std::vector<Segment>& protocol,
@@ -48,44 +152,15 @@ py::dict kinetics(py::object numerical_error, double film_e, double film_nu, boo
   setup.v_star_adv = v_star_adv;
   setup.n_adv = n_adv;
   setup.spring = spring;
-  for (const auto& [kind, speed, duration, force, has] : protocol) {
-    KineticsSegmentSI s;
-    if (kind == "approach") s.kind = DriveSegment::Kind::kApproach;
-    else if (kind == "dwell") s.kind = DriveSegment::Kind::kDwell;
-    else if (kind == "retract") s.kind = DriveSegment::Kind::kRetract;
-    else throw py::value_error("protocol: unknown segment '" + kind + "' (approach, dwell or retract)");
-    s.speed = speed;
-    s.duration = duration;
-    s.target_force = force;
-    s.has_target = has;
-    setup.protocol.push_back(s);
-  }
+  setup.protocol = segments_of(protocol);
   std::vector<KineticsResultSI> runs;
   KineticsScales scales;
-  std::string input_message, numerical_message;
-  {
-    py::gil_scoped_release release;
-    try {
-      Material film{film_e, film_nu};
-      Substrate substrate;
-      substrate.rigid = rigid;
-      substrate.material = Material{sub_e, sub_nu};
-      const Stack stack = Stack::film_on(film, substrate);
-      const ReducedSolver solver(stack);
-      const AdhesiveModel model(solver, tol);
-      scales = kinetics_scales(model, setup);
-      runs = simulate_kinetics_si(model, setup, retract_speeds, retract_speeds.empty());
-    } catch (const InputError& e) {
-      input_message = e.what();
-    } catch (const NumericalError& e) {
-      numerical_message = e.what();
-    }
-  }
-  if (!input_message.empty()) throw py::value_error(input_message);
-  if (!numerical_message.empty()) {
-    PyErr_SetString(numerical_error.ptr(), numerical_message.c_str());
-    throw py::error_already_set();
-  }
+  without_gil(numerical_error, [&] {
+    const ReducedSolver solver(film_stack(film_e, film_nu, rigid, sub_e, sub_nu));
+    const AdhesiveModel model(solver, tol);
+    scales = kinetics_scales(model, setup);
+    runs = simulate_kinetics_si(model, setup, retract_speeds, retract_speeds.empty());
+  });
   py::dict out;
   py::dict sc;
   sc["l"] = scales.length;
@@ -136,6 +211,12 @@ py::dict kinetics(py::object numerical_error, double film_e, double film_nu, boo
 }  // namespace
 
 void register_kinetics(py::module_& m) {
+  m.def("kinetics_fit", [m](double film_e, double film_nu, bool rigid, double sub_e, double sub_nu, double radius,
+                            double thickness, double work, double v_star, double n, double v_star_adv, double n_adv,
+                            const std::vector<Curve>& curves, const std::vector<bool>& free, double tol) {
+    return kinetics_fit(m.attr("NumericalError"), film_e, film_nu, rigid, sub_e, sub_nu, radius, thickness, work,
+                        v_star, n, v_star_adv, n_adv, curves, free, tol);
+  });
   m.def("kinetics", [m](double film_e, double film_nu, bool rigid, double sub_e, double sub_nu, double radius,
                         double thickness, double work, double v_star, double n, double v_star_adv, double n_adv,
                         double spring, const std::vector<Segment>& protocol,

@@ -81,7 +81,8 @@ enum Parameter : int { kWork = 0, kThickness = 1, kFilmModulus = 2 };
 constexpr int kParameterCount = 3;  // one film
 const char* parameter_name(int parameter);  // one film: "w", "t", "E1"
 
-enum class ParameterKind { kWork, kThickness, kModulus, kSpring, kLambda };
+// kSpeed, kExponent: the crack-kinetics law's v* and n (kinetics_fit.hpp).
+enum class ParameterKind { kWork, kThickness, kModulus, kSpring, kLambda, kSpeed, kExponent };
 struct ParameterInfo {
   ParameterKind kind = ParameterKind::kWork;
   std::size_t layer = 0;  // 0-based, top first (thickness and modulus)
