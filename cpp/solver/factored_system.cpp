@@ -146,7 +146,6 @@ class RowBuilder {
     if (h_.size() < used_) h_.resize(used_);
     if (scratch_.size() < 3 * used_) scratch_.resize(3 * used_);
     kernel_.evaluate(used_, u_.data(), h_.data());
-    points_ += used_;
 
     std::fill(row, row + layout_.x.size(), 0.0);
     for (const Task& task : tasks_) {
@@ -239,7 +238,6 @@ class RowBuilder {
   }
 
   // Kernel evaluations so far (cost statistics).
-  std::size_t points() const { return points_; }
 
  private:
   struct Task {
@@ -303,7 +301,6 @@ class RowBuilder {
   double rho_needed_; // smallest ρ for which the panel's p-point Gauss rule is accurate
   std::vector<Task> tasks_;
   std::size_t used_ = 0;
-  std::size_t points_ = 0;
   std::vector<double> u_, h_, t_, weight_, moments_, scratch_;
   std::vector<double> recurrence_a_, recurrence_b_;
 };
@@ -378,7 +375,6 @@ FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discr
     edge_kernel_.resize(n);
     for (std::size_t i = 0; i < n; ++i) edge_kernel_[i] = h[i] + h[n + i];
   }
-  kernel_evaluations_ = builder.points() + n * (n + 1) + 2 * n;
 
   std::vector<lapack_int> pivots(n);
   // LAPACKE's NaN scans of the matrix (before dgetrf and dgecon) are done here once, as the

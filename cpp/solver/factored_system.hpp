@@ -52,7 +52,6 @@ class FactoredSystem {
   double inverse_norm() const { return 1.0 / (rcond_ * norm_inf_); }
   double reciprocal_condition() const { return rcond_; }
   int panels() const { return static_cast<int>(layout_.panels.size()); }
-  std::size_t kernel_evaluations() const { return kernel_evaluations_; }
 
  private:
   double a_;
@@ -65,7 +64,6 @@ class FactoredSystem {
   std::vector<double> edge_kernel_;
   double norm_inf_ = 0.0;
   double rcond_ = 0.0;
-  std::size_t kernel_evaluations_ = 0;
 };
 
 }  // namespace coatcontact::detail

@@ -29,26 +29,8 @@ struct ReducedSolver::Impl {
     return *level_table[k];
   }
 
-  // The same H on independent grids (variants 1 and 2), for the a-posteriori kernel-error
-  // estimate (docs/solver.md); built on first need (~20-50 ms each), only when the coherent
-  // bound is too large for the tolerance (rigid substrates, very soft films, large a/t).
-  std::once_flag independent_once;
-  std::array<std::unique_ptr<detail::TableKernel>, detail::kIndependentTables> independent;
-
-  const detail::KernelSource* independent_kernel(int index) {
-    std::call_once(independent_once, [this] {
-      try {
-        for (int k = 0; k < detail::kIndependentTables; ++k) {
-          independent[static_cast<std::size_t>(k)] =
-              std::make_unique<detail::TableKernel>(stack, k + 1);
-        }
-      } catch (const NumericalError&) {
-        // No independent tables: the coherent bound stays the kernel term.
-        for (auto& table : independent) table.reset();
-      }
-    });
-    return independent[static_cast<std::size_t>(index)].get();
-  }
+  // The same H on independent grids, for the a-posteriori kernel-error estimate.
+  detail::IndependentTables independent{stack};
 };
 
 namespace {
@@ -74,7 +56,7 @@ void check_tolerance(double tolerance) {
 }
 
 ReducedSolver::ReducedSolver(const Stack& stack) : impl_(std::make_unique<Impl>(stack)) {
-  impl_->kernel(0);  // constants the kernel library rejects fail here, as before
+  impl_->kernel(0);  // constants the kernel library rejects fail here, at construction
 }
 
 ReducedSolver::~ReducedSolver() = default;
@@ -88,7 +70,7 @@ ReducedVariables ReducedSolver::solve(double a_over_t, double tolerance) const {
   Impl* impl = impl_.get();
   const detail::AdaptiveSolve solution = detail::solve_on_solver_tables(
       [impl](int level) -> const detail::KernelSource& { return impl->kernel(level); }, a_over_t,
-      tolerance, [impl](int index) { return impl->independent_kernel(index); });
+      tolerance, impl->independent.source());
   if (!solution.converged) {
     std::ostringstream message;
     message.precision(3);

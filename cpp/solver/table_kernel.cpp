@@ -60,6 +60,19 @@ std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level) {
   return std::make_unique<TableKernel>(stack);
 }
 
+const KernelSource* IndependentTables::get(int index) {
+  std::call_once(once_, [this] {
+    try {
+      for (int k = 0; k < kIndependentTables; ++k) {
+        tables_[static_cast<std::size_t>(k)] = std::make_unique<TableKernel>(stack_, k + 1);
+      }
+    } catch (const NumericalError&) {
+      for (auto& table : tables_) table.reset();
+    }
+  });
+  return tables_[static_cast<std::size_t>(index)].get();
+}
+
 AdaptiveSolve solve_on_solver_tables(const std::function<const KernelSource&(int level)>& table,
                                      double a_over_t, double tolerance,
                                      const IndependentKernel& independent) {

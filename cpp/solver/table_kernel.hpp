@@ -1,12 +1,15 @@
 // The Fortran kernel table (coatcontact::KernelTable, cpp/include/coatcontact/kernel.hpp) as
 // the solver's KernelSource (internal to coatcontact_solver).
 #pragma once
+#include <array>
 #include <functional>
 #include <memory>
+#include <mutex>
 
 #include "coatcontact/kernel.hpp"
 #include "coatcontact/stack.hpp"
 #include "reduced_core.hpp"
+#include "refinement.hpp"
 
 namespace coatcontact::detail {
 
@@ -32,6 +35,26 @@ class TableKernel : public KernelSource {
   double half_width_ = 2.0;
 };
 
+// The same H on independent grids (variants 1 and 2), for the a-posteriori kernel-error
+// estimate (docs/solver.md); built on first need (~20-50 ms each), only when the coherent
+// bound is too large for the tolerance (rigid substrates, very soft films, large a/t).
+class IndependentTables {
+ public:
+  explicit IndependentTables(const Stack& stack) : stack_(stack) {}
+  // Table `index`, or nullptr when they cannot be built (the coherent bound stays the kernel
+  // term). Thread-safe; `stack` must outlive this.
+  const KernelSource* get(int index);
+  // The refinement loop's view of them.
+  IndependentKernel source() {
+    return [this](int index) { return get(index); };
+  }
+
+ private:
+  const Stack& stack_;
+  std::once_flag once_;
+  std::array<std::unique_ptr<TableKernel>, kIndependentTables> tables_;
+};
+
 // Tables sized to the work: the solver needs H at |x +- y| <= 2 a/t only, so radii up to
 // kSolverTableRange[k] / 2 use a compact table of that range (a fraction of the full grid's
 // FFT work, which dominated a one-radius call); the last level is the full default grid. The
@@ -45,7 +68,7 @@ int solver_table_level(double a_over_t);
 // The table of `level`: a compact grid that misses its accuracy target falls back to the
 // next level's grid.
 std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level);
-// solve_adaptive on the table of a/t's level, `table(level)`; where that is not decided by the
+// The reduced variables (solve_adaptive) on the table of a/t's level, `table(level)`; where that is not decided by the
 // cheap coherent kernel bound, or the bound exceeds the acceptance limit (ill-conditioned
 // systems, which amplify the compact grid's different errors; the attempt then stops after its
 // first level), again on the full grid, so that those cases behave as before the compact

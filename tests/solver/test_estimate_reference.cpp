@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "check.hpp"
 #include "coatcontact/errors.hpp"
@@ -28,7 +29,7 @@ constexpr double kTolerance = kDefaultTolerance;
 constexpr int kReferenceNodes = 30;
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
-double max_relative_difference(const detail::ReducedValues& x, const ReducedVariables& v) {
+double max_relative_difference(const std::vector<double>& x, const ReducedVariables& v) {
   const double y[] = {v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1};
   double worst = 0.0;
   for (int i = 0; i < detail::kReducedCount; ++i) {

@@ -44,11 +44,11 @@ std::string str(double value) {
   return buffer;
 }
 
-detail::ReducedValues values_of(const ReducedVariables& v) {
+std::vector<double> values_of(const ReducedVariables& v) {
   return {v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1};
 }
 
-double max_relative_difference(const detail::ReducedValues& a, const detail::ReducedValues& b) {
+double max_relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double worst = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]) / std::abs(b[i]));
   return worst;

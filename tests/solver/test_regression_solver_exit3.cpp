@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "check.hpp"
 #include "coatcontact/errors.hpp"
@@ -43,7 +44,7 @@ struct Case {
   double a_over_t, tolerance;
 };
 
-double max_relative_difference(const detail::ReducedValues& x, const ReducedVariables& v) {
+double max_relative_difference(const std::vector<double>& x, const ReducedVariables& v) {
   const double y[] = {v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1};
   double worst = 0.0;
   for (int i = 0; i < detail::kReducedCount; ++i) {

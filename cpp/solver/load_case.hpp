@@ -1,11 +1,10 @@
-// Indenter shapes as load cases of the solver (THEORY.md sections 2, 5 and 11): each gives
-// the right-hand side θ = -δ0(r) of the adhesionless problem inside the contact. The solver
-// turns any shape into its two reduced numbers (docs/solver.md):
+// The scale-free indenter interface of the solver (THEORY.md sections 2, 5 and 11): a shape
+// as a load case, the right-hand side θ = -δ0(r)/δ0(a) of the adhesionless problem inside the
+// contact. The solver turns any shape into its two reduced numbers (docs/solver.md):
 //   Δ = -γ_θ(ã)/γ_fp(ã)   (adhesionless penetration, δ_H = Δ δ0(a)),
 //   Π = 4 (Δ E_eq + (1/ã) ∫ γ_θ)   (adhesionless force over its homogeneous scale).
-// New shapes (power law, blunted cone, measured profile) implement this interface.
+// The shapes in SI units (coatcontact/indenter_shape.hpp) reach the solver through it.
 #pragma once
-#include <string>
 #include <vector>
 
 namespace coatcontact {
@@ -19,7 +18,6 @@ class Shape {
   // false: use only reciprocity (∫ γ_θ = ∫ θ γ_fp, γ_θ(ã) = θ(ã) - (1/π) ∫ θ w), which needs no
   // accurate γ_θ — for a kink at the apex such as the cone's.
   virtual bool smooth_at_apex() const = 0;
-  virtual std::string name() const = 0;
   // ξ in [0, 1] where θ is not smooth (0 for a non-smooth apex, the blunted cone's tangent
   // point, a measured profile's knots). When not empty (and smooth_at_apex() is false), the
   // reciprocity integrals ∫ θ γ_fp and ∫ θ w are product integrals (θ integrated exactly
@@ -36,7 +34,6 @@ class SphereShape final : public Shape {
  public:
   double theta(double xi) const override { return -xi * xi; }
   bool smooth_at_apex() const override { return true; }
-  std::string name() const override { return "sphere"; }
 };
 
 // Cone z = r/tan β: δ0 = (π/2) r/tan β, θ = -ξ (Π_c, Δ_c).
@@ -44,7 +41,6 @@ class ConeShape final : public Shape {
  public:
   double theta(double xi) const override { return -xi; }
   bool smooth_at_apex() const override { return false; }
-  std::string name() const override { return "cone"; }
 };
 
 }  // namespace coatcontact

@@ -1,6 +1,6 @@
 // The flat punch and any indenter shape on one factored system (THEORY.md section 5,
 // docs/solver.md): right-hand sides, functionals and the kernel-table error bound.
-#include "shape_solve.hpp"
+#include "fixed_solve.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -101,7 +101,7 @@ std::vector<double> product_weights(const Shape& shape, const Layout& layout, do
 
 }  // namespace
 
-ShapeSolve solve_shapes(const KernelSource& kernel, double a, const Discretization& disc,
+FixedSolve solve_shapes(const KernelSource& kernel, double a, const Discretization& disc,
                         const std::vector<const Shape*>& shapes) {
   const FactoredSystem system(kernel, a, disc);
   const Layout& layout = system.layout();
@@ -138,18 +138,16 @@ ShapeSolve solve_shapes(const KernelSource& kernel, double a, const Discretizati
   const double edge_fp = system.edge_value(gamma_fp, 1.0);  // γ_fp(ã) = 1 - (1/π) ∫ γ_fp k_e
   const double edge_fp_adjoint = 1.0 - w_fp / kPi;          // the same by reciprocity (a check)
 
-  ShapeSolve result;
+  FixedSolve result;
   result.unknowns = static_cast<int>(n);
   result.panels = system.panels();
-  result.inverse_norm = system.inverse_norm();
-  result.kernel_evaluations = system.kernel_evaluations();
   if (!(edge_fp > 0.0) || !std::isfinite(edge_fp)) {
     throw NumericalError("reduced solver: flat-punch edge value " + describe(edge_fp) +
                          " is not positive at a/t = " + describe(a));
   }
   const double mean_fp = sum_fp / a;
-  result.e_eq = mean_fp;     // E_eq = (1/ã) ∫ γ_fp
-  result.gamma1 = edge_fp;   // Γ(1) = γ_fp(ã)
+  const double e_eq = mean_fp;   // E_eq = (1/ã) ∫ γ_fp
+  const double gamma1 = edge_fp;  // Γ(1) = γ_fp(ã)
   result.consistency = std::abs(edge_fp - edge_fp_adjoint) / edge_fp;
 
   // Kernel accuracy ε (|δH| <= ε for every u): the coherent worst-case bound. It is 4-5
@@ -168,8 +166,8 @@ ShapeSolve solve_shapes(const KernelSource& kernel, double a, const Discretizati
   const double c = 2.0 / kPi * eps;
   const double edge_factor = 1.0 + norm_w / kPi;
   auto relative = [](double error, double value) { return error / std::max(std::abs(value), 1e-300); };
-  double kernel_error = std::max(relative(c * norm_fp * norm_fp / a, result.e_eq),
-                                 relative(c * norm_fp * edge_factor, result.gamma1));
+  double kernel_error = std::max(relative(c * norm_fp * norm_fp / a, e_eq),
+                                 relative(c * norm_fp * edge_factor, gamma1));
   for (std::size_t s = 0; s < m; ++s) {
     const double* th = &theta[s * n];
     const double* gamma = &rhs[(s + 1) * n];
@@ -193,29 +191,26 @@ ShapeSolve solve_shapes(const KernelSource& kernel, double a, const Discretizati
       }
       edge = -1.0 - theta_w / kPi;  // γ_θ(ã) = θ(ã) - (1/π) ∫ θ w
     }
-    ShapeValues v;
-    v.delta = -edge / edge_fp;
-    v.pi = 4.0 * (v.delta * mean_fp + sum / a);
+    const double delta = -edge / edge_fp;
+    const double pi = 4.0 * (delta * mean_fp + sum / a);
     double norm_h = 0.0;
-    for (std::size_t j = 0; j < n; ++j) norm_h += layout.w[j] * std::abs(v.delta * gamma_fp[j] + gamma[j]);
+    for (std::size_t j = 0; j < n; ++j) norm_h += layout.w[j] * std::abs(delta * gamma_fp[j] + gamma[j]);
     const double d_delta = c * norm_h * edge_factor / edge_fp;
     // Π/4 = Δ m_fp + m_θ: δ(Π/4) = δΔ m_fp + ⟨γ_fp, δK γ_H⟩/ã.
     const double d_pi = 4.0 * (d_delta * mean_fp + c * norm_fp * norm_h / a);
-    kernel_error = std::max({kernel_error, relative(d_delta, v.delta), relative(d_pi, v.pi)});
-    result.shapes.push_back(v);
+    kernel_error = std::max({kernel_error, relative(d_delta, delta), relative(d_pi, pi)});
+    result.values.push_back(pi);
+    result.values.push_back(delta);
   }
-  for (double value : {result.e_eq, result.gamma1}) {
+  result.values.push_back(e_eq);
+  result.values.push_back(gamma1);
+  for (double value : result.values) {
     if (!std::isfinite(value)) {
       throw NumericalError("reduced solver: non-finite result at a/t = " + describe(a));
     }
   }
-  for (const ShapeValues& v : result.shapes) {
-    if (!std::isfinite(v.pi) || !std::isfinite(v.delta)) {
-      throw NumericalError("reduced solver: non-finite result at a/t = " + describe(a));
-    }
-  }
   // The bounds are first order: they need |A^{-1}| |δK| small ((2/π) ε ã bounds |δK|_inf).
-  const double perturbation = result.inverse_norm * c * a;
+  const double perturbation = system.inverse_norm() * c * a;
   if (perturbation > 0.1) kernel_error = std::max(kernel_error, perturbation);
   result.kernel_error = kernel_error;
   // Rounding in the assembly and the LU solve: ε_machine cond_inf(A) (the worst case
