@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
@@ -27,7 +28,7 @@ using coatcontact::detail::short_text;
 using internal::ContactModel;
 using internal::Parameters;
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 // Load-controlled JKR pull-off in Maugis units, P = F/(pi w R) (THEORY.md section 6).
 constexpr double kJkrPulloffLoad = -1.5;
 // Effective-variance passes: the weights depend on the slope at the solution; a change of

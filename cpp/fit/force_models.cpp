@@ -1,14 +1,12 @@
 // The force models' common ground (force_model.hpp): the interface's defaults, the helpers the
 // models share, and make_force_model, the one place that reads the Problem's choice of model.
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
 
+#include "coatcontact/detail/brent.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "force_model.hpp"
@@ -120,24 +118,10 @@ void check_a_over_t(double radius, double total_thickness) {
 // Brent root of f on [lo, hi] (f(lo) < 0 <= f(hi)).
 double find_root(const std::function<double(double)>& f, double lo, double hi) {
   if (f(hi) == 0.0) return hi;
-  gsl_function gf;
-  gf.function = [](double x, void* params) {
-    return (*static_cast<const std::function<double(double)>*>(params))(x);
-  };
-  gf.params = const_cast<std::function<double(double)>*>(&f);
-  std::unique_ptr<gsl_root_fsolver, void (*)(gsl_root_fsolver*)> solver(
-      gsl_root_fsolver_alloc(gsl_root_fsolver_brent), gsl_root_fsolver_free);
-  if (!solver || gsl_root_fsolver_set(solver.get(), &gf, lo, hi) != GSL_SUCCESS) {
-    throw NumericalError("could not bracket a measured penetration on the model curve");
-  }
-  for (int iteration = 0; iteration < 200; ++iteration) {
-    if (gsl_root_fsolver_iterate(solver.get()) != GSL_SUCCESS) break;
-    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(solver.get()),
-                               gsl_root_fsolver_x_upper(solver.get()), 0.0, 1e-13) == GSL_SUCCESS) {
-      return gsl_root_fsolver_root(solver.get());
-    }
-  }
-  throw NumericalError("root finder on the model curve did not converge");
+  const auto found = detail::brent_root(f, lo, hi, {0.0, 1e-13, 200});
+  if (!found) throw NumericalError("could not bracket a measured penetration on the model curve");
+  if (!found->converged) throw NumericalError("root finder on the model curve did not converge");
+  return found->x;
 }
 
 }  // namespace coatcontact::fit::internal

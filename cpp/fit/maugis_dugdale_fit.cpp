@@ -9,6 +9,7 @@
 #include <string>
 
 #include "coatcontact/detail/format.hpp"
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 #include "force_model.hpp"
@@ -67,7 +68,7 @@ class MaugisDugdaleFit : public ForceModel {
 // F = pi w R P, delta = (l^2/R) D at a_bar = a/l, l = (pi w R^2/E*)^(1/3), eta = T/l (THEORY.md
 // section 13), from MaugisDugdaleModel::curve at the measured radii.
 ModelAtData MaugisDugdaleFit::evaluate(const Parameters& p, const Measurements& data, bool with_pulloff) {
-  constexpr double kPi = 3.14159265358979323846;
+  using detail::kPi;
   const MaugisDugdaleModel& md = cache_.get(p).solver();
   const double radius = problem_.sphere_radius;
   const double work = p.work();

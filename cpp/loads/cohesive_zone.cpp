@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "gauss_legendre.hpp"
@@ -18,7 +19,7 @@ namespace coatcontact::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 // Points and weights in φ on [0, φa] for integrals over the annulus y = c cos φ in [a, c],
 // made of Gauss pieces. Pieces are graded in s = c - y toward the places where the integrands

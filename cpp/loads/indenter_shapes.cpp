@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "coatcontact/detail/format.hpp"
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/indenter_shape.hpp"
 
@@ -11,7 +12,7 @@ namespace coatcontact {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 using detail::full_precision;
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 
@@ -17,7 +18,7 @@ namespace coatcontact::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 // Safety factor in the quadrature error model: Gauss error ~ M ρ^{-2m} where M, the size of
 // H on the Bernstein ellipse, grows near the poles of H (order 3 for C - 1 ~ q² e^{-2q}).

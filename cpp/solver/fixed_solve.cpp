@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "factored_system.hpp"
@@ -15,7 +16,7 @@ namespace coatcontact::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 std::string describe(double value) { return short_text(value); }
 

@@ -2,6 +2,8 @@
 // ulps for n <= 160, which is all the solver uses).
 #include "gauss_legendre.hpp"
 
+#include "coatcontact/detail/constants.hpp"
+
 #include <array>
 #include <cmath>
 #include <mutex>
@@ -15,10 +17,9 @@ GaussRule compute_rule(int n) {
   GaussRule rule;
   rule.nodes.assign(n, 0.0);
   rule.weights.assign(n, 0.0);
-  const double pi = std::acos(-1.0);
   for (int k = 0; k < (n + 1) / 2; ++k) {
     // Tricomi's initial guess for the k-th largest root, then Newton.
-    double x = std::cos(pi * (k + 0.75) / (n + 0.5)) *
+    double x = std::cos(detail::kPi * (k + 0.75) / (n + 0.5)) *
                (1.0 - (n - 1.0) / (8.0 * n * n * n));
     for (int iteration = 0; iteration < 100; ++iteration) {
       double p0 = 1.0, p1 = x;
