@@ -24,18 +24,6 @@ constexpr double kPulloffScanTop = 2.0;
 // so a spread-out sample finds its maximum.
 constexpr std::size_t kCheckedPoints = 16;
 
-ReducedPoint values_only(const ReducedVariables& v) {
-  ReducedPoint r;
-  r.a_over_t = v.a_over_t;
-  r.pi_s = v.pi_s;
-  r.delta_s = v.delta_s;
-  r.pi_c = v.pi_c;
-  r.delta_c = v.delta_c;
-  r.e_eq = v.e_eq;
-  r.gamma1 = v.gamma1;
-  return r;
-}
-
 // The same point with d ln X/d ln(a/t) = 0: the law's a_bar derivative is then the explicit
 // one, at fixed a/t.
 ReducedPoint frozen(ReducedPoint r) {
@@ -116,7 +104,7 @@ SiPoint ContactModel::at(double radius) const {
 SiPoint ContactModel::exact(const ReducedVariables& v, double radius) const {
   const double eta = contact_.eta();
   const double a_bar = radius / contact_.length_scale();
-  const coatcontact::CurvePoint p = model_.law().point(values_only(v), eta, a_bar);
+  const coatcontact::CurvePoint p = model_.law().point(reduced_point_of(v), eta, a_bar);
   SiPoint s = to_si(p, p);  // values only: no derivatives without the interpolant
   s.radius = radius;
   return s;

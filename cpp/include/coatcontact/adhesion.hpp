@@ -86,14 +86,16 @@ struct PulloffOptions {
   double location_tolerance = 1e-12;  // relative, on the root of the derivative
 };
 
-// How the contact edge closes (JKR today; Maugis-Dugdale is THEORY.md section 13).
+// How the contact edge closes, at the edge of a contact radius the interpolant serves: JKR
+// (section 5). Laws that need more than the reduced variables at a/t have models of their own
+// on this floor: the Maugis-Dugdale zone (section 13, maugis_dugdale.hpp) and crack kinetics
+// (section 14, crack_kinetics.hpp).
 class AdhesionLaw {
  public:
   virtual ~AdhesionLaw() = default;
   // P, D and their a_bar derivatives at a_bar from the interpolated reduced variables at
   // a/t = a_bar/eta.
   virtual CurvePoint point(const ReducedPoint& reduced, double eta, double a_bar) const = 0;
-  virtual std::string name() const = 0;
 };
 
 // Infinitely thin interaction zone: the edge is a crack with energy release rate w
@@ -101,7 +103,6 @@ class AdhesionLaw {
 class JkrLaw final : public AdhesionLaw {
  public:
   CurvePoint point(const ReducedPoint& reduced, double eta, double a_bar) const override;
-  std::string name() const override { return "JKR"; }
 };
 
 class AdhesiveModel {
