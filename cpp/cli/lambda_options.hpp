@@ -13,7 +13,7 @@
 namespace coatcontact::cli {
 
 OptionSpec lambda_option();
-// The --lambda list; nullopt when absent or every value is inf (then JKR, today's output).
+// The --lambda list; nullopt when absent or every value is inf (then JKR, the default output).
 std::optional<std::vector<double>> parse_lambdas(const Arguments& args);
 // a_bar empty: the JKR curves' default range, 400 points.
 void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<double>& etas,

@@ -60,7 +60,7 @@ std::vector<Panel> make_panels(double a, const Discretization& disc) {
 // (Real form: ρ = s + sqrt(s² - 1), s = (|z - 1| + |z + 1|)/2 the ellipse's semi-major axis;
 // the same ρ as |z + sqrt(z - 1) sqrt(z + 1)| up to rounding, without complex square roots
 // and hypot. ρ only feeds integer decisions (Nyström or product integration, points per
-// piece); none changed over the full test suite and the sweeps checked against the old form.)
+// piece); none differs from the complex form's over the full test suite and the checked sweeps.)
 double ellipse_rho(double c, double height, double mid, double half) {
   const double x = (c - mid) / half;
   const double y = height / half;

@@ -1,6 +1,6 @@
 // Maugis-Dugdale on coated substrates (THEORY.md section 13):
 //  - JKR limit: "On a coating, large λ must reproduce §5, with a difference shrinking like
-//    1/λ²": the load-controlled pull-off against today's JKR model (AdhesiveModel), exponent
+//    1/λ²": the load-controlled pull-off against the JKR model (AdhesiveModel), exponent
 //    fitted over λ = 10..300;
 //  - self-convergence of c(a), P, D and of the pull-off under refinement of the contact
 //    panels (p) and of the annulus quadrature, including a zone 100 film thicknesses wide
