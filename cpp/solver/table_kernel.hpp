@@ -71,7 +71,7 @@ std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level);
 // The reduced variables (solve_adaptive) on the table of a/t's level, `table(level)`; where that is not decided by the
 // cheap coherent kernel bound, or the bound exceeds the acceptance limit (ill-conditioned
 // systems, which amplify the compact grid's different errors; the attempt then stops after its
-// first level), again on the full grid, whose errors the acceptance limit was set for.
+// first level), again on the full grid, the reference the compact tables are checked against.
 AdaptiveSolve solve_on_solver_tables(const std::function<const KernelSource&(int level)>& table,
                                      double a_over_t, double tolerance,
                                      const IndependentKernel& independent);
