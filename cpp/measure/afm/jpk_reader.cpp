@@ -279,12 +279,12 @@ std::string format_of(const std::string& file, const Properties& general) {
 
 }  // namespace
 
-std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& file, const Calibration& user) {
-  const ZipArchive archive(bytes, file);
-  // Curves: "" for a single curve, "index/N/" for the curves of a map (numeric order).
+// Curves of the archive: "" for a single curve, "index/N/" for the curves of a map (numeric
+// order). `single`: the archive has a top-level segments/ folder.
+std::vector<std::string> curve_folders_of(const ZipArchive& archive, const std::string& file, bool& single) {
   std::vector<std::string> curve_folders;
   std::set<long> indices;
-  bool single = false;
+  single = false;
   for (const auto& name : archive.names()) {
     if (name.rfind("segments/", 0) == 0) single = true;
     if (name.rfind("index/", 0) == 0) {
@@ -302,6 +302,178 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
   } else {
     fail(file, "", "a zip archive without JPK segments (no segments/ or index/ folders)");
   }
+  return curve_folders;
+}
+
+// Segment folders 0, 1, ... of a curve as long as their headers exist.
+std::vector<SegmentProperties> segment_properties_of(const ZipArchive& archive, const std::string& folder,
+                                                     const Properties& curve_properties, const Properties& shared,
+                                                     const std::string& file) {
+  std::vector<SegmentProperties> segment_properties;
+  for (std::size_t s = 0;; ++s) {
+    const std::string header = folder + "segments/" + std::to_string(s) + "/segment-header.properties";
+    if (!archive.has(header)) break;
+    SegmentProperties p;
+    p.own = parse_properties(archive.read(header));
+    expand_references(p.own, shared);
+    p.curve = &curve_properties;
+    segment_properties.push_back(std::move(p));
+  }
+  if (segment_properties.empty()) fail(file, folder + "segments/", "no segment headers in the archive");
+  return segment_properties;
+}
+
+// The channels present in every segment decide which heights a curve has (piezo, measured).
+void choose_height_channels(const std::vector<SegmentProperties>& segment_properties, const std::string& folder,
+                            const std::string& file, std::string& piezo, std::string& measured) {
+  std::vector<std::set<std::string>> lists;
+  for (const auto& p : segment_properties) {
+    const std::string* list = find(p, "channels.list");
+    std::set<std::string> names;
+    if (list) for (auto& w : split_blanks(*list)) names.insert(w);
+    lists.push_back(std::move(names));
+  }
+  const auto in_all = [&](const std::string& name) {
+    return std::all_of(lists.begin(), lists.end(), [&](const std::set<std::string>& l) { return l.count(name) > 0; });
+  };
+  for (std::size_t s = 0; s < lists.size(); ++s) {
+    if (lists[s].count(kDeflectionChannel) == 0) {
+      fail(file, folder + "segments/" + std::to_string(s) + "/", "missing channel vDeflection (the cantilever deflection)");
+    }
+  }
+  for (const char* name : kPiezoChannels) if (piezo.empty() && in_all(name)) piezo = name;
+  for (const char* name : kMeasuredChannels) if (measured.empty() && in_all(name)) measured = name;
+  if (piezo.empty() && measured.empty()) {
+    fail(file, folder + "segments/", "missing channel: no height (height, head-height) and no measured height (strainGaugeHeight, capacitiveSensorHeight, measuredHeight) in every segment");
+  }
+}
+
+// A file lacking a calibration slot the user supplied: the chain volts -> distance -> force is
+// built from the user's value alone.
+void complete_missing_slots(std::vector<SegmentProperties>& segment_properties, bool has_distance, bool has_force) {
+  for (auto& p : segment_properties) {
+    const std::string set = std::string("channel.") + kDeflectionChannel + ".conversion-set.conversion.";
+    if (!has_distance) {
+      p.own[set + "distance.defined"] = "true";
+      p.own[set + "distance.base-calibration-slot"] = "volts";
+      p.own[set + "distance.scaling.offset"] = "0";
+      p.own[set + "distance.scaling.multiplier"] = "1";
+      p.own[set + "distance.scaling.unit.unit"] = "m";
+    }
+    if (!has_force) {
+      p.own[set + "force.defined"] = "true";
+      p.own[set + "force.base-calibration-slot"] = "distance";
+      p.own[set + "force.scaling.offset"] = "0";
+      p.own[set + "force.scaling.multiplier"] = "1";
+      p.own[set + "force.scaling.unit.unit"] = "N";
+    }
+  }
+}
+
+// Instrument, position and map grid of a curve from the general and the curve's headers.
+void set_position_metadata(CurveMetadata& m, const Properties& general, const Properties& curve_properties,
+                           const std::string& folder) {
+  if (const std::string* v = find_suffix(general, "description.instrument")) m.instrument = *v;
+  if (m.instrument.empty()) if (const std::string* v = find_suffix(curve_properties, "description.instrument")) m.instrument = *v;
+  double value = 0.0;
+  if (optional_number(find_suffix(curve_properties, "header.position.x"), value)) m.position_x = value;
+  if (optional_number(find_suffix(curve_properties, "header.position.y"), value)) m.position_y = value;
+  double ilength = 0.0, jlength = 0.0, position_index = 0.0;
+  if (!folder.empty() && optional_number(find_suffix(general, "position-pattern.grid.ilength"), ilength) &&
+      optional_number(find_suffix(general, "position-pattern.grid.jlength"), jlength) &&
+      optional_number(find_suffix(curve_properties, "header.position-index"), position_index) && ilength >= 1 &&
+      jlength >= 1 && ilength <= 1e6 && jlength <= 1e6 && position_index >= 0 && position_index < ilength * jlength) {
+    const long i = static_cast<long>(ilength), index = static_cast<long>(position_index);
+    m.grid_shape_x = i;
+    m.grid_shape_y = static_cast<long>(jlength);
+    m.grid_index_x = index % i;
+    m.grid_index_y = index / i;
+  }
+}
+
+// What the segments of one curve share while they are read one after the other.
+struct SegmentReading {
+  const ZipArchive& archive;
+  const std::string& file;
+  const std::string& folder;
+  const std::string& piezo;
+  const std::string& measured;
+  const CalibrationChoice& calibration;
+  const SlotOverride& overrides;
+  std::size_t segment_count;
+};
+
+// Segment s of a curve: its kind, name, duration and time stamp, and its channels appended to
+// the curve's (start_time: the segment's first time, advanced past it).
+void read_segment(const SegmentReading& r, const SegmentProperties& p, std::size_t s, ForceCurve& curve,
+                  double& start_time) {
+  const std::string seg_folder = r.folder + "segments/" + std::to_string(s) + "/";
+  const Context where{r.file, seg_folder + "segment-header.properties"};
+  const double points = number(p, "force-segment-header.num-points", where);
+  if (!(points >= 0 && points <= 1e9) || points != std::floor(points)) {
+    fail(r.file, where.entry, "num-points is not a valid count");
+  }
+  const auto n = static_cast<std::size_t>(points);
+  if (n == 0) fail(r.file, where.entry, "empty segment " + std::to_string(s) + " (num-points = 0)");
+  Segment segment;
+  segment.begin = curve.segments.empty() ? 0 : curve.segments.back().end;
+  segment.end = segment.begin + n;
+  const std::string* style = find_any(p, {"force-segment-header.settings.style", "force-segment-header.settings.segment-settings.style"});
+  if (style && *style == "extend") segment.kind = SegmentKind::kApproach;
+  else if (style && *style == "retract") segment.kind = SegmentKind::kRetract;
+  else if (style && *style == "pause") segment.kind = SegmentKind::kPause;
+  else if (s == 0) segment.kind = SegmentKind::kApproach;
+  else if (s + 1 == r.segment_count) segment.kind = SegmentKind::kRetract;
+  else segment.kind = SegmentKind::kPause;
+  if (const std::string* name = find(p, "force-segment-header.name.name")) segment.name = *name;
+  if (!optional_number(find_any(p, {"force-segment-header.duration", "force-segment-header.settings.segment-settings.duration"}), segment.duration) ||
+      !(segment.duration > 0.0)) {
+    fail(r.file, where.entry, "no segment duration (force-segment-header.duration), so no time axis");
+  }
+  if (s == 0) {
+    if (const std::string* stamp = find(p, "force-segment-header.time-stamp")) {
+      const std::size_t blank = stamp->find(' ');
+      curve.metadata.date = stamp->substr(0, blank);
+      if (blank != std::string::npos) {
+        const std::size_t second = stamp->find(' ', blank + 1);
+        curve.metadata.time = stamp->substr(blank + 1, second == std::string::npos ? std::string::npos : second - blank - 1);
+      }
+    }
+  }
+  // Per-channel point counts may be given; they must agree with the segment's.
+  for (const std::string& ch : {std::string(kDeflectionChannel), r.piezo, r.measured}) {
+    if (ch.empty()) continue;
+    double channel_points = 0.0;
+    if (optional_number(find(p, "channel." + ch + ".data.num-points"), channel_points) && channel_points != points) {
+      fail(r.file, where.entry, "channel " + ch + " has " + number_text(channel_points) + " points, the segment " + number_text(points));
+    }
+  }
+  if (r.calibration.complete) {
+    const auto force = read_channel(r.archive, p, seg_folder, kDeflectionChannel, "force", "N", n, r.overrides, r.file);
+    curve.force.insert(curve.force.end(), force.begin(), force.end());
+  }
+  if (!r.piezo.empty()) {
+    const std::string set = "channel." + r.piezo + ".conversion-set.conversion.";
+    const std::string* calibrated = find(p, set + "calibrated.defined");
+    const std::string slot = (calibrated && *calibrated == "true") ? "calibrated" : "nominal";
+    const auto h = read_channel(r.archive, p, seg_folder, r.piezo, slot, "m", n, r.overrides, r.file);
+    curve.height_piezo.insert(curve.height_piezo.end(), h.begin(), h.end());
+  }
+  if (!r.measured.empty()) {
+    const auto h = read_channel(r.archive, p, seg_folder, r.measured, "nominal", "m", n, r.overrides, r.file);
+    curve.height_measured.insert(curve.height_measured.end(), h.begin(), h.end());
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    curve.time.push_back(start_time + segment.duration * static_cast<double>(i) / static_cast<double>(n));
+  }
+  start_time += segment.duration;
+  curve.segments.push_back(segment);
+}
+
+std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& file, const Calibration& user) {
+  const ZipArchive archive(bytes, file);
+  bool single = false;
+  const std::vector<std::string> curve_folders = curve_folders_of(archive, file, single);
 
   Properties general;
   if (archive.has("header.properties")) {
@@ -323,42 +495,10 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
       for (auto& [k, v] : own) curve_properties[k] = v;
     }
     expand_references(curve_properties, shared);
-
-    // Segment folders 0, 1, ... as long as their headers exist.
-    std::vector<SegmentProperties> segment_properties;
-    for (std::size_t s = 0;; ++s) {
-      const std::string header = folder + "segments/" + std::to_string(s) + "/segment-header.properties";
-      if (!archive.has(header)) break;
-      SegmentProperties p;
-      p.own = parse_properties(archive.read(header));
-      expand_references(p.own, shared);
-      p.curve = &curve_properties;
-      segment_properties.push_back(std::move(p));
-    }
-    if (segment_properties.empty()) fail(file, folder + "segments/", "no segment headers in the archive");
-
-    // The channels present in every segment decide which heights this curve has.
-    std::vector<std::set<std::string>> lists;
-    for (const auto& p : segment_properties) {
-      const std::string* list = find(p, "channels.list");
-      std::set<std::string> names;
-      if (list) for (auto& w : split_blanks(*list)) names.insert(w);
-      lists.push_back(std::move(names));
-    }
-    const auto in_all = [&](const std::string& name) {
-      return std::all_of(lists.begin(), lists.end(), [&](const std::set<std::string>& l) { return l.count(name) > 0; });
-    };
-    for (std::size_t s = 0; s < lists.size(); ++s) {
-      if (lists[s].count(kDeflectionChannel) == 0) {
-        fail(file, folder + "segments/" + std::to_string(s) + "/", "missing channel vDeflection (the cantilever deflection)");
-      }
-    }
+    std::vector<SegmentProperties> segment_properties =
+        segment_properties_of(archive, folder, curve_properties, shared, file);
     std::string piezo, measured;
-    for (const char* name : kPiezoChannels) if (piezo.empty() && in_all(name)) piezo = name;
-    for (const char* name : kMeasuredChannels) if (measured.empty() && in_all(name)) measured = name;
-    if (piezo.empty() && measured.empty()) {
-      fail(file, folder + "segments/", "missing channel: no height (height, head-height) and no measured height (strainGaugeHeight, capacitiveSensorHeight, measuredHeight) in every segment");
-    }
+    choose_height_channels(segment_properties, folder, file, piezo, measured);
 
     // Calibration from the first segment's vDeflection slots; the user's values override them.
     double k_storage = 0.0, s_storage = 0.0;
@@ -370,25 +510,7 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
     SlotOverride overrides;
     if (calibration.sensitivity_source == CalibrationSource::kUser) overrides.distance_multiplier = calibration.sensitivity;
     if (calibration.spring_constant_source == CalibrationSource::kUser) overrides.force_multiplier = calibration.spring_constant;
-    // A file lacking a slot the user supplied: the chain volts -> distance -> force is built
-    // from the user's value alone.
-    for (auto& p : segment_properties) {
-      const std::string set = std::string("channel.") + kDeflectionChannel + ".conversion-set.conversion.";
-      if (!file_s) {
-        p.own[set + "distance.defined"] = "true";
-        p.own[set + "distance.base-calibration-slot"] = "volts";
-        p.own[set + "distance.scaling.offset"] = "0";
-        p.own[set + "distance.scaling.multiplier"] = "1";
-        p.own[set + "distance.scaling.unit.unit"] = "m";
-      }
-      if (!file_k) {
-        p.own[set + "force.defined"] = "true";
-        p.own[set + "force.base-calibration-slot"] = "distance";
-        p.own[set + "force.scaling.offset"] = "0";
-        p.own[set + "force.scaling.multiplier"] = "1";
-        p.own[set + "force.scaling.unit.unit"] = "N";
-      }
-    }
+    complete_missing_slots(segment_properties, file_s != nullptr, file_k != nullptr);
 
     ForceCurve curve;
     CurveMetadata& m = curve.metadata;
@@ -399,90 +521,15 @@ std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& fi
     m.entry = folder;
     m.curve_index = ci;
     m.curve_count = curve_folders.size();
-    if (const std::string* v = find_suffix(general, "description.instrument")) m.instrument = *v;
-    if (m.instrument.empty()) if (const std::string* v = find_suffix(curve_properties, "description.instrument")) m.instrument = *v;
-    double value = 0.0;
-    if (optional_number(find_suffix(curve_properties, "header.position.x"), value)) m.position_x = value;
-    if (optional_number(find_suffix(curve_properties, "header.position.y"), value)) m.position_y = value;
-    double ilength = 0.0, jlength = 0.0, position_index = 0.0;
-    if (!folder.empty() && optional_number(find_suffix(general, "position-pattern.grid.ilength"), ilength) &&
-        optional_number(find_suffix(general, "position-pattern.grid.jlength"), jlength) &&
-        optional_number(find_suffix(curve_properties, "header.position-index"), position_index) && ilength >= 1 &&
-        jlength >= 1 && ilength <= 1e6 && jlength <= 1e6 && position_index >= 0 && position_index < ilength * jlength) {
-      const long i = static_cast<long>(ilength), index = static_cast<long>(position_index);
-      m.grid_shape_x = i;
-      m.grid_shape_y = static_cast<long>(jlength);
-      m.grid_index_x = index % i;
-      m.grid_index_y = index / i;
-    }
+    set_position_metadata(m, general, curve_properties, folder);
     m.details.emplace_back("force channel", "vDeflection (slot force)");
     if (!piezo.empty()) m.details.emplace_back("height (piezo) channel", piezo + " (slot calibrated, else nominal)");
     if (!measured.empty()) m.details.emplace_back("height (measured) channel", measured + " (slot nominal)");
 
+    const SegmentReading reading{archive, file, folder, piezo, measured, calibration, overrides, segment_properties.size()};
     double start_time = 0.0;
     for (std::size_t s = 0; s < segment_properties.size(); ++s) {
-      const SegmentProperties& p = segment_properties[s];
-      const std::string seg_folder = folder + "segments/" + std::to_string(s) + "/";
-      const Context where{file, seg_folder + "segment-header.properties"};
-      const double points = number(p, "force-segment-header.num-points", where);
-      if (!(points >= 0 && points <= 1e9) || points != std::floor(points)) {
-        fail(file, where.entry, "num-points is not a valid count");
-      }
-      const auto n = static_cast<std::size_t>(points);
-      if (n == 0) fail(file, where.entry, "empty segment " + std::to_string(s) + " (num-points = 0)");
-      Segment segment;
-      segment.begin = curve.segments.empty() ? 0 : curve.segments.back().end;
-      segment.end = segment.begin + n;
-      const std::string* style = find_any(p, {"force-segment-header.settings.style", "force-segment-header.settings.segment-settings.style"});
-      if (style && *style == "extend") segment.kind = SegmentKind::kApproach;
-      else if (style && *style == "retract") segment.kind = SegmentKind::kRetract;
-      else if (style && *style == "pause") segment.kind = SegmentKind::kPause;
-      else if (s == 0) segment.kind = SegmentKind::kApproach;
-      else if (s + 1 == segment_properties.size()) segment.kind = SegmentKind::kRetract;
-      else segment.kind = SegmentKind::kPause;
-      if (const std::string* name = find(p, "force-segment-header.name.name")) segment.name = *name;
-      if (!optional_number(find_any(p, {"force-segment-header.duration", "force-segment-header.settings.segment-settings.duration"}), segment.duration) ||
-          !(segment.duration > 0.0)) {
-        fail(file, where.entry, "no segment duration (force-segment-header.duration), so no time axis");
-      }
-      if (s == 0) {
-        if (const std::string* stamp = find(p, "force-segment-header.time-stamp")) {
-          const std::size_t blank = stamp->find(' ');
-          m.date = stamp->substr(0, blank);
-          if (blank != std::string::npos) {
-            const std::size_t second = stamp->find(' ', blank + 1);
-            m.time = stamp->substr(blank + 1, second == std::string::npos ? std::string::npos : second - blank - 1);
-          }
-        }
-      }
-      // Per-channel point counts may be given; they must agree with the segment's.
-      for (const std::string& ch : {std::string(kDeflectionChannel), piezo, measured}) {
-        if (ch.empty()) continue;
-        double channel_points = 0.0;
-        if (optional_number(find(p, "channel." + ch + ".data.num-points"), channel_points) && channel_points != points) {
-          fail(file, where.entry, "channel " + ch + " has " + number_text(channel_points) + " points, the segment " + number_text(points));
-        }
-      }
-      if (calibration.complete) {
-        const auto force = read_channel(archive, p, seg_folder, kDeflectionChannel, "force", "N", n, overrides, file);
-        curve.force.insert(curve.force.end(), force.begin(), force.end());
-      }
-      if (!piezo.empty()) {
-        const std::string set = "channel." + piezo + ".conversion-set.conversion.";
-        const std::string* calibrated = find(p, set + "calibrated.defined");
-        const std::string slot = (calibrated && *calibrated == "true") ? "calibrated" : "nominal";
-        const auto h = read_channel(archive, p, seg_folder, piezo, slot, "m", n, overrides, file);
-        curve.height_piezo.insert(curve.height_piezo.end(), h.begin(), h.end());
-      }
-      if (!measured.empty()) {
-        const auto h = read_channel(archive, p, seg_folder, measured, "nominal", "m", n, overrides, file);
-        curve.height_measured.insert(curve.height_measured.end(), h.begin(), h.end());
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        curve.time.push_back(start_time + segment.duration * static_cast<double>(i) / static_cast<double>(n));
-      }
-      start_time += segment.duration;
-      curve.segments.push_back(segment);
+      read_segment(reading, segment_properties[s], s, curve, start_time);
     }
     finish_curve(curve, file, folder);
     curves.push_back(std::move(curve));
