@@ -84,6 +84,62 @@ std::vector<std::string> split_commas(const std::string& text) {
 
 }  // namespace
 
+// Segments of a curve of n points from the note's Indexes (the last point of each segment) and
+// Direction; one segment when the note has no Indexes.
+void set_segments_from_note(ForceCurve& curve, const std::map<std::string, std::string>& note, std::size_t n, const std::string& file) {
+  const auto indexes_it = note.find("Indexes");
+  const auto direction_it = note.find("Direction");
+  if (indexes_it != note.end()) {
+    const auto ends = split_commas(indexes_it->second);
+    const auto directions = direction_it != note.end() ? split_commas(direction_it->second) : std::vector<std::string>{};
+    std::size_t begin = 0;
+    for (std::size_t k = 1; k < ends.size(); ++k) {
+      double last = 0.0;
+      if (!parse_double(ends[k], last) || last < 0 || last >= static_cast<double>(n) || last != std::floor(last)) {
+        fail(file, "", "note Indexes '" + indexes_it->second + "' does not fit the " + std::to_string(n) + " points");
+      }
+      Segment segment;
+      segment.begin = begin;
+      segment.end = static_cast<std::size_t>(last) + 1;
+      double direction = 0.0;
+      const bool known = k < directions.size() && parse_double(directions[k], direction);
+      segment.kind = !known ? (k == 1 ? SegmentKind::kApproach : SegmentKind::kRetract)
+                            : direction > 0 ? SegmentKind::kApproach
+                            : direction < 0 ? SegmentKind::kRetract : SegmentKind::kPause;
+      if (segment.end <= segment.begin) fail(file, "", "empty segment " + std::to_string(k - 1) + " in note Indexes '" + indexes_it->second + "'");
+      if (!curve.time.empty()) segment.duration = static_cast<double>(segment.size()) * (curve.time.size() > 1 ? curve.time[1] : 0.0);
+      curve.segments.push_back(segment);
+      begin = segment.end;
+    }
+    if (begin != n) fail(file, "", "note Indexes '" + indexes_it->second + "' do not end at the last point");
+  } else {
+    Segment segment;
+    segment.begin = 0;
+    segment.end = n;
+    curve.segments.push_back(segment);
+  }
+
+}
+
+// Metadata of the wave from its note and the channels found.
+void set_igor_metadata(ForceCurve& curve, const std::map<std::string, std::string>& note, const CalibrationChoice& calibration, bool has_raw,
+                       bool has_zsensor, const std::string& file) {
+  CurveMetadata& m = curve.metadata;
+  set_calibration(m, calibration);
+  m.vendor = "Asylum Research";
+  m.format = "Igor binary wave (.ibw)";
+  if (auto it = note.find("MicroscopeModel"); it != note.end()) m.instrument = it->second;
+  if (auto it = note.find("Date"); it != note.end()) m.date = it->second;
+  if (auto it = note.find("Time"); it != note.end()) m.time = it->second;
+  m.source_file = file;
+  double position = 0.0;
+  if (auto it = note.find("XLVDT"); it != note.end() && parse_double(it->second, position)) m.position_x = position;
+  if (auto it = note.find("YLVDT"); it != note.end() && parse_double(it->second, position)) m.position_y = position;
+  m.details.emplace_back("force channel", "Defl [m] x spring constant");
+  if (has_raw) m.details.emplace_back("height (piezo) channel", "-Raw");
+  if (has_zsensor) m.details.emplace_back("height (measured) channel", "-ZSnsr");
+}
+
 std::vector<ForceCurve> read_igor(const std::string& bytes, const std::string& file, const Calibration& user) {
   if (bytes.size() < kBinHeaderSize + kWaveHeaderSize) fail(file, "", "truncated Igor binary wave (shorter than its headers)");
   const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -191,53 +247,8 @@ std::vector<ForceCurve> read_igor(const std::string& bytes, const std::string& f
     for (std::size_t i = 0; i < n; ++i) curve.time[i] = static_cast<double>(i) / rate;
   }
 
-  // Segments from Indexes (the last point of each segment) and Direction.
-  const auto indexes_it = note.find("Indexes");
-  const auto direction_it = note.find("Direction");
-  if (indexes_it != note.end()) {
-    const auto ends = split_commas(indexes_it->second);
-    const auto directions = direction_it != note.end() ? split_commas(direction_it->second) : std::vector<std::string>{};
-    std::size_t begin = 0;
-    for (std::size_t k = 1; k < ends.size(); ++k) {
-      double last = 0.0;
-      if (!parse_double(ends[k], last) || last < 0 || last >= static_cast<double>(n) || last != std::floor(last)) {
-        fail(file, "", "note Indexes '" + indexes_it->second + "' does not fit the " + std::to_string(n) + " points");
-      }
-      Segment segment;
-      segment.begin = begin;
-      segment.end = static_cast<std::size_t>(last) + 1;
-      double direction = 0.0;
-      const bool known = k < directions.size() && parse_double(directions[k], direction);
-      segment.kind = !known ? (k == 1 ? SegmentKind::kApproach : SegmentKind::kRetract)
-                            : direction > 0 ? SegmentKind::kApproach
-                            : direction < 0 ? SegmentKind::kRetract : SegmentKind::kPause;
-      if (segment.end <= segment.begin) fail(file, "", "empty segment " + std::to_string(k - 1) + " in note Indexes '" + indexes_it->second + "'");
-      if (!curve.time.empty()) segment.duration = static_cast<double>(segment.size()) * (curve.time.size() > 1 ? curve.time[1] : 0.0);
-      curve.segments.push_back(segment);
-      begin = segment.end;
-    }
-    if (begin != n) fail(file, "", "note Indexes '" + indexes_it->second + "' do not end at the last point");
-  } else {
-    Segment segment;
-    segment.begin = 0;
-    segment.end = n;
-    curve.segments.push_back(segment);
-  }
-
-  CurveMetadata& m = curve.metadata;
-  set_calibration(m, calibration);
-  m.vendor = "Asylum Research";
-  m.format = "Igor binary wave (.ibw)";
-  if (auto it = note.find("MicroscopeModel"); it != note.end()) m.instrument = it->second;
-  if (auto it = note.find("Date"); it != note.end()) m.date = it->second;
-  if (auto it = note.find("Time"); it != note.end()) m.time = it->second;
-  m.source_file = file;
-  double position = 0.0;
-  if (auto it = note.find("XLVDT"); it != note.end() && parse_double(it->second, position)) m.position_x = position;
-  if (auto it = note.find("YLVDT"); it != note.end() && parse_double(it->second, position)) m.position_y = position;
-  m.details.emplace_back("force channel", "Defl [m] x spring constant");
-  if (raw >= 0) m.details.emplace_back("height (piezo) channel", "-Raw");
-  if (zsensor >= 0) m.details.emplace_back("height (measured) channel", "-ZSnsr");
+  set_segments_from_note(curve, note, n, file);
+  set_igor_metadata(curve, note, calibration, raw >= 0, zsensor >= 0, file);
   finish_curve(curve, file, "");
   return {curve};
 }
