@@ -280,16 +280,17 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--shape", "SPEC", "the tip instead: sphere:R, cone:BETA, pyramid:THETA (face half angle; the cone of equal area), "
                         "punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (as `contact --shape`)", false},
     {"--halfspace", "E,nu", "the sample: a homogeneous half-space; E is the value if fixed (any > 0 if free), nu fixed", false},
-    {"--film", "E1,nu1", "a coating: not supported by afm fit yet (give --halfspace)", false},
-    {"--substrate", "E0,nu0", "a coating: not supported by afm fit yet", false},
-    {"--thickness", "t", "a coating: not supported by afm fit yet", false},
-    {"--free", "LIST", "free parameters among E, contact_point, baseline (default all three)", false},
+    {"--film", "E1,nu1", "the sample: a coating (with --substrate, --thickness); E1 the value if fixed, else the centre of its search", false},
+    {"--substrate", "E0,nu0|rigid", "the coating's substrate (fixed)", false},
+    {"--thickness", "t", "the coating's thickness [m] (the value if fixed, else the centre of its search)", false},
+    {"--free", "LIST", "free parameters: E, contact_point, baseline on a half-space (default all three); "
+                       "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline)", false},
     {"--contact-point", "Z", "the contact point [m, tip position] when it is fixed", false},
     {"--baseline", "B", "the force baseline [N] when it is fixed", false},
     {"--segment", "KIND", "approach (default) or retract", false},
     spring_constant_option(),
     sensitivity_option(),
-    {"--tip-range", "MIN,MAX", "fit only tip positions in [MIN, MAX] [m]", false},
+    {"--tip-range", "MIN,MAX", "fit only tip positions in [MIN, MAX] [m; units as 18um]", false},
     {"--indentation-range", "MIN,MAX", "fit only indentations (z_ref - z) in [MIN, MAX] [m], relative to the "
                                        "preprocessing's contact point z_ref (MIN < 0 keeps baseline points)", false},
     {"--max-indentation", "D", "fit only indentations z_ref - z <= D [m] (relative to z_ref as above)", false},
@@ -342,12 +343,25 @@ fit::AfmTip parse_tip(const Arguments& arguments) {
   return fit::afm_shape(parse_shape(text, profile_end));
 }
 
+// A length of any sign: a plain number (SI), or "-1um", "250nm" (the units of parse_quantity).
+double parse_signed_length(std::string text, const std::string& option) {
+  text.erase(0, text.find_first_not_of(" \t"));
+  text.erase(text.find_last_not_of(" \t") + 1);
+  try {
+    return parse_number(text, option);
+  } catch (const InputError&) {
+  }
+  const bool negative = !text.empty() && text[0] == '-';
+  return (negative ? -1.0 : 1.0) * parse_quantity(negative ? text.substr(1) : text, Quantity::kLength, option);
+}
+
 std::pair<double, double> parse_pair(const std::string& text, const std::string& option, const std::string& what) {
   const std::size_t comma = text.find(',');
   if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
     throw InputError(option + ": '" + text + "' is not allowed; expected MIN,MAX (" + what + ")");
   }
-  const double lo = parse_number(text.substr(0, comma), option), hi = parse_number(text.substr(comma + 1), option);
+  const double lo = parse_signed_length(text.substr(0, comma), option);
+  const double hi = parse_signed_length(text.substr(comma + 1), option);
   if (!(lo < hi)) throw InputError(option + ": '" + text + "' is not allowed; MIN must be below MAX");
   return {lo, hi};
 }
@@ -434,8 +448,8 @@ int run_fit_curve(const Args& args) {
     const Arguments arguments(args, kFitSpec, 1);
     if (arguments.help()) {
       std::cout << usage("afm fit",
-                         "FILE [--index N] [--model hertz] (--radius R | --shape SPEC) --halfspace E,nu "
-                         "[--free E,contact_point,baseline] [--contact-point Z] [--baseline B] [--segment approach|retract] "
+                         "FILE [--index N] [--model hertz] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                         "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                          "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
                          "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf]",
                          "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 14):\n"
@@ -449,6 +463,9 @@ int run_fit_curve(const Args& args) {
                          "(its residual sigma). The pull-off is the retract segment's most tensile force\n"
                          "less the fitted baseline. Output: the segment's points with indentation, model,\n"
                          "residual and whether each was fitted; the header holds the estimates.\n"
+                         "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
+                         "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
+                         "searched on a log grid within a factor 10 of the given values, then refined.\n"
                          "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
                              std::string(kFormats),
                          kFitSpec);
@@ -470,33 +487,47 @@ int run_fit_curve(const Args& args) {
       throw InputError("--model: 'jkr' is not available in afm fit yet (the adhesive retract fit); allowed: hertz");
     }
     if (model != "hertz") throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz");
-    for (const char* option : {"--film", "--substrate", "--thickness"}) {
-      if (arguments.has(option)) {
-        throw InputError(std::string(option) + ": a coating is not supported by afm fit yet; give the sample as --halfspace E,nu");
-      }
-    }
     fit::AfmFitProblem problem;
     problem.tip = parse_tip(arguments);
-    if (!arguments.has("--halfspace")) throw InputError("afm fit needs the sample: --halfspace E,nu (E any > 0 when free)");
-    const Material sample = parse_material(*arguments.get("--halfspace"), "--halfspace");
-    problem.modulus = sample.youngs_modulus;
-    problem.poisson = sample.poisson_ratio;
-    problem.free = {false, false, false};
-    const std::string free_text = arguments.get("--free").value_or("E,contact_point,baseline");
+    const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
+    if (coated) {
+      if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a coating (--film ...)");
+      for (const char* option : {"--film", "--substrate", "--thickness"}) {
+        if (!arguments.has(option)) throw InputError(std::string("a coating needs --film E1,nu1, --substrate E0,nu0|rigid and --thickness t (") + option + " is missing)");
+      }
+      fit::AfmCoating coating;
+      coating.film = parse_material(*arguments.get("--film"), "--film");
+      coating.substrate = parse_substrate(*arguments.get("--substrate"), "--substrate");
+      coating.thickness = parse_quantity(*arguments.get("--thickness"), Quantity::kLength, "--thickness");
+      problem.coating = coating;
+      problem.poisson = coating.film.poisson_ratio;
+    } else {
+      if (!arguments.has("--halfspace")) {
+        throw InputError("afm fit needs the sample: --halfspace E,nu (E any > 0 when free), or a coating --film --substrate --thickness");
+      }
+      const Material sample = parse_material(*arguments.get("--halfspace"), "--halfspace");
+      problem.modulus = sample.youngs_modulus;
+      problem.poisson = sample.poisson_ratio;
+    }
+    problem.free = {false, false, false, false};
+    const std::string modulus_name = coated ? "E1" : "E";
+    const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
+    const std::string free_text = arguments.get("--free").value_or(modulus_name + ",contact_point,baseline");
     std::size_t start = 0;
     while (start <= free_text.size()) {
       const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
       std::string item = free_text.substr(start, comma - start);
       item.erase(0, item.find_first_not_of(" \t"));
       item.erase(item.find_last_not_of(" \t") + 1);
-      if (item == "E") problem.free.modulus = true;
+      if (item == modulus_name) problem.free.modulus = true;
+      else if (item == "t" && coated) problem.free.thickness = true;
       else if (item == "contact_point") problem.free.contact_point = true;
       else if (item == "baseline") problem.free.baseline = true;
-      else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of afm fit; allowed: E, contact_point, baseline");
+      else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
       start = comma + 1;
     }
-    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline) {
-      throw InputError("--free: '" + free_text + "' names no parameter; allowed: E, contact_point, baseline");
+    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+      throw InputError("--free: '" + free_text + "' names no parameter; allowed: " + allowed);
     }
     if (auto text = arguments.get("--contact-point")) {
       if (problem.free.contact_point) throw InputError("--contact-point: the contact point is free; drop it from --free to fix it");
@@ -588,7 +619,16 @@ int run_fit_curve(const Args& args) {
     items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
     items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
     items.push_back({"tip", problem.tip.description});
-    items.push_back({"sample", "homogeneous half-space, nu = " + format_parameter(problem.poisson, "nu")});
+    if (problem.coating) {
+      const fit::AfmCoating& c = *problem.coating;
+      items.push_back({"sample", "coating: film nu1 = " + format_parameter(c.film.poisson_ratio, "nu1") + ", substrate " +
+                                     (c.substrate.rigid ? std::string("rigid")
+                                                        : "E0 = " + format_parameter(c.substrate.material.youngs_modulus, "E0") +
+                                                              " Pa, nu0 = " + format_parameter(c.substrate.material.poisson_ratio, "nu0")) +
+                                     " (THEORY.md sections 5, 14: reduced solver swept over a/t, log-log table)"});
+    } else {
+      items.push_back({"sample", "homogeneous half-space, nu = " + format_parameter(problem.poisson, "nu")});
+    }
     items.push_back({"segment", segment_name + " (" + std::to_string(z_segment.size()) + " points)"});
     items.push_back({"free", free_text});
     items.push_back({"preprocessing contact point [m]", format_parameter(steps.contact_point, "contact point") +
@@ -603,12 +643,17 @@ int run_fit_curve(const Args& args) {
     if (range.max_force) add_range("force - baseline <= " + format_parameter(*range.max_force, "max force") + " N");
     items.push_back({"fit range", range_text + " (" + std::to_string(z.size()) + " points fitted, " +
                                       std::to_string(r.points_in_contact) + " in contact)"});
-    items.push_back({"E [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, "E") : format_parameter(r.modulus, "E") + " (fixed)"});
+    items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
+                                                                  : format_parameter(r.modulus, modulus_name) + " (fixed)"});
+    if (problem.coating) {
+      items.push_back({"t [m]", problem.free.thickness ? with_error(r.thickness, r.thickness_error, "t")
+                                                       : format_parameter(r.thickness, "t") + " (fixed)"});
+    }
     items.push_back({"contact point [m]", problem.free.contact_point ? with_error(r.contact_point, r.contact_point_error, "contact point")
                                                                      : format_parameter(r.contact_point, "contact point") + " (fixed)"});
     items.push_back({"baseline [N]", problem.free.baseline ? with_error(r.baseline, r.baseline_error, "baseline")
                                                            : format_parameter(r.baseline, "baseline") + " (fixed)"});
-    items.push_back({"E* [Pa]", format_parameter(r.reduced_modulus, "E*")});
+    items.push_back({problem.coating ? "E1* [Pa]" : "E* [Pa]", format_parameter(r.reduced_modulus, "E*")});
     items.push_back({"max indentation [m]", format_parameter(r.max_indentation, "max indentation")});
     items.push_back({"residual sigma [N]", format_parameter(r.residual_sigma, "residual sigma")});
     items.push_back({"chi2", format_parameter(r.chi2, "chi2") + " (chi2/dof " + format_parameter(r.chi2_per_dof, "chi2/dof") + ", " +
@@ -621,7 +666,8 @@ int run_fit_curve(const Args& args) {
       items.push_back({"pull-off (retract, measured)", "no retract segment"});
     }
     items.push_back({"fit time [s]", format_parameter(r.seconds, "time") + " (" + std::to_string(r.profile_evaluations) +
-                                         " contact-point profile evaluations)"});
+                                         " contact-point profile evaluations" +
+                                         (problem.coating ? ", " + std::to_string(r.solver_calls) + " reduced-variable solves" : "") + ")"});
     const std::vector<std::string> columns = {"point", "tip_position_m", "indentation_m", "force_N", "model_force_N",
                                               "residual_N", "fitted"};
     std::vector<bool> fitted_flag(z_segment.size(), false);
@@ -649,9 +695,11 @@ int run_fit_curve(const Args& args) {
       const std::string title = std::filesystem::path(path).filename().string() + " #" + std::to_string(index) + ", " +
                                 segment_name + ": " + problem.tip.description;
       char label[400];
-      std::snprintf(label, sizeof label, "E = %.4g ± %.2g Pa (ν = %g), z_c = %.6g ± %.2g µm, σ = %.3g %sN, χ²/dof = %.3g",
-                    r.modulus, r.modulus_error, problem.poisson, r.contact_point * 1e6, r.contact_point_error * 1e6,
-                    r.residual_sigma * f_scale, f_prefix.c_str(), r.chi2_per_dof);
+      char thickness_text[80] = "";
+      if (problem.coating) std::snprintf(thickness_text, sizeof thickness_text, ", t = %.4g ± %.2g µm", r.thickness * 1e6, r.thickness_error * 1e6);
+      std::snprintf(label, sizeof label, "%s = %.4g ± %.2g Pa (ν = %g)%s, z_c = %.6g ± %.2g µm, σ = %.3g %sN, χ²/dof = %.3g",
+                    modulus_name.c_str(), r.modulus, r.modulus_error, problem.poisson, thickness_text, r.contact_point * 1e6,
+                    r.contact_point_error * 1e6, r.residual_sigma * f_scale, f_prefix.c_str(), r.chi2_per_dof);
       const std::string settings = "term='" + term + "'; plottitle=" + gp_string(title) + "; fitlabel=" + gp_string(label) +
                                    "; zs=" + gp_number(z_scale) + "; zunit='" + z_prefix + "m'; fs=" + gp_number(f_scale) +
                                    "; funit='" + f_prefix + "N'; zc=" + gp_number(r.contact_point) + "; zlo=" + gp_number(z_low) +

@@ -153,9 +153,13 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                ("pyramid", theta: face half angle; the cone of equal area), ("punch", A),
                ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
     halfspace  (E [Pa], nu): the sample; E is the value if fixed (any > 0 if free), nu fixed.
-               (film/substrate/thickness: coatings are not supported by afm.fit yet.)
-    free       names among "E", "contact_point", "baseline" (default all three); a fixed
-               contact_point [m] or baseline [N] is given by the keyword of that name.
+    film, substrate, thickness
+               a coating instead: film (E1 [Pa], nu1), substrate (E0, nu0) or "rigid", thickness
+               t [m]; E1 and t are the values if fixed, else the centres of their log searches
+               (a factor 10 each way). Tips: sphere, cone, pyramid.
+    free       names among "E" (half-space) or "E1", "t" (coating), "contact_point", "baseline"
+               (default: the modulus, contact_point and baseline); a fixed contact_point [m] or
+               baseline [N] is given by the keyword of that name.
     segment    "approach" (default) or "retract".
     tip_range (min, max) [m]; indentation_range (min, max) [m] and max_indentation [m] relative
                to the preprocessing's contact point; max_force [N] above its baseline. Without
@@ -164,7 +168,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                curve has heights and a spring constant; else chi2 is None).
 
     Returns a dict in the layout of coatcontact.fit: names, estimates, errors, units (dicts by
-    name: "E" [Pa], "contact_point" [m], "baseline" [N]; error 0 when fixed), free,
+    name: "E" [Pa] (or "E1" [Pa], "t" [m]), "contact_point" [m], "baseline" [N]; error 0 when
+    fixed), free,
     residual_norm and residual_sigma [N], r_squared, chi2, chi2_per_dof, points,
     points_in_contact, contact_point [m], pulloff ({"F" [N] less the baseline, "z" [m]} of the
     retract segment, or None), and per fitted point index (into the curve), tip_position, F,
@@ -173,11 +178,21 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         raise ValueError("model: 'jkr' is not available in afm.fit yet (the adhesive retract fit); allowed: 'hertz'")
     if model != "hertz":
         raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz'")
+    coating = None
     if film is not None or substrate is not None or thickness is not None:
-        raise ValueError("film/substrate/thickness: a coating is not supported by afm.fit yet; give halfspace=(E, nu)")
-    if halfspace is None:
-        raise ValueError("halfspace: give the sample as halfspace=(E, nu)")
-    E, nu = (float(v) for v in halfspace)
+        if halfspace is not None:
+            raise ValueError("halfspace: give one sample, halfspace=(E, nu) or film=, substrate=, thickness=")
+        if film is None or substrate is None or thickness is None:
+            raise ValueError("a coating needs film=(E1, nu1), substrate=(E0, nu0) or \"rigid\", and thickness=t")
+        sub = None if (isinstance(substrate, str) and substrate == "rigid") else tuple(float(v) for v in substrate)
+        coating = (float(film[0]), float(film[1]), sub, float(thickness))
+        E, nu = coating[0], coating[1]
+        if free == ("E", "contact_point", "baseline"):
+            free = ("E1", "contact_point", "baseline")
+    elif halfspace is None:
+        raise ValueError("halfspace: give the sample as halfspace=(E, nu), or a coating film=, substrate=, thickness=")
+    else:
+        E, nu = (float(v) for v in halfspace)
     if (radius is None) == (shape is None):
         raise ValueError("give the tip as radius= or shape=, one of them")
     tip = ("sphere", float(radius)) if radius is not None else tuple(shape)
@@ -225,8 +240,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     relative = indentation_range is not None or max_indentation is not None or max_force is not None
     if relative and not have_reference:
         # Plain arrays: the reference is a first fit of the whole segment.
-        first = _afm.fit(z, f, tip, E, nu, ["E", "contact_point", "baseline"], 0.0, 0.0, 0.0,
-                         None, None, None, None, None, 0.0, 0.0)
+        first = _afm.fit(z, f, tip, E, nu, ["E1" if coating else "E", "contact_point", "baseline"], 0.0, 0.0, 0.0,
+                         None, None, None, None, None, 0.0, 0.0, coating)
         reference_contact = first["estimates"]["contact_point"]
         reference_baseline = first["estimates"]["baseline"]
     lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]), float(indentation_range[1]))
@@ -236,7 +251,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     try:
         r = _afm.fit(z, f, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0),
                      float(noise or 0.0), lo_t, hi_t, lo_i, hi_i, None if max_force is None else float(max_force),
-                     float(reference_contact), float(reference_baseline))
+                     float(reference_contact), float(reference_baseline), coating)
     except RuntimeError as e:
         raise NumericalError(str(e)) from None
     r["index"] = r["index"] + (part.start or 0)

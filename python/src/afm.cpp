@@ -212,7 +212,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
                     double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
                     double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
                     const py::object& indentation_max, const py::object& max_force, double reference_contact,
-                    double reference_baseline) {
+                    double reference_baseline, const py::object& coating) {
   namespace fit = coatcontact::fit;
   const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
   if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
@@ -222,15 +222,36 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     problem.tip = tip_of(shape);
     problem.modulus = modulus;
     problem.poisson = poisson;
-    problem.free = {false, false, false};
+    // coating: (E1, nu1, substrate (E0, nu0) or None for rigid, t)
+    const bool coated = !coating.is_none();
+    if (coated) {
+      const py::tuple c = coating.cast<py::tuple>();
+      fit::AfmCoating layer;
+      layer.film.youngs_modulus = c[0].cast<double>();
+      layer.film.poisson_ratio = c[1].cast<double>();
+      if (c[2].is_none()) {
+        layer.substrate.rigid = true;
+      } else {
+        const py::tuple sub = c[2].cast<py::tuple>();
+        layer.substrate.material.youngs_modulus = sub[0].cast<double>();
+        layer.substrate.material.poisson_ratio = sub[1].cast<double>();
+      }
+      layer.thickness = c[3].cast<double>();
+      problem.coating = layer;
+      problem.poisson = layer.film.poisson_ratio;
+    }
+    const std::string modulus_name = coated ? "E1" : "E";
+    const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
+    problem.free = {false, false, false, false};
     for (const auto& name : free) {
-      if (name == "E") problem.free.modulus = true;
+      if (name == modulus_name) problem.free.modulus = true;
+      else if (name == "t" && coated) problem.free.thickness = true;
       else if (name == "contact_point") problem.free.contact_point = true;
       else if (name == "baseline") problem.free.baseline = true;
-      else throw coatcontact::InputError("free: '" + name + "' is not a parameter of afm.fit; allowed: E, contact_point, baseline");
+      else throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
     }
-    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline) {
-      throw coatcontact::InputError("free: names no parameter; allowed: E, contact_point, baseline");
+    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+      throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
     }
     problem.contact_point = contact_point;
     problem.baseline = baseline;
@@ -252,18 +273,25 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
       py::gil_scoped_release release;
       r = fit::afm_fit(z, f, problem);
     }
-    const std::vector<std::string> names = {"E", "contact_point", "baseline"};
-    const std::vector<double> values = {r.modulus, r.contact_point, r.baseline};
-    const std::vector<double> errors = {r.modulus_error, r.contact_point_error, r.baseline_error};
-    const std::vector<bool> is_free = {problem.free.modulus, problem.free.contact_point, problem.free.baseline};
+    std::vector<std::string> names = {modulus_name, "contact_point", "baseline"};
+    std::vector<double> values = {r.modulus, r.contact_point, r.baseline};
+    std::vector<double> errors = {r.modulus_error, r.contact_point_error, r.baseline_error};
+    std::vector<bool> is_free = {problem.free.modulus, problem.free.contact_point, problem.free.baseline};
     py::dict estimates, error_dict, units;
+    if (coated) {
+      names.insert(names.begin() + 1, "t");
+      values.insert(values.begin() + 1, r.thickness);
+      errors.insert(errors.begin() + 1, r.thickness_error);
+      is_free.insert(is_free.begin() + 1, problem.free.thickness);
+      units["t"] = "m";
+    }
     py::list free_names;
-    for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t k = 0; k < names.size(); ++k) {
       estimates[py::str(names[k])] = values[k];
       error_dict[py::str(names[k])] = errors[k];
       if (is_free[k]) free_names.append(names[k]);
     }
-    units["E"] = "Pa";
+    units[py::str(modulus_name)] = "Pa";
     units["contact_point"] = "m";
     units["baseline"] = "N";
     out["names"] = names;
@@ -293,6 +321,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     out["F_model"] = to_array(r.model_force);
     out["residual"] = to_array(r.residual);
     out["profile_evaluations"] = r.profile_evaluations;
+    out["solver_calls"] = r.solver_calls;
     out["seconds"] = r.seconds;
     out["tip"] = problem.tip.description;
   } catch (const coatcontact::InputError& e) {
@@ -314,5 +343,5 @@ PYBIND11_MODULE(_afm, m) {
   m.def("fit", &fit_arrays, py::arg("tip_position"), py::arg("force"), py::arg("shape"), py::arg("modulus"),
         py::arg("poisson"), py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("noise"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"));
+        py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none());
 }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "coatcontact/indenter_shape.hpp"
+#include "coatcontact/stack.hpp"
 
 namespace coatcontact::fit {
 
@@ -37,10 +38,32 @@ AfmTip afm_cone(double half_angle);
 AfmTip afm_pyramid(double face_half_angle);
 AfmTip afm_shape(std::shared_ptr<const IndenterShape> shape);
 
-// Which of E, z_c and b are free (the others keep the values of AfmFitProblem).
+// Which of E (the half-space's, or the film's E1), t (a coating's thickness), z_c and b are free
+// (the others keep the values of AfmFitProblem).
 struct AfmFree {
   bool modulus = true, contact_point = true, baseline = true;
+  bool thickness = false;
 };
+
+// A coating instead of the half-space: film (E1 the value if fixed, else the centre of its
+// search; nu1 fixed) of thickness t on a fixed substrate, adhesionless (THEORY.md sections 5
+// and 14): the sphere's F_H = (a^3 E1*/(2R)) Pi_s(a/t), delta_H = (a^2/R) Delta_s(a/t), the
+// cone's likewise with Pi_c, Delta_c, from the reduced solver swept over a/t in
+// [kCoatingAOverT] (kCoatingPerDecade points per decade) and interpolated in log-log; below
+// the sweep the film's own power law, past it (trial contact points of the search only) the
+// power law of its last two nodes; the final fit must lie inside the sweep. Tips: paraboloid, cone, pyramid.
+struct AfmCoating {
+  Material film;
+  Substrate substrate;
+  double thickness = 0.0;  // t [m] (value if fixed, else the centre of its search)
+  double solver_tolerance = 1e-8;
+};
+constexpr double kCoatingAOverT[2] = {1e-2, 1e2};
+constexpr double kCoatingPerDecade = 16.0;
+// Free E1 and t are searched on a log grid within this factor of their given values
+// (kSearchPointsPerDecade per decade), then Brent.
+constexpr double kCoatingSearchFactor = 10.0;
+constexpr double kCoatingSearchPointsPerDecade = 4.0;
 
 struct AfmFitProblem {
   AfmTip tip;
@@ -49,6 +72,7 @@ struct AfmFitProblem {
   double contact_point = 0.0;   // z_c [m] (value if fixed)
   double baseline = 0.0;        // b [N] (value if fixed)
   AfmFree free;
+  std::optional<AfmCoating> coating;  // none: the homogeneous half-space (modulus, poisson)
   // Grid of the contact-point profile over [z_min, z_max + kContactBeyond (z_max - z_min)]
   // of the fitted points (z_c may lie beyond the last point out of contact).
   std::size_t profile_points = 400;
@@ -61,7 +85,9 @@ constexpr double kContactBeyond = 0.25;
 struct AfmFitResult {
   double modulus = 0.0, contact_point = 0.0, baseline = 0.0;  // estimates (or fixed values)
   double modulus_error = 0.0, contact_point_error = 0.0, baseline_error = 0.0;  // 0 if fixed
-  double reduced_modulus = 0.0;  // E* [Pa]
+  double thickness = 0.0, thickness_error = 0.0;  // t [m] of a coating (0 on a half-space)
+  double reduced_modulus = 0.0;  // E* [Pa] (of the film on a coating)
+  long solver_calls = 0;         // reduced-variable solves (coating)
   std::size_t points = 0, points_in_contact = 0;
   int free_count = 0;
   double rss = 0.0;             // sum of squared residuals [N^2]
@@ -78,7 +104,7 @@ struct AfmFitResult {
 // g(delta) = F/E* of the tip on a half-space at each penetration delta >= 0 [N/Pa].
 std::vector<double> afm_force_per_modulus(const AfmTip& tip, const std::vector<double>& penetration);
 
-// The model force at tip positions z for E, z_c, b of `problem`.
+// The model force at tip positions z for E (E1 and t of a coating), z_c, b of `problem`.
 std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vector<double>& tip_position);
 
 // Fits force[i] at tip_position[i]. InputError: fewer points than free parameters + 1,
