@@ -115,3 +115,24 @@ def test_coating_thickness_recovered():
                    free=("t", "contact_point", "baseline"), noise=2e-11)
     assert abs(r["estimates"]["t"] - 2e-6) < 3 * r["errors"]["t"]
     assert abs(r["estimates"]["contact_point"] - 2e-6) < 3 * r["errors"]["contact_point"]
+
+
+def test_readme_section_runs_and_prints_what_the_cli_prints(cli):
+    """The README's "Your AFM data": its Python block runs as printed (from the source folder),
+    and the header lines it shows are the ones `afm fit` prints."""
+    text = open(os.path.join(SOURCE_DIR, "README.md"), encoding="utf-8").read()
+    section = text.split("## Your AFM data", 1)[1].split("\n## ", 1)[0]
+    block = section.split("```python\n", 1)[1].split("```", 1)[0]
+    here = os.getcwd()
+    os.chdir(SOURCE_DIR)
+    try:
+        scope = {}
+        exec(compile(block, "README.md", "exec"), scope)
+    finally:
+        os.chdir(here)
+    E = scope["r"]["estimates"]["E"]
+    header, _, _ = cli("afm", "fit", "data/afm/fmt-jpk-fd_spot3-0192.jpk-force", "--radius", "10um",
+                       "--halfspace", "1kPa,0.5")
+    shown = [line for line in section.splitlines() if line.startswith("# ")]
+    assert shown and all(line in header for line in shown), (shown, header)
+    assert E == header_value(header, "E [Pa]")

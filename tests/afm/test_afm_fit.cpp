@@ -258,10 +258,10 @@ void check_bad_input() {
   check::throws<InputError>([&] { fit::afm_paraboloid(-1.0); }, {"radius"});
 }
 
-// The real JPK curve (10 um sphere on a soft half-space): a fit whose RSS is not above the
-// brute-force scan's, with the contact point in the approach range.
-void check_real(const std::string& dir) {
-  const auto curves = afm::read_force_curves(dir + "/fmt-jpk-fd_spot3-0192.jpk-force");
+// The real JPK curves (spot3 and the hydrogel, as a 10 um sphere on a soft half-space): a fit
+// whose RSS is not above the brute-force scan's, with the contact point in the approach range.
+void check_real(const std::string& dir, const std::string& file, const char* name) {
+  const auto curves = afm::read_force_curves(dir + "/" + file);
   const afm::ForceCurve& c = curves.at(0);
   const afm::Segment* seg = c.find_segment(afm::SegmentKind::kApproach);
   check::that(seg != nullptr, "approach segment");
@@ -274,10 +274,10 @@ void check_real(const std::string& dir) {
   const fit::AfmFitResult r = fit::afm_fit(z, f, problem);
   const auto [lo, hi] = std::minmax_element(z.begin(), z.end());
   const Scan scan = brute_force(z, f, 10e-6, *lo, *hi, 20001);
-  std::printf("spot3: E = %.6g +- %.3g Pa, z_c = %.9g +- %.3g m, b = %.4g N, sigma = %.3g N, R2 = %.5f, %d evals, %.2f ms\n",
-              r.modulus, r.modulus_error, r.contact_point, r.contact_point_error, r.baseline, r.residual_sigma,
+  std::printf("%s: E = %.6g +- %.3g Pa, z_c = %.9g +- %.3g m, b = %.4g N, sigma = %.3g N, R2 = %.5f, %d evals, %.2f ms\n",
+              name, r.modulus, r.modulus_error, r.contact_point, r.contact_point_error, r.baseline, r.residual_sigma,
               r.r_squared, r.profile_evaluations, 1e3 * r.seconds);
-  std::printf("spot3 scan: rss %.9e (fit %.9e), z_c %.9g, E %.6g\n", scan.rss, r.rss, scan.contact, scan.reduced * 0.75);
+  std::printf("%s scan: rss %.9e (fit %.9e), z_c %.9g, E %.6g\n", name, scan.rss, r.rss, scan.contact, scan.reduced * 0.75);
   check::that(r.rss <= scan.rss * (1 + 1e-12), "real curve: fit's RSS not above the brute-force scan's");
   check::below(std::abs(r.contact_point - scan.contact), scan.step, "real curve: contact point within one scan step");
   check::that(r.contact_point > *lo && r.contact_point < *hi, "real curve: contact point inside the approach");
@@ -299,6 +299,7 @@ int main(int argc, char** argv) {
   check_coating_model();
   check_coating_recovery();
   check_bad_input();
-  check_real(argv[1]);
+  check_real(argv[1], "fmt-jpk-fd_spot3-0192.jpk-force", "spot3");
+  check_real(argv[1], "fmt-jpk-cc_pr14-polymergel-2021.06.30.jpk-force", "hydrogel");
   return check::exit_code();
 }
