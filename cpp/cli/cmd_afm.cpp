@@ -1,11 +1,24 @@
-// `coatcontact afm show|export`: real AFM force curves read from the instruments' files
-// (cpp/measure/afm/): what a file holds, and one curve as TSV in SI units.
+// `coatcontact afm show|export|fit`: real AFM force curves read from the instruments' files
+// (cpp/measure/afm/): what a file holds, one curve as TSV in SI units, and the adhesionless
+// Hertz/Sneddon fit of one segment with its contact point and baseline (THEORY.md section 15).
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "afm_fit_plot_script.hpp"
+#include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/cli_support.hpp"
@@ -258,14 +271,465 @@ int run_export(const Args& args) {
   });
 }
 
+// ---- afm fit ----------------------------------------------------------------------------------
+
+const std::vector<OptionSpec> kFitSpec = {
+    {"--index", "N", "the curve of a map to fit (0-based, default 0; `afm show` lists them)", false},
+    {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default); jkr is not available yet", false},
+    {"--radius", "R", "tip radius of a spherical (paraboloidal) tip [m], e.g. 10um", false},
+    {"--shape", "SPEC", "the tip instead: sphere:R, cone:BETA, pyramid:THETA (face half angle; the cone of equal area), "
+                        "punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (as `contact --shape`)", false},
+    {"--halfspace", "E,nu", "the sample: a homogeneous half-space; E is the value if fixed (any > 0 if free), nu fixed", false},
+    {"--film", "E1,nu1", "the sample: a coating (with --substrate, --thickness); E1 the value if fixed, else the centre of its search", false},
+    {"--substrate", "E0,nu0|rigid", "the coating's substrate (fixed)", false},
+    {"--thickness", "t", "the coating's thickness [m] (the value if fixed, else the centre of its search)", false},
+    {"--free", "LIST", "free parameters: E, contact_point, baseline on a half-space (default all three); "
+                       "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline)", false},
+    {"--contact-point", "Z", "the contact point [m, tip position] when it is fixed", false},
+    {"--baseline", "B", "the force baseline [N] when it is fixed", false},
+    {"--segment", "KIND", "approach (default) or retract", false},
+    spring_constant_option(),
+    sensitivity_option(),
+    {"--tip-range", "MIN,MAX", "fit only tip positions in [MIN, MAX] [m; units as 18um]", false},
+    {"--indentation-range", "MIN,MAX", "fit only indentations (z_ref - z) in [MIN, MAX] [m], relative to the "
+                                       "preprocessing's contact point z_ref (MIN < 0 keeps baseline points)", false},
+    {"--max-indentation", "D", "fit only indentations z_ref - z <= D [m] (relative to z_ref as above)", false},
+    {"--max-force", "F", "fit only forces up to F [N] above the preprocessing's baseline", false},
+    {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},
+    {"--plot", "FILE", "draw data, fit, residuals, contact point and pull-off with gnuplot (.png or .pdf)", false},
+};
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+// "70deg", "1.2rad" or degrees without a unit; in (0, 90) degrees.
+double parse_half_angle(const std::string& text, const std::string& what) {
+  std::string value = text;
+  double unit = kDegree;
+  for (const auto& [suffix, factor] : {std::pair<std::string, double>{"deg", kDegree}, {"rad", 1.0}}) {
+    if (value.size() > suffix.size() && value.compare(value.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      value = value.substr(0, value.size() - suffix.size());
+      unit = factor;
+      break;
+    }
+  }
+  const double angle = parse_number(value, "--shape") * unit;
+  if (!(angle > 0.0 && angle < 90.0 * kDegree)) {
+    throw InputError("--shape: " + what + " '" + text + "' not allowed (need 0deg < angle < 90deg, e.g. 35deg)");
+  }
+  return angle;
+}
+
+fit::AfmTip parse_tip(const Arguments& arguments) {
+  const auto radius = arguments.get("--radius");
+  const auto shape = arguments.get("--shape");
+  if (radius && shape) throw InputError("--radius and --shape: give one tip, not both");
+  if (radius) return fit::afm_paraboloid(parse_quantity(*radius, Quantity::kLength, "--radius"));
+  if (!shape) throw InputError("afm fit needs the tip: --radius R (sphere) or --shape SPEC (see --help)");
+  const std::string& text = *shape;
+  const std::size_t colon = text.find(':');
+  const std::string kind = colon == std::string::npos ? text : text.substr(0, colon);
+  const std::string rest = colon == std::string::npos ? std::string() : text.substr(colon + 1);
+  if (kind == "sphere" && rest.find(',') == std::string::npos) {
+    return fit::afm_paraboloid(parse_quantity(rest, Quantity::kLength, "--shape"));
+  }
+  if (kind == "cone" && rest.find(',') == std::string::npos) return fit::afm_cone(parse_half_angle(rest, "half included angle"));
+  if (kind == "pyramid") {
+    if (rest.empty() || rest.find(',') != std::string::npos) {
+      throw InputError("--shape: '" + text + "' needs 1 parameter: pyramid:THETA (face half angle, e.g. 35deg)");
+    }
+    return fit::afm_pyramid(parse_half_angle(rest, "face half angle"));
+  }
+  std::string profile_end;
+  return fit::afm_shape(parse_shape(text, profile_end));
+}
+
+// A length of any sign: a plain number (SI), or "-1um", "250nm" (the units of parse_quantity).
+double parse_signed_length(std::string text, const std::string& option) {
+  text.erase(0, text.find_first_not_of(" \t"));
+  text.erase(text.find_last_not_of(" \t") + 1);
+  try {
+    return parse_number(text, option);
+  } catch (const InputError&) {
+  }
+  const bool negative = !text.empty() && text[0] == '-';
+  return (negative ? -1.0 : 1.0) * parse_quantity(negative ? text.substr(1) : text, Quantity::kLength, option);
+}
+
+std::pair<double, double> parse_pair(const std::string& text, const std::string& option, const std::string& what) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
+    throw InputError(option + ": '" + text + "' is not allowed; expected MIN,MAX (" + what + ")");
+  }
+  const double lo = parse_signed_length(text.substr(0, comma), option);
+  const double hi = parse_signed_length(text.substr(comma + 1), option);
+  if (!(lo < hi)) throw InputError(option + ": '" + text + "' is not allowed; MIN must be below MAX");
+  return {lo, hi};
+}
+
+// A number for gnuplot's settings (NaN for absent values, which its plots skip).
+std::string gp_number(double v) {
+  if (!std::isfinite(v)) return "NaN";
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+std::string gp_string(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') out += "''";
+    else if (c == '_' || c == '@' || c == '&' || c == '~' || c == '{' || c == '}') out += std::string("\\") + c;
+    else if (static_cast<unsigned char>(c) >= 32) out += c;
+  }
+  return out + "'";
+}
+
+// Runs gnuplot on the embedded script (gnuplot/afm_fit_plot.gp) in a private temporary folder;
+// returns the picture (the caller writes it atomically). InputError when gnuplot fails.
+std::string render_afm_plot(const std::string& table, const std::string& settings) {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/coatcontact-afm-plot.XXXXXX";
+  std::vector<char> buffer(pattern.begin(), pattern.end());
+  buffer.push_back('\0');
+  if (mkdtemp(buffer.data()) == nullptr) throw InputError("--plot: cannot create a temporary folder for gnuplot");
+  const std::string dir(buffer.data());
+  struct Cleanup {
+    std::string dir;
+    ~Cleanup() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  } cleanup{dir};
+  const auto save = [&](const std::string& name, const std::string& text) {
+    std::ofstream file(dir + "/" + name, std::ios::binary);
+    file << text;
+    if (!file) throw InputError("--plot: cannot write the temporary file " + dir + "/" + name);
+  };
+  save("fit.tsv", table);
+  save("afm_fit_plot.gp", kAfmFitPlotScript);
+  save("settings.gp", "fitfile=" + gp_string(dir + "/fit.tsv") + "; " + settings + "\n");
+  const std::string command = "gnuplot '" + dir + "/settings.gp' '" + dir + "/afm_fit_plot.gp' 2>'" + dir + "/err'";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) throw InputError("--plot: cannot run gnuplot");
+  std::string picture;
+  char chunk[65536];
+  std::size_t got;
+  while ((got = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) picture.append(chunk, got);
+  const int status = pclose(pipe);
+  if (status != 0 || picture.empty()) {
+    std::ifstream err(dir + "/err");
+    std::string first;
+    std::getline(err, first);
+    throw InputError("--plot: gnuplot failed" +
+                     (first.empty() ? std::string(" (is gnuplot with the cairo terminals installed?)") : ": " + first));
+  }
+  return picture;
+}
+
+// "1.2345(67)e-3"-free plain text: value +- error with the error's two significant digits.
+std::string with_error(double value, double error, const std::string& name) {
+  return format_parameter(value, name) + " +- " + format_parameter(error, name + " error");
+}
+
+// The engineering prefix of a quantity's largest magnitude, for the plot's axes.
+std::pair<double, std::string> prefix_of(double magnitude) {
+  static const std::vector<std::pair<int, std::string>> prefixes = {{-15, "f"}, {-12, "p"}, {-9, "n"}, {-6, "µ"},
+                                                                    {-3, "m"},  {0, ""},    {3, "k"},  {6, "M"}};
+  int e = magnitude > 0.0 ? 3 * static_cast<int>(std::floor(std::log10(magnitude) / 3.0 + 1e-9)) : 0;
+  e = std::clamp(e, -15, 6);
+  for (const auto& [exponent, name] : prefixes) {
+    if (exponent == e) return {std::pow(10.0, -e), name};
+  }
+  return {1.0, ""};
+}
+
+int run_fit_curve(const Args& args) {
+  return run_guarded("afm fit", [&]() -> int {
+    const Arguments arguments(args, kFitSpec, 1);
+    if (arguments.help()) {
+      std::cout << usage("afm fit",
+                         "FILE [--index N] [--model hertz] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                         "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
+                         "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
+                         "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf]",
+                         "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):\n"
+                         "F(z) = b + E/(1 - nu^2) g(z_c - z) on the tip-position axis z (decreasing toward\n"
+                         "the sample), g the Hertz/Sneddon force of the tip per reduced modulus, zero out of\n"
+                         "contact. E, the contact point z_c and the baseline b are free by default; z_c is\n"
+                         "found by profiling the least-squares sum over the whole fitted range (the global\n"
+                         "optimum), E and b in closed form at each z_c. Range options are combined; the\n"
+                         "relative ones refer to the preprocessing's contact point and baseline (`afm export\n"
+                         "--preprocess`), fixed before the fit. chi2 uses the noise of the baseline fit\n"
+                         "(its residual sigma). The pull-off is the retract segment's most tensile force\n"
+                         "less the fitted baseline. Output: the segment's points with indentation, model,\n"
+                         "residual and whether each was fitted; the header holds the estimates.\n"
+                         "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
+                         "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
+                         "searched on a log grid within a factor 10 of the given values, then refined.\n"
+                         "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
+                             std::string(kFormats),
+                         kFitSpec);
+      return kExitSuccess;
+    }
+    if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
+    const std::string path = arguments.positionals().front();
+    const afm::Calibration calibration = parse_calibration(arguments);
+    std::size_t index = 0;
+    if (auto text = arguments.get("--index")) {
+      const double value = parse_number(*text, "--index");
+      if (!(value >= 0.0 && value <= 1e9) || value != static_cast<double>(static_cast<long>(value))) {
+        throw InputError("--index: '" + *text + "' is not allowed; expected a curve index 0, 1, 2, ...");
+      }
+      index = static_cast<std::size_t>(value);
+    }
+    const std::string model = arguments.get("--model").value_or("hertz");
+    if (model == "jkr") {
+      throw InputError("--model: 'jkr' is not available in afm fit yet (the adhesive retract fit); allowed: hertz");
+    }
+    if (model != "hertz") throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz");
+    fit::AfmFitProblem problem;
+    problem.tip = parse_tip(arguments);
+    const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
+    if (coated) {
+      if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a coating (--film ...)");
+      for (const char* option : {"--film", "--substrate", "--thickness"}) {
+        if (!arguments.has(option)) throw InputError(std::string("a coating needs --film E1,nu1, --substrate E0,nu0|rigid and --thickness t (") + option + " is missing)");
+      }
+      fit::AfmCoating coating;
+      coating.film = parse_material(*arguments.get("--film"), "--film");
+      coating.substrate = parse_substrate(*arguments.get("--substrate"), "--substrate");
+      coating.thickness = parse_quantity(*arguments.get("--thickness"), Quantity::kLength, "--thickness");
+      problem.coating = coating;
+      problem.poisson = coating.film.poisson_ratio;
+    } else {
+      if (!arguments.has("--halfspace")) {
+        throw InputError("afm fit needs the sample: --halfspace E,nu (E any > 0 when free), or a coating --film --substrate --thickness");
+      }
+      const Material sample = parse_material(*arguments.get("--halfspace"), "--halfspace");
+      problem.modulus = sample.youngs_modulus;
+      problem.poisson = sample.poisson_ratio;
+    }
+    problem.free = {false, false, false, false};
+    const std::string modulus_name = coated ? "E1" : "E";
+    const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
+    const std::string free_text = arguments.get("--free").value_or(modulus_name + ",contact_point,baseline");
+    std::size_t start = 0;
+    while (start <= free_text.size()) {
+      const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
+      std::string item = free_text.substr(start, comma - start);
+      item.erase(0, item.find_first_not_of(" \t"));
+      item.erase(item.find_last_not_of(" \t") + 1);
+      if (item == modulus_name) problem.free.modulus = true;
+      else if (item == "t" && coated) problem.free.thickness = true;
+      else if (item == "contact_point") problem.free.contact_point = true;
+      else if (item == "baseline") problem.free.baseline = true;
+      else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
+      start = comma + 1;
+    }
+    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+      throw InputError("--free: '" + free_text + "' names no parameter; allowed: " + allowed);
+    }
+    if (auto text = arguments.get("--contact-point")) {
+      if (problem.free.contact_point) throw InputError("--contact-point: the contact point is free; drop it from --free to fix it");
+      problem.contact_point = parse_number(*text, "--contact-point");
+    } else if (!problem.free.contact_point) {
+      throw InputError("--free: a fixed contact point needs --contact-point Z");
+    }
+    if (auto text = arguments.get("--baseline")) {
+      if (problem.free.baseline) throw InputError("--baseline: the baseline is free; drop it from --free to fix it");
+      problem.baseline = parse_number(*text, "--baseline");
+    }
+    const std::string segment_name = arguments.get("--segment").value_or("approach");
+    afm::SegmentKind kind = afm::SegmentKind::kApproach;
+    if (segment_name == "retract") kind = afm::SegmentKind::kRetract;
+    else if (segment_name != "approach") throw InputError("--segment: '" + segment_name.substr(0, 60) + "' is not allowed; expected approach or retract");
+    fit::AfmRange range;
+    if (auto text = arguments.get("--tip-range")) {
+      const auto [lo, hi] = parse_pair(*text, "--tip-range", "tip positions in m");
+      range.tip_min = lo;
+      range.tip_max = hi;
+    }
+    if (auto text = arguments.get("--indentation-range")) {
+      const auto [lo, hi] = parse_pair(*text, "--indentation-range", "indentations in m");
+      range.indentation_min = lo;
+      range.indentation_max = hi;
+    }
+    if (auto text = arguments.get("--max-indentation")) {
+      const double d = parse_quantity(*text, Quantity::kLength, "--max-indentation");
+      range.indentation_max = range.indentation_max ? std::min(*range.indentation_max, d) : d;
+    }
+    if (auto text = arguments.get("--max-force")) range.max_force = parse_quantity(*text, Quantity::kForce, "--max-force");
+    std::optional<std::string> plot_path = arguments.get("--plot");
+    std::string term;
+    if (plot_path) {
+      const std::size_t dot = plot_path->rfind('.');
+      term = dot == std::string::npos ? "" : plot_path->substr(dot + 1);
+      if (term != "png" && term != "pdf") {
+        throw InputError("--plot: '" + *plot_path + "' must end in .png or .pdf (the format follows the extension)");
+      }
+    }
+    register_input(path, "AFM file");
+    const auto output_path = arguments.get("--output").value_or("");
+    check_output_paths({{"--output", output_path}, {"--plot", plot_path.value_or("")}});
+    if (plot_path && plot_path->empty()) throw InputError("--plot: needs a file name ending in .png or .pdf");
+
+    const std::vector<afm::ForceCurve> curves = afm::read_force_curves(path, calibration);
+    if (index >= curves.size()) {
+      throw InputError("--index: " + std::to_string(index) + " is not allowed; " + path + " holds " +
+                       std::to_string(curves.size()) + (curves.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(curves.size() - 1) + ")"));
+    }
+    const afm::ForceCurve& curve = curves[index];
+    const afm::Segment* segment = curve.find_segment(kind);
+    if (segment == nullptr) throw InputError("--segment: " + path + " has no " + segment_name + " segment");
+    // The preprocessing's estimates: the reference of the relative ranges and the noise of chi2.
+    const afm::PreprocessedCurve steps = afm::preprocess(curve);
+    problem.noise_sigma = steps.baseline_sigma;
+    const std::vector<double> tip = curve.tip_position();
+    const std::vector<double> z_segment(tip.begin() + segment->begin, tip.begin() + segment->end);
+    const std::vector<double> f_segment(curve.force.begin() + segment->begin, curve.force.begin() + segment->end);
+    const double reference_baseline = steps.baseline_offset + steps.baseline_slope * steps.contact_point;
+    const std::vector<std::size_t> kept = fit::afm_select(z_segment, f_segment, range, steps.contact_point, reference_baseline);
+    std::vector<double> z, f;
+    for (std::size_t i : kept) {
+      z.push_back(z_segment[i]);
+      f.push_back(f_segment[i]);
+    }
+    if (z.size() < 5) {
+      throw InputError("the range options leave " + std::to_string(z.size()) + " points of the " + segment_name +
+                       " segment (" + std::to_string(z_segment.size()) + "); widen them");
+    }
+    const fit::AfmFitResult r = fit::afm_fit(z, f, problem);
+    // The model over the whole segment (for the table and the plot).
+    fit::AfmFitProblem fitted = problem;
+    fitted.modulus = r.modulus;
+    fitted.contact_point = r.contact_point;
+    fitted.baseline = r.baseline;
+    const std::vector<double> model_segment = fit::afm_model_force(fitted, z_segment);
+    const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract);
+    fit::AfmPulloff pulloff;
+    if (retract != nullptr) {
+      const std::vector<double> zr(tip.begin() + retract->begin, tip.begin() + retract->end);
+      const std::vector<double> fr(curve.force.begin() + retract->begin, curve.force.begin() + retract->end);
+      pulloff = fit::afm_pulloff(zr, fr, r.baseline);
+    }
+
+    std::vector<std::pair<std::string, std::string>> items = {
+        {"coatcontact afm fit", "adhesionless Hertz/Sneddon fit of one AFM force-curve segment (THEORY.md section 15)"}};
+    add_curve_header(items, curve);
+    items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
+    items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+    items.push_back({"tip", problem.tip.description});
+    if (problem.coating) {
+      const fit::AfmCoating& c = *problem.coating;
+      items.push_back({"sample", "coating: film nu1 = " + format_parameter(c.film.poisson_ratio, "nu1") + ", substrate " +
+                                     (c.substrate.rigid ? std::string("rigid")
+                                                        : "E0 = " + format_parameter(c.substrate.material.youngs_modulus, "E0") +
+                                                              " Pa, nu0 = " + format_parameter(c.substrate.material.poisson_ratio, "nu0")) +
+                                     " (THEORY.md sections 5, 14: reduced solver swept over a/t, log-log table)"});
+    } else {
+      items.push_back({"sample", "homogeneous half-space, nu = " + format_parameter(problem.poisson, "nu")});
+    }
+    items.push_back({"segment", segment_name + " (" + std::to_string(z_segment.size()) + " points)"});
+    items.push_back({"free", free_text});
+    items.push_back({"preprocessing contact point [m]", format_parameter(steps.contact_point, "contact point") +
+                                                            " (piecewise-fit; reference of the relative ranges)"});
+    items.push_back({"preprocessing baseline [N]", format_parameter(reference_baseline, "baseline") + " at the contact point, sigma " +
+                                                       format_parameter(steps.baseline_sigma, "sigma") + " (chi2's noise)"});
+    std::string range_text = range.any() ? "" : "whole segment";
+    const auto add_range = [&](const std::string& text) { range_text += (range_text.empty() ? "" : "; ") + text; };
+    if (range.tip_min) add_range("tip position in [" + format_parameter(*range.tip_min, "min") + ", " + format_parameter(*range.tip_max, "max") + "] m");
+    if (range.indentation_min) add_range("indentation >= " + format_parameter(*range.indentation_min, "min") + " m");
+    if (range.indentation_max) add_range("indentation <= " + format_parameter(*range.indentation_max, "max") + " m");
+    if (range.max_force) add_range("force - baseline <= " + format_parameter(*range.max_force, "max force") + " N");
+    items.push_back({"fit range", range_text + " (" + std::to_string(z.size()) + " points fitted, " +
+                                      std::to_string(r.points_in_contact) + " in contact)"});
+    items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
+                                                                  : format_parameter(r.modulus, modulus_name) + " (fixed)"});
+    if (problem.coating) {
+      items.push_back({"t [m]", problem.free.thickness ? with_error(r.thickness, r.thickness_error, "t")
+                                                       : format_parameter(r.thickness, "t") + " (fixed)"});
+    }
+    items.push_back({"contact point [m]", problem.free.contact_point ? with_error(r.contact_point, r.contact_point_error, "contact point")
+                                                                     : format_parameter(r.contact_point, "contact point") + " (fixed)"});
+    items.push_back({"baseline [N]", problem.free.baseline ? with_error(r.baseline, r.baseline_error, "baseline")
+                                                           : format_parameter(r.baseline, "baseline") + " (fixed)"});
+    items.push_back({problem.coating ? "E1* [Pa]" : "E* [Pa]", format_parameter(r.reduced_modulus, "E*")});
+    items.push_back({"max indentation [m]", format_parameter(r.max_indentation, "max indentation")});
+    items.push_back({"residual sigma [N]", format_parameter(r.residual_sigma, "residual sigma")});
+    items.push_back({"chi2", format_parameter(r.chi2, "chi2") + " (chi2/dof " + format_parameter(r.chi2_per_dof, "chi2/dof") + ", " +
+                                 std::to_string(r.points - static_cast<std::size_t>(r.free_count)) + " dof)"});
+    items.push_back({"R^2", format_parameter(r.r_squared, "R^2")});
+    if (pulloff.found) {
+      items.push_back({"pull-off (retract, measured) [N]", format_parameter(pulloff.force, "pull-off force") + " at tip position " +
+                                                                format_parameter(pulloff.tip_position, "pull-off position") + " m"});
+    } else {
+      items.push_back({"pull-off (retract, measured)", "no retract segment"});
+    }
+    items.push_back({"fit time [s]", format_parameter(r.seconds, "time") + " (" + std::to_string(r.profile_evaluations) +
+                                         " contact-point profile evaluations" +
+                                         (problem.coating ? ", " + std::to_string(r.solver_calls) + " reduced-variable solves" : "") + ")"});
+    const std::vector<std::string> columns = {"point", "tip_position_m", "indentation_m", "force_N", "model_force_N",
+                                              "residual_N", "fitted"};
+    std::vector<bool> fitted_flag(z_segment.size(), false);
+    for (std::size_t i : kept) fitted_flag[i] = true;
+    std::ostringstream table;
+    write_header(table, items, columns);
+    for (std::size_t i = 0; i < z_segment.size(); ++i) {
+      write_row(table,
+                {static_cast<double>(segment->begin + i), z_segment[i], r.contact_point - z_segment[i], f_segment[i],
+                 model_segment[i], model_segment[i] - f_segment[i], fitted_flag[i] ? 1.0 : 0.0},
+                columns);
+    }
+    std::string picture;
+    if (plot_path) {
+      double z_big = 0.0, f_big = 0.0;
+      for (std::size_t i = 0; i < z_segment.size(); ++i) {
+        z_big = std::max(z_big, std::abs(z_segment[i]));
+        f_big = std::max(f_big, std::abs(f_segment[i] - r.baseline));
+      }
+      const auto [z_scale, z_prefix] = prefix_of(z_big);
+      // The contact region: from the deepest point to 2 largest indentations above z_c.
+      const double z_low = *std::min_element(z_segment.begin(), z_segment.end());
+      const double z_high = r.contact_point + 2.0 * std::max(r.contact_point - z_low, 1e-12);
+      const auto [f_scale, f_prefix] = prefix_of(f_big);
+      const std::string title = std::filesystem::path(path).filename().string() + " #" + std::to_string(index) + ", " +
+                                segment_name + ": " + problem.tip.description;
+      char label[400];
+      char thickness_text[80] = "";
+      if (problem.coating) std::snprintf(thickness_text, sizeof thickness_text, ", t = %.4g ± %.2g µm", r.thickness * 1e6, r.thickness_error * 1e6);
+      std::snprintf(label, sizeof label, "%s = %.4g ± %.2g Pa (ν = %g)%s, z_c = %.6g ± %.2g µm, σ = %.3g %sN, χ²/dof = %.3g",
+                    modulus_name.c_str(), r.modulus, r.modulus_error, problem.poisson, thickness_text, r.contact_point * 1e6,
+                    r.contact_point_error * 1e6, r.residual_sigma * f_scale, f_prefix.c_str(), r.chi2_per_dof);
+      const std::string settings = "term='" + term + "'; plottitle=" + gp_string(title) + "; fitlabel=" + gp_string(label) +
+                                   "; zs=" + gp_number(z_scale) + "; zunit='" + z_prefix + "m'; fs=" + gp_number(f_scale) +
+                                   "; funit='" + f_prefix + "N'; zc=" + gp_number(r.contact_point) + "; zlo=" + gp_number(z_low) +
+                                   "; zhi=" + gp_number(z_high) + "; base=" +
+                                   gp_number(r.baseline) + "; po_z=" + gp_number(pulloff.found ? pulloff.tip_position : NAN) +
+                                   "; po_F=" + gp_number(pulloff.found ? pulloff.force + r.baseline : NAN);
+      picture = render_afm_plot(table.str(), settings);
+    }
+    Output output(output_path);
+    output.stream() << table.str();
+    std::unique_ptr<Output> plot_output;
+    if (plot_path) {
+      plot_output = std::make_unique<Output>(*plot_path, "--plot");
+      plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+      plot_output->commit();
+    }
+    output.commit();
+    return kExitSuccess;
+  });
+}
+
 }  // namespace
 
 int run_afm(const Args& args) {
   const std::string overview =
-      "usage: coatcontact afm <show|export> FILE [options]   (coatcontact afm <command> --help)\n\n"
+      "usage: coatcontact afm <show|export|fit> FILE [options]   (coatcontact afm <command> --help)\n\n"
       "Real AFM force curves from the instruments' files.\n"
       "  show      metadata, calibration and segments (the curves of a map)\n"
-      "  export    one curve as TSV in SI units (--index N of a map)\n";
+      "  export    one curve as TSV in SI units (--index N of a map)\n"
+      "  fit       Hertz/Sneddon fit of one segment: E, contact point, baseline\n";
   if (args.empty()) {
     std::cerr << overview;
     return kExitUsage;
@@ -277,8 +741,9 @@ int run_afm(const Args& args) {
   const Args rest(args.begin() + 1, args.end());
   if (args[0] == "show") return run_show(rest);
   if (args[0] == "export") return run_export(rest);
+  if (args[0] == "fit") return run_fit_curve(rest);
   std::cerr << "coatcontact afm: error: unknown afm command '" << args[0].substr(0, 60)
-            << "' (expected show or export)\n";
+            << "' (expected show, export or fit)\n";
   return kExitUsage;
 }
 

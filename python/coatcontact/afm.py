@@ -13,6 +13,9 @@ has a time base. `metadata` holds "spring constant" [N/m], "sensitivity" [m/V], 
 "instrument", "date", "time", "path", "curve index", "grid index x", "grid index y",
 "position x", "position y" [m], "point count", ... (the keys a file provides).
 
+fit(curve, ...) fits one segment with the adhesionless Hertz/Sneddon model on a half-space:
+E, the contact point (tip-position axis) and a force baseline (THEORY.md section 15).
+
 preprocess(curve) runs the named steps of the command line's `afm export --preprocess`: tip
 position, baseline offset and tilt on the leading part of the approach, contact point
 ("piecewise-fit", robust to noise, or "deviation").
@@ -23,9 +26,12 @@ sensitivity=, which override the file's values and are recorded as source "user"
 """
 import math
 
-from . import _afm
+import numpy as np
 
-__all__ = ["read", "preprocess", "Curve"]
+from . import _afm
+from ._core import NumericalError
+
+__all__ = ["read", "preprocess", "fit", "Curve"]
 
 
 class Curve:
@@ -107,3 +113,159 @@ def preprocess(curve, contact_point="piecewise-fit", baseline_fraction=0.5, devi
     return _afm.preprocess(force, piezo, measured, [(s["kind"], s["begin"], s["end"]) for s in segments],
                            float(k), contact_point, float(baseline_fraction), float(deviation_sigmas),
                            str(metadata.get("path", "curve")))
+
+
+def _segment_slice(curve, segment, n):
+    """Point range of `segment` in a Curve (its segments), a mapping with an afmformats-style
+    "segment" array (0 approach, 1 retract), or plain arrays (all points)."""
+    if segment not in ("approach", "retract"):
+        raise ValueError(f"segment: {segment!r} is not allowed; expected 'approach' or 'retract'")
+    segments = getattr(curve, "segments", None)
+    if segments is not None:
+        for s in segments:
+            if s["kind"] == segment:
+                return slice(s["begin"], s["end"])
+        raise ValueError(f"segment: the curve has no {segment} segment")
+    if hasattr(curve, "keys") and "segment" in curve:
+        index = np.asarray(curve["segment"])
+        points = np.flatnonzero(index == (0 if segment == "approach" else 1))
+        if points.size == 0:
+            raise ValueError(f"segment: the curve has no {segment} segment")
+        return slice(int(points[0]), int(points[-1]) + 1)
+    return slice(0, n)
+
+
+def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=None, substrate=None,
+        thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
+        segment="approach", spring_constant=None, tip_range=None, indentation_range=None,
+        max_indentation=None, max_force=None, noise=None):
+    """Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):
+    F(z) = baseline + E/(1 - nu^2) g(contact_point - z) on the tip-position axis z (decreasing
+    toward the sample), g the Hertz/Sneddon force of the tip per reduced modulus, 0 out of
+    contact. The contact point is found by profiling the least-squares sum over the whole
+    fitted range (the global optimum); E and the baseline in closed form at each contact point.
+
+    curve      a Curve of read(); any mapping with "force" and "tip position" (or heights and
+               spring_constant=), and optionally "segment" (0 approach, 1 retract, as afmformats);
+               or plain arrays (tip_position, force).
+    model      "hertz" (the adhesive "jkr" retract fit is not available yet).
+    radius     tip radius R [m] (a paraboloid); or shape=("sphere", R), ("cone", beta),
+               ("pyramid", theta: face half angle; the cone of equal area), ("punch", A),
+               ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
+    halfspace  (E [Pa], nu): the sample; E is the value if fixed (any > 0 if free), nu fixed.
+    film, substrate, thickness
+               a coating instead: film (E1 [Pa], nu1), substrate (E0, nu0) or "rigid", thickness
+               t [m]; E1 and t are the values if fixed, else the centres of their log searches
+               (a factor 10 each way). Tips: sphere, cone, pyramid.
+    free       names among "E" (half-space) or "E1", "t" (coating), "contact_point", "baseline"
+               (default: the modulus, contact_point and baseline); a fixed contact_point [m] or
+               baseline [N] is given by the keyword of that name.
+    segment    "approach" (default) or "retract".
+    tip_range (min, max) [m]; indentation_range (min, max) [m] and max_indentation [m] relative
+               to the preprocessing's contact point; max_force [N] above its baseline. Without
+               a range the whole segment is fitted. Ranges combine.
+    noise      force noise [N] for chi2 (default: the preprocessing's baseline sigma when the
+               curve has heights and a spring constant; else chi2 is None).
+
+    Returns a dict in the layout of coatcontact.fit: names, estimates, errors, units (dicts by
+    name: "E" [Pa] (or "E1" [Pa], "t" [m]), "contact_point" [m], "baseline" [N]; error 0 when
+    fixed), free,
+    residual_norm and residual_sigma [N], r_squared, chi2, chi2_per_dof, points,
+    points_in_contact, contact_point [m], pulloff ({"F" [N] less the baseline, "z" [m]} of the
+    retract segment, or None), and per fitted point index (into the curve), tip_position, F,
+    indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
+    if model == "jkr":
+        raise ValueError("model: 'jkr' is not available in afm.fit yet (the adhesive retract fit); allowed: 'hertz'")
+    if model != "hertz":
+        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz'")
+    coating = None
+    if film is not None or substrate is not None or thickness is not None:
+        if halfspace is not None:
+            raise ValueError("halfspace: give one sample, halfspace=(E, nu) or film=, substrate=, thickness=")
+        if film is None or substrate is None or thickness is None:
+            raise ValueError("a coating needs film=(E1, nu1), substrate=(E0, nu0) or \"rigid\", and thickness=t")
+        sub = None if (isinstance(substrate, str) and substrate == "rigid") else tuple(float(v) for v in substrate)
+        coating = (float(film[0]), float(film[1]), sub, float(thickness))
+        E, nu = coating[0], coating[1]
+        if free == ("E", "contact_point", "baseline"):
+            free = ("E1", "contact_point", "baseline")
+    elif halfspace is None:
+        raise ValueError("halfspace: give the sample as halfspace=(E, nu), or a coating film=, substrate=, thickness=")
+    else:
+        E, nu = (float(v) for v in halfspace)
+    if (radius is None) == (shape is None):
+        raise ValueError("give the tip as radius= or shape=, one of them")
+    tip = ("sphere", float(radius)) if radius is not None else tuple(shape)
+    if isinstance(free, str):
+        free = [f.strip() for f in free.split(",")]
+    free = [str(f) for f in free]
+    if "contact_point" not in free and contact_point is None:
+        raise ValueError("contact_point: a fixed contact point needs contact_point= (m)")
+
+    if isinstance(curve, (tuple, list)) and len(curve) == 2:
+        z_all, f_all = (np.asarray(a, dtype=float) for a in curve)
+        mapping = None
+    else:
+        mapping = curve
+        f_all = np.asarray(curve["force"], dtype=float)
+        if "tip position" in curve and spring_constant is None:
+            z_all = np.asarray(curve["tip position"], dtype=float)
+        else:
+            meta = getattr(curve, "metadata", None) or {}
+            k = spring_constant if spring_constant is not None else meta.get("spring constant")
+            height = curve["height (measured)"] if "height (measured)" in curve else (
+                curve["height (piezo)"] if "height (piezo)" in curve else None)
+            if k is None or height is None:
+                raise ValueError("curve: needs \"tip position\", or a height and spring_constant=")
+            z_all = np.asarray(height, dtype=float) + f_all / float(k)
+    if z_all.shape != f_all.shape or z_all.ndim != 1:
+        raise ValueError("curve: tip position and force must be one-dimensional arrays of one length")
+    part = _segment_slice(curve if mapping is not None else None, segment, len(f_all))
+
+    # The preprocessing's estimates: reference of the relative ranges and chi2's noise.
+    reference_contact = reference_baseline = 0.0
+    have_reference = False
+    if mapping is not None and ("height (measured)" in mapping or "height (piezo)" in mapping):
+        try:
+            p = preprocess(mapping, spring_constant=spring_constant)
+            reference_contact = p["contact point"]
+            reference_baseline = p["baseline offset"] + p["baseline slope"] * p["contact point"]
+            have_reference = True
+            if noise is None:
+                noise = p["baseline sigma"]
+        except ValueError:
+            if indentation_range is not None or max_indentation is not None or max_force is not None:
+                raise
+    z, f = z_all[part], f_all[part]
+    relative = indentation_range is not None or max_indentation is not None or max_force is not None
+    if relative and not have_reference:
+        # Plain arrays: the reference is a first fit of the whole segment.
+        first = _afm.fit(z, f, tip, E, nu, ["E1" if coating else "E", "contact_point", "baseline"], 0.0, 0.0, 0.0,
+                         None, None, None, None, None, 0.0, 0.0, coating)
+        reference_contact = first["estimates"]["contact_point"]
+        reference_baseline = first["estimates"]["baseline"]
+    lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]), float(indentation_range[1]))
+    if max_indentation is not None:
+        hi_i = float(max_indentation) if hi_i is None else min(hi_i, float(max_indentation))
+    lo_t, hi_t = (None, None) if tip_range is None else (float(tip_range[0]), float(tip_range[1]))
+    try:
+        r = _afm.fit(z, f, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0),
+                     float(noise or 0.0), lo_t, hi_t, lo_i, hi_i, None if max_force is None else float(max_force),
+                     float(reference_contact), float(reference_baseline), coating)
+    except RuntimeError as e:
+        raise NumericalError(str(e)) from None
+    r["index"] = r["index"] + (part.start or 0)
+    r["contact_point"] = r["estimates"]["contact_point"]
+    r["pulloff"] = None
+    retract = None
+    if mapping is not None and (getattr(mapping, "segments", None) is not None or "segment" in mapping):
+        try:
+            retract = _segment_slice(mapping, "retract", len(f_all))
+        except ValueError:
+            retract = None
+    if retract is not None:
+        fr = f_all[retract]
+        if fr.size:
+            i = int(np.argmin(fr))
+            r["pulloff"] = {"F": float(fr[i] - r["estimates"]["baseline"]), "z": float(z_all[retract][i])}
+    return r

@@ -11,9 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/indenter_shape.hpp"
 
 namespace py = pybind11;
 namespace afm = coatcontact::afm;
@@ -177,6 +179,159 @@ py::dict preprocess_arrays(const py::object& force, const py::object& height_pie
   return out;
 }
 
+// The tip of coatcontact.afm.fit: ("sphere", R), ("cone", beta), ("pyramid", theta),
+// ("punch", A), ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
+coatcontact::fit::AfmTip tip_of(const py::tuple& spec) {
+  namespace cc = coatcontact;
+  if (spec.size() < 2) throw py::value_error("shape: expected a tuple (kind, parameters...)");
+  const std::string kind = py::str(spec[0]);
+  const auto number = [&](std::size_t i) { return spec[i].cast<double>(); };
+  const auto count = [&](std::size_t n) {
+    if (spec.size() != n + 1) throw py::value_error("shape: '" + kind + "' takes " + std::to_string(n) + " parameter(s)");
+  };
+  if (kind == "sphere") return count(1), cc::fit::afm_paraboloid(number(1));
+  if (kind == "cone") return count(1), cc::fit::afm_cone(number(1));
+  if (kind == "pyramid") return count(1), cc::fit::afm_pyramid(number(1));
+  if (kind == "punch") return count(1), cc::fit::afm_shape(cc::make_flat_punch(number(1)));
+  if (kind == "power") return count(2), cc::fit::afm_shape(cc::make_power_law(number(1), number(2)));
+  if (kind == "blunted-cone") return count(2), cc::fit::afm_shape(cc::make_blunted_cone(number(1), number(2)));
+  if (kind == "profile") {
+    count(2);
+    return cc::fit::afm_shape(cc::make_measured_profile(to_vector(spec[1]), to_vector(spec[2]), "shape profile"));
+  }
+  throw py::value_error("shape: '" + kind + "' is not a tip; allowed: sphere, cone, pyramid, punch, power, blunted-cone, profile");
+}
+
+std::optional<double> optional_number(const py::object& v) {
+  if (v.is_none()) return std::nullopt;
+  return v.cast<double>();
+}
+
+// One fit of (z, F) arrays; the Python layer chooses the segment and the reference estimates.
+py::dict fit_arrays(const py::object& tip_position, const py::object& force, const py::tuple& shape, double modulus,
+                    double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
+                    double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
+                    const py::object& indentation_max, const py::object& max_force, double reference_contact,
+                    double reference_baseline, const py::object& coating) {
+  namespace fit = coatcontact::fit;
+  const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
+  if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
+  fit::AfmFitProblem problem;
+  py::dict out;
+  try {
+    problem.tip = tip_of(shape);
+    problem.modulus = modulus;
+    problem.poisson = poisson;
+    // coating: (E1, nu1, substrate (E0, nu0) or None for rigid, t)
+    const bool coated = !coating.is_none();
+    if (coated) {
+      const py::tuple c = coating.cast<py::tuple>();
+      fit::AfmCoating layer;
+      layer.film.youngs_modulus = c[0].cast<double>();
+      layer.film.poisson_ratio = c[1].cast<double>();
+      if (c[2].is_none()) {
+        layer.substrate.rigid = true;
+      } else {
+        const py::tuple sub = c[2].cast<py::tuple>();
+        layer.substrate.material.youngs_modulus = sub[0].cast<double>();
+        layer.substrate.material.poisson_ratio = sub[1].cast<double>();
+      }
+      layer.thickness = c[3].cast<double>();
+      problem.coating = layer;
+      problem.poisson = layer.film.poisson_ratio;
+    }
+    const std::string modulus_name = coated ? "E1" : "E";
+    const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
+    problem.free = {false, false, false, false};
+    for (const auto& name : free) {
+      if (name == modulus_name) problem.free.modulus = true;
+      else if (name == "t" && coated) problem.free.thickness = true;
+      else if (name == "contact_point") problem.free.contact_point = true;
+      else if (name == "baseline") problem.free.baseline = true;
+      else throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
+    }
+    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+      throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
+    }
+    problem.contact_point = contact_point;
+    problem.baseline = baseline;
+    problem.noise_sigma = noise;
+    fit::AfmRange range;
+    range.tip_min = optional_number(tip_min);
+    range.tip_max = optional_number(tip_max);
+    range.indentation_min = optional_number(indentation_min);
+    range.indentation_max = optional_number(indentation_max);
+    range.max_force = optional_number(max_force);
+    const std::vector<std::size_t> kept = fit::afm_select(z_all, f_all, range, reference_contact, reference_baseline);
+    std::vector<double> z, f;
+    for (std::size_t i : kept) {
+      z.push_back(z_all[i]);
+      f.push_back(f_all[i]);
+    }
+    fit::AfmFitResult r;
+    {
+      py::gil_scoped_release release;
+      r = fit::afm_fit(z, f, problem);
+    }
+    std::vector<std::string> names = {modulus_name, "contact_point", "baseline"};
+    std::vector<double> values = {r.modulus, r.contact_point, r.baseline};
+    std::vector<double> errors = {r.modulus_error, r.contact_point_error, r.baseline_error};
+    std::vector<bool> is_free = {problem.free.modulus, problem.free.contact_point, problem.free.baseline};
+    py::dict estimates, error_dict, units;
+    if (coated) {
+      names.insert(names.begin() + 1, "t");
+      values.insert(values.begin() + 1, r.thickness);
+      errors.insert(errors.begin() + 1, r.thickness_error);
+      is_free.insert(is_free.begin() + 1, problem.free.thickness);
+      units["t"] = "m";
+    }
+    py::list free_names;
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      estimates[py::str(names[k])] = values[k];
+      error_dict[py::str(names[k])] = errors[k];
+      if (is_free[k]) free_names.append(names[k]);
+    }
+    units[py::str(modulus_name)] = "Pa";
+    units["contact_point"] = "m";
+    units["baseline"] = "N";
+    out["names"] = names;
+    out["estimates"] = estimates;
+    out["errors"] = error_dict;
+    out["units"] = units;
+    out["free"] = free_names;
+    out["reduced_modulus"] = r.reduced_modulus;
+    out["points"] = r.points;
+    out["points_in_contact"] = r.points_in_contact;
+    out["residual_norm"] = std::sqrt(r.rss);
+    out["residual_sigma"] = r.residual_sigma;
+    out["r_squared"] = r.r_squared;
+    out["weighted"] = false;
+    if (noise > 0.0) {
+      out["chi2"] = r.chi2;
+      out["chi2_per_dof"] = r.chi2_per_dof;
+    } else {
+      out["chi2"] = py::none();
+      out["chi2_per_dof"] = py::none();
+    }
+    out["max_indentation"] = r.max_indentation;
+    out["index"] = to_array(std::vector<long>(kept.begin(), kept.end()));
+    out["tip_position"] = to_array(z);
+    out["F"] = to_array(f);
+    out["indentation"] = to_array(r.indentation);
+    out["F_model"] = to_array(r.model_force);
+    out["residual"] = to_array(r.residual);
+    out["profile_evaluations"] = r.profile_evaluations;
+    out["solver_calls"] = r.solver_calls;
+    out["seconds"] = r.seconds;
+    out["tip"] = problem.tip.description;
+  } catch (const coatcontact::InputError& e) {
+    throw py::value_error(e.what());
+  } catch (const coatcontact::NumericalError& e) {
+    throw std::runtime_error(std::string("numerical failure: ") + e.what());
+  }
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_afm, m) {
@@ -185,4 +340,8 @@ PYBIND11_MODULE(_afm, m) {
   m.def("preprocess", &preprocess_arrays, py::arg("force"), py::arg("height_piezo"), py::arg("height_measured"),
         py::arg("segments"), py::arg("spring_constant"), py::arg("contact_point"), py::arg("baseline_fraction"),
         py::arg("deviation_sigmas"), py::arg("name"));
+  m.def("fit", &fit_arrays, py::arg("tip_position"), py::arg("force"), py::arg("shape"), py::arg("modulus"),
+        py::arg("poisson"), py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("noise"),
+        py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
+        py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none());
 }

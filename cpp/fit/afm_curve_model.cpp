@@ -1,0 +1,721 @@
+// The AFM curve model (THEORY.md section 15): Hertz/Sneddon on a half-space with a contact
+// point and a baseline, fitted by profiling the residual sum over the contact point with
+// (E*, b) solved in closed form at each z_c. See coatcontact/afm_fit.hpp.
+#include "coatcontact/afm_fit.hpp"
+
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_interp.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_matrix.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "coatcontact/detail/brent.hpp"
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/detail/gsl_handler_off.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/reduced.hpp"
+
+namespace coatcontact::fit {
+
+namespace {
+
+using coatcontact::detail::short_text;
+constexpr double kPi = 3.14159265358979323846;
+
+// F(delta) per unit scale and dF/d delta at delta > 0: a tip on a half-space (per E*) or a
+// coating (in N).
+class PenetrationForce {
+ public:
+  virtual ~PenetrationForce() = default;
+  virtual std::pair<double, double> at(double delta) const = 0;
+};
+
+// ln F against ln delta through Steffen's monotone spline; below the first node the power law
+// of the first two nodes (the small-contact limit), past the last node NumericalError.
+class LogLogTable final : public PenetrationForce {
+ public:
+  // extrapolate: past the last node the power law of the last two nodes (for trial contact
+  // points of a search; the caller checks the final indentations against max_penetration()).
+  // smooth: a natural cubic spline (smooth data, O(h^4)); else Steffen's monotone one (no
+  // overshoot next to a shape's kink).
+  LogLogTable(const std::vector<double>& delta, const std::vector<double>& force, std::string what, bool extrapolate = false,
+              bool smooth = false)
+      : what_(std::move(what)), extrapolate_(extrapolate) {
+    for (std::size_t k = 0; k < delta.size(); ++k) {
+      if (!(delta[k] > 0.0) || !(force[k] > 0.0)) continue;
+      if (!log_delta_.empty() && !(std::log(delta[k]) > log_delta_.back())) continue;
+      log_delta_.push_back(std::log(delta[k]));
+      log_force_.push_back(std::log(force[k]));
+    }
+    if (log_delta_.size() < 4) throw NumericalError("afm fit: the force table has too few points (" + what_ + ")");
+    first_slope_ = (log_force_[1] - log_force_[0]) / (log_delta_[1] - log_delta_[0]);
+    const std::size_t m = log_delta_.size();
+    last_slope_ = (log_force_[m - 1] - log_force_[m - 2]) / (log_delta_[m - 1] - log_delta_[m - 2]);
+    interp_ = gsl_interp_alloc(smooth ? gsl_interp_cspline : gsl_interp_steffen, log_delta_.size());
+    accel_ = gsl_interp_accel_alloc();
+    gsl_interp_init(interp_, log_delta_.data(), log_force_.data(), log_delta_.size());
+  }
+  ~LogLogTable() override {
+    gsl_interp_free(interp_);
+    gsl_interp_accel_free(accel_);
+  }
+  LogLogTable(const LogLogTable&) = delete;
+  LogLogTable& operator=(const LogLogTable&) = delete;
+  double max_penetration() const { return std::exp(log_delta_.back()); }
+
+  std::pair<double, double> at(double delta) const override {
+    const double x = std::log(delta);
+    if (x < log_delta_.front()) {
+      const double g = std::exp(log_force_.front() + first_slope_ * (x - log_delta_.front()));
+      return {g, first_slope_ * g / delta};
+    }
+    if (x > log_delta_.back()) {
+      if (extrapolate_) {
+        const double g = std::exp(log_force_.back() + last_slope_ * (x - log_delta_.back()));
+        return {g, last_slope_ * g / delta};
+      }
+      throw NumericalError("afm fit: indentation " + short_text(delta) + " m is beyond the model's table (" + what_ + ")");
+    }
+    const double lg = gsl_interp_eval(interp_, log_delta_.data(), log_force_.data(), x, accel_);
+    const double slope = gsl_interp_eval_deriv(interp_, log_delta_.data(), log_force_.data(), x, accel_);
+    const double g = std::exp(lg);
+    return {g, slope * g / delta};
+  }
+
+ private:
+  std::string what_;
+  bool extrapolate_ = false;
+  std::vector<double> log_delta_, log_force_;
+  double first_slope_ = 1.5, last_slope_ = 1.5;
+  gsl_interp* interp_ = nullptr;
+  gsl_interp_accel* accel_ = nullptr;
+};
+
+// g(delta) = F/E* of a tip on a half-space and dg/d delta: closed forms, or Sneddon's table.
+class TipForce final : public PenetrationForce {
+ public:
+  TipForce(const AfmTip& tip, double max_penetration) : tip_(tip) {
+    if (tip.kind == AfmTip::Kind::kShape) build_table(max_penetration);
+  }
+
+  std::pair<double, double> at(double delta) const override {
+    switch (tip_.kind) {
+      case AfmTip::Kind::kParaboloid: {
+        const double root = std::sqrt(tip_.radius * delta);  // F = (4/3) E* sqrt(R) delta^1.5
+        return {(4.0 / 3.0) * root * delta, 2.0 * root};
+      }
+      case AfmTip::Kind::kCone: {
+        const double c = (2.0 / kPi) * std::tan(tip_.angle);  // F = (2/pi) E* tan(beta) delta^2
+        return {c * delta * delta, 2.0 * c * delta};
+      }
+      case AfmTip::Kind::kShape:
+        break;
+    }
+    if (flat_) return {2.0 * punch_radius_ * delta, 2.0 * punch_radius_};
+    return table_->at(delta);
+  }
+
+ private:
+  // Sneddon on a half-space (§11): delta = delta0(a), F/E* = 2 [a delta0(a) - int_0^a delta0].
+  void build_table(double max_penetration) {
+    const IndenterShape& shape = *tip_.shape;
+    if (shape.flat()) {
+      flat_ = true;
+      punch_radius_ = shape.max_contact_radius();
+      return;
+    }
+    // a_max: delta0(a_max) >= max_penetration (doubling), within the shape's reach.
+    const double reach = shape.max_contact_radius();
+    double a_max = 1e-9;
+    while (shape.delta0(a_max) < max_penetration) {
+      if (a_max >= reach) {
+        throw NumericalError("afm fit: indentation " + short_text(max_penetration) +
+                             " m is beyond the tip's largest contact radius (" + tip_.description + ")");
+      }
+      a_max = std::min(2.0 * a_max, reach);
+      if (a_max > 1.0) throw NumericalError("afm fit: the tip reaches no indentation of " + short_text(max_penetration) + " m");
+    }
+    const double a_min = a_max * 1e-5;
+    constexpr int kPerDecade = 64;
+    const int count = 5 * kPerDecade + 1;
+    coatcontact::detail::GslHandlerOff handler_off;
+    std::unique_ptr<gsl_integration_workspace, void (*)(gsl_integration_workspace*)> workspace(
+        gsl_integration_workspace_alloc(200), gsl_integration_workspace_free);
+    std::function<double(double)> delta0 = [&shape](double r) { return shape.delta0(r); };
+    gsl_function gf;
+    gf.function = [](double r, void* params) { return (*static_cast<std::function<double(double)>*>(params))(r); };
+    gf.params = &delta0;
+    double integral = 0.0, previous = 0.0;
+    std::vector<double> delta, force;
+    for (int k = 0; k < count; ++k) {
+      const double a = a_min * std::pow(a_max / a_min, k / static_cast<double>(count - 1));
+      double piece = 0.0, error = 0.0;
+      if (gsl_integration_qags(&gf, previous, a, 0.0, 1e-10, 200, workspace.get(), &piece, &error) != 0) {
+        throw NumericalError("afm fit: the tip's Sneddon integral failed at a = " + short_text(a) + " m");
+      }
+      integral += piece;
+      previous = a;
+      const double d = shape.delta0(a);
+      delta.push_back(d);
+      force.push_back(2.0 * (a * d - integral));
+    }
+    table_ = std::make_unique<LogLogTable>(delta, force, tip_.description);
+  }
+
+  const AfmTip& tip_;
+  bool flat_ = false;
+  double punch_radius_ = 0.0;
+  std::unique_ptr<LogLogTable> table_;
+};
+
+// The adhesionless force of the tip on a coating (THEORY.md sections 5, 14): per film modulus
+// E1 one sweep of the reduced solver over a/t (kept), per thickness t its force table in N.
+class CoatingForces {
+ public:
+  explicit CoatingForces(const AfmFitProblem& problem) : problem_(problem), coating_(*problem.coating) {
+    if (problem.tip.kind == AfmTip::Kind::kShape) {
+      throw InputError("afm fit: a coating takes a sphere (--radius), a cone or a pyramid tip (got " + problem.tip.description + ")");
+    }
+    const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
+    const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
+    for (int k = 0; k < count; ++k) {
+      a_over_t_.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
+    }
+  }
+  long solver_calls() const { return solver_calls_; }
+
+  std::unique_ptr<LogLogTable> force(double film_modulus, double thickness) {
+    const std::vector<ReducedVariables>& sweep = sweep_of(film_modulus);
+    Material film = coating_.film;
+    film.youngs_modulus = film_modulus;
+    const double reduced = film.reduced_modulus();
+    std::vector<double> delta, force;
+    const bool sphere = problem_.tip.kind == AfmTip::Kind::kParaboloid;
+    const double radius = problem_.tip.radius, cot = 1.0 / std::tan(problem_.tip.angle);
+    for (const ReducedVariables& v : sweep) {
+      const double a = v.a_over_t * thickness;
+      if (sphere) {
+        delta.push_back(a * a / radius * v.delta_s);
+        force.push_back(a * a * a * reduced / (2.0 * radius) * v.pi_s);
+      } else {
+        delta.push_back(kPi * a * cot / 2.0 * v.delta_c);
+        force.push_back(kPi * a * a * reduced * cot / 4.0 * v.pi_c);
+      }
+    }
+    return std::make_unique<LogLogTable>(delta, force, "coating, a/t up to " + short_text(kCoatingAOverT[1]), true, true);
+  }
+
+ private:
+  const std::vector<ReducedVariables>& sweep_of(double film_modulus) {
+    auto it = sweeps_.find(film_modulus);
+    if (it != sweeps_.end()) return it->second;
+    Material film = coating_.film;
+    film.youngs_modulus = film_modulus;
+    const ReducedSolver solver(Stack::film_on(film, coating_.substrate));
+    std::vector<ReducedVariables> sweep = solver.sweep(a_over_t_, coating_.solver_tolerance);
+    solver_calls_ += static_cast<long>(a_over_t_.size());
+    if (sweeps_.size() > 64) sweeps_.clear();
+    return sweeps_.emplace(film_modulus, std::move(sweep)).first->second;
+  }
+
+  const AfmFitProblem& problem_;
+  const AfmCoating& coating_;
+  std::vector<double> a_over_t_;
+  std::map<double, std::vector<ReducedVariables>> sweeps_;
+  long solver_calls_ = 0;
+};
+
+// At one z_c: the closed-form (E*, b) (E* >= 0) and the residual sum of squares. Forces are
+// centred on their mean (b is then relative to it) to keep the sums well conditioned.
+struct LinearFit {
+  double reduced_modulus = 0.0, baseline = 0.0, rss = 0.0;
+};
+
+class Profile {
+ public:
+  // free_scale: E* (the factor of `force`) in closed form, else fixed_scale; likewise b.
+  Profile(const std::vector<double>& z, const std::vector<double>& f, const PenetrationForce& force, bool free_scale,
+          double fixed_scale, bool free_baseline, double fixed_baseline)
+      : force_(force), free_scale_(free_scale), free_baseline_(free_baseline), fixed_scale_(fixed_scale) {
+    mean_ = std::accumulate(f.begin(), f.end(), 0.0) / static_cast<double>(f.size());
+    fixed_baseline_ = fixed_baseline - mean_;
+    // Sorted by tip position: the points in contact (z < z_c) are a prefix.
+    std::vector<std::size_t> order(z.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return z[a] < z[b]; });
+    z_.reserve(z.size());
+    centred_.reserve(z.size());
+    for (std::size_t i : order) {
+      z_.push_back(z[i]);
+      centred_.push_back(f[i] - mean_);
+    }
+    for (double v : centred_) sff_ += v * v;
+  }
+
+  LinearFit at(double contact_point) const {
+    ++evaluations_;
+    double sg = 0.0, sgg = 0.0, sgf = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i) {
+      const double delta = contact_point - z_[i];
+      if (delta <= 0.0) break;
+      const double g = force_.at(delta).first;
+      sg += g;
+      sgg += g * g;
+      sgf += g * centred_[i];
+    }
+    const double n = static_cast<double>(z_.size());
+    double e = fixed_scale_, b = fixed_baseline_;
+    if (free_scale_ && free_baseline_) {
+      const double var = sgg - sg * sg / n;
+      e = var > 0.0 ? std::max(0.0, sgf / var) : 0.0;  // sum F' = 0: cov = sgf
+      b = -e * sg / n;
+    } else if (free_scale_) {
+      e = sgg > 0.0 ? std::max(0.0, (sgf - b * sg) / sgg) : 0.0;
+    } else if (free_baseline_) {
+      b = -e * sg / n;
+    }
+    // sum (F' - b - e g)^2 with sum F' = 0.
+    const double rss = sff_ + n * b * b + e * e * sgg - 2.0 * e * sgf + 2.0 * b * e * sg;
+    return {e, b + mean_, std::max(0.0, rss)};
+  }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  const PenetrationForce& force_;
+  bool free_scale_, free_baseline_;
+  double fixed_scale_, fixed_baseline_ = 0.0;
+  std::vector<double> z_, centred_;
+  double mean_ = 0.0, sff_ = 0.0;
+  mutable int evaluations_ = 0;
+};
+
+struct ContactSearch {
+  double contact_point = 0.0;
+  LinearFit linear;
+  int evaluations = 0;
+};
+
+// The contact point: grid over [z_lo, c_hi], then Brent on the brackets of the three lowest
+// grid minima (the profile has a kink where a point enters contact and may have several
+// minima; the grid keeps the global one, Brent polishes it). Fixed: the problem's value.
+ContactSearch search_contact(const Profile& profile, const AfmFitProblem& problem, double z_lo, double c_hi,
+                             std::size_t grid_points) {
+  ContactSearch out;
+  double contact = problem.contact_point;
+  if (problem.free.contact_point) {
+    const double span = c_hi - z_lo;
+    const std::size_t m = std::max<std::size_t>(grid_points, 16);
+    std::vector<double> grid(m), cost(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      grid[k] = z_lo + span * static_cast<double>(k) / static_cast<double>(m - 1);
+      cost[k] = profile.at(grid[k]).rss;
+    }
+    std::vector<std::size_t> minima;
+    for (std::size_t k = 0; k < m; ++k) {
+      const bool left = k == 0 || cost[k] <= cost[k - 1];
+      const bool right = k + 1 == m || cost[k] <= cost[k + 1];
+      if (left && right) minima.push_back(k);
+    }
+    std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return cost[a] < cost[b]; });
+    if (minima.size() > 3) minima.resize(3);
+    double best = cost[minima.front()];
+    contact = grid[minima.front()];
+    const auto rss = [&](double c) { return profile.at(c).rss; };
+    for (std::size_t k : minima) {
+      if (k == 0 || k + 1 == m) continue;
+      const auto found = coatcontact::detail::brent_minimum(rss, grid[k - 1], cost[k - 1], grid[k], cost[k], grid[k + 1],
+                                                            cost[k + 1], {span * 1e-12, 0.0, 200});
+      if (!found) continue;
+      const double value = rss(found->x);
+      if (value < best) {
+        best = value;
+        contact = found->x;
+      }
+    }
+  }
+  out.contact_point = contact;
+  out.linear = profile.at(contact);
+  out.evaluations = profile.evaluations();
+  return out;
+}
+
+// Minimum over ln p of `cost` (one free coating parameter): a log grid within
+// kCoatingSearchFactor of `hint`, widened by a decade at a time (at most two) while the best
+// grid point is at an end, then Brent in its bracket.
+// strict = false (an inner search inside another): the best end point instead of the error.
+double minimize_log(const std::function<double(double)>& cost, double hint, const std::string& name, bool strict = true) {
+  const double half = std::log(kCoatingSearchFactor);
+  const double step = std::log(10.0) / kCoatingSearchPointsPerDecade;
+  std::map<double, double> values;  // ln p -> cost
+  const auto eval = [&](double u) {
+    auto it = values.find(u);
+    if (it != values.end()) return it->second;
+    const double c = cost(std::exp(u));
+    values[u] = c;
+    return c;
+  };
+  double lo = std::log(hint) - half, hi = std::log(hint) + half;
+  for (int widen = 0;; ++widen) {
+    for (double u = lo; u <= hi + 1e-9; u += step) eval(u);
+    const auto best = std::min_element(values.begin(), values.end(), [](auto& a, auto& b) { return a.second < b.second; });
+    const bool at_low = best == values.begin(), at_high = std::next(best) == values.end();
+    if (!at_low && !at_high) {
+      const auto left = std::prev(best), right = std::next(best);
+      const auto found = coatcontact::detail::brent_minimum(
+          [&](double u) { return cost(std::exp(u)); }, left->first, left->second, best->first, best->second, right->first,
+          right->second, {1e-7, 0.0, 100});
+      if (found && cost(std::exp(found->x)) <= best->second) return std::exp(found->x);
+      return std::exp(best->first);
+    }
+    if (widen == 2) {
+      if (!strict) return std::exp(best->first);
+      throw NumericalError("afm fit: " + name + " runs out of its search range (best at " + short_text(std::exp(best->first)) +
+                           "); the data do not determine it, or its given value is far off");
+    }
+    if (at_low) lo -= std::log(10.0);
+    if (at_high) hi += std::log(10.0);
+  }
+}
+
+void check_tip(const AfmTip& tip) {
+  switch (tip.kind) {
+    case AfmTip::Kind::kParaboloid:
+      if (!(tip.radius > 0.0) || !std::isfinite(tip.radius)) throw InputError("afm fit: the tip radius must be > 0 (got " + short_text(tip.radius) + ")");
+      return;
+    case AfmTip::Kind::kCone:
+      if (!(tip.angle > 0.0 && tip.angle < kPi / 2)) throw InputError("afm fit: the cone's half angle must be in (0, 90) degrees");
+      return;
+    case AfmTip::Kind::kShape:
+      if (!tip.shape) throw InputError("afm fit: no tip shape");
+      return;
+  }
+}
+
+}  // namespace
+
+AfmTip afm_paraboloid(double radius) {
+  AfmTip tip;
+  tip.kind = AfmTip::Kind::kParaboloid;
+  tip.radius = radius;
+  tip.description = "paraboloid, R = " + short_text(radius) + " m";
+  check_tip(tip);
+  return tip;
+}
+
+AfmTip afm_cone(double half_angle) {
+  AfmTip tip;
+  tip.kind = AfmTip::Kind::kCone;
+  tip.angle = half_angle;
+  tip.description = "cone, half angle " + short_text(half_angle * 180.0 / kPi) + " deg";
+  check_tip(tip);
+  return tip;
+}
+
+AfmTip afm_pyramid(double face_half_angle) {
+  if (!(face_half_angle > 0.0 && face_half_angle < kPi / 2)) {
+    throw InputError("afm fit: the pyramid's face half angle must be in (0, 90) degrees");
+  }
+  AfmTip tip = afm_cone(std::atan(2.0 * std::tan(face_half_angle) / std::sqrt(kPi)));
+  tip.description = "four-sided pyramid, face half angle " + short_text(face_half_angle * 180.0 / kPi) +
+                    " deg, as the cone of equal area (half angle " + short_text(tip.angle * 180.0 / kPi) + " deg)";
+  return tip;
+}
+
+AfmTip afm_shape(std::shared_ptr<const IndenterShape> shape) {
+  AfmTip tip;
+  tip.kind = AfmTip::Kind::kShape;
+  tip.description = shape ? shape->description() : std::string();
+  tip.shape = std::move(shape);
+  check_tip(tip);
+  return tip;
+}
+
+std::vector<double> afm_force_per_modulus(const AfmTip& tip, const std::vector<double>& penetration) {
+  check_tip(tip);
+  double max_delta = 0.0;
+  for (double d : penetration) max_delta = std::max(max_delta, d);
+  const TipForce force(tip, max_delta > 0.0 ? max_delta : 1e-9);
+  std::vector<double> g(penetration.size(), 0.0);
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (penetration[i] > 0.0) g[i] = force.at(penetration[i]).first;
+  }
+  return g;
+}
+
+std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vector<double>& tip_position) {
+  check_tip(problem.tip);
+  std::vector<double> delta(tip_position.size());
+  double max_delta = 0.0;
+  for (std::size_t i = 0; i < delta.size(); ++i) {
+    delta[i] = std::max(0.0, problem.contact_point - tip_position[i]);
+    max_delta = std::max(max_delta, delta[i]);
+  }
+  std::vector<double> f(delta.size(), problem.baseline);
+  if (problem.coating) {
+    CoatingForces forces(problem);
+    const auto table = forces.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      if (delta[i] > 0.0) f[i] += table->at(delta[i]).first;
+    }
+    return f;
+  }
+  const std::vector<double> g = afm_force_per_modulus(problem.tip, delta);
+  const double reduced = problem.modulus / (1.0 - problem.poisson * problem.poisson);
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] += reduced * g[i];
+  return f;
+}
+
+namespace {
+
+void check_fit_input(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                     int free_count) {
+  check_tip(problem.tip);
+  if (z.size() != force.size()) throw InputError("afm fit: tip position and force differ in length");
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    if (!std::isfinite(z[i]) || !std::isfinite(force[i])) {
+      throw InputError("afm fit: point " + std::to_string(i) + " is not finite");
+    }
+  }
+  if (problem.coating) {
+    const AfmCoating& c = *problem.coating;
+    if (!(c.film.youngs_modulus > 0.0 && std::isfinite(c.film.youngs_modulus))) {
+      throw InputError("afm fit: the film's E1 must be > 0 (got " + short_text(c.film.youngs_modulus) + ")");
+    }
+    if (!(c.thickness > 0.0 && std::isfinite(c.thickness))) {
+      throw InputError("afm fit: the film thickness must be > 0 (got " + short_text(c.thickness) + ")");
+    }
+  } else {
+    if (!(problem.poisson > -1.0 && problem.poisson <= 0.5)) {
+      throw InputError("afm fit: Poisson's ratio must be in (-1, 0.5] (got " + short_text(problem.poisson) + ")");
+    }
+    if (!problem.free.modulus && !(problem.modulus > 0.0 && std::isfinite(problem.modulus))) {
+      throw InputError("afm fit: a fixed E must be > 0 (got " + short_text(problem.modulus) + ")");
+    }
+    if (problem.free.thickness) throw InputError("afm fit: t is free only on a coating");
+  }
+  const std::size_t n = z.size();
+  if (n < static_cast<std::size_t>(free_count) + 2) {
+    throw InputError("afm fit: " + std::to_string(n) + " points in the fitted range; " + std::to_string(free_count) +
+                     " free parameters need at least " + std::to_string(free_count + 2));
+  }
+}
+
+// s^2 (J^T J)^-1 on the column-scaled normal matrix (Cholesky): the standard errors.
+std::vector<double> standard_errors(const std::vector<std::vector<double>>& columns, double sigma) {
+  const std::size_t p = columns.size();
+  if (p == 0) return {};
+  const std::size_t n = columns.front().size();
+  std::vector<double> scale(p, 0.0);
+  for (std::size_t a = 0; a < p; ++a) {
+    for (double v : columns[a]) scale[a] += v * v;
+    scale[a] = std::sqrt(scale[a]);
+    if (!(scale[a] > 0.0)) throw NumericalError("afm fit: a free parameter does not change the model at the optimum");
+  }
+  coatcontact::detail::GslHandlerOff handler_off;
+  std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> normal(gsl_matrix_alloc(p, p), gsl_matrix_free);
+  for (std::size_t a = 0; a < p; ++a) {
+    for (std::size_t b = 0; b < p; ++b) {
+      double s = 0.0;
+      for (std::size_t i = 0; i < n; ++i) s += columns[a][i] * columns[b][i];
+      gsl_matrix_set(normal.get(), a, b, s / (scale[a] * scale[b]));
+    }
+  }
+  if (gsl_linalg_cholesky_decomp1(normal.get()) != 0) {
+    throw NumericalError("afm fit: the free parameters are not identifiable from the fitted points");
+  }
+  gsl_linalg_cholesky_invert(normal.get());
+  std::vector<double> errors(p);
+  for (std::size_t a = 0; a < p; ++a) errors[a] = sigma * std::sqrt(gsl_matrix_get(normal.get(), a, a)) / scale[a];
+  return errors;
+}
+
+}  // namespace
+
+AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
+  const auto start = std::chrono::steady_clock::now();
+  const int free_count = int(problem.free.modulus) + int(problem.free.contact_point) + int(problem.free.baseline) +
+                         int(problem.free.thickness);
+  check_fit_input(z, force, problem, free_count);
+  const std::size_t n = z.size();
+  const auto [z_lo_it, z_hi_it] = std::minmax_element(z.begin(), z.end());
+  const double z_lo = *z_lo_it, z_hi = *z_hi_it, span = z_hi - z_lo;
+  if (problem.free.contact_point && !(span > 0.0)) throw InputError("afm fit: the fitted points have one tip position only");
+  const double c_hi = problem.free.contact_point ? z_hi + kContactBeyond * span : problem.contact_point;
+  const double max_delta = std::max(c_hi - z_lo, 1e-12);
+
+  AfmFitResult r;
+  r.points = n;
+  r.free_count = free_count;
+  std::vector<std::vector<double>> columns;  // Jacobian of the free parameters, in result order
+  std::vector<double*> error_slots;
+  if (!problem.coating) {
+    const TipForce tip(problem.tip, max_delta);
+    const double nu_factor = 1.0 - problem.poisson * problem.poisson;
+    const Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
+                          problem.baseline);
+    const ContactSearch found = search_contact(profile, problem, z_lo, c_hi, problem.profile_points);
+    if (!(found.linear.reduced_modulus > 0.0)) {
+      throw NumericalError("afm fit: the data show no contact in the fitted range (the best modulus is 0); "
+                           "widen the range or check the segment");
+    }
+    r.reduced_modulus = found.linear.reduced_modulus;
+    r.modulus = r.reduced_modulus * nu_factor;
+    r.contact_point = found.contact_point;
+    r.baseline = found.linear.baseline;
+    r.profile_evaluations = found.evaluations;
+    std::vector<double> col_e(n, 0.0), col_c(n, 0.0), col_b(n, 1.0);
+    r.model_force.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double delta = r.contact_point - z[i];
+      double g = 0.0, slope = 0.0;
+      if (delta > 0.0) std::tie(g, slope) = tip.at(delta);
+      r.model_force[i] = r.baseline + r.reduced_modulus * g;
+      col_e[i] = g / nu_factor;
+      col_c[i] = r.reduced_modulus * slope;
+    }
+    if (problem.free.modulus) columns.push_back(col_e), error_slots.push_back(&r.modulus_error);
+    if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
+    if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
+  } else {
+    // A coating: E1 and/or t by a log search (t inside E1 when both are free: a new E1 needs a
+    // sweep of the solver, a new t only a rescaled table), z_c and b profiled as above.
+    CoatingForces forces(problem);
+    const AfmCoating& coating = *problem.coating;
+    int evaluations = 0;
+    // A trial whose indentations leave the table (a/t too large: t small) costs +infinity in
+    // the search; at the optimum it is an error.
+    const auto fit_at = [&](double e1, double t, bool final) {
+      const auto table = forces.force(e1, t);
+      const Profile profile(z, force, *table, false, 1.0, problem.free.baseline, problem.baseline);
+      // Trials of the E1/t search localize z_c on a quarter of the grid (Brent polishes it);
+      // the final fit on the full grid.
+      const std::size_t grid = final ? problem.profile_points : std::max<std::size_t>(problem.profile_points / 4, 16);
+      ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid);
+      evaluations += found.evaluations;
+      if (final && found.contact_point - z_lo > table->max_penetration()) {
+        throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
+                             short_text(t) + " m; the coating model is tabulated up to there");
+      }
+      return found;
+    };
+    const auto best_t = [&](double e1, bool strict) {
+      if (!problem.free.thickness) return coating.thickness;
+      return minimize_log([&](double t) { return fit_at(e1, t, false).linear.rss; }, coating.thickness, "t", strict);
+    };
+    double e1 = coating.film.youngs_modulus;
+    if (problem.free.modulus) {
+      e1 = minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
+    }
+    const double t = best_t(e1, true);
+    const ContactSearch found = fit_at(e1, t, true);
+    r.modulus = e1;
+    r.thickness = t;
+    Material film = coating.film;
+    film.youngs_modulus = e1;
+    r.reduced_modulus = film.reduced_modulus();
+    r.contact_point = found.contact_point;
+    r.baseline = found.linear.baseline;
+    r.profile_evaluations = evaluations;
+    const auto table = forces.force(e1, t);
+    const auto model_at = [&](const LogLogTable& tab, std::vector<double>* slope) {
+      std::vector<double> f(n, r.baseline);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double delta = r.contact_point - z[i];
+        if (delta <= 0.0) continue;
+        const auto [g, dg] = tab.at(delta);
+        f[i] += g;
+        if (slope) (*slope)[i] = dg;
+      }
+      return f;
+    };
+    std::vector<double> col_c(n, 0.0), col_b(n, 1.0);
+    r.model_force = model_at(*table, &col_c);
+    // d F/d p by central differences at fixed z_c, b (relative step h: truncation ~h^2).
+    constexpr double h = 1e-4;
+    const auto difference = [&](double e_lo, double t_lo, double e_hi, double t_hi, double width) {
+      const std::vector<double> lo = model_at(*forces.force(e_lo, t_lo), nullptr);
+      const std::vector<double> hi = model_at(*forces.force(e_hi, t_hi), nullptr);
+      std::vector<double> col(n);
+      for (std::size_t i = 0; i < n; ++i) col[i] = (hi[i] - lo[i]) / width;
+      return col;
+    };
+    if (problem.free.modulus) {
+      columns.push_back(difference(e1 * (1 - h), t, e1 * (1 + h), t, 2 * h * e1));
+      error_slots.push_back(&r.modulus_error);
+    }
+    if (problem.free.thickness) {
+      columns.push_back(difference(e1, t * (1 - h), e1, t * (1 + h), 2 * h * t));
+      error_slots.push_back(&r.thickness_error);
+    }
+    if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
+    if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
+    r.solver_calls = forces.solver_calls();
+  }
+
+  const double mean = std::accumulate(force.begin(), force.end(), 0.0) / static_cast<double>(n);
+  double tss = 0.0;
+  r.residual.resize(n);
+  r.indentation.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    r.indentation[i] = r.contact_point - z[i];
+    if (r.indentation[i] > 0.0) ++r.points_in_contact;
+    r.max_indentation = std::max(r.max_indentation, r.indentation[i]);
+    r.residual[i] = r.model_force[i] - force[i];
+    r.rss += r.residual[i] * r.residual[i];
+    tss += (force[i] - mean) * (force[i] - mean);
+  }
+  if (r.points_in_contact == 0) {
+    throw NumericalError("afm fit: the data show no contact in the fitted range; widen the range or check the segment");
+  }
+  const double dof = static_cast<double>(n) - free_count;
+  r.residual_sigma = std::sqrt(r.rss / dof);
+  r.r_squared = tss > 0.0 ? 1.0 - r.rss / tss : 0.0;
+  if (problem.noise_sigma > 0.0) {
+    r.chi2 = r.rss / (problem.noise_sigma * problem.noise_sigma);
+    r.chi2_per_dof = r.chi2 / dof;
+  }
+  const std::vector<double> errors = standard_errors(columns, r.residual_sigma);
+  for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+std::vector<std::size_t> afm_select(const std::vector<double>& z, const std::vector<double>& force, const AfmRange& range,
+                                    double reference_contact, double reference_baseline) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    const double delta = reference_contact - z[i];
+    if (range.tip_min && z[i] < *range.tip_min) continue;
+    if (range.tip_max && z[i] > *range.tip_max) continue;
+    if (range.indentation_min && delta < *range.indentation_min) continue;
+    if (range.indentation_max && delta > *range.indentation_max) continue;
+    if (range.max_force && force[i] - reference_baseline > *range.max_force) continue;
+    kept.push_back(i);
+  }
+  return kept;
+}
+
+AfmPulloff afm_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force, double baseline) {
+  AfmPulloff out;
+  if (force.empty()) return out;
+  const auto it = std::min_element(force.begin(), force.end());
+  const auto i = static_cast<std::size_t>(it - force.begin());
+  out.found = true;
+  out.force = *it - baseline;
+  out.tip_position = tip_position[i];
+  out.index = i;
+  return out;
+}
+
+}  // namespace coatcontact::fit

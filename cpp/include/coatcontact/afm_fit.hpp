@@ -1,0 +1,140 @@
+// Adhesionless fit of one AFM force-curve segment (THEORY.md section 15): the Hertz/Sneddon
+// force of a rigid axisymmetric tip on a homogeneous half-space, with the contact point z_c on
+// the tip-position axis and a force baseline b,
+//   F(z) = b + E* g(delta),   delta = max(0, z_c - z),   E* = E/(1 - nu^2),
+// g(delta) = F/E* of the tip at penetration delta (§11: 2[a delta0(a) - int_0^a delta0]).
+// The tip-position axis decreases toward the sample (coatcontact/force_curve.hpp), so the tip
+// indents the sample where z < z_c.
+// At fixed z_c the model is linear in (b, E*): both are solved in closed form, and z_c is
+// found by profiling that residual sum over the whole fitted range (a grid, then Brent on
+// the bracket of each of the best grid minima), so the result is the global optimum, not the
+// nearest local one. The data arrays are plain SI numbers (the fit floor does not read files).
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coatcontact/indenter_shape.hpp"
+#include "coatcontact/stack.hpp"
+
+namespace coatcontact::fit {
+
+// The tip: closed forms for the paraboloid (radius R) and the cone (half angle beta), and any
+// IndenterShape through a table of g(delta) (Sneddon's integral, monotone interpolation).
+struct AfmTip {
+  enum class Kind { kParaboloid, kCone, kShape };
+  Kind kind = Kind::kParaboloid;
+  double radius = 0.0;  // R [m] (paraboloid)
+  double angle = 0.0;   // beta [rad], half included angle (cone)
+  std::shared_ptr<const IndenterShape> shape;  // kShape
+  std::string description;                     // one line for headers
+};
+AfmTip afm_paraboloid(double radius);
+AfmTip afm_cone(double half_angle);
+// Four-sided pyramid of face half angle theta (between face and axis) as the cone of equal
+// cross-section area: pi (delta tan beta)^2 = 4 (delta tan theta)^2, tan beta = 2 tan theta/sqrt(pi).
+AfmTip afm_pyramid(double face_half_angle);
+AfmTip afm_shape(std::shared_ptr<const IndenterShape> shape);
+
+// Which of E (the half-space's, or the film's E1), t (a coating's thickness), z_c and b are free
+// (the others keep the values of AfmFitProblem).
+struct AfmFree {
+  bool modulus = true, contact_point = true, baseline = true;
+  bool thickness = false;
+};
+
+// A coating instead of the half-space: film (E1 the value if fixed, else the centre of its
+// search; nu1 fixed) of thickness t on a fixed substrate, adhesionless (THEORY.md sections 5
+// and 14): the sphere's F_H = (a^3 E1*/(2R)) Pi_s(a/t), delta_H = (a^2/R) Delta_s(a/t), the
+// cone's likewise with Pi_c, Delta_c, from the reduced solver swept over a/t in
+// [kCoatingAOverT] (kCoatingPerDecade points per decade) and interpolated in log-log; below
+// the sweep the film's own power law, past it (trial contact points of the search only) the
+// power law of its last two nodes; the final fit must lie inside the sweep. Tips: paraboloid, cone, pyramid.
+struct AfmCoating {
+  Material film;
+  Substrate substrate;
+  double thickness = 0.0;  // t [m] (value if fixed, else the centre of its search)
+  double solver_tolerance = 1e-8;
+};
+constexpr double kCoatingAOverT[2] = {1e-2, 1e2};
+constexpr double kCoatingPerDecade = 16.0;
+// Free E1 and t are searched on a log grid within this factor of their given values
+// (kSearchPointsPerDecade per decade), then Brent.
+constexpr double kCoatingSearchFactor = 10.0;
+constexpr double kCoatingSearchPointsPerDecade = 4.0;
+
+struct AfmFitProblem {
+  AfmTip tip;
+  double modulus = 0.0;         // E [Pa] of the half-space (value if fixed; unused if free)
+  double poisson = 0.5;         // nu
+  double contact_point = 0.0;   // z_c [m] (value if fixed)
+  double baseline = 0.0;        // b [N] (value if fixed)
+  AfmFree free;
+  std::optional<AfmCoating> coating;  // none: the homogeneous half-space (modulus, poisson)
+  // Grid of the contact-point profile over [z_min, z_max + kContactBeyond (z_max - z_min)]
+  // of the fitted points (z_c may lie beyond the last point out of contact).
+  std::size_t profile_points = 400;
+  // Noise of one force value [N] (e.g. the baseline's residual sigma): chi2 = rss/noise^2.
+  // 0: no chi2 (the fit is unweighted either way).
+  double noise_sigma = 0.0;
+};
+constexpr double kContactBeyond = 0.25;
+
+struct AfmFitResult {
+  double modulus = 0.0, contact_point = 0.0, baseline = 0.0;  // estimates (or fixed values)
+  double modulus_error = 0.0, contact_point_error = 0.0, baseline_error = 0.0;  // 0 if fixed
+  double thickness = 0.0, thickness_error = 0.0;  // t [m] of a coating (0 on a half-space)
+  double reduced_modulus = 0.0;  // E* [Pa] (of the film on a coating)
+  long solver_calls = 0;         // reduced-variable solves (coating)
+  std::size_t points = 0, points_in_contact = 0;
+  int free_count = 0;
+  double rss = 0.0;             // sum of squared residuals [N^2]
+  double residual_sigma = 0.0;  // sqrt(rss/(n - p)) [N]
+  double chi2 = 0.0;            // rss / residual_sigma^2 = n - p (unweighted: sigma from the residuals)
+  double chi2_per_dof = 0.0;
+  double r_squared = 0.0;
+  double max_indentation = 0.0;  // [m] largest delta of the fitted points
+  std::vector<double> model_force, residual, indentation;  // per point (residual = model - data)
+  int profile_evaluations = 0;
+  double seconds = 0.0;
+};
+
+// g(delta) = F/E* of the tip on a half-space at each penetration delta >= 0 [N/Pa].
+std::vector<double> afm_force_per_modulus(const AfmTip& tip, const std::vector<double>& penetration);
+
+// The model force at tip positions z for E (E1 and t of a coating), z_c, b of `problem`.
+std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vector<double>& tip_position);
+
+// Fits force[i] at tip_position[i]. InputError: fewer points than free parameters + 1,
+// non-finite values, bad tip or moduli; NumericalError: no contact in the fitted range
+// (E* <= 0 everywhere on the profile) or a singular fit.
+AfmFitResult afm_fit(const std::vector<double>& tip_position, const std::vector<double>& force,
+                     const AfmFitProblem& problem);
+
+// Fit ranges as the AFM field uses them, combined (a point must pass each one given): tip
+// positions [m]; indentation relative to a reference contact point (delta_ref = z_ref - z,
+// e.g. [-1e-6, 2e-6], or up to a maximum indentation); forces above a reference baseline up to
+// a maximum [N]. The reference contact point and baseline are estimates made before the fit
+// (the preprocessing's), so the fitted points do not move with the fitted z_c.
+struct AfmRange {
+  std::optional<double> tip_min, tip_max;
+  std::optional<double> indentation_min, indentation_max;
+  std::optional<double> max_force;
+  bool any() const { return tip_min || tip_max || indentation_min || indentation_max || max_force; }
+};
+// Indices of the points inside `range`, in order.
+std::vector<std::size_t> afm_select(const std::vector<double>& tip_position, const std::vector<double>& force,
+                                    const AfmRange& range, double reference_contact, double reference_baseline);
+
+// The measured pull-off of a segment: its most tensile force (minus `baseline`) and where.
+struct AfmPulloff {
+  bool found = false;
+  double force = 0.0;         // [N], negative when adhesive
+  double tip_position = 0.0;  // [m]
+  std::size_t index = 0;      // in the arrays given
+};
+AfmPulloff afm_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force, double baseline);
+
+}  // namespace coatcontact::fit

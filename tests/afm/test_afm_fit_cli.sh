@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# coatcontact afm fit on the real JPK curve: the estimates in the header, the table, the plot;
+# range options; and the refusals: exit 2 naming the option, the value and what is allowed,
+# exit 3 for a fit without contact; never an output file on failure.
+# Usage: test_afm_fit_cli.sh COATCONTACT DATA_DIR WORK_DIR
+set -u
+cli="$1"; data="$2"; work="$3"
+rm -rf "$work"; mkdir -p "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+spot="$data/fmt-jpk-fd_spot3-0192.jpk-force"
+
+expect_error() {  # CODE FRAGMENT... -- ARGS
+  local code="$1"; shift
+  local fragments=()
+  while [ "$1" != "--" ]; do fragments+=("$1"); shift; done
+  shift
+  rm -f "$work/out.tsv" "$work/out.png"
+  "$cli" "$@" --output "$work/out.tsv" >"$work/stdout" 2>"$work/stderr"
+  local rc=$?
+  [ "$rc" -eq "$code" ] || fail "exit $rc (wanted $code): $* :: $(cat "$work/stderr")"
+  for f in "${fragments[@]}"; do
+    grep -qF -- "$f" "$work/stderr" || fail "message lacks '$f': $* :: $(cat "$work/stderr")"
+  done
+  [ ! -e "$work/out.tsv" ] && [ ! -e "$work/out.png" ] || fail "an output file was written: $*"
+  ls "$work" | grep -q '\.tmp\.' && fail "a temporary file was left: $*"
+  return 0
+}
+
+# ---- a good fit: header, table, plot ---------------------------------------------------------
+"$cli" afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --output "$work/fit.tsv" --plot "$work/fit.png" \
+  2>"$work/stderr" || fail "afm fit spot3: $(cat "$work/stderr")"
+grep -q '^# command: coatcontact afm fit ' "$work/fit.tsv" || fail "no command line"
+for key in 'E \[Pa\]' 'contact point \[m\]' 'baseline \[N\]'; do
+  grep -qE "^# $key: [-0-9.e+]+ \+- [0-9.e+-]+$" "$work/fit.tsv" || fail "header lacks '$key: value +- error'"
+done
+for key in 'chi2' 'residual sigma \[N\]' 'pull-off \(retract, measured\) \[N\]' 'fit range' 'tip'; do
+  grep -qE "^# $key: " "$work/fit.tsv" || fail "header lacks '$key'"
+done
+grep -q '^# columns: point	tip_position_m	indentation_m	force_N	model_force_N	residual_N	fitted$' "$work/fit.tsv" \
+  || fail "columns line"
+rows=$(grep -vc '^#' "$work/fit.tsv")
+[ "$rows" -eq 2000 ] || fail "the approach has 2000 points, the table $rows"
+head -c 8 "$work/fit.png" | od -An -c | grep -q 'P   N   G' || fail "--plot did not write a PNG"
+# The residual column is model - data, and the model is the baseline out of contact.
+awk -F'\t' '!/^#/ { r = $5 - $4 - $6; if (r > 1e-20 || r < -1e-20) bad++ } END { exit bad > 0 }' "$work/fit.tsv" \
+  || fail "residual_N is not model_force_N - force_N"
+# Range options: fewer points fitted, recorded in the header.
+"$cli" afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --max-indentation 50nm --indentation-range -1um,1um \
+  --output "$work/range.tsv" 2>"$work/stderr" || fail "range options: $(cat "$work/stderr")"
+grep -qE '^# fit range: indentation >= -1e-06 m; indentation <= 5e-08 m \([0-9]+ points fitted' "$work/range.tsv" \
+  || fail "range not recorded: $(grep '^# fit range' "$work/range.tsv")"
+fitted=$(awk -F'\t' '!/^#/ && $7 == 1' "$work/range.tsv" | wc -l)
+[ "$fitted" -gt 100 ] && [ "$fitted" -lt 2000 ] || fail "range fitted $fitted points"
+# A fixed contact point and E free: the cone and the pyramid run too.
+"$cli" afm fit "$spot" --shape pyramid:35deg --halfspace 1kPa,0.5 --output "$work/pyr.tsv" 2>"$work/stderr" \
+  || fail "pyramid: $(cat "$work/stderr")"
+grep -q '^# tip: four-sided pyramid, face half angle 35 deg' "$work/pyr.tsv" || fail "pyramid description"
+"$cli" afm fit "$spot" --shape blunted-cone:50nm,70deg --halfspace 1kPa,0.5 --output "$work/bc.tsv" 2>"$work/stderr" \
+  || fail "blunted cone: $(cat "$work/stderr")"
+
+# A coating with t free (E1 fixed): the estimate and its error in the header.
+"$cli" afm fit "$spot" --radius 10um --film 5kPa,0.5 --substrate 1GPa,0.3 --thickness 2um --free t,contact_point,baseline \
+  --max-indentation 100nm --output "$work/coat.tsv" 2>"$work/stderr" || fail "coating: $(cat "$work/stderr")"
+grep -qE '^# t \[m\]: [0-9.e+-]+ \+- [0-9.e+-]+$' "$work/coat.tsv" || fail "coating: no t +- error"
+grep -q '^# E1 \[Pa\]: 5000 (fixed)$' "$work/coat.tsv" || fail "coating: E1 fixed"
+
+# ---- refusals ----------------------------------------------------------------------------------
+expect_error 2 "--model" "'jkr' is not available" "allowed: hertz" -- afm fit "$spot" --model jkr --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "'foo'" "allowed: hertz" -- afm fit "$spot" --model foo --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "a coating needs" "--thickness is missing" -- afm fit "$spot" --radius 10um --film 1kPa,0.5 --substrate rigid
+expect_error 2 "--halfspace" "one sample" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --film 1kPa,0.5 --substrate rigid --thickness 1um
+expect_error 2 "--free" "'E'" "allowed: E1, t, contact_point, baseline" -- afm fit "$spot" --radius 10um --film 1kPa,0.5 --substrate rigid --thickness 1um --free E
+expect_error 2 "a coating takes a sphere" -- afm fit "$spot" --shape punch:1um --film 1kPa,0.5 --substrate rigid --thickness 1um
+expect_error 2 "--halfspace E,nu" -- afm fit "$spot" --radius 10um
+expect_error 2 "--radius R" "--shape SPEC" -- afm fit "$spot" --halfspace 1kPa,0.5
+expect_error 2 "--radius and --shape" -- afm fit "$spot" --radius 10um --shape cone:70deg --halfspace 1kPa,0.5
+expect_error 2 "--free" "'w'" "allowed: E, contact_point, baseline" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --free E,w
+expect_error 2 "--free" "--contact-point Z" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --free E,baseline
+expect_error 2 "--segment" "'side'" "approach or retract" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --segment side
+expect_error 2 "--tip-range" "MIN must be below MAX" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --tip-range 2e-5,1e-5
+expect_error 2 "range options leave 0 points" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --tip-range 1,2
+expect_error 2 "--index" "holds 1 curve" -- afm fit "$spot" --index 3 --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--plot" ".png or .pdf" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --plot "$work/out.gif"
+expect_error 2 "--shape" "pyramid:THETA" -- afm fit "$spot" --shape pyramid: --halfspace 1kPa,0.5
+expect_error 2 "--spring-constant" -- afm fit "$data/fmt-jpk-cl_calibration_force-save-2015.02.04-11.25.21.294.jpk-force" --radius 10um --halfspace 1kPa,0.5
+# No point in contact (a fixed contact point below every tip position): numerical failure, exit 3.
+expect_error 3 "no contact" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --free E,baseline --contact-point 1e-6 --plot "$work/out.png"
+
+[ "$failures" -eq 0 ] && echo "afm fit CLI: all checks passed"
+exit $((failures > 0))
