@@ -451,9 +451,9 @@ def _fit_shape(shape):
     return _core.make_shape(shape[0], params[0], params[1])
 
 
-def fit(x, F, *, kind="a", radius=None, shape=None, film, substrate, thickness, work=None, free=("w",),
-        indenter=None, sigma=None, branch=None, unload_work=None, spring=None, model="jkr", lambda_=None,
-        bootstrap=0, seed=1, curve_points=200):
+def fit(x, F, *, kind="a", radius=None, shape=None, film=None, substrate, thickness=None, layers=None,
+        work=None, free=("w",), indenter=None, sigma=None, branch=None, branch_select="both", unload_work=None,
+        spring=None, model="jkr", lambda_=None, bootstrap=0, seed=1, curve_points=200):
     """Least-squares fit of measured (a, F), (delta, F) or (z, F) data (residuals in force): the
     library call behind `coatcontact fit`, with the same models and the same numbers.
 
@@ -464,13 +464,21 @@ def fit(x, F, *, kind="a", radius=None, shape=None, film, substrate, thickness, 
                ("cone", beta), ("punch", A), ("power", n, R), ("blunted-cone", R, beta),
                ("profile", r, z) (its own parameters fixed; the model is solved at every point).
     film       (E1 [Pa], nu1): E1 is the start value if fitted.  substrate (E0, nu0) or "rigid".
-    thickness  t [m]: fixed value or start value.
+    thickness  t [m] of the film: fixed value or start value.
+    layers     in place of film= and thickness=, a stack as the CLI's --layer repeated:
+               [(h [m], E [Pa], nu[, slip]), ...], top first; the thicknesses and moduli are
+               the fixed values or the start values of the free ones (free names h1..hN,
+               E1..EN; one layer: t = h1).
     work       w [J/m^2]: fixed value or start value; default (when w is free) the library's
                start value (from the most tensile force through the JKR pull-off, as the CLI).
     free       names among "w", "t", "E1"; "w_load", "w_unload" in place of "w" give the loading
                and unloading rows their own w (branch= says which row is which, 1 loading,
                0 unloading; default: the rows after the largest x unload); "k" with kind="z";
-               "lambda" with model="md". A sequence or a comma-separated string; default w.
+               "lambda" with model="md"; with layers= "h1".."hN", "E1".."EN". A sequence or a
+               comma-separated string; default w.
+    branch_select  "both" (default), "load" or "unload": fit only the loading rows (up to and
+               including the first largest x) or the unloading rows (from it on), as the CLI's
+               --branch; the per-point results (F_model, a_model, residual) are those rows'.
     sigma      uncertainties: {"a": .., "F": ..} (the abscissa's name, or "F"), each a number
                [m or N], an array per point, or a percentage string "0.3%": residuals weighted by
                the effective variance sigma_F^2 + (dF/dx)^2 sigma_x^2, chi2_per_dof reported.
@@ -498,11 +506,34 @@ def fit(x, F, *, kind="a", radius=None, shape=None, film, substrate, thickness, 
         raise ValueError("model: %r is neither 'jkr' nor 'md' (Maugis-Dugdale)" % (model,))
     if (radius is None) == (shape is None):
         raise ValueError("radius: give the sphere radius radius=R or an indenter shape=(...), not both")
+    if layers is None and (film is None or thickness is None):
+        raise ValueError("film: give film=(E1, nu1) and thickness=t, or a stack as layers=[(h, E, nu), ...]")
+    if layers is not None and (film is not None or thickness is not None):
+        raise ValueError("layers: the layers carry their thicknesses and moduli; give layers= or "
+                         "film= with thickness=, not both")
     if isinstance(free, str):
         free = tuple(s.strip() for s in free.split(","))
     free = tuple(free)
+    if layers is not None and len(layers) == 1:
+        free = tuple("t" if name == "h1" else name for name in free)
     x = np.ascontiguousarray(np.asarray(x, dtype=float).ravel())
     F = np.ascontiguousarray(np.asarray(F, dtype=float).ravel())
+    if branch_select not in ("both", "load", "unload"):
+        raise ValueError("branch_select: %r is not allowed (load, unload or both)" % (branch_select,))
+    if branch_select != "both":
+        if "w_load" in free or "w_unload" in free:
+            raise ValueError("branch_select: %r keeps one branch, but w_load,w_unload need both (leave "
+                             "branch_select out)" % (branch_select,))
+        if branch is not None:
+            raise ValueError("branch: the branch column is read only when the branches have their own "
+                             "adhesion energies (free w_load,w_unload)")
+        # The rows of one branch by their order, as the library's fit::select_branch: the turning
+        # point (the first largest x) belongs to both.
+        top = int(np.argmax(x)) if x.size else 0
+        rows = slice(0, top + 1) if branch_select == "load" else slice(top, x.size)
+        x, F = np.ascontiguousarray(x[rows]), np.ascontiguousarray(F[rows])
+        sigma = {name: (value[rows] if np.ndim(value) == 1 and not isinstance(value, str) else value)
+                 for name, value in (sigma or {}).items()}
     empty = np.zeros(0)
     sigma_x = sigma_F = empty
     for name, value in (sigma or {}).items():
@@ -515,8 +546,10 @@ def fit(x, F, *, kind="a", radius=None, shape=None, film, substrate, thickness, 
     unloading = empty if branch is None else np.ascontiguousarray(1.0 - np.asarray(branch, dtype=float).ravel())
     if work is None and "w" not in free and "w_load" not in free:
         raise ValueError("w is fixed: give it with work=... (or add 'w' to free)")
-    # The C interface takes the layer's thickness as a length (the fixed value or the hint of t).
-    stack = Stack(layers=[(float(thickness), film[0], film[1])], substrate=substrate, indenter=indenter)
+    # The C interface takes the layers' thicknesses as lengths (the fixed values or the hints).
+    if layers is None:
+        layers = [(float(thickness), film[0], film[1])]
+    stack = Stack(layers=layers, substrate=substrate, indenter=indenter)
     r = _core.fit_run(stack._core, getattr(_core, _FIT_KINDS[kind]), x, F, sigma_x, sigma_F, unloading,
                       0.0 if radius is None else float(radius), _fit_shape(shape), ",".join(free),
                       0.0 if work is None else float(work), 0.0 if unload_work is None else float(unload_work),
@@ -554,9 +587,17 @@ def fit(x, F, *, kind="a", radius=None, shape=None, film, substrate, thickness, 
         # The fitted curve: the same model at the estimates (w_unload with two energies), through
         # the SI contact.
         est = out["estimates"]
-        fitted = Stack((est["E1"], film[1]), substrate=substrate, indenter=indenter)
+        if film is not None:
+            fitted = Stack((est["E1"], film[1]), substrate=substrate, indenter=indenter)
+        elif "t" in est:
+            fitted = Stack(layers=[(est["t"], est["E1"]) + tuple(stack.layers[0][2:])], substrate=substrate,
+                           indenter=indenter)
+        else:
+            fitted = Stack(layers=[(est["h%d" % (i + 1)], est["E%d" % (i + 1)]) + tuple(layer[2:])
+                                   for i, layer in enumerate(stack.layers)], substrate=substrate, indenter=indenter)
         w = est.get("w_unload", est.get("w", est.get("w_load")))
-        c = Contact(_model(fitted, _DEFAULT_TOL), radius, est["t"], w)
+        thickness_total = est["t"] if "t" in est else sum(layer[0] for layer in fitted.layers)
+        c = Contact(_model(fitted, _DEFAULT_TOL), radius, thickness_total, w)
         out["curve"] = c.curve(curve_points)
     return out
 

@@ -113,6 +113,52 @@ def test_fit_maugis_dugdale_equals_cli(cli, source_dir, tmp_path):
     assert_estimates_equal(values, r)
 
 
+def test_fit_stack_equals_cli(cli, source_dir):
+    # The two-layer example (a 20 um skin on a 30 um layer), h2 free from half its value:
+    # the CLI's --layer repeated and --free w,h2, through cc_fit_run as fit() of one film.
+    layers = [(20e-6, 1e6, 0.49), (15e-6, 5e6, 0.45)]
+    header, _, _ = cli("fit", "data/example_layers_a_F.tsv", "--columns", "a,F", "--radius", "5mm",
+                       "--layer", "20um,1MPa,0.49", "--layer", "15um,5MPa,0.45", "--substrate", "70GPa,0.22",
+                       "--free", "w,h2")
+    values = values_of(header)
+    a, F = example(source_dir, "example_layers_a_F.tsv")
+    r = cc.fit(a, F, radius=5e-3, layers=layers, substrate=(70e9, 0.22), free="w,h2")
+    assert r["names"] == ("w", "h1", "h2", "E1", "E2") and r["free"] == ("w", "h2")
+    assert_estimates_equal(values, r)
+    assert same(values["load_pulloff_F_N"], r["load_pulloff"]["F"])
+    assert same(values["displacement_pulloff_F_N"], r["displacement_pulloff"]["F"])
+    assert r["correlation"].shape == (5, 5)
+    # fit_stack (cc_fit_stack) gives the same estimates.
+    s = cc.fit_stack(a, F, layers=layers, substrate=(70e9, 0.22), radius=5e-3, free="w,h2")
+    for name in ("w", "h2"):
+        assert s["estimates"][name] == r["estimates"][name], name
+
+
+def test_fit_branch_select_equals_cli(cli, source_dir):
+    # --branch unload: only the rows from the largest a on; --branch load: those up to it.
+    a, F = example(source_dir, "example_a_F.tsv")
+    for which in ("unload", "load"):
+        header, _, _ = cli("fit", "data/example_a_F.tsv", "--columns", "a,F", "--radius", "5mm",
+                           *CLI_MATERIAL, "--branch", which, "--sigma", "F=10uN")
+        values = values_of(header)
+        r = cc.fit(a, F, radius=5e-3, **MATERIAL, branch_select=which, sigma={"F": np.full(a.size, 10e-6)})
+        assert values["branch"] == which
+        assert int(values["points"].split()[0]) == r["points"], which
+        assert_estimates_equal(values, r)
+        assert same(values["chi2_per_dof"], r["chi2_per_dof"])
+        assert same(values["load_pulloff_F_N"], r["load_pulloff"]["F"])
+
+
+def test_fit_stack_and_branch_select_bad_options(source_dir):
+    a, F = example(source_dir, "example_a_F.tsv")
+    with pytest.raises(ValueError, match="not both"):
+        cc.fit(a, F, radius=5e-3, **MATERIAL, layers=[(50e-6, 1e6, 0.49)])
+    with pytest.raises(ValueError, match="branch_select"):
+        cc.fit(a, F, radius=5e-3, **MATERIAL, branch_select="up")
+    with pytest.raises(ValueError, match="w_load,w_unload need both"):
+        cc.fit(a, F, radius=5e-3, **MATERIAL, branch_select="load", free="w_load,w_unload")
+
+
 def test_fit_unit_mixup_is_explained(source_dir):
     # a in um read as m: the same words as the CLI's (a is not below the sphere radius).
     a, F = example(source_dir, "example_a_F.tsv")
