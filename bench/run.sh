@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `make bench`: every bench_* executable in BUILD_DIR/bench (configure with
-# -DCOATCONTACT_BUILD_BENCH=ON), then whole-process timings of the CLI (bench/cli_timings.sh).
+# -DCOATCONTACT_BUILD_BENCH=ON), then whole-process timings of the CLI (bench/cli_timings.sh)
+# and the explorer's slider updates (bench/explore_sliders.py).
 # Results: BUILD_DIR/bench/results.tsv (one row per task: median, min, max over the runs, with
 # the machine and the commit) and BUILD_DIR/bench/<name>.json (the benchmark library's own
 # report, medians of 5 repetitions). Usage: bench/run.sh BUILD_DIR [extra benchmark flags]
@@ -54,6 +55,16 @@ fi
 
 echo "== CLI, whole process"
 bash "$(dirname "$0")/cli_timings.sh" "$build/bin/coatcontact" >> "$tmp"
+
+# The interpreter the Python module was built for.
+python=$(sed -n 's/^Python3_EXECUTABLE:FILEPATH=//p' "$build/CMakeCache.txt" 2>/dev/null)
+python="${python:-python3}"
+if [ -d "$build/python/coatcontact" ] && "$python" -c "import matplotlib, numpy" 2>/dev/null; then
+  echo "== Python explorer, slider updates"
+  PYTHONPATH="$build/python" "$python" "$(dirname "$0")/explore_sliders.py" --tsv >> "$tmp"
+else
+  echo "bench/run.sh: no Python module in $build/python or no matplotlib: explorer timings left out" >&2
+fi
 mv "$tmp" "$results"
 trap - EXIT
 echo "wrote $results"

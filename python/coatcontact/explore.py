@@ -18,14 +18,22 @@ ipywidgets is installed). Without a display, `--save FILE.png` draws the window 
 
 Moving eta or k_bar only reads the interpolated reduced variables of the current stack (about
 a millisecond); moving E1/E0, nu1 or nu0 builds the kernel table and the interpolant of a new
-stack, and a finite lambda solves the cohesive zone at each radius (a few hundred ms each;
-revisited values come from a cache).
+stack, and a finite lambda solves the cohesive zone at each radius (a few hundred ms each).
+The sliders stop on a fixed grid of values (their steps), and while the window waits a
+background thread builds the models of the neighbouring grid values of E1/E0, nu1, nu0 (and,
+with a finite lambda, the Maugis-Dugdale curves of the neighbouring lambda and eta): a move by
+one step then reads a cache. Values given to Explorer.set() are used as they are. `bench/explore_sliders.py` measures both.
 """
 import argparse
+import atexit
+import collections
+import concurrent.futures
 import functools
 import math
 import os
+import queue
 import sys
+import threading
 import time
 
 import numpy as np
@@ -66,6 +74,37 @@ def _slider_value(name, position):
     return 10.0 ** position if log else position
 
 
+#: Sliders whose values stop on their grid (the models and Maugis-Dugdale curves of these
+#: values are cached and built ahead for the neighbours of the current value).
+GRID = ("ratio", "nu1", "nu0", "eta", "lam")
+
+
+def _grid_index(name, value):
+    """The index of the grid value of slider `name` nearest to `value` (0 at the bottom)."""
+    _, lo, _, _, step, _ = SLIDERS[name]
+    return int(round((_slider_position(name, value) - _slider_position(name, lo)) / step))
+
+
+def _grid_value(name, index):
+    """The value at grid index `index` of slider `name`, or None outside the slider. One
+    function makes every grid value, so a cached model is found again bit for bit."""
+    _, lo, hi, _, step, log = SLIDERS[name]
+    position = round(_slider_position(name, lo) + index * step, 10)
+    if index < 0 or position > _slider_position(name, hi) + 1e-9:
+        return None
+    value = _slider_value(name, position)
+    if name == "lam" and math.isinf(value):
+        return value
+    return float("%.12g" % value)
+
+
+def _snap(name, value):
+    """A value of a GRID slider moved onto its grid (lambda = inf stays inf)."""
+    if name not in GRID or math.isinf(value):
+        return value
+    return _grid_value(name, _grid_index(name, value))
+
+
 def check_parameters(params):
     """The parameters, completed with DEFAULTS; ValueError naming a wrong one and its range."""
     out = dict(DEFAULTS)
@@ -81,17 +120,154 @@ def check_parameters(params):
     return out
 
 
-@functools.lru_cache(maxsize=32)
-def _model(ratio, nu1, nu0):
+class _Cache:
+    """Results of `build` by key, each computed once: in the caller's thread (get), or ahead of
+    need in one background thread (prefetch). A key being built in the background is waited
+    for, not built twice. Keeps the `size` most recently used results."""
+
+    def __init__(self, build, size):
+        self._build, self._size = build, size
+        self._lock = threading.Lock()
+        self._entries = collections.OrderedDict()   # key -> concurrent.futures.Future
+        self._queue = queue.Queue()
+        self._worker = None
+
+    def get(self, *key):
+        with self._lock:
+            future = self._entries.get(key)
+            mine = future is None
+            if mine:
+                future = self._entries[key] = concurrent.futures.Future()
+                self._trim()
+            self._entries.move_to_end(key)
+        if mine:
+            self._run(key, future)
+        return future.result()
+
+    def prefetch(self, keys):
+        """Builds `keys` in the background thread, replacing the keys still waiting there
+        (those of an earlier position are no longer the neighbours)."""
+        self._drain()
+        for key in keys:
+            self._queue.put(key)
+        if self._worker is None:
+            self._worker = threading.Thread(target=self._work, name="coatcontact.explore prefetch", daemon=True)
+            self._worker.start()
+            # At exit: drop the waiting keys and let the thread finish the build in hand (a
+            # thread still inside the library while the interpreter ends would abort it).
+            atexit.register(self.stop)
+
+    def stop(self):
+        """Drops the keys waiting for the background thread and waits for it to end."""
+        if self._worker is None:
+            return
+        self._drain()
+        self._queue.put(None)
+        self._worker.join()
+        self._worker = None
+
+    def _drain(self):
+        while True:
+            try:
+                self._queue.get_nowait()
+            except queue.Empty:
+                return
+
+    def idle(self):
+        """True when nothing waits or is being built in the background."""
+        with self._lock:
+            busy = any(not f.done() for f in self._entries.values())
+        return self._queue.empty() and not busy
+
+    def clear(self):
+        with self._lock:
+            for key in [k for k, f in self._entries.items() if f.done()]:
+                del self._entries[key]
+
+    def _work(self):
+        while True:
+            key = self._queue.get()
+            if key is None:
+                return
+            with self._lock:
+                if key in self._entries:
+                    continue
+                future = self._entries[key] = concurrent.futures.Future()
+                self._trim()
+            self._run(key, future)
+
+    def _run(self, key, future):
+        try:
+            future.set_result(self._build(*key))
+        except BaseException as error:   # handed to whoever asks for the key
+            with self._lock:
+                self._entries.pop(key, None)
+            future.set_exception(error)
+
+    def _trim(self):
+        for key in [k for k, f in self._entries.items() if f.done()][:max(0, len(self._entries) - self._size)]:
+            del self._entries[key]
+
+
+def _build_model(ratio, nu1, nu0):
     # Substrate E0 = 1 and film E1 = ratio: every normalized result depends on ratios only.
-    return AdhesiveModel(Stack(film=(ratio, nu1), substrate=(1.0, nu0)), tol=1e-8)
+    model = AdhesiveModel(Stack(film=(ratio, nu1), substrate=(1.0, nu0)), tol=1e-8)
+    model.curve(1.0, A_BAR[:1])   # fills the model's interpolant, built lazily on first use
+    pulloff_spring(model.stack, eta=1.0, k_bar=[1.0])   # and the package's model of the stack
+    return model
 
 
-@functools.lru_cache(maxsize=64)
-def _maugis_dugdale(ratio, nu1, nu0, eta, lam):
-    stack = _model(ratio, nu1, nu0).stack
+def _build_maugis_dugdale(ratio, nu1, nu0, eta, lam):
+    stack = _models.get(ratio, nu1, nu0).stack
     curve = maugis_dugdale_curve(stack, eta=eta, lambda_=lam, a_bar=A_BAR_MD)
     return curve, maugis_dugdale_pulloff(stack, eta=eta, lambda_=lam)
+
+
+_models = _Cache(_build_model, 48)
+_md_curves = _Cache(_build_maugis_dugdale, 64)
+
+
+def _model(ratio, nu1, nu0):
+    return _models.get(ratio, nu1, nu0)
+
+
+def _maugis_dugdale(ratio, nu1, nu0, eta, lam):
+    return _md_curves.get(ratio, nu1, nu0, eta, lam)
+
+
+def _neighbours(name, value):
+    """The grid values one step either side of `value` (which may lie between two)."""
+    index = _grid_index(name, value)
+    out = []
+    for i in (index - 1, index, index + 1):
+        v = _grid_value(name, i)
+        if v is not None and v != value and not (name == "lam" and math.isinf(v)):
+            out.append(v)
+    return out
+
+
+def prefetch(params):
+    """Starts building, in the background, what a move of one grid step from `params` needs:
+    the models of the neighbouring E1/E0, nu1 and nu0 and, with a finite lambda, the
+    Maugis-Dugdale curves of the neighbouring lambda and eta."""
+    p = check_parameters(params)
+    material = (p["ratio"], p["nu1"], p["nu0"])
+    keys = []
+    for i, name in enumerate(("ratio", "nu1", "nu0")):
+        for v in _neighbours(name, p[name]):
+            key = list(material)
+            key[i] = v
+            keys.append(tuple(key))
+    _models.prefetch(keys)
+    if math.isfinite(p["lam"]):
+        md = [material + (p["eta"], v) for v in _neighbours("lam", p["lam"])]
+        md += [material + (v, p["lam"]) for v in _neighbours("eta", p["eta"])]
+        _md_curves.prefetch(md)
+
+
+def prefetch_idle():
+    """True when the background thread has built every neighbour asked for."""
+    return _models.idle() and _md_curves.idle()
 
 
 def compute(params):
@@ -138,8 +314,9 @@ class Explorer:
     `data` the result of compute() that they show.
     """
 
-    def __init__(self, figure, sliders=True, **params):
+    def __init__(self, figure, sliders=True, prefetch=True, **params):
         self.figure = figure
+        self.prefetch = prefetch
         self.params = check_parameters(params)
         bottom = 0.36 if sliders else 0.12
         width = 0.40 if sliders else 0.31   # the widget keeps the right for the legend
@@ -193,7 +370,7 @@ class Explorer:
         self.update()
 
     def _moved(self, name, position):
-        value = _slider_value(name, position)
+        value = _snap(name, _slider_value(name, position))
         self.sliders[name].valtext.set_text(_format(name, value))
         if value != self.params[name]:
             self.params[name] = value
@@ -255,6 +432,8 @@ class Explorer:
                po["load"][0], po["displacement"][0], po["spring"][0],
                ", Maugis–Dugdale (load) %.4f" % md["load"][0] if md else ""))
         self.figure.canvas.draw_idle()
+        if self.prefetch:
+            prefetch(p)
 
 
 def widget(**params):
@@ -286,7 +465,7 @@ def widget(**params):
     controls = {}
 
     def moved(change):
-        values = {n: _slider_value(n, c.value) for n, c in controls.items()}
+        values = {n: _snap(n, _slider_value(n, c.value)) for n, c in controls.items()}
         for n, c in controls.items():
             c.description = "%s = %s" % (SLIDERS[n][0], _format(n, values[n]))
         explorer.set(**values)
@@ -359,7 +538,8 @@ def main(argv=None):
               "use --save FILE.png, or run with a display", file=sys.stderr)
         return 2
     figure = plt.figure(figsize=(13, 8.5))
-    explorer = Explorer(figure, **params)
+    # Models of the neighbouring slider values are built ahead only for a window one can drag.
+    explorer = Explorer(figure, prefetch=not (args.save or args.time), **params)
     if args.time:
         _time_updates(explorer)
     if args.save:

@@ -5,6 +5,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -70,11 +71,29 @@ def test_set_moves_the_sliders_and_the_curves(window):
 
 def test_dragging_a_slider_redraws(window):
     # What a drag does: the Slider's value changes and its callback fires.
+    # The slider stops on its grid (steps of 0.02 in log10 eta): 0.3 moves to 10^-0.52.
     window.sliders["eta"].set_val(math.log10(0.3))
-    assert window.params["eta"] == pytest.approx(0.3)
+    assert window.params["eta"] == pytest.approx(10 ** -0.52, rel=1e-11)
     check_plotted(window, 0.1, 0.25, 0.25, window.params["eta"], math.inf, 1.0)
     window.sliders["lam"].set_val(window.sliders["lam"].valmax)   # the top of lambda: JKR
     assert window.params["lam"] == math.inf
+
+
+def test_a_move_by_one_step_reads_the_prefetched_model(window):
+    # After an update the background thread builds the neighbours on the sliders' grid; a drag
+    # by one step lands on that grid value (bit for bit) and draws the library's values for it.
+    window.set(lam=1.0)
+    deadline = time.monotonic() + 60
+    while not explore.prefetch_idle():
+        assert time.monotonic() < deadline, "the prefetch did not finish"
+        time.sleep(0.01)
+    up = explore._grid_value("ratio", explore._grid_index("ratio", 0.1) + 1)
+    assert up == pytest.approx(10 ** -0.95, rel=1e-11)
+    assert explore._models._entries[(up, 0.25, 0.25)].done()
+    assert explore._md_curves._entries[(0.1, 0.25, 0.25, 1.0, explore._grid_value("lam", 21))].done()
+    window.sliders["ratio"].set_val(math.log10(up) + 1e-4)   # a drag a hair off the grid value
+    assert window.params["ratio"] == up
+    check_plotted(window, up, 0.25, 0.25, 1.0, 1.0, 1.0)
 
 
 def test_bad_parameter_is_named(window):
@@ -123,7 +142,7 @@ def test_jupyter_widget_in_a_kernel(tmp_path):
         "w.controls['eta'].value = math.log10(0.3)",
         "w.controls['ratio'].value = 1.0",
         "e = w.explorer",
-        "assert abs(e.params['eta'] - 0.3) < 1e-12 and abs(e.params['ratio'] - 10) < 1e-12, e.params",
+        "assert abs(e.params['eta'] - 10 ** -0.52) < 1e-12 and abs(e.params['ratio'] - 10) < 1e-12, e.params",
         "po = cc.pulloff(film=(e.params['ratio'], 0.25), substrate=(1, 0.25), eta=[e.params['eta']])",
         "assert e.lines['load_a'].get_data()[1][0] == po['P_load'][0]",
         "assert w.image.value != before and w.image.value[:4] == b'\\x89PNG'",
