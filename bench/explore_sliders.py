@@ -9,8 +9,8 @@ For each slider, `--moves` consecutive moves of one grid step up from the start 
   prefetched  as the window works: after each move the background thread builds the
            neighbours of the new position, and the next move comes once it is idle (a user
            pausing between moves); the move then reads the cache.
-lambda is timed at lambda = 1 (finite: the Maugis-Dugdale curve is drawn) and eta both at
-lambda = inf and at lambda = 1. Medians over the moves, in ms. Rows for bench/run.sh's
+lambda is timed at lambda = 1 (finite: the Maugis-Dugdale curve is drawn), eta both at
+lambda = inf and at lambda = 1, E1/E0 also at eta = 0.1. Medians over the moves, in ms. Rows for bench/run.sh's
 results.tsv with --tsv. usage: PYTHONPATH=build/python python3 bench/explore_sliders.py
 [--moves N] [--tsv]
 """
@@ -26,8 +26,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from coatcontact import explore  # noqa: E402
 
-CASES = [("ratio", {}), ("nu1", {}), ("nu0", {}), ("eta", {}), ("eta", {"lam": 1.0}), ("lam", {"lam": 1.0}),
-         ("k_bar", {})]
+CASES = [("ratio", {}), ("ratio", {"eta": 0.1}), ("nu1", {}), ("nu0", {}), ("eta", {}), ("eta", {"lam": 1.0}),
+         ("lam", {"lam": 1.0}), ("k_bar", {})]
 
 
 def moves(name, start, count):
@@ -85,7 +85,7 @@ def main():
     if not args.tsv:
         print("slider\tat\tcold_compute_ms\tprefetched_compute_ms\tprefetched_max_ms\tdraw_ms")
     for name, base in CASES:
-        at = "lambda=1" if base else "lambda=inf"
+        at = ",".join("%s=%g" % item for item in base.items()) or "start values"
         cold, cold_max, _ = run(name, base, args.moves, False)
         warm, warm_max, draw = run(name, base, args.moves, True)
         if args.tsv:

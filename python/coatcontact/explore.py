@@ -212,8 +212,12 @@ class _Cache:
 def _build_model(ratio, nu1, nu0):
     # Substrate E0 = 1 and film E1 = ratio: every normalized result depends on ratios only.
     model = AdhesiveModel(Stack(film=(ratio, nu1), substrate=(1.0, nu0)), tol=1e-8)
-    model.curve(1.0, A_BAR[:1])   # fills the model's interpolant, built lazily on first use
-    pulloff_spring(model.stack, eta=1.0, k_bar=[1.0])   # and the package's model of the stack
+    # Fills the model's interpolant, built lazily on first use, over the radii of the current
+    # eta, and the package's own model of the stack (pulloff_spring's).
+    eta = _warm_eta
+    model.curve(eta, A_BAR)
+    model.pulloff([eta])
+    pulloff_spring(model.stack, eta=eta, k_bar=[1.0])
     return model
 
 
@@ -224,6 +228,7 @@ def _build_maugis_dugdale(ratio, nu1, nu0, eta, lam):
 
 
 _models = _Cache(_build_model, 48)
+_warm_eta = DEFAULTS["eta"]   # the eta of the last prefetch: where a model is warmed up
 _md_curves = _Cache(_build_maugis_dugdale, 64)
 
 
@@ -250,7 +255,9 @@ def prefetch(params):
     """Starts building, in the background, what a move of one grid step from `params` needs:
     the models of the neighbouring E1/E0, nu1 and nu0 and, with a finite lambda, the
     Maugis-Dugdale curves of the neighbouring lambda and eta."""
+    global _warm_eta
     p = check_parameters(params)
+    _warm_eta = p["eta"]
     material = (p["ratio"], p["nu1"], p["nu0"])
     keys = []
     for i, name in enumerate(("ratio", "nu1", "nu0")):
