@@ -31,6 +31,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/cpp/include/coatcontact/
   PATTERN "cli_support.hpp" EXCLUDE
   PATTERN "data_file.hpp" EXCLUDE
   PATTERN "si_text.hpp" EXCLUDE
+  PATTERN "gnuplot_run.hpp" EXCLUDE
   PATTERN "gsl_handler_off.hpp" EXCLUDE
   PATTERN "brent.hpp" EXCLUDE)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/fortran/include/coatcontact/

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "afm_fit_plot_script.hpp"
+#include "coatcontact/gnuplot_run.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
@@ -374,56 +375,12 @@ std::string gp_number(double v) {
   return text;
 }
 
-std::string gp_string(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') out += "''";
-    else if (c == '_' || c == '@' || c == '&' || c == '~' || c == '{' || c == '}') out += std::string("\\") + c;
-    else if (static_cast<unsigned char>(c) >= 32) out += c;
-  }
-  return out + "'";
-}
-
 // Runs gnuplot on the embedded script (gnuplot/afm_fit_plot.gp) in a private temporary folder;
 // returns the picture (the caller writes it atomically). InputError when gnuplot fails.
 std::string render_afm_plot(const std::string& table, const std::string& settings) {
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/coatcontact-afm-plot.XXXXXX";
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  if (mkdtemp(buffer.data()) == nullptr) throw InputError("--plot: cannot create a temporary folder for gnuplot");
-  const std::string dir(buffer.data());
-  struct Cleanup {
-    std::string dir;
-    ~Cleanup() {
-      std::error_code ignored;
-      std::filesystem::remove_all(dir, ignored);
-    }
-  } cleanup{dir};
-  const auto save = [&](const std::string& name, const std::string& text) {
-    std::ofstream file(dir + "/" + name, std::ios::binary);
-    file << text;
-    if (!file) throw InputError("--plot: cannot write the temporary file " + dir + "/" + name);
-  };
-  save("fit.tsv", table);
-  save("afm_fit_plot.gp", kAfmFitPlotScript);
-  save("settings.gp", "fitfile=" + gp_string(dir + "/fit.tsv") + "; " + settings + "\n");
-  const std::string command = "gnuplot '" + dir + "/settings.gp' '" + dir + "/afm_fit_plot.gp' 2>'" + dir + "/err'";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) throw InputError("--plot: cannot run gnuplot");
-  std::string picture;
-  char chunk[65536];
-  std::size_t got;
-  while ((got = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) picture.append(chunk, got);
-  const int status = pclose(pipe);
-  if (status != 0 || picture.empty()) {
-    std::ifstream err(dir + "/err");
-    std::string first;
-    std::getline(err, first);
-    throw InputError("--plot: gnuplot failed" +
-                     (first.empty() ? std::string(" (is gnuplot with the cairo terminals installed?)") : ": " + first));
-  }
-  return picture;
+  return run_gnuplot({{"fit.tsv", table}}, "afm_fit_plot.gp", kAfmFitPlotScript, [&](const std::string& dir) {
+    return "fitfile=" + gnuplot_string(dir + "/fit.tsv") + "; " + settings;
+  });
 }
 
 // "1.2345(67)e-3"-free plain text: value +- error with the error's two significant digits.
@@ -700,7 +657,7 @@ int run_fit_curve(const Args& args) {
       std::snprintf(label, sizeof label, "%s = %.4g ± %.2g Pa (ν = %g)%s, z_c = %.6g ± %.2g µm, σ = %.3g %sN, χ²/dof = %.3g",
                     modulus_name.c_str(), r.modulus, r.modulus_error, problem.poisson, thickness_text, r.contact_point * 1e6,
                     r.contact_point_error * 1e6, r.residual_sigma * f_scale, f_prefix.c_str(), r.chi2_per_dof);
-      const std::string settings = "term='" + term + "'; plottitle=" + gp_string(title) + "; fitlabel=" + gp_string(label) +
+      const std::string settings = "term='" + term + "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(label) +
                                    "; zs=" + gp_number(z_scale) + "; zunit='" + z_prefix + "m'; fs=" + gp_number(f_scale) +
                                    "; funit='" + f_prefix + "N'; zc=" + gp_number(r.contact_point) + "; zlo=" + gp_number(z_low) +
                                    "; zhi=" + gp_number(z_high) + "; base=" +

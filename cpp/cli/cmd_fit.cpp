@@ -26,6 +26,7 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
+#include "coatcontact/gnuplot_run.hpp"
 #include "coatcontact/limits.hpp"
 #include "coatcontact/measured_curve.hpp"
 #include "coatcontact/si_text.hpp"
@@ -258,72 +259,19 @@ void apply_sigma_option(const std::optional<std::string>& text, fit::Measurement
   }
 }
 
-// Characters gnuplot's single-quoted strings and enhanced text take literally enough.
-std::string gnuplot_string(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') {
-      out += "''";
-    } else if (c == '_' || c == '@' || c == '&' || c == '~' || c == '{' || c == '}') {
-      out += '\\';  // escaped: enhanced text would read them as markup (^ is kept for the units)
-      out += c;
-    } else if (static_cast<unsigned char>(c) >= 32 || (c & 0x80)) {
-      out += c;
-    }
-  }
-  return out + "'";
-}
-
 // Runs gnuplot on the embedded script (gnuplot/fit_plot.gp) with the tables in a private
 // temporary folder; returns the picture (gnuplot writes it to stdout; the caller writes the
 // file atomically). InputError when gnuplot is missing or fails.
 std::string render_fit_plot(const std::string& table, const std::string& curve, const std::string& x_name,
                             const std::string& title, const std::string& fit_label, const std::string& term,
                             double lp_x, double lp_f, double dp_x, double dp_f, double spring_k) {
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/coatcontact-plot.XXXXXX";
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  if (mkdtemp(buffer.data()) == nullptr) throw InputError("--plot: cannot create a temporary folder for gnuplot");
-  const std::string dir(buffer.data());
-  struct Cleanup {
-    std::string dir;
-    ~Cleanup() {
-      std::error_code ignored;
-      std::filesystem::remove_all(dir, ignored);
-    }
-  } cleanup{dir};
-  const auto save = [&](const std::string& name, const std::string& text) {
-    std::ofstream file(dir + "/" + name, std::ios::binary);
-    file << text;
-    if (!file) throw InputError("--plot: cannot write the temporary file " + dir + "/" + name);
-  };
-  save("fit.tsv", table);
-  save("curve.tsv", curve);
-  save("fit_plot.gp", kFitPlotScript);
   const auto value = [](double v) { return std::isfinite(v) ? number(v) : std::string("NaN"); };
-  const std::string settings = "fitfile=" + gnuplot_string(dir + "/fit.tsv") + "; curvefile=" +
-                               gnuplot_string(dir + "/curve.tsv") + "; xname='" + x_name + "'; term='" + term +
-                               "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(fit_label) +
-                               "; lp_x=" + value(lp_x) + "; lp_F=" + value(lp_f) + "; dp_x=" + value(dp_x) +
-                               "; dp_F=" + value(dp_f) + "; spring_k=" + value(spring_k);
-  save("settings.gp", settings + "\n");
-  const std::string command = "gnuplot '" + dir + "/settings.gp' '" + dir + "/fit_plot.gp' 2>'" + dir + "/err'";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) throw InputError("--plot: cannot run gnuplot");
-  std::string picture;
-  char chunk[65536];
-  std::size_t got;
-  while ((got = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) picture.append(chunk, got);
-  const int status = pclose(pipe);
-  if (status != 0 || picture.empty()) {
-    std::ifstream err(dir + "/err");
-    std::string first;
-    std::getline(err, first);
-    throw InputError("--plot: gnuplot failed" + (first.empty() ? std::string(" (is gnuplot with the cairo terminals installed?)")
-                                                               : ": " + first));
-  }
-  return picture;
+  return run_gnuplot({{"fit.tsv", table}, {"curve.tsv", curve}}, "fit_plot.gp", kFitPlotScript, [&](const std::string& dir) {
+    return "fitfile=" + gnuplot_string(dir + "/fit.tsv") + "; curvefile=" + gnuplot_string(dir + "/curve.tsv") +
+           "; xname='" + x_name + "'; term='" + term + "'; plottitle=" + gnuplot_string(title) +
+           "; fitlabel=" + gnuplot_string(fit_label) + "; lp_x=" + value(lp_x) + "; lp_F=" + value(lp_f) +
+           "; dp_x=" + value(dp_x) + "; dp_F=" + value(dp_f) + "; spring_k=" + value(spring_k);
+  });
 }
 
 // Everything one `fit` run reads, fits and writes, filled in order by the steps below.
