@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `make bench`: every bench_* executable in BUILD_DIR/bench (configure with
-# -DCOATCONTACT_BUILD_BENCH=ON), then whole-process timings of the CLI (bench/cli_timings.sh)
-# and the explorer's slider updates (bench/explore_sliders.py).
+# -DCOATCONTACT_BUILD_BENCH=ON), then whole-process timings of the CLI (bench/cli_timings.sh),
+# the batch AFM fits of synthetic force maps (bench/afm_maps.sh) and the explorer's slider
+# updates (bench/explore_sliders.py).
 # Results: BUILD_DIR/bench/results.tsv (one row per task: median, min, max over the runs, with
 # the machine and the commit) and BUILD_DIR/bench/<name>.json (the benchmark library's own
 # report, medians of 5 repetitions). Usage: bench/run.sh BUILD_DIR [extra benchmark flags]
@@ -55,6 +56,11 @@ fi
 
 echo "== CLI, whole process"
 bash "$(dirname "$0")/cli_timings.sh" "$build/bin/coatcontact" >> "$tmp"
+
+echo "== afm fit over synthetic force maps (time, scaling, peak RSS)"
+scratch_maps=$(mktemp -d)
+bash "$(dirname "$0")/afm_maps.sh" "$build/bin/coatcontact" "$build/tests/afm/make_afm_map" "$scratch_maps" >> "$tmp"
+rm -rf "$scratch_maps"
 
 # The interpreter the Python module was built for.
 python=$(sed -n 's/^Python3_EXECUTABLE:FILEPATH=//p' "$build/CMakeCache.txt" 2>/dev/null)

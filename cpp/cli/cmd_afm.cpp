@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "afm_fit_map.hpp"
 #include "afm_fit_plot_script.hpp"
 #include "coatcontact/gnuplot_run.hpp"
 #include "coatcontact/afm_fit.hpp"
@@ -298,9 +299,14 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--max-force", "F", "fit only forces up to F [N] above the preprocessing's baseline", false},
     {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},
     {"--plot", "FILE", "draw data, fit, residuals, contact point and pull-off with gnuplot (.png or .pdf)", false},
+    {"--jobs", "N", "batch: curves fitted in parallel (default: the machine's cores); the table is the same for any N", false},
+    {"--resume", "", "batch: continue the interrupted run whose rows are in OUTPUT.partial (needs --output)", false},
+    {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf)", false},
 };
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
+// FILEs and FOLDERs of one `afm fit` run (a folder counts as one).
+constexpr std::size_t kMaxFitInputs = 100000;
 
 // "70deg", "1.2rad" or degrees without a unit; in (0, 90) degrees.
 double parse_half_angle(const std::string& text, const std::string& what) {
@@ -400,15 +406,97 @@ std::pair<double, std::string> prefix_of(double magnitude) {
   return {1.0, ""};
 }
 
+// The model, tip, sample, free parameters, segment and fit range of `afm fit` (one curve or a batch).
+AfmFitSetup parse_fit_setup(const Arguments& arguments) {
+  const std::string model = arguments.get("--model").value_or("hertz");
+  if (model == "jkr") {
+    throw InputError("--model: 'jkr' is not available in afm fit yet (the adhesive retract fit); allowed: hertz");
+  }
+  if (model != "hertz") throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz");
+  fit::AfmFitProblem problem;
+  problem.tip = parse_tip(arguments);
+  const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
+  if (coated) {
+    if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a coating (--film ...)");
+    for (const char* option : {"--film", "--substrate", "--thickness"}) {
+      if (!arguments.has(option)) throw InputError(std::string("a coating needs --film E1,nu1, --substrate E0,nu0|rigid and --thickness t (") + option + " is missing)");
+    }
+    fit::AfmCoating coating;
+    coating.film = parse_material(*arguments.get("--film"), "--film");
+    coating.substrate = parse_substrate(*arguments.get("--substrate"), "--substrate");
+    coating.thickness = parse_quantity(*arguments.get("--thickness"), Quantity::kLength, "--thickness");
+    problem.coating = coating;
+    problem.poisson = coating.film.poisson_ratio;
+  } else {
+    if (!arguments.has("--halfspace")) {
+      throw InputError("afm fit needs the sample: --halfspace E,nu (E any > 0 when free), or a coating --film --substrate --thickness");
+    }
+    const Material sample = parse_material(*arguments.get("--halfspace"), "--halfspace");
+    problem.modulus = sample.youngs_modulus;
+    problem.poisson = sample.poisson_ratio;
+  }
+  problem.free = {false, false, false, false};
+  const std::string modulus_name = coated ? "E1" : "E";
+  const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
+  const std::string free_text = arguments.get("--free").value_or(modulus_name + ",contact_point,baseline");
+  std::size_t start = 0;
+  while (start <= free_text.size()) {
+    const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
+    std::string item = free_text.substr(start, comma - start);
+    item.erase(0, item.find_first_not_of(" \t"));
+    item.erase(item.find_last_not_of(" \t") + 1);
+    if (item == modulus_name) problem.free.modulus = true;
+    else if (item == "t" && coated) problem.free.thickness = true;
+    else if (item == "contact_point") problem.free.contact_point = true;
+    else if (item == "baseline") problem.free.baseline = true;
+    else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
+    start = comma + 1;
+  }
+  if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+    throw InputError("--free: '" + free_text + "' names no parameter; allowed: " + allowed);
+  }
+  if (auto text = arguments.get("--contact-point")) {
+    if (problem.free.contact_point) throw InputError("--contact-point: the contact point is free; drop it from --free to fix it");
+    problem.contact_point = parse_number(*text, "--contact-point");
+  } else if (!problem.free.contact_point) {
+    throw InputError("--free: a fixed contact point needs --contact-point Z");
+  }
+  if (auto text = arguments.get("--baseline")) {
+    if (problem.free.baseline) throw InputError("--baseline: the baseline is free; drop it from --free to fix it");
+    problem.baseline = parse_number(*text, "--baseline");
+  }
+  const std::string segment_name = arguments.get("--segment").value_or("approach");
+  afm::SegmentKind kind = afm::SegmentKind::kApproach;
+  if (segment_name == "retract") kind = afm::SegmentKind::kRetract;
+  else if (segment_name != "approach") throw InputError("--segment: '" + segment_name.substr(0, 60) + "' is not allowed; expected approach or retract");
+  fit::AfmRange range;
+  if (auto text = arguments.get("--tip-range")) {
+    const auto [lo, hi] = parse_pair(*text, "--tip-range", "tip positions in m");
+    range.tip_min = lo;
+    range.tip_max = hi;
+  }
+  if (auto text = arguments.get("--indentation-range")) {
+    const auto [lo, hi] = parse_pair(*text, "--indentation-range", "indentations in m");
+    range.indentation_min = lo;
+    range.indentation_max = hi;
+  }
+  if (auto text = arguments.get("--max-indentation")) {
+    const double d = parse_quantity(*text, Quantity::kLength, "--max-indentation");
+    range.indentation_max = range.indentation_max ? std::min(*range.indentation_max, d) : d;
+  }
+  if (auto text = arguments.get("--max-force")) range.max_force = parse_quantity(*text, Quantity::kForce, "--max-force");
+  return {problem, coated, modulus_name, free_text, segment_name, kind, range};
+}
+
 int run_fit_curve(const Args& args) {
   return run_guarded("afm fit", [&]() -> int {
-    const Arguments arguments(args, kFitSpec, 1);
+    const Arguments arguments(args, kFitSpec, kMaxFitInputs);
     if (arguments.help()) {
       std::cout << usage("afm fit",
-                         "FILE [--index N] [--model hertz] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                         "FILE|FILE...|FOLDER [--index N] [--model hertz] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                          "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                          "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
-                         "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf]",
+                         "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
                          "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):\n"
                          "F(z) = b + E/(1 - nu^2) g(z_c - z) on the tip-position axis z (decreasing toward\n"
                          "the sample), g the Hertz/Sneddon force of the tip per reduced modulus, zero out of\n"
@@ -423,12 +511,20 @@ int run_fit_curve(const Args& args) {
                          "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
                          "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
                          "searched on a log grid within a factor 10 of the given values, then refined.\n"
+                         "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
+                         "by extension) give one row per curve instead: file, curve, grid index and position,\n"
+                         "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
+                         "A curve that cannot be fitted is flagged and the run goes on (exit 0; the count\n"
+                         "in the header and on stderr). The baseline tilt of each curve's preprocessing is\n"
+                         "subtracted (b: the baseline at its contact point). --jobs N fits in parallel with\n"
+                         "the same table; with --output FILE the rows go to FILE.partial chunk by chunk\n"
+                         "and FILE is written at the end; --resume continues an interrupted FILE.partial.\n"
                          "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
                              std::string(kFormats),
                          kFitSpec);
       return kExitSuccess;
     }
-    if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
+    if (arguments.positionals().empty()) throw InputError("expected a FILE, several FILEs or a FOLDER (see --help)");
     const std::string path = arguments.positionals().front();
     const afm::Calibration calibration = parse_calibration(arguments);
     std::size_t index = 0;
@@ -439,83 +535,14 @@ int run_fit_curve(const Args& args) {
       }
       index = static_cast<std::size_t>(value);
     }
-    const std::string model = arguments.get("--model").value_or("hertz");
-    if (model == "jkr") {
-      throw InputError("--model: 'jkr' is not available in afm fit yet (the adhesive retract fit); allowed: hertz");
-    }
-    if (model != "hertz") throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz");
-    fit::AfmFitProblem problem;
-    problem.tip = parse_tip(arguments);
-    const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
-    if (coated) {
-      if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a coating (--film ...)");
-      for (const char* option : {"--film", "--substrate", "--thickness"}) {
-        if (!arguments.has(option)) throw InputError(std::string("a coating needs --film E1,nu1, --substrate E0,nu0|rigid and --thickness t (") + option + " is missing)");
-      }
-      fit::AfmCoating coating;
-      coating.film = parse_material(*arguments.get("--film"), "--film");
-      coating.substrate = parse_substrate(*arguments.get("--substrate"), "--substrate");
-      coating.thickness = parse_quantity(*arguments.get("--thickness"), Quantity::kLength, "--thickness");
-      problem.coating = coating;
-      problem.poisson = coating.film.poisson_ratio;
-    } else {
-      if (!arguments.has("--halfspace")) {
-        throw InputError("afm fit needs the sample: --halfspace E,nu (E any > 0 when free), or a coating --film --substrate --thickness");
-      }
-      const Material sample = parse_material(*arguments.get("--halfspace"), "--halfspace");
-      problem.modulus = sample.youngs_modulus;
-      problem.poisson = sample.poisson_ratio;
-    }
-    problem.free = {false, false, false, false};
-    const std::string modulus_name = coated ? "E1" : "E";
-    const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
-    const std::string free_text = arguments.get("--free").value_or(modulus_name + ",contact_point,baseline");
-    std::size_t start = 0;
-    while (start <= free_text.size()) {
-      const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
-      std::string item = free_text.substr(start, comma - start);
-      item.erase(0, item.find_first_not_of(" \t"));
-      item.erase(item.find_last_not_of(" \t") + 1);
-      if (item == modulus_name) problem.free.modulus = true;
-      else if (item == "t" && coated) problem.free.thickness = true;
-      else if (item == "contact_point") problem.free.contact_point = true;
-      else if (item == "baseline") problem.free.baseline = true;
-      else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
-      start = comma + 1;
-    }
-    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
-      throw InputError("--free: '" + free_text + "' names no parameter; allowed: " + allowed);
-    }
-    if (auto text = arguments.get("--contact-point")) {
-      if (problem.free.contact_point) throw InputError("--contact-point: the contact point is free; drop it from --free to fix it");
-      problem.contact_point = parse_number(*text, "--contact-point");
-    } else if (!problem.free.contact_point) {
-      throw InputError("--free: a fixed contact point needs --contact-point Z");
-    }
-    if (auto text = arguments.get("--baseline")) {
-      if (problem.free.baseline) throw InputError("--baseline: the baseline is free; drop it from --free to fix it");
-      problem.baseline = parse_number(*text, "--baseline");
-    }
-    const std::string segment_name = arguments.get("--segment").value_or("approach");
-    afm::SegmentKind kind = afm::SegmentKind::kApproach;
-    if (segment_name == "retract") kind = afm::SegmentKind::kRetract;
-    else if (segment_name != "approach") throw InputError("--segment: '" + segment_name.substr(0, 60) + "' is not allowed; expected approach or retract");
-    fit::AfmRange range;
-    if (auto text = arguments.get("--tip-range")) {
-      const auto [lo, hi] = parse_pair(*text, "--tip-range", "tip positions in m");
-      range.tip_min = lo;
-      range.tip_max = hi;
-    }
-    if (auto text = arguments.get("--indentation-range")) {
-      const auto [lo, hi] = parse_pair(*text, "--indentation-range", "indentations in m");
-      range.indentation_min = lo;
-      range.indentation_max = hi;
-    }
-    if (auto text = arguments.get("--max-indentation")) {
-      const double d = parse_quantity(*text, Quantity::kLength, "--max-indentation");
-      range.indentation_max = range.indentation_max ? std::min(*range.indentation_max, d) : d;
-    }
-    if (auto text = arguments.get("--max-force")) range.max_force = parse_quantity(*text, Quantity::kForce, "--max-force");
+    const AfmFitSetup setup = parse_fit_setup(arguments);
+    if (batch_mode(arguments, calibration)) return run_fit_map(arguments, setup, calibration);
+    fit::AfmFitProblem problem = setup.problem;
+    const std::string& modulus_name = setup.modulus_name;
+    const std::string& free_text = setup.free_text;
+    const std::string& segment_name = setup.segment_name;
+    const afm::SegmentKind kind = setup.kind;
+    const fit::AfmRange& range = setup.range;
     std::optional<std::string> plot_path = arguments.get("--plot");
     std::string term;
     if (plot_path) {
@@ -530,12 +557,13 @@ int run_fit_curve(const Args& args) {
     check_output_paths({{"--output", output_path}, {"--plot", plot_path.value_or("")}});
     if (plot_path && plot_path->empty()) throw InputError("--plot: needs a file name ending in .png or .pdf");
 
-    const std::vector<afm::ForceCurve> curves = afm::read_force_curves(path, calibration);
-    if (index >= curves.size()) {
+    // Only the curve asked for is read (another curve of a map may be unreadable).
+    const afm::CurveSource source(path, calibration);
+    if (index >= source.size()) {
       throw InputError("--index: " + std::to_string(index) + " is not allowed; " + path + " holds " +
-                       std::to_string(curves.size()) + (curves.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(curves.size() - 1) + ")"));
+                       std::to_string(source.size()) + (source.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(source.size() - 1) + ")"));
     }
-    const afm::ForceCurve& curve = curves[index];
+    const afm::ForceCurve curve = source.read(index);
     const afm::Segment* segment = curve.find_segment(kind);
     if (segment == nullptr) throw InputError("--segment: " + path + " has no " + segment_name + " segment");
     // The preprocessing's estimates: the reference of the relative ranges and the noise of chi2.
@@ -686,7 +714,8 @@ int run_afm(const Args& args) {
       "Real AFM force curves from the instruments' files.\n"
       "  show      metadata, calibration and segments (the curves of a map)\n"
       "  export    one curve as TSV in SI units (--index N of a map)\n"
-      "  fit       Hertz/Sneddon fit of one segment: E, contact point, baseline\n";
+      "  fit       Hertz/Sneddon fit of one segment: E, contact point, baseline (one row per\n"
+      "            curve for a map, several files or a folder)\n";
   if (args.empty()) {
     std::cerr << overview;
     return kExitUsage;

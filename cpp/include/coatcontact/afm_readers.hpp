@@ -8,10 +8,13 @@
 // truncated or corrupt archive, missing channel, empty segment, and missing calibration (the
 // message names --spring-constant / --sensitivity, Python spring_constant= / sensitivity=).
 #pragma once
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "coatcontact/errors.hpp"
 #include "coatcontact/force_curve.hpp"
 
 namespace coatcontact::afm {
@@ -38,6 +41,43 @@ std::vector<ForceCurve> read_force_curves(const std::string& path, const Calibra
 // decides the format where the content alone does not (.ibw).
 std::vector<ForceCurve> read_force_curves_from_bytes(const std::string& bytes, const std::string& name,
                                                      const Calibration& calibration = {});
+
+// The InputErrors of one curve that a batch tells apart (coatcontact/afm_batch.hpp flags them):
+// a calibration value the force needs is missing; a segment holds no points.
+class MissingCalibration : public InputError {
+ public:
+  using InputError::InputError;
+};
+class EmptySegment : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// The curves of one file read one at a time: a JPK archive is opened from its file and each
+// curve's entries are read on demand, so a map's memory is one curve (and the archive's
+// directory), not the map; the other formats (one curve, or a small zipped map) are read whole
+// when the source is opened. The constructor throws InputError when the file cannot be read at
+// all (missing, not a regular file, unknown format, corrupt archive); read() throws InputError
+// (MissingCalibration, EmptySegment) for that curve alone. One source per thread.
+class CurveSource {
+ public:
+  explicit CurveSource(const std::string& path, const Calibration& calibration = {});
+  ~CurveSource();
+  CurveSource(const CurveSource&) = delete;
+  CurveSource& operator=(const CurveSource&) = delete;
+  const std::string& path() const;
+  FileFormat format() const;
+  std::size_t size() const;
+  ForceCurve read(std::size_t index) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The AFM files directly inside `folder` (by extension: .jpk-force, .jpk-force-map,
+// .jpk-qi-data, .jpk-qi-series, .ibw, .csv, .zip, .txt), sorted by name; InputError if none.
+std::vector<std::string> afm_files_in_folder(const std::string& folder);
 
 // Validates a user-supplied value (finite, > 0); `option` names it in the message.
 void check_calibration(const Calibration& calibration);

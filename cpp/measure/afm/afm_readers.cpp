@@ -7,6 +7,9 @@
 #include <iterator>
 #include <sys/stat.h>
 
+#include <filesystem>
+
+#include "jpk_reader.hpp"
 #include "read_support.hpp"
 #include "zip_archive.hpp"
 
@@ -25,8 +28,6 @@ const char* file_format_name(FileFormat format) {
 
 namespace detail {
 
-namespace {
-
 bool ends_with(const std::string& text, const std::string& tail) {
   return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
 }
@@ -42,8 +43,6 @@ std::string read_file(const std::string& path) {
   if (bytes.empty()) throw InputError(path + ": empty file");
   return bytes;
 }
-
-}  // namespace
 
 FileFormat detect_format_of(const std::string& bytes, const std::string& file) {
   const bool zip = bytes.size() >= 4 && bytes.compare(0, 4, "PK\x03\x04", 4) == 0;
@@ -116,6 +115,79 @@ std::vector<ForceCurve> read_force_curves_from_bytes(const std::string& bytes, c
   check_calibration(calibration);
   if (bytes.empty()) throw InputError(name + ": empty file");
   return detail::read_bytes(bytes, name, calibration);
+}
+
+struct CurveSource::Impl {
+  std::string path;
+  FileFormat format = FileFormat::kJpk;
+  std::unique_ptr<detail::ZipArchive> archive;  // a JPK archive, read on demand
+  detail::JpkLayout layout;
+  Calibration calibration;
+  std::vector<ForceCurve> curves;  // the other formats, read whole
+};
+
+CurveSource::CurveSource(const std::string& path, const Calibration& calibration) : impl_(std::make_unique<Impl>()) {
+  check_calibration(calibration);
+  impl_->path = path;
+  impl_->calibration = calibration;
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) throw InputError(path + ": cannot open the file (no such file)");
+  if (!S_ISREG(info.st_mode)) throw InputError(path + ": not a regular file");
+  char magic[4] = {0, 0, 0, 0};
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open the file");
+    in.read(magic, 4);
+  }
+  if (std::string(magic, 4) == std::string("PK\x03\x04", 4)) {
+    auto archive = std::make_unique<detail::ZipArchive>(detail::ZipArchive::FromPath{}, path);
+    const bool jpk = std::any_of(archive->names().begin(), archive->names().end(), [](const std::string& name) {
+      return name.rfind("segments/", 0) == 0 || name.rfind("index/", 0) == 0 || name == "header.properties";
+    });
+    if (jpk) {
+      impl_->layout = detail::jpk_layout(*archive, path);
+      impl_->archive = std::move(archive);
+      impl_->format = FileFormat::kJpk;
+      return;
+    }
+  }
+  const std::string bytes = detail::read_file(path);
+  impl_->format = detail::detect_format_of(bytes, path);
+  impl_->curves = detail::read_bytes(bytes, path, calibration);
+}
+
+CurveSource::~CurveSource() = default;
+const std::string& CurveSource::path() const { return impl_->path; }
+FileFormat CurveSource::format() const { return impl_->format; }
+std::size_t CurveSource::size() const {
+  return impl_->archive ? impl_->layout.curve_folders.size() : impl_->curves.size();
+}
+
+ForceCurve CurveSource::read(std::size_t index) const {
+  if (index >= size()) throw InputError(impl_->path + ": no curve " + std::to_string(index));
+  if (impl_->archive) return detail::read_jpk_curve(*impl_->archive, impl_->layout, index, impl_->path, impl_->calibration);
+  return impl_->curves[index];
+}
+
+std::vector<std::string> afm_files_in_folder(const std::string& folder) {
+  static const char* const extensions[] = {".jpk-force", ".jpk-force-map", ".jpk-qi-data", ".jpk-qi-series",
+                                           ".ibw", ".csv", ".zip", ".txt"};
+  std::vector<std::string> files;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = entry.path().filename().string();
+    for (const char* extension : extensions) {
+      if (detail::ends_with(name, extension)) {
+        files.push_back(entry.path().string());
+        break;
+      }
+    }
+  }
+  if (error) throw InputError(folder + ": cannot list the folder (" + error.message() + ")");
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw InputError(folder + ": no AFM files in the folder (by extension: .jpk-force, .jpk-force-map, .jpk-qi-data, .jpk-qi-series, .ibw, .csv, .zip, .txt)");
+  return files;
 }
 
 }  // namespace coatcontact::afm

@@ -19,9 +19,8 @@
 #include <optional>
 #include <set>
 
-#include "java_properties.hpp"
+#include "jpk_reader.hpp"
 #include "read_support.hpp"
-#include "zip_archive.hpp"
 
 namespace coatcontact::afm::detail {
 
@@ -414,7 +413,7 @@ void read_segment(const SegmentReading& r, const SegmentProperties& p, std::size
     fail(r.file, where.entry, "num-points is not a valid count");
   }
   const auto n = static_cast<std::size_t>(points);
-  if (n == 0) fail(r.file, where.entry, "empty segment " + std::to_string(s) + " (num-points = 0)");
+  if (n == 0) throw EmptySegment(r.file + ": " + where.entry + ": empty segment " + std::to_string(s) + " (num-points = 0)");
   Segment segment;
   segment.begin = curve.segments.empty() ? 0 : curve.segments.back().end;
   segment.end = segment.begin + n;
@@ -470,70 +469,76 @@ void read_segment(const SegmentReading& r, const SegmentProperties& p, std::size
   curve.segments.push_back(segment);
 }
 
-std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& file, const Calibration& user) {
-  const ZipArchive archive(bytes, file);
-  bool single = false;
-  const std::vector<std::string> curve_folders = curve_folders_of(archive, file, single);
-
-  Properties general;
+JpkLayout jpk_layout(const ZipArchive& archive, const std::string& file) {
+  JpkLayout layout;
+  layout.curve_folders = curve_folders_of(archive, file, layout.single);
   if (archive.has("header.properties")) {
-    general = parse_properties(archive.read("header.properties"));
-  } else if (single) {
+    layout.general = parse_properties(archive.read("header.properties"));
+  } else if (layout.single) {
     fail(file, "header.properties", "entry missing from the archive");
   }
-  Properties shared;
-  if (archive.has("shared-data/header.properties")) shared = parse_properties(archive.read("shared-data/header.properties"));
-  const std::string format = format_of(file, general);
+  if (archive.has("shared-data/header.properties")) layout.shared = parse_properties(archive.read("shared-data/header.properties"));
+  layout.format = format_of(file, layout.general);
+  return layout;
+}
 
-  std::vector<ForceCurve> curves;
-  for (std::size_t ci = 0; ci < curve_folders.size(); ++ci) {
-    const std::string& folder = curve_folders[ci];
-    Properties curve_properties = general;
-    if (!folder.empty()) {
-      if (!archive.has(folder + "header.properties")) fail(file, folder + "header.properties", "entry missing from the archive");
-      Properties own = parse_properties(archive.read(folder + "header.properties"));
-      for (auto& [k, v] : own) curve_properties[k] = v;
-    }
-    expand_references(curve_properties, shared);
-    std::vector<SegmentProperties> segment_properties =
-        segment_properties_of(archive, folder, curve_properties, shared, file);
-    std::string piezo, measured;
-    choose_height_channels(segment_properties, folder, file, piezo, measured);
-
-    // Calibration from the first segment's vDeflection slots; the user's values override them.
-    double k_storage = 0.0, s_storage = 0.0;
-    const double* file_k = slot_multiplier(segment_properties.front(), "force", k_storage);
-    const double* file_s = slot_multiplier(segment_properties.front(), "distance", s_storage);
-    const CalibrationChoice calibration = choose_calibration(
-        user, file_k, file_s, true, true, file, folder.empty() ? "" : folder,
-        "vDeflection calibration slots 'distance' and 'force'");
-    SlotOverride overrides;
-    if (calibration.sensitivity_source == CalibrationSource::kUser) overrides.distance_multiplier = calibration.sensitivity;
-    if (calibration.spring_constant_source == CalibrationSource::kUser) overrides.force_multiplier = calibration.spring_constant;
-    complete_missing_slots(segment_properties, file_s != nullptr, file_k != nullptr);
-
-    ForceCurve curve;
-    CurveMetadata& m = curve.metadata;
-    set_calibration(m, calibration);
-    m.vendor = "JPK";
-    m.format = format;
-    m.source_file = file;
-    m.entry = folder;
-    m.curve_index = ci;
-    m.curve_count = curve_folders.size();
-    set_position_metadata(m, general, curve_properties, folder);
-    m.details.emplace_back("force channel", "vDeflection (slot force)");
-    if (!piezo.empty()) m.details.emplace_back("height (piezo) channel", piezo + " (slot calibrated, else nominal)");
-    if (!measured.empty()) m.details.emplace_back("height (measured) channel", measured + " (slot nominal)");
-
-    const SegmentReading reading{archive, file, folder, piezo, measured, calibration, overrides, segment_properties.size()};
-    double start_time = 0.0;
-    for (std::size_t s = 0; s < segment_properties.size(); ++s) {
-      read_segment(reading, segment_properties[s], s, curve, start_time);
-    }
-    finish_curve(curve, file, folder);
-    curves.push_back(std::move(curve));
+ForceCurve read_jpk_curve(const ZipArchive& archive, const JpkLayout& layout, std::size_t ci, const std::string& file,
+                          const Calibration& user) {
+  const Properties& general = layout.general;
+  const Properties& shared = layout.shared;
+  const std::string& folder = layout.curve_folders.at(ci);
+  Properties curve_properties = general;
+  if (!folder.empty()) {
+    if (!archive.has(folder + "header.properties")) fail(file, folder + "header.properties", "entry missing from the archive");
+    Properties own = parse_properties(archive.read(folder + "header.properties"));
+    for (auto& [k, v] : own) curve_properties[k] = v;
   }
+  expand_references(curve_properties, shared);
+  std::vector<SegmentProperties> segment_properties =
+      segment_properties_of(archive, folder, curve_properties, shared, file);
+  std::string piezo, measured;
+  choose_height_channels(segment_properties, folder, file, piezo, measured);
+
+  // Calibration from the first segment's vDeflection slots; the user's values override them.
+  double k_storage = 0.0, s_storage = 0.0;
+  const double* file_k = slot_multiplier(segment_properties.front(), "force", k_storage);
+  const double* file_s = slot_multiplier(segment_properties.front(), "distance", s_storage);
+  const CalibrationChoice calibration = choose_calibration(
+      user, file_k, file_s, true, true, file, folder.empty() ? "" : folder,
+      "vDeflection calibration slots 'distance' and 'force'");
+  SlotOverride overrides;
+  if (calibration.sensitivity_source == CalibrationSource::kUser) overrides.distance_multiplier = calibration.sensitivity;
+  if (calibration.spring_constant_source == CalibrationSource::kUser) overrides.force_multiplier = calibration.spring_constant;
+  complete_missing_slots(segment_properties, file_s != nullptr, file_k != nullptr);
+
+  ForceCurve curve;
+  CurveMetadata& m = curve.metadata;
+  set_calibration(m, calibration);
+  m.vendor = "JPK";
+  m.format = layout.format;
+  m.source_file = file;
+  m.entry = folder;
+  m.curve_index = ci;
+  m.curve_count = layout.curve_folders.size();
+  set_position_metadata(m, general, curve_properties, folder);
+  m.details.emplace_back("force channel", "vDeflection (slot force)");
+  if (!piezo.empty()) m.details.emplace_back("height (piezo) channel", piezo + " (slot calibrated, else nominal)");
+  if (!measured.empty()) m.details.emplace_back("height (measured) channel", measured + " (slot nominal)");
+
+  const SegmentReading reading{archive, file, folder, piezo, measured, calibration, overrides, segment_properties.size()};
+  double start_time = 0.0;
+  for (std::size_t s = 0; s < segment_properties.size(); ++s) {
+    read_segment(reading, segment_properties[s], s, curve, start_time);
+  }
+  finish_curve(curve, file, folder);
+  return curve;
+}
+
+std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& file, const Calibration& user) {
+  const ZipArchive archive(bytes, file);
+  const JpkLayout layout = jpk_layout(archive, file);
+  std::vector<ForceCurve> curves;
+  for (std::size_t ci = 0; ci < layout.curve_folders.size(); ++ci) curves.push_back(read_jpk_curve(archive, layout, ci, file, user));
   return curves;
 }
 

@@ -73,7 +73,8 @@ CalibrationChoice choose_calibration(const Calibration& user, const double* file
       what = "no sensitivity";
       how = "give it with --sensitivity S[m/V] (Python: sensitivity=)";
     }
-    fail(file, entry, what + " in the file (" + where + "); the force needs it: " + how);
+    throw MissingCalibration(file + ": " + (entry.empty() ? std::string() : entry + ": ") + what + " in the file (" + where +
+                             "); the force needs it: " + how);
   }
   return choice;
 }

@@ -1,4 +1,4 @@
-// ZipArchive over libzip: the archive is opened from memory, each entry read whole with its
+// ZipArchive over libzip: the archive is opened from memory or from its file, each entry read whole with its
 // CRC checked by libzip. (No ZIP_CHECKCONS: instruments write archives whose local and central
 // headers disagree in harmless fields; a damaged entry still fails its CRC.)
 #include "zip_archive.hpp"
@@ -33,6 +33,23 @@ ZipArchive::ZipArchive(const std::string& bytes, const std::string& file) : file
     fail(file, "", "not a readable zip archive, truncated or corrupt (" + text + ")");
   }
   zip_error_fini(&error);
+  list_names();
+}
+
+ZipArchive::ZipArchive(FromPath, const std::string& path) : file_(path) {
+  int code = 0;
+  archive_ = zip_open(path.c_str(), ZIP_RDONLY, &code);
+  if (archive_ == nullptr) {
+    zip_error_t error;
+    zip_error_init_with_code(&error, code);
+    const std::string text = zip_error_strerror(&error);
+    zip_error_fini(&error);
+    fail(path, "", "not a readable zip archive, truncated or corrupt (" + text + ")");
+  }
+  list_names();
+}
+
+void ZipArchive::list_names() {
   const zip_int64_t count = zip_get_num_entries(archive_, 0);
   for (zip_int64_t i = 0; i < count; ++i) {
     const char* name = zip_get_name(archive_, static_cast<zip_uint64_t>(i), ZIP_FL_ENC_RAW);
@@ -44,8 +61,10 @@ ZipArchive::~ZipArchive() {
   if (archive_ != nullptr) zip_discard(archive_);
 }
 
+// libzip's own name index: a map's archive holds ~10 entries per curve, so a scan per lookup
+// would make reading a map quadratic in its curves.
 bool ZipArchive::has(const std::string& name) const {
-  return std::find(names_.begin(), names_.end(), name) != names_.end();
+  return zip_name_locate(archive_, name.c_str(), ZIP_FL_ENC_RAW) >= 0;
 }
 
 std::string ZipArchive::read(const std::string& name) const {

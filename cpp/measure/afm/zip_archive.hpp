@@ -11,6 +11,10 @@ class ZipArchive {
  public:
   // `bytes` must outlive the archive. InputError naming `file` if it is not a readable zip.
   ZipArchive(const std::string& bytes, const std::string& file);
+  // The archive of the file at `path`, its entries read from the file on demand (a map's
+  // memory is one entry, not the archive).
+  struct FromPath {};
+  ZipArchive(FromPath, const std::string& path);
   ~ZipArchive();
   ZipArchive(const ZipArchive&) = delete;
   ZipArchive& operator=(const ZipArchive&) = delete;
@@ -21,6 +25,7 @@ class ZipArchive {
   std::string read(const std::string& name) const;
 
  private:
+  void list_names();
   zip* archive_ = nullptr;
   std::string file_;
   std::vector<std::string> names_;

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Batch fits of synthetic JPK force maps (issue 25; tests/afm/make_afm_map writes them from the
+# library's Hertz model): `afm fit MAP --radius 10um --halfspace 5kPa,0.5` on
+#  - a 32 x 32 map (400 points per segment), --jobs 1 and --jobs 2: wall, user and system time,
+#    the --jobs 2 speed-up (wall 1 / wall 2), curves per second;
+#  - 64 x 64 and 256 x 256 maps (100 points per segment): peak RSS (GNU time's %M) and its
+#    ratio, which stays near 1 when memory does not grow with the number of curves.
+# Rows "task value ... kind" like cli_timings.sh (kind: cli for times in ms, rss_kB, ratio).
+# The machine is shared: compare user + system (CPU) time as well as wall time.
+# Usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR]
+set -euo pipefail
+cli="${1:?usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR]}"
+make_map="${2:?usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR]}"
+work="${3:-$(mktemp -d)}"
+mkdir -p "$work"
+model=(--radius 10um --halfspace 5kPa,0.5)
+
+# run NAME ARGS...: prints "wall_s user_s sys_s maxrss_kB" of one run of the CLI.
+run() {
+  local name="$1"; shift
+  rm -f "$work/$name.tsv" "$work/$name.tsv.partial"
+  /usr/bin/time -f '%e %U %S %M' -o "$work/$name.time" "$cli" "$@" --output "$work/$name.tsv" 2>"$work/$name.err" >/dev/null
+  cat "$work/$name.time"
+}
+
+"$make_map" "$work/map32.jpk-force-map" 32 32 --seed 3
+read -r w1 u1 s1 m1 < <(run j1 afm fit "$work/map32.jpk-force-map" "${model[@]}" --jobs 1)
+read -r w2 u2 s2 m2 < <(run j2 afm fit "$work/map32.jpk-force-map" "${model[@]}" --jobs 2)
+cmp -s <(grep -v '^# command' "$work/j1.tsv") <(grep -v '^# command' "$work/j2.tsv") \
+  || echo "afm_maps.sh: --jobs 2 table differs from --jobs 1" >&2
+awk -v w1="$w1" -v u1="$u1" -v s1="$s1" -v w2="$w2" -v u2="$u2" -v s2="$s2" 'BEGIN {
+  printf "afm fit 32x32 map, Hertz, --jobs 1 (wall)\t%.4g\t\t\t1\tcli\n", w1 * 1000
+  printf "afm fit 32x32 map, Hertz, --jobs 1 (user+sys CPU)\t%.4g\t\t\t1\tcli\n", (u1 + s1) * 1000
+  printf "afm fit 32x32 map, Hertz, --jobs 2 (wall)\t%.4g\t\t\t1\tcli\n", w2 * 1000
+  printf "afm fit 32x32 map, Hertz, --jobs 2 (user+sys CPU)\t%.4g\t\t\t1\tcli\n", (u2 + s2) * 1000
+  printf "afm fit 32x32 map, --jobs 2 speed-up (wall 1 / wall 2)\t%.3g\t\t\t1\tratio\n", w1 / w2
+  printf "afm fit 32x32 map, curves per second, --jobs 2\t%.4g\t\t\t1\tratio\n", 1024 / w2
+}'
+
+"$make_map" "$work/map64.jpk-force-map" 64 64 --points 100 --seed 4 --clean
+"$make_map" "$work/map256.jpk-force-map" 256 256 --points 100 --seed 6 --clean
+read -r wa ua sa ma < <(run m64 afm fit "$work/map64.jpk-force-map" "${model[@]}" --jobs 2)
+read -r wb ub sb mb < <(run m256 afm fit "$work/map256.jpk-force-map" "${model[@]}" --jobs 2)
+awk -v wa="$wa" -v ma="$ma" -v wb="$wb" -v mb="$mb" -v ua="$ua" -v sa="$sa" -v ub="$ub" -v sb="$sb" 'BEGIN {
+  printf "afm fit 64x64 map (100 points), --jobs 2 (wall)\t%.4g\t\t\t1\tcli\n", wa * 1000
+  printf "afm fit 64x64 map (100 points), --jobs 2 (user+sys CPU)\t%.4g\t\t\t1\tcli\n", (ua + sa) * 1000
+  printf "afm fit 256x256 map (100 points), --jobs 2 (wall)\t%.4g\t\t\t1\tcli\n", wb * 1000
+  printf "afm fit 256x256 map (100 points), --jobs 2 (user+sys CPU)\t%.4g\t\t\t1\tcli\n", (ub + sb) * 1000
+  printf "afm fit 64x64 map, peak RSS\t%d\t\t\t1\trss_kB\n", ma
+  printf "afm fit 256x256 map, peak RSS\t%d\t\t\t1\trss_kB\n", mb
+  printf "afm fit peak RSS 256x256 / 64x64\t%.3g\t\t\t1\tratio\n", mb / ma
+}'

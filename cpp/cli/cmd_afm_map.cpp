@@ -1,0 +1,489 @@
+// `coatcontact afm fit` over a map, several files or a folder (THEORY.md section 15, "Many curves"): one row
+// per curve from the library's batch (coatcontact/afm_batch.hpp), flagged curves included.
+// Output: with --output FILE the rows go, chunk by chunk, to FILE.partial (each chunk one
+// write(2) of whole lines, so an interrupted or crashed run leaves a valid table there); at the
+// end the header with the number of flagged curves and the rows are written to FILE atomically
+// (temporary file renamed) and FILE.partial is removed. --resume reads FILE.partial, checks that
+// its header is this run's, drops a cut last line and fits only the curves after its rows.
+// Without --output the rows stream to stdout and the count closes the table as a # line.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "afm_fit_map.hpp"
+#include "afm_map_plot_script.hpp"
+#include "coatcontact/afm_batch.hpp"
+#include "coatcontact/gnuplot_run.hpp"
+
+namespace coatcontact::cli {
+
+namespace {
+
+bool is_folder(const std::string& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode);
+}
+
+// The files of the run: each FILE, the AFM files of each FOLDER (sorted), in the order given.
+std::vector<std::string> input_files(const std::vector<std::string>& positionals) {
+  std::vector<std::string> files;
+  for (const std::string& p : positionals) {
+    if (is_folder(p)) {
+      for (std::string& f : afm::afm_files_in_folder(p)) files.push_back(std::move(f));
+    } else {
+      files.push_back(p);
+    }
+  }
+  std::set<std::string> seen;
+  for (const std::string& f : files) {
+    if (f.find_first_of("\t\n\r") != std::string::npos) {
+      throw InputError("FILE: " + cli::quoted(f) + " is not allowed; a file name with a tab or a line break cannot be a table cell");
+    }
+    if (!seen.insert(f).second) throw InputError("FILE: " + cli::quoted(f) + " is given twice");
+  }
+  return files;
+}
+
+unsigned parse_jobs(const Arguments& arguments) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const auto text = arguments.get("--jobs");
+  if (!text) return cores;
+  const double value = parse_number(*text, "--jobs");
+  if (!(value >= 1.0 && value <= 1024.0) || value != std::floor(value)) {
+    throw InputError("--jobs: " + cli::quoted(*text) + " is not allowed; expected a whole number of threads from 1 to 1024");
+  }
+  return static_cast<unsigned>(value);
+}
+
+std::string text_of(const std::optional<long>& v) { return v ? std::to_string(*v) : "-"; }
+std::string text_of(const std::optional<double>& v, const std::string& column) { return v ? format_value(*v, column) : "-"; }
+
+// One TSV line of a row; "-" where a curve has no value (its flag says why).
+std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, bool contact_point_column) {
+  std::string line = row.source_file + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
+                     text_of(row.grid_y) + '\t' + text_of(row.position_x, "x") + '\t' + text_of(row.position_y, "y") + '\t' +
+                     std::to_string(static_cast<int>(row.flag)) + '\t' + fit::afm_flag_name(row.flag);
+  const bool fitted = row.flag == fit::AfmFlag::kFitted;
+  for (std::size_t i = 0; i < parameter_count; ++i) {
+    line += '\t' + (fitted ? format_value(row.estimates[i], "estimate") : "-");
+    line += '\t' + (fitted ? format_value(row.errors[i], "error") : "-");
+  }
+  if (contact_point_column) line += '\t' + (fitted ? format_value(row.contact_point, "contact_point") : "-");
+  line += '\t' + (fitted ? format_value(row.chi2, "chi2") : "-");
+  line += '\t' + (fitted ? format_value(row.chi2_per_dof, "chi2_per_dof") : "-");
+  line += '\t' + (fitted ? format_value(row.residual_sigma, "residual_sigma") : "-");
+  line += '\t' + (fitted ? text_of(row.pulloff_force, "pulloff") : "-");
+  line += '\t' + (fitted ? text_of(row.pulloff_position, "pulloff_position") : "-");
+  line += '\t' + (fitted ? std::to_string(row.points) : "-");
+  line += '\n';
+  return line;
+}
+
+// Appends whole chunks to FILE.partial with one write(2) each, synced, so that the file ends
+// on a line boundary unless the process dies inside that call.
+class PartialFile {
+ public:
+  PartialFile(const std::string& path, bool append) : path_(path) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (append ? O_APPEND : O_TRUNC), 0666);
+    if (fd_ < 0) throw InputError("--output: cannot write " + cli::quoted(path) + " (" + std::strerror(errno) + ")");
+  }
+  ~PartialFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  PartialFile(const PartialFile&) = delete;
+  PartialFile& operator=(const PartialFile&) = delete;
+  void append(const std::string& text) {
+    std::size_t done = 0;
+    while (done < text.size()) {
+      const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) throw InputError("--output: write to " + cli::quoted(path_) + " failed (" + std::strerror(errno) + ")");
+      done += static_cast<std::size_t>(n);
+    }
+    ::fdatasync(fd_);
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) break;  // a cut last line is not a line
+    lines.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return lines;
+}
+
+std::string read_whole(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("--resume: cannot read " + cli::quoted(path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+bool starts_with(const std::string& text, const std::string& head) { return text.compare(0, head.size(), head) == 0; }
+
+std::string render(const std::string& data, const std::string& names, const std::string& units, bool positions, double dx,
+                   double dy, double x_min, double x_max, double y_min, double y_max, const std::string& term,
+                   const std::string& title);
+
+// The picture of --map-plot: one heat map per free estimate, chi2/dof, the pull-off and the
+// flags, on the grid's positions (or grid indices when the files give no positions).
+std::string render_map_plot(const std::vector<std::string>& rows, const std::vector<fit::AfmBatchParameter>& parameters,
+                            bool contact_point_column, const std::string& term, const std::string& title) {
+  // Columns of the table (0-based): 4, 5 positions; 2, 3 grid indices; 6 flag; estimates from 8.
+  const std::size_t first_estimate = 8;
+  const std::size_t after = first_estimate + 2 * parameters.size() + (contact_point_column ? 1 : 0);
+  std::ostringstream data;
+  double x_min = INFINITY, x_max = -INFINITY, y_min = INFINITY, y_max = -INFINITY;
+  long nx = 1, ny = 1;
+  bool positions = true;
+  for (const std::string& line : rows) {
+    std::vector<std::string> cells;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t tab = line.find('\t', start);
+      cells.push_back(line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
+      if (tab == std::string::npos) break;
+      start = tab + 1;
+    }
+    if (cells[4] == "-" || cells[5] == "-") positions = false;
+    if (cells[2] != "-") nx = std::max(nx, std::stol(cells[2]) + 1);
+    if (cells[3] != "-") ny = std::max(ny, std::stol(cells[3]) + 1);
+  }
+  for (const std::string& line : rows) {
+    std::vector<std::string> cells;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t tab = line.find('\t', start);
+      cells.push_back(line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
+      if (tab == std::string::npos) break;
+      start = tab + 1;
+    }
+    const std::string& xs = positions ? cells[4] : cells[2];
+    const std::string& ys = positions ? cells[5] : cells[3];
+    if (xs == "-" || ys == "-") continue;  // a curve without a place on the grid
+    const double x = std::stod(xs), y = std::stod(ys);
+    x_min = std::min(x_min, x);
+    x_max = std::max(x_max, x);
+    y_min = std::min(y_min, y);
+    y_max = std::max(y_max, y);
+    data << xs << '\t' << ys << '\t' << cells[6];
+    for (std::size_t p = 0; p < parameters.size(); ++p) data << '\t' << cells[first_estimate + 2 * p];
+    data << '\t' << cells[after + 1] << '\t' << cells[after + 3] << '\n';  // chi2/dof, pull-off
+  }
+  if (!(x_min <= x_max)) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
+  const double dx = nx > 1 ? (x_max - x_min) / static_cast<double>(nx - 1) : (positions ? 1e-6 : 1.0);
+  const double dy = ny > 1 ? (y_max - y_min) / static_cast<double>(ny - 1) : dx;
+  std::string names, units;
+  for (const auto& p : parameters) {
+    names += (names.empty() ? "" : " ") + p.name;
+    units += (units.empty() ? "" : " ") + p.unit;
+  }
+  try {
+    return render(data.str(), names, units, positions, dx, dy, x_min, x_max, y_min, y_max, term, title);
+  } catch (const InputError& error) {
+    // run_gnuplot names --plot; this picture is --map-plot's.
+    std::string message = error.what();
+    if (starts_with(message, "--plot:")) message = "--map-plot:" + message.substr(7);
+    throw InputError(message);
+  }
+}
+
+std::string render(const std::string& data, const std::string& names, const std::string& units, bool positions, double dx,
+                   double dy, double x_min, double x_max, double y_min, double y_max, const std::string& term,
+                   const std::string& title) {
+  const auto number = [](double v) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return std::string(text);
+  };
+  return run_gnuplot({{"map.tsv", data}}, "afm_map_plot.gp", kAfmMapPlotScript, [&](const std::string& dir) {
+    return "mapfile=" + gnuplot_string(dir + "/map.tsv") + "; term='" + term + "'; plottitle=" + gnuplot_string(title) +
+           "; names='" + names + "'; units='" + units + "'; positions=" + (positions ? "1" : "0") + "; dx=" + number(dx) +
+           "; dy=" + number(dy) + "; xlo=" + number(x_min - dx / 2) + "; xhi=" + number(x_max + dx / 2) +
+           "; ylo=" + number(y_min - dy / 2) + "; yhi=" + number(y_max + dy / 2);
+  });
+}
+
+}  // namespace
+
+bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration) {
+  const auto& positionals = arguments.positionals();
+  const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot");
+  if (arguments.has("--index")) {
+    if (positionals.size() > 1 || is_folder(positionals.front()) || batch_option) {
+      throw InputError("--index: selects one curve of one FILE; without it every curve of the FILEs and FOLDERs is fitted "
+                       "(--jobs, --resume and --map-plot are for that batch)");
+    }
+    return false;
+  }
+  if (positionals.size() > 1 || is_folder(positionals.front()) || batch_option) return true;
+  return afm::CurveSource(positionals.front(), calibration).size() > 1;
+}
+
+int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
+  if (arguments.has("--plot")) {
+    throw InputError("--plot: draws one curve (FILE --index N); for a map, several files or a folder use --map-plot FILE.png|pdf");
+  }
+  const std::vector<std::string> files = input_files(arguments.positionals());
+  for (const std::string& f : files) register_input(f, "AFM file");
+  const unsigned jobs = parse_jobs(arguments);
+  const std::string output_path = arguments.get("--output").value_or("");
+  const bool to_stdout = output_path.empty() || output_path == "-" || output_path == "/dev/stdout";
+  const bool resume = arguments.has("--resume");
+  if (resume && to_stdout) throw InputError("--resume: needs --output FILE (the rows of the interrupted run are in FILE.partial)");
+  std::optional<std::string> plot_path = arguments.get("--map-plot");
+  std::string term;
+  if (plot_path) {
+    const std::size_t dot = plot_path->rfind('.');
+    term = dot == std::string::npos ? "" : plot_path->substr(dot + 1);
+    if (term != "png" && term != "pdf") {
+      throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
+    }
+  }
+  const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
+  check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
+  if (!to_stdout) check_output_path(partial_path, "--output");
+  if (!to_stdout && !resume && std::filesystem::exists(partial_path)) {
+    throw InputError("--output: " + cli::quoted(partial_path) + " exists (the rows of an interrupted run); continue it with --resume or remove it");
+  }
+
+  fit::AfmBatchSettings settings;
+  settings.problem = setup.problem;
+  settings.segment = setup.kind;
+  settings.range = setup.range;
+  const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
+  const bool contact_point_column = !settings.problem.free.contact_point;
+  const std::vector<std::size_t> counts = fit::afm_count_curves(files, calibration);
+  std::size_t total = 0;
+  for (std::size_t c : counts) total += c;
+
+  // The header (without the flagged count, which only the end knows).
+  std::vector<std::pair<std::string, std::string>> items = {
+      {"coatcontact afm fit", "one row per curve: Hertz/Sneddon fit of each curve of the files (THEORY.md section 15)"}};
+  items.push_back({"files", std::to_string(files.size())});
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    items.push_back({"file " + std::to_string(f), files[f] + " (" + std::to_string(counts[f]) + " curves)"});
+  }
+  items.push_back({"curves", std::to_string(total)});
+  if (calibration.spring_constant) items.push_back({"spring constant [N/m]", format_parameter(*calibration.spring_constant, "k") + " (user, every curve)"});
+  if (calibration.sensitivity) items.push_back({"sensitivity [m/V]", format_parameter(*calibration.sensitivity, "sensitivity") + " (user, every curve)"});
+  items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+  items.push_back({"tip", settings.problem.tip.description});
+  if (settings.problem.coating) {
+    const fit::AfmCoating& c = *settings.problem.coating;
+    items.push_back({"sample", "coating: film E1 = " + format_parameter(c.film.youngs_modulus, "E1") + " Pa, nu1 = " +
+                                   format_parameter(c.film.poisson_ratio, "nu1") + ", t = " + format_parameter(c.thickness, "t") +
+                                   " m, substrate " +
+                                   (c.substrate.rigid ? std::string("rigid")
+                                                      : "E0 = " + format_parameter(c.substrate.material.youngs_modulus, "E0") +
+                                                            " Pa, nu0 = " + format_parameter(c.substrate.material.poisson_ratio, "nu0"))});
+  } else {
+    items.push_back({"sample", "homogeneous half-space, E = " + format_parameter(settings.problem.modulus, "E") +
+                                   " Pa (start or fixed value), nu = " + format_parameter(settings.problem.poisson, "nu")});
+  }
+  items.push_back({"free", setup.free_text});
+  if (!settings.problem.free.contact_point) items.push_back({"contact point [m]", format_parameter(settings.problem.contact_point, "z_c") + " (fixed)"});
+  if (!settings.problem.free.baseline) items.push_back({"baseline [N]", format_parameter(settings.problem.baseline, "b") + " (fixed)"});
+  items.push_back({"segment", setup.segment_name});
+  std::string range_text = settings.range.any() ? "" : "whole segment";
+  const auto add_range = [&](const std::string& text) { range_text += (range_text.empty() ? "" : "; ") + text; };
+  if (settings.range.tip_min) add_range("tip position in [" + format_parameter(*settings.range.tip_min, "min") + ", " + format_parameter(*settings.range.tip_max, "max") + "] m");
+  if (settings.range.indentation_min) add_range("indentation >= " + format_parameter(*settings.range.indentation_min, "min") + " m");
+  if (settings.range.indentation_max) add_range("indentation <= " + format_parameter(*settings.range.indentation_max, "max") + " m");
+  if (settings.range.max_force) add_range("force - baseline <= " + format_parameter(*settings.range.max_force, "max force") + " N");
+  items.push_back({"fit range", range_text + " (relative ranges from each curve's preprocessing contact point and baseline)"});
+  items.push_back({"preprocessing", "tip position = height + F/k; baseline offset and tilt on the first half of the approach, "
+                                    "the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
+                                    "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});
+  items.push_back({"flags", "0 fitted, 1 no_contact, 2 jump_in (approach below its baseline by > " +
+                                format_parameter(fit::kJumpInSigmas, "sigmas") +
+                                " sigma), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
+                                "8 unreadable, 9 bad_data; '-' where a flagged curve has no value"});
+  items.push_back({"pull-off", "the retract segment's most tensile force less the fitted baseline, and its tip position"});
+  std::vector<std::string> columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
+  std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
+  for (const auto& p : parameters) {
+    columns.push_back(p.name);
+    columns.push_back(p.name + "_error");
+    units += "\t" + p.unit + "\t" + p.unit;
+  }
+  if (contact_point_column) {
+    columns.push_back("contact_point");
+    units += "\tm";
+  }
+  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "points"}) columns.push_back(c);
+  units += "\t-\t-\tN\tN\tm\t-";
+  items.push_back({"units", units});
+  std::ostringstream header_stream;
+  write_header(header_stream, items, columns);
+  const std::string header = header_stream.str();
+
+  // Resume: the rows already in FILE.partial.
+  std::size_t skip = 0;
+  fit::AfmBatchSummary before;  // the flags of the rows kept
+  std::vector<std::string> kept_rows;
+  if (resume && std::filesystem::exists(partial_path)) {
+    const std::string text = read_whole(partial_path);
+    const std::vector<std::string> lines = lines_of(text);
+    const std::vector<std::string> expected = lines_of(header);
+    std::size_t h = 0;
+    std::size_t e = 0;
+    while (h < lines.size() && starts_with(lines[h], "#")) {
+      if (starts_with(lines[h], "# command:")) {
+        ++h;
+        continue;
+      }
+      while (e < expected.size() && starts_with(expected[e], "# command:")) ++e;
+      if (e >= expected.size() || lines[h] != expected[e]) {
+        throw InputError("--resume: " + cli::quoted(partial_path) + " was written by another run (header line " + cli::quoted(lines[h]) +
+                         " differs); remove it or give the same FILEs and options");
+      }
+      ++h;
+      ++e;
+    }
+    while (e < expected.size() && starts_with(expected[e], "# command:")) ++e;
+    if (e != expected.size()) throw InputError("--resume: " + cli::quoted(partial_path) + " has no complete header; remove it");
+    for (std::size_t i = h; i < lines.size(); ++i) {
+      const std::size_t tab1 = lines[i].find('\t');
+      std::size_t field = 0, start = 0;
+      int flag = -1;
+      for (std::size_t pos = 0; pos <= lines[i].size(); ++pos) {
+        if (pos == lines[i].size() || lines[i][pos] == '\t') {
+          if (field == 6) flag = std::atoi(lines[i].substr(start, pos - start).c_str());
+          ++field;
+          start = pos + 1;
+        }
+      }
+      if (tab1 == std::string::npos || field != columns.size() || flag < 0 || flag >= fit::kAfmFlagCount) {
+        throw InputError("--resume: row " + std::to_string(i - h + 1) + " of " + cli::quoted(partial_path) + " is not a row of this table; remove the file");
+      }
+      ++before.by_flag[flag];
+      ++skip;
+      if (plot_path) kept_rows.push_back(lines[i]);
+    }
+    if (skip > total) throw InputError("--resume: " + cli::quoted(partial_path) + " holds more rows than the run has curves");
+    // Drop a cut last line (the process died inside a write).
+    std::size_t keep_bytes = 0;
+    for (std::size_t i = 0; i < lines.size(); ++i) keep_bytes += lines[i].size() + 1;
+    if (keep_bytes != text.size() && ::truncate(partial_path.c_str(), static_cast<off_t>(keep_bytes)) != 0) {
+      throw InputError("--resume: cannot cut the last partial line of " + cli::quoted(partial_path));
+    }
+    std::cerr << "coatcontact afm fit: resuming after " << skip << " of " << total << " curves in " << partial_path << "\n";
+  }
+
+  std::unique_ptr<PartialFile> partial;
+  if (!to_stdout) {
+    const bool append = resume && std::filesystem::exists(partial_path);
+    partial = std::make_unique<PartialFile>(partial_path, append);
+    if (!append) partial->append(header);
+  } else {
+    std::cout << header << std::flush;
+  }
+  std::vector<std::string> plot_rows;
+  if (plot_path) plot_rows = kept_rows;
+  fit::AfmBatchOptions options;
+  options.jobs = jobs;
+  options.skip = skip;
+  options.sink = [&](const std::vector<fit::AfmCurveRow>& rows) {
+    std::string text;
+    for (const auto& row : rows) {
+      std::string line = row_line(row, parameters.size(), contact_point_column);
+      if (plot_path) plot_rows.push_back(line.substr(0, line.size() - 1));
+      text += line;
+    }
+    if (partial) partial->append(text);
+    else std::cout << text << std::flush;
+  };
+  options.progress = [&](std::size_t done, std::size_t all) {
+    progress_step(done, all);
+    return true;
+  };
+  const fit::AfmBatchSummary summary = fit::afm_fit_batch(files, calibration, settings, options);
+  std::size_t by_flag[fit::kAfmFlagCount];
+  std::size_t flagged = 0;
+  for (int f = 0; f < fit::kAfmFlagCount; ++f) {
+    by_flag[f] = summary.by_flag[f] + before.by_flag[f];
+    if (f != 0) flagged += by_flag[f];
+  }
+  std::string flag_text = std::to_string(flagged) + " of " + std::to_string(total);
+  std::string reasons;
+  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
+    if (by_flag[f] > 0) reasons += (reasons.empty() ? "" : ", ") + std::string(fit::afm_flag_name(static_cast<fit::AfmFlag>(f))) + " " + std::to_string(by_flag[f]);
+  }
+  if (!reasons.empty()) flag_text += " (" + reasons + ")";
+  progress_pause();
+
+  std::string picture;
+  if (plot_path) {
+    picture = render_map_plot(plot_rows, parameters, contact_point_column, term,
+                              std::filesystem::path(files.front()).filename().string() +
+                                  (files.size() > 1 ? " and " + std::to_string(files.size() - 1) + " more" : "") + ": " +
+                                  settings.problem.tip.description);
+  }
+  if (to_stdout) {
+    std::cout << "# flagged curves: " << flag_text << "\n" << std::flush;
+  } else {
+    // The final table: the header with the count, then the rows of FILE.partial.
+    // (Copied as a stream: the table is never held in memory.)
+    partial.reset();
+    std::ifstream rows_in(partial_path, std::ios::binary);
+    std::string line;
+    while (std::getline(rows_in, line) && !starts_with(line, "# columns:")) {
+    }
+    if (!rows_in) throw InputError("--output: " + cli::quoted(partial_path) + " lost its header while the run went on");
+    std::string final_header = header;
+    const std::size_t columns_at = final_header.find("# columns:");
+    final_header.insert(columns_at, "# flagged curves: " + flag_text + "\n");
+    Output output(output_path);
+    output.stream() << final_header;
+    if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
+    std::unique_ptr<Output> plot_output;
+    if (plot_path) {
+      plot_output = std::make_unique<Output>(*plot_path, "--map-plot");
+      plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+      plot_output->commit();
+    }
+    output.commit();
+    std::remove(partial_path.c_str());
+  }
+  if (to_stdout && plot_path) {
+    Output plot_output(*plot_path, "--map-plot");
+    plot_output.stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+    plot_output.commit();
+  }
+  std::cerr << "coatcontact afm fit: " << total << " curves in " << files.size() << (files.size() == 1 ? " file" : " files")
+            << "; flagged: " << flag_text << "\n";
+  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
+    if (!summary.first_message[f].empty()) {
+      std::cerr << "  first " << fit::afm_flag_name(static_cast<fit::AfmFlag>(f)) << ": " << summary.first_message[f] << "\n";
+    }
+  }
+  return kExitSuccess;
+}
+
+}  // namespace coatcontact::cli

@@ -1,0 +1,281 @@
+// Batch fit of AFM force curves (coatcontact/afm_batch.hpp, THEORY.md section 15, "Many curves"): the
+// per-curve steps of `afm fit` (preprocessing, segment, range, afm_fit, pull-off) with every
+// per-curve failure turned into a flag, over files read curve by curve in parallel chunks.
+#include "coatcontact/afm_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+#include <thread>
+
+#include "coatcontact/errors.hpp"
+#include "coatcontact/progress.hpp"
+#include "parallel.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace coatcontact::fit {
+
+const char* afm_flag_name(AfmFlag flag) {
+  switch (flag) {
+    case AfmFlag::kFitted: return "fitted";
+    case AfmFlag::kNoContact: return "no_contact";
+    case AfmFlag::kJumpIn: return "jump_in";
+    case AfmFlag::kNoConvergence: return "no_convergence";
+    case AfmFlag::kEmptySegment: return "empty_segment";
+    case AfmFlag::kMissingSegment: return "missing_segment";
+    case AfmFlag::kCalibration: return "calibration";
+    case AfmFlag::kTooFewPoints: return "too_few_points";
+    case AfmFlag::kUnreadable: return "unreadable";
+    case AfmFlag::kBadData: return "bad_data";
+  }
+  return "unknown";
+}
+
+std::vector<AfmBatchParameter> afm_batch_parameters(const AfmFitProblem& problem) {
+  std::vector<AfmBatchParameter> parameters;
+  if (problem.free.modulus) {
+    parameters.push_back({problem.coating ? "E1" : "E", "Pa", &AfmFitResult::modulus, &AfmFitResult::modulus_error});
+  }
+  if (problem.free.thickness) parameters.push_back({"t", "m", &AfmFitResult::thickness, &AfmFitResult::thickness_error});
+  if (problem.free.contact_point) {
+    parameters.push_back({"contact_point", "m", &AfmFitResult::contact_point, &AfmFitResult::contact_point_error});
+  }
+  if (problem.free.baseline) parameters.push_back({"baseline", "N", &AfmFitResult::baseline, &AfmFitResult::baseline_error});
+  return parameters;
+}
+
+namespace {
+
+AfmCurveRow row_of(const afm::CurveMetadata& m) {
+  AfmCurveRow row;
+  row.source_file = m.source_file;
+  row.curve_index = m.curve_index;
+  row.grid_x = m.grid_index_x;
+  row.grid_y = m.grid_index_y;
+  row.position_x = m.position_x;
+  row.position_y = m.position_y;
+  return row;
+}
+
+AfmCurveRow flagged(AfmCurveRow row, AfmFlag flag, const std::string& message) {
+  row.flag = flag;
+  row.message = message;
+  return row;
+}
+
+bool says(const std::string& message, const char* phrase) { return message.find(phrase) != std::string::npos; }
+
+}  // namespace
+
+AfmCurveRow afm_unreadable_row(const std::string& file, std::size_t curve_index, const std::exception& error) {
+  AfmCurveRow row;
+  row.source_file = file;
+  row.curve_index = curve_index;
+  AfmFlag flag = AfmFlag::kUnreadable;
+  if (dynamic_cast<const afm::MissingCalibration*>(&error) != nullptr) flag = AfmFlag::kCalibration;
+  else if (dynamic_cast<const afm::EmptySegment*>(&error) != nullptr) flag = AfmFlag::kEmptySegment;
+  return flagged(std::move(row), flag, error.what());
+}
+
+AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettings& settings) {
+  AfmCurveRow row = row_of(curve.metadata);
+  const std::string kind_name = afm::segment_kind_name(settings.segment);
+  const afm::Segment* segment = curve.find_segment(settings.segment);
+  if (segment == nullptr) return flagged(std::move(row), AfmFlag::kMissingSegment, "no " + kind_name + " segment");
+  if (curve.find_segment(afm::SegmentKind::kApproach) == nullptr) {
+    return flagged(std::move(row), AfmFlag::kMissingSegment, "no approach segment (the baseline and contact point need it)");
+  }
+  for (const afm::Segment& s : curve.segments) {
+    if (s.size() == 0) return flagged(std::move(row), AfmFlag::kEmptySegment, "an empty segment");
+  }
+  if (curve.force.size() != curve.point_count()) {
+    return flagged(std::move(row), AfmFlag::kCalibration, "no force channel (missing calibration)");
+  }
+  afm::PreprocessedCurve steps;
+  try {
+    steps = afm::preprocess(curve, settings.preprocess);
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    if (says(message, "no contact")) return flagged(std::move(row), AfmFlag::kNoContact, message);
+    if (says(message, "spring constant")) return flagged(std::move(row), AfmFlag::kCalibration, message);
+    return flagged(std::move(row), AfmFlag::kTooFewPoints, message);
+  } catch (const NumericalError& error) {
+    return flagged(std::move(row), AfmFlag::kNoConvergence, error.what());
+  }
+  if (settings.check_jump_in && settings.segment == afm::SegmentKind::kApproach && steps.baseline_sigma > 0.0) {
+    const afm::Segment* approach = curve.find_segment(afm::SegmentKind::kApproach);
+    const auto first = steps.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->begin);
+    const auto last = steps.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->end);
+    const double lowest = *std::min_element(first, last);
+    if (lowest < -kJumpInSigmas * steps.baseline_sigma) {
+      return flagged(std::move(row), AfmFlag::kJumpIn,
+                     "the approach force dips " + std::to_string(-lowest / steps.baseline_sigma) + " baseline sigmas below its baseline");
+    }
+  }
+  AfmFitProblem problem = settings.problem;
+  problem.noise_sigma = steps.baseline_sigma;
+  const std::vector<double> tip = curve.tip_position();
+  const std::vector<double> z_segment(tip.begin() + static_cast<std::ptrdiff_t>(segment->begin),
+                                      tip.begin() + static_cast<std::ptrdiff_t>(segment->end));
+  std::vector<double> f_segment(curve.force.begin() + static_cast<std::ptrdiff_t>(segment->begin),
+                                curve.force.begin() + static_cast<std::ptrdiff_t>(segment->end));
+  // The baseline's tilt about the reference contact point: b is then the offset there.
+  const double tilt = settings.correct_tilt ? steps.baseline_slope : 0.0;
+  for (std::size_t i = 0; i < f_segment.size(); ++i) f_segment[i] -= tilt * (z_segment[i] - steps.contact_point);
+  const double reference_baseline = steps.baseline_offset + steps.baseline_slope * steps.contact_point;
+  const std::vector<std::size_t> kept = afm_select(z_segment, f_segment, settings.range, steps.contact_point, reference_baseline);
+  if (kept.size() < settings.min_points) {
+    return flagged(std::move(row), AfmFlag::kTooFewPoints,
+                   std::to_string(kept.size()) + " points of the " + kind_name + " segment in the fit range (need " +
+                       std::to_string(settings.min_points) + ")");
+  }
+  std::vector<double> z, f;
+  z.reserve(kept.size());
+  f.reserve(kept.size());
+  for (std::size_t i : kept) {
+    z.push_back(z_segment[i]);
+    f.push_back(f_segment[i]);
+  }
+  AfmFitResult r;
+  try {
+    r = afm_fit(z, f, problem);
+  } catch (const NumericalError& error) {
+    const std::string message = error.what();
+    return flagged(std::move(row), says(message, "no contact") ? AfmFlag::kNoContact : AfmFlag::kNoConvergence, message);
+  } catch (const InputError& error) {
+    return flagged(std::move(row), AfmFlag::kBadData, error.what());
+  }
+  for (const AfmBatchParameter& p : afm_batch_parameters(problem)) {
+    row.estimates.push_back(r.*p.value);
+    row.errors.push_back(r.*p.error);
+  }
+  row.chi2 = r.chi2;
+  row.chi2_per_dof = r.chi2_per_dof;
+  row.residual_sigma = r.residual_sigma;
+  row.contact_point = r.contact_point;
+  row.points = r.points;
+  bool finite = std::isfinite(r.chi2) && std::isfinite(r.contact_point) && std::isfinite(r.residual_sigma);
+  for (std::size_t i = 0; i < row.estimates.size(); ++i) finite = finite && std::isfinite(row.estimates[i]) && std::isfinite(row.errors[i]);
+  if (!finite) {
+    row.estimates.clear();
+    row.errors.clear();
+    return flagged(std::move(row), AfmFlag::kNoConvergence, "the fit gave non-finite estimates or errors");
+  }
+  if (const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract)) {
+    const std::vector<double> zr(tip.begin() + static_cast<std::ptrdiff_t>(retract->begin),
+                                 tip.begin() + static_cast<std::ptrdiff_t>(retract->end));
+    std::vector<double> fr(curve.force.begin() + static_cast<std::ptrdiff_t>(retract->begin),
+                           curve.force.begin() + static_cast<std::ptrdiff_t>(retract->end));
+    for (std::size_t i = 0; i < fr.size(); ++i) fr[i] -= tilt * (zr[i] - steps.contact_point);
+    const AfmPulloff pulloff = afm_pulloff(zr, fr, r.baseline);
+    if (pulloff.found) {
+      row.pulloff_force = pulloff.force;
+      row.pulloff_position = pulloff.tip_position;
+    }
+  }
+  return row;
+}
+
+std::vector<std::size_t> afm_count_curves(const std::vector<std::string>& files, const afm::Calibration& calibration) {
+  std::vector<std::size_t> counts;
+  for (const std::string& file : files) counts.push_back(afm::CurveSource(file, calibration).size());
+  return counts;
+}
+
+namespace {
+
+// Sets the OpenMP thread count of the calling thread for the lifetime of the object.
+class ScopedThreads {
+ public:
+  explicit ScopedThreads(unsigned jobs) {
+#ifdef _OPENMP
+    previous_ = omp_get_max_threads();
+    omp_set_num_threads(static_cast<int>(jobs));
+#else
+    (void)jobs;
+#endif
+  }
+  ~ScopedThreads() {
+#ifdef _OPENMP
+    omp_set_num_threads(previous_);
+#endif
+  }
+  ScopedThreads(const ScopedThreads&) = delete;
+  ScopedThreads& operator=(const ScopedThreads&) = delete;
+
+ private:
+  int previous_ = 1;
+};
+
+}  // namespace
+
+AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::Calibration& calibration,
+                              const AfmBatchSettings& settings, const AfmBatchOptions& options) {
+  AfmBatchSummary summary;
+  const std::vector<std::size_t> counts = afm_count_curves(files, calibration);
+  for (std::size_t c : counts) summary.curves += c;
+  const unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t chunk = options.chunk_curves > 0 ? options.chunk_curves : 16 * static_cast<std::size_t>(jobs);
+  const ScopedThreads threads(jobs);
+  std::size_t done = std::min(options.skip, summary.curves);
+  if (options.progress && !options.progress(done, summary.curves)) throw Interrupted("interrupted before the first curve");
+
+  // Work of one chunk: a curve read in the calling thread, or the row of a curve that could not be read.
+  struct Item {
+    std::optional<afm::ForceCurve> curve;
+    AfmCurveRow row;
+  };
+  std::size_t first_of_file = 0;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const std::size_t count = counts[f];
+    if (first_of_file + count <= done) {
+      first_of_file += count;
+      continue;
+    }
+    const afm::CurveSource source(files[f], calibration);
+    for (std::size_t begin = done - first_of_file; begin < count; begin += chunk) {
+      const std::size_t end = std::min(count, begin + chunk);
+      std::vector<Item> items(end - begin);
+      for (std::size_t i = begin; i < end; ++i) {
+        try {
+          items[i - begin].curve = source.read(i);
+        } catch (const InputError& error) {
+          items[i - begin].row = afm_unreadable_row(files[f], i, error);
+        } catch (const NumericalError& error) {
+          items[i - begin].row = afm_unreadable_row(files[f], i, error);
+        }
+      }
+      const std::size_t chunk_done = done;
+      const ScopedProgressHook hook([&](std::size_t finished, std::size_t) {
+        return !options.progress || options.progress(chunk_done + finished, summary.curves);
+      });
+      detail::parallel_for(items.size(), [&](std::size_t i) {
+        if (items[i].curve) {
+          items[i].row = afm_fit_curve_row(*items[i].curve, settings);
+          items[i].curve.reset();
+        }
+      });
+      std::vector<AfmCurveRow> rows;
+      rows.reserve(items.size());
+      for (Item& item : items) {
+        const auto flag = static_cast<std::size_t>(item.row.flag);
+        ++summary.by_flag[flag];
+        if (item.row.flag == AfmFlag::kFitted) ++summary.fitted;
+        else {
+          ++summary.flagged;
+          if (summary.first_message[flag].empty()) summary.first_message[flag] = item.row.message;
+        }
+        rows.push_back(std::move(item.row));
+      }
+      if (options.sink) options.sink(rows);
+      done += items.size();
+    }
+    first_of_file += count;
+  }
+  return summary;
+}
+
+}  // namespace coatcontact::fit

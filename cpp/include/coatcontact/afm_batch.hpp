@@ -1,0 +1,113 @@
+// Batch fit of many AFM force curves (maps, QI data, many files; THEORY.md section 15, "Many curves"): one
+// result row per curve. A curve that cannot be fitted gets a flag and its reason, and the batch
+// goes on; only a file that cannot be opened at all stops it (InputError). The curves are read
+// one at a time from each file (afm::CurveSource) in chunks: a chunk is read in the calling
+// thread, fitted in parallel (the library's one parallel loop), and handed over in curve order,
+// so the memory of a run is one chunk of curves plus the rows the caller keeps. The per-curve fit
+// is afm_fit (coatcontact/afm_fit.hpp) on the problem given, unchanged: every model and free
+// parameter it supports runs in the batch; each free estimate has its column (afm_batch_parameters).
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coatcontact/afm_fit.hpp"
+#include "coatcontact/afm_preprocess.hpp"
+#include "coatcontact/afm_readers.hpp"
+#include "coatcontact/force_curve.hpp"
+
+namespace coatcontact::fit {
+
+// Why a curve has no estimates (0: fitted). The numbers are part of the output format.
+enum class AfmFlag : int {
+  kFitted = 0,
+  kNoContact = 1,       // the approach never leaves its baseline, or the fit finds no contact
+  kJumpIn = 2,          // the approach dips below its baseline by > kJumpInSigmas noise sigmas
+  kNoConvergence = 3,   // the fit did not give finite, identifiable estimates
+  kEmptySegment = 4,    // a segment of the curve holds no points
+  kMissingSegment = 5,  // the curve has no segment of the kind fitted (or no approach)
+  kCalibration = 6,     // the curve lacks a spring constant or sensitivity its force needs
+  kTooFewPoints = 7,    // the range options leave fewer than AfmBatchSettings::min_points
+  kUnreadable = 8,      // the curve's entries are missing, truncated or corrupt
+  kBadData = 9,         // the curve's values are not usable (not finite, one tip position)
+};
+constexpr int kAfmFlagCount = 10;
+const char* afm_flag_name(AfmFlag flag);  // "fitted", "no_contact", "jump_in", ...
+
+// A jump-in: the baseline-corrected approach force below -kJumpInSigmas x the baseline's
+// residual sigma. Gaussian noise of n <= 1e6 points stays above -5.3 sigma (two-sided tail
+// 1e-7); an attractive snap onto the surface is tens of sigmas.
+constexpr double kJumpInSigmas = 8.0;
+
+struct AfmBatchSettings {
+  AfmFitProblem problem;  // as for afm_fit; noise_sigma is set per curve (its baseline's sigma)
+  afm::SegmentKind segment = afm::SegmentKind::kApproach;
+  AfmRange range;         // relative to each curve's preprocessing contact point and baseline
+  afm::PreprocessOptions preprocess;
+  std::size_t min_points = 5;
+  bool check_jump_in = true;  // approach fits only
+  // Subtract the preprocessing's baseline tilt s (z - z_ref) from the forces fitted (and from
+  // the retract's, for the pull-off), so that the constant baseline b of the model is the
+  // baseline at the reference contact point z_ref (THEORY.md section 15, "Many curves").
+  bool correct_tilt = true;
+};
+
+// One free estimate's column: its name, unit and where afm_fit puts it.
+struct AfmBatchParameter {
+  std::string name;  // "E", "E1", "t", "contact_point", "baseline"
+  std::string unit;  // "Pa", "m", "N"
+  double AfmFitResult::*value;
+  double AfmFitResult::*error;
+};
+std::vector<AfmBatchParameter> afm_batch_parameters(const AfmFitProblem& problem);
+
+struct AfmCurveRow {
+  std::string source_file;
+  std::size_t curve_index = 0;
+  std::optional<long> grid_x, grid_y;
+  std::optional<double> position_x, position_y;  // [m]
+  AfmFlag flag = AfmFlag::kFitted;
+  std::string message;  // the reason in words (empty for a fitted curve)
+  // Fitted curves only (flag kFitted):
+  std::vector<double> estimates, errors;  // in the order of afm_batch_parameters
+  double chi2 = 0.0, chi2_per_dof = 0.0, residual_sigma = 0.0;
+  double contact_point = 0.0;  // [m] fitted (or fixed) contact point on the tip-position axis
+  std::size_t points = 0;      // fitted points
+  // Measured pull-off of the retract segment less the fitted baseline (when there is one).
+  std::optional<double> pulloff_force, pulloff_position;
+};
+
+// Fits one curve; per-curve problems become the row's flag (never an exception, except
+// Interrupted and allocation failure).
+AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettings& settings);
+
+// The row of a curve that could not be read (flag from the reader's exception).
+AfmCurveRow afm_unreadable_row(const std::string& file, std::size_t curve_index, const std::exception& error);
+
+struct AfmBatchOptions {
+  unsigned jobs = 0;             // threads; 0: the machine's cores
+  std::size_t chunk_curves = 0;  // curves per chunk; 0: 16 x jobs
+  std::size_t skip = 0;          // the first `skip` curves of the run (over all files) are not fitted (resume)
+  // Rows of each chunk, in curve order. Called on the calling thread.
+  std::function<void(const std::vector<AfmCurveRow>& rows)> sink;
+  // (curves done including skipped, total); false stops the run (Interrupted after the last
+  // whole chunk was handed to the sink). Called on the calling thread.
+  std::function<bool(std::size_t done, std::size_t total)> progress;
+};
+
+struct AfmBatchSummary {
+  std::size_t curves = 0;   // in all files
+  std::size_t fitted = 0, flagged = 0;  // of the curves fitted in this call (not the skipped)
+  std::size_t by_flag[kAfmFlagCount] = {};
+  std::string first_message[kAfmFlagCount];  // the first reason of each flag, for a summary
+};
+
+// The number of curves in each file (opens each; InputError if one cannot be opened).
+std::vector<std::size_t> afm_count_curves(const std::vector<std::string>& files, const afm::Calibration& calibration);
+
+AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::Calibration& calibration,
+                              const AfmBatchSettings& settings, const AfmBatchOptions& options);
+
+}  // namespace coatcontact::fit
