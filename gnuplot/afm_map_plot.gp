@@ -50,9 +50,9 @@ e = expo[words(names) + 2]
 set title sprintf('pull-off, retract (%sN)', pname(e))
 plot mapfile using ($1 * ps):($2 * ps):(dx * ps / 2):(dy * ps / 2):(cell(5 + words(names), 10.0**(-e))) \
      with boxxyerror fs solid 1.0 noborder lc palette notitle
-set title 'flag (0 fitted; see the table header)'
+set title 'flag'
 set cbrange [-0.5:9.5]
-set cbtics 0, 1, 9
+set cbtics ('fitted' 0, 'no contact' 1, 'jump-in' 2, 'no convergence' 3, 'empty segment' 4, 'missing segment' 5, 'calibration' 6, 'too few points' 7, 'unreadable' 8, 'bad data' 9) font ',8'
 set palette maxcolors 10
 set palette defined (0 '#2ca02c', 1 '#1f77b4', 2 '#ff7f0e', 3 '#d62728', 4 '#9467bd', 5 '#8c564b', 6 '#e377c2', 7 '#7f7f7f', 8 '#bcbd22', 9 '#17becf')
 plot mapfile using ($1 * ps):($2 * ps):(dx * ps / 2):(dy * ps / 2):3 \

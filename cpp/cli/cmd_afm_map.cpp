@@ -95,8 +95,9 @@ std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, b
   return line;
 }
 
-// Appends whole chunks to FILE.partial with one write(2) each, synced, so that the file ends
-// on a line boundary unless the process dies inside that call.
+// Appends whole chunks to FILE.partial with one write(2) each, so that the file ends on a line
+// boundary unless the process dies inside that call. (Not synced: what a killed or crashed
+// process wrote is in the page cache; a sync per chunk cost more than the fits.)
 class PartialFile {
  public:
   PartialFile(const std::string& path, bool append) : path_(path) {
@@ -116,7 +117,6 @@ class PartialFile {
       if (n <= 0) throw InputError("--output: write to " + cli::quoted(path_) + " failed (" + std::strerror(errno) + ")");
       done += static_cast<std::size_t>(n);
     }
-    ::fdatasync(fd_);
   }
 
  private:
@@ -160,7 +160,7 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
   std::ostringstream data;
   double x_min = INFINITY, x_max = -INFINITY, y_min = INFINITY, y_max = -INFINITY;
   long nx = 1, ny = 1;
-  bool positions = true;
+  bool positions = true, any_position = false;
   for (const std::string& line : rows) {
     std::vector<std::string> cells;
     std::size_t start = 0;
@@ -170,10 +170,12 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
       if (tab == std::string::npos) break;
       start = tab + 1;
     }
-    if (cells[4] == "-" || cells[5] == "-") positions = false;
+    if (cells[4] != "-" && cells[5] != "-") any_position = true;
+    else if (cells[2] != "-") positions = false;  // on the grid without a position
     if (cells[2] != "-") nx = std::max(nx, std::stol(cells[2]) + 1);
     if (cells[3] != "-") ny = std::max(ny, std::stol(cells[3]) + 1);
   }
+  positions = positions && any_position;
   for (const std::string& line : rows) {
     std::vector<std::string> cells;
     std::size_t start = 0;

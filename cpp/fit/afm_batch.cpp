@@ -70,10 +70,8 @@ bool says(const std::string& message, const char* phrase) { return message.find(
 
 }  // namespace
 
-AfmCurveRow afm_unreadable_row(const std::string& file, std::size_t curve_index, const std::exception& error) {
-  AfmCurveRow row;
-  row.source_file = file;
-  row.curve_index = curve_index;
+AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::exception& error) {
+  AfmCurveRow row = row_of(place);
   AfmFlag flag = AfmFlag::kUnreadable;
   if (dynamic_cast<const afm::MissingCalibration*>(&error) != nullptr) flag = AfmFlag::kCalibration;
   else if (dynamic_cast<const afm::EmptySegment*>(&error) != nullptr) flag = AfmFlag::kEmptySegment;
@@ -243,9 +241,9 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
         try {
           items[i - begin].curve = source.read(i);
         } catch (const InputError& error) {
-          items[i - begin].row = afm_unreadable_row(files[f], i, error);
+          items[i - begin].row = afm_unreadable_row(source.place(i), error);
         } catch (const NumericalError& error) {
-          items[i - begin].row = afm_unreadable_row(files[f], i, error);
+          items[i - begin].row = afm_unreadable_row(source.place(i), error);
         }
       }
       const std::size_t chunk_done = done;

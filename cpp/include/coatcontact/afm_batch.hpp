@@ -83,8 +83,9 @@ struct AfmCurveRow {
 // Interrupted and allocation failure).
 AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettings& settings);
 
-// The row of a curve that could not be read (flag from the reader's exception).
-AfmCurveRow afm_unreadable_row(const std::string& file, std::size_t curve_index, const std::exception& error);
+// The row of a curve that could not be read (flag from the reader's exception); `place`:
+// what is known of the curve (afm::CurveSource::place).
+AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::exception& error);
 
 struct AfmBatchOptions {
   unsigned jobs = 0;             // threads; 0: the machine's cores

@@ -69,6 +69,9 @@ class CurveSource {
   FileFormat format() const;
   std::size_t size() const;
   ForceCurve read(std::size_t index) const;
+  // The grid index and position of curve `index` as far as they can be read without its
+  // segments (a JPK map's curve header); only the index where nothing more is known. No throw.
+  CurveMetadata place(std::size_t index) const;
 
  private:
   struct Impl;

@@ -169,6 +169,18 @@ ForceCurve CurveSource::read(std::size_t index) const {
   return impl_->curves[index];
 }
 
+CurveMetadata CurveSource::place(std::size_t index) const {
+  try {
+    if (impl_->archive && index < size()) return detail::jpk_curve_place(*impl_->archive, impl_->layout, index, impl_->path);
+  } catch (const std::exception&) {
+  }
+  CurveMetadata m;
+  m.source_file = impl_->path;
+  m.curve_index = index;
+  m.curve_count = size();
+  return m;
+}
+
 std::vector<std::string> afm_files_in_folder(const std::string& folder) {
   static const char* const extensions[] = {".jpk-force", ".jpk-force-map", ".jpk-qi-data", ".jpk-qi-series",
                                            ".ibw", ".csv", ".zip", ".txt"};

@@ -534,6 +534,22 @@ ForceCurve read_jpk_curve(const ZipArchive& archive, const JpkLayout& layout, st
   return curve;
 }
 
+CurveMetadata jpk_curve_place(const ZipArchive& archive, const JpkLayout& layout, std::size_t ci, const std::string& file) {
+  const std::string& folder = layout.curve_folders.at(ci);
+  CurveMetadata m;
+  m.source_file = file;
+  m.entry = folder;
+  m.curve_index = ci;
+  m.curve_count = layout.curve_folders.size();
+  Properties curve_properties = layout.general;
+  if (!folder.empty()) {
+    for (auto& [k, v] : parse_properties(archive.read(folder + "header.properties"))) curve_properties[k] = v;
+  }
+  expand_references(curve_properties, layout.shared);
+  set_position_metadata(m, layout.general, curve_properties, folder);
+  return m;
+}
+
 std::vector<ForceCurve> read_jpk(const std::string& bytes, const std::string& file, const Calibration& user) {
   const ZipArchive archive(bytes, file);
   const JpkLayout layout = jpk_layout(archive, file);

@@ -23,4 +23,8 @@ JpkLayout jpk_layout(const ZipArchive& archive, const std::string& file);
 ForceCurve read_jpk_curve(const ZipArchive& archive, const JpkLayout& layout, std::size_t index, const std::string& file,
                           const Calibration& user);
 
+// The place of curve `index` (grid index, position, entry) from its header alone, for a curve
+// whose segments cannot be read; InputError if the header cannot be read either.
+CurveMetadata jpk_curve_place(const ZipArchive& archive, const JpkLayout& layout, std::size_t index, const std::string& file);
+
 }  // namespace coatcontact::afm::detail
