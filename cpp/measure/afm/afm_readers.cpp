@@ -141,8 +141,9 @@ CurveSource::CurveSource(const std::string& path, const Calibration& calibration
   }
   if (std::string(magic, 4) == std::string("PK\x03\x04", 4)) {
     auto archive = std::make_unique<detail::ZipArchive>(detail::ZipArchive::FromPath{}, path);
-    const bool jpk = std::any_of(archive->names().begin(), archive->names().end(), [](const std::string& name) {
-      return name.rfind("segments/", 0) == 0 || name.rfind("index/", 0) == 0 || name == "header.properties";
+    bool jpk = false;
+    archive->for_each_name([&](const std::string& name) {
+      if (name.rfind("segments/", 0) == 0 || name.rfind("index/", 0) == 0 || name == "header.properties") jpk = true;
     });
     if (jpk) {
       impl_->layout = detail::jpk_layout(*archive, path);

@@ -284,7 +284,7 @@ std::vector<std::string> curve_folders_of(const ZipArchive& archive, const std::
   std::vector<std::string> curve_folders;
   std::set<long> indices;
   single = false;
-  for (const auto& name : archive.names()) {
+  archive.for_each_name([&](const std::string& name) {
     if (name.rfind("segments/", 0) == 0) single = true;
     if (name.rfind("index/", 0) == 0) {
       const std::size_t slash = name.find('/', 6);
@@ -293,7 +293,7 @@ std::vector<std::string> curve_folders_of(const ZipArchive& archive, const std::
         indices.insert(std::stol(digits));
       }
     }
-  }
+  });
   if (!indices.empty()) {
     for (long i : indices) curve_folders.push_back("index/" + std::to_string(i) + "/");
   } else if (single) {

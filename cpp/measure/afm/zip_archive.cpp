@@ -33,7 +33,6 @@ ZipArchive::ZipArchive(const std::string& bytes, const std::string& file) : file
     fail(file, "", "not a readable zip archive, truncated or corrupt (" + text + ")");
   }
   zip_error_fini(&error);
-  list_names();
 }
 
 ZipArchive::ZipArchive(FromPath, const std::string& path) : file_(path) {
@@ -46,15 +45,25 @@ ZipArchive::ZipArchive(FromPath, const std::string& path) : file_(path) {
     zip_error_fini(&error);
     fail(path, "", "not a readable zip archive, truncated or corrupt (" + text + ")");
   }
-  list_names();
 }
 
-void ZipArchive::list_names() {
+void ZipArchive::for_each_name(const std::function<void(const std::string& name)>& visit) const {
   const zip_int64_t count = zip_get_num_entries(archive_, 0);
+  std::string text;
   for (zip_int64_t i = 0; i < count; ++i) {
     const char* name = zip_get_name(archive_, static_cast<zip_uint64_t>(i), ZIP_FL_ENC_RAW);
-    if (name != nullptr) names_.emplace_back(name);
+    if (name == nullptr) continue;
+    text = name;
+    visit(text);
   }
+}
+
+const std::vector<std::string>& ZipArchive::names() const {
+  if (!listed_) {
+    for_each_name([this](const std::string& name) { names_.push_back(name); });
+    listed_ = true;
+  }
+  return names_;
 }
 
 ZipArchive::~ZipArchive() {

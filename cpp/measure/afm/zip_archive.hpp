@@ -1,5 +1,6 @@
 // A zip archive held in memory, read through libzip (internal to the AFM readers).
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,16 +20,20 @@ class ZipArchive {
   ZipArchive(const ZipArchive&) = delete;
   ZipArchive& operator=(const ZipArchive&) = delete;
 
-  const std::vector<std::string>& names() const { return names_; }
+  // Every entry's name, in archive order (listed when first asked for).
+  const std::vector<std::string>& names() const;
+  // Calls `visit` with each entry's name without keeping the list (a map's archive holds
+  // ~10 names per curve).
+  void for_each_name(const std::function<void(const std::string& name)>& visit) const;
   bool has(const std::string& name) const;
   // The whole entry; InputError naming the file and entry if it is missing, truncated or corrupt.
   std::string read(const std::string& name) const;
 
  private:
-  void list_names();
   zip* archive_ = nullptr;
   std::string file_;
-  std::vector<std::string> names_;
+  mutable std::vector<std::string> names_;
+  mutable bool listed_ = false;
 };
 
 }  // namespace coatcontact::afm::detail
