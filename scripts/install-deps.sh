@@ -14,6 +14,8 @@ packages=(
   # the notebooks (examples/notebooks/, run headless by nbclient) and the explorer's Jupyter
   # widget (python -m coatcontact.explore; its window needs a GUI backend such as python3-tk)
   python3-nbclient python3-ipykernel python3-ipywidgets
+  # coatcontact.afm.fit_map(..., client=) on a Dask cluster and its test (a LocalCluster)
+  python3-distributed
 )
 # Optional extras for `make bench` and `make fuzz`; installed when asked for.
 if [ "${COATCONTACT_EXTRAS:-0}" = 1 ]; then

@@ -219,6 +219,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
   const std::size_t chunk = options.chunk_curves > 0 ? options.chunk_curves : 16 * static_cast<std::size_t>(jobs);
   const ScopedThreads threads(jobs);
   std::size_t done = std::min(options.skip, summary.curves);
+  const std::size_t stop = done + std::min(options.count, summary.curves - done);  // one past the last curve fitted
   if (options.progress && !options.progress(done, summary.curves)) throw Interrupted("interrupted before the first curve");
 
   // Work of one chunk: a curve read in the calling thread, or the row of a curve that could not be read.
@@ -229,13 +230,15 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
   std::size_t first_of_file = 0;
   for (std::size_t f = 0; f < files.size(); ++f) {
     const std::size_t count = counts[f];
+    if (done >= stop) break;
     if (first_of_file + count <= done) {
       first_of_file += count;
       continue;
     }
     const afm::CurveSource source(files[f], calibration);
-    for (std::size_t begin = done - first_of_file; begin < count; begin += chunk) {
-      const std::size_t end = std::min(count, begin + chunk);
+    const std::size_t last = std::min(count, stop - first_of_file);  // one past this file's last curve fitted
+    for (std::size_t begin = done - first_of_file; begin < last; begin += chunk) {
+      const std::size_t end = std::min(last, begin + chunk);
       std::vector<Item> items(end - begin);
       for (std::size_t i = begin; i < end; ++i) {
         try {

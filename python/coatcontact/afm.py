@@ -16,6 +16,10 @@ has a time base. `metadata` holds "spring constant" [N/m], "sensitivity" [m/V], 
 fit(curve, ...) fits one segment with the adhesionless Hertz/Sneddon model on a half-space:
 E, the contact point (tip-position axis) and a force baseline (THEORY.md section 15).
 
+fit_map(paths_or_curves, ...) fits every curve of maps, files or folders (or of given curves)
+the same way and returns one row per curve, flagged curves included (THEORY.md section 15,
+"Many curves"); jobs= threads, or client= a dask.distributed Client to spread the work.
+
 preprocess(curve) runs the named steps of the command line's `afm export --preprocess`: tip
 position, baseline offset and tilt on the leading part of the approach, contact point
 ("piecewise-fit", robust to noise, or "deviation").
@@ -25,13 +29,14 @@ channel, empty segment, and missing calibration: then pass spring_constant= and/
 sensitivity=, which override the file's values and are recorded as source "user").
 """
 import math
+import os
 
 import numpy as np
 
 from . import _afm
 from ._core import NumericalError
 
-__all__ = ["read", "preprocess", "fit", "Curve"]
+__all__ = ["read", "preprocess", "fit", "fit_map", "Curve"]
 
 
 class Curve:
@@ -269,3 +274,156 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
             i = int(np.argmin(fr))
             r["pulloff"] = {"F": float(fr[i] - r["estimates"]["baseline"]), "z": float(z_all[retract][i])}
     return r
+
+
+def _map_problem(model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
+    """The tip, sample and free parameters of fit_map as _afm takes them."""
+    if model == "jkr":
+        raise ValueError("model: 'jkr' is not available in afm.fit_map yet (the adhesive retract fit); allowed: 'hertz'")
+    if model != "hertz":
+        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz'")
+    coating = None
+    if film is not None or substrate is not None or thickness is not None:
+        if halfspace is not None:
+            raise ValueError("halfspace: give one sample, halfspace=(E, nu) or film=, substrate=, thickness=")
+        if film is None or substrate is None or thickness is None:
+            raise ValueError("a coating needs film=(E1, nu1), substrate=(E0, nu0) or \"rigid\", and thickness=t")
+        sub = None if (isinstance(substrate, str) and substrate == "rigid") else tuple(float(v) for v in substrate)
+        coating = (float(film[0]), float(film[1]), sub, float(thickness))
+        E, nu = coating[0], coating[1]
+        if tuple(free) == ("E", "contact_point", "baseline"):
+            free = ("E1", "contact_point", "baseline")
+    elif halfspace is None:
+        raise ValueError("halfspace: give the sample as halfspace=(E, nu), or a coating film=, substrate=, thickness=")
+    else:
+        E, nu = (float(v) for v in halfspace)
+    if (radius is None) == (shape is None):
+        raise ValueError("give the tip as radius= or shape=, one of them")
+    tip = ("sphere", float(radius)) if radius is not None else tuple(shape)
+    if isinstance(free, str):
+        free = [f.strip() for f in free.split(",")]
+    free = [str(f) for f in free]
+    if "contact_point" not in free and contact_point is None:
+        raise ValueError("contact_point: a fixed contact point needs contact_point= (m)")
+    return tip, E, nu, free, coating
+
+
+def _is_path(item):
+    return isinstance(item, (str, bytes, os.PathLike))
+
+
+def _curve_arrays(curve, number, spring_constant):
+    """A curve of read() or a mapping with the AFM tools' keys as the tuple _afm.fit_map_curves takes."""
+    meta = getattr(curve, "metadata", None) or (curve.get("metadata", {}) if hasattr(curve, "get") else {})
+    k = spring_constant if spring_constant is not None else meta.get("spring constant")
+    if k is None:
+        raise ValueError("curve: needs a spring constant (metadata \"spring constant\" or spring_constant=)")
+    force = np.asarray(curve["force"], dtype=float)
+    piezo = np.asarray(curve["height (piezo)"], dtype=float) if "height (piezo)" in curve else None
+    measured = np.asarray(curve["height (measured)"], dtype=float) if "height (measured)" in curve else None
+    segments = getattr(curve, "segments", None)
+    if segments is not None:
+        parts = [(s["kind"], int(s["begin"]), int(s["end"])) for s in segments]
+    else:
+        index = np.asarray(curve["segment"]) if "segment" in curve else np.zeros(len(force), dtype=int)
+        parts, begin = [], 0
+        for i in range(1, len(index) + 1):
+            if i == len(index) or index[i] != index[begin]:
+                parts.append(("approach" if index[begin] == 0 else "retract", begin, i))
+                begin = i
+    name = str(meta.get("path", f"curve {number}"))
+    return (force, piezo, measured, parts, float(k), name, int(meta.get("curve index", number)),
+            meta.get("grid index x"), meta.get("grid index y"), meta.get("position x"), meta.get("position y"))
+
+
+def _fit_part(files, first, count, args):
+    """One share of a fit_map run (a task of a Dask worker): curves first..first+count-1."""
+    return _afm.fit_map_files(files, *args, jobs=1, first=first, count=count)
+
+
+def _structured(columns):
+    names = list(columns["names"])
+    fields = []
+    for name in names:
+        column = columns[name]
+        if name in ("file", "reason"):
+            width = max([len(v) for v in column] + [1])
+            fields.append((name, f"U{width}"))
+        else:
+            fields.append((name, np.asarray(column).dtype))
+    out = np.empty(len(columns["flag"]), dtype=fields)
+    for name in names:
+        out[name] = columns[name]
+    return out
+
+
+def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspace=None, film=None, substrate=None,
+            thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
+            segment="approach", spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
+            max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False):
+    """Fits every curve of maps, QI data, files or folders (or of the curves given) and returns
+    one row per curve, as `coatcontact afm fit FILES...` does (THEORY.md section 15, "Many
+    curves"): each curve preprocessed (baseline offset and tilt, contact point), its tilt
+    subtracted, the segment fitted by the model of fit() with the same keywords; a curve that
+    cannot be fitted is flagged and the others go on.
+
+    paths_or_curves  a path, a folder (its AFM files by extension) or a list of them; or a list
+                     of curves (read()'s, or mappings with "force", a height and "segment").
+    jobs             threads (default: the machine's cores); the rows are the same for any jobs.
+    client           a dask.distributed.Client: the curves of the files are split into shares
+                     fitted by the cluster's workers (each with one thread) and gathered in
+                     order; the rows are the serial ones. Dask is imported only then.
+    as_frame         a pandas DataFrame instead of the NumPy structured array (needs pandas).
+
+    Columns: file, curve, grid_x, grid_y (-1 when unknown), x, y [m], flag (0 fitted; 1
+    no_contact, 2 jump_in, 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration,
+    7 too_few_points, 8 unreadable, 9 bad_data), reason, each free estimate ("E" [Pa], "E1" [Pa],
+    "t" [m], "contact_point" [m], "baseline" [N]) and its "_error", contact_point [m] when
+    fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m], points;
+    NaN where a flagged curve has no value."""
+    tip, E, nu, free, coating = _map_problem(model, radius, shape, halfspace, film, substrate, thickness, free,
+                                             contact_point)
+    lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]),
+                                                                  float(indentation_range[1]))
+    if max_indentation is not None:
+        hi_i = float(max_indentation) if hi_i is None else min(hi_i, float(max_indentation))
+    lo_t, hi_t = (None, None) if tip_range is None else (float(tip_range[0]), float(tip_range[1]))
+    args = (tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), coating, segment, lo_t, hi_t,
+            lo_i, hi_i, None if max_force is None else float(max_force))
+    if jobs is not None and (int(jobs) != jobs or jobs < 1):
+        raise ValueError(f"jobs: {jobs!r} is not allowed; expected a whole number of threads >= 1 (or None: the cores)")
+    k = None if spring_constant is None else _calibration(spring_constant, "spring_constant")
+    s = None if sensitivity is None else _calibration(sensitivity, "sensitivity")
+    items = [paths_or_curves] if _is_path(paths_or_curves) else list(paths_or_curves)
+    if items and all(_is_path(i) for i in items):
+        files = _afm.expand_paths([os.fspath(i) for i in items])
+        if client is None:
+            columns = _afm.fit_map_files(files, *args, k, s, jobs=int(jobs or 0), first=0, count=None)
+        else:
+            total = _afm.count_curves(files, k, s)
+            workers = max(1, len(client.scheduler_info().get("workers", {})))
+            share = max(1, -(-total // (4 * workers)))
+            firsts = list(range(0, total, share))
+            futures = client.map(_fit_part, [files] * len(firsts), firsts, [share] * len(firsts),
+                                 [args + (k, s)] * len(firsts), pure=False)
+            parts = client.gather(futures)
+            columns = {"names": parts[0]["names"]} if parts else _afm.fit_map_files(files, *args, k, s, jobs=1, first=0,
+                                                                                    count=0)
+            for name in columns["names"]:
+                values = [p[name] for p in parts]
+                columns[name] = sum(values, []) if isinstance(values[0], list) else np.concatenate(values)
+    elif items and not any(_is_path(i) for i in items):
+        if client is not None:
+            raise ValueError("client: spreads the curves of files; give paths, or fit given curves without client=")
+        curves = [_curve_arrays(c, n, spring_constant) for n, c in enumerate(items)]
+        columns = _afm.fit_map_curves(curves, *args)
+    else:
+        raise ValueError("paths_or_curves: expected a path, a folder, a list of them, or a list of curves (not mixed)")
+    rows = _structured(columns)
+    if as_frame:
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("as_frame=True needs pandas (Debian: python3-pandas)") from None
+        return pandas.DataFrame(rows)
+    return rows

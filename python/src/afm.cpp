@@ -4,13 +4,16 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <sys/stat.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <tuple>
 #include <string>
 #include <vector>
 
+#include "coatcontact/afm_batch.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
@@ -115,11 +118,10 @@ std::vector<double> to_vector(const py::object& array) {
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
-// Preprocessing steps of one curve given as arrays; segments as (kind, begin, end) triples.
-py::dict preprocess_arrays(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
-                           const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments,
-                           double spring_constant, const std::string& contact_point, double baseline_fraction,
-                           double deviation_sigmas, const std::string& name) {
+// A curve given as arrays; segments as (kind, begin, end) triples covering the points in order.
+afm::ForceCurve curve_of(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
+                         const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments,
+                         double spring_constant, const std::string& name) {
   afm::ForceCurve curve;
   curve.force = to_vector(force);
   curve.height_piezo = to_vector(height_piezo);
@@ -151,6 +153,15 @@ py::dict preprocess_arrays(const py::object& force, const py::object& height_pie
   curve.metadata.spring_constant = spring_constant;
   curve.metadata.spring_constant_source = afm::CalibrationSource::kUser;
   curve.metadata.source_file = name;
+  return curve;
+}
+
+// Preprocessing steps of one curve given as arrays; segments as (kind, begin, end) triples.
+py::dict preprocess_arrays(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
+                           const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments,
+                           double spring_constant, const std::string& contact_point, double baseline_fraction,
+                           double deviation_sigmas, const std::string& name) {
+  afm::ForceCurve curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
   afm::PreprocessOptions options;
   if (contact_point == "piecewise-fit") options.contact_method = afm::ContactPointMethod::kPiecewiseFit;
   else if (contact_point == "deviation") options.contact_method = afm::ContactPointMethod::kDeviation;
@@ -207,6 +218,52 @@ std::optional<double> optional_number(const py::object& v) {
   return v.cast<double>();
 }
 
+// The problem of coatcontact.afm.fit and fit_map: tip, sample (coating: (E1, nu1, substrate
+// (E0, nu0) or None for rigid, t)), free parameters and fixed values. InputError when not allowed.
+coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulus, double poisson,
+                                           const std::vector<std::string>& free, double contact_point, double baseline,
+                                           const py::object& coating) {
+  namespace fit = coatcontact::fit;
+  fit::AfmFitProblem problem;
+  problem.tip = tip_of(shape);
+  problem.modulus = modulus;
+  problem.poisson = poisson;
+  // coating: (E1, nu1, substrate (E0, nu0) or None for rigid, t)
+  const bool coated = !coating.is_none();
+  if (coated) {
+    const py::tuple c = coating.cast<py::tuple>();
+    fit::AfmCoating layer;
+    layer.film.youngs_modulus = c[0].cast<double>();
+    layer.film.poisson_ratio = c[1].cast<double>();
+    if (c[2].is_none()) {
+      layer.substrate.rigid = true;
+    } else {
+      const py::tuple sub = c[2].cast<py::tuple>();
+      layer.substrate.material.youngs_modulus = sub[0].cast<double>();
+      layer.substrate.material.poisson_ratio = sub[1].cast<double>();
+    }
+    layer.thickness = c[3].cast<double>();
+    problem.coating = layer;
+    problem.poisson = layer.film.poisson_ratio;
+  }
+  const std::string modulus_name = coated ? "E1" : "E";
+  const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
+  problem.free = {false, false, false, false};
+  for (const auto& name : free) {
+    if (name == modulus_name) problem.free.modulus = true;
+    else if (name == "t" && coated) problem.free.thickness = true;
+    else if (name == "contact_point") problem.free.contact_point = true;
+    else if (name == "baseline") problem.free.baseline = true;
+    else throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
+  }
+  if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+    throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
+  }
+  problem.contact_point = contact_point;
+  problem.baseline = baseline;
+  return problem;
+}
+
 // One fit of (z, F) arrays; the Python layer chooses the segment and the reference estimates.
 py::dict fit_arrays(const py::object& tip_position, const py::object& force, const py::tuple& shape, double modulus,
                     double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
@@ -219,42 +276,9 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
   fit::AfmFitProblem problem;
   py::dict out;
   try {
-    problem.tip = tip_of(shape);
-    problem.modulus = modulus;
-    problem.poisson = poisson;
-    // coating: (E1, nu1, substrate (E0, nu0) or None for rigid, t)
-    const bool coated = !coating.is_none();
-    if (coated) {
-      const py::tuple c = coating.cast<py::tuple>();
-      fit::AfmCoating layer;
-      layer.film.youngs_modulus = c[0].cast<double>();
-      layer.film.poisson_ratio = c[1].cast<double>();
-      if (c[2].is_none()) {
-        layer.substrate.rigid = true;
-      } else {
-        const py::tuple sub = c[2].cast<py::tuple>();
-        layer.substrate.material.youngs_modulus = sub[0].cast<double>();
-        layer.substrate.material.poisson_ratio = sub[1].cast<double>();
-      }
-      layer.thickness = c[3].cast<double>();
-      problem.coating = layer;
-      problem.poisson = layer.film.poisson_ratio;
-    }
+    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating);
+    const bool coated = problem.coating.has_value();
     const std::string modulus_name = coated ? "E1" : "E";
-    const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
-    problem.free = {false, false, false, false};
-    for (const auto& name : free) {
-      if (name == modulus_name) problem.free.modulus = true;
-      else if (name == "t" && coated) problem.free.thickness = true;
-      else if (name == "contact_point") problem.free.contact_point = true;
-      else if (name == "baseline") problem.free.baseline = true;
-      else throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
-    }
-    if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
-      throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
-    }
-    problem.contact_point = contact_point;
-    problem.baseline = baseline;
     problem.noise_sigma = noise;
     fit::AfmRange range;
     range.tip_min = optional_number(tip_min);
@@ -332,6 +356,188 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
   return out;
 }
 
+
+// ---- fit_map: one row per curve (coatcontact/afm_batch.hpp) --------------------------------
+
+afm::Calibration calibration_of(const py::object& spring_constant, const py::object& sensitivity) {
+  afm::Calibration calibration;
+  if (!spring_constant.is_none()) calibration.spring_constant = spring_constant.cast<double>();
+  if (!sensitivity.is_none()) calibration.sensitivity = sensitivity.cast<double>();
+  return calibration;
+}
+
+coatcontact::fit::AfmBatchSettings settings_of(const py::tuple& shape, double modulus, double poisson,
+                                               const std::vector<std::string>& free, double contact_point,
+                                               double baseline, const py::object& coating, const std::string& segment,
+                                               const py::object& tip_min, const py::object& tip_max,
+                                               const py::object& indentation_min, const py::object& indentation_max,
+                                               const py::object& max_force) {
+  coatcontact::fit::AfmBatchSettings settings;
+  settings.problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating);
+  if (segment == "approach") settings.segment = afm::SegmentKind::kApproach;
+  else if (segment == "retract") settings.segment = afm::SegmentKind::kRetract;
+  else throw coatcontact::InputError("segment: '" + segment + "' is not allowed; expected 'approach' or 'retract'");
+  settings.range.tip_min = optional_number(tip_min);
+  settings.range.tip_max = optional_number(tip_max);
+  settings.range.indentation_min = optional_number(indentation_min);
+  settings.range.indentation_max = optional_number(indentation_max);
+  settings.range.max_force = optional_number(max_force);
+  return settings;
+}
+
+// The rows as columns (the CLI table's): NaN (floats) and -1 (grid indices) where a curve has no value.
+py::dict columns_of(const std::vector<coatcontact::fit::AfmCurveRow>& rows, const coatcontact::fit::AfmBatchSettings& settings) {
+  namespace fit = coatcontact::fit;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto parameters = fit::afm_batch_parameters(settings.problem);
+  const bool contact_column = !settings.problem.free.contact_point;
+  const std::size_t n = rows.size();
+  py::list file, reason;
+  std::vector<long> curve(n), grid_x(n), grid_y(n), points(n);
+  std::vector<int> flag(n);
+  std::vector<double> x(n), y(n), chi2(n), chi2_per_dof(n), sigma(n), pulloff(n), pulloff_position(n), contact(n);
+  std::vector<std::vector<double>> value(parameters.size(), std::vector<double>(n)), error = value;
+  for (std::size_t i = 0; i < n; ++i) {
+    const fit::AfmCurveRow& r = rows[i];
+    const bool fitted = r.flag == fit::AfmFlag::kFitted;
+    file.append(r.source_file);
+    reason.append(fit::afm_flag_name(r.flag));
+    curve[i] = static_cast<long>(r.curve_index);
+    grid_x[i] = r.grid_x.value_or(-1);
+    grid_y[i] = r.grid_y.value_or(-1);
+    x[i] = r.position_x.value_or(nan);
+    y[i] = r.position_y.value_or(nan);
+    flag[i] = static_cast<int>(r.flag);
+    for (std::size_t p = 0; p < parameters.size(); ++p) {
+      value[p][i] = fitted ? r.estimates[p] : nan;
+      error[p][i] = fitted ? r.errors[p] : nan;
+    }
+    contact[i] = fitted ? r.contact_point : nan;
+    chi2[i] = fitted ? r.chi2 : nan;
+    chi2_per_dof[i] = fitted ? r.chi2_per_dof : nan;
+    sigma[i] = fitted ? r.residual_sigma : nan;
+    pulloff[i] = fitted ? r.pulloff_force.value_or(nan) : nan;
+    pulloff_position[i] = fitted ? r.pulloff_position.value_or(nan) : nan;
+    points[i] = fitted ? static_cast<long>(r.points) : 0;
+  }
+  py::dict out;
+  py::list names;
+  const auto put = [&](const std::string& name, py::object column) {
+    out[py::str(name)] = column;
+    names.append(name);
+  };
+  put("file", file);
+  put("curve", to_array(curve));
+  put("grid_x", to_array(grid_x));
+  put("grid_y", to_array(grid_y));
+  put("x", to_array(x));
+  put("y", to_array(y));
+  put("flag", to_array(flag));
+  put("reason", reason);
+  for (std::size_t p = 0; p < parameters.size(); ++p) {
+    put(parameters[p].name, to_array(value[p]));
+    put(parameters[p].name + "_error", to_array(error[p]));
+  }
+  if (contact_column) put("contact_point", to_array(contact));
+  put("chi2", to_array(chi2));
+  put("chi2_per_dof", to_array(chi2_per_dof));
+  put("residual_sigma", to_array(sigma));
+  put("pulloff", to_array(pulloff));
+  put("pulloff_position", to_array(pulloff_position));
+  put("points", to_array(points));
+  out["names"] = names;
+  return out;
+}
+
+// The files of `paths` (a folder: its AFM files by extension, sorted), in order.
+std::vector<std::string> expand_paths(const std::vector<std::string>& paths) {
+  std::vector<std::string> files;
+  try {
+    for (const auto& p : paths) {
+      struct stat info {};
+      if (::stat(p.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+        for (auto& f : afm::afm_files_in_folder(p)) files.push_back(std::move(f));
+      } else {
+        files.push_back(p);
+      }
+    }
+  } catch (const coatcontact::InputError& e) {
+    throw py::value_error(e.what());
+  }
+  return files;
+}
+
+std::size_t count_curves(const std::vector<std::string>& files, const py::object& spring_constant, const py::object& sensitivity) {
+  try {
+    std::size_t total = 0;
+    for (std::size_t c : coatcontact::fit::afm_count_curves(files, calibration_of(spring_constant, sensitivity))) total += c;
+    return total;
+  } catch (const coatcontact::InputError& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+// Curves [first, first + count) of the run over `files`, fitted with `jobs` threads (0: cores).
+py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& shape, double modulus, double poisson,
+                       const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
+                       const std::string& segment, const py::object& tip_min, const py::object& tip_max,
+                       const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
+                       const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
+                       const py::object& count) {
+  namespace fit = coatcontact::fit;
+  std::vector<fit::AfmCurveRow> rows;
+  fit::AfmBatchSettings settings;
+  try {
+    settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
+                           indentation_min, indentation_max, max_force);
+    const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
+    fit::AfmBatchOptions options;
+    options.jobs = jobs;
+    options.skip = first;
+    if (!count.is_none()) options.count = count.cast<std::size_t>();
+    options.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) { rows.insert(rows.end(), chunk.begin(), chunk.end()); };
+    py::gil_scoped_release release;
+    fit::afm_fit_batch(files, calibration, settings, options);
+  } catch (const coatcontact::InputError& e) {
+    throw py::value_error(e.what());
+  } catch (const coatcontact::NumericalError& e) {
+    throw std::runtime_error(std::string("numerical failure: ") + e.what());
+  }
+  return columns_of(rows, settings);
+}
+
+// Curves given as arrays: (force, height_piezo, height_measured, segments, spring_constant,
+// name, curve_index, grid_x, grid_y, x, y), each fitted as a curve of a file would be.
+py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double modulus, double poisson,
+                        const std::vector<std::string>& free, double contact_point, double baseline,
+                        const py::object& coating, const std::string& segment, const py::object& tip_min,
+                        const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
+                        const py::object& max_force) {
+  namespace fit = coatcontact::fit;
+  fit::AfmBatchSettings settings;
+  std::vector<fit::AfmCurveRow> rows;
+  try {
+    settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
+                           indentation_min, indentation_max, max_force);
+    for (const py::handle item : curves) {
+      const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
+      afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
+                                       c[4].cast<double>(), c[5].cast<std::string>());
+      afm::CurveMetadata& m = curve.metadata;
+      m.curve_index = c[6].cast<std::size_t>();
+      if (!c[7].is_none()) m.grid_index_x = c[7].cast<long>();
+      if (!c[8].is_none()) m.grid_index_y = c[8].cast<long>();
+      if (!c[9].is_none()) m.position_x = c[9].cast<double>();
+      if (!c[10].is_none()) m.position_y = c[10].cast<double>();
+      py::gil_scoped_release release;
+      rows.push_back(fit::afm_fit_curve_row(curve, settings));
+    }
+  } catch (const coatcontact::InputError& e) {
+    throw py::value_error(e.what());
+  }
+  return columns_of(rows, settings);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_afm, m) {
@@ -344,4 +550,15 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("poisson"), py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("noise"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none());
+  m.def("expand_paths", &expand_paths, py::arg("paths"));
+  m.def("count_curves", &count_curves, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"));
+  m.def("fit_map_files", &fit_map_files, py::arg("files"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
+        py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
+        py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
+        py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
+        py::arg("count"));
+  m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
+        py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
+        py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
+        py::arg("max_force"));
 }

@@ -91,6 +91,7 @@ struct AfmBatchOptions {
   unsigned jobs = 0;             // threads; 0: the machine's cores
   std::size_t chunk_curves = 0;  // curves per chunk; 0: 16 x jobs
   std::size_t skip = 0;          // the first `skip` curves of the run (over all files) are not fitted (resume)
+  std::size_t count = static_cast<std::size_t>(-1);  // curves fitted after them at most (a share of the run)
   // Rows of each chunk, in curve order. Called on the calling thread.
   std::function<void(const std::vector<AfmCurveRow>& rows)> sink;
   // (curves done including skipped, total); false stops the run (Interrupted after the last

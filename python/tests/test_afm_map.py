@@ -1,0 +1,93 @@
+"""coatcontact.afm.fit_map (THEORY.md section 15, "Many curves"): the README's call on the real
+JPK map, the same numbers as `coatcontact afm fit MAP` (the CLI's table), curves given instead of
+paths, a synthetic JPK map (tests/afm/make_afm_map) with its bad curves flagged as the truth says,
+jobs=2 identical to jobs=1, and a dask.distributed LocalCluster of 2 worker processes identical to
+the serial run; refusals name the keyword."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import coatcontact as cc
+
+from conftest import SOURCE_DIR, run_cli
+
+MAP = os.path.join(SOURCE_DIR, "data", "afm", "fmt-jpk-fd_map2x2_extracted.jpk-force-map")
+BUILD_DIR = os.environ.get("COATCONTACT_BUILD_DIR", os.path.join(SOURCE_DIR, "build"))
+MAKE_MAP = os.path.join(BUILD_DIR, "tests", "afm", "make_afm_map")
+
+
+def same_rows(a, b):
+    """Bit for bit: every column's bytes (NaN where both have no value)."""
+    assert a.dtype == b.dtype
+    for name in a.dtype.names:
+        assert a[name].tobytes() == b[name].tobytes(), name
+
+
+def test_readme_call(monkeypatch):
+    monkeypatch.chdir(SOURCE_DIR)
+    rows = cc.afm.fit_map(["data/afm/fmt-jpk-fd_map2x2_extracted.jpk-force-map"],
+                          model="hertz", radius=10e-6, halfspace=(1e3, 0.5),
+                          free=("E", "contact_point", "baseline"), segment="approach", jobs=2)
+    rows["E"], rows["E_error"], rows["chi2"], rows["flag"], rows["reason"]   # one per curve
+    assert len(rows) == 4
+    assert np.all(rows["flag"] == 0) and np.all(rows["reason"] == "fitted")
+    assert np.all(rows["E_error"] > 0) and np.all(rows["E"] > 0)
+
+
+def test_same_as_cli(cli):
+    header, table, _ = run_cli("afm", "fit", MAP, "--radius", "10um", "--halfspace", "1kPa,0.5", "--jobs", "1")
+    columns = [h for h in header if h.startswith("# columns: ")][0][len("# columns: "):].split("\t")
+    rows = cc.afm.fit_map(MAP, radius=10e-6, halfspace=(1e3, 0.5), jobs=1)
+    assert list(rows.dtype.names) == columns
+    for name in ("E", "E_error", "contact_point", "baseline", "chi2", "pulloff"):
+        assert [float(r[columns.index(name)]) for r in table] == list(rows[name]), name
+
+
+def test_curves_as_paths():
+    by_path = cc.afm.fit_map(MAP, radius=10e-6, halfspace=(1e3, 0.5))
+    by_curve = cc.afm.fit_map(cc.afm.read(MAP), radius=10e-6, halfspace=(1e3, 0.5))
+    same_rows(by_path, by_curve)
+
+
+@pytest.fixture(scope="module")
+def synthetic(tmp_path_factory):
+    if not os.access(MAKE_MAP, os.X_OK):
+        pytest.fail(f"make_afm_map not found at {MAKE_MAP} (set COATCONTACT_BUILD_DIR)")
+    folder = tmp_path_factory.mktemp("map")
+    path, truth = str(folder / "syn.jpk-force-map"), str(folder / "truth.tsv")
+    subprocess.run([MAKE_MAP, path, "6", "6", "--points", "200", "--seed", "11", "--truth", truth], check=True)
+    return path, np.loadtxt(truth, comments="#", delimiter="\t")
+
+
+def test_synthetic_flags_and_jobs(synthetic):
+    path, truth = synthetic
+    serial = cc.afm.fit_map(path, radius=10e-6, halfspace=(5e3, 0.5), jobs=1)
+    assert list(serial["flag"]) == [int(v) for v in truth[:, 7]]
+    fitted = serial["flag"] == 0
+    # 3 standard errors of E on every fitted curve (27 curves; a Gaussian |z| > 3 has p = 0.0027 each).
+    assert np.all(np.abs(serial["E"][fitted] - truth[fitted, 3]) < 3 * serial["E_error"][fitted])
+    same_rows(serial, cc.afm.fit_map(path, radius=10e-6, halfspace=(5e3, 0.5), jobs=2))
+
+
+def test_dask_local_cluster(synthetic):
+    distributed = pytest.importorskip("distributed", reason="python3-distributed (scripts/install-deps.sh)")
+    path, _ = synthetic
+    serial = cc.afm.fit_map(path, radius=10e-6, halfspace=(5e3, 0.5), jobs=1)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        spread = cc.afm.fit_map(path, radius=10e-6, halfspace=(5e3, 0.5), client=client)
+    same_rows(serial, spread)
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    ({"jobs": 0}, ["jobs", "0"]),
+    ({"model": "foo"}, ["model", "'foo'"]),
+    ({"segment": "side"}, ["segment", "'side'"]),
+])
+def test_refusals(kwargs, words):
+    with pytest.raises(ValueError) as error:
+        cc.afm.fit_map(MAP, **{"radius": 10e-6, "halfspace": (1e3, 0.5), **kwargs})
+    for w in words:
+        assert w in str(error.value)
