@@ -146,9 +146,22 @@ std::string read_whole(const std::string& path) {
 
 bool starts_with(const std::string& text, const std::string& head) { return text.compare(0, head.size(), head) == 0; }
 
-std::string render(const std::string& data, const std::string& names, const std::string& units, bool positions, double dx,
-                   double dy, double x_min, double x_max, double y_min, double y_max, const std::string& term,
-                   const std::string& title);
+std::vector<std::string> cells_of(const std::string& line) {
+  std::vector<std::string> cells;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t tab = line.find('\t', start);
+    cells.push_back(line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
+    if (tab == std::string::npos) return cells;
+    start = tab + 1;
+  }
+}
+
+std::string gp_number(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
 
 // The picture of --map-plot: one heat map per free estimate, chi2/dof, the pull-off and the
 // flags, on the grid's positions (or grid indices when the files give no positions).
@@ -162,29 +175,17 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
   long nx = 1, ny = 1;
   bool positions = true, any_position = false;
   for (const std::string& line : rows) {
-    std::vector<std::string> cells;
-    std::size_t start = 0;
-    for (;;) {
-      const std::size_t tab = line.find('\t', start);
-      cells.push_back(line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
-      if (tab == std::string::npos) break;
-      start = tab + 1;
-    }
+    const std::vector<std::string> cells = cells_of(line);
     if (cells[4] != "-" && cells[5] != "-") any_position = true;
     else if (cells[2] != "-") positions = false;  // on the grid without a position
     if (cells[2] != "-") nx = std::max(nx, std::stol(cells[2]) + 1);
     if (cells[3] != "-") ny = std::max(ny, std::stol(cells[3]) + 1);
   }
   positions = positions && any_position;
+  std::vector<double> largest(parameters.size() + 2, 0.0);
+  std::vector<bool> present(parameters.size() + 2, false);
   for (const std::string& line : rows) {
-    std::vector<std::string> cells;
-    std::size_t start = 0;
-    for (;;) {
-      const std::size_t tab = line.find('\t', start);
-      cells.push_back(line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
-      if (tab == std::string::npos) break;
-      start = tab + 1;
-    }
+    const std::vector<std::string> cells = cells_of(line);
     const std::string& xs = positions ? cells[4] : cells[2];
     const std::string& ys = positions ? cells[5] : cells[3];
     if (xs == "-" || ys == "-") continue;  // a curve without a place on the grid
@@ -194,8 +195,28 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
     y_min = std::min(y_min, y);
     y_max = std::max(y_max, y);
     data << xs << '\t' << ys << '\t' << cells[6];
-    for (std::size_t p = 0; p < parameters.size(); ++p) data << '\t' << cells[first_estimate + 2 * p];
-    data << '\t' << cells[after + 1] << '\t' << cells[after + 3] << '\n';  // chi2/dof, pull-off
+    std::vector<std::string> values;
+    for (std::size_t p = 0; p < parameters.size(); ++p) values.push_back(cells[first_estimate + 2 * p]);
+    values.push_back(cells[after + 1]);  // chi2/dof
+    values.push_back(cells[after + 3]);  // pull-off
+    for (std::size_t v = 0; v < values.size(); ++v) {
+      data << '\t' << values[v];
+      if (values[v] != "-") {
+        present[v] = true;
+        largest[v] = std::max(largest[v], std::abs(std::stod(values[v])));
+      }
+    }
+    data << '\n';
+  }
+  // The unit prefix of each column (none for chi2/dof).
+  std::string expos, present_text;
+  for (std::size_t v = 0; v < largest.size(); ++v) {
+    int e = 0;
+    if (largest[v] > 0.0 && v != parameters.size()) {
+      e = std::clamp(3 * static_cast<int>(std::floor(std::log10(largest[v]) / 3.0 + 1e-9)), -15, 9);
+    }
+    expos += (v ? " " : "") + std::to_string(e);
+    present_text += (v ? " " : "") + std::string(present[v] ? "1" : "0");
   }
   if (!(x_min <= x_max)) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
   const double dx = nx > 1 ? (x_max - x_min) / static_cast<double>(nx - 1) : (positions ? 1e-6 : 1.0);
@@ -205,30 +226,20 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
     names += (names.empty() ? "" : " ") + p.name;
     units += (units.empty() ? "" : " ") + p.unit;
   }
+  const std::string settings = "; term='" + term + "'; plottitle=" + gnuplot_string(title) + "; names='" + names +
+                               "'; units='" + units + "'; expos='" + expos + "'; present='" + present_text +
+                               "'; positions=" + (positions ? "1" : "0") + "; dx=" + gp_number(dx) + "; dy=" + gp_number(dy) +
+                               "; xlo=" + gp_number(x_min - dx / 2) + "; xhi=" + gp_number(x_max + dx / 2) +
+                               "; ylo=" + gp_number(y_min - dy / 2) + "; yhi=" + gp_number(y_max + dy / 2);
   try {
-    return render(data.str(), names, units, positions, dx, dy, x_min, x_max, y_min, y_max, term, title);
+    return run_gnuplot({{"map.tsv", data.str()}}, "afm_map_plot.gp", kAfmMapPlotScript,
+                       [&](const std::string& dir) { return "mapfile=" + gnuplot_string(dir + "/map.tsv") + settings; });
   } catch (const InputError& error) {
     // run_gnuplot names --plot; this picture is --map-plot's.
     std::string message = error.what();
     if (starts_with(message, "--plot:")) message = "--map-plot:" + message.substr(7);
     throw InputError(message);
   }
-}
-
-std::string render(const std::string& data, const std::string& names, const std::string& units, bool positions, double dx,
-                   double dy, double x_min, double x_max, double y_min, double y_max, const std::string& term,
-                   const std::string& title) {
-  const auto number = [](double v) {
-    char text[40];
-    std::snprintf(text, sizeof text, "%.17g", v);
-    return std::string(text);
-  };
-  return run_gnuplot({{"map.tsv", data}}, "afm_map_plot.gp", kAfmMapPlotScript, [&](const std::string& dir) {
-    return "mapfile=" + gnuplot_string(dir + "/map.tsv") + "; term='" + term + "'; plottitle=" + gnuplot_string(title) +
-           "; names='" + names + "'; units='" + units + "'; positions=" + (positions ? "1" : "0") + "; dx=" + number(dx) +
-           "; dy=" + number(dy) + "; xlo=" + number(x_min - dx / 2) + "; xhi=" + number(x_max + dx / 2) +
-           "; ylo=" + number(y_min - dy / 2) + "; yhi=" + number(y_max + dy / 2);
-  });
 }
 
 }  // namespace
@@ -323,8 +334,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
                                     "the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
                                     "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});
   items.push_back({"flags", "0 fitted, 1 no_contact, 2 jump_in (approach below its baseline by > " +
-                                format_parameter(fit::kJumpInSigmas, "sigmas") +
-                                " sigma), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
+                                format_parameter(fit::kJumpInSigmas, "sigmas") + " sigma and > " +
+                                format_parameter(fit::kJumpInFraction, "fraction") +
+                                " of its largest force), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
                                 "8 unreadable, 9 bad_data; '-' where a flagged curve has no value"});
   items.push_back({"pull-off", "the retract segment's most tensile force less the fitted baseline, and its tip position"});
   std::vector<std::string> columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};

@@ -107,10 +107,11 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
     const afm::Segment* approach = curve.find_segment(afm::SegmentKind::kApproach);
     const auto first = steps.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->begin);
     const auto last = steps.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->end);
-    const double lowest = *std::min_element(first, last);
-    if (lowest < -kJumpInSigmas * steps.baseline_sigma) {
+    const auto [low, high] = std::minmax_element(first, last);
+    if (*low < -kJumpInSigmas * steps.baseline_sigma && -*low > kJumpInFraction * *high) {
       return flagged(std::move(row), AfmFlag::kJumpIn,
-                     "the approach force dips " + std::to_string(-lowest / steps.baseline_sigma) + " baseline sigmas below its baseline");
+                     "the approach force dips " + std::to_string(-*low / steps.baseline_sigma) +
+                         " baseline sigmas below its baseline, " + std::to_string(-*low / *high) + " of its largest force");
     }
   }
   AfmFitProblem problem = settings.problem;
