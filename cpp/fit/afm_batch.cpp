@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <new>
 #include <thread>
 
@@ -223,59 +224,71 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
   const std::size_t stop = done + std::min(options.count, summary.curves - done);  // one past the last curve fitted
   if (options.progress && !options.progress(done, summary.curves)) throw Interrupted("interrupted before the first curve");
 
-  // Work of one chunk: a curve read in the calling thread, or the row of a curve that could not be read.
+  // Work of one chunk: a curve as read, or the row of a curve that could not be read.
   struct Item {
     std::optional<afm::ForceCurve> curve;
     AfmCurveRow row;
   };
-  std::size_t first_of_file = 0;
-  for (std::size_t f = 0; f < files.size(); ++f) {
-    const std::size_t count = counts[f];
-    if (done >= stop) break;
-    if (first_of_file + count <= done) {
-      first_of_file += count;
-      continue;
-    }
-    const afm::CurveSource source(files[f], calibration);
-    const std::size_t last = std::min(count, stop - first_of_file);  // one past this file's last curve fitted
-    for (std::size_t begin = done - first_of_file; begin < last; begin += chunk) {
-      const std::size_t end = std::min(last, begin + chunk);
-      std::vector<Item> items(end - begin);
-      for (std::size_t i = begin; i < end; ++i) {
-        try {
-          items[i - begin].curve = source.read(i);
-        } catch (const InputError& error) {
-          items[i - begin].row = afm_unreadable_row(source.place(i), error);
-        } catch (const NumericalError& error) {
-          items[i - begin].row = afm_unreadable_row(source.place(i), error);
-        }
+  // The curves from `next` on (over all files, in order), one chunk at a time.
+  std::size_t next = done, file = 0, first_of_file = 0;
+  std::unique_ptr<afm::CurveSource> source;
+  const auto read_chunk = [&]() {
+    std::vector<Item> items;
+    while (items.size() < chunk && next < stop) {
+      while (next >= first_of_file + counts[file]) {
+        first_of_file += counts[file++];
+        source.reset();
       }
-      const std::size_t chunk_done = done;
-      const ScopedProgressHook hook([&](std::size_t finished, std::size_t) {
-        return !options.progress || options.progress(chunk_done + finished, summary.curves);
-      });
-      detail::parallel_for(items.size(), [&](std::size_t i) {
-        if (items[i].curve) {
-          items[i].row = afm_fit_curve_row(*items[i].curve, settings);
-          items[i].curve.reset();
-        }
-      });
-      std::vector<AfmCurveRow> rows;
-      rows.reserve(items.size());
-      for (Item& item : items) {
-        const auto flag = static_cast<std::size_t>(item.row.flag);
-        ++summary.by_flag[flag];
-        if (item.row.flag == AfmFlag::kFitted) ++summary.fitted;
-        else {
-          ++summary.flagged;
-          if (summary.first_message[flag].empty()) summary.first_message[flag] = item.row.message;
-        }
-        rows.push_back(std::move(item.row));
+      if (!source) source = std::make_unique<afm::CurveSource>(files[file], calibration);
+      const std::size_t i = next - first_of_file;
+      Item item;
+      try {
+        item.curve = source->read(i);
+      } catch (const InputError& error) {
+        item.row = afm_unreadable_row(source->place(i), error);
+      } catch (const NumericalError& error) {
+        item.row = afm_unreadable_row(source->place(i), error);
       }
-      if (options.sink) options.sink(rows);
-      done += items.size();
+      items.push_back(std::move(item));
+      ++next;
     }
-    first_of_file += count;
+    return items;
+  };
+  // Unit 0 of each parallel loop reads the next chunk while the others fit this one (the
+  // source is used by one unit at a time), so reading overlaps fitting.
+  std::vector<Item> items = read_chunk();
+  while (!items.empty()) {
+    std::vector<Item> following;
+    const std::size_t chunk_done = done;
+    const ScopedProgressHook hook([&](std::size_t finished, std::size_t) {
+      return !options.progress || options.progress(chunk_done + std::min(finished, items.size()), summary.curves);
+    });
+    detail::parallel_for(items.size() + 1, [&](std::size_t unit) {
+      if (unit == 0) {
+        following = read_chunk();
+        return;
+      }
+      Item& item = items[unit - 1];
+      if (item.curve) {
+        item.row = afm_fit_curve_row(*item.curve, settings);
+        item.curve.reset();
+      }
+    });
+    std::vector<AfmCurveRow> rows;
+    rows.reserve(items.size());
+    for (Item& item : items) {
+      const auto flag = static_cast<std::size_t>(item.row.flag);
+      ++summary.by_flag[flag];
+      if (item.row.flag == AfmFlag::kFitted) ++summary.fitted;
+      else {
+        ++summary.flagged;
+        if (summary.first_message[flag].empty()) summary.first_message[flag] = item.row.message;
+      }
+      rows.push_back(std::move(item.row));
+    }
+    if (options.sink) options.sink(rows);
+    done += items.size();
+    items = std::move(following);
   }
   return summary;
 }

@@ -1,9 +1,10 @@
 // Batch fit of many AFM force curves (maps, QI data, many files; THEORY.md section 15, "Many curves"): one
 // result row per curve. A curve that cannot be fitted gets a flag and its reason, and the batch
 // goes on; only a file that cannot be opened at all stops it (InputError). The curves are read
-// one at a time from each file (afm::CurveSource) in chunks: a chunk is read in the calling
-// thread, fitted in parallel (the library's one parallel loop), and handed over in curve order,
-// so the memory of a run is one chunk of curves plus the rows the caller keeps. The per-curve fit
+// one at a time from each file (afm::CurveSource) in chunks: a chunk is fitted in parallel (the
+// library's one parallel loop, one of whose units reads the next chunk meanwhile) and handed
+// over in curve order, so the memory of a run is two chunks of curves plus the rows the caller
+// keeps. The per-curve fit
 // is afm_fit (coatcontact/afm_fit.hpp) on the problem given, unchanged: every model and free
 // parameter it supports runs in the batch; each free estimate has its column (afm_batch_parameters).
 #pragma once
