@@ -47,10 +47,11 @@ read -r n z_e z_c z_b mean_e scatter_e <"$work/recovery"
 echo "synthetic 8x8: $n fitted; max |z| E $z_e, contact point $z_c; max |b - truth| $z_b N; E relative error mean $mean_e, scatter $scatter_e"
 [ "$n" -eq 48 ] || fail "48 fitted curves expected, got $n"
 # 4 standard errors: 48 curves x 3 estimates, a Gaussian |z| > 4 has probability 6e-5 each.
-# The baseline's standard error leaves out the uncertainty of the tilt subtracted before the fit
-# (THEORY.md section 15, "Many curves"): b is checked against the noise of one point, 0.1 nN.
-awk -v a="$z_e" -v b="$z_c" -v c="$z_b" 'BEGIN { exit !(a < 4 && b < 4 && c < 1e-10) }' \
-  || fail "an estimate off the truth: E $z_e, z_c $z_c standard errors (limit 4), |b - truth| $z_b N (limit 1e-10)"
+# The standard errors of z_c and b leave out the uncertainty of the tilt subtracted before the
+# fit (THEORY.md section 15, "Many curves"; on a 64 x 64 map their RMS z-scores are 1.5 and 3.3,
+# E's 1.07): z_c within 6 of its standard errors, b within the noise of one point, 0.1 nN.
+awk -v a="$z_e" -v b="$z_c" -v c="$z_b" 'BEGIN { exit !(a < 4 && b < 6 && c < 1e-10) }' \
+  || fail "an estimate off the truth: E $z_e (limit 4), z_c $z_c (limit 6) standard errors, |b - truth| $z_b N (limit 1e-10)"
 
 # ---- --jobs 2 == --jobs 1 --------------------------------------------------------------------
 "$cli" afm fit "$work/syn.jpk-force-map" "${model[@]}" --jobs 2 --output "$work/j2.tsv" 2>"$work/j2.err" \
