@@ -20,6 +20,9 @@ struct AfmFitSetup {
   fit::AfmRange range;
 };
 
+// The fit range options in words for a header ("whole segment" without any).
+std::string fit_range_text(const fit::AfmRange& range);
+
 // True when `afm fit` fits a batch: several FILEs, a FOLDER, --jobs/--resume/--map-plot, or one
 // file of several curves without --index.
 bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration);

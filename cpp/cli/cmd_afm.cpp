@@ -620,12 +620,7 @@ int run_fit_curve(const Args& args) {
                                                             " (piecewise-fit; reference of the relative ranges)"});
     items.push_back({"preprocessing baseline [N]", format_parameter(reference_baseline, "baseline") + " at the contact point, sigma " +
                                                        format_parameter(steps.baseline_sigma, "sigma") + " (chi2's noise)"});
-    std::string range_text = range.any() ? "" : "whole segment";
-    const auto add_range = [&](const std::string& text) { range_text += (range_text.empty() ? "" : "; ") + text; };
-    if (range.tip_min) add_range("tip position in [" + format_parameter(*range.tip_min, "min") + ", " + format_parameter(*range.tip_max, "max") + "] m");
-    if (range.indentation_min) add_range("indentation >= " + format_parameter(*range.indentation_min, "min") + " m");
-    if (range.indentation_max) add_range("indentation <= " + format_parameter(*range.indentation_max, "max") + " m");
-    if (range.max_force) add_range("force - baseline <= " + format_parameter(*range.max_force, "max force") + " N");
+    const std::string range_text = fit_range_text(range);
     items.push_back({"fit range", range_text + " (" + std::to_string(z.size()) + " points fitted, " +
                                       std::to_string(r.points_in_contact) + " in contact)"});
     items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)

@@ -244,6 +244,16 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
 
 }  // namespace
 
+std::string fit_range_text(const fit::AfmRange& range) {
+  std::string text = range.any() ? "" : "whole segment";
+  const auto add = [&](const std::string& part) { text += (text.empty() ? "" : "; ") + part; };
+  if (range.tip_min) add("tip position in [" + format_parameter(*range.tip_min, "min") + ", " + format_parameter(*range.tip_max, "max") + "] m");
+  if (range.indentation_min) add("indentation >= " + format_parameter(*range.indentation_min, "min") + " m");
+  if (range.indentation_max) add("indentation <= " + format_parameter(*range.indentation_max, "max") + " m");
+  if (range.max_force) add("force - baseline <= " + format_parameter(*range.max_force, "max force") + " N");
+  return text;
+}
+
 bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration) {
   const auto& positionals = arguments.positionals();
   const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot");
@@ -323,13 +333,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   if (!settings.problem.free.contact_point) items.push_back({"contact point [m]", format_parameter(settings.problem.contact_point, "z_c") + " (fixed)"});
   if (!settings.problem.free.baseline) items.push_back({"baseline [N]", format_parameter(settings.problem.baseline, "b") + " (fixed)"});
   items.push_back({"segment", setup.segment_name});
-  std::string range_text = settings.range.any() ? "" : "whole segment";
-  const auto add_range = [&](const std::string& text) { range_text += (range_text.empty() ? "" : "; ") + text; };
-  if (settings.range.tip_min) add_range("tip position in [" + format_parameter(*settings.range.tip_min, "min") + ", " + format_parameter(*settings.range.tip_max, "max") + "] m");
-  if (settings.range.indentation_min) add_range("indentation >= " + format_parameter(*settings.range.indentation_min, "min") + " m");
-  if (settings.range.indentation_max) add_range("indentation <= " + format_parameter(*settings.range.indentation_max, "max") + " m");
-  if (settings.range.max_force) add_range("force - baseline <= " + format_parameter(*settings.range.max_force, "max force") + " N");
-  items.push_back({"fit range", range_text + " (relative ranges from each curve's preprocessing contact point and baseline)"});
+  items.push_back({"fit range", fit_range_text(settings.range) + " (relative ranges from each curve's preprocessing contact point and baseline)"});
   items.push_back({"preprocessing", "tip position = height + F/k; baseline offset and tilt on the first half of the approach, "
                                     "the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
                                     "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});

@@ -179,33 +179,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     points_in_contact, contact_point [m], pulloff ({"F" [N] less the baseline, "z" [m]} of the
     retract segment, or None), and per fitted point index (into the curve), tip_position, F,
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
-    if model == "jkr":
-        raise ValueError("model: 'jkr' is not available in afm.fit yet (the adhesive retract fit); allowed: 'hertz'")
-    if model != "hertz":
-        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz'")
-    coating = None
-    if film is not None or substrate is not None or thickness is not None:
-        if halfspace is not None:
-            raise ValueError("halfspace: give one sample, halfspace=(E, nu) or film=, substrate=, thickness=")
-        if film is None or substrate is None or thickness is None:
-            raise ValueError("a coating needs film=(E1, nu1), substrate=(E0, nu0) or \"rigid\", and thickness=t")
-        sub = None if (isinstance(substrate, str) and substrate == "rigid") else tuple(float(v) for v in substrate)
-        coating = (float(film[0]), float(film[1]), sub, float(thickness))
-        E, nu = coating[0], coating[1]
-        if free == ("E", "contact_point", "baseline"):
-            free = ("E1", "contact_point", "baseline")
-    elif halfspace is None:
-        raise ValueError("halfspace: give the sample as halfspace=(E, nu), or a coating film=, substrate=, thickness=")
-    else:
-        E, nu = (float(v) for v in halfspace)
-    if (radius is None) == (shape is None):
-        raise ValueError("give the tip as radius= or shape=, one of them")
-    tip = ("sphere", float(radius)) if radius is not None else tuple(shape)
-    if isinstance(free, str):
-        free = [f.strip() for f in free.split(",")]
-    free = [str(f) for f in free]
-    if "contact_point" not in free and contact_point is None:
-        raise ValueError("contact_point: a fixed contact point needs contact_point= (m)")
+    tip, E, nu, free, coating = _problem("afm.fit", model, radius, shape, halfspace, film, substrate, thickness, free,
+                                         contact_point)
 
     if isinstance(curve, (tuple, list)) and len(curve) == 2:
         z_all, f_all = (np.asarray(a, dtype=float) for a in curve)
@@ -276,10 +251,10 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     return r
 
 
-def _map_problem(model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
-    """The tip, sample and free parameters of fit_map as _afm takes them."""
+def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
+    """The tip, sample and free parameters of fit and fit_map as _afm takes them."""
     if model == "jkr":
-        raise ValueError("model: 'jkr' is not available in afm.fit_map yet (the adhesive retract fit); allowed: 'hertz'")
+        raise ValueError(f"model: 'jkr' is not available in {caller} yet (the adhesive retract fit); allowed: 'hertz'")
     if model != "hertz":
         raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz'")
     coating = None
@@ -291,7 +266,7 @@ def _map_problem(model, radius, shape, halfspace, film, substrate, thickness, fr
         sub = None if (isinstance(substrate, str) and substrate == "rigid") else tuple(float(v) for v in substrate)
         coating = (float(film[0]), float(film[1]), sub, float(thickness))
         E, nu = coating[0], coating[1]
-        if tuple(free) == ("E", "contact_point", "baseline"):
+        if free == ("E", "contact_point", "baseline"):
             free = ("E1", "contact_point", "baseline")
     elif halfspace is None:
         raise ValueError("halfspace: give the sample as halfspace=(E, nu), or a coating film=, substrate=, thickness=")
@@ -381,8 +356,8 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     "t" [m], "contact_point" [m], "baseline" [N]) and its "_error", contact_point [m] when
     fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m], points;
     NaN where a flagged curve has no value."""
-    tip, E, nu, free, coating = _map_problem(model, radius, shape, halfspace, film, substrate, thickness, free,
-                                             contact_point)
+    tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
+                                         free, contact_point)
     lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]),
                                                                   float(indentation_range[1]))
     if max_indentation is not None:
