@@ -276,7 +276,7 @@ int run_export(const Args& args) {
 // ---- afm fit ----------------------------------------------------------------------------------
 
 const std::vector<OptionSpec> kFitSpec = {
-    {"--index", "N", "the curve of a map to fit (0-based, default 0; `afm show` lists them)", false},
+    {"--index", "N", "fit only curve N of a map (0-based; `afm show` lists them); without it every curve, one row each", false},
     {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default); jkr is not available yet", false},
     {"--radius", "R", "tip radius of a spherical (paraboloidal) tip [m], e.g. 10um", false},
     {"--shape", "SPEC", "the tip instead: sphere:R, cone:BETA, pyramid:THETA (face half angle; the cone of equal area), "
