@@ -5,18 +5,25 @@ library's computation and the drawing of the window (Agg) -- timed as one, and t
 part of it separately.
 
 For each slider, `--moves` consecutive moves up from the start values:
-  first visit   nothing cached: the model (kernel table and interpolant) or the
-                Maugis-Dugdale curve of the new value is built during the move;
-  one step      as the window works: after each move the background thread builds the
-                neighbours of the new position, and the next move comes once it is idle (a
-                user pausing between moves); the move reads the cache;
-  three steps   the same with jumps of explore.PREFETCH_STEPS grid steps (E1/E0, nu1, nu0:
+  first visit, blocking  nothing cached, Explorer(block=True) (set(), --time, the Jupyter
+                widget): the model (kernel table and interpolant) or the Maugis-Dugdale curve
+                of the new value is built during the move;
+  first visit, window    nothing cached, Explorer(block=False) (the window): the move asks the
+                background for the model and draws the previous curves faded; `exact` is the
+                time until the new setting is drawn (polled as the window's timer does);
+  one step      the window: after each move the background thread builds the neighbours of
+                the new position, and the next move comes once it is idle (a user pausing
+                between moves); the move reads the cache;
+  N steps       the same with jumps of explore.PREFETCH_STEPS grid steps (E1/E0, nu1, nu0:
                 the farthest neighbours the background thread builds).
 lambda is timed at lambda = 1 (finite: the Maugis-Dugdale curve is drawn), eta both at
 lambda = inf and at lambda = 1, E1/E0 also at eta = 0.1. Medians and worst over the moves, in
-ms; `full` counts the moves that redrew the whole figure (their axis limits changed) instead
-of blitting the changed artists. A last row times the Jupyter widget's update (the same
-blitted Agg canvas, smaller, plus its PNG encoding).
+ms of wall time, and the median CPU time of the update: of the main thread (Python,
+matplotlib; the drawing) and of the whole process (with the library's OpenMP threads, and
+any background build running meanwhile). On a machine shared with other work the wall time
+is the longer; `full` counts the moves that redrew the whole figure
+(their axis limits changed) instead of blitting the changed artists. A last row times the
+Jupyter widget's update (the same blitted Agg canvas, smaller, plus its PNG encoding).
 
 Not measured: a GUI backend's event loop and its copy of the blitted region to the screen
 (on Agg, canvas.blit does nothing; TkAgg copies the figure's pixels into a Tk photo image),
@@ -72,12 +79,14 @@ def clear_caches():
     coatcontact._model.cache_clear()
 
 
-def run(name, base, count, prefetched, stride=1):
-    """Whole-update and drawing times [ms] of `count` moves of slider `name` from `base`, and
+def run(name, base, count, prefetched, stride=1, block=False):
+    """Times of `count` moves of slider `name` from `base` [ms]: whole update (wall), its
+    CPU time in this thread, its drawing, the time until the setting is drawn exactly, and
     the number of moves that redrew the whole figure."""
     clear_caches()
     figure = plt.figure(figsize=(13, 8.5))
-    explorer = explore.Explorer(figure, prefetch=prefetched, **base)
+    explorer = explore.Explorer(figure, prefetch=prefetched, block=block, **base)
+    explorer.wait()
     drawing = []
     redraw = explorer.redraw
 
@@ -87,7 +96,7 @@ def run(name, base, count, prefetched, stride=1):
         drawing.append(1e3 * (time.perf_counter() - start))
 
     explorer.redraw = timed_redraw
-    whole, draws, full = [], [], 0
+    out = {"update": [], "cpu": [], "cpu_all": [], "draw": [], "exact": [], "full": 0}
     slider = explorer.sliders[name]
     for value in moves(name, explorer.params[name], count, stride):
         if prefetched:
@@ -95,15 +104,19 @@ def run(name, base, count, prefetched, stride=1):
         position = explore._slider_position(name, value)
         del drawing[:]
         full_before = explorer.full_draws
-        start = time.perf_counter()
+        start, cpu, cpu_all = time.perf_counter(), time.thread_time(), time.process_time()
         slider.set_val(position)   # what a drag does: the slider moves, its callback updates
-        whole.append(1e3 * (time.perf_counter() - start))
-        draws.append(sum(drawing))
-        full += explorer.full_draws - full_before
-        assert math.isclose(explorer.params[name], value, rel_tol=1e-12), (name, explorer.params[name], value)
+        out["update"].append(1e3 * (time.perf_counter() - start))
+        out["cpu"].append(1e3 * (time.thread_time() - cpu))
+        out["cpu_all"].append(1e3 * (time.process_time() - cpu_all))
+        out["draw"].append(sum(drawing))
+        explorer.wait()
+        out["exact"].append(1e3 * (time.perf_counter() - start))
+        out["full"] += explorer.full_draws - full_before
+        assert math.isclose(explorer.data["params"][name], value, rel_tol=1e-12), (name, explorer.params[name], value)
     wait_idle()
     plt.close(figure)
-    return whole, draws, full
+    return out
 
 
 def run_widget(count):
@@ -128,30 +141,38 @@ def main():
     parser.add_argument("--moves", type=int, default=5)
     parser.add_argument("--tsv", action="store_true", help="rows task, median_ms, min, max, runs, kind")
     args = parser.parse_args()
+    med = statistics.median
     if not args.tsv:
-        print("slider\tat\tmoves\tupdate_median_ms\tupdate_max_ms\tdraw_median_ms\tdraw_max_ms\tfull")
+        print("slider\tat\tmoves\tupdate_median_ms\tupdate_max_ms\tcpu_main_median_ms\tcpu_all_median_ms\t"
+              "draw_median_ms\tdraw_max_ms\tfull\texact_median_ms\texact_max_ms")
     for name, base in CASES:
         at = ",".join("%s=%g" % item for item in base.items()) or "start values"
-        kinds = [("first visit", False, 1), ("one step", True, 1)]
+        kinds = [("first visit, blocking", False, 1, True), ("first visit, window", False, 1, False),
+                 ("one step", True, 1, False)]
         if name in MATERIAL:
-            kinds.append(("%d steps" % explore.PREFETCH_STEPS, True, explore.PREFETCH_STEPS))
-        for kind, prefetched, stride in kinds:
-            whole, draws, full = run(name, base, args.moves, prefetched, stride)
+            kinds.append(("%d steps" % explore.PREFETCH_STEPS, True, explore.PREFETCH_STEPS, False))
+        for kind, prefetched, stride, block in kinds:
+            r = run(name, base, args.moves, prefetched, stride, block)
             if args.tsv:
                 task = "explore slider %s (%s), %s" % (name, at, kind)
-                print("%s, update\t%.4g\t%.4g\t%.4g\t%d\tpython" % (task, statistics.median(whole), min(whole),
-                                                                   max(whole), args.moves))
-                print("%s, draw (%d of %d full)\t%.4g\t%.4g\t%.4g\t%d\tpython" % (
-                    task, full, args.moves, statistics.median(draws), min(draws), max(draws), args.moves))
+                for column, label in (("update", "update"), ("cpu", "update, CPU of the main thread"),
+                                      ("cpu_all", "update, CPU of the process"),
+                                      ("draw", "draw (%d of %d full)" % (r["full"], args.moves)),
+                                      ("exact", "until drawn exactly")):
+                    if column == "exact" and kind != "first visit, window":
+                        continue
+                    v = r[column]
+                    print("%s, %s\t%.4g\t%.4g\t%.4g\t%d\tpython" % (task, label, med(v), min(v), max(v), args.moves))
             else:
-                print("%s\t%s\t%s\t%.1f\t%.1f\t%.1f\t%.1f\t%d" % (name, at, kind, statistics.median(whole), max(whole),
-                                                               statistics.median(draws), max(draws), full))
+                print("%s\t%s\t%s\t%.1f\t%.1f\t%.1f\t%.1f\t%.1f\t%.1f\t%d\t%.1f\t%.1f" % (
+                    name, at, kind, med(r["update"]), max(r["update"]), med(r["cpu"]), med(r["cpu_all"]), med(r["draw"]),
+                    max(r["draw"]), r["full"], med(r["exact"]), max(r["exact"])))
     widget = run_widget(args.moves)
     if args.tsv:
         print("explore widget (Jupyter) eta one step, blit and PNG\t%.4g\t%.4g\t%.4g\t%d\tpython" % (
-            statistics.median(widget), min(widget), max(widget), args.moves))
+            med(widget), min(widget), max(widget), args.moves))
     else:
-        print("widget\teta, cached\tone step\t%.1f\t%.1f\t\t\t" % (statistics.median(widget), max(widget)))
+        print("widget\teta, cached\tone step\t%.1f\t%.1f" % (med(widget), max(widget)))
 
 
 if __name__ == "__main__":

@@ -18,11 +18,15 @@ ipywidgets is installed). Without a display, `--save FILE.png` draws the window 
 
 Moving eta or k_bar only reads the interpolated reduced variables of the current stack (about
 a millisecond); moving E1/E0, nu1 or nu0 builds the kernel table and the interpolant of a new
-stack, and a finite lambda solves the cohesive zone at each radius (a few hundred ms each).
+stack, and a finite lambda solves the cohesive zone at each radius (tens to hundreds of ms).
 The sliders stop on a fixed grid of values (their steps), and while the window waits a
-background thread builds the models of the neighbouring grid values of E1/E0, nu1, nu0 (and,
-with a finite lambda, the Maugis-Dugdale curves of the neighbouring lambda and eta): a move by
-one step then reads a cache. Values given to Explorer.set() are used as they are. `bench/explore_sliders.py` measures both.
+background thread builds the models of the grid values up to PREFETCH_STEPS steps either side
+for E1/E0, nu1, nu0 (and, with a finite lambda, the Maugis-Dugdale curves of the neighbouring
+lambda and eta): such a move then reads a cache. A move to a setting not built yet does not
+hold the window: it shows the previous curves faded while a second background thread builds
+the new one, then draws it. Drawing blits: only the artists that change are drawn over a kept
+copy of the figure (Explorer). Values given to Explorer.set() are used as they are.
+`bench/explore_sliders.py` measures the updates.
 """
 import argparse
 import atexit
@@ -382,6 +386,12 @@ def _format(name, value):
     return "%.3g" % value
 
 
+def _setting(p):
+    """The parameters as the title shows them."""
+    return "E1/E0 = %s, ν1 = %s, ν0 = %s, η = %s, λ = %s, k̄ = %s" % tuple(
+        _format(name, p[name]) for name in ("ratio", "nu1", "nu0", "eta", "lam", "k_bar"))
+
+
 #: Mantissas of the axis limits: a limit is the first of these times a power of ten that holds
 #: the data, so that most moves keep the limits and redraw by blitting (see Explorer.redraw).
 _NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0)
@@ -542,8 +552,8 @@ class Explorer:
         if self.pending:
             self.pending = False
             self._timer.stop()
-            for line in self.lines.values():
-                line.set_alpha(None)
+        for line in self.lines.values():
+            line.set_alpha(None)   # faded while pending or after a failed setting
         p, po = d["params"], d["pulloff"]
         L = self.lines
         L["coated_a"].set_data(d["a_bar"], d["P"])
@@ -574,11 +584,8 @@ class Explorer:
             self._limits = limits
             self._background = None   # ticks and grid move: a full draw
         self.title.set_text(
-            "E1/E0 = %s, ν1 = %s, ν0 = %s, η = %s, λ = %s, k̄ = %s\n"
-            "pull-off P: load %.4f (JKR −3/2), displacement %.4f (JKR −5/6), spring %.4f%s"
-            % (_format("ratio", p["ratio"]), _format("nu1", p["nu1"]), _format("nu0", p["nu0"]),
-               _format("eta", p["eta"]), _format("lam", p["lam"]), _format("k_bar", p["k_bar"]),
-               po["load"][0], po["displacement"][0], po["spring"][0],
+            "%s\npull-off P: load %.4f (JKR −3/2), displacement %.4f (JKR −5/6), spring %.4f%s"
+            % (_setting(p), po["load"][0], po["displacement"][0], po["spring"][0],
                ", Maugis–Dugdale (load) %.4f" % md["load"][0] if md else ""))
         self.redraw()
         if self.prefetch:
@@ -597,12 +604,7 @@ class Explorer:
         self.pending = True
         for line in self.lines.values():
             line.set_alpha(0.3)
-        p = self.params
-        self.title.set_text(
-            "computing E1/E0 = %s, ν1 = %s, ν0 = %s, η = %s, λ = %s, k̄ = %s …\n"
-            "(faded: the curves of the previous setting)"
-            % (_format("ratio", p["ratio"]), _format("nu1", p["nu1"]), _format("nu0", p["nu0"]),
-               _format("eta", p["eta"]), _format("lam", p["lam"]), _format("k_bar", p["k_bar"])))
+        self.title.set_text("computing %s …\n(faded: the curves of the previous setting)" % _setting(self.params))
         self.redraw()
         self._timer.start()
 
@@ -617,9 +619,7 @@ class Explorer:
         except Exception as error:   # the library's message, in the window's title
             self._timer.stop()
             self.pending = False
-            self.title.set_text("E1/E0 = %s, ν1 = %s, ν0 = %s: %s" % (
-                _format("ratio", self.params["ratio"]), _format("nu1", self.params["nu1"]),
-                _format("nu0", self.params["nu0"]), error))
+            self.title.set_text("%s\n%s (faded: the curves of the previous setting)" % (_setting(self.params), error))
             self.redraw()
             if raise_errors:
                 raise
