@@ -266,15 +266,22 @@ class _Cache:
             del self._entries[key]
 
 
-def _build_model(ratio, nu1, nu0):
+def _stack(ratio, nu1, nu0):
     # Substrate E0 = 1 and film E1 = ratio: every normalized result depends on ratios only.
-    model = AdhesiveModel(Stack(film=(ratio, nu1), substrate=(1.0, nu0)), tol=1e-8)
-    # Fills the model's interpolant, built lazily on first use, over the radii of the current
-    # eta (the pull-off's scan reaches further than the curve's radii).
-    eta = _warm_eta
-    model.pulloff([eta])
-    model.curve(eta, A_BAR)
-    return model
+    return Stack(film=(ratio, nu1), substrate=(1.0, nu0))
+
+
+def _build_model(ratio, nu1, nu0):
+    return AdhesiveModel(_stack(ratio, nu1, nu0), tol=1e-8)
+
+
+def _build_point(ratio, nu1, nu0, eta):
+    """The model of the stack and its JKR curve and pull-offs at one eta. The first call at an
+    eta fills the model's interpolant over the radii it needs (built lazily: the costly part,
+    most of all for a new stack or a much thinner film)."""
+    model = _models.get(ratio, nu1, nu0)
+    pulloff = model.pulloff([eta])   # its scan reaches further than the curve's radii
+    return model, model.curve(eta, A_BAR), pulloff
 
 
 def _pulloff_spring(model, eta, k_bar):
@@ -285,18 +292,18 @@ def _pulloff_spring(model, eta, k_bar):
 
 
 def _build_maugis_dugdale(ratio, nu1, nu0, eta, lam):
-    stack = _models.get(ratio, nu1, nu0).stack
+    stack = _stack(ratio, nu1, nu0)
     curve = maugis_dugdale_curve(stack, eta=eta, lambda_=lam, a_bar=A_BAR_MD)
     return curve, maugis_dugdale_pulloff(stack, eta=eta, lambda_=lam)
 
 
 _models = _Cache(_build_model, 48)
-_warm_eta = DEFAULTS["eta"]   # the eta of the last prefetch: where a model is warmed up
+_points = _Cache(_build_point, 64)   # each holds its model: a cached point never rebuilds it
 _md_curves = _Cache(_build_maugis_dugdale, 64)
 
 
-def _model(ratio, nu1, nu0):
-    return _models.get(ratio, nu1, nu0)
+def _point(ratio, nu1, nu0, eta):
+    return _points.get(ratio, nu1, nu0, eta)
 
 
 def _maugis_dugdale(ratio, nu1, nu0, eta, lam):
@@ -304,8 +311,8 @@ def _maugis_dugdale(ratio, nu1, nu0, eta, lam):
 
 
 #: How many grid steps either side of the current value the background thread builds the
-#: models of E1/E0, nu1 and nu0 for (nearest first); one step for lambda and eta under a
-#: finite lambda (their Maugis-Dugdale curves).
+#: models, curves and pull-offs of E1/E0, nu1, nu0 and eta for (nearest first); one step for
+#: lambda and eta under a finite lambda (their Maugis-Dugdale curves).
 PREFETCH_STEPS = 3
 
 
@@ -323,32 +330,32 @@ def _neighbours(name, value, steps=1):
 
 def prefetch(params):
     """Starts building, in the background, what moves of up to PREFETCH_STEPS grid steps from
-    `params` need, nearest first: the models of the neighbouring E1/E0, nu1 and nu0 and,
-    with a finite lambda, the Maugis-Dugdale curves of the neighbouring lambda and eta."""
-    global _warm_eta
+    `params` need, nearest first: the models, curves and pull-offs of the neighbouring E1/E0,
+    nu1, nu0 and eta and, with a finite lambda, the Maugis-Dugdale curves of the neighbouring
+    lambda and eta."""
     p = check_parameters(params)
-    _warm_eta = p["eta"]
-    material = (p["ratio"], p["nu1"], p["nu0"])
+    point = (p["ratio"], p["nu1"], p["nu0"], p["eta"])
     rings = []   # per slider: its neighbouring keys, nearest first
-    for i, name in enumerate(("ratio", "nu1", "nu0")):
+    for i, name in enumerate(("ratio", "nu1", "nu0", "eta")):
         ring = []
         for v in _neighbours(name, p[name], PREFETCH_STEPS):
-            key = list(material)
+            key = list(point)
             key[i] = v
             ring.append(tuple(key))
         rings.append(ring)
     # Interleaved: every slider's nearest neighbours before anybody's second ones.
     keys = [ring[j] for j in range(max(map(len, rings))) for ring in rings if j < len(ring)]
-    _models.prefetch(keys)
+    _points.prefetch(keys)
     if math.isfinite(p["lam"]):
+        material = point[:3]
         md = [material + (p["eta"], v) for v in _neighbours("lam", p["lam"])]
         md += [material + (v, p["lam"]) for v in _neighbours("eta", p["eta"])]
         _md_curves.prefetch(md)
 
 
 def prefetch_idle():
-    """True when the background thread has built every neighbour asked for."""
-    return _models.idle() and _md_curves.idle()
+    """True when the background threads have built every neighbour asked for."""
+    return _points.idle() and _models.idle() and _md_curves.idle()
 
 
 def compute(params):
@@ -357,9 +364,7 @@ def compute(params):
     pulloff (P, a_bar, D under load, displacement and spring control), and md (curve a_bar,
     P, D and load-controlled pull-off P, a_bar, D) when lambda is finite, else None."""
     p = check_parameters(params)
-    model = _model(p["ratio"], p["nu1"], p["nu0"])
-    curve = model.curve(p["eta"], A_BAR)
-    po = model.pulloff([p["eta"]])
+    model, curve, po = _point(p["ratio"], p["nu1"], p["nu0"], p["eta"])
     sp = _pulloff_spring(model, p["eta"], [p["k_bar"]])
     out = {
         "params": p,
@@ -545,7 +550,7 @@ class Explorer:
         """Recomputes (compute()) and redraws the curves, markers, title and, when they
         change, the limits. With block=False and the setting's models not built yet: asks
         for them and draws the previous curves faded (see the class)."""
-        if not self.block and not self._ready(self.params):
+        if not self.block and not self._ready(self.params, self.GRACE):
             self._show_pending()
             return
         d = self.data = compute(self.params)
@@ -591,14 +596,24 @@ class Explorer:
         if self.prefetch:
             prefetch(p)
 
+    #: How long [s] an update of a window (block=False) waits for what it asked the background
+    #: for before drawing the previous curves faded: most curves at a new eta of a stack
+    #: already built take about a millisecond.
+    GRACE = 0.015
+
     @staticmethod
-    def _ready(p):
-        """True when compute(p) reads caches only; else the missing models are requested."""
+    def _ready(p, grace=0.0):
+        """True when compute(p) reads caches only, at once or within `grace` seconds; else the
+        missing models and curves are being built in the background."""
         material = (p["ratio"], p["nu1"], p["nu0"])
-        ready = _models.request(*material) is not None
-        if math.isfinite(p["lam"]):
-            ready = _md_curves.request(*material, p["eta"], p["lam"]) is not None and ready
-        return ready
+        deadline = time.monotonic() + grace
+        while True:
+            ready = _points.request(*material, p["eta"]) is not None
+            if math.isfinite(p["lam"]):
+                ready = _md_curves.request(*material, p["eta"], p["lam"]) is not None and ready
+            if ready or time.monotonic() >= deadline:
+                return ready
+            time.sleep(0.001)
 
     def _show_pending(self):
         self.pending = True

@@ -20,8 +20,9 @@ from coatcontact import explore  # noqa: E402
 
 @pytest.fixture
 def window():
+    # No background builds: they would run on through the other tests.
     figure = plt.figure(figsize=(13, 8.5))
-    yield explore.Explorer(figure)
+    yield explore.Explorer(figure, prefetch=False)
     plt.close(figure)
 
 
@@ -79,9 +80,11 @@ def test_dragging_a_slider_redraws(window):
     assert window.params["lam"] == math.inf
 
 
-def test_a_move_by_one_step_reads_the_prefetched_model(window):
+def test_a_move_by_one_step_reads_the_prefetched_model(window, monkeypatch):
     # After an update the background thread builds the neighbours on the sliders' grid; a drag
     # by one step lands on that grid value (bit for bit) and draws the library's values for it.
+    monkeypatch.setattr(explore, "PREFETCH_STEPS", 1)   # the neighbours checked here, no more
+    window.prefetch = True
     window.set(lam=1.0)
     deadline = time.monotonic() + 60
     while not explore.prefetch_idle():
@@ -89,6 +92,7 @@ def test_a_move_by_one_step_reads_the_prefetched_model(window):
         time.sleep(0.01)
     up = explore._grid_value("ratio", explore._grid_index("ratio", 0.1) + 1)
     assert up == pytest.approx(10 ** -0.95, rel=1e-11)
+    assert explore._points._entries[(up, 0.25, 0.25, 1.0)].done()
     assert explore._models._entries[(up, 0.25, 0.25)].done()
     assert explore._md_curves._entries[(0.1, 0.25, 0.25, 1.0, explore._grid_value("lam", 21))].done()
     window.sliders["ratio"].set_val(math.log10(up) + 1e-4)   # a drag a hair off the grid value
@@ -146,6 +150,11 @@ def test_a_window_that_does_not_block_draws_the_library_values_once_computed():
         e.wait()
         assert not e.pending and e.lines["coated_a"].get_alpha() is None
         check_plotted(e, ratio, nu1, 0.25, 1.0, 0.7, 1.0)
+        # A much thinner film extends the model's interpolant (hundreds of ms): not waited for
+        # either, beyond Explorer.GRACE.
+        e.set(eta=0.013, lam=math.inf)
+        e.wait()
+        check_plotted(e, ratio, nu1, 0.25, 0.013, math.inf, 1.0)
         blitted = pixels(figure)
         figure.canvas.draw()
         assert np.array_equal(blitted, pixels(figure))
