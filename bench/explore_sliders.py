@@ -74,6 +74,7 @@ def wait_idle(limit=120.0):
 
 def clear_caches():
     explore._models.clear()
+    explore._points.clear()
     explore._md_curves.clear()
     coatcontact._solver.cache_clear()
     coatcontact._model.cache_clear()
