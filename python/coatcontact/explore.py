@@ -20,8 +20,8 @@ Moving eta or k_bar only reads the interpolated reduced variables of the current
 a millisecond); moving E1/E0, nu1 or nu0 builds the kernel table and the interpolant of a new
 stack, and a finite lambda solves the cohesive zone at each radius (tens to hundreds of ms).
 The sliders stop on a fixed grid of values (their steps), and while the window waits a
-background thread builds the models of the grid values up to PREFETCH_STEPS steps either side
-for E1/E0, nu1, nu0 (and, with a finite lambda, the Maugis-Dugdale curves of the neighbouring
+background thread builds the models, curves and pull-offs of the grid values up to
+PREFETCH_STEPS steps either side for E1/E0, nu1, nu0 and eta (and, with a finite lambda, the Maugis-Dugdale curves of the neighbouring
 lambda and eta): such a move then reads a cache. A move to a setting not built yet does not
 hold the window: it shows the previous curves faded while a second background thread builds
 the new one, then draws it. Drawing blits: only the artists that change are drawn over a kept
@@ -139,6 +139,7 @@ class _Cache:
         self._wanted = None                          # the latest requested key not yet started
         self._wake = threading.Condition(self._lock)
         self._requester = None
+        self._failed = {}                            # key -> the error of its requested build
 
     def request(self, *key):
         """The result for `key` if it is ready, else None, and then the key is being built:
@@ -147,6 +148,8 @@ class _Cache:
         prefetch keys still waiting are dropped (they were for an earlier position). A failed
         build raises here, as in get()."""
         with self._lock:
+            if key in self._failed:   # raised once; a later request builds the key again
+                raise self._failed.pop(key)
             future = self._entries.get(key)
             if future is not None:
                 self._entries.move_to_end(key)
@@ -163,12 +166,6 @@ class _Cache:
         self._drain()
         return None
 
-    def ready(self, *key):
-        """True when the result for `key` is there (or its build failed)."""
-        with self._lock:
-            future = self._entries.get(key)
-            return future is not None and future.done()
-
     def _serve_requests(self):
         while True:
             with self._lock:
@@ -182,6 +179,9 @@ class _Cache:
                 future = self._entries[key] = concurrent.futures.Future()
                 self._trim()
             self._run(key, future)
+            if future.exception() is not None:
+                with self._lock:
+                    self._failed[key] = future.exception()
 
     def get(self, *key):
         with self._lock:
@@ -455,6 +455,7 @@ class Explorer:
         self.prefetch = prefetch
         self.block = block
         self.pending = False
+        self.error = None   # the library's error for the setting shown (block=False)
         self.params = check_parameters(params)
         bottom = 0.36 if sliders else 0.12
         width = 0.40 if sliders else 0.31   # the widget keeps the right for the legend
@@ -550,9 +551,16 @@ class Explorer:
         """Recomputes (compute()) and redraws the curves, markers, title and, when they
         change, the limits. With block=False and the setting's models not built yet: asks
         for them and draws the previous curves faded (see the class)."""
-        if not self.block and not self._ready(self.params, self.GRACE):
-            self._show_pending()
-            return
+        if not self.block:
+            try:
+                ready = self._ready(self.params, self.GRACE)
+            except Exception as error:
+                self._failed(error)
+                return
+            if not ready:
+                self._show_pending()
+                return
+        self.error = None
         d = self.data = compute(self.params)
         if self.pending:
             self.pending = False
@@ -623,31 +631,43 @@ class Explorer:
         self.redraw()
         self._timer.start()
 
-    def _poll(self, raise_errors=False):
+    def _poll(self):
         # The canvas timer's callback while pending: draws the setting once its models are built.
         if not self.pending:
             self._timer.stop()
             return
         try:
-            if self._ready(self.params):
-                self.update()
-        except Exception as error:   # the library's message, in the window's title
-            self._timer.stop()
-            self.pending = False
-            self.title.set_text("%s\n%s (faded: the curves of the previous setting)" % (_setting(self.params), error))
-            self.redraw()
-            if raise_errors:
-                raise
+            ready = self._ready(self.params)
+        except Exception as error:
+            self._failed(error)
+            return
+        if ready:
+            self.update()
+
+    def _failed(self, error):
+        # A window's setting the library could not compute: its message in the title (not a
+        # traceback from a GUI callback), the previous curves faded; wait() raises it.
+        self._timer.stop()
+        self.pending = False
+        self.error = error
+        for line in self.lines.values():
+            line.set_alpha(0.3)
+        self.title.set_text("%s\n%s (faded: the curves of the previous setting)" % (_setting(self.params), error))
+        self.redraw()
 
     def wait(self, timeout=60.0):
         """Polls (as the canvas timer does) until the pending setting is drawn; for a canvas
-        without an event loop. RuntimeError after `timeout` seconds."""
+        without an event loop. Raises the library's error if the setting could not be
+        computed, RuntimeError after `timeout` seconds."""
         end = time.monotonic() + timeout
         while self.pending:
             if time.monotonic() > end:
                 raise RuntimeError("explore: the setting %r was not computed in %g s" % (self.params, timeout))
             time.sleep(0.002)
-            self._poll(raise_errors=True)
+            self._poll()
+        if self.error is not None:
+            error, self.error = self.error, None
+            raise error
 
     def redraw(self):
         """Draws the animated artists over the kept copy of the figure (a full draw when there

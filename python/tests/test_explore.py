@@ -162,6 +162,34 @@ def test_a_window_that_does_not_block_draws_the_library_values_once_computed():
         plt.close(figure)
 
 
+def test_a_failed_build_in_the_background_is_shown_and_raised(monkeypatch):
+    # A setting the library cannot compute, asked for by a window: the error is the title's,
+    # the previous curves stay faded, and wait() raises it.
+    figure = plt.figure(figsize=(13, 8.5))
+    try:
+        e = explore.Explorer(figure, block=False, prefetch=False)
+        e.wait()
+        build = explore._points._build
+
+        def failing(ratio, nu1, nu0, eta):
+            if ratio == 0.41:
+                raise cc.NumericalError("no result to tolerance at E1/E0 = 0.41")
+            return build(ratio, nu1, nu0, eta)
+
+        monkeypatch.setattr(explore._points, "_build", failing)
+        e.set(ratio=0.41)
+        with pytest.raises(cc.NumericalError, match="E1/E0 = 0.41"):
+            e.wait()
+        assert not e.pending and "no result to tolerance" in e.title.get_text()
+        assert e.lines["coated_a"].get_alpha() == 0.3
+        e.set(ratio=0.1)
+        e.wait()
+        check_plotted(e, 0.1, 0.25, 0.25, 1.0, math.inf, 1.0)
+        assert e.lines["coated_a"].get_alpha() is None
+    finally:
+        plt.close(figure)
+
+
 def test_bad_parameter_is_named(window):
     with pytest.raises(ValueError, match=r"eta = 1000 is outside \[0.01, 100\]"):
         window.set(eta=1000)
