@@ -18,11 +18,15 @@ ipywidgets is installed). Without a display, `--save FILE.png` draws the window 
 
 Moving eta or k_bar only reads the interpolated reduced variables of the current stack (about
 a millisecond); moving E1/E0, nu1 or nu0 builds the kernel table and the interpolant of a new
-stack, and a finite lambda solves the cohesive zone at each radius (a few hundred ms each).
+stack, and a finite lambda solves the cohesive zone at each radius (tens to hundreds of ms).
 The sliders stop on a fixed grid of values (their steps), and while the window waits a
-background thread builds the models of the neighbouring grid values of E1/E0, nu1, nu0 (and,
-with a finite lambda, the Maugis-Dugdale curves of the neighbouring lambda and eta): a move by
-one step then reads a cache. Values given to Explorer.set() are used as they are. `bench/explore_sliders.py` measures both.
+background thread builds the models, curves and pull-offs of the grid values up to
+PREFETCH_STEPS steps either side for E1/E0, nu1, nu0 and eta (and, with a finite lambda, the Maugis-Dugdale curves of the neighbouring
+lambda and eta): such a move then reads a cache. A move to a setting not built yet does not
+hold the window: it shows the previous curves faded while a second background thread builds
+the new one, then draws it. Drawing blits: only the artists that change are drawn over a kept
+copy of the figure (Explorer). Values given to Explorer.set() are used as they are.
+`bench/explore_sliders.py` measures the updates.
 """
 import argparse
 import atexit
@@ -38,7 +42,7 @@ import time
 
 import numpy as np
 
-from . import AdhesiveModel, Stack, maugis_dugdale_curve, maugis_dugdale_pulloff, pulloff_spring
+from . import AdhesiveModel, Stack, _core, maugis_dugdale_curve, maugis_dugdale_pulloff
 
 #: The sliders: name -> (label, lowest, highest, start, step, logarithmic). Logarithmic
 #: sliders move log10 of the value. The top of the lambda slider means lambda = inf (JKR).
@@ -121,9 +125,10 @@ def check_parameters(params):
 
 
 class _Cache:
-    """Results of `build` by key, each computed once: in the caller's thread (get), or ahead of
-    need in one background thread (prefetch). A key being built in the background is waited
-    for, not built twice. Keeps the `size` most recently used results."""
+    """Results of `build` by key, each computed once: in the caller's thread (get), ahead of
+    need in one background thread (prefetch), or on request in a second background thread
+    (request: the key wanted now, without waiting for it). A key being built is waited for,
+    not built twice. Keeps the `size` most recently used results."""
 
     def __init__(self, build, size):
         self._build, self._size = build, size
@@ -131,6 +136,52 @@ class _Cache:
         self._entries = collections.OrderedDict()   # key -> concurrent.futures.Future
         self._queue = queue.Queue()
         self._worker = None
+        self._wanted = None                          # the latest requested key not yet started
+        self._wake = threading.Condition(self._lock)
+        self._requester = None
+        self._failed = {}                            # key -> the error of its requested build
+
+    def request(self, *key):
+        """The result for `key` if it is ready, else None, and then the key is being built:
+        by the request thread, which starts on the latest requested key (a request replaces
+        one not yet started) while the prefetch thread goes on, or already elsewhere. The
+        prefetch keys still waiting are dropped (they were for an earlier position). A failed
+        build raises here, as in get()."""
+        with self._lock:
+            if key in self._failed:   # raised once; a later request builds the key again
+                raise self._failed.pop(key)
+            future = self._entries.get(key)
+            if future is not None:
+                self._entries.move_to_end(key)
+                if future.done():
+                    return future.result()
+                return None
+            self._wanted = key
+            self._wake.notify()
+            if self._requester is None:
+                self._requester = threading.Thread(target=self._serve_requests, daemon=True,
+                                                   name="coatcontact.explore request")
+                self._requester.start()
+                atexit.register(self.stop)
+        self._drain()
+        return None
+
+    def _serve_requests(self):
+        while True:
+            with self._lock:
+                while self._wanted is None:
+                    self._wake.wait()
+                key, self._wanted = self._wanted, None
+                if key == ():   # stop()
+                    return
+                if key in self._entries:
+                    continue
+                future = self._entries[key] = concurrent.futures.Future()
+                self._trim()
+            self._run(key, future)
+            if future.exception() is not None:
+                with self._lock:
+                    self._failed[key] = future.exception()
 
     def get(self, *key):
         with self._lock:
@@ -158,7 +209,13 @@ class _Cache:
             atexit.register(self.stop)
 
     def stop(self):
-        """Drops the keys waiting for the background thread and waits for it to end."""
+        """Drops the keys waiting for the background threads and waits for them to end."""
+        if self._requester is not None:
+            with self._lock:
+                self._wanted = ()
+                self._wake.notify()
+            self._requester.join()
+            self._requester = None
         if self._worker is None:
             return
         self._drain()
@@ -176,7 +233,7 @@ class _Cache:
     def idle(self):
         """True when nothing waits or is being built in the background."""
         with self._lock:
-            busy = any(not f.done() for f in self._entries.values())
+            busy = self._wanted is not None or any(not f.done() for f in self._entries.values())
         return self._queue.empty() and not busy
 
     def clear(self):
@@ -209,72 +266,96 @@ class _Cache:
             del self._entries[key]
 
 
-def _build_model(ratio, nu1, nu0):
+def _stack(ratio, nu1, nu0):
     # Substrate E0 = 1 and film E1 = ratio: every normalized result depends on ratios only.
-    model = AdhesiveModel(Stack(film=(ratio, nu1), substrate=(1.0, nu0)), tol=1e-8)
-    # Fills the model's interpolant, built lazily on first use, over the radii of the current
-    # eta, and the package's own model of the stack (pulloff_spring's).
-    eta = _warm_eta
-    model.curve(eta, A_BAR)
-    model.pulloff([eta])
-    pulloff_spring(model.stack, eta=eta, k_bar=[1.0])
-    return model
+    return Stack(film=(ratio, nu1), substrate=(1.0, nu0))
+
+
+def _build_model(ratio, nu1, nu0):
+    return AdhesiveModel(_stack(ratio, nu1, nu0), tol=1e-8)
+
+
+def _build_point(ratio, nu1, nu0, eta):
+    """The model of the stack and its JKR curve and pull-offs at one eta. The first call at an
+    eta fills the model's interpolant over the radii it needs (built lazily: the costly part,
+    most of all for a new stack or a much thinner film)."""
+    model = _models.get(ratio, nu1, nu0)
+    pulloff = model.pulloff([eta])   # its scan reaches further than the curve's radii
+    return model, model.curve(eta, A_BAR), pulloff
+
+
+def _pulloff_spring(model, eta, k_bar):
+    """coatcontact.pulloff_spring on this model: the package's function builds (and caches)
+    a model of its own per stack, whose interpolant would cost a second build on a first visit."""
+    rows = _core.pulloff_spring(model._core, float(eta), np.atleast_1d(np.asarray(k_bar, dtype=float)))
+    return {"P": rows[:, 0], "a_bar": rows[:, 1], "D": rows[:, 2]}
 
 
 def _build_maugis_dugdale(ratio, nu1, nu0, eta, lam):
-    stack = _models.get(ratio, nu1, nu0).stack
+    stack = _stack(ratio, nu1, nu0)
     curve = maugis_dugdale_curve(stack, eta=eta, lambda_=lam, a_bar=A_BAR_MD)
     return curve, maugis_dugdale_pulloff(stack, eta=eta, lambda_=lam)
 
 
 _models = _Cache(_build_model, 48)
-_warm_eta = DEFAULTS["eta"]   # the eta of the last prefetch: where a model is warmed up
+_points = _Cache(_build_point, 64)   # each holds its model: a cached point never rebuilds it
 _md_curves = _Cache(_build_maugis_dugdale, 64)
 
 
-def _model(ratio, nu1, nu0):
-    return _models.get(ratio, nu1, nu0)
+def _point(ratio, nu1, nu0, eta):
+    return _points.get(ratio, nu1, nu0, eta)
 
 
 def _maugis_dugdale(ratio, nu1, nu0, eta, lam):
     return _md_curves.get(ratio, nu1, nu0, eta, lam)
 
 
-def _neighbours(name, value):
-    """The grid values one step either side of `value` (which may lie between two)."""
+#: How many grid steps either side of the current value the background thread builds the
+#: models, curves and pull-offs of E1/E0, nu1, nu0 and eta for (nearest first); one step for
+#: lambda and eta under a finite lambda (their Maugis-Dugdale curves).
+PREFETCH_STEPS = 3
+
+
+def _neighbours(name, value, steps=1):
+    """The grid values within `steps` steps either side of `value` (which may lie between
+    two), nearest first."""
     index = _grid_index(name, value)
     out = []
-    for i in (index - 1, index, index + 1):
+    for i in [index] + [index + sign * d for d in range(1, steps + 1) for sign in (-1, 1)]:
         v = _grid_value(name, i)
-        if v is not None and v != value and not (name == "lam" and math.isinf(v)):
+        if v is not None and v != value and v not in out and not (name == "lam" and math.isinf(v)):
             out.append(v)
     return out
 
 
 def prefetch(params):
-    """Starts building, in the background, what a move of one grid step from `params` needs:
-    the models of the neighbouring E1/E0, nu1 and nu0 and, with a finite lambda, the
-    Maugis-Dugdale curves of the neighbouring lambda and eta."""
-    global _warm_eta
+    """Starts building, in the background, what moves of up to PREFETCH_STEPS grid steps from
+    `params` need, nearest first: the models, curves and pull-offs of the neighbouring E1/E0,
+    nu1, nu0 and eta and, with a finite lambda, the Maugis-Dugdale curves of the neighbouring
+    lambda and eta."""
     p = check_parameters(params)
-    _warm_eta = p["eta"]
-    material = (p["ratio"], p["nu1"], p["nu0"])
-    keys = []
-    for i, name in enumerate(("ratio", "nu1", "nu0")):
-        for v in _neighbours(name, p[name]):
-            key = list(material)
+    point = (p["ratio"], p["nu1"], p["nu0"], p["eta"])
+    rings = []   # per slider: its neighbouring keys, nearest first
+    for i, name in enumerate(("ratio", "nu1", "nu0", "eta")):
+        ring = []
+        for v in _neighbours(name, p[name], PREFETCH_STEPS):
+            key = list(point)
             key[i] = v
-            keys.append(tuple(key))
-    _models.prefetch(keys)
+            ring.append(tuple(key))
+        rings.append(ring)
+    # Interleaved: every slider's nearest neighbours before anybody's second ones.
+    keys = [ring[j] for j in range(max(map(len, rings))) for ring in rings if j < len(ring)]
+    _points.prefetch(keys)
     if math.isfinite(p["lam"]):
+        material = point[:3]
         md = [material + (p["eta"], v) for v in _neighbours("lam", p["lam"])]
         md += [material + (v, p["lam"]) for v in _neighbours("eta", p["eta"])]
         _md_curves.prefetch(md)
 
 
 def prefetch_idle():
-    """True when the background thread has built every neighbour asked for."""
-    return _models.idle() and _md_curves.idle()
+    """True when the background threads have built every neighbour asked for."""
+    return _points.idle() and _models.idle() and _md_curves.idle()
 
 
 def compute(params):
@@ -283,10 +364,8 @@ def compute(params):
     pulloff (P, a_bar, D under load, displacement and spring control), and md (curve a_bar,
     P, D and load-controlled pull-off P, a_bar, D) when lambda is finite, else None."""
     p = check_parameters(params)
-    model = _model(p["ratio"], p["nu1"], p["nu0"])
-    curve = model.curve(p["eta"], A_BAR)
-    po = model.pulloff([p["eta"]])
-    sp = pulloff_spring(model.stack, eta=p["eta"], k_bar=[p["k_bar"]])
+    model, curve, po = _point(p["ratio"], p["nu1"], p["nu0"], p["eta"])
+    sp = _pulloff_spring(model, p["eta"], [p["k_bar"]])
     out = {
         "params": p,
         "a_bar": curve["a_bar"], "P": curve["P"], "D": curve["D"],
@@ -312,6 +391,42 @@ def _format(name, value):
     return "%.3g" % value
 
 
+def _setting(p):
+    """The parameters as the title shows them."""
+    return "E1/E0 = %s, ν1 = %s, ν0 = %s, η = %s, λ = %s, k̄ = %s" % tuple(
+        _format(name, p[name]) for name in ("ratio", "nu1", "nu0", "eta", "lam", "k_bar"))
+
+
+#: Mantissas of the axis limits: a limit is the first of these times a power of ten that holds
+#: the data, so that most moves keep the limits and redraw by blitting (see Explorer.redraw).
+_NICE = (1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0)
+
+
+def _nice_above(x):
+    """The smallest number of the ladder _NICE x 10^k that is >= x > 0."""
+    exponent = math.floor(math.log10(x))
+    for mantissa in _NICE:
+        value = float("%.12g" % (mantissa * 10.0 ** exponent))
+        if value >= x:
+            return value
+    return float("%.12g" % (10.0 ** (exponent + 1)))
+
+
+def axis_limits(data):
+    """The axis limits for the result of compute(): {"a": (xlim, ylim), "D": (xlim, ylim)}.
+    P runs from below the lowest pull-off (15 % margin, at least -2.1) to 3; D over the
+    curves' part with P <= 3. Each moving limit is rounded outward onto the ladder _NICE."""
+    po, md = data["pulloff"], data["md"]
+    p_low = min([po["load"][0], po["spring"][0]] + ([md["load"][0]] if md else []))
+    bottom = -2.1 if -1.15 * p_low <= 2.1 else -_nice_above(-1.15 * p_low)
+    top = 3.0
+    d_values = np.concatenate([data["D"][data["P"] <= top], data["D_jkr"][data["P_jkr"] <= top]]
+                              + ([md["D"][md["P"] <= top]] if md else []))
+    left = -1.5 if 0.1 - d_values.min() <= 1.5 else -_nice_above(0.1 - d_values.min())
+    right = 2.0 if d_values.max() <= 2.0 else _nice_above(d_values.max())
+    return {"a": ((0.0, 3.0), (bottom, top)), "D": ((left, right), (bottom, top))}
+
+
 class Explorer:
     """The two panels P(a_bar), P(D) on a matplotlib Figure, redrawn by set(**params).
 
@@ -319,11 +434,28 @@ class Explorer:
     panels (the window of `python3 -m coatcontact.explore`); sliders=False leaves them out
     (the Jupyter widget draws its own). `lines` holds the plotted Line2D objects by name,
     `data` the result of compute() that they show.
+
+    Redrawing blits: what changes from one setting to the next (curves, markers, title, the
+    sliders' bars and values) is animated; a full draw of the figure (the first, after a
+    resize, or when the axis limits change) keeps a copy of the figure without them, and an
+    update restores that copy and draws only the animated artists over it. The limits are
+    quantised (axis_limits), so most moves keep them. `full_draws` counts the updates that
+    had to redraw the whole figure.
+
+    block=True computes what a setting needs during the update (set() returns with the
+    library's values drawn). block=False (the window) never waits for a model or
+    Maugis-Dugdale curve not built yet: the update asks a background thread for it, draws
+    the previous curves faded under a "computing" title, and a timer of the canvas draws the
+    new setting once it is there (`pending` is True meanwhile; wait() does the same without
+    an event loop). A drag over settings not visited yet thus stays as quick as the drawing.
     """
 
-    def __init__(self, figure, sliders=True, prefetch=True, **params):
+    def __init__(self, figure, sliders=True, prefetch=True, block=True, **params):
         self.figure = figure
         self.prefetch = prefetch
+        self.block = block
+        self.pending = False
+        self.error = None   # the library's error for the setting shown (block=False)
         self.params = check_parameters(params)
         bottom = 0.36 if sliders else 0.12
         width = 0.40 if sliders else 0.31   # the widget keeps the right for the legend
@@ -356,13 +488,18 @@ class Explorer:
         self.ax_d.set_xlabel("D = δ / (π² w² R/E₁*²)^(1/3)")
         self.ax_a.set_title("force against contact radius")
         self.ax_d.set_title("force against penetration")
+        # The legend copies the lines' styles now, before they are made animated (a legend
+        # entry copied from an animated line would be animated too, and left out of a draw).
         handles = [self.lines[n + "_a"] for n in ("coated", "jkr", "md", "load", "displacement", "spring", "md_load")]
         handles.append(self.lines["spring_line_D"])
         if sliders:   # beside the sliders, off the curves
             figure.legend(handles=handles, loc="lower right", bbox_to_anchor=(0.995, 0.01), fontsize=8)
         else:         # the widget has no room below: to the right of the two panels
             figure.legend(handles=handles, loc="center right", fontsize=8)
-        self.title = figure.suptitle("")
+        # The title belongs to an Axes, not the Figure: a Figure leaves its animated artists
+        # out of savefig, an Axes draws them when saving.
+        self.title = self.ax_a.text(0.5, 0.98, "", transform=figure.transFigure, ha="center", va="top",
+                                    fontsize="large", clip_on=False)
         self.sliders = {}
         if sliders:
             from matplotlib.widgets import Slider
@@ -372,8 +509,20 @@ class Explorer:
                            _slider_position(name, hi), valinit=_slider_position(name, self.params[name]),
                            valstep=step)
                 s.valtext.set_text(_format(name, self.params[name]))
+                s.drawon = False   # redraw() draws the slider's bar and value, not the whole figure
                 s.on_changed(functools.partial(self._moved, name))
                 self.sliders[name] = s
+        self._animated = list(self.lines.values()) + [self.title]
+        for s in self.sliders.values():
+            self._animated += [a for a in (s.poly, getattr(s, "_handle", None), s.valtext) if a is not None]
+        for artist in self._animated:
+            artist.set_animated(True)
+        self._background = None   # (canvas size, the figure without its animated artists)
+        self._limits = None
+        self.full_draws = 0
+        figure.canvas.mpl_connect("draw_event", self._drawn)
+        self._timer = figure.canvas.new_timer(interval=20)
+        self._timer.add_callback(self._poll)
         self.update()
 
     def _moved(self, name, position):
@@ -382,6 +531,8 @@ class Explorer:
         if value != self.params[name]:
             self.params[name] = value
             self.update()
+        else:
+            self.redraw()   # the slider's bar moved within one grid step
 
     def set(self, **params):
         """Moves the named sliders (values, not slider positions) and redraws once."""
@@ -389,7 +540,7 @@ class Explorer:
         self.params = check_parameters({**self.params, **params})
         for name, s in self.sliders.items():
             if self.params[name] == old[name]:
-                continue  # set_val redraws the canvas: only for the sliders that move
+                continue
             s.eventson = False
             s.set_val(_slider_position(name, self.params[name]))
             s.valtext.set_text(_format(name, self.params[name]))
@@ -397,8 +548,25 @@ class Explorer:
         self.update()
 
     def update(self):
-        """Recomputes (compute()) and redraws the curves, markers, limits and title."""
+        """Recomputes (compute()) and redraws the curves, markers, title and, when they
+        change, the limits. With block=False and the setting's models not built yet: asks
+        for them and draws the previous curves faded (see the class)."""
+        if not self.block:
+            try:
+                ready = self._ready(self.params, self.GRACE)
+            except Exception as error:
+                self._failed(error)
+                return
+            if not ready:
+                self._show_pending()
+                return
+        self.error = None
         d = self.data = compute(self.params)
+        if self.pending:
+            self.pending = False
+            self._timer.stop()
+        for line in self.lines.values():
+            line.set_alpha(None)   # faded while pending or after a failed setting
         p, po = d["params"], d["pulloff"]
         L = self.lines
         L["coated_a"].set_data(d["a_bar"], d["P"])
@@ -421,26 +589,121 @@ class Explorer:
             L["md_D"].set_data(md["D"], md["P"])
             L["md_load_a"].set_data([md["load"][1]], [md["load"][0]])
             L["md_load_D"].set_data([md["load"][2]], [md["load"][0]])
-        lows = [po["load"][0], po["spring"][0]] + ([md["load"][0]] if md else [])
-        p_low = min(lows)
-        y = (min(-2.1, 1.15 * p_low), 3.0)
-        for ax in (self.ax_a, self.ax_d):
-            ax.set_ylim(*y)
-        self.ax_a.set_xlim(0.0, 3.0)
-        shown = d["P"] <= y[1]
-        d_values = np.concatenate([d["D"][shown], d["D_jkr"][d["P_jkr"] <= y[1]]]
-                                  + ([md["D"][md["P"] <= y[1]]] if md else []))
-        self.ax_d.set_xlim(min(-1.5, d_values.min() - 0.1), max(2.0, d_values.max()))
+        limits = axis_limits(d)
+        if limits != self._limits:
+            for ax, panel in ((self.ax_a, "a"), (self.ax_d, "D")):
+                ax.set_xlim(*limits[panel][0])
+                ax.set_ylim(*limits[panel][1])
+            self._limits = limits
+            self._background = None   # ticks and grid move: a full draw
         self.title.set_text(
-            "E1/E0 = %s, ν1 = %s, ν0 = %s, η = %s, λ = %s, k̄ = %s\n"
-            "pull-off P: load %.4f (JKR −3/2), displacement %.4f (JKR −5/6), spring %.4f%s"
-            % (_format("ratio", p["ratio"]), _format("nu1", p["nu1"]), _format("nu0", p["nu0"]),
-               _format("eta", p["eta"]), _format("lam", p["lam"]), _format("k_bar", p["k_bar"]),
-               po["load"][0], po["displacement"][0], po["spring"][0],
+            "%s\npull-off P: load %.4f (JKR −3/2), displacement %.4f (JKR −5/6), spring %.4f%s"
+            % (_setting(p), po["load"][0], po["displacement"][0], po["spring"][0],
                ", Maugis–Dugdale (load) %.4f" % md["load"][0] if md else ""))
-        self.figure.canvas.draw_idle()
+        self.redraw()
         if self.prefetch:
             prefetch(p)
+
+    #: How long [s] an update of a window (block=False) waits for what it asked the background
+    #: for before drawing the previous curves faded: most curves at a new eta of a stack
+    #: already built take about a millisecond.
+    GRACE = 0.015
+
+    @staticmethod
+    def _ready(p, grace=0.0):
+        """True when compute(p) reads caches only, at once or within `grace` seconds; else the
+        missing models and curves are being built in the background."""
+        material = (p["ratio"], p["nu1"], p["nu0"])
+        deadline = time.monotonic() + grace
+        while True:
+            ready = _points.request(*material, p["eta"]) is not None
+            if math.isfinite(p["lam"]):
+                ready = _md_curves.request(*material, p["eta"], p["lam"]) is not None and ready
+            if ready or time.monotonic() >= deadline:
+                return ready
+            time.sleep(0.001)
+
+    def _show_pending(self):
+        self.pending = True
+        for line in self.lines.values():
+            line.set_alpha(0.3)
+        self.title.set_text("computing %s …\n(faded: the curves of the previous setting)" % _setting(self.params))
+        self.redraw()
+        self._timer.start()
+
+    def _poll(self):
+        # The canvas timer's callback while pending: draws the setting once its models are built.
+        if not self.pending:
+            self._timer.stop()
+            return
+        try:
+            ready = self._ready(self.params)
+        except Exception as error:
+            self._failed(error)
+            return
+        if ready:
+            self.update()
+
+    def _failed(self, error):
+        # A window's setting the library could not compute: its message in the title (not a
+        # traceback from a GUI callback), the previous curves faded; wait() raises it.
+        self._timer.stop()
+        self.pending = False
+        self.error = error
+        for line in self.lines.values():
+            line.set_alpha(0.3)
+        self.title.set_text("%s\n%s (faded: the curves of the previous setting)" % (_setting(self.params), error))
+        self.redraw()
+
+    def wait(self, timeout=60.0):
+        """Polls (as the canvas timer does) until the pending setting is drawn; for a canvas
+        without an event loop. Raises the library's error if the setting could not be
+        computed, RuntimeError after `timeout` seconds."""
+        end = time.monotonic() + timeout
+        while self.pending:
+            if time.monotonic() > end:
+                raise RuntimeError("explore: the setting %r was not computed in %g s" % (self.params, timeout))
+            time.sleep(0.002)
+            self._poll()
+        if self.error is not None:
+            error, self.error = self.error, None
+            raise error
+
+    def redraw(self):
+        """Draws the animated artists over the kept copy of the figure (a full draw when there
+        is none, or the canvas changed size) and blits the figure to the screen."""
+        canvas = self.figure.canvas
+        if self._background is None or self._background[0] != self._canvas_size():
+            self.full_draws += 1
+            canvas.draw()   # _drawn keeps the copy and draws the animated artists
+        else:
+            canvas.restore_region(self._background[1])
+            self._draw_animated()
+        canvas.blit(self.figure.bbox)
+
+    def _canvas_size(self):
+        return self.figure.canvas.get_width_height() + (self.figure.dpi,)
+
+    def _draw_animated(self):
+        for artist in self._animated:
+            self.figure.draw_artist(artist)
+
+    def _drawn(self, event):
+        # After every full draw (ours, the window's first, a resize): keep the figure without
+        # the animated artists, then draw them. savefig draws them itself (see the title).
+        if self.figure.canvas.is_saving():
+            return
+        self._background = (self._canvas_size(), self.figure.canvas.copy_from_bbox(self.figure.bbox))
+        self._draw_animated()
+
+
+def png_of_canvas(canvas):
+    """The pixels of an Agg canvas, as they are (no redraw), as PNG bytes."""
+    import io
+    from PIL import Image
+    buffer = io.BytesIO()
+    Image.fromarray(np.asarray(canvas.buffer_rgba())).save(buffer, format="png", compress_level=1)
+    return buffer.getvalue()
 
 
 def widget(**params):
@@ -448,26 +711,24 @@ def widget(**params):
 
     Returns an ipywidgets.VBox; its attribute `explorer` is the Explorer it redraws (for
     tests: set a slider's value and read explorer.data). Needs ipywidgets (Debian
-    python3-ipywidgets); ImportError with that hint otherwise.
+    python3-ipywidgets); ImportError with that hint otherwise. A move blits the Explorer's
+    Agg canvas and sends its pixels as PNG (no redraw of the whole figure).
     """
     try:
         import ipywidgets
     except ImportError:
         raise ImportError("coatcontact.explore.widget needs ipywidgets (Debian: python3-ipywidgets; "
                           "pip: ipywidgets); without it use python3 -m coatcontact.explore") from None
-    import io
     from matplotlib.figure import Figure
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     figure = Figure(figsize=(12, 5.2), dpi=80)
-    FigureCanvasAgg(figure)
+    canvas = FigureCanvasAgg(figure)
     explorer = Explorer(figure, sliders=False, **params)
     image = ipywidgets.Image(format="png")
 
     def draw():
-        buffer = io.BytesIO()
-        figure.savefig(buffer, format="png")
-        image.value = buffer.getvalue()
+        image.value = png_of_canvas(canvas)
 
     controls = {}
 
@@ -503,21 +764,22 @@ def _parse_set(text):
 
 
 def _time_updates(explorer):
-    """One move per slider to a value not seen before (no cache hit), timed: the library's
-    computation (compute()) and matplotlib's redraw of the window, separately."""
+    """One move per slider to a value not seen before (no cache hit), timed as a whole (the
+    library's computation and the drawing) and its drawing alone (bench/explore_sliders.py
+    times many moves, and the moves that read the background thread's models)."""
     steps = {"ratio": 0.2, "nu1": 0.3, "nu0": 0.3, "eta": 0.5, "lam": 1.0, "k_bar": 3.0}
-    explorer.figure.canvas.draw()
     print("explorer update times (one move per slider, from the start values):")
     for name, value in steps.items():
-        params = {**explorer.params, name: value}
+        full = explorer.full_draws
         start = time.perf_counter()
-        compute(params)
-        computed = time.perf_counter()
         explorer.set(**{name: value})
-        explorer.figure.canvas.draw()
+        done = time.perf_counter()
+        explorer.redraw()
         drawn = time.perf_counter()
-        print("  %-6s -> %-6g compute %7.1f ms, compute again (cached) and draw %7.1f ms"
-              % (name, value, 1e3 * (computed - start), 1e3 * (drawn - computed)))
+        print("  %-6s -> %-6g update %7.1f ms (%s), of which drawing about %5.1f ms"
+              % (name, value, 1e3 * (done - start),
+                 "axis limits changed: whole figure drawn" if explorer.full_draws > full else "blitted",
+                 1e3 * (drawn - done)))
         explorer.set(**{name: DEFAULTS[name]})
 
 
@@ -545,8 +807,10 @@ def main(argv=None):
               "use --save FILE.png, or run with a display", file=sys.stderr)
         return 2
     figure = plt.figure(figsize=(13, 8.5))
-    # Models of the neighbouring slider values are built ahead only for a window one can drag.
-    explorer = Explorer(figure, prefetch=not (args.save or args.time), **params)
+    # Models of the neighbouring slider values are built ahead, and models not built yet are
+    # waited for in the background, only in a window one can drag.
+    window = not (args.save or args.time)
+    explorer = Explorer(figure, prefetch=window, block=not window, **params)
     if args.time:
         _time_updates(explorer)
     if args.save:

@@ -20,8 +20,9 @@ from coatcontact import explore  # noqa: E402
 
 @pytest.fixture
 def window():
+    # No background builds: they would run on through the other tests.
     figure = plt.figure(figsize=(13, 8.5))
-    yield explore.Explorer(figure)
+    yield explore.Explorer(figure, prefetch=False)
     plt.close(figure)
 
 
@@ -79,9 +80,11 @@ def test_dragging_a_slider_redraws(window):
     assert window.params["lam"] == math.inf
 
 
-def test_a_move_by_one_step_reads_the_prefetched_model(window):
+def test_a_move_by_one_step_reads_the_prefetched_model(window, monkeypatch):
     # After an update the background thread builds the neighbours on the sliders' grid; a drag
     # by one step lands on that grid value (bit for bit) and draws the library's values for it.
+    monkeypatch.setattr(explore, "PREFETCH_STEPS", 1)   # the neighbours checked here, no more
+    window.prefetch = True
     window.set(lam=1.0)
     deadline = time.monotonic() + 60
     while not explore.prefetch_idle():
@@ -89,11 +92,102 @@ def test_a_move_by_one_step_reads_the_prefetched_model(window):
         time.sleep(0.01)
     up = explore._grid_value("ratio", explore._grid_index("ratio", 0.1) + 1)
     assert up == pytest.approx(10 ** -0.95, rel=1e-11)
+    assert explore._points._entries[(up, 0.25, 0.25, 1.0)].done()
     assert explore._models._entries[(up, 0.25, 0.25)].done()
     assert explore._md_curves._entries[(0.1, 0.25, 0.25, 1.0, explore._grid_value("lam", 21))].done()
     window.sliders["ratio"].set_val(math.log10(up) + 1e-4)   # a drag a hair off the grid value
     assert window.params["ratio"] == up
     check_plotted(window, up, 0.25, 0.25, 1.0, 1.0, 1.0)
+
+
+def pixels(figure):
+    return np.asarray(figure.canvas.buffer_rgba()).copy()
+
+
+def test_a_blitted_update_draws_what_a_full_draw_draws(window):
+    # An update restores the figure drawn without its animated artists and draws those over
+    # it; a full draw must give the same pixels, and a small move must not need one (the axis
+    # limits are quantised and stay).
+    full = window.full_draws
+    window.sliders["eta"].set_val(window.sliders["eta"].val + explore.SLIDERS["eta"][4])
+    window.sliders["k_bar"].set_val(window.sliders["k_bar"].val + explore.SLIDERS["k_bar"][4])
+    assert window.full_draws == full
+    check_plotted(window, 0.1, 0.25, 0.25, window.params["eta"], math.inf, window.params["k_bar"])
+    blitted = pixels(window.figure)
+    window.figure.canvas.draw()
+    assert np.array_equal(blitted, pixels(window.figure))
+    # A stiff film moves the limits: a full draw, and again the same pixels as drawing anew.
+    window.set(ratio=10.0, lam=1.0)
+    assert window.full_draws == full + 1
+    assert window.ax_d.get_xlim() == explore.axis_limits(window.data)["D"][0]
+    blitted = pixels(window.figure)
+    window.figure.canvas.draw()
+    assert np.array_equal(blitted, pixels(window.figure))
+
+
+@pytest.mark.parametrize("mantissa", [1.0, 1.25, 2.5, 8.0])
+def test_axis_limits_are_the_next_value_of_the_ladder(mantissa):
+    for exponent in (-2, 0, 3):
+        x = mantissa * 10.0 ** exponent
+        assert explore._nice_above(x) == pytest.approx(x, rel=1e-12)
+        above = explore._nice_above(x * 1.001)
+        assert above > x and above / x <= 1.26
+
+
+def test_a_window_that_does_not_block_draws_the_library_values_once_computed():
+    # block=False (the window): an update needing a model not built yet returns at once with
+    # the previous curves faded, and the setting is drawn when the background thread is done.
+    figure = plt.figure(figsize=(13, 8.5))
+    try:
+        e = explore.Explorer(figure, block=False, prefetch=False)
+        e.wait()
+        check_plotted(e, 0.1, 0.25, 0.25, 1.0, math.inf, 1.0)
+        ratio, nu1 = 0.37, 0.31   # off the grid: built by no other test
+        e.set(ratio=ratio, nu1=nu1, lam=0.7)
+        assert e.pending and e.title.get_text().startswith("computing E1/E0 = 0.37")
+        assert e.data["params"]["ratio"] == 0.1                 # still the previous setting
+        assert e.lines["coated_a"].get_alpha() == 0.3
+        e.wait()
+        assert not e.pending and e.lines["coated_a"].get_alpha() is None
+        check_plotted(e, ratio, nu1, 0.25, 1.0, 0.7, 1.0)
+        # A much thinner film extends the model's interpolant (hundreds of ms): not waited for
+        # either, beyond Explorer.GRACE.
+        e.set(eta=0.013, lam=math.inf)
+        e.wait()
+        check_plotted(e, ratio, nu1, 0.25, 0.013, math.inf, 1.0)
+        blitted = pixels(figure)
+        figure.canvas.draw()
+        assert np.array_equal(blitted, pixels(figure))
+    finally:
+        plt.close(figure)
+
+
+def test_a_failed_build_in_the_background_is_shown_and_raised(monkeypatch):
+    # A setting the library cannot compute, asked for by a window: the error is the title's,
+    # the previous curves stay faded, and wait() raises it.
+    figure = plt.figure(figsize=(13, 8.5))
+    try:
+        e = explore.Explorer(figure, block=False, prefetch=False)
+        e.wait()
+        build = explore._points._build
+
+        def failing(ratio, nu1, nu0, eta):
+            if ratio == 0.41:
+                raise cc.NumericalError("no result to tolerance at E1/E0 = 0.41")
+            return build(ratio, nu1, nu0, eta)
+
+        monkeypatch.setattr(explore._points, "_build", failing)
+        e.set(ratio=0.41)
+        with pytest.raises(cc.NumericalError, match="E1/E0 = 0.41"):
+            e.wait()
+        assert not e.pending and "no result to tolerance" in e.title.get_text()
+        assert e.lines["coated_a"].get_alpha() == 0.3
+        e.set(ratio=0.1)
+        e.wait()
+        check_plotted(e, 0.1, 0.25, 0.25, 1.0, math.inf, 1.0)
+        assert e.lines["coated_a"].get_alpha() is None
+    finally:
+        plt.close(figure)
 
 
 def test_bad_parameter_is_named(window):
@@ -116,6 +210,8 @@ def test_command_saves_a_screenshot(tmp_path):
     assert image.shape[0] > 500 and image.shape[1] > 800
     # Not blank: the curves' colours are present.
     assert np.unique(image.reshape(-1, image.shape[2]), axis=0).shape[0] > 50
+    # The title (an animated artist, drawn by savefig) is there: dark pixels above the panels.
+    assert image[: image.shape[0] // 20, :, :3].min() < 0.3
     assert sorted(os.listdir(tmp_path)) == ["shot.png"]
 
 
