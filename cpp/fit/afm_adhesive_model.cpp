@@ -102,8 +102,8 @@ struct Trial {
 // law of the last two nodes (trial contact points only).
 class Branch {
  public:
-  Branch(const AfmFitProblem& problem, const CoatingSweep* sweep, const Trial& trial, double max_indentation)
-      : sweep_(sweep), trial_(trial), radius_(problem.tip.radius), spring_(problem.spring_constant) {
+  Branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep, const Trial& trial, double max_indentation)
+      : sweep_(std::move(sweep)), trial_(trial), radius_(problem.tip.radius), spring_(problem.spring_constant) {
     reduced_ = trial.modulus / (1.0 - problem.poisson * problem.poisson);
     if (!(reduced_ > 0.0) || !std::isfinite(reduced_) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
         (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
@@ -191,7 +191,7 @@ class Branch {
   double reduced_modulus() const { return reduced_; }
 
  private:
-  const CoatingSweep* sweep_;
+  std::shared_ptr<const CoatingSweep> sweep_;
   Trial trial_;
   double radius_, spring_, reduced_ = 0.0, length_ = 0.0;
   double a_s_ = 0.0, a_max_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
@@ -423,7 +423,7 @@ std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std:
   }
   double max_delta = 0.0;
   for (double v : z) max_delta = std::max(max_delta, problem.contact_point - v);
-  std::unique_ptr<CoatingSweep> sweep;
+  std::shared_ptr<const CoatingSweep> sweep;
   Trial trial{problem.modulus, problem.work, 0.0};
   AfmFitProblem p = problem;
   if (problem.coating) {
@@ -435,9 +435,9 @@ std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std:
     const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
     const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
     for (int k = 0; k < count; ++k) grid.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
-    sweep = std::make_unique<CoatingSweep>(solver.sweep(grid, c.solver_tolerance));
+    sweep = std::make_shared<const CoatingSweep>(solver.sweep(grid, c.solver_tolerance));
   }
-  const Branch branch(p, sweep.get(), trial, std::max(max_delta, 1e-12));
+  const Branch branch(p, sweep, trial, std::max(max_delta, 1e-12));
   std::vector<double> f(z.size());
   for (std::size_t i = 0; i < z.size(); ++i) {
     f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch.at(problem.contact_point - z[i]).first;
@@ -517,9 +517,10 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
   std::vector<double> u0;
   for (int a : axes) u0.push_back(std::log(a == 0 ? e_hint : a == 1 ? w_hint : t_hint));
 
-  // Coating: one reduced-solver sweep per film modulus (kept).
-  std::unique_ptr<ReducedSolver> solver;
-  std::map<double, std::unique_ptr<CoatingSweep>> sweeps;
+  // Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
+  // (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
+  // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15).
+  std::map<long, std::vector<ReducedVariables>> nodes;
   long solver_calls = 0;
   std::vector<double> a_over_t;
   if (coated) {
@@ -527,17 +528,50 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
     const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
     for (int k = 0; k < count; ++k) a_over_t.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
   }
-  const auto sweep_of = [&](double film_modulus) -> const CoatingSweep* {
+  const auto node = [&](long j) -> const std::vector<ReducedVariables>& {
+    auto it = nodes.find(j);
+    if (it != nodes.end()) return it->second;
+    Material film = problem.coating->film;
+    film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+    const ReducedSolver solver(Stack::film_on(film, problem.coating->substrate));
+    solver_calls += static_cast<long>(a_over_t.size());
+    return nodes.emplace(j, solver.sweep(a_over_t, problem.coating->solver_tolerance)).first->second;
+  };
+  std::map<double, std::shared_ptr<const CoatingSweep>> sweeps;
+  const auto sweep_of = [&](double film_modulus) -> std::shared_ptr<const CoatingSweep> {
     if (!coated) return nullptr;
     auto it = sweeps.find(film_modulus);
-    if (it != sweeps.end()) return it->second.get();
-    Material film = problem.coating->film;
-    film.youngs_modulus = film_modulus;
-    const ReducedSolver s(Stack::film_on(film, problem.coating->substrate));
-    auto sweep = std::make_unique<CoatingSweep>(s.sweep(a_over_t, problem.coating->solver_tolerance));
-    solver_calls += static_cast<long>(a_over_t.size());
-    if (sweeps.size() > 32) sweeps.clear();
-    return sweeps.emplace(film_modulus, std::move(sweep)).first->second.get();
+    if (it != sweeps.end()) return it->second;
+    const double x = std::log10(film_modulus / e_hint) * kModulusNodesPerDecade;
+    const double nearest = std::round(x);
+    std::shared_ptr<const CoatingSweep> sweep;
+    if (std::abs(x - nearest) < 1e-9) {
+      sweep = std::make_shared<const CoatingSweep>(node(static_cast<long>(nearest)));
+    } else {
+      const long j0 = static_cast<long>(std::floor(x)) - 1;
+      double weight[4];
+      for (int a = 0; a < 4; ++a) {
+        weight[a] = 1.0;
+        for (int b = 0; b < 4; ++b) {
+          if (b != a) weight[a] *= (x - static_cast<double>(j0 + b)) / static_cast<double>(a - b);
+        }
+      }
+      std::vector<ReducedVariables> mixed(a_over_t.size());
+      for (int a = 0; a < 4; ++a) {
+        const std::vector<ReducedVariables>& v = node(j0 + a);
+        for (std::size_t k = 0; k < mixed.size(); ++k) {
+          mixed[k].a_over_t = a_over_t[k];
+          mixed[k].pi_s += weight[a] * v[k].pi_s;
+          mixed[k].delta_s += weight[a] * v[k].delta_s;
+          mixed[k].e_eq += weight[a] * v[k].e_eq;
+          mixed[k].gamma1 += weight[a] * v[k].gamma1;
+        }
+      }
+      sweep = std::make_shared<const CoatingSweep>(mixed);
+    }
+    if (sweeps.size() > 64) sweeps.clear();
+    sweeps.emplace(film_modulus, sweep);
+    return sweep;
   };
   int tables = 0;
   const auto branch_of = [&](const Trial& t) {
@@ -569,13 +603,15 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
     return local;
   };
 
-  // 1. Start: a grid around the hints (E 1.5 decades each way, w one, t half a decade).
+  // 1. Start: a grid around the hints (E 1.5 decades each way, E1 one, w one, t half a decade).
   std::vector<double> u_best = u0;
   ContactFit best_fit = trial_cost(trial_of(u0), nullptr);
   {
     std::vector<std::vector<double>> offsets(axes.size());
     for (std::size_t k = 0; k < axes.size(); ++k) {
-      offsets[k] = axes[k] == 0   ? std::vector<double>{-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5}
+      // (a coating's E1 a decade: each new E1 node costs a sweep of the solver)
+      offsets[k] = axes[k] == 0   ? (coated ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
+                                            : std::vector<double>{-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5})
                    : axes[k] == 1 ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
                                   : std::vector<double>{-0.5, 0.0, 0.5};
     }

@@ -246,6 +246,20 @@ void check_recovery(const Truth& t, const char* name, int seeds) {
     check::below(std::abs(zm), 3.0, tag + ": tilt within 3 SE");
     check::below(std::abs(r.chi2_per_dof - 1.0), 0.15, tag + ": chi2/dof near 1 with the true noise");
     check::that(r.points_in_contact > 100 && r.points_in_contact < s.z.size(), tag + ": contact and free points");
+    // The fit's own model (a coating: E1 between sweep nodes, interpolated) against the model
+    // at the estimates from a sweep at that E1.
+    fit::AfmFitProblem at = p;
+    at.modulus = r.modulus;
+    at.work = r.work;
+    at.contact_point = r.contact_point;
+    at.baseline = r.baseline;
+    at.tilt = r.tilt;
+    if (at.coating) at.coating->film.youngs_modulus = r.modulus;
+    const std::vector<double> direct = fit::afm_model_force(at, s.z);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < direct.size(); ++i) worst = std::max(worst, std::abs(direct[i] - r.model_force[i]));
+    std::printf("%s seed %d: fit's model vs direct, worst %.3g N (noise %.3g N)\n", name, seed, worst, sigma);
+    check::below(worst, 0.1 * sigma, tag + ": the fit's model within a tenth of the noise of the direct model");
   }
 }
 

@@ -104,6 +104,9 @@ constexpr std::size_t kAdhesiveSearchPoints = 300;
 // Maugis's lambda below which JKR is outside its range (Johnson & Greenwood's map: the
 // Maugis-Dugdale model is needed below ~5; a warning).
 constexpr double kJkrMinimumLambda = 5.0;
+// JKR on a coating with E1 free: reduced-solver sweeps on nodes of E1 this many per decade,
+// interpolated (cubic in ln E1) between them.
+constexpr double kModulusNodesPerDecade = 8.0;
 
 struct AfmFitResult {
   double modulus = 0.0, contact_point = 0.0, baseline = 0.0;  // estimates (or fixed values)
