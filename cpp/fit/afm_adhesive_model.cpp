@@ -779,26 +779,8 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
   if (problem.free.baseline) columns.push_back(std::vector<double>(n, 1.0)), slots.push_back(&r.baseline_error);
   if (problem.free.tilt) columns.push_back(col_m), slots.push_back(&r.tilt_error);
 
-  const double mean = std::accumulate(f_data.begin(), f_data.end(), 0.0) / static_cast<double>(n);
-  double tss = 0.0;
-  r.residual.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (r.indentation[i] > r.jump_off_indentation) ++r.points_in_contact;
-    r.max_indentation = std::max(r.max_indentation, r.indentation[i]);
-    r.residual[i] = r.model_force[i] - f_data[i];
-    r.rss += r.residual[i] * r.residual[i];
-    tss += (f_data[i] - mean) * (f_data[i] - mean);
-  }
-  if (r.points_in_contact == 0) {
-    throw NumericalError("afm fit: the JKR fit leaves no point in contact; check the segment (retract) and the range");
-  }
-  const double dof = static_cast<double>(n) - free_count;
-  r.residual_sigma = std::sqrt(r.rss / dof);
-  r.r_squared = tss > 0.0 ? 1.0 - r.rss / tss : 0.0;
-  if (problem.noise_sigma > 0.0) {
-    r.chi2 = r.rss / (problem.noise_sigma * problem.noise_sigma);
-    r.chi2_per_dof = r.chi2 / dof;
-  }
+  afm_residual_statistics(r, f_data, problem.noise_sigma, free_count, r.jump_off_indentation,
+                          "the JKR fit leaves no point in contact; check the segment (retract) and the range");
   const std::vector<double> errors = afm_standard_errors(columns, r.residual_sigma);
   for (std::size_t a = 0; a < errors.size(); ++a) *slots[a] = errors[a];
   for (double v : {r.modulus, r.work, r.contact_point, r.baseline, r.tilt, r.rss, r.jump_off_force}) {

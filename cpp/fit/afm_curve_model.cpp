@@ -547,6 +547,29 @@ std::vector<double> afm_standard_errors(const std::vector<std::vector<double>>& 
   return errors;
 }
 
+void afm_residual_statistics(AfmFitResult& r, const std::vector<double>& force, double noise_sigma, int free_count,
+                             double contact_threshold, const std::string& no_contact) {
+  const std::size_t n = force.size();
+  const double mean = std::accumulate(force.begin(), force.end(), 0.0) / static_cast<double>(n);
+  double tss = 0.0;
+  r.residual.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (r.indentation[i] > contact_threshold) ++r.points_in_contact;
+    r.max_indentation = std::max(r.max_indentation, r.indentation[i]);
+    r.residual[i] = r.model_force[i] - force[i];
+    r.rss += r.residual[i] * r.residual[i];
+    tss += (force[i] - mean) * (force[i] - mean);
+  }
+  if (r.points_in_contact == 0) throw NumericalError("afm fit: " + no_contact);
+  const double dof = static_cast<double>(n) - free_count;
+  r.residual_sigma = std::sqrt(r.rss / dof);
+  r.r_squared = tss > 0.0 ? 1.0 - r.rss / tss : 0.0;
+  if (noise_sigma > 0.0) {
+    r.chi2 = r.rss / (noise_sigma * noise_sigma);
+    r.chi2_per_dof = r.chi2 / dof;
+  }
+}
+
 }  // namespace internal
 
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
@@ -675,28 +698,10 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     r.solver_calls = forces.solver_calls();
   }
 
-  const double mean = std::accumulate(force.begin(), force.end(), 0.0) / static_cast<double>(n);
-  double tss = 0.0;
-  r.residual.resize(n);
   r.indentation.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    r.indentation[i] = r.contact_point - z[i];
-    if (r.indentation[i] > 0.0) ++r.points_in_contact;
-    r.max_indentation = std::max(r.max_indentation, r.indentation[i]);
-    r.residual[i] = r.model_force[i] - force[i];
-    r.rss += r.residual[i] * r.residual[i];
-    tss += (force[i] - mean) * (force[i] - mean);
-  }
-  if (r.points_in_contact == 0) {
-    throw NumericalError("afm fit: the data show no contact in the fitted range; widen the range or check the segment");
-  }
-  const double dof = static_cast<double>(n) - free_count;
-  r.residual_sigma = std::sqrt(r.rss / dof);
-  r.r_squared = tss > 0.0 ? 1.0 - r.rss / tss : 0.0;
-  if (problem.noise_sigma > 0.0) {
-    r.chi2 = r.rss / (problem.noise_sigma * problem.noise_sigma);
-    r.chi2_per_dof = r.chi2 / dof;
-  }
+  for (std::size_t i = 0; i < n; ++i) r.indentation[i] = r.contact_point - z[i];
+  internal::afm_residual_statistics(r, force, problem.noise_sigma, free_count, 0.0,
+                                    "the data show no contact in the fitted range; widen the range or check the segment");
   const std::vector<double> errors = internal::afm_standard_errors(columns, r.residual_sigma);
   for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
