@@ -4,6 +4,7 @@
 // a tabulated blunted cone (the Sneddon table is built in every fit). The file is read once.
 #include <benchmark/benchmark.h>
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,13 @@ namespace {
 struct Approach {
   std::vector<double> z, f;
 };
+
+Approach segment_of(const std::string& file, coatcontact::afm::SegmentKind kind) {
+  const auto curve = coatcontact::afm::read_force_curves(std::string(CC_AFM_DATA_DIR) + "/" + file).at(0);
+  const auto* s = curve.find_segment(kind);
+  const auto tip = curve.tip_position();
+  return Approach{{tip.begin() + s->begin, tip.begin() + s->end}, {curve.force.begin() + s->begin, curve.force.begin() + s->end}};
+}
 
 const Approach& spot3_approach() {
   static const Approach a = [] {
@@ -52,8 +60,82 @@ void BM_afm_fit_blunted_cone_2000_point_approach(benchmark::State& state) {
   run_fit(state, coatcontact::fit::afm_shape(coatcontact::make_blunted_cone(50e-9, 1.2217304763960306)));
 }
 
+void BM_afm_fit_jkr_hydrogel_3000_point_retract(benchmark::State& state) {
+  static const Approach a = segment_of("fmt-jpk-cc_pr14-polymergel-2021.06.30.jpk-force", coatcontact::afm::SegmentKind::kRetract);
+  coatcontact::fit::AfmFitProblem problem;
+  problem.model = coatcontact::fit::AfmModel::kJkr;
+  problem.tip = coatcontact::fit::afm_paraboloid(10e-6);
+  problem.modulus = 10e3;
+  problem.poisson = 0.5;
+  problem.spring_constant = 0.061;
+  problem.free = {true, true, true, false, true, true};
+  double work = 0.0;
+  for (auto _ : state) {
+    work = coatcontact::fit::afm_fit(a.z, a.f, problem).work;
+    benchmark::DoNotOptimize(work);
+  }
+  state.counters["points"] = static_cast<double>(a.z.size());
+  state.counters["w_J_m2"] = work;
+}
+
+// A film (E1 = 100 kPa, nu 0.5, t = 4 um) on E0 = 1 MPa, R = 10 um, w = 10 mJ/m2, k = 1 N/m:
+// 2000 tip positions over 3 um below to 3 um above the contact point, noise 5 nN.
+coatcontact::fit::AfmFitProblem coating_truth() {
+  coatcontact::fit::AfmFitProblem p;
+  p.model = coatcontact::fit::AfmModel::kJkr;
+  p.tip = coatcontact::fit::afm_paraboloid(10e-6);
+  coatcontact::fit::AfmCoating c;
+  c.film = {100e3, 0.5};
+  c.substrate.material = {1e6, 0.3};
+  c.thickness = 4e-6;
+  p.coating = c;
+  p.poisson = 0.5;
+  p.work = 10e-3;
+  p.spring_constant = 1.0;
+  p.contact_point = 1e-6;
+  p.baseline = 2e-9;
+  p.tilt = 0.01;
+  return p;
+}
+
+const Approach& coating_retract() {
+  static const Approach a = [] {
+    Approach out;
+    for (int i = 0; i < 2000; ++i) out.z.push_back(-2e-6 + 6e-6 * i / 1999.0);
+    out.f = coatcontact::fit::afm_model_force(coating_truth(), out.z);
+    std::mt19937_64 rng(1);
+    std::normal_distribution<double> noise(0.0, 5e-9);
+    for (double& v : out.f) v += noise(rng);
+    return out;
+  }();
+  return a;
+}
+
+void run_coating(benchmark::State& state, bool modulus_free) {
+  const Approach& a = coating_retract();
+  coatcontact::fit::AfmFitProblem problem = coating_truth();
+  problem.coating->film.youngs_modulus = modulus_free ? 250e3 : 100e3;
+  problem.work = 0.0;
+  problem.tilt = 0.0;
+  problem.free = {modulus_free, true, true, false, true, true};
+  long calls = 0;
+  for (auto _ : state) {
+    const auto r = coatcontact::fit::afm_fit(a.z, a.f, problem);
+    calls = r.solver_calls;
+    benchmark::DoNotOptimize(calls);
+  }
+  state.counters["points"] = static_cast<double>(a.z.size());
+  state.counters["solves"] = static_cast<double>(calls);
+}
+
+void BM_afm_fit_jkr_coating_E1_w_free(benchmark::State& state) { run_coating(state, true); }
+void BM_afm_fit_jkr_coating_w_free(benchmark::State& state) { run_coating(state, false); }
+
 }  // namespace
 
+BENCHMARK(BM_afm_fit_jkr_hydrogel_3000_point_retract)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_afm_fit_jkr_coating_E1_w_free)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_afm_fit_jkr_coating_w_free)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_afm_fit_hertz_2000_point_approach)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_afm_fit_blunted_cone_2000_point_approach)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

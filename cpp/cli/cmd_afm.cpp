@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -277,7 +278,13 @@ int run_export(const Args& args) {
 
 const std::vector<OptionSpec> kFitSpec = {
     {"--index", "N", "fit only curve N of a map (0-based; `afm show` lists them); without it every curve, one row each", false},
-    {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default); jkr is not available yet", false},
+    {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default) or jkr (adhesive: JKR of a sphere on the half-space or "
+                         "the coating through the cantilever's spring k, the stable branch and its jump-off; default segment "
+                         "retract)", false},
+    {"--work", "W", "jkr: the work of adhesion w [J/m2] (the value if fixed; if free, the centre of its search; default "
+                    "from the segment's most tensile force)", false},
+    {"--range", "Z0", "jkr: the surface-force range z0 of Tabor's and Maugis's lambda [m] (default 0.3nm)", false},
+    {"--tilt", "M", "jkr: the baseline slope [N/m] when it is fixed (default 0; free by default)", false},
     {"--radius", "R", "tip radius of a spherical (paraboloidal) tip [m], e.g. 10um", false},
     {"--shape", "SPEC", "the tip instead: sphere:R, cone:BETA, pyramid:THETA (face half angle; the cone of equal area), "
                         "punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (as `contact --shape`)", false},
@@ -286,7 +293,8 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--substrate", "E0,nu0|rigid", "the coating's substrate (fixed)", false},
     {"--thickness", "t", "the coating's thickness [m] (the value if fixed, else the centre of its search)", false},
     {"--free", "LIST", "free parameters: E, contact_point, baseline on a half-space (default all three); "
-                       "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline)", false},
+                       "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline); "
+                       "jkr adds w and tilt (default E or E1, w, contact_point, baseline, tilt)", false},
     {"--contact-point", "Z", "the contact point [m, tip position] when it is fixed", false},
     {"--baseline", "B", "the force baseline [N] when it is fixed", false},
     {"--segment", "KIND", "approach (default) or retract", false},
@@ -409,12 +417,30 @@ std::pair<double, std::string> prefix_of(double magnitude) {
 // The model, tip, sample, free parameters, segment and fit range of `afm fit` (one curve or a batch).
 AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const std::string model = arguments.get("--model").value_or("hertz");
-  if (model == "jkr") {
-    throw InputError("--model: 'jkr' is not available in afm fit yet (the adhesive retract fit); allowed: hertz");
+  if (model == "md" || model == "maugis-dugdale") {
+    throw InputError("--model: '" + model + "' (Maugis-Dugdale through the cantilever) is not available in afm fit; "
+                     "allowed: hertz, jkr (jkr reports Maugis's lambda for the surface-force range --range)");
   }
-  if (model != "hertz") throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz");
+  if (model != "hertz" && model != "jkr") throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr");
+  const bool jkr = model == "jkr";
   fit::AfmFitProblem problem;
   problem.tip = parse_tip(arguments);
+  if (jkr) {
+    problem.model = fit::AfmModel::kJkr;
+    if (problem.tip.kind != fit::AfmTip::Kind::kParaboloid) {
+      throw InputError("--model: jkr takes a sphere tip (--radius R or --shape sphere:R); got " + problem.tip.description);
+    }
+    if (auto text = arguments.get("--work")) problem.work = parse_quantity(*text, Quantity::kEnergy, "--work");
+    if (auto text = arguments.get("--range")) {
+      problem.surface_force_range = parse_quantity(*text, Quantity::kLength, "--range");
+      if (!(problem.surface_force_range > 0.0)) throw InputError("--range: '" + *text + "' is not allowed; expected a length > 0, e.g. 0.3nm");
+    }
+    if (auto text = arguments.get("--tilt")) problem.tilt = parse_number(*text, "--tilt");
+  } else {
+    for (const char* option : {"--work", "--range", "--tilt"}) {
+      if (arguments.has(option)) throw InputError(std::string(option) + ": needs --model jkr");
+    }
+  }
   const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
   if (coated) {
     if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a coating (--film ...)");
@@ -437,8 +463,10 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   }
   problem.free = {false, false, false, false};
   const std::string modulus_name = coated ? "E1" : "E";
-  const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
-  const std::string free_text = arguments.get("--free").value_or(modulus_name + ",contact_point,baseline");
+  const std::string allowed = std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") +
+                              (jkr ? ", w, tilt" : "");
+  const std::string free_text =
+      arguments.get("--free").value_or(modulus_name + (jkr ? ",w,contact_point,baseline,tilt" : ",contact_point,baseline"));
   std::size_t start = 0;
   while (start <= free_text.size()) {
     const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
@@ -447,13 +475,20 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     item.erase(item.find_last_not_of(" \t") + 1);
     if (item == modulus_name) problem.free.modulus = true;
     else if (item == "t" && coated) problem.free.thickness = true;
+    else if (item == "w" && jkr) problem.free.work = true;
+    else if (item == "tilt" && jkr) problem.free.tilt = true;
     else if (item == "contact_point") problem.free.contact_point = true;
     else if (item == "baseline") problem.free.baseline = true;
     else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
     start = comma + 1;
   }
-  if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+  if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness &&
+      !problem.free.work && !problem.free.tilt) {
     throw InputError("--free: '" + free_text + "' names no parameter; allowed: " + allowed);
+  }
+  if (jkr && !problem.free.work && !(problem.work > 0.0)) throw InputError("--free: a fixed w needs --work W");
+  if (jkr && problem.free.tilt && arguments.has("--tilt")) {
+    throw InputError("--tilt: the tilt is free; drop it from --free to fix it");
   }
   if (auto text = arguments.get("--contact-point")) {
     if (problem.free.contact_point) throw InputError("--contact-point: the contact point is free; drop it from --free to fix it");
@@ -465,7 +500,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     if (problem.free.baseline) throw InputError("--baseline: the baseline is free; drop it from --free to fix it");
     problem.baseline = parse_number(*text, "--baseline");
   }
-  const std::string segment_name = arguments.get("--segment").value_or("approach");
+  const std::string segment_name = arguments.get("--segment").value_or(jkr ? "retract" : "approach");
   afm::SegmentKind kind = afm::SegmentKind::kApproach;
   if (segment_name == "retract") kind = afm::SegmentKind::kRetract;
   else if (segment_name != "approach") throw InputError("--segment: '" + segment_name.substr(0, 60) + "' is not allowed; expected approach or retract");
@@ -493,7 +528,7 @@ int run_fit_curve(const Args& args) {
     const Arguments arguments(args, kFitSpec, kMaxFitInputs);
     if (arguments.help()) {
       std::cout << usage("afm fit",
-                         "FILE|FILE...|FOLDER [--index N] [--model hertz] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                         "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                          "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                          "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
                          "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
@@ -511,6 +546,11 @@ int run_fit_curve(const Args& args) {
                          "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
                          "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
                          "searched on a log grid within a factor 10 of the given values, then refined.\n"
+                         "--model jkr (retract by default): F(z) = b + m (z - z_c) + F_JKR(z_c - z), the JKR force of\n"
+                         "the sphere on the half-space or the coating on the branch stable under the cantilever's\n"
+                         "spring k (the file's, or --spring-constant), zero past its jump-off; E (E1, t), w, z_c, b\n"
+                         "and the tilt m free by default. Reports Tabor's mu and Maugis's lambda for the surface-\n"
+                         "force range --range and warns when lambda is below the JKR range.\n"
                          "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
                          "by extension) give one row per curve instead: file, curve, grid index and position,\n"
                          "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
@@ -543,6 +583,7 @@ int run_fit_curve(const Args& args) {
     const std::string& segment_name = setup.segment_name;
     const afm::SegmentKind kind = setup.kind;
     const fit::AfmRange& range = setup.range;
+    const bool jkr = problem.model == fit::AfmModel::kJkr;
     std::optional<std::string> plot_path = arguments.get("--plot");
     std::string term;
     if (plot_path) {
@@ -569,6 +610,12 @@ int run_fit_curve(const Args& args) {
     // The preprocessing's estimates: the reference of the relative ranges and the noise of chi2.
     const afm::PreprocessedCurve steps = afm::preprocess(curve);
     problem.noise_sigma = steps.baseline_sigma;
+    if (jkr) {
+      problem.spring_constant = curve.metadata.spring_constant;
+      if (!(problem.spring_constant > 0.0)) {
+        throw InputError(path + ": the jkr model needs the cantilever's spring constant; the file has none (give --spring-constant K)");
+      }
+    }
     const std::vector<double> tip = curve.tip_position();
     const std::vector<double> z_segment(tip.begin() + segment->begin, tip.begin() + segment->end);
     const std::vector<double> f_segment(curve.force.begin() + segment->begin, curve.force.begin() + segment->end);
@@ -589,6 +636,12 @@ int run_fit_curve(const Args& args) {
     fitted.modulus = r.modulus;
     fitted.contact_point = r.contact_point;
     fitted.baseline = r.baseline;
+    fitted.work = r.work;
+    fitted.tilt = r.tilt;
+    if (fitted.coating) {
+      fitted.coating->film.youngs_modulus = r.modulus;
+      fitted.coating->thickness = r.thickness;
+    }
     const std::vector<double> model_segment = fit::afm_model_force(fitted, z_segment);
     const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract);
     fit::AfmPulloff pulloff;
@@ -599,10 +652,13 @@ int run_fit_curve(const Args& args) {
     }
 
     std::vector<std::pair<std::string, std::string>> items = {
-        {"coatcontact afm fit", "adhesionless Hertz/Sneddon fit of one AFM force-curve segment (THEORY.md section 15)"}};
+        {"coatcontact afm fit", jkr ? "adhesive JKR fit through the cantilever of one AFM force-curve segment (THEORY.md section 15)"
+                                    : "adhesionless Hertz/Sneddon fit of one AFM force-curve segment (THEORY.md section 15)"}};
     add_curve_header(items, curve);
     items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
-    items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+    items.push_back({"model", jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
+                                    "under the spring k (0 past its jump-off)"
+                                  : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
     items.push_back({"tip", problem.tip.description});
     if (problem.coating) {
       const fit::AfmCoating& c = *problem.coating;
@@ -629,6 +685,11 @@ int run_fit_curve(const Args& args) {
       items.push_back({"t [m]", problem.free.thickness ? with_error(r.thickness, r.thickness_error, "t")
                                                        : format_parameter(r.thickness, "t") + " (fixed)"});
     }
+    if (jkr) {
+      items.push_back({"w [J/m2]", problem.free.work ? with_error(r.work, r.work_error, "w") : format_parameter(r.work, "w") + " (fixed)"});
+      items.push_back({"tilt [N/m]", (problem.free.tilt ? with_error(r.tilt, r.tilt_error, "tilt") : format_parameter(r.tilt, "tilt") + " (fixed)") +
+                                         " (baseline slope about the contact point)"});
+    }
     items.push_back({"contact point [m]", problem.free.contact_point ? with_error(r.contact_point, r.contact_point_error, "contact point")
                                                                      : format_parameter(r.contact_point, "contact point") + " (fixed)"});
     items.push_back({"baseline [N]", problem.free.baseline ? with_error(r.baseline, r.baseline_error, "baseline")
@@ -639,6 +700,19 @@ int run_fit_curve(const Args& args) {
     items.push_back({"chi2", format_parameter(r.chi2, "chi2") + " (chi2/dof " + format_parameter(r.chi2_per_dof, "chi2/dof") + ", " +
                                  std::to_string(r.points - static_cast<std::size_t>(r.free_count)) + " dof)"});
     items.push_back({"R^2", format_parameter(r.r_squared, "R^2")});
+    if (jkr) {
+      items.push_back({"spring constant [N/m]", format_parameter(problem.spring_constant, "k")});
+      items.push_back({"model jump-off", format_parameter(r.jump_off_force, "jump-off force") + " N above the baseline at indentation " +
+                                             format_parameter(r.jump_off_indentation, "jump-off indentation") + " m"});
+      items.push_back({"Tabor mu", format_parameter(r.tabor_mu, "mu") + " (surface-force range z0 = " +
+                                       format_parameter(problem.surface_force_range, "z0") + " m, --range)"});
+      items.push_back({"Maugis lambda", format_parameter(r.maugis_lambda, "lambda") + " (Dugdale stress w/(0.97 z0); JKR needs lambda >= " +
+                                            format_parameter(fit::kJkrMinimumLambda, "lambda") + ")"});
+      for (const std::string& warning : r.warnings) {
+        items.push_back({"warning", warning});
+        std::cerr << "coatcontact afm fit: warning: " << warning << "\n";
+      }
+    }
     if (pulloff.found) {
       items.push_back({"pull-off (retract, measured) [N]", format_parameter(pulloff.force, "pull-off force") + " at tip position " +
                                                                 format_parameter(pulloff.tip_position, "pull-off position") + " m"});
@@ -670,13 +744,19 @@ int run_fit_curve(const Args& args) {
       const auto [z_scale, z_prefix] = prefix_of(z_big);
       // The contact region: from the deepest point to 2 largest indentations above z_c.
       const double z_low = *std::min_element(z_segment.begin(), z_segment.end());
-      const double z_high = r.contact_point + 2.0 * std::max(r.contact_point - z_low, 1e-12);
+      double z_high = r.contact_point + 2.0 * std::max(r.contact_point - z_low, 1e-12);
+      if (jkr) z_high = std::max(z_high, r.contact_point - 2.0 * r.jump_off_indentation);
       const auto [f_scale, f_prefix] = prefix_of(f_big);
       const std::string title = std::filesystem::path(path).filename().string() + " #" + std::to_string(index) + ", " +
                                 segment_name + ": " + problem.tip.description;
       char label[400];
-      char thickness_text[80] = "";
+      char thickness_text[160] = "";
       if (problem.coating) std::snprintf(thickness_text, sizeof thickness_text, ", t = %.4g ± %.2g µm", r.thickness * 1e6, r.thickness_error * 1e6);
+      if (jkr) {
+        const std::size_t used = std::strlen(thickness_text);
+        std::snprintf(thickness_text + used, sizeof thickness_text - used, ", w = %.3g ± %.2g mJ/m², λ = %.3g", r.work * 1e3,
+                      r.work_error * 1e3, r.maugis_lambda);
+      }
       std::snprintf(label, sizeof label, "%s = %.4g ± %.2g Pa (ν = %g)%s, z_c = %.6g ± %.2g µm, σ = %.3g %sN, χ²/dof = %.3g",
                     modulus_name.c_str(), r.modulus, r.modulus_error, problem.poisson, thickness_text, r.contact_point * 1e6,
                     r.contact_point_error * 1e6, r.residual_sigma * f_scale, f_prefix.c_str(), r.chi2_per_dof);
@@ -709,8 +789,9 @@ int run_afm(const Args& args) {
       "Real AFM force curves from the instruments' files.\n"
       "  show      metadata, calibration and segments (the curves of a map)\n"
       "  export    one curve as TSV in SI units (--index N of a map)\n"
-      "  fit       Hertz/Sneddon fit of one segment: E, contact point, baseline (one row per\n"
-      "            curve for a map, several files or a folder)\n";
+      "  fit       Hertz/Sneddon fit of one segment (E, contact point, baseline), or JKR through the
+            cantilever of the retract (--model jkr: also w and the baseline tilt); one row per
+            curve for a map, several files or a folder
   if (args.empty()) {
     std::cerr << overview;
     return kExitUsage;

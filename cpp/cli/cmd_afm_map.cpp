@@ -307,7 +307,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
 
   // The header (without the flagged count, which only the end knows).
   std::vector<std::pair<std::string, std::string>> items = {
-      {"coatcontact afm fit", "one row per curve: Hertz/Sneddon fit of each curve of the files (THEORY.md section 15)"}};
+      {"coatcontact afm fit", settings.problem.model == fit::AfmModel::kJkr
+                                  ? "one row per curve: adhesive JKR fit through the cantilever of each curve of the files (THEORY.md section 15)"
+                                  : "one row per curve: Hertz/Sneddon fit of each curve of the files (THEORY.md section 15)"}};
   items.push_back({"files", std::to_string(files.size())});
   for (std::size_t f = 0; f < files.size(); ++f) {
     items.push_back({"file " + std::to_string(f), files[f] + " (" + std::to_string(counts[f]) + " curves)"});
@@ -315,7 +317,12 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   items.push_back({"curves", std::to_string(total)});
   if (calibration.spring_constant) items.push_back({"spring constant [N/m]", format_parameter(*calibration.spring_constant, "k") + " (user, every curve)"});
   if (calibration.sensitivity) items.push_back({"sensitivity [m/V]", format_parameter(*calibration.sensitivity, "sensitivity") + " (user, every curve)"});
-  items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+  if (settings.problem.model == fit::AfmModel::kJkr) {
+    items.push_back({"model", "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
+                              "under the cantilever's spring k (each curve's), 0 past its jump-off"});
+  } else {
+    items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+  }
   items.push_back({"tip", settings.problem.tip.description});
   if (settings.problem.coating) {
     const fit::AfmCoating& c = *settings.problem.coating;

@@ -45,6 +45,8 @@ std::vector<AfmBatchParameter> afm_batch_parameters(const AfmFitProblem& problem
     parameters.push_back({"contact_point", "m", &AfmFitResult::contact_point, &AfmFitResult::contact_point_error});
   }
   if (problem.free.baseline) parameters.push_back({"baseline", "N", &AfmFitResult::baseline, &AfmFitResult::baseline_error});
+  if (problem.free.work) parameters.push_back({"w", "J/m2", &AfmFitResult::work, &AfmFitResult::work_error});
+  if (problem.free.tilt) parameters.push_back({"tilt", "N/m", &AfmFitResult::tilt, &AfmFitResult::tilt_error});
   return parameters;
 }
 
@@ -117,6 +119,12 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   }
   AfmFitProblem problem = settings.problem;
   problem.noise_sigma = steps.baseline_sigma;
+  if (problem.model == AfmModel::kJkr && !(problem.spring_constant > 0.0)) {
+    problem.spring_constant = curve.metadata.spring_constant;
+    if (!(problem.spring_constant > 0.0)) {
+      return flagged(std::move(row), AfmFlag::kCalibration, "the jkr model needs the cantilever's spring constant; the curve has none");
+    }
+  }
   const std::vector<double> tip = curve.tip_position();
   const std::vector<double> z_segment(tip.begin() + static_cast<std::ptrdiff_t>(segment->begin),
                                       tip.begin() + static_cast<std::ptrdiff_t>(segment->end));

@@ -3,6 +3,8 @@
 // (E*, b) solved in closed form at each z_c. See coatcontact/afm_fit.hpp.
 #include "coatcontact/afm_fit.hpp"
 
+#include "afm_internal.hpp"
+
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_interp.h>
 #include <gsl/gsl_linalg.h>
@@ -461,6 +463,7 @@ std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vec
     delta[i] = std::max(0.0, problem.contact_point - tip_position[i]);
     max_delta = std::max(max_delta, delta[i]);
   }
+  if (problem.model == AfmModel::kJkr) return internal::afm_jkr_model_force(problem, tip_position);
   std::vector<double> f(delta.size(), problem.baseline);
   if (problem.coating) {
     CoatingForces forces(problem);
@@ -511,8 +514,12 @@ void check_fit_input(const std::vector<double>& z, const std::vector<double>& fo
   }
 }
 
+}  // namespace
+
+namespace internal {
+
 // s^2 (J^T J)^-1 on the column-scaled normal matrix (Cholesky): the standard errors.
-std::vector<double> standard_errors(const std::vector<std::vector<double>>& columns, double sigma) {
+std::vector<double> afm_standard_errors(const std::vector<std::vector<double>>& columns, double sigma) {
   const std::size_t p = columns.size();
   if (p == 0) return {};
   const std::size_t n = columns.front().size();
@@ -540,13 +547,41 @@ std::vector<double> standard_errors(const std::vector<std::vector<double>>& colu
   return errors;
 }
 
-}  // namespace
+void afm_residual_statistics(AfmFitResult& r, const std::vector<double>& force, double noise_sigma, int free_count,
+                             double contact_threshold, const std::string& no_contact) {
+  const std::size_t n = force.size();
+  const double mean = std::accumulate(force.begin(), force.end(), 0.0) / static_cast<double>(n);
+  double tss = 0.0;
+  r.residual.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (r.indentation[i] > contact_threshold) ++r.points_in_contact;
+    r.max_indentation = std::max(r.max_indentation, r.indentation[i]);
+    r.residual[i] = r.model_force[i] - force[i];
+    r.rss += r.residual[i] * r.residual[i];
+    tss += (force[i] - mean) * (force[i] - mean);
+  }
+  if (r.points_in_contact == 0) throw NumericalError("afm fit: " + no_contact);
+  const double dof = static_cast<double>(n) - free_count;
+  r.residual_sigma = std::sqrt(r.rss / dof);
+  r.r_squared = tss > 0.0 ? 1.0 - r.rss / tss : 0.0;
+  if (noise_sigma > 0.0) {
+    r.chi2 = r.rss / (noise_sigma * noise_sigma);
+    r.chi2_per_dof = r.chi2 / dof;
+  }
+}
+
+}  // namespace internal
 
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
   const auto start = std::chrono::steady_clock::now();
+  const bool adhesive = problem.model == AfmModel::kJkr;
   const int free_count = int(problem.free.modulus) + int(problem.free.contact_point) + int(problem.free.baseline) +
-                         int(problem.free.thickness);
+                         int(problem.free.thickness) + int(adhesive && problem.free.work) + int(adhesive && problem.free.tilt);
   check_fit_input(z, force, problem, free_count);
+  if (adhesive) return internal::afm_fit_jkr(z, force, problem, free_count);
+  if (problem.free.work || problem.free.tilt) {
+    throw InputError("afm fit: w and the baseline tilt are parameters of the adhesive (jkr) model only");
+  }
   const std::size_t n = z.size();
   const auto [z_lo_it, z_hi_it] = std::minmax_element(z.begin(), z.end());
   const double z_lo = *z_lo_it, z_hi = *z_hi_it, span = z_hi - z_lo;
@@ -663,29 +698,11 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     r.solver_calls = forces.solver_calls();
   }
 
-  const double mean = std::accumulate(force.begin(), force.end(), 0.0) / static_cast<double>(n);
-  double tss = 0.0;
-  r.residual.resize(n);
   r.indentation.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    r.indentation[i] = r.contact_point - z[i];
-    if (r.indentation[i] > 0.0) ++r.points_in_contact;
-    r.max_indentation = std::max(r.max_indentation, r.indentation[i]);
-    r.residual[i] = r.model_force[i] - force[i];
-    r.rss += r.residual[i] * r.residual[i];
-    tss += (force[i] - mean) * (force[i] - mean);
-  }
-  if (r.points_in_contact == 0) {
-    throw NumericalError("afm fit: the data show no contact in the fitted range; widen the range or check the segment");
-  }
-  const double dof = static_cast<double>(n) - free_count;
-  r.residual_sigma = std::sqrt(r.rss / dof);
-  r.r_squared = tss > 0.0 ? 1.0 - r.rss / tss : 0.0;
-  if (problem.noise_sigma > 0.0) {
-    r.chi2 = r.rss / (problem.noise_sigma * problem.noise_sigma);
-    r.chi2_per_dof = r.chi2 / dof;
-  }
-  const std::vector<double> errors = standard_errors(columns, r.residual_sigma);
+  for (std::size_t i = 0; i < n; ++i) r.indentation[i] = r.contact_point - z[i];
+  internal::afm_residual_statistics(r, force, problem.noise_sigma, free_count, 0.0,
+                                    "the data show no contact in the fitted range; widen the range or check the segment");
+  const std::vector<double> errors = internal::afm_standard_errors(columns, r.residual_sigma);
   for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

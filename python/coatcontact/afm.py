@@ -30,6 +30,7 @@ sensitivity=, which override the file's values and are recorded as source "user"
 """
 import math
 import os
+import warnings
 
 import numpy as np
 
@@ -142,8 +143,8 @@ def _segment_slice(curve, segment, n):
 
 def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=None, substrate=None,
         thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
-        segment="approach", spring_constant=None, tip_range=None, indentation_range=None,
-        max_indentation=None, max_force=None, noise=None):
+        segment=None, spring_constant=None, tip_range=None, indentation_range=None,
+        max_indentation=None, max_force=None, noise=None, work=None, surface_force_range=0.3e-9, tilt=None):
     """Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):
     F(z) = baseline + E/(1 - nu^2) g(contact_point - z) on the tip-position axis z (decreasing
     toward the sample), g the Hertz/Sneddon force of the tip per reduced modulus, 0 out of
@@ -153,7 +154,16 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     curve      a Curve of read(); any mapping with "force" and "tip position" (or heights and
                spring_constant=), and optionally "segment" (0 approach, 1 retract, as afmformats);
                or plain arrays (tip_position, force).
-    model      "hertz" (the adhesive "jkr" retract fit is not available yet).
+    model      "hertz" (adhesionless) or "jkr": the adhesive retract, F = baseline + tilt (z - contact_point)
+               + F_JKR(contact_point - z), JKR of the sphere on the half-space or the coating on the
+               branch stable under the cantilever's spring k (the curve's "spring constant" or
+               spring_constant=), zero past its jump-off (THEORY.md section 15). Its free names add
+               "w" and "tilt" (default: the modulus, w, contact_point, baseline, tilt); work= is w
+               [J/m2] (the value if fixed, else the centre of its search; default from the most
+               tensile force), tilt= [N/m] a fixed tilt, surface_force_range= z0 [m] of the
+               reported Tabor mu and Maugis lambda (default 0.3 nm). The result adds "w", "tilt"
+               (estimates, errors), "tabor_mu", "maugis_lambda", "jump_off" ({"F" [N] above the
+               baseline, "indentation" [m]}) and "warnings" (lambda outside JKR's range, ...).
     radius     tip radius R [m] (a paraboloid); or shape=("sphere", R), ("cone", beta),
                ("pyramid", theta: face half angle; the cone of equal area), ("punch", A),
                ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
@@ -165,7 +175,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     free       names among "E" (half-space) or "E1", "t" (coating), "contact_point", "baseline"
                (default: the modulus, contact_point and baseline); a fixed contact_point [m] or
                baseline [N] is given by the keyword of that name.
-    segment    "approach" (default) or "retract".
+    segment    "approach" (default for hertz) or "retract" (default for jkr).
     tip_range (min, max) [m]; indentation_range (min, max) [m] and max_indentation [m] relative
                to the preprocessing's contact point; max_force [N] above its baseline. Without
                a range the whole segment is fitted. Ranges combine.
@@ -179,6 +189,14 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     points_in_contact, contact_point [m], pulloff ({"F" [N] less the baseline, "z" [m]} of the
     retract segment, or None), and per fitted point index (into the curve), tip_position, F,
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
+    if model in ("md", "maugis-dugdale"):
+        raise ValueError(f"model: {model!r} (Maugis-Dugdale through the cantilever) is not available in afm.fit; "
+                         "allowed: 'hertz', 'jkr' (jkr reports Maugis's lambda for surface_force_range=)")
+    jkr = model == "jkr"
+    if segment is None:
+        segment = "retract" if jkr else "approach"
+    if not jkr and (work is not None or tilt is not None):
+        raise ValueError("work, tilt: parameters of model='jkr' only")
     tip, E, nu, free, coating = _problem("afm.fit", model, radius, shape, halfspace, film, substrate, thickness, free,
                                          contact_point)
 
@@ -217,6 +235,18 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
             if indentation_range is not None or max_indentation is not None or max_force is not None:
                 raise
     z, f = z_all[part], f_all[part]
+    adhesion = None
+    if jkr:
+        meta = getattr(mapping, "metadata", None) or {}
+        k = spring_constant if spring_constant is not None else meta.get("spring constant")
+        if k is None:
+            raise ValueError("spring_constant: the jkr model needs the cantilever's spring constant (N/m); "
+                             "the curve has none, pass spring_constant=")
+        if "w" not in free and work is None:
+            raise ValueError("work: a fixed w needs work= (J/m2)")
+        if "tilt" in free and tilt is not None:
+            raise ValueError("tilt: the tilt is free; drop it from free to fix it")
+        adhesion = (float(work or 0.0), float(k), float(surface_force_range), float(tilt or 0.0))
     relative = indentation_range is not None or max_indentation is not None or max_force is not None
     if relative and not have_reference:
         # Plain arrays: the reference is a first fit of the whole segment.
@@ -231,10 +261,12 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     try:
         r = _afm.fit(z, f, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0),
                      float(noise or 0.0), lo_t, hi_t, lo_i, hi_i, None if max_force is None else float(max_force),
-                     float(reference_contact), float(reference_baseline), coating)
+                     float(reference_contact), float(reference_baseline), coating, adhesion)
     except RuntimeError as e:
         raise NumericalError(str(e)) from None
     r["index"] = r["index"] + (part.start or 0)
+    for message in r.get("warnings", []):
+        warnings.warn(message, RuntimeWarning, stacklevel=2)
     r["contact_point"] = r["estimates"]["contact_point"]
     r["pulloff"] = None
     retract = None
@@ -253,10 +285,10 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
 
 def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
     """The tip, sample and free parameters of fit and fit_map as _afm takes them."""
-    if model == "jkr":
-        raise ValueError(f"model: 'jkr' is not available in {caller} yet (the adhesive retract fit); allowed: 'hertz'")
-    if model != "hertz":
-        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz'")
+    if model not in ("hertz", "jkr"):
+        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr'")
+    if model == "jkr" and free == ("E", "contact_point", "baseline"):
+        free = ("E", "w", "contact_point", "baseline", "tilt")
     coating = None
     if film is not None or substrate is not None or thickness is not None:
         if halfspace is not None:
@@ -268,6 +300,8 @@ def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness
         E, nu = coating[0], coating[1]
         if free == ("E", "contact_point", "baseline"):
             free = ("E1", "contact_point", "baseline")
+        elif free == ("E", "w", "contact_point", "baseline", "tilt"):
+            free = ("E1", "w", "contact_point", "baseline", "tilt")
     elif halfspace is None:
         raise ValueError("halfspace: give the sample as halfspace=(E, nu), or a coating film=, substrate=, thickness=")
     else:
@@ -356,6 +390,9 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     "t" [m], "contact_point" [m], "baseline" [N]) and its "_error", contact_point [m] when
     fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m], points;
     NaN where a flagged curve has no value."""
+    if model == "jkr":
+        raise ValueError("model: 'jkr' is not available in afm.fit_map; allowed: 'hertz' (afm.fit fits one retract "
+                         "with jkr, and the CLI's `afm fit --model jkr` fits maps)")
     tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
                                          free, contact_point)
     lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]),

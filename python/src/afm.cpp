@@ -222,7 +222,7 @@ std::optional<double> optional_number(const py::object& v) {
 // (E0, nu0) or None for rigid, t)), free parameters and fixed values. InputError when not allowed.
 coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulus, double poisson,
                                            const std::vector<std::string>& free, double contact_point, double baseline,
-                                           const py::object& coating) {
+                                           const py::object& coating, const py::object& adhesion) {
   namespace fit = coatcontact::fit;
   fit::AfmFitProblem problem;
   problem.tip = tip_of(shape);
@@ -246,17 +246,31 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
     problem.coating = layer;
     problem.poisson = layer.film.poisson_ratio;
   }
+  // adhesion: (w, k, z0, tilt) of the JKR model (k 0: each curve's), or None (Hertz/Sneddon)
+  const bool jkr = !adhesion.is_none();
+  if (jkr) {
+    const py::tuple a = adhesion.cast<py::tuple>();
+    problem.model = fit::AfmModel::kJkr;
+    problem.work = a[0].cast<double>();
+    problem.spring_constant = a[1].cast<double>();
+    problem.surface_force_range = a[2].cast<double>();
+    problem.tilt = a[3].cast<double>();
+  }
   const std::string modulus_name = coated ? "E1" : "E";
-  const std::string allowed = coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline";
+  const std::string allowed = std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") +
+                              (jkr ? ", w, tilt" : "");
   problem.free = {false, false, false, false};
   for (const auto& name : free) {
     if (name == modulus_name) problem.free.modulus = true;
     else if (name == "t" && coated) problem.free.thickness = true;
+    else if (name == "w" && jkr) problem.free.work = true;
+    else if (name == "tilt" && jkr) problem.free.tilt = true;
     else if (name == "contact_point") problem.free.contact_point = true;
     else if (name == "baseline") problem.free.baseline = true;
     else throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
   }
-  if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness) {
+  if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness &&
+      !problem.free.work && !problem.free.tilt) {
     throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
   }
   problem.contact_point = contact_point;
@@ -269,15 +283,16 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
                     double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
                     double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
                     const py::object& indentation_max, const py::object& max_force, double reference_contact,
-                    double reference_baseline, const py::object& coating) {
+                    double reference_baseline, const py::object& coating, const py::object& adhesion) {
   namespace fit = coatcontact::fit;
   const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
   if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
   fit::AfmFitProblem problem;
   py::dict out;
   try {
-    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating);
+    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
     const bool coated = problem.coating.has_value();
+    const bool jkr = problem.model == fit::AfmModel::kJkr;
     const std::string modulus_name = coated ? "E1" : "E";
     problem.noise_sigma = noise;
     fit::AfmRange range;
@@ -308,6 +323,18 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
       errors.insert(errors.begin() + 1, r.thickness_error);
       is_free.insert(is_free.begin() + 1, problem.free.thickness);
       units["t"] = "m";
+    }
+    if (jkr) {
+      names.insert(names.begin() + (coated ? 2 : 1), "w");
+      values.insert(values.begin() + (coated ? 2 : 1), r.work);
+      errors.insert(errors.begin() + (coated ? 2 : 1), r.work_error);
+      is_free.insert(is_free.begin() + (coated ? 2 : 1), problem.free.work);
+      names.push_back("tilt");
+      values.push_back(r.tilt);
+      errors.push_back(r.tilt_error);
+      is_free.push_back(problem.free.tilt);
+      units["w"] = "J/m2";
+      units["tilt"] = "N/m";
     }
     py::list free_names;
     for (std::size_t k = 0; k < names.size(); ++k) {
@@ -348,6 +375,21 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     out["solver_calls"] = r.solver_calls;
     out["seconds"] = r.seconds;
     out["tip"] = problem.tip.description;
+    if (jkr) {
+      out["model"] = "jkr";
+      out["spring_constant"] = problem.spring_constant;
+      out["surface_force_range"] = problem.surface_force_range;
+      out["tabor_mu"] = r.tabor_mu;
+      out["maugis_lambda"] = r.maugis_lambda;
+      py::dict jump;
+      jump["F"] = r.jump_off_force;
+      jump["indentation"] = r.jump_off_indentation;
+      out["jump_off"] = jump;
+      out["warnings"] = r.warnings;
+      out["model_evaluations"] = r.model_evaluations;
+    } else {
+      out["model"] = "hertz";
+    }
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   } catch (const coatcontact::NumericalError& e) {
@@ -373,7 +415,7 @@ coatcontact::fit::AfmBatchSettings settings_of(const py::tuple& shape, double mo
                                                const py::object& indentation_min, const py::object& indentation_max,
                                                const py::object& max_force) {
   coatcontact::fit::AfmBatchSettings settings;
-  settings.problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating);
+  settings.problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, py::none());
   if (segment == "approach") settings.segment = afm::SegmentKind::kApproach;
   else if (segment == "retract") settings.segment = afm::SegmentKind::kRetract;
   else throw coatcontact::InputError("segment: '" + segment + "' is not allowed; expected 'approach' or 'retract'");
@@ -549,7 +591,7 @@ PYBIND11_MODULE(_afm, m) {
   m.def("fit", &fit_arrays, py::arg("tip_position"), py::arg("force"), py::arg("shape"), py::arg("modulus"),
         py::arg("poisson"), py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("noise"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none());
+        py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none(), py::arg("adhesion") = py::none());
   m.def("expand_paths", &expand_paths, py::arg("paths"));
   m.def("count_curves", &count_curves, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"));
   m.def("fit_map_files", &fit_map_files, py::arg("files"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),

@@ -77,8 +77,12 @@ def test_mapping_with_afm_tool_keys():
 
 def test_refusals():
     z, F = synthetic(1)
-    with pytest.raises(ValueError, match="jkr.*not available.*allowed: 'hertz'"):
+    with pytest.raises(ValueError, match="Maugis-Dugdale.*allowed: 'hertz', 'jkr'"):
+        cc.afm.fit((z, F), model="md", radius=5e-6, halfspace=(1.0, 0.5))
+    with pytest.raises(ValueError, match="spring_constant"):
         cc.afm.fit((z, F), model="jkr", radius=5e-6, halfspace=(1.0, 0.5))
+    with pytest.raises(ValueError, match="model='jkr' only"):
+        cc.afm.fit((z, F), radius=5e-6, halfspace=(1.0, 0.5), work=1e-3)
     with pytest.raises(ValueError, match="a coating takes a sphere"):
         cc.afm.fit((z, F), shape=("punch", 1e-6), film=(1e3, 0.5), substrate=(1e9, 0.3), thickness=1e-6)
     with pytest.raises(ValueError, match="one sample"):
@@ -136,3 +140,58 @@ def test_readme_section_runs_and_prints_what_the_cli_prints(cli):
     shown = [line for line in section.splitlines() if line.startswith("# ")]
     assert shown and all(line in header for line in shown), (shown, header)
     assert E == header_value(header, "E [Pa]")
+
+
+def jkr_retract(seed, R=10e-6, E=100e3, nu=0.5, w=10e-3, k=1.0, zc=1e-6, b=2e-9, m=0.01, sigma=5e-9, n=1500):
+    """A retract written here: JKR of a sphere on a half-space, delta(a) = a^2/R - sqrt(2 pi a w/E*),
+    F(a) = 4E* a^3/(3R) - sqrt(8 pi w E* a^3), on the branch a >= a_s (minimum of delta + F/k,
+    THEORY.md section 10), for a uniform grid of piezo heights; past the jump the tip is off."""
+    Es = E / (1 - nu**2)
+    a = np.geomspace(1e-8, 12e-6, 200000)
+    delta = a**2 / R - np.sqrt(2 * np.pi * a * w / Es)
+    force = 4 * Es * a**3 / (3 * R) - np.sqrt(8 * np.pi * w * Es * a**3)
+    Z = delta + force / k
+    s = int(np.argmin(Z))
+    a, delta, force, Z = a[s:], delta[s:], force[s:], Z[s:]
+    top = int(np.searchsorted(delta, 1.2e-6))
+    h = np.linspace(zc - Z[top], zc + 4e-6, n)
+    target = zc - h
+    on = target >= Z[0]
+    d = np.where(on, np.interp(target, Z, delta), 0.0)
+    f = np.where(on, np.interp(target, Z, force), 0.0)
+    z = np.where(on, zc - d, h)
+    rng = np.random.default_rng(seed)
+    return z, f + b + m * (z - zc) + rng.normal(0.0, sigma, n)
+
+
+def test_jkr_retract_recovered():
+    """The adhesive retract fit (model="jkr") recovers E, w, the contact point, the baseline and
+    its tilt within 3 standard errors from a JKR retract written here, for three seeds, and
+    reports lambda with no warning (a soft adhesive sphere is deep in JKR's range)."""
+    truth = {"E": 100e3, "w": 10e-3, "contact_point": 1e-6, "baseline": 2e-9, "tilt": 0.01}
+    for seed in (1, 2, 3):
+        z, F = jkr_retract(seed)
+        r = cc.afm.fit((z, F), model="jkr", radius=10e-6, halfspace=(30e3, 0.5), spring_constant=1.0, noise=5e-9)
+        assert r["names"] == ["E", "w", "contact_point", "baseline", "tilt"]
+        assert r["units"]["w"] == "J/m2" and r["units"]["tilt"] == "N/m"
+        for name, value in truth.items():
+            assert abs(r["estimates"][name] - value) < 3 * r["errors"][name], (seed, name, r["estimates"][name])
+        assert 0.85 < r["chi2_per_dof"] < 1.15
+        assert r["maugis_lambda"] > 5 and r["warnings"] == []
+        assert r["jump_off"]["F"] < 0 and r["jump_off"]["indentation"] < 0
+    # A long surface-force range puts lambda below 5: a RuntimeWarning naming it.
+    with pytest.warns(RuntimeWarning, match="lambda"):
+        r = cc.afm.fit((z, F), model="jkr", radius=10e-6, halfspace=(30e3, 0.5), spring_constant=1.0,
+                       surface_force_range=200e-9)
+    assert r["maugis_lambda"] < 5
+
+
+def test_jkr_real_retract():
+    """The hydrogel retract of the data folder: the JKR fit runs with the file's spring constant,
+    reports finite estimates, lambda and the tilt."""
+    curve = cc.afm.read(os.path.join(DATA, "fmt-jpk-cc_pr14-polymergel-2021.06.30.jpk-force"))[0]
+    r = cc.afm.fit(curve, model="jkr", radius=10e-6, halfspace=(1e3, 0.5))
+    assert r["spring_constant"] == curve.metadata["spring constant"]
+    for name in ("E", "w", "contact_point", "baseline", "tilt"):
+        assert np.isfinite(r["estimates"][name]) and r["errors"][name] > 0
+    assert r["points"] == 3000 and np.isfinite(r["maugis_lambda"])

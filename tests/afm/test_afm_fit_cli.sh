@@ -65,8 +65,41 @@ grep -q '^# tip: four-sided pyramid, face half angle 35 deg' "$work/pyr.tsv" || 
 grep -qE '^# t \[m\]: [0-9.e+-]+ \+- [0-9.e+-]+$' "$work/coat.tsv" || fail "coating: no t +- error"
 grep -q '^# E1 \[Pa\]: 5000 (fixed)$' "$work/coat.tsv" || fail "coating: E1 fixed"
 
+# ---- the adhesive retract fit (--model jkr) ---------------------------------------------------
+gel="$data/fmt-jpk-cc_pr14-polymergel-2021.06.30.jpk-force"
+"$cli" afm fit "$gel" --model jkr --radius 10um --halfspace 1kPa,0.5 --output "$work/jkr.tsv" --plot "$work/jkr.png" \
+  2>"$work/stderr" || fail "afm fit --model jkr: $(cat "$work/stderr")"
+for key in 'E \[Pa\]' 'w \[J/m2\]' 'contact point \[m\]' 'baseline \[N\]'; do
+  grep -qE "^# $key: [-0-9.e+]+ \+- [0-9.e+-]+$" "$work/jkr.tsv" || fail "jkr header lacks '$key: value +- error'"
+done
+for key in 'tilt \[N/m\]' 'Tabor mu' 'Maugis lambda' 'model jump-off' 'spring constant \[N/m\]' 'chi2'; do
+  grep -qE "^# $key: " "$work/jkr.tsv" || fail "jkr header lacks '$key'"
+done
+grep -q '^# segment: retract (3000 points)' "$work/jkr.tsv" || fail "jkr fits the retract by default"
+head -c 8 "$work/jkr.png" | od -An -c | grep -q 'P   N   G' || fail "jkr --plot did not write a PNG"
+grep -qE 'NaN|nan|inf' "$work/jkr.tsv" && fail "jkr output holds a NaN or inf"
+# lambda scales as 1/z0: ten times the range, a tenth of lambda (same fit).
+"$cli" afm fit "$gel" --model jkr --radius 10um --halfspace 1kPa,0.5 --range 3nm --output "$work/jkr3.tsv" 2>"$work/stderr" \
+  || fail "jkr --range 3nm: $(cat "$work/stderr")"
+l1=$(sed -n 's/^# Maugis lambda: \([0-9.e+-]*\) .*/\1/p' "$work/jkr.tsv")
+l3=$(sed -n 's/^# Maugis lambda: \([0-9.e+-]*\) .*/\1/p' "$work/jkr3.tsv")
+awk -v a="$l1" -v b="$l3" 'BEGIN { r = a / b; exit !(r > 9.999 && r < 10.001) }' || fail "lambda(0.3nm)/lambda(3nm) = $l1/$l3, not 10"
+# The spot3 retract: a small adhesion on a stiff cantilever scale: lambda below 5 and a warning.
+"$cli" afm fit "$spot" --model jkr --radius 10um --halfspace 10kPa,0.5 --output "$work/spotj.tsv" 2>"$work/stderr" \
+  || fail "jkr spot3: $(cat "$work/stderr")"
+grep -q "warning: Maugis's lambda = .* is below 5" "$work/stderr" || fail "jkr spot3: no lambda warning on stderr"
+grep -q "^# warning: Maugis's lambda" "$work/spotj.tsv" || fail "jkr spot3: no lambda warning in the header"
+
 # ---- refusals ----------------------------------------------------------------------------------
-expect_error 2 "--model" "'jkr' is not available" "allowed: hertz" -- afm fit "$spot" --model jkr --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "'md'" "Maugis-Dugdale" "--range" "allowed: hertz, jkr" -- afm fit "$spot" --model md --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--work" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --work 1mJ/m2
+expect_error 2 "--range" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --range 1nm
+expect_error 2 "--model" "jkr takes a sphere" -- afm fit "$spot" --model jkr --shape cone:70deg --halfspace 1kPa,0.5
+expect_error 2 "--free" "a fixed w needs --work W" -- afm fit "$spot" --model jkr --radius 10um --halfspace 1kPa,0.5 --free E,contact_point,baseline
+expect_error 2 "--tilt" "the tilt is free" -- afm fit "$spot" --model jkr --radius 10um --halfspace 1kPa,0.5 --tilt 0
+expect_error 2 "--range" "'-1nm'" -- afm fit "$spot" --model jkr --radius 10um --halfspace 1kPa,0.5 --range -1nm
+expect_error 2 "--free" "'t'" "allowed: E, contact_point, baseline, w, tilt" -- afm fit "$spot" --model jkr --radius 10um --halfspace 1kPa,0.5 --free E,t
+expect_error 3 "no point in contact" -- afm fit "$spot" --model jkr --radius 10um --halfspace 1kPa,0.5 --free E,w,baseline --contact-point 1e-6
 expect_error 2 "--model" "'foo'" "allowed: hertz" -- afm fit "$spot" --model foo --radius 10um --halfspace 1kPa,0.5
 expect_error 2 "a coating needs" "--thickness is missing" -- afm fit "$spot" --radius 10um --film 1kPa,0.5 --substrate rigid
 expect_error 2 "--halfspace" "one sample" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --film 1kPa,0.5 --substrate rigid --thickness 1um

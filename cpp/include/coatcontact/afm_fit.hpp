@@ -43,7 +43,16 @@ AfmTip afm_shape(std::shared_ptr<const IndenterShape> shape);
 struct AfmFree {
   bool modulus = true, contact_point = true, baseline = true;
   bool thickness = false;
+  bool work = false;  // w of the adhesive (JKR) model
+  bool tilt = false;  // a baseline slope m of the adhesive model: F += m (z - z_ref)
 };
+
+// The tip force: adhesionless Hertz/Sneddon, or JKR (a sphere on the half-space or the coating)
+// on the branch stable under the cantilever's spring k, zero past its jump-off (THEORY.md
+// section 15, "Adhesive retract"): at contact radius a,
+//   delta = delta_H(a) - sqrt(2 pi a w/E1*)/Gamma1,  F = F_H(a) - 2 a E1* E_eq sqrt(2 pi a w/E1*)/Gamma1
+// for a >= a_s, the minimum of delta + F/k; below delta(a_s) the tip is off the sample.
+enum class AfmModel { kHertz, kJkr };
 
 // A coating instead of the half-space: film (E1 the value if fixed, else the centre of its
 // search; nu1 fixed) of thickness t on a fixed substrate, adhesionless (THEORY.md sections 5
@@ -73,6 +82,14 @@ struct AfmFitProblem {
   double baseline = 0.0;        // b [N] (value if fixed)
   AfmFree free;
   std::optional<AfmCoating> coating;  // none: the homogeneous half-space (modulus, poisson)
+  AfmModel model = AfmModel::kHertz;
+  // JKR: w [J/m2] (the value if fixed; if free, the centre of its search, 0: from the data's
+  // most tensile force), the cantilever's spring constant k [N/m] (> 0), the surface-force
+  // range z0 [m] of Tabor's/Maugis's lambda, the baseline slope m [N/m] (value if fixed).
+  double work = 0.0;
+  double spring_constant = 0.0;
+  double surface_force_range = 0.3e-9;
+  double tilt = 0.0;
   // Grid of the contact-point profile over [z_min, z_max + kContactBeyond (z_max - z_min)]
   // of the fitted points (z_c may lie beyond the last point out of contact).
   std::size_t profile_points = 400;
@@ -81,6 +98,15 @@ struct AfmFitProblem {
   double noise_sigma = 0.0;
 };
 constexpr double kContactBeyond = 0.25;
+// JKR fits search on at most this many points (equal-count bins of a denser curve), then
+// polish on every point (THEORY.md section 15).
+constexpr std::size_t kAdhesiveSearchPoints = 300;
+// Maugis's lambda below which JKR is outside its range (Johnson & Greenwood's map: the
+// Maugis-Dugdale model is needed below ~5; a warning).
+constexpr double kJkrMinimumLambda = 5.0;
+// JKR on a coating with E1 free: reduced-solver sweeps on nodes of E1 this many per decade,
+// interpolated (cubic in ln E1) between them.
+constexpr double kModulusNodesPerDecade = 8.0;
 
 struct AfmFitResult {
   double modulus = 0.0, contact_point = 0.0, baseline = 0.0;  // estimates (or fixed values)
@@ -88,6 +114,16 @@ struct AfmFitResult {
   double thickness = 0.0, thickness_error = 0.0;  // t [m] of a coating (0 on a half-space)
   double reduced_modulus = 0.0;  // E* [Pa] (of the film on a coating)
   long solver_calls = 0;         // reduced-variable solves (coating)
+  // Adhesive (JKR) fits: w, the baseline slope m [N/m] (about z_ref = tilt_origin), Tabor's
+  // mu = (R w^2/(E1*^2 z0^3))^(1/3) and Maugis's lambda (Dugdale stress w/(0.97 z0)) from the
+  // estimates, the model's jump-off through the spring (indentation [m], force above the
+  // baseline [N]), and warnings (lambda outside JKR's range, a fit at a search bound).
+  double work = 0.0, work_error = 0.0;
+  double tilt = 0.0, tilt_error = 0.0, tilt_origin = 0.0;
+  double tabor_mu = 0.0, maugis_lambda = 0.0;
+  double jump_off_indentation = 0.0, jump_off_force = 0.0;
+  std::vector<std::string> warnings;
+  int model_evaluations = 0;  // adhesive: branch tables built
   std::size_t points = 0, points_in_contact = 0;
   int free_count = 0;
   double rss = 0.0;             // sum of squared residuals [N^2]

@@ -1,0 +1,807 @@
+// The adhesive AFM retract fit (THEORY.md section 15, "Adhesive retract"): JKR of a sphere on
+// the half-space or a coating, on the branch stable under the cantilever's spring k, with the
+// contact point, a baseline and its slope. See coatcontact/afm_fit.hpp.
+#include <gsl/gsl_interp.h>
+#include <gsl/gsl_multifit.h>
+#include <gsl/gsl_multimin.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "afm_internal.hpp"
+#include "coatcontact/afm_fit.hpp"
+#include "coatcontact/detail/brent.hpp"
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/detail/gsl_handler_off.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/limits.hpp"
+#include "coatcontact/reduced.hpp"
+
+namespace coatcontact::fit {
+
+namespace {
+
+using coatcontact::detail::short_text;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Nodes of one branch table (contact radii from a_s to the deepest indentation).
+constexpr int kBranchNodes = 256;
+// Scan of delta + F/k for its minimum a_s: a/L_a in [kScanLow, kScanHigh], per decade.
+constexpr double kScanLow = 0.01, kScanHigh = 30.0;
+constexpr int kScanPerDecade = 24;
+// Bounded searches: Nelder-Mead iterations (binned data), Gauss-Newton steps (all points).
+constexpr int kSimplexIterations = 300;
+constexpr int kPolishSteps = 8;
+
+// The four reduced variables at a/t: constant on a half-space, splines of a reduced-solver
+// sweep (per film modulus) on a coating.
+struct Reduced {
+  double pi_s = 8.0 / 3.0, delta_s = 1.0, e_eq = 1.0, gamma1 = 1.0;
+};
+
+class CoatingSweep {
+ public:
+  CoatingSweep(const std::vector<ReducedVariables>& sweep) {
+    for (const ReducedVariables& v : sweep) {
+      x_.push_back(std::log(v.a_over_t));
+      pi_.push_back(v.pi_s);
+      delta_.push_back(v.delta_s);
+      eeq_.push_back(v.e_eq);
+      gamma_.push_back(v.gamma1);
+    }
+    for (auto* y : {&pi_, &delta_, &eeq_, &gamma_}) {
+      splines_.push_back(gsl_interp_alloc(gsl_interp_cspline, x_.size()));
+      gsl_interp_init(splines_.back(), x_.data(), y->data(), x_.size());
+    }
+    accel_ = gsl_interp_accel_alloc();
+  }
+  ~CoatingSweep() {
+    for (gsl_interp* s : splines_) gsl_interp_free(s);
+    gsl_interp_accel_free(accel_);
+  }
+  CoatingSweep(const CoatingSweep&) = delete;
+  CoatingSweep& operator=(const CoatingSweep&) = delete;
+
+  // Outside the sweep: its end values (the film's own limit below; trials only above, the
+  // final fit is checked against max_a_over_t()).
+  Reduced at(double a_over_t) const {
+    const double x = std::clamp(std::log(a_over_t), x_.front(), x_.back());
+    const double* ys[4] = {pi_.data(), delta_.data(), eeq_.data(), gamma_.data()};
+    double out[4];
+    for (int k = 0; k < 4; ++k) out[k] = gsl_interp_eval(splines_[k], x_.data(), ys[k], x, accel_);
+    return {out[0], out[1], out[2], out[3]};
+  }
+  double max_a_over_t() const { return std::exp(x_.back()); }
+
+ private:
+  std::vector<double> x_, pi_, delta_, eeq_, gamma_;
+  std::vector<gsl_interp*> splines_;
+  gsl_interp_accel* accel_ = nullptr;
+};
+
+// Parameters of one trial.
+struct Trial {
+  double modulus = 0.0;    // E (half-space) or E1 [Pa]
+  double work = 0.0;       // w [J/m2]
+  double thickness = 0.0;  // t [m] (coating)
+};
+
+// The JKR branch F(delta) under spring control for one trial: (delta, F) at kBranchNodes
+// radii from a_s (the minimum of delta + F/k) up past the deepest indentation, F against
+// delta by a cubic spline; off contact (delta <= delta_s) zero; past the last node the power
+// law of the last two nodes (trial contact points only).
+class Branch {
+ public:
+  Branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep, const Trial& trial, double max_indentation)
+      : sweep_(std::move(sweep)), trial_(trial), radius_(problem.tip.radius), spring_(problem.spring_constant) {
+    reduced_ = trial.modulus / (1.0 - problem.poisson * problem.poisson);
+    if (!(reduced_ > 0.0) || !std::isfinite(reduced_) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
+        (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
+      throw NumericalError("afm fit: a JKR trial left the finite positive parameters");
+    }
+    length_ = std::cbrt(kPi * trial.work * radius_ * radius_ / reduced_);
+    // a_s: the global minimum of Z = delta + F/k on the scan, polished by Brent.
+    const int count = static_cast<int>(std::ceil(std::log10(kScanHigh / kScanLow) * kScanPerDecade)) + 1;
+    std::vector<double> grid(count), z(count);
+    int best = 0;
+    for (int k = 0; k < count; ++k) {
+      grid[k] = length_ * kScanLow * std::pow(kScanHigh / kScanLow, k / (count - 1.0));
+      const auto [d, f] = point(grid[k]);
+      z[k] = d + f / spring_;
+      if (z[k] < z[best]) best = k;
+    }
+    if (best == 0 || best + 1 == count) {
+      throw NumericalError("afm fit: delta + F/k has no minimum in a/L_a [" + short_text(kScanLow) + ", " +
+                           short_text(kScanHigh) + "] (no jump-off through the spring)");
+    }
+    a_s_ = grid[best];
+    const auto zof = [&](double a) {
+      const auto [d, f] = point(a);
+      return d + f / spring_;
+    };
+    const auto found = coatcontact::detail::brent_minimum(zof, grid[best - 1], z[best - 1], grid[best], z[best],
+                                                          grid[best + 1], z[best + 1], {0.0, 1e-10, 100});
+    if (found) a_s_ = found->x;
+    std::tie(jump_delta_, jump_force_) = point(a_s_);
+    // The top radius: delta(a_top) >= the deepest indentation (bounded doubling).
+    double a_top = std::max(2.0 * a_s_, std::sqrt(radius_ * std::max(max_indentation, 0.0)));
+    for (int k = 0; k < 80 && point(a_top).first < max_indentation; ++k) a_top *= 2.0;
+    for (int k = 0; k < kBranchNodes; ++k) {
+      const double a = a_s_ * std::pow(a_top / a_s_, k / (kBranchNodes - 1.0));
+      const auto [d, f] = point(a);
+      if (!std::isfinite(d) || !std::isfinite(f)) throw NumericalError("afm fit: the JKR branch is not finite");
+      if (!delta_.empty() && !(d > delta_.back())) continue;  // a second minimum of delta: keep the monotone part
+      delta_.push_back(d);
+      force_.push_back(f);
+      a_max_ = a;
+    }
+    if (delta_.size() < 8) throw NumericalError("afm fit: the JKR branch has too few monotone nodes");
+    const std::size_t n = delta_.size();
+    const double d1 = delta_[n - 1] - jump_delta_, d0 = delta_[n - 2] - jump_delta_;
+    last_slope_ = force_[n - 1] > 0.0 && force_[n - 2] > 0.0 && d0 > 0.0
+                      ? std::log(force_[n - 1] / force_[n - 2]) / std::log(d1 / d0)
+                      : 1.5;
+    interp_ = gsl_interp_alloc(gsl_interp_cspline, n);
+    accel_ = gsl_interp_accel_alloc();
+    gsl_interp_init(interp_, delta_.data(), force_.data(), n);
+  }
+  ~Branch() {
+    if (interp_) gsl_interp_free(interp_);
+    if (accel_) gsl_interp_accel_free(accel_);
+  }
+  Branch(const Branch&) = delete;
+  Branch& operator=(const Branch&) = delete;
+
+  // (delta, F) at contact radius a [THEORY.md section 5, steps 3-4].
+  std::pair<double, double> point(double a) const {
+    Reduced v;
+    if (sweep_) v = sweep_->at(a / trial_.thickness);
+    const double fp = -std::sqrt(2.0 * kPi * a * trial_.work / reduced_) / v.gamma1;  // delta_fp
+    const double delta = a * a / radius_ * v.delta_s + fp;
+    const double force = a * a * a * reduced_ / (2.0 * radius_) * v.pi_s + 2.0 * a * reduced_ * v.e_eq * fp;
+    return {delta, force};
+  }
+
+  // F and dF/d delta at indentation delta (0 off contact).
+  std::pair<double, double> at(double delta) const {
+    if (delta <= jump_delta_) return {0.0, 0.0};
+    if (delta < delta_.front()) return {force_.front(), 0.0};  // rounding next to a_s
+    if (delta >= delta_.back()) {
+      const double x = (delta - jump_delta_) / (delta_.back() - jump_delta_);
+      const double g = force_.back() * std::pow(x, last_slope_);
+      return {g, last_slope_ * g / (delta - jump_delta_)};
+    }
+    return {gsl_interp_eval(interp_, delta_.data(), force_.data(), delta, accel_),
+            gsl_interp_eval_deriv(interp_, delta_.data(), force_.data(), delta, accel_)};
+  }
+  double jump_delta() const { return jump_delta_; }
+  double jump_force() const { return jump_force_; }
+  double max_indentation() const { return delta_.back(); }
+  double max_radius() const { return a_max_; }
+  double reduced_modulus() const { return reduced_; }
+
+ private:
+  std::shared_ptr<const CoatingSweep> sweep_;
+  Trial trial_;
+  double radius_, spring_, reduced_ = 0.0, length_ = 0.0;
+  double a_s_ = 0.0, a_max_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
+  std::vector<double> delta_, force_;
+  gsl_interp* interp_ = nullptr;
+  gsl_interp_accel* accel_ = nullptr;
+};
+
+// Weighted points sorted by tip position (bins of a dense curve carry their counts).
+struct Points {
+  std::vector<double> z, f, weight;
+};
+
+Points sorted_points(const std::vector<double>& z, const std::vector<double>& f) {
+  std::vector<std::size_t> order(z.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return z[a] < z[b]; });
+  Points p;
+  for (std::size_t i : order) {
+    p.z.push_back(z[i]);
+    p.f.push_back(f[i]);
+    p.weight.push_back(1.0);
+  }
+  return p;
+}
+
+// Equal-count bins (means of z and F, weight = count) of at most `target` bins; a bin closes
+// early at a gap in z wider than 5 median spacings (the jump-off leaves one on the tip axis),
+// so that no bin straddles the jump.
+Points binned(const Points& all, std::size_t target) {
+  const std::size_t n = all.z.size();
+  if (n <= target) return all;
+  std::vector<double> gaps(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i) gaps[i] = all.z[i + 1] - all.z[i];
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<long>(gaps.size() / 2), gaps.end());
+  const double wide = 5.0 * gaps[gaps.size() / 2];
+  const std::size_t per_bin = (n + target - 1) / target;
+  Points out;
+  double sz = 0.0, sf = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sz += all.z[i];
+    sf += all.f[i];
+    ++count;
+    const bool gap = i + 1 < n && all.z[i + 1] - all.z[i] > wide;
+    if (count == per_bin || gap || i + 1 == n) {
+      out.z.push_back(sz / count);
+      out.f.push_back(sf / count);
+      out.weight.push_back(static_cast<double>(count));
+      sz = sf = 0.0;
+      count = 0;
+    }
+  }
+  return out;
+}
+
+struct Linear {
+  double baseline = 0.0, tilt = 0.0, rss = kInfinity;
+};
+
+// At one contact point: F_i = b + m (z_i - z_c) + g(z_c - z_i), (b, m) free or fixed in closed
+// form (weighted normal equations), and the weighted residual sum.
+class Objective {
+ public:
+  Objective(const Points& p, const AfmFitProblem& problem) : p_(p), problem_(problem) {
+    for (std::size_t i = 0; i < p.z.size(); ++i) {
+      const double w = p.weight[i], z = p.z[i] - origin(), f = p.f[i];
+      sw_ += w, sz_ += w * z, szz_ += w * z * z, sf_ += w * f, szf_ += w * z * f, sff_ += w * f * f;
+    }
+  }
+  // z is shifted by the mean of the data for conditioning.
+  double origin() const { return p_.z.empty() ? 0.0 : 0.5 * (p_.z.front() + p_.z.back()); }
+
+  Linear at(const Branch& branch, double contact) const {
+    ++evaluations_;
+    double sg = 0.0, szg = 0.0, sfg = 0.0, sgg = 0.0;
+    const double limit = contact - branch.jump_delta();  // in contact: z < limit
+    for (std::size_t i = 0; i < p_.z.size() && p_.z[i] < limit; ++i) {
+      const double g = branch.at(contact - p_.z[i]).first, w = p_.weight[i];
+      sg += w * g, szg += w * (p_.z[i] - origin()) * g, sfg += w * p_.f[i] * g, sgg += w * g * g;
+    }
+    // y = F - g; u = z - z_c = (z - origin) - c.
+    const double c = contact - origin();
+    const double sy = sf_ - sg, szy = szf_ - szg, syy = sff_ - 2.0 * sfg + sgg;
+    const double su = sz_ - c * sw_, suu = szz_ - 2.0 * c * sz_ + c * c * sw_, suy = szy - c * sy;
+    Linear out;
+    double b = problem_.baseline, m = problem_.tilt;
+    if (problem_.free.baseline && problem_.free.tilt) {
+      const double det = sw_ * suu - su * su;
+      if (!(det > 0.0)) return out;
+      b = (suu * sy - su * suy) / det;
+      m = (sw_ * suy - su * sy) / det;
+    } else if (problem_.free.baseline) {
+      b = (sy - m * su) / sw_;
+    } else if (problem_.free.tilt) {
+      if (!(suu > 0.0)) return out;
+      m = (suy - b * su) / suu;
+    }
+    // sum w (y - b - m u)^2
+    const double rss = syy + b * b * sw_ + m * m * suu - 2.0 * b * sy - 2.0 * m * suy + 2.0 * b * m * su;
+    out.baseline = b;
+    out.tilt = m;
+    out.rss = std::max(0.0, rss);
+    return out;
+  }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  const Points& p_;
+  const AfmFitProblem& problem_;
+  double sw_ = 0.0, sz_ = 0.0, szz_ = 0.0, sf_ = 0.0, szf_ = 0.0, sff_ = 0.0;
+  mutable int evaluations_ = 0;
+};
+
+struct ContactFit {
+  double contact = 0.0;
+  Linear linear;
+};
+
+// The contact point on [lo, hi]: a grid of `count` points, then Brent on the brackets of the
+// three lowest grid minima (the profile has kinks where points enter contact, and a jump
+// where the jump-off passes a point); fixed: the problem's value.
+ContactFit search_contact(const Objective& objective, const Branch& branch, const AfmFitProblem& problem, double lo,
+                          double hi, int count) {
+  if (!problem.free.contact_point) return {problem.contact_point, objective.at(branch, problem.contact_point)};
+  std::vector<double> grid(count), cost(count);
+  for (int k = 0; k < count; ++k) {
+    grid[k] = lo + (hi - lo) * k / (count - 1.0);
+    cost[k] = objective.at(branch, grid[k]).rss;
+  }
+  std::vector<int> minima;
+  for (int k = 0; k < count; ++k) {
+    if ((k == 0 || cost[k] <= cost[k - 1]) && (k + 1 == count || cost[k] <= cost[k + 1])) minima.push_back(k);
+  }
+  std::sort(minima.begin(), minima.end(), [&](int a, int b) { return cost[a] < cost[b]; });
+  if (minima.size() > 3) minima.resize(3);
+  ContactFit best{grid[minima.front()], objective.at(branch, grid[minima.front()])};
+  const auto rss = [&](double c) { return objective.at(branch, c).rss; };
+  for (int k : minima) {
+    if (k == 0 || k + 1 == count) continue;
+    const auto found = coatcontact::detail::brent_minimum(rss, grid[k - 1], cost[k - 1], grid[k], cost[k], grid[k + 1],
+                                                          cost[k + 1], {(hi - lo) * 1e-10, 0.0, 100});
+    if (!found) continue;
+    const Linear value = objective.at(branch, found->x);
+    if (value.rss < best.linear.rss) best = {found->x, value};
+  }
+  return best;
+}
+
+// Minimum of f over ln-parameters by GSL's Nelder-Mead simplex (bounded iterations).
+std::vector<double> simplex(const std::function<double(const std::vector<double>&)>& f, std::vector<double> start,
+                            double step, double size, int* iterations) {
+  coatcontact::detail::GslHandlerOff handler_off;
+  const std::size_t dim = start.size();
+  struct Params {
+    const std::function<double(const std::vector<double>&)>* f;
+    std::size_t dim;
+  } params{&f, dim};
+  gsl_multimin_function fn;
+  fn.n = dim;
+  fn.params = &params;
+  fn.f = [](const gsl_vector* x, void* raw) {
+    const auto* p = static_cast<Params*>(raw);
+    std::vector<double> v(p->dim);
+    for (std::size_t k = 0; k < p->dim; ++k) v[k] = gsl_vector_get(x, k);
+    const double value = (*p->f)(v);
+    return std::isfinite(value) ? value : std::numeric_limits<double>::max();
+  };
+  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> x(gsl_vector_alloc(dim), gsl_vector_free),
+      steps(gsl_vector_alloc(dim), gsl_vector_free);
+  for (std::size_t k = 0; k < dim; ++k) gsl_vector_set(x.get(), k, start[k]);
+  gsl_vector_set_all(steps.get(), step);
+  std::unique_ptr<gsl_multimin_fminimizer, void (*)(gsl_multimin_fminimizer*)> minimizer(
+      gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, dim), gsl_multimin_fminimizer_free);
+  gsl_multimin_fminimizer_set(minimizer.get(), &fn, x.get(), steps.get());
+  int k = 0;
+  for (; k < kSimplexIterations; ++k) {
+    if (gsl_multimin_fminimizer_iterate(minimizer.get()) != 0) break;
+    if (gsl_multimin_test_size(gsl_multimin_fminimizer_size(minimizer.get()), size) == GSL_SUCCESS) break;
+  }
+  *iterations = k;
+  for (std::size_t j = 0; j < dim; ++j) start[j] = gsl_vector_get(minimizer->x, j);
+  return start;
+}
+
+}  // namespace
+
+namespace internal {
+
+std::vector<double> afm_least_squares_step(const std::vector<std::vector<double>>& columns, const std::vector<double>& residual) {
+  const std::size_t p = columns.size(), n = residual.size();
+  coatcontact::detail::GslHandlerOff handler_off;
+  std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> a(gsl_matrix_alloc(n, p), gsl_matrix_free);
+  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> y(gsl_vector_alloc(n), gsl_vector_free), x(gsl_vector_alloc(p), gsl_vector_free);
+  std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> cov(gsl_matrix_alloc(p, p), gsl_matrix_free);
+  std::unique_ptr<gsl_multifit_linear_workspace, void (*)(gsl_multifit_linear_workspace*)> work(
+      gsl_multifit_linear_alloc(n, p), gsl_multifit_linear_free);
+  for (std::size_t i = 0; i < n; ++i) {
+    gsl_vector_set(y.get(), i, residual[i]);
+    for (std::size_t k = 0; k < p; ++k) gsl_matrix_set(a.get(), i, k, columns[k][i]);
+  }
+  std::size_t rank = 0;
+  double chisq = 0.0;
+  std::vector<double> out(p, 0.0);
+  if (gsl_multifit_linear_tsvd(a.get(), y.get(), 1e-12, x.get(), cov.get(), &chisq, &rank, work.get()) != 0) return out;
+  for (std::size_t k = 0; k < p; ++k) out[k] = std::isfinite(gsl_vector_get(x.get(), k)) ? gsl_vector_get(x.get(), k) : 0.0;
+  return out;
+}
+
+void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r) {
+  const double z0 = problem.surface_force_range, reduced = r.reduced_modulus, w = r.work, radius = problem.tip.radius;
+  r.tabor_mu = std::cbrt(radius * w * w / (reduced * reduced * z0 * z0 * z0));
+  // Maugis's lambda with the Dugdale stress of the Lennard-Jones law of range z0: h0 = w/sigma0
+  // = 0.97 z0 (Johnson & Greenwood 1997); the scales' thickness does not enter lambda.
+  const double length = std::cbrt(kPi * w * radius * radius / reduced);
+  const MaugisScales scales = maugis_scales(radius, length, w, reduced);
+  r.maugis_lambda = maugis_lambda(scales, w / (0.97 * z0));
+  if (r.maugis_lambda < kJkrMinimumLambda) {
+    r.warnings.push_back("Maugis's lambda = " + short_text(r.maugis_lambda) + " (Tabor's mu = " + short_text(r.tabor_mu) +
+                         ", surface-force range z0 = " + short_text(z0) + " m) is below " + short_text(kJkrMinimumLambda) +
+                         ": outside JKR's range; the Maugis-Dugdale model would be needed (not available through the cantilever)");
+  }
+}
+
+std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std::vector<double>& z) {
+  if (problem.tip.kind != AfmTip::Kind::kParaboloid) throw InputError("afm fit: the JKR model takes a sphere tip (radius R)");
+  if (!(problem.spring_constant > 0.0) || !std::isfinite(problem.spring_constant)) {
+    throw InputError("afm fit: the JKR model needs the cantilever's spring constant k > 0");
+  }
+  double max_delta = 0.0;
+  for (double v : z) max_delta = std::max(max_delta, problem.contact_point - v);
+  std::shared_ptr<const CoatingSweep> sweep;
+  Trial trial{problem.modulus, problem.work, 0.0};
+  AfmFitProblem p = problem;
+  if (problem.coating) {
+    const AfmCoating& c = *problem.coating;
+    trial = {c.film.youngs_modulus, problem.work, c.thickness};
+    p.poisson = c.film.poisson_ratio;
+    const ReducedSolver solver(Stack::film_on(c.film, c.substrate));
+    std::vector<double> grid;
+    const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
+    const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
+    for (int k = 0; k < count; ++k) grid.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
+    sweep = std::make_shared<const CoatingSweep>(solver.sweep(grid, c.solver_tolerance));
+  }
+  const Branch branch(p, sweep, trial, std::max(max_delta, 1e-12));
+  std::vector<double> f(z.size());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch.at(problem.contact_point - z[i]).first;
+  }
+  return f;
+}
+
+AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<double>& f_data, const AfmFitProblem& problem,
+                         int free_count) {
+  const auto start = std::chrono::steady_clock::now();
+  if (problem.tip.kind != AfmTip::Kind::kParaboloid) {
+    throw InputError("afm fit: the JKR model takes a sphere tip (radius R); got " + problem.tip.description);
+  }
+  if (!(problem.spring_constant > 0.0) || !std::isfinite(problem.spring_constant)) {
+    throw InputError("afm fit: the JKR model needs the cantilever's spring constant k > 0 (got " +
+                     short_text(problem.spring_constant) + " N/m)");
+  }
+  if (!(problem.surface_force_range > 0.0) || !std::isfinite(problem.surface_force_range)) {
+    throw InputError("afm fit: the surface-force range z0 must be > 0 (got " + short_text(problem.surface_force_range) + " m)");
+  }
+  if (!problem.free.work && !(problem.work > 0.0 && std::isfinite(problem.work))) {
+    throw InputError("afm fit: a fixed w must be > 0 (got " + short_text(problem.work) + " J/m2)");
+  }
+  const bool coated = problem.coating.has_value();
+  AfmFitProblem p = problem;
+  if (coated) p.poisson = problem.coating->film.poisson_ratio;
+  if (!coated && !(problem.modulus > 0.0 && std::isfinite(problem.modulus))) {
+    throw InputError("afm fit: E must be > 0 (the value if fixed, the centre of its search if free; got " +
+                     short_text(problem.modulus) + ")");
+  }
+  const std::size_t n = z_data.size();
+  const Points all = sorted_points(z_data, f_data);
+  const Points search = binned(all, kAdhesiveSearchPoints);
+  const double z_lo = all.z.front(), z_hi = all.z.back(), span = z_hi - z_lo;
+  if (problem.free.contact_point && !(span > 0.0)) throw InputError("afm fit: the fitted points have one tip position only");
+  const double c_hi = problem.free.contact_point ? z_hi + kContactBeyond * span : problem.contact_point;
+  const double max_delta = std::max(c_hi - z_lo, 1e-12);
+
+  // The search's parameters: ln E (or ln E1), ln w, ln t, those free, in that order. A free
+  // half-space modulus starts from the adhesionless fit of the same points (the given value
+  // may be anything > 0, as in the Hertz fit).
+  double e_hint = coated ? problem.coating->film.youngs_modulus : problem.modulus;
+  if (!coated && problem.free.modulus) {
+    AfmFitProblem hertz = problem;
+    hertz.model = AfmModel::kHertz;
+    hertz.free = {true, true, true, false, false, false};
+    hertz.noise_sigma = 0.0;
+    try {
+      const double e = afm_fit(z_data, f_data, hertz).modulus;
+      if (e > 0.0 && std::isfinite(e)) e_hint = e;
+    } catch (const NumericalError&) {
+    }
+  }
+  const double t_hint = coated ? problem.coating->thickness : 0.0;
+  double w_hint = problem.work;
+  if (!(w_hint > 0.0)) {
+    // JKR's load-controlled pull-off of a sphere, F = -(3/2) pi w R, below the median force.
+    std::vector<double> sorted(all.f);
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(n / 2), sorted.end());
+    const double drop = sorted[n / 2] - *std::min_element(all.f.begin(), all.f.end());
+    w_hint = std::max(drop / (1.5 * kPi * problem.tip.radius), 1e-9);
+  }
+  std::vector<int> axes;  // 0: E, 1: w, 2: t
+  if (problem.free.modulus) axes.push_back(0);
+  if (problem.free.work) axes.push_back(1);
+  if (coated && problem.free.thickness) axes.push_back(2);
+  const auto trial_of = [&](const std::vector<double>& u) {
+    Trial t{e_hint, problem.free.work ? w_hint : problem.work, t_hint};
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      const double v = std::exp(u[k]);
+      if (axes[k] == 0) t.modulus = v;
+      else if (axes[k] == 1) t.work = v;
+      else t.thickness = v;
+    }
+    return t;
+  };
+  std::vector<double> u0;
+  for (int a : axes) u0.push_back(std::log(a == 0 ? e_hint : a == 1 ? w_hint : t_hint));
+
+  // Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
+  // (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
+  // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15).
+  std::map<long, std::vector<ReducedVariables>> nodes;
+  long solver_calls = 0;
+  std::vector<double> a_over_t;
+  if (coated) {
+    const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
+    const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
+    for (int k = 0; k < count; ++k) a_over_t.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
+  }
+  const auto node = [&](long j) -> const std::vector<ReducedVariables>& {
+    auto it = nodes.find(j);
+    if (it != nodes.end()) return it->second;
+    Material film = problem.coating->film;
+    film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+    const ReducedSolver solver(Stack::film_on(film, problem.coating->substrate));
+    solver_calls += static_cast<long>(a_over_t.size());
+    return nodes.emplace(j, solver.sweep(a_over_t, problem.coating->solver_tolerance)).first->second;
+  };
+  std::map<double, std::shared_ptr<const CoatingSweep>> sweeps;
+  const auto sweep_of = [&](double film_modulus) -> std::shared_ptr<const CoatingSweep> {
+    if (!coated) return nullptr;
+    auto it = sweeps.find(film_modulus);
+    if (it != sweeps.end()) return it->second;
+    const double x = std::log10(film_modulus / e_hint) * kModulusNodesPerDecade;
+    const double nearest = std::round(x);
+    std::shared_ptr<const CoatingSweep> sweep;
+    if (std::abs(x - nearest) < 1e-9) {
+      sweep = std::make_shared<const CoatingSweep>(node(static_cast<long>(nearest)));
+    } else {
+      const long j0 = static_cast<long>(std::floor(x)) - 1;
+      double weight[4];
+      for (int a = 0; a < 4; ++a) {
+        weight[a] = 1.0;
+        for (int b = 0; b < 4; ++b) {
+          if (b != a) weight[a] *= (x - static_cast<double>(j0 + b)) / static_cast<double>(a - b);
+        }
+      }
+      std::vector<ReducedVariables> mixed(a_over_t.size());
+      for (int a = 0; a < 4; ++a) {
+        const std::vector<ReducedVariables>& v = node(j0 + a);
+        for (std::size_t k = 0; k < mixed.size(); ++k) {
+          mixed[k].a_over_t = a_over_t[k];
+          mixed[k].pi_s += weight[a] * v[k].pi_s;
+          mixed[k].delta_s += weight[a] * v[k].delta_s;
+          mixed[k].e_eq += weight[a] * v[k].e_eq;
+          mixed[k].gamma1 += weight[a] * v[k].gamma1;
+        }
+      }
+      sweep = std::make_shared<const CoatingSweep>(mixed);
+    }
+    if (sweeps.size() > 64) sweeps.clear();
+    sweeps.emplace(film_modulus, sweep);
+    return sweep;
+  };
+  int tables = 0;
+  const auto branch_of = [&](const Trial& t) {
+    ++tables;
+    return std::make_unique<Branch>(p, sweep_of(t.modulus), t, max_delta);
+  };
+
+  const Objective coarse(search, problem);
+  // A trial's cost: the contact point on the whole range (global) or within a window around
+  // `centre` (the simplex's trials; the window is widened to the whole range at its edge).
+  const int grid_points = static_cast<int>(std::clamp<std::size_t>(problem.profile_points / 4, 24, 200));
+  const auto trial_cost = [&](const Trial& t, const double* centre) -> ContactFit {
+    std::unique_ptr<Branch> branch;
+    try {
+      branch = branch_of(t);
+    } catch (const NumericalError&) {
+      return {0.0, Linear{}};
+    }
+    const double lo = z_lo + std::min(0.0, branch->jump_delta());
+    if (centre == nullptr) return search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
+    const double half = 0.1 * span;
+    const double a = std::max(lo, *centre - half), b = std::min(c_hi, *centre + half);
+    ContactFit local = search_contact(coarse, *branch, problem, a, b, 13);
+    const double edge = 0.02 * (b - a);
+    if (problem.free.contact_point && (local.contact - a < edge || b - local.contact < edge)) {
+      const ContactFit wide = search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
+      if (wide.linear.rss < local.linear.rss) local = wide;
+    }
+    return local;
+  };
+
+  // 1. Start: a grid around the hints (E 1.5 decades each way, E1 one, w one, t half a decade).
+  std::vector<double> u_best = u0;
+  ContactFit best_fit = trial_cost(trial_of(u0), nullptr);
+  {
+    std::vector<std::vector<double>> offsets(axes.size());
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      // (a coating's E1 a decade: each new E1 node costs a sweep of the solver)
+      offsets[k] = axes[k] == 0   ? (coated ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
+                                            : std::vector<double>{-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5})
+                   : axes[k] == 1 ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
+                                  : std::vector<double>{-0.5, 0.0, 0.5};
+    }
+    std::vector<std::size_t> index(axes.size(), 0);
+    while (!axes.empty()) {
+      std::vector<double> u(axes.size());
+      for (std::size_t k = 0; k < axes.size(); ++k) u[k] = u0[k] + std::log(10.0) * offsets[k][index[k]];
+      const ContactFit c = trial_cost(trial_of(u), nullptr);
+      if (c.linear.rss < best_fit.linear.rss) best_fit = c, u_best = u;
+      std::size_t k = 0;
+      while (k < axes.size() && ++index[k] == offsets[k].size()) index[k++] = 0;
+      if (k == axes.size()) break;
+    }
+  }
+  if (!std::isfinite(best_fit.linear.rss)) {
+    throw NumericalError("afm fit: no JKR trial near the given E/E1 and w fits the data (check the tip radius, "
+                         "the spring constant and the segment)");
+  }
+  // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near the start's.
+  int iterations = 0;
+  if (!axes.empty()) {
+    const double centre = best_fit.contact;
+    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
+                     0.15, 1e-6, &iterations);
+  }
+  Trial estimate = trial_of(u_best);
+  ContactFit fit = trial_cost(estimate, nullptr);
+  if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the JKR search ended on a trial without a jump-off");
+
+  // 3. Every point: the contact point re-profiled, then damped Gauss-Newton steps on all free
+  // parameters (bounded; a step is kept only if it lowers the sum).
+  const Objective fine(all, problem);
+  struct State {
+    std::vector<double> u;
+    ContactFit c;
+  };
+  const auto model_all = [&](const Branch& b, const ContactFit& c, std::vector<double>* slope) {
+    std::vector<double> m(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto [g, dg] = b.at(c.contact - all.z[i]);
+      m[i] = c.linear.baseline + c.linear.tilt * (all.z[i] - c.contact) + g;
+      if (slope) (*slope)[i] = dg;
+    }
+    return m;
+  };
+  State state{u_best, {}};
+  {
+    const auto branch = branch_of(estimate);
+    const double half = 0.1 * span, lo = z_lo + std::min(0.0, branch->jump_delta());
+    state.c = search_contact(fine, *branch, problem, std::max(lo, fit.contact - half), std::min(c_hi, fit.contact + half), 25);
+  }
+  int polish = 0;
+  for (; polish < kPolishSteps && !axes.empty(); ++polish) {
+    // Columns: each ln-parameter by central differences, then z_c, b, m (linear ones exact).
+    const auto centre_branch = branch_of(trial_of(state.u));
+    std::vector<double> dg(n);
+    const std::vector<double> m0 = model_all(*centre_branch, state.c, &dg);
+    std::vector<std::vector<double>> cols;
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      constexpr double h = 1e-4;
+      std::vector<double> up = state.u, down = state.u;
+      up[k] += h, down[k] -= h;
+      const auto bu = branch_of(trial_of(up)), bd = branch_of(trial_of(down));
+      const std::vector<double> mu = model_all(*bu, state.c, nullptr), md = model_all(*bd, state.c, nullptr);
+      std::vector<double> col(n);
+      for (std::size_t i = 0; i < n; ++i) col[i] = (mu[i] - md[i]) / (2 * h);
+      cols.push_back(std::move(col));
+    }
+    if (problem.free.contact_point) {
+      std::vector<double> col(n);
+      for (std::size_t i = 0; i < n; ++i) col[i] = dg[i] - state.c.linear.tilt;
+      cols.push_back(std::move(col));
+    }
+    if (problem.free.baseline) cols.push_back(std::vector<double>(n, 1.0));
+    if (problem.free.tilt) {
+      std::vector<double> col(n);
+      for (std::size_t i = 0; i < n; ++i) col[i] = all.z[i] - state.c.contact;
+      cols.push_back(std::move(col));
+    }
+    std::vector<double> residual(n);
+    for (std::size_t i = 0; i < n; ++i) residual[i] = all.f[i] - m0[i];
+    const std::vector<double> step = internal::afm_least_squares_step(cols, residual);
+    bool improved = false;
+    for (double scale = 1.0; scale > 1.0 / 64.0; scale /= 4.0) {
+      State next = state;
+      for (std::size_t k = 0; k < axes.size(); ++k) next.u[k] += scale * step[k];
+      if (problem.free.contact_point) next.c.contact += scale * step[axes.size()];
+      std::unique_ptr<Branch> b;
+      try {
+        b = branch_of(trial_of(next.u));
+      } catch (const NumericalError&) {
+        continue;
+      }
+      next.c.linear = fine.at(*b, next.c.contact);
+      if (next.c.linear.rss < state.c.linear.rss) {
+        const double gain = (state.c.linear.rss - next.c.linear.rss) / state.c.linear.rss;
+        state = next;
+        improved = gain > 1e-10;
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  estimate = trial_of(state.u);
+  const auto branch = branch_of(estimate);
+
+  AfmFitResult r;
+  r.points = n;
+  r.free_count = free_count;
+  r.modulus = estimate.modulus;
+  r.work = estimate.work;
+  r.thickness = coated ? estimate.thickness : 0.0;
+  r.reduced_modulus = branch->reduced_modulus();
+  r.contact_point = state.c.contact;
+  r.baseline = state.c.linear.baseline;
+  r.tilt = state.c.linear.tilt;
+  r.tilt_origin = r.contact_point;
+  r.jump_off_indentation = branch->jump_delta();
+  r.jump_off_force = branch->jump_force();
+  r.solver_calls = solver_calls;
+  r.profile_evaluations = coarse.evaluations() + fine.evaluations();
+  r.model_evaluations = tables;
+  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] &&
+      r.contact_point - z_lo > 0.0) {
+    // Only the radii the data reach matter: the deepest fitted indentation's.
+    double deepest = r.contact_point - z_lo;
+    if (deepest > 0.0) {
+      const Branch check(p, sweep_of(estimate.modulus), estimate, deepest);
+      if (check.max_radius() / estimate.thickness > kCoatingAOverT[1]) {
+        throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
+                             short_text(estimate.thickness) + " m; the coating model is tabulated up to there");
+      }
+    }
+  }
+  // Per point, in the caller's order.
+  std::vector<double> slope(n);
+  r.model_force.resize(n);
+  r.indentation.resize(n);
+  std::vector<double> col_c(n), col_m(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double delta = r.contact_point - z_data[i];
+    const auto [g, dg] = branch->at(delta);
+    r.model_force[i] = r.baseline + r.tilt * (z_data[i] - r.contact_point) + g;
+    col_c[i] = dg - r.tilt;
+    col_m[i] = z_data[i] - r.contact_point;
+    r.indentation[i] = delta;
+  }
+  std::vector<std::vector<double>> columns;
+  std::vector<double*> slots;
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    constexpr double h = 1e-4;
+    std::vector<double> up = state.u, down = state.u;
+    up[k] += h, down[k] -= h;
+    const auto bu = branch_of(trial_of(up)), bd = branch_of(trial_of(down));
+    std::vector<double> col(n);
+    const double value = std::exp(state.u[k]);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double delta = r.contact_point - z_data[i];
+      col[i] = (bu->at(delta).first - bd->at(delta).first) / (2 * h * value);  // per unit of the parameter
+    }
+    columns.push_back(std::move(col));
+    slots.push_back(axes[k] == 0 ? &r.modulus_error : axes[k] == 1 ? &r.work_error : &r.thickness_error);
+  }
+  if (problem.free.contact_point) columns.push_back(col_c), slots.push_back(&r.contact_point_error);
+  if (problem.free.baseline) columns.push_back(std::vector<double>(n, 1.0)), slots.push_back(&r.baseline_error);
+  if (problem.free.tilt) columns.push_back(col_m), slots.push_back(&r.tilt_error);
+
+  afm_residual_statistics(r, f_data, problem.noise_sigma, free_count, r.jump_off_indentation,
+                          "the JKR fit leaves no point in contact; check the segment (retract) and the range");
+  const std::vector<double> errors = afm_standard_errors(columns, r.residual_sigma);
+  for (std::size_t a = 0; a < errors.size(); ++a) *slots[a] = errors[a];
+  for (double v : {r.modulus, r.work, r.contact_point, r.baseline, r.tilt, r.rss, r.jump_off_force}) {
+    if (!std::isfinite(v)) throw NumericalError("afm fit: the JKR fit did not converge (a non-finite estimate)");
+  }
+  for (double v : errors) {
+    if (!std::isfinite(v)) throw NumericalError("afm fit: the JKR fit's standard errors are not finite (parameters not identifiable)");
+  }
+  afm_jkr_lambda(p, r);
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    if (std::abs(state.u[k] - u0[k]) > std::log(10.0) * 2.5) {
+      r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +
+                           " ended more than 2.5 decades from its start (" + short_text(std::exp(u0[k])) +
+                           "); check the given value");
+    }
+  }
+  if (iterations >= kSimplexIterations) r.warnings.push_back("the simplex search stopped at its iteration bound");
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace internal
+
+}  // namespace coatcontact::fit
