@@ -789,9 +789,9 @@ int run_afm(const Args& args) {
       "Real AFM force curves from the instruments' files.\n"
       "  show      metadata, calibration and segments (the curves of a map)\n"
       "  export    one curve as TSV in SI units (--index N of a map)\n"
-      "  fit       Hertz/Sneddon fit of one segment (E, contact point, baseline), or JKR through the
-            cantilever of the retract (--model jkr: also w and the baseline tilt); one row per
-            curve for a map, several files or a folder
+      "  fit       Hertz/Sneddon fit of one segment (E, contact point, baseline), or JKR through the\n"
+      "            cantilever of the retract (--model jkr: also w and the baseline tilt); one row per\n"
+      "            curve for a map, several files or a folder\n";
   if (args.empty()) {
     std::cerr << overview;
     return kExitUsage;
