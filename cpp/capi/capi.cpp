@@ -191,7 +191,10 @@ thread_local std::string point_reasons;
 // written); else the statuses and the reasons, one line per point.
 bool deliver_statuses(const std::vector<coatcontact::PointStatus>& status, int* out_status) {
   if (!status.empty() && coatcontact::failed_points(status) == status.size()) {
-    throw coatcontact::NumericalError("every point failed; the first: " + status.front().reason);
+    // One point: its own message, as the strict call gives it.
+    if (status.size() == 1) throw coatcontact::NumericalError(status.front().reason);
+    throw coatcontact::NumericalError("every point of " + std::to_string(status.size()) +
+                                      " failed; the first: " + status.front().reason);
   }
   std::string text;
   for (std::size_t i = 0; i < status.size(); ++i) {

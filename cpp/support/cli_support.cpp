@@ -611,9 +611,11 @@ OptionSpec strict_option() {
 }
 
 void require_some_delivered(const std::vector<PointStatus>& status, const std::string& what) {
-  if (!status.empty() && failed_points(status) == status.size()) {
-    throw NumericalError("no " + what + " could be delivered; the first: " + status.front().reason);
-  }
+  if (status.empty() || failed_points(status) < status.size()) return;
+  // One point: its own message, as the strict run gives it.
+  if (status.size() == 1) throw NumericalError(status.front().reason);
+  throw NumericalError("no " + what + " of " + std::to_string(status.size()) +
+                       " could be delivered; the first: " + status.front().reason);
 }
 
 void report_not_delivered(std::vector<std::pair<std::string, std::string>>& items, const std::string& command,
