@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Whole-process wall times of the CLI tasks that the README's Speed section quotes: median,
 # min and max over RUNS runs (after one warm-up), as rows "task median min max runs cli".
+# The two sweep targets of issue 26 (200 radii, pull-off over 100 eta) also get a CPU row
+# (user + sys of the process, kind cli-cpu): the machine is shared, and wall time on a loaded
+# machine says more about the load than about the code.
 # Usage: bench/cli_timings.sh CLI [RUNS]
 set -euo pipefail
 cli="${1:?usage: bench/cli_timings.sh CLI [RUNS]}"
@@ -23,12 +26,28 @@ time_task() {
     END { printf "%s\t%.4g\t%.4g\t%.4g\t%d\tcli\n", task, t[int((n + 1) / 2)], t[1], t[n], n }'
 }
 
+# time_task_cpu TASK ARGS...: as time_task, plus the row "TASK, CPU" of user + sys in ms.
+time_task_cpu() {
+  local task="$1"
+  shift
+  time_task "$task" "$@"
+  local cpus=() TIMEFORMAT='%U %S'
+  for ((i = 0; i < runs; i++)); do
+    local t
+    t=$( { time "$@" > /dev/null 2>&1; } 2>&1 )
+    cpus+=($(awk -v t="$t" 'BEGIN { split(t, p, " "); printf "%d", (p[1] + p[2]) * 1e6 }'))
+  done
+  printf '%s\n' "${cpus[@]}" | sort -n | awk -v task="$task, CPU" -v n="$runs" '
+    { t[NR] = $1 / 1000.0 }
+    END { printf "%s\t%.4g\t%.4g\t%.4g\t%d\tcli-cpu\n", task, t[int((n + 1) / 2)], t[1], t[n], n }'
+}
+
 time_task "version (process start)" "$cli" --help
 time_task "one radius (reduced, a/t = 1)" \
   "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 1
-time_task "200 radii (reduced, a/t 1e-3..1e4)" \
+time_task_cpu "200 radii (reduced, a/t 1e-3..1e4)" \
   "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 0.001:10000:200
-time_task "pulloff, 100 eta" \
+time_task_cpu "pulloff, 100 eta" \
   "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 0.01:100:100
 
 root="$(cd "$(dirname "$0")/.." && pwd)"

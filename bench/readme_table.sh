@@ -9,7 +9,7 @@ awk -F'\t' '
   /^# machine:/ { machine = substr($0, 12) }
   /^# date:/    { date = substr($0, 9) }
   /^#/ { next }
-  NF >= 2 { rows[++n] = sprintf("| %s | %s | %s |", $1, $2, ($6 == "cli" ? "whole process" : "in process")) }
+  NF >= 2 { rows[++n] = sprintf("| %s | %s | %s |", $1, $2, ($6 == "cli" ? "whole process" : $6 == "cli-cpu" ? "whole process, CPU (user + sys)" : "in process")) }
   END {
     printf "Medians from `make bench` (commit %s, %s, %s):\n\n", commit, machine, date
     print "| task | median [ms] | measured |"

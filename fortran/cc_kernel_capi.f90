@@ -233,6 +233,15 @@ contains
     status = create_table(e1, nu1, e0, nu0, substrate_rigid, int(grid_variant), table)
   end function capi_kernel_table_create_ex
 
+  ! The table of cc_kernel_table_create_ex without H1: see cc_kernel.h.
+  integer(c_int) function capi_kernel_table_create_h(e1, nu1, e0, nu0, substrate_rigid, &
+      grid_variant, table) result(status) bind(C, name="cc_kernel_table_create_h")
+    real(c_double), value, intent(in) :: e1, nu1, e0, nu0
+    integer(c_int), value, intent(in) :: substrate_rigid, grid_variant
+    type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
+    status = create_table(e1, nu1, e0, nu0, substrate_rigid, int(grid_variant), table, h_only=.true.)
+  end function capi_kernel_table_create_h
+
   ! Variant 0 on a compact grid covering [0, u_range] (series beyond), no H1: see cc_kernel.h.
   integer(c_int) function capi_kernel_table_create_range(e1, nu1, e0, nu0, substrate_rigid, &
       u_range, table) result(status) bind(C, name="cc_kernel_table_create_range")
@@ -260,12 +269,13 @@ contains
   end function capi_kernel_stack_max_refinement
 
   integer(c_int) function create_table(e1, nu1, e0, nu0, substrate_rigid, variant, table, &
-      u_range) result(status)
+      u_range, h_only) result(status)
     real(c_double), intent(in) :: e1, nu1, e0, nu0
     integer(c_int), intent(in) :: substrate_rigid
     integer, intent(in) :: variant
     type(c_ptr), intent(in) :: table
     real(dp), intent(in), optional :: u_range
+    logical, intent(in), optional :: h_only
     type(c_ptr), pointer :: handle
     type(kernel_table), pointer :: t
     type(material_pair) :: pair
@@ -284,7 +294,7 @@ contains
       status = CC_ERR_ALLOCATION
       return
     end if
-    call build_kernel_table_variant(pair, variant, t, s, u_range)
+    call build_kernel_table_variant(pair, variant, t, s, u_range, h_only)
     status = int(s, c_int)
     if (s /= CC_OK) then
       deallocate(t)
@@ -310,6 +320,22 @@ contains
                                 e_base, nu_base, int(grid_variant), table)
   end function capi_kernel_table_create_stack
 
+  ! The table of cc_kernel_table_create_stack without H1: see cc_kernel.h.
+  integer(c_int) function capi_kernel_table_create_stack_h(n_layers, thickness, youngs, poisson, &
+      slip_below, base_rigid, e_base, nu_base, grid_variant, table) result(status) &
+      bind(C, name="cc_kernel_table_create_stack_h")
+    integer(c_int), value, intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), value, intent(in) :: base_rigid
+    real(c_double), value, intent(in) :: e_base, nu_base
+    integer(c_int), value, intent(in) :: grid_variant
+    type(c_ptr), value, intent(in) :: table       ! cc_kernel_table **
+    status = create_stack_table(n_layers, thickness, youngs, poisson, slip_below, base_rigid, &
+                                e_base, nu_base, int(grid_variant), table, h_only=.true.)
+  end function capi_kernel_table_create_stack_h
+
   ! Variant 0 of a stack on a compact grid covering [0, u_range], no H1: see cc_kernel.h.
   integer(c_int) function capi_kernel_table_create_stack_range(n_layers, thickness, youngs, &
       poisson, slip_below, base_rigid, e_base, nu_base, u_range, table) result(status) &
@@ -328,7 +354,7 @@ contains
   end function capi_kernel_table_create_stack_range
 
   integer(c_int) function create_stack_table(n_layers, thickness, youngs, poisson, slip_below, &
-      base_rigid, e_base, nu_base, grid_variant, table, u_range) result(status)
+      base_rigid, e_base, nu_base, grid_variant, table, u_range, h_only) result(status)
     integer(c_int), intent(in) :: n_layers
     real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
                                   poisson(max(n_layers, 0))
@@ -338,6 +364,7 @@ contains
     integer, intent(in) :: grid_variant
     type(c_ptr), intent(in) :: table       ! cc_kernel_table **
     real(dp), intent(in), optional :: u_range
+    logical, intent(in), optional :: h_only
     type(c_ptr), pointer :: handle
     type(kernel_table), pointer :: t
     type(layer_stack) :: stack
@@ -357,7 +384,7 @@ contains
     if (grid_variant < 0 .or. grid_variant >= n_grid_variants) return
     if (stack%closed_form) then
       status = create_table(youngs(1), poisson(1), e_base, nu_base, base_rigid, &
-                            grid_variant, table, u_range)
+                            grid_variant, table, u_range, h_only)
       return
     end if
     allocate(t, stat=ierr)
@@ -365,7 +392,7 @@ contains
       status = CC_ERR_ALLOCATION
       return
     end if
-    call build_stack_kernel_table_variant(stack, grid_variant, t, s, u_range)
+    call build_stack_kernel_table_variant(stack, grid_variant, t, s, u_range, h_only)
     status = int(s, c_int)
     if (s /= CC_OK) then
       deallocate(t)

@@ -299,26 +299,29 @@ contains
 
   ! Builds the table on the grid of `variant` (0 .. n_grid_variants - 1, see grid_parameters)
   ! for a validated pair. FFTW planning is serialized by cc_planner_lock.c, so any number of
-  ! threads may build tables; evaluation is read-only. u_range: a compact grid (build_table).
-  subroutine build_kernel_table_variant(pair, variant, table, status, u_range)
+  ! threads may build tables; evaluation is read-only. u_range: a compact grid (build_table);
+  ! h_only: no H1 (build_table).
+  subroutine build_kernel_table_variant(pair, variant, table, status, u_range, h_only)
     type(material_pair), intent(in) :: pair
     integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
     real(dp), intent(in), optional :: u_range
+    logical, intent(in), optional :: h_only
     type(kernel_source) :: src
     src%pair = pair
-    call build_table(src, variant, table, status, u_range)
+    call build_table(src, variant, table, status, u_range, h_only)
   end subroutine build_kernel_table_variant
 
   ! The same table for a validated stack of more than one layer or with a slip flag (one
   ! bonded layer: build_kernel_table_variant, so that its table is unchanged bit for bit).
-  subroutine build_stack_kernel_table_variant(stack, variant, table, status, u_range)
+  subroutine build_stack_kernel_table_variant(stack, variant, table, status, u_range, h_only)
     type(layer_stack), intent(in) :: stack
     integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
     real(dp), intent(in), optional :: u_range
+    logical, intent(in), optional :: h_only
     type(kernel_source) :: src
     src%is_stack = .true.
     src%stack = stack
@@ -328,7 +331,7 @@ contains
     end do
     status = CC_ERR_ACCURACY
     if (src%refine > max_stack_refine) return
-    call build_table(src, variant, table, status, u_range)
+    call build_table(src, variant, table, status, u_range, h_only)
   end subroutine build_stack_kernel_table_variant
 
   subroutine source_minus_one(src, q, f, status)
@@ -375,6 +378,8 @@ contains
   ! range halve while the range still covers u_range (>= 40): a solver that never needs H
   ! beyond u_range skips most of the FFT work; the asymptotic series is used beyond, as usual.
   ! Such a table has no H1 (not computed: half the FFT work; evaluate_kernel_h only).
+  ! h_only: any grid without H1 (its DST-I and the planning of it skipped); H, its accuracy
+  ! estimate and every other field are those of the table with H1, bit for bit.
   ! One r2r transform of length n on FFTW-allocated (SIMD-aligned) copies of x and y:
   ! FFTW_ESTIMATE picks its codelets by the arrays' alignment, so transforming Fortran-allocated
   ! arrays made a table (and every printed digit after it) depend on the heap state, e.g. on
@@ -411,12 +416,13 @@ contains
     if (c_associated(p_out)) call fftw_free(p_out)
   end subroutine aligned_r2r
 
-  subroutine build_table(src, variant, table, status, u_range)
+  subroutine build_table(src, variant, table, status, u_range, h_only)
     type(kernel_source), intent(in) :: src
     integer, intent(in) :: variant
     type(kernel_table), intent(out) :: table
     integer, intent(out) :: status
     real(dp), intent(in), optional :: u_range
+    logical, intent(in), optional :: h_only
 
     real(c_double), allocatable :: work_in(:), work_out(:)
     real(dp), allocatable :: q(:), r(:), fq(:)
@@ -440,6 +446,9 @@ contains
       end do
     end if
     table%has_h1 = .not. compact
+    if (present(h_only)) then
+      if (h_only) table%has_h1 = .false.
+    end if
     table%grid_variant = variant
     table%stencil = stencil
     table%stencil_left = stencil_left

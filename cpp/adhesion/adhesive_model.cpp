@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -194,6 +195,43 @@ std::vector<CurvePoint> AdhesiveModel::curve(double eta, const std::vector<doubl
   std::vector<CurvePoint> out;
   out.reserve(a_bar.size());
   for (double a : a_bar) out.push_back(point(eta, a));
+  return out;
+}
+
+std::vector<CurvePoint> AdhesiveModel::curve(double eta, const std::vector<double>& a_bar,
+                                             std::vector<PointStatus>& status) const {
+  check_eta(eta);
+  if (a_bar.empty()) throw InputError("empty a_bar list");
+  for (double a : a_bar) check_positive(a, "a_bar");
+  const auto [lo, hi] = std::minmax_element(a_bar.begin(), a_bar.end());
+  try {
+    table_->prepare(*lo / eta, *hi / eta);  // every decade in one batch of solves
+  } catch (const NumericalError&) {
+    // A decade cannot be built: each point's decade is tried on its own below, once.
+  }
+  // Decades of a/t as the table keys them (reduced_table.cpp): a failed decade is not tried again.
+  std::map<long, std::string> failed_decades;
+  std::vector<CurvePoint> out(a_bar.size());
+  std::vector<PointStatus> outcome(a_bar.size());
+  for (std::size_t i = 0; i < a_bar.size(); ++i) {
+    const double a_over_t = a_bar[i] / eta;
+    const long decade = static_cast<long>(std::floor(std::log(a_over_t) / std::log(10.0)));
+    const auto known = failed_decades.find(decade);
+    if (known == failed_decades.end()) {
+      try {
+        out[i] = point(eta, a_bar[i]);
+        continue;
+      } catch (const NumericalError& e) {
+        failed_decades[decade] = e.what();
+      }
+    }
+    out[i] = CurvePoint{};
+    out[i].eta = eta;
+    out[i].a_bar = a_bar[i];
+    out[i].a_over_t = a_over_t;
+    outcome[i] = PointStatus{false, failed_decades[decade]};
+  }
+  status = std::move(outcome);
   return out;
 }
 

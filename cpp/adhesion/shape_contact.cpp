@@ -76,6 +76,23 @@ std::vector<ShapePoint> ShapeContact::curve(const std::vector<double>& radii) co
   return out;
 }
 
+std::vector<ShapePoint> ShapeContact::curve(const std::vector<double>& radii, std::vector<PointStatus>& status) const {
+  for (double a : radii) check_si(a, "contact radius");
+  std::vector<ShapePoint> out(radii.size());
+  std::vector<PointStatus> outcome(radii.size());
+  detail::parallel_for(radii.size(), [&](std::size_t i) {
+    try {
+      out[i] = at(radii[i]);
+    } catch (const NumericalError& e) {
+      out[i] = ShapePoint{};
+      out[i].radius = radii[i];
+      outcome[i] = PointStatus{false, e.what()};
+    }
+  });
+  status = std::move(outcome);
+  return out;
+}
+
 std::pair<double, double> ShapeContact::default_range() const {
   if (shape_->flat()) return {shape_->max_contact_radius(), shape_->max_contact_radius()};
   const Stack& stack = solver_.stack();

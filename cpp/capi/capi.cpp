@@ -4,6 +4,7 @@
 #include "coatcontact/coatcontact.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <exception>
 #include <memory>
@@ -15,6 +16,7 @@
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/data_file.hpp"
+#include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
 #include "coatcontact/indenter_shape.hpp"
@@ -182,6 +184,31 @@ void copy_out(const std::vector<double>& values, double* out) {
   for (std::size_t k = 0; k < values.size(); ++k) out[k] = values[k];
 }
 
+// The reasons of the last _each call in this thread (cc_point_reasons).
+thread_local std::string point_reasons;
+
+// Status and reasons of an _each call: every point failed is the call's failure (nothing is
+// written); else the statuses and the reasons, one line per point.
+bool deliver_statuses(const std::vector<coatcontact::PointStatus>& status, int* out_status) {
+  if (!status.empty() && coatcontact::failed_points(status) == status.size()) {
+    // One point: its own message, as the strict call gives it.
+    if (status.size() == 1) throw coatcontact::NumericalError(status.front().reason);
+    throw coatcontact::NumericalError("every point of " + std::to_string(status.size()) +
+                                      " failed; the first: " + status.front().reason);
+  }
+  std::string text;
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    out_status[i] = status[i].delivered ? CC_OK : CC_NUMERICAL_ERROR;
+    std::string reason = status[i].reason;
+    for (char& c : reason) {
+      if (c == '\n') c = ' ';
+    }
+    text += reason + "\n";
+  }
+  point_reasons = std::move(text);
+  return true;
+}
+
 }  // namespace
 
 namespace {
@@ -317,6 +344,26 @@ int cc_reduced_solver_sweep(const cc_reduced_solver* solver, int n, const double
   });
 }
 
+int cc_reduced_solver_sweep_each(const cc_reduced_solver* solver, int n, const double* a_over_t,
+                                 double tolerance, double* out, int* status) {
+  return guarded([&] {
+    require(solver, "cc_reduced_solver_sweep_each", "solver");
+    const std::size_t count = count_of(n, "cc_reduced_solver_sweep_each");
+    point_reasons.clear();
+    if (count == 0) return;
+    require(a_over_t, "cc_reduced_solver_sweep_each", "a_over_t");
+    require(out, "cc_reduced_solver_sweep_each", "out");
+    require(status, "cc_reduced_solver_sweep_each", "status");
+    std::vector<coatcontact::PointStatus> outcome;
+    const auto rows = solver->solver->sweep(std::vector<double>(a_over_t, a_over_t + count),
+                                            tolerance_or_default(tolerance), outcome);
+    deliver_statuses(outcome, status);
+    for (std::size_t i = 0; i < count; ++i) write_row(rows[i], out + CC_REDUCED_COLUMNS * i);
+  });
+}
+
+const char* cc_point_reasons(void) { return point_reasons.c_str(); }
+
 // ---- adhesive sphere, normalized --------------------------------------------------------
 
 int cc_adhesive_model_create(const cc_reduced_solver* solver, double tolerance, cc_adhesive_model** model) {
@@ -348,6 +395,27 @@ int cc_adhesive_curve(cc_adhesive_model* model, double eta, int n, const double*
     require(a_bar, "cc_adhesive_curve", "a_bar");
     require(out, "cc_adhesive_curve", "out");
     const auto points = model->model->curve(eta, std::vector<double>(a_bar, a_bar + count));
+    std::vector<double> rows;
+    rows.reserve(count * CC_CURVE_COLUMNS);
+    for (const coatcontact::CurvePoint& p : points) {
+      rows.insert(rows.end(), {p.a_bar, p.a_over_t, p.load, p.penetration});
+    }
+    copy_out(rows, out);
+  });
+}
+
+int cc_adhesive_curve_each(cc_adhesive_model* model, double eta, int n, const double* a_bar, double* out,
+                           int* status) {
+  return guarded([&] {
+    require(model, "cc_adhesive_curve_each", "model");
+    const std::size_t count = count_of(n, "cc_adhesive_curve_each");
+    point_reasons.clear();
+    require(a_bar, "cc_adhesive_curve_each", "a_bar");
+    require(out, "cc_adhesive_curve_each", "out");
+    require(status, "cc_adhesive_curve_each", "status");
+    std::vector<coatcontact::PointStatus> outcome;
+    const auto points = model->model->curve(eta, std::vector<double>(a_bar, a_bar + count), outcome);
+    deliver_statuses(outcome, status);
     std::vector<double> rows;
     rows.reserve(count * CC_CURVE_COLUMNS);
     for (const coatcontact::CurvePoint& p : points) {
@@ -415,6 +483,39 @@ int cc_contact_at(cc_contact* contact, int n, const double* a, double* out) {
     require(a, "cc_contact_at", "a");
     require(out, "cc_contact_at", "out");
     copy_out(contact_rows(contact->contact, std::vector<double>(a, a + count)), out);
+  });
+}
+
+int cc_contact_at_each(cc_contact* contact, int n, const double* a, double* out, int* status) {
+  return guarded([&] {
+    require(contact, "cc_contact_at_each", "contact");
+    const std::size_t count = count_of(n, "cc_contact_at_each");
+    point_reasons.clear();
+    if (count == 0) return;
+    require(a, "cc_contact_at_each", "a");
+    require(out, "cc_contact_at_each", "out");
+    require(status, "cc_contact_at_each", "status");
+    const coatcontact::Contact& c = contact->contact;
+    // The arithmetic of Contact::penetration and Contact::force, on the tolerant curve.
+    std::vector<double> a_bar(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!(a[i] > 0.0) || !std::isfinite(a[i])) {
+        throw InputError("contact radius = " + coatcontact::detail::full_precision(a[i]) +
+                         " not allowed (need finite and > 0)");
+      }
+      a_bar[i] = a[i] / c.length_scale();
+    }
+    std::vector<coatcontact::PointStatus> outcome;
+    const auto points = c.model().curve(c.eta(), a_bar, outcome);
+    deliver_statuses(outcome, status);
+    std::vector<double> rows;
+    rows.reserve(count * CC_CONTACT_COLUMNS);
+    for (std::size_t i = 0; i < count; ++i) {
+      const bool ok = outcome[i].delivered;
+      rows.insert(rows.end(), {a[i], ok ? c.penetration_scale() * points[i].penetration : 0.0,
+                               ok ? c.force_scale() * points[i].load : 0.0});
+    }
+    copy_out(rows, out);
   });
 }
 
@@ -985,6 +1086,26 @@ int cc_shape_contact_curve(const cc_shape_contact* contact, int n, const double*
     require(a, "cc_shape_contact_curve", "a");
     require(out, "cc_shape_contact_curve", "out");
     const auto points = contact->contact->curve(std::vector<double>(a, a + count));
+    std::vector<double> rows;
+    rows.reserve(count * CC_SHAPE_CURVE_COLUMNS);
+    for (const coatcontact::ShapePoint& p : points) {
+      rows.insert(rows.end(), {p.radius, p.penetration, p.force, p.penetration_h, p.force_h});
+    }
+    copy_out(rows, out);
+  });
+}
+
+int cc_shape_contact_curve_each(const cc_shape_contact* contact, int n, const double* a, double* out, int* status) {
+  return guarded([&] {
+    require(contact, "cc_shape_contact_curve_each", "contact");
+    const std::size_t count = count_of(n, "cc_shape_contact_curve_each");
+    point_reasons.clear();
+    require(a, "cc_shape_contact_curve_each", "a");
+    require(out, "cc_shape_contact_curve_each", "out");
+    require(status, "cc_shape_contact_curve_each", "status");
+    std::vector<coatcontact::PointStatus> outcome;
+    const auto points = contact->contact->curve(std::vector<double>(a, a + count), outcome);
+    deliver_statuses(outcome, status);
     std::vector<double> rows;
     rows.reserve(count * CC_SHAPE_CURVE_COLUMNS);
     for (const coatcontact::ShapePoint& p : points) {

@@ -25,17 +25,25 @@ constexpr double kEvaluationsPerDecade = 25.0;
 }  // namespace
 
 double plan_table_work(const ReducedSolver& solver, double tolerance, double a_over_t_min,
-                       double a_over_t_max, const std::string& options) {
+                       double a_over_t_max, const std::string& options, bool points_may_fail) {
   double total = 0.0, slowest = 0.0;
+  int ends_failed = 0;
+  std::string first_failure;
   for (double a : {a_over_t_min, a_over_t_max}) {
     const auto start = std::chrono::steady_clock::now();
     try {
       solver.solve(a, tolerance);
     } catch (const NumericalError& e) {
-      throw InputError(options + ": the solver cannot reach the tolerance " + show(tolerance) + " at a/t = " +
-                       show(a) + " (an end of the a/t range this request needs), so the run would fail after "
-                       "building the whole table; allowed: a larger --tol, or parameters needing a/t closer "
-                       "to 1 (solver: " + e.what() + ")");
+      const std::string refusal =
+          options + ": the solver cannot reach the tolerance " + show(tolerance) + " at a/t = " + show(a) +
+          " (an end of the a/t range this request needs), so the run would fail after building the whole "
+          "table; allowed: a larger --tol, or parameters needing a/t closer to 1 (solver: " + e.what() + ")";
+      // Points delivered one by one: one end's points fail alone; both ends failing is refused
+      // as before (the run would deliver next to nothing after all the work).
+      if (!points_may_fail || (++ends_failed == 2 || a_over_t_min == a_over_t_max)) {
+        throw InputError(first_failure.empty() ? refusal : first_failure);
+      }
+      first_failure = refusal;
     } catch (const InputError& e) {
       throw InputError(options + ": " + e.what());
     }

@@ -20,8 +20,11 @@ namespace coatcontact::cli {
 // above kMaxWorkSeconds, is refused naming `options` (e.g. "--tol 1e-13 with --eta 1e-06");
 // otherwise the estimate (seconds) is given to the progress line and returned.
 constexpr double kMaxWorkSeconds = 1800.0;
+// With `points_may_fail` (an array whose points are delivered one by one, cli_support.hpp:
+// report_not_delivered) one end the solver cannot serve is not refused (its points will be
+// flagged, and its time counts in the estimate); both ends are, as without.
 double plan_table_work(const ReducedSolver& solver, double tolerance, double a_over_t_min,
-                       double a_over_t_max, const std::string& options);
+                       double a_over_t_max, const std::string& options, bool points_may_fail = false);
 
 // Work estimate of Maugis-Dugdale solves (one per contact radius): times one point at
 // (eta, lambda, a_bar) and refuses, naming `options`, `evaluations` such points estimated

@@ -194,11 +194,15 @@ int run_adhesive(const Args& raw) {
                                    "contact radii a/(pi w R^2/E1*)^(1/3), each in [1e-6, 1e6] (default 0.01:10:400 log-spaced, "
                                    "widened to 0.01 min(1,r):10 max(1,r), r = (E1*/E0*)^(1/3))",
                                    false});
+    spec.push_back(strict_option());
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("adhesive", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
                          "Normalized adhesive sphere on a coated substrate: load P and penetration D versus\n"
-                         "contact radius a_bar, one block per eta (blocks separated by two blank lines).\n" +
+                         "contact radius a_bar, one block per eta (blocks separated by two blank lines).\n"
+                         "JKR: a point whose decade of the reduced-variable table cannot be built at --tol\n"
+                         "is a '# not delivered' row with its reason (exit 0 while one point is delivered);\n"
+                         "with --strict, exit 3 at the first one.\n" +
                              std::string(kNormalization),
                          spec);
       return 0;
@@ -215,6 +219,10 @@ int run_adhesive(const Args& raw) {
       refuse_unused_tol(args, *lambdas);
       refuse_elastic_indenter(stack, "--lambda");
     }
+    if (lambdas && args.has("--strict")) {
+      throw InputError("--strict: not used with --lambda (it selects how the JKR curve's points are delivered); "
+                       "omit --strict");
+    }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol);
@@ -228,13 +236,23 @@ int run_adhesive(const Args& raw) {
       const auto [lo, hi] = model.default_curve_range();
       a_bar = log_spaced(lo, hi, 400);
     }
+    const bool strict = args.has("--strict");
     plan_table_work(solver, tol, *std::min_element(a_bar.begin(), a_bar.end()) / *std::max_element(etas.begin(), etas.end()),
                     *std::max_element(a_bar.begin(), a_bar.end()) / *std::min_element(etas.begin(), etas.end()),
-                    "--tol " + num(tol) + " with --eta and --a-bar");
+                    "--tol " + num(tol) + " with --eta and --a-bar", !strict);
     std::vector<std::vector<CurvePoint>> curves;
+    std::vector<PointStatus> status;  // every point of every block, in output order
     for (double eta : etas) {
-      curves.push_back(with_options("--eta " + num(eta) + " with --a-bar", [&] { return model.curve(eta, a_bar); }));
+      curves.push_back(with_options("--eta " + num(eta) + " with --a-bar", [&] {
+        if (strict) return model.curve(eta, a_bar);
+        std::vector<PointStatus> block;
+        auto points = model.curve(eta, a_bar, block);
+        status.insert(status.end(), block.begin(), block.end());
+        return points;
+      }));
     }
+    if (strict) status.assign(etas.size() * a_bar.size(), PointStatus{});
+    require_some_delivered(status, "point");
 
     Header h{{"command", "adhesive"}};
     add_material_header(h, stack);
@@ -243,12 +261,25 @@ int run_adhesive(const Args& raw) {
     h.emplace_back("a_bar points", std::to_string(a_bar.size()));
     describe_table(h, model, tol);
     h.emplace_back("blocks", "one per eta in the order given, separated by two blank lines (gnuplot index)");
+    const auto where = [&](std::size_t i) {
+      const CurvePoint& p = curves[i / a_bar.size()][i % a_bar.size()];
+      return "eta = " + format_value(p.eta, "eta") + ", a_bar = " + format_value(p.a_bar, "a_bar");
+    };
+    report_not_delivered(h, "adhesive", status, where);
     const std::vector<std::string> columns = {"eta", "a_bar", "a_over_t", "P", "D"};
     std::ostream& os = out.stream();
     write_header(os, h, columns);
     for (std::size_t b = 0; b < curves.size(); ++b) {
       if (b > 0) os << "\n\n";
-      for (const auto& p : curves[b]) write_row(os, {p.eta, p.a_bar, p.a_over_t, p.load, p.penetration}, columns);
+      for (std::size_t k = 0; k < curves[b].size(); ++k) {
+        const CurvePoint& p = curves[b][k];
+        const std::size_t i = b * a_bar.size() + k;
+        if (!status[i].delivered) {
+          write_not_delivered(os, where(i), status[i].reason);
+          continue;
+        }
+        write_row(os, {p.eta, p.a_bar, p.a_over_t, p.load, p.penetration}, columns);
+      }
     }
     out.commit();
     return 0;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -109,6 +110,7 @@ const std::vector<OptionSpec> kSpec = {
     {"--points", "N", "number of contact radii over the default range (default 100; not with --contact-radius)", false},
     {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
+    strict_option(),
 };
 
 }  // namespace
@@ -169,12 +171,14 @@ int run_contact(const Args& raw) {
     if (args.help()) {
       std::cout << usage("contact",
                          "--shape SHAPE --thickness t --film E1,nu1 --substrate E0,nu0|rigid "
-                         "[--indenter E2,nu2] --work w [--spring k] [--contact-radius LIST | --points N]",
+                         "[--indenter E2,nu2] --work w [--spring k] [--contact-radius LIST | --points N] [--strict]",
                          "Adhesive (JKR) contact of an axisymmetric indenter on a coated substrate in SI\n"
                          "units: per contact radius the adhesive penetration and force and the adhesionless\n"
                          "ones (THEORY.md sections 5, 11); the pull-off forces under load, displacement and\n"
                          "spring control (section 10) in the header, with a warning when F(a) has several\n"
-                         "local minima (the global one is the load-controlled pull-off).",
+                         "local minima (the global one is the load-controlled pull-off). A radius the solver\n"
+                         "cannot serve at --tol is a '# not delivered' row with its reason (exit 0 while one\n"
+                         "radius is delivered); with --strict, exit 3 at the first one.",
                          kSpec);
       return kExitSuccess;
     }
@@ -241,10 +245,25 @@ int run_contact(const Args& raw) {
         }
       }
     }
-    const std::vector<ShapePoint> curve = contact.curve(radii);
-    const ShapePulloff pulloff = contact.pulloff(spring);
+    const bool strict = args.has("--strict");
+    std::vector<PointStatus> status(radii.size());
+    const std::vector<ShapePoint> curve = strict ? contact.curve(radii) : contact.curve(radii, status);
+    require_some_delivered(status, "contact radius");
+    std::vector<ShapePoint> delivered;
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      if (status[i].delivered) delivered.push_back(curve[i]);
+    }
+    // Without --strict a pull-off the solver cannot locate leaves the curve standing.
+    std::optional<ShapePulloff> pulloff;
+    std::string pulloff_missing;
+    try {
+      pulloff = contact.pulloff(spring);
+    } catch (const NumericalError& e) {
+      if (strict) throw;
+      pulloff_missing = e.what();
+    }
     double worst = 0.0;
-    for (const ShapePoint& p : curve) worst = std::max(worst, p.error_estimate);
+    for (const ShapePoint& p : delivered) worst = std::max(worst, p.error_estimate);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
     Header h{{"command", "contact"}};
@@ -258,17 +277,24 @@ int run_contact(const Args& raw) {
     }
     h.emplace_back("adhesion", "JKR: delta_fp = -sqrt(2 pi a w/E)/Gamma(1), delta = delta_H + delta_fp, "
                                "F = F_H + S delta_fp (THEORY.md sections 5, 11)");
-    h.emplace_back("pull-off force, load control [N]", jump_text(pulloff.load));
-    h.emplace_back("pull-off force, displacement control [N]", jump_text(pulloff.displacement));
-    if (spring > 0.0) {
-      h.emplace_back("spring stiffness k [N/m]", num(spring));
-      h.emplace_back("pull-off force, spring control [N]", jump_text(pulloff.spring));
+    if (pulloff) {
+      h.emplace_back("pull-off force, load control [N]", jump_text(pulloff->load));
+      h.emplace_back("pull-off force, displacement control [N]", jump_text(pulloff->displacement));
+      if (spring > 0.0) {
+        h.emplace_back("spring stiffness k [N/m]", num(spring));
+        h.emplace_back("pull-off force, spring control [N]", jump_text(pulloff->spring));
+      }
+      h.emplace_back("pull-off scan", "contact radii [" + num(pulloff->scan_min) + ", " + num(pulloff->scan_max) +
+                                          "] m, 24 per decade, every local minimum refined (Brent)");
+      for (const auto& w : pulloff->warnings) h.emplace_back("warning", w);
+    } else {
+      h.emplace_back("pull-off", "not computed: " + pulloff_missing + " (--strict: exit 3 instead)");
     }
-    h.emplace_back("pull-off scan", "contact radii [" + num(pulloff.scan_min) + ", " + num(pulloff.scan_max) +
-                                        "] m, 24 per decade, every local minimum refined (Brent)");
-    for (const auto& w : pulloff.warnings) h.emplace_back("warning", w);
     progress_pause();
-    for (const auto& w : contact.validity_warnings(curve, sphere_radius)) {
+    if (!pulloff) std::cerr << "coatcontact contact: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";
+    const auto where = [&](std::size_t i) { return "a_m = " + format_value(radii[i], "a_m"); };
+    report_not_delivered(h, "contact", status, where);
+    for (const auto& w : contact.validity_warnings(delivered, sphere_radius)) {
       h.emplace_back("warning", w);
       std::cerr << "coatcontact contact: warning: " << w << "\n";
     }
@@ -279,7 +305,12 @@ int run_contact(const Args& raw) {
     Output out(args.get("--output").value_or(""));
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (const ShapePoint& p : curve) {
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      const ShapePoint& p = curve[i];
+      if (!status[i].delivered) {
+        write_not_delivered(os, where(i), status[i].reason);
+        continue;
+      }
       write_row(os, {p.radius, p.penetration, p.force, p.penetration_h, p.force_h}, columns);
     }
     out.commit();

@@ -21,6 +21,7 @@ const std::vector<OptionSpec> kSpec = {
     {"--a-over-t", "LIST", "contact radius over film thickness: v1,v2,... or MIN:MAX:N (log-spaced)", true},
     {"--tol", "T", "relative tolerance of every value, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},
+    strict_option(),
 };
 
 const std::vector<std::string> kColumns = {"a_over_t", "Pi_s",   "Delta_s", "Pi_c",
@@ -33,13 +34,15 @@ int run_reduced(const Args& args) {
     const Arguments arguments(args, kSpec);
     if (arguments.help()) {
       std::cout << usage("reduced", "--film E1,nu1 --substrate E0,nu0|rigid "
-                                    "--a-over-t LIST [--tol T] [--output FILE]",
+                                    "--a-over-t LIST [--tol T] [--strict] [--output FILE]",
                          "Reduced variables of the coated-substrate contact (Barthel & Perriot 2007):\n"
                          "sphere Pi_s = 2 R F_H / (a^3 E1*), Delta_s = R delta_H / a^2; cone\n"
                          "Pi_c = 4 tan(beta) F_H / (pi a^2 E1*), Delta_c = 2 tan(beta) delta_H / (pi a);\n"
                          "flat punch E_eq = S / (2 a E1*) and edge value Gamma1 = Gamma(1).\n"
                          "error_estimate bounds the largest relative error of the six values\n"
-                         "(<= tol; exit 3 if the tolerance cannot be met).",
+                         "(<= tol). A radius where the tolerance cannot be met is a '# not delivered'\n"
+                         "row with its reason (header and stderr count them; exit 0 while one radius\n"
+                         "is delivered, 3 when none is); with --strict, exit 3 at the first one.",
                          kSpec);
       return kExitSuccess;
     }
@@ -59,7 +62,12 @@ int run_reduced(const Args& args) {
       }
     }
     const ReducedSolver solver(stack);
-    const std::vector<ReducedVariables> rows = solver.sweep(radii, tolerance);
+    const bool strict = arguments.has("--strict");
+    std::vector<PointStatus> status(radii.size());
+    const std::vector<ReducedVariables> rows =
+        strict ? solver.sweep(radii, tolerance) : solver.sweep(radii, tolerance, status);
+    require_some_delivered(status, "radius");
+    const auto where = [&](std::size_t i) { return "a_over_t = " + format_value(radii[i], "a_over_t"); };
 
     Output output(arguments.get("--output").value_or(""));
     std::ostream& out = output.stream();
@@ -68,8 +76,14 @@ int run_reduced(const Args& args) {
     };
     add_material_header(header, stack);
     header.emplace_back("tolerance", format_parameter(tolerance, "tolerance"));
+    report_not_delivered(header, "reduced", status, where);
     write_header(out, header, kColumns);
-    for (const ReducedVariables& v : rows) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const ReducedVariables& v = rows[i];
+      if (!status[i].delivered) {
+        write_not_delivered(out, where(i), status[i].reason);
+        continue;
+      }
       write_row(out, {v.a_over_t, v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1, v.error_estimate},
                 kColumns);
     }

@@ -120,4 +120,22 @@ std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_
   return results;
 }
 
+std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_over_t, double tolerance,
+                                                   std::vector<PointStatus>& status) const {
+  for (double a : a_over_t) check_arguments(a, tolerance);
+  std::vector<ReducedVariables> results(a_over_t.size());
+  std::vector<PointStatus> outcome(a_over_t.size());
+  detail::parallel_for(a_over_t.size(), [&](std::size_t i) {
+    try {
+      results[i] = solve(a_over_t[i], tolerance);
+    } catch (const NumericalError& e) {
+      results[i] = ReducedVariables{};
+      results[i].a_over_t = a_over_t[i];
+      outcome[i] = PointStatus{false, e.what()};
+    }
+  });
+  status = std::move(outcome);
+  return results;
+}
+
 }  // namespace coatcontact

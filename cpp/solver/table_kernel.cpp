@@ -17,7 +17,9 @@ double analytic_half_width_of(const Stack& stack) {
 }  // namespace
 
 TableKernel::TableKernel(const Stack& stack, int grid_variant)
-    : table_(stack, grid_variant), info_(table_.info()), half_width_(analytic_half_width_of(stack)) {}
+    : table_(stack, grid_variant, KernelTable::HOnly{}),  // the solver evaluates H alone
+      info_(table_.info()),
+      half_width_(analytic_half_width_of(stack)) {}
 
 TableKernel::TableKernel(const Stack& stack, double u_range)
     : table_(stack, u_range), info_(table_.info()), half_width_(analytic_half_width_of(stack)) {}

@@ -603,6 +603,40 @@ std::string format_value(double value, const std::string& column) {
   return detail::number_string(value);  // to_chars(general, 17) == "%.17g", any locale
 }
 
+OptionSpec strict_option() {
+  return {"--strict", "",
+          "stop at the first point whose tolerance cannot be met (exit 3, no output); default: write every "
+          "other point, that one as a '# not delivered' row",
+          false};
+}
+
+void require_some_delivered(const std::vector<PointStatus>& status, const std::string& what) {
+  if (status.empty() || failed_points(status) < status.size()) return;
+  // One point: its own message, as the strict run gives it.
+  if (status.size() == 1) throw NumericalError(status.front().reason);
+  throw NumericalError("no " + what + " of " + std::to_string(status.size()) +
+                       " could be delivered; the first: " + status.front().reason);
+}
+
+void report_not_delivered(std::vector<std::pair<std::string, std::string>>& items, const std::string& command,
+                          const std::vector<PointStatus>& status,
+                          const std::function<std::string(std::size_t)>& where) {
+  const std::size_t failed = failed_points(status);
+  if (failed == 0) return;
+  std::size_t first = 0;
+  while (status[first].delivered) ++first;
+  const std::string count = std::to_string(failed) + " of " + std::to_string(status.size());
+  items.emplace_back("points not delivered",
+                     count + " (each a '# not delivered' row in its place, with its reason; --strict: exit 3 instead)");
+  progress_pause();
+  std::cerr << "coatcontact " << command << ": warning: " << count << " points not delivered (the first: "
+            << where(first) << ": " << one_line(status[first].reason) << "); the others are written\n";
+}
+
+void write_not_delivered(std::ostream& out, const std::string& where, const std::string& reason) {
+  out << "# not delivered: " << one_line(where) << ": " << one_line(reason) << "\n";
+}
+
 void write_header(std::ostream& out, const std::vector<std::pair<std::string, std::string>>& items,
                   const std::vector<std::string>& columns) {
   // The same first line in every output; a command's own "command" item gives way to it.

@@ -57,6 +57,7 @@ from ._version import __version__, __license__
 from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
 
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError", "ValidityWarning",
+           "PointsNotDeliveredWarning",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
            "stack_parameter_names", "pulloff_spring",
            "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "kinetics_fit",
@@ -215,6 +216,29 @@ def _warn_validity(core_contact, out):
         warnings.warn(message, ValidityWarning, stacklevel=3)
 
 
+class PointsNotDeliveredWarning(UserWarning):
+    """Some points of an array could not be delivered to the tolerance; their values are masked
+    and the result's "status" and "reason" say which and why (strict=True raises instead)."""
+
+
+def _points(out, value_keys, status, reasons, shape, what):
+    # The tolerant result: status (0 delivered, 3 not: the command line's numerical-failure
+    # code) and reason per point; where a point failed, the value arrays are numpy masked
+    # arrays with that point masked (its stored value is 0, never NaN).
+    status = np.asarray(status).reshape(shape)
+    failed = status != 0
+    out["status"] = status
+    out["reason"] = np.array(reasons, dtype=object).reshape(shape)
+    if failed.any():
+        for key in value_keys:
+            out[key] = np.ma.masked_array(out[key], mask=failed)
+        first = int(np.flatnonzero(failed.ravel())[0])
+        warnings.warn("%d of %d %s not delivered (the first, index %d: %s); their values are masked"
+                      % (int(failed.sum()), failed.size, what, first, out["reason"].ravel()[first]),
+                      PointsNotDeliveredWarning, stacklevel=3)
+    return out
+
+
 class ReducedSolver:
     """The reduced-variable solver of one stack (sections 4-5); builds the kernel table once.
 
@@ -225,7 +249,7 @@ class ReducedSolver:
         self.stack = stack
         self._core = _core.Solver(stack._core)
 
-    def solve(self, a_over_t, tol=_DEFAULT_TOL, progress=None):
+    def solve(self, a_over_t, tol=_DEFAULT_TOL, progress=None, strict=False):
         """Reduced variables at each contact radius over coating thickness a/t in (0, 1e8].
 
         Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS: a_over_t;
@@ -233,10 +257,16 @@ class ReducedSolver:
         stiffness over E*); Gamma1 (edge stress intensity); error_estimate (bound on the
         largest relative error of the six, <= tol). tol in [1e-13, 1e-1].
         progress: see reduced(). Ctrl-C stops the call between radii (KeyboardInterrupt).
+        strict: see reduced() (status, reason and masked values unless strict).
         """
         x = np.asarray(a_over_t, dtype=float)
-        table = self._core.sweep(np.ascontiguousarray(x.ravel()), _tolerance(tol), _progress(progress))
-        return {k: table[:, i].reshape(x.shape) for i, k in enumerate(REDUCED_KEYS)}
+        flat = np.ascontiguousarray(x.ravel())
+        if strict:
+            table = self._core.sweep(flat, _tolerance(tol), _progress(progress))
+            return {k: table[:, i].reshape(x.shape) for i, k in enumerate(REDUCED_KEYS)}
+        table, status, reasons = self._core.sweep_each(flat, _tolerance(tol), _progress(progress))
+        out = {k: table[:, i].reshape(x.shape) for i, k in enumerate(REDUCED_KEYS)}
+        return _points(out, REDUCED_KEYS[1:], status, reasons, x.shape, "radii")
 
 
 class AdhesiveModel:
@@ -257,21 +287,26 @@ class AdhesiveModel:
         """Default a_bar range of a curve: [0.01 min(1, r), 10 max(1, r)], r = (E*/E_base*)^(1/3)."""
         return self._core.default_range()
 
-    def curve(self, eta, a_bar=None, points=400):
+    def curve(self, eta, a_bar=None, points=400, strict=False):
         """Load P and penetration D versus contact radius a_bar at one eta.
 
         eta     coating thickness over l = (pi w R^2/E*)^(1/3), in [1e-6, 1e6].
         a_bar   contact radii a/l, each in [1e-6, 1e6]; default `points` log-spaced over
                 default_range (as `coatcontact adhesive`).
         Returns a dict of arrays: a_bar, a_over_t (= a_bar/eta), P = F/(pi w R),
-        D = delta/(l^2/R).
+        D = delta/(l^2/R); status and reason per point unless strict (see reduced()).
         """
         if a_bar is None:
             lo, hi = self.default_range
             a_bar = np.geomspace(lo, hi, int(points))
         x = np.asarray(a_bar, dtype=float)
-        table = self._core.curve(float(eta), np.ascontiguousarray(x.ravel()))
-        return {k: table[:, i].reshape(x.shape) for i, k in enumerate(("a_bar", "a_over_t", "P", "D"))}
+        keys = ("a_bar", "a_over_t", "P", "D")
+        if strict:
+            table = self._core.curve(float(eta), np.ascontiguousarray(x.ravel()))
+            return {k: table[:, i].reshape(x.shape) for i, k in enumerate(keys)}
+        table, status, reasons = self._core.curve_each(float(eta), np.ascontiguousarray(x.ravel()))
+        out = {k: table[:, i].reshape(x.shape) for i, k in enumerate(keys)}
+        return _points(out, ("P", "D"), status, reasons, x.shape, "points")
 
     def pulloff(self, eta, progress=None):
         """Pull-off at each eta: the minimum of P(a_bar) (load control) and of D (displacement).
@@ -309,12 +344,17 @@ class Contact:
         #: l [m], l^2/R [m], pi w R [N] and eta = t/l.
         self.scales = {"l": l, "delta_scale": dscale, "F_scale": fscale, "eta": eta}
 
-    def at(self, a):
+    def at(self, a, strict=False):
         """Penetration delta [m] and force F [N] (compressive positive) at contact radii a [m].
-        Returns a dict of arrays a, delta, F of the shape of a."""
+        Returns a dict of arrays a, delta, F of the shape of a; status and reason per point
+        unless strict (see reduced())."""
         x = np.asarray(a, dtype=float)
-        table = self._core.at(np.ascontiguousarray(x.ravel()))
-        return {k: table[:, i].reshape(x.shape) for i, k in enumerate(("a", "delta", "F"))}
+        if strict:
+            table = self._core.at(np.ascontiguousarray(x.ravel()))
+            return {k: table[:, i].reshape(x.shape) for i, k in enumerate(("a", "delta", "F"))}
+        table, status, reasons = self._core.at_each(np.ascontiguousarray(x.ravel()))
+        out = {k: table[:, i].reshape(x.shape) for i, k in enumerate(("a", "delta", "F"))}
+        return _points(out, ("delta", "F"), status, reasons, x.shape, "contact radii")
 
     def curve(self, points=200):
         """The curve at `points` radii log-spaced over the model's default a_bar range (the
@@ -345,7 +385,7 @@ def _model(stack, tol):
 
 
 def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, tol=_DEFAULT_TOL,
-            progress=None):
+            progress=None, strict=False):
     """Reduced variables of the coated-substrate contact (sections 4-5), one per radius.
 
     reduced(stack, a_over_t=...) or reduced(film=(E1, nu1), substrate=(E0, nu0) | "rigid",
@@ -360,14 +400,18 @@ def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, t
     error_estimate (bound on the largest relative error of the six; <= tol).
     progress  None, True (a progress line on stderr) or a callable(done, total) called
               between radii (an exception it raises stops the call and is raised).
-    Raises ValueError for input out of range, NumericalError when tol cannot be met,
-    KeyboardInterrupt on Ctrl-C (checked between radii).
+    Every radius that can be solved is returned: "status" (0 delivered, 3 the tolerance could
+    not be met there) and "reason" ("" or why) per radius; when a radius failed, the value
+    arrays are numpy masked arrays with it masked, and a PointsNotDeliveredWarning says how
+    many. strict=True raises NumericalError at the first such radius instead (no status keys).
+    Raises ValueError for input out of range, NumericalError when no radius can be delivered
+    (or, with strict, any one), KeyboardInterrupt on Ctrl-C (checked between radii).
     """
-    return _solver(_stack(stack, film, substrate, indenter)).solve(a_over_t, tol, progress)
+    return _solver(_stack(stack, film, substrate, indenter)).solve(a_over_t, tol, progress, strict)
 
 
 def adhesive_curve(stack=None, *, film=None, substrate=None, indenter=None, eta, a_bar=None,
-                   points=400, tol=_DEFAULT_TOL):
+                   points=400, tol=_DEFAULT_TOL, strict=False):
     """Normalized JKR curve of a rigid sphere on the coated substrate at one eta (section 5).
 
     eta    coating thickness over l = (pi w R^2/E*)^(1/3), in [1e-6, 1e6].
@@ -376,8 +420,10 @@ def adhesive_curve(stack=None, *, film=None, substrate=None, indenter=None, eta,
     Returns a dict of arrays: a_bar, a_over_t = a_bar/eta, P = F/(pi w R), D = delta R/l^2.
     Homogeneous limit (a film like its substrate): the JKR curve
     P = (4/3) a_bar^3 - 2 sqrt(2) a_bar^(3/2), D = a_bar^2 - sqrt(2 a_bar).
+    status, reason per point and masked P, D where the table's decade cannot be built at tol,
+    unless strict=True (NumericalError): as reduced().
     """
-    return _model(_stack(stack, film, substrate, indenter), float(tol)).curve(eta, a_bar, points)
+    return _model(_stack(stack, film, substrate, indenter), float(tol)).curve(eta, a_bar, points, strict)
 
 
 def pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, tol=_DEFAULT_TOL,
@@ -390,7 +436,7 @@ def pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, tol=_D
 
 
 def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thickness, work,
-            a=None, points=200, tol=_DEFAULT_TOL):
+            a=None, points=200, tol=_DEFAULT_TOL, strict=False):
     """Sphere on a coated substrate in SI units (section 5).
 
     radius     sphere radius R [m];  thickness  coating thickness t [m];
@@ -401,10 +447,17 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
     Returns a dict: a [m], delta [m], F [N] (arrays, F compressive positive); scales
     (l [m], delta_scale = l^2/R [m], F_scale = pi w R [N], eta = t/l); pulloff (F_load [N],
     a_load [m], delta_load [m], F_disp, a_disp, delta_disp, flags).
+    With a: status, reason per radius and masked delta, F where a radius cannot be delivered,
+    unless strict=True (NumericalError): as reduced(); the validity limits see the delivered
+    radii.
     """
     c = Contact(_model(_stack(stack, film, substrate, indenter), _tolerance(tol)), radius, thickness, work)
-    out = c.at(a) if a is not None else c.curve(points)
-    _warn_validity(c._core, out)
+    out = c.at(a, strict) if a is not None else c.curve(points)
+    if "status" in out and np.any(out["status"] != 0):
+        kept = np.ravel(out["status"]) == 0
+        _warn_validity(c._core, {k: np.ravel(np.ma.getdata(out[k]))[kept] for k in ("a", "delta", "F")})
+    else:
+        _warn_validity(c._core, out)
     out["scales"] = c.scales
     out["pulloff"] = c.pulloff()
     return out
@@ -766,7 +819,7 @@ def maugis_dugdale_pulloff(stack=None, *, film=None, substrate=None, indenter=No
 
 
 def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape, thickness, work,
-                  a=None, points=200, spring=0.0, tol=_DEFAULT_TOL):
+                  a=None, points=200, spring=0.0, tol=_DEFAULT_TOL, strict=False):
     """Adhesive (JKR) contact of any axisymmetric indenter in SI units (section 11).
 
     shape      ("sphere", R), ("cone", beta), ("punch", A), ("power", n, R),
@@ -775,7 +828,9 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     thickness  coating thickness t [m]; work  w [J/m^2]; spring  k [N/m] (0: none).
     a          contact radii [m] (default `points` log-spaced over the default range).
     Returns a dict: a, delta, F, delta_H, F_H (arrays, adhesive then adhesionless at the same
-    a) and pulloff: F, a, delta under load, displacement (and spring) control.
+    a) and pulloff: F, a, delta under load, displacement (and spring) control; status and
+    reason per radius, masked values where the solver cannot serve a radius at tol, unless
+    strict=True (NumericalError): as reduced().
     A curve beyond the validity limits (delta > t, F/(pi a^2) > 0.1 E*, and for a sphere
     a > 0.1 R) raises a ValidityWarning per limit, as `coatcontact contact` warns.
     """
@@ -790,11 +845,28 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     if a is None:
         lo, hi = c.default_range()
         a = np.geomspace(lo, hi, points)
-    rows = c.curve(np.atleast_1d(np.asarray(a, dtype=float)))
-    for message in c.validity(np.ascontiguousarray(rows, dtype=float)).splitlines():
+    keys = ("a", "delta", "F", "delta_H", "F_H")
+    radii = np.ascontiguousarray(np.atleast_1d(np.asarray(a, dtype=float)))
+    if strict:
+        rows = c.curve(radii)
+        status, reasons = np.zeros(len(radii), dtype=int), None
+    else:
+        rows, status, reasons = c.curve_each(radii)
+    kept = np.asarray(status) == 0
+    for message in c.validity(np.ascontiguousarray(rows[kept], dtype=float)).splitlines():
         warnings.warn(message, ValidityWarning, stacklevel=2)
-    out = {key: rows[:, i] for i, key in enumerate(("a", "delta", "F", "delta_H", "F_H"))}
-    p = c.pulloff(float(spring))
+    out = {key: rows[:, i] for i, key in enumerate(keys)}
+    if not strict:
+        _points(out, keys[1:], status, reasons, radii.shape, "contact radii")
+    try:
+        p = c.pulloff(float(spring))
+    except NumericalError as error:
+        if strict:
+            raise
+        # As `coatcontact contact` without --strict: the curve stands, the pull-off is None.
+        warnings.warn("pull-off not computed (the curve is): %s" % error, PointsNotDeliveredWarning, stacklevel=2)
+        out["pulloff"] = None
+        return out
     out["pulloff"] = {"F_load": p[0], "a_load": p[1], "delta_load": p[2],
                       "F_disp": p[3], "a_disp": p[4], "delta_disp": p[5],
                       "F_spring": p[6], "a_spring": p[7], "delta_spring": p[8]}

@@ -110,6 +110,26 @@ py::array_t<double> rows(int n, int columns) {
   return py::array_t<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(columns)});
 }
 
+// The per-point statuses of an _each call (coatcontact.h, "arrays point by point") and the
+// reasons, one line per point (read in the calling thread, right after the call).
+struct PointOutcome {
+  py::array_t<int> status;
+  std::string reasons;
+  explicit PointOutcome(int n) : status(static_cast<py::ssize_t>(n)) {}
+  // After a successful call: the reasons as a list of str, one per point ("" if delivered).
+  py::tuple with(py::array_t<double> table) const {
+    py::list list;
+    std::size_t start = 0;
+    const int n = static_cast<int>(status.shape(0));
+    for (int i = 0; i < n; ++i) {
+      const std::size_t end = reasons.find('\n', start);
+      list.append(reasons.substr(start, end == std::string::npos ? std::string::npos : end - start));
+      start = end == std::string::npos ? reasons.size() : end + 1;
+    }
+    return py::make_tuple(table, status, list);
+  }
+};
+
 struct Stack {
   std::shared_ptr<cc_stack> handle;
   Stack() {
@@ -138,6 +158,22 @@ struct Solver {
                     : cc_reduced_solver_sweep(handle.get(), n, in, tolerance, o);
     });
     return out;
+  }
+  // Every radius that can be solved: (table, status, reasons).
+  py::tuple sweep_each(const InArray& a_over_t, double tolerance, py::object progress) const {
+    const int n = count_of(a_over_t);
+    auto out = rows(n, CC_REDUCED_COLUMNS);
+    PointOutcome outcome(n);
+    const double* in = a_over_t.data();
+    double* o = out.mutable_data();
+    int* st = outcome.status.mutable_data();
+    Monitor monitor{std::move(progress), true, nullptr};
+    call_monitored(monitor, [&] {
+      const int status = cc_reduced_solver_sweep_each(handle.get(), n, in, tolerance, o, st);
+      if (status == CC_OK) outcome.reasons = cc_point_reasons();
+      return status;
+    });
+    return outcome.with(out);
   }
   // Seconds per C call (median of `repeats`), timed here so that the Python bench can set
   // the interpreter's overhead against the library's own cost on the same machine.
@@ -187,6 +223,22 @@ struct Model {
       return n == 0 ? static_cast<int>(CC_OK) : cc_adhesive_curve(handle.get(), eta, n, in, o);
     });
     return out;
+  }
+  py::tuple curve_each(double eta, const InArray& a_bar) const {
+    const int n = count_of(a_bar);
+    auto out = rows(n, CC_CURVE_COLUMNS);
+    PointOutcome outcome(n);
+    const double* in = a_bar.data();
+    double* o = out.mutable_data();
+    int* st = outcome.status.mutable_data();
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      if (n == 0) return static_cast<int>(CC_OK);
+      const int status = cc_adhesive_curve_each(handle.get(), eta, n, in, o, st);
+      if (status == CC_OK) outcome.reasons = cc_point_reasons();
+      return status;
+    });
+    return outcome.with(out);
   }
   // One row per eta: the six pull-off columns and the warning flags.
   // Progress is reported per eta (the sweeps inside a pull-off only check for signals).
@@ -247,6 +299,21 @@ struct Contact {
       return cc_contact_at(handle.get(), n, in, o);
     });
     return out;
+  }
+  py::tuple at_each(const InArray& a) const {
+    const int n = count_of(a);
+    auto out = rows(n, CC_CONTACT_COLUMNS);
+    PointOutcome outcome(n);
+    const double* in = a.data();
+    double* o = out.mutable_data();
+    int* st = outcome.status.mutable_data();
+    call_released([&] {
+      std::lock_guard<std::mutex> guard(*lock);
+      const int status = cc_contact_at_each(handle.get(), n, in, o, st);
+      if (status == CC_OK) outcome.reasons = cc_point_reasons();
+      return status;
+    });
+    return outcome.with(out);
   }
   py::tuple pulloff() const {
     auto out = py::array_t<double>(CC_PULLOFF_COLUMNS);
@@ -495,6 +562,21 @@ struct ShapeContact {
     call_released([&] { return n == 0 ? static_cast<int>(CC_OK) : cc_shape_contact_curve(handle.get(), n, in, o); });
     return out;
   }
+  py::tuple curve_each(const InArray& a) const {
+    const int n = count_of(a);
+    auto out = rows(n, CC_SHAPE_CURVE_COLUMNS);
+    PointOutcome outcome(n);
+    const double* in = a.data();
+    double* o = out.mutable_data();
+    int* st = outcome.status.mutable_data();
+    call_released([&] {
+      if (n == 0) return static_cast<int>(CC_OK);
+      const int status = cc_shape_contact_curve_each(handle.get(), n, in, o, st);
+      if (status == CC_OK) outcome.reasons = cc_point_reasons();
+      return status;
+    });
+    return outcome.with(out);
+  }
   py::array_t<double> pulloff(double spring_stiffness) const {
     auto out = py::array_t<double>(CC_SHAPE_PULLOFF_COLUMNS);
     double* o = out.mutable_data();
@@ -556,12 +638,15 @@ PYBIND11_MODULE(_core, m) {
   py::class_<Solver>(m, "Solver")
       .def(py::init<const Stack&>())
       .def("sweep", &Solver::sweep, py::arg("a_over_t"), py::arg("tolerance"), py::arg("progress") = py::none())
+      .def("sweep_each", &Solver::sweep_each, py::arg("a_over_t"), py::arg("tolerance"),
+           py::arg("progress") = py::none())
       .def("time_c_call", &Solver::time_c_call);
 
   py::class_<Model>(m, "Model")
       .def(py::init<const Solver&, double>())
       .def("default_range", &Model::default_range)
       .def("curve", &Model::curve)
+      .def("curve_each", &Model::curve_each)
       .def("pulloff", &Model::pulloff, py::arg("eta"), py::arg("progress") = py::none());
 
   py::class_<Contact>(m, "Contact")
@@ -569,6 +654,7 @@ PYBIND11_MODULE(_core, m) {
       .def("scales", &Contact::scales)
       .def("curve", &Contact::curve)
       .def("at", &Contact::at)
+      .def("at_each", &Contact::at_each)
       .def("pulloff", &Contact::pulloff)
       .def("validity", &Contact::validity);
 
@@ -591,6 +677,7 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<const Stack&, const Shape&, double, double, double>())
       .def("default_range", &ShapeContact::default_range)
       .def("curve", &ShapeContact::curve)
+      .def("curve_each", &ShapeContact::curve_each)
       .def("pulloff", &ShapeContact::pulloff)
       .def("validity", &ShapeContact::validity);
   register_kinetics(m);

@@ -13,7 +13,9 @@ def test_readme_call():
     r = cc.reduced(film=(0.1, 0.25), substrate=(1, 0.25), a_over_t=np.geomspace(0.01, 100, 200))
     for key in ("E_eq", "Gamma1", "error_estimate"):
         assert isinstance(r[key], np.ndarray) and r[key].shape == (200,)
-    assert set(r) == set(cc.REDUCED_KEYS)
+    # The columns, and the status and reason of each radius (issue 25 item 6): all delivered.
+    assert set(r) == set(cc.REDUCED_KEYS) | {"status", "reason"}
+    assert (r["status"] == 0).all() and (r["reason"] == "").all()
     assert (r["error_estimate"] <= 1e-8).all()
     # Limits of section 6: homogeneous at small a/t, towards E0*/E1* = 10 at large a/t.
     assert r["E_eq"][0] == pytest.approx(1, abs=0.01)

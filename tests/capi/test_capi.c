@@ -621,6 +621,47 @@ static void test_fit_run_and_curve(void) {
   cc_stack_destroy(film);
 }
 
+/* Issue 25 item 6, the _each calls: PDMS on glass at tol 1e-12, a/t = 100 cannot be met (the
+ * rounding term eps cond(A) = 1.1e-12 alone exceeds it); a/t = 1 and 10 are delivered, equal to
+ * the strict single-radius solves bit for bit; the failed row holds its a/t and zeros; the
+ * reasons are one line per point; every point failed is CC_NUMERICAL_ERROR, outputs untouched. */
+static void test_points_not_delivered(void) {
+  cc_stack *stack = film_stack(1e6, 0.49, 70e9, 0.22, 0);
+  cc_reduced_solver *solver = solver_of(stack);
+  const double radii[3] = {1.0, 100.0, 10.0}, hopeless[2] = {100.0, 1000.0};
+  double table[3 * CC_REDUCED_COLUMNS], one[CC_REDUCED_COLUMNS];
+  int status[3] = {-1, -1, -1}, k;
+  const char *reasons;
+  fill(table, 3 * CC_REDUCED_COLUMNS);
+  check("sweep_each: CC_OK with one point not delivered",
+        cc_reduced_solver_sweep_each(solver, 3, radii, 1e-12, table, status) == CC_OK);
+  check("sweep_each: statuses", status[0] == CC_OK && status[1] == CC_NUMERICAL_ERROR && status[2] == CC_OK);
+  check("sweep_each: failed row is a/t and zeros", table[CC_REDUCED_COLUMNS] == 100.0 &&
+                                                      table[CC_REDUCED_COLUMNS + 1] == 0.0 &&
+                                                      table[2 * CC_REDUCED_COLUMNS - 1] == 0.0);
+  reasons = cc_point_reasons();
+  check("sweep_each: reasons, one line per point",
+        reasons[0] == '\n' && strstr(reasons, "a/t = 100") != NULL && reasons[strlen(reasons) - 1] == '\n' &&
+            reasons[strlen(reasons) - 2] == '\n');
+  for (k = 0; k < 3; k += 2) {
+    int c, same = 1;
+    check("solve: the single radius", cc_reduced_solver_solve(solver, radii[k], 1e-12, one) == CC_OK);
+    for (c = 0; c < CC_REDUCED_COLUMNS; ++c) same = same && one[c] == table[k * CC_REDUCED_COLUMNS + c];
+    check("sweep_each: a delivered row equals its single solve", same);
+  }
+  check("sweep: the strict call fails", cc_reduced_solver_sweep(solver, 3, radii, 1e-12, table) == CC_NUMERICAL_ERROR);
+  fill(table, 3 * CC_REDUCED_COLUMNS);
+  status[0] = status[1] = -1;
+  check_error("sweep_each: every point failed", cc_reduced_solver_sweep_each(solver, 2, hopeless, 1e-12, table, status),
+              CC_NUMERICAL_ERROR, "every point of 2 failed");
+  check("sweep_each: nothing written when every point failed",
+        untouched(table, 3 * CC_REDUCED_COLUMNS) && status[0] == -1 && status[1] == -1);
+  check_error("sweep_each(NULL status)", cc_reduced_solver_sweep_each(solver, 3, radii, 1e-12, table, NULL),
+              CC_INPUT_ERROR, "NULL");
+  cc_reduced_solver_destroy(solver);
+  cc_stack_destroy(stack);
+}
+
 int main(int argc, char **argv) {
   if (argc != 2) {
     printf("usage: test_capi E_EQ_FROM_THE_COMMAND_LINE\n");
@@ -633,6 +674,7 @@ int main(int argc, char **argv) {
   test_fit_run_and_curve();
   test_errors();
   test_beyond_the_paper();
+  test_points_not_delivered();
   if (failures == 0) {
     printf("test_capi: all checks passed\n");
     return 0;

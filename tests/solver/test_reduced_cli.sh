@@ -41,8 +41,9 @@ grep -q -- "--tol" "$tmp/err" || fail "message names --tol"
 "$cli" reduced --film 1,0.3 --a-over-t 1 2> /dev/null; rc=$?
 [ $rc = 2 ] || fail "missing --substrate exits 2 (got $rc)"
 
-# Unreachable tolerance: exit 3, no partial output file.
-"$cli" reduced --film 1,0.5 --substrate rigid --a-over-t 1,1000 --tol 1e-8 --output "$tmp/bad.tsv" 2> "$tmp/err"; rc=$?
+# Unreachable tolerance with --strict (without it a/t = 1 is delivered: issue 25 item 6,
+# tests/cli/test_points_not_delivered.sh): exit 3, no partial output file.
+"$cli" reduced --film 1,0.5 --substrate rigid --a-over-t 1,1000 --tol 1e-8 --strict --output "$tmp/bad.tsv" 2> "$tmp/err"; rc=$?
 [ $rc = 3 ] || fail "unreachable tolerance exits 3 (got $rc)"
 [ ! -e "$tmp/bad.tsv" ] || fail "no output file after a numerical failure"
 grep -q "tolerance" "$tmp/err" || fail "numerical failure message names the tolerance"

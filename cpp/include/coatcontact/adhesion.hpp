@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/point_status.hpp"
 #include "coatcontact/reduced_table.hpp"
 
 namespace coatcontact {
@@ -121,6 +122,10 @@ class AdhesiveModel {
   // P, D and their derivatives at a_bar for film thickness eta (both > 0, finite).
   CurvePoint point(double eta, double a_bar) const;
   std::vector<CurvePoint> curve(double eta, const std::vector<double>& a_bar) const;
+  // Every point whose decade of the table can be built (the table is built a decade of a/t at
+  // a time): the others get status[i].delivered = false and the reason (their rows hold eta,
+  // a_bar, a/t and zeros). Delivered points equal curve()'s. InputError as curve().
+  std::vector<CurvePoint> curve(double eta, const std::vector<double>& a_bar, std::vector<PointStatus>& status) const;
   // P and D at each a_bar from its own solve of the reduced variables, without the table: for
   // radii whose table decade reaches beyond what the source can deliver (the table is built a
   // whole decade of a/t at a time). dload and dpenetration are not set (0).

@@ -14,6 +14,7 @@
 
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/point_status.hpp"
 #include "coatcontact/stack.hpp"
 #include "coatcontact/units.hpp"
 
@@ -238,6 +239,23 @@ void write_header(std::ostream& out, const std::vector<std::pair<std::string, st
 // Writes one TSV row (values formatted by format_value).
 void write_row(std::ostream& out, const std::vector<double>& values,
                const std::vector<std::string>& columns);
+
+// Arrays point by point (`reduced`, `contact`, `adhesive`): a point whose tolerance cannot be
+// met is written in its place as a comment row "# not delivered: <where>: <reason>" (no
+// number is printed for it), the header counts such points, stderr says so once, and the exit
+// status is 0 as long as one point was delivered (3 when none was). `--strict` instead stops
+// at the first such point with exit 3 and no output.
+OptionSpec strict_option();
+// NumericalError when every point failed (nothing to deliver): the first reason.
+void require_some_delivered(const std::vector<PointStatus>& status, const std::string& what);
+// The header item counting the points not delivered (nothing when every point was), and the
+// one stderr warning of `command` ("coatcontact <command>: warning: ...").
+// where(i) names point i ("a_over_t = 1e4").
+void report_not_delivered(std::vector<std::pair<std::string, std::string>>& items, const std::string& command,
+                          const std::vector<PointStatus>& status,
+                          const std::function<std::string(std::size_t)>& where);
+// The comment row of a point not delivered.
+void write_not_delivered(std::ostream& out, const std::string& where, const std::string& reason);
 
 // Runs a subcommand body, mapping exceptions to exit codes and one-line messages on stderr:
 //   InputError -> "coatcontact <command>: error: <message>", exit 2

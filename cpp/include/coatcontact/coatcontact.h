@@ -252,6 +252,24 @@ int cc_shape_contact_validity(const cc_shape_contact *contact, int n, const doub
 int cc_shape_contact_pulloff(const cc_shape_contact *contact, double spring_stiffness,
                              double out[CC_SHAPE_PULLOFF_COLUMNS]);
 
+/* ---- arrays point by point -------------------------------------------------------------
+ * The _each variants of the array calls return every point they can instead of failing the
+ * whole array (the calls above stop at the first point that fails). status (n ints) receives,
+ * per point, CC_OK (delivered) or CC_NUMERICAL_ERROR (its tolerance cannot be met; its row
+ * holds its input coordinates and zeros, never NaN), and cc_point_reasons() the reasons: n
+ * lines, one per point in order, empty for a delivered point (per-thread text, valid until
+ * the thread's next _each call). The call returns CC_OK when every point was processed and at
+ * least one delivered, CC_NUMERICAL_ERROR (nothing written; the message is the first
+ * point's reason) when none was; bad input fails the whole call as in the strict calls. */
+int cc_reduced_solver_sweep_each(const cc_reduced_solver *solver, int n, const double *a_over_t,
+                                 double tolerance, double *out, int *status);
+int cc_adhesive_curve_each(cc_adhesive_model *model, double eta, int n, const double *a_bar,
+                           double *out, int *status);
+int cc_contact_at_each(cc_contact *contact, int n, const double *a, double *out, int *status);
+int cc_shape_contact_curve_each(const cc_shape_contact *contact, int n, const double *a, double *out,
+                                int *status);
+const char *cc_point_reasons(void);
+
 /* ---- the fit with every model of `coatcontact fit` (coatcontact/fit.hpp) -----------------
  * Data: (a, F), (delta, F), or (z, F) with z = delta + F/k the base displacement of a sphere on
  * a spring k. Models: JKR on the sphere, any shape (cc_shape), Maugis-Dugdale (lambda), the

@@ -205,28 +205,13 @@ class KernelTable {
   // `grid_variant` 0 is the default grid; the others (see cc_kernel_table_create_ex) compute
   // the same H independently, for a-posteriori estimates of the effect of the table's errors.
   // InputError for a variant out of range.
-  explicit KernelTable(const Stack& stack, int grid_variant = 0)
-      : scale_(kernel_detail::indenter_scale(stack)), rho_(stack.indenter_ratio()) {
-    if (grid_variant < 0 || grid_variant >= cc_kernel_grid_variants()) {
-      throw InputError("kernel table: grid variant " + std::to_string(grid_variant) +
-                       " is not allowed (must be in [0, " +
-                       std::to_string(cc_kernel_grid_variants() - 1) + "])");
-    }
-    kernel_detail::check_stack_table_supported(stack);
-    cc_kernel_table* raw = nullptr;
-    int status = CC_OK;
-    if (stack.is_multilayer()) {  // THEORY.md section 12: q and u in units of T
-      const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
-      status = cc_kernel_table_create_stack(a.n(), a.thickness.data(), a.youngs.data(),
-                                            a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
-                                            a.nu_base, grid_variant, &raw);
-    } else {
-      const auto p = kernel_detail::film_pair(stack);
-      status = cc_kernel_table_create_ex(p.e1, p.nu1, p.e0, p.nu0, p.rigid, grid_variant, &raw);
-    }
-    kernel_detail::check_status(status, stack, "kernel table");
-    table_.reset(raw);
-  }
+  explicit KernelTable(const Stack& stack, int grid_variant = 0) : KernelTable(stack, grid_variant, false) {}
+
+  // The same table without H1 (cc_kernel_table_create_h): H, info() and the accuracy bit for bit,
+  // for callers that evaluate H alone (the solver), without the DST of H1 and its FFT planning
+  // (eval with an h1 output then throws InputError).
+  struct HOnly {};
+  KernelTable(const Stack& stack, int grid_variant, HOnly) : KernelTable(stack, grid_variant, true) {}
 
   // Grid variant 0 on a compact grid tabulating at least [0, u_range], H only
   // (cc_kernel_table_create_range): for callers that never need H beyond u_range nor H1
@@ -302,6 +287,30 @@ class KernelTable {
   }
 
  private:
+  KernelTable(const Stack& stack, int grid_variant, bool h_only)
+      : scale_(kernel_detail::indenter_scale(stack)), rho_(stack.indenter_ratio()) {
+    if (grid_variant < 0 || grid_variant >= cc_kernel_grid_variants()) {
+      throw InputError("kernel table: grid variant " + std::to_string(grid_variant) +
+                       " is not allowed (must be in [0, " +
+                       std::to_string(cc_kernel_grid_variants() - 1) + "])");
+    }
+    kernel_detail::check_stack_table_supported(stack);
+    cc_kernel_table* raw = nullptr;
+    int status = CC_OK;
+    if (stack.is_multilayer()) {  // THEORY.md section 12: q and u in units of T
+      const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
+      status = (h_only ? cc_kernel_table_create_stack_h : cc_kernel_table_create_stack)(
+          a.n(), a.thickness.data(), a.youngs.data(), a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
+          a.nu_base, grid_variant, &raw);
+    } else {
+      const auto p = kernel_detail::film_pair(stack);
+      status = (h_only ? cc_kernel_table_create_h : cc_kernel_table_create_ex)(p.e1, p.nu1, p.e0, p.nu0, p.rigid,
+                                                                              grid_variant, &raw);
+    }
+    kernel_detail::check_status(status, stack, "kernel table");
+    table_.reset(raw);
+  }
+
   struct Deleter {
     void operator()(cc_kernel_table* t) const { cc_kernel_table_destroy(t); }
   };

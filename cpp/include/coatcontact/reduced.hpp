@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "coatcontact/point_status.hpp"
 #include "coatcontact/stack.hpp"
 
 namespace coatcontact {
@@ -50,6 +51,11 @@ class ReducedSolver {
   // Many contact radii (may run in parallel); same errors as solve().
   std::vector<ReducedVariables> sweep(const std::vector<double>& a_over_t,
                                       double tolerance = kDefaultTolerance) const;
+  // The same radii, each one that can be solved: a radius whose tolerance cannot be met gets
+  // status[i].delivered = false and the NumericalError's message (its row holds a_over_t and
+  // zeros); the others equal solve()'s. InputError as solve() (before any work).
+  std::vector<ReducedVariables> sweep(const std::vector<double>& a_over_t, double tolerance,
+                                      std::vector<PointStatus>& status) const;
 
   const Stack& stack() const;
 

@@ -13,6 +13,7 @@
 
 #include "coatcontact/indenter_shape.hpp"
 #include "coatcontact/limits.hpp"
+#include "coatcontact/point_status.hpp"
 #include "coatcontact/shape_solver.hpp"
 
 namespace coatcontact {
@@ -51,6 +52,9 @@ class ShapeContact {
   ShapePoint at(double contact_radius) const;
   // Many radii (in parallel; same results as serial).
   std::vector<ShapePoint> curve(const std::vector<double>& radii) const;
+  // Every radius the solver can serve at the tolerance; the others get status[i].delivered =
+  // false and the reason (their rows hold the radius and zeros). Delivered points equal at()'s.
+  std::vector<ShapePoint> curve(const std::vector<double>& radii, std::vector<PointStatus>& status) const;
   // Contact radii holding both JKR pull-offs (film and base modulus): [0.01 a_min, 10 a_max],
   // a_c solving δ0(a) = sqrt(2π a w/E) for the top and the base's reduced moduli, cut at the
   // shape's largest radius. A flat punch gives [A, A].

@@ -100,6 +100,17 @@ int cc_kernel_table_create_stack_range(int n_layers, const double *thickness,
                                        const int *slip_below, int base_rigid, double e_base,
                                        double nu_base, double u_range, cc_kernel_table **table);
 
+/* (added) The tables of cc_kernel_table_create_ex and cc_kernel_table_create_stack without
+ * H1, for callers that evaluate H alone (the solver): H, the info and the accuracy are those
+ * tables' bit for bit, at the cost of the DCT alone (the DST-I of H1 and its FFTW planning are
+ * skipped); cc_kernel_table_eval with a non-NULL h1 returns CC_ERR_ARGUMENT. */
+int cc_kernel_table_create_h(double e1, double nu1, double e0, double nu0, int substrate_rigid,
+                             int grid_variant, cc_kernel_table **table);
+int cc_kernel_table_create_stack_h(int n_layers, const double *thickness, const double *youngs,
+                                   const double *poisson, const int *slip_below, int base_rigid,
+                                   double e_base, double nu_base, int grid_variant,
+                                   cc_kernel_table **table);
+
 /* Number of grid variants (4). */
 int cc_kernel_grid_variants(void);
 
