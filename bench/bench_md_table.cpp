@@ -51,6 +51,8 @@ void BM_md_pulloff_new_table(benchmark::State& state) {
   for (auto _ : state) {
     const coatcontact::MaugisDugdaleModel model(soft_film(), table_options());
     benchmark::DoNotOptimize(model.pulloff(1.0, 1.0));
+    state.counters["table_solves"] = static_cast<double>(model.table_solves());
+    state.counters["table_s"] = model.table_seconds();
   }
 }
 BENCHMARK(BM_md_pulloff_new_table)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
@@ -60,6 +62,8 @@ void BM_md_pulloffs_33_lambda_new_table(benchmark::State& state) {
   for (auto _ : state) {
     const coatcontact::MaugisDugdaleModel model(soft_film(), table_options());
     benchmark::DoNotOptimize(model.pulloffs(cases));
+    state.counters["table_solves"] = static_cast<double>(model.table_solves());
+    state.counters["table_s"] = model.table_seconds();
   }
 }
 BENCHMARK(BM_md_pulloffs_33_lambda_new_table)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
@@ -68,6 +72,7 @@ void BM_md_table_build_whole(benchmark::State& state) {
   for (auto _ : state) {
     const coatcontact::MaugisDugdaleModel model(soft_film(), table_options());
     model.build_table();
+    state.counters["table_solves"] = static_cast<double>(model.table_solves());
   }
 }
 BENCHMARK(BM_md_table_build_whole)->Unit(benchmark::kSecond)->Iterations(1)->Repetitions(1)->UseRealTime();

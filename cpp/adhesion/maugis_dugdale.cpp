@@ -43,6 +43,9 @@ constexpr double kNearStep = 0.05;
 constexpr double kMinNearStep = 1e-7;
 // The refinement's points lie within 100 location tolerances (1e-5) of the guess's a_bar.
 constexpr double kSlopeStep = 1e-4;
+// Relative error of a direct solve's values (tests/adhesive/test_md_table.cpp: root to 1e-13 in
+// ln(c/a - 1), values ~1e-13 relative, with a margin).
+constexpr double kDirectNoise = 1e-11;
 
 void check_value(double value, const std::string& what, bool zero_allowed) {
   if (!std::isfinite(value) || !(zero_allowed ? value >= 0.0 : value > 0.0)) {
@@ -160,6 +163,10 @@ struct MaugisDugdaleModel::Impl {
         p.c_bar = eta * (a > 0.0 ? a * (1.0 + st->excess) : st->excess);
         p.load = eta * eta * eta * st->force;
         p.penetration = eta * eta * st->delta;
+        p.m_error = a > 0.0 ? st->excess_error : 0.0;
+        p.load_error = eta * eta * eta * st->force_error;
+        p.penetration_error = eta * eta * st->delta_error;
+        p.from_table = true;
         return p;
       }
     }
@@ -171,6 +178,9 @@ struct MaugisDugdaleModel::Impl {
     p.load = eta * eta * eta * st.force;
     p.penetration = eta * eta * st.delta;
     p.gap_evaluations = zone.last_evaluations();
+    p.m_error = a > 0.0 ? kDirectNoise * p.m : 0.0;
+    p.load_error = kDirectNoise * std::abs(p.load);
+    p.penetration_error = kDirectNoise * std::abs(p.penetration);
     return p;
   }
 };
@@ -188,6 +198,11 @@ MaugisDugdaleModel::MaugisDugdaleModel(const Stack& stack, MaugisDugdaleOptions 
 MaugisDugdaleModel::~MaugisDugdaleModel() = default;
 const Stack& MaugisDugdaleModel::stack() const { return impl_->stack; }
 const MaugisDugdaleOptions& MaugisDugdaleModel::options() const { return impl_->options; }
+void MaugisDugdaleModel::build_table() const {
+  if (impl_->table) impl_->table->build();
+}
+long MaugisDugdaleModel::table_solves() const { return impl_->table ? impl_->table->nodes_solved() : 0; }
+double MaugisDugdaleModel::table_seconds() const { return impl_->table ? impl_->table->build_seconds() : 0.0; }
 
 MaugisDugdalePoint MaugisDugdaleModel::point(double eta, double lambda, double a_bar) const {
   check_value(eta, "eta", false);

@@ -176,7 +176,12 @@ void tile_range(std::size_t t, std::size_t cells, int tile_cells, int margin_cel
   const std::size_t b = static_cast<std::size_t>(tile_cells), m = static_cast<std::size_t>(margin_cells);
   own0 = t * b;
   own = std::min(b, cells - own0);
-  const std::size_t c0 = own0 >= m ? own0 - m : 0, c1 = std::min(cells, own0 + own + m);
+  std::size_t c0 = own0 >= m ? own0 - m : 0, c1 = std::min(cells, own0 + own + m);
+  // GSL's bicubic spline needs four coarse nodes: widen a short tile at a grid end.
+  while (c1 - c0 < 3 && (c0 > 0 || c1 < cells)) {
+    if (c1 < cells) ++c1;
+    if (c1 - c0 < 3 && c0 > 0) --c0;
+  }
   first = 2 * c0;
   last = 2 * c1;
 }
@@ -407,7 +412,8 @@ const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_radius(std::size_t ti
   Grids& g = *grids_;
   std::call_once(g.radius_once[ti], [&] {
     std::size_t own0, own, first, last;
-    tile_range(ti, g.x_coarse.size() - 1, options_.tile_cells, options_.margin_cells, own0, own, first, last);
+    tile_range(ti, g.x_coarse.size() - 1, options_.tile_cells, std::max(2, options_.margin_cells), own0, own, first,
+               last);
     // The x1 nodes around [x_first, x_last], from and to a coarse x1 node.
     const std::size_t lo_cell = cell_of(g.x1_coarse, g.x[first]);
     const std::size_t hi_cell = std::min(cell_of(g.x1_coarse, g.x[last]) + 1, g.x1_coarse.size() - 1);
@@ -426,7 +432,8 @@ const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_end(std::size_t ti) c
   Grids& g = *grids_;
   std::call_once(g.end_once[ti], [&] {
     std::size_t own0, own, first, last;
-    tile_range(ti, g.xe_coarse.size() - 1, options_.tile_cells, options_.margin_cells, own0, own, first, last);
+    tile_range(ti, g.xe_coarse.size() - 1, options_.tile_cells, std::max(2, options_.margin_cells), own0, own, first,
+               last);
     solve_end_nodes(first, last);
     auto tile = std::make_unique<Tile1d>();
     tile->interval0 = first / 2;

@@ -32,7 +32,7 @@ struct MaugisDugdaleOptions {
   int scan_points_per_decade = 8;
   double location_tolerance = 1e-7;
   // Points from the reduced table of the cohesive zone (THEORY.md section 13, "The cohesive
-  // zone as a table"), built once per model on first use, wherever it covers a/t in
+  // zone as a table"), built per model tile by tile as queries need them, wherever it covers a/t in
   // [table_a_over_t_min, table_a_over_t_max] and the root c/a - 1 (c/t <= 1e4), and at the
   // end a = 0 (c/t in [1e-5, 1e4]); the direct solve elsewhere. Values then differ from the
   // direct ones by the table's error (tests/adhesive/test_md_table.cpp: P and D to ~6e-5,
@@ -55,6 +55,10 @@ struct MaugisDugdalePoint {
   double load = 0.0;         // P
   double penetration = 0.0;  // D
   int gap_evaluations = 0;   // cost of the root c(a)
+  // Error estimates of m, P, D: the table's (MaugisDugdaleOptions::use_table), or the direct
+  // solve's own (root to 1e-13 in ln(c/a - 1), values ~1e-11 relative).
+  double m_error = 0.0, load_error = 0.0, penetration_error = 0.0;
+  bool from_table = false;   // false: the direct per-radius solve
 };
 
 struct MaugisDugdalePulloffPoint {
@@ -93,6 +97,11 @@ class MaugisDugdaleModel {
 
   const Stack& stack() const;
   const MaugisDugdaleOptions& options() const;
+  // With use_table: builds every tile of the table now (otherwise each on first use), and the
+  // table's cost so far (direct solves, wall seconds). Without: nothing, zeros.
+  void build_table() const;
+  long table_solves() const;
+  double table_seconds() const;
 
  private:
   double refine(double eta, double lambda, double ln_a_bar, bool load, double guess_excess, int& evaluations) const;
