@@ -209,6 +209,9 @@ class Stopwatch {
 MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discretization& disc,
                                        const CohesiveQuadrature& quadrature, const MdTableOptions& options)
     : kernel_(kernel), disc_(disc), quadrature_(quadrature), options_(options) {
+  if (options.node_points_per_piece >= 4) {
+    quadrature_.points_per_piece = std::min(quadrature_.points_per_piece, options.node_points_per_piece);
+  }
   if (!(options.a_over_t_min > 0.0 && options.a_over_t_min < options.a_over_t_max && options.excess_min > 0.0 &&
         options.excess_min < 1.0 && options.c_over_t_max >= 10.0 * options.a_over_t_max && options.step > 0.0 &&
         std::isfinite(options.c_over_t_max) && options.end_c_over_t_min > 0.0 &&

@@ -51,6 +51,9 @@ struct MdTableOptions {
   // 1e-10 relative where the function is flat).
   int tile_cells = 4;
   int margin_cells = 1;
+  // Gauss points per annulus piece at the table's nodes (at most the model's): 10 puts the
+  // quadrature's error near 4^-20 ~ 1e-12 (THEORY.md section 13), far below the interpolation's.
+  int node_points_per_piece = 10;
 };
 
 // The table's answer at (a, excess): values and absolute error estimates.
