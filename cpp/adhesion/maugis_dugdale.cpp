@@ -58,6 +58,9 @@ enum class Control { kLoad, kDisplacement };
 double value_of(const MaugisDugdalePoint& p, Control c) {
   return c == Control::kLoad ? p.load : p.penetration;
 }
+double error_of(const MaugisDugdalePoint& p, Control c) {
+  return c == Control::kLoad ? p.load_error : p.penetration_error;
+}
 
 // Start of the root c(a) at ln a_bar = x from the roots u = ln(c/a - 1) already known at other
 // x: u interpolated (extrapolated) through the three nearest (quadratic), the first bracket
@@ -331,7 +334,11 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff(double eta, double lambda) cons
     const MaugisDugdalePoint& end = result.curve_end;
     std::ostringstream w;
     w.precision(6);
-    if (!found || value_of(end, control) <= value_of(best.point, control)) {
+    // From the table, a minimum within the two values' error estimates of the curve's end is
+    // not told apart from it (near the end P and D are flat): the end is reported, as the
+    // direct solve would.
+    const double margin = best.point.from_table ? error_of(best.point, control) + error_of(end, control) : 0.0;
+    if (!found || value_of(end, control) <= value_of(best.point, control) + margin) {
       // The contact shrinks to a point at finite force (THEORY.md section 13, no vertical
       // tangent): the pull-off sits at the end of the curve.
       best.point = end;

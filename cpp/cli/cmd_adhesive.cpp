@@ -170,6 +170,7 @@ std::vector<OptionSpec> normalized_options() {
                                  "v1,v2,... or MIN:MAX:N",
                                  true});
   spec.push_back(lambda_option());
+  spec.push_back(md_direct_option());
   return spec;
 }
 
@@ -211,13 +212,14 @@ int run_adhesive(const Args& raw) {
         {"--eta", etas.size()}, {"--a-bar", a_bar.empty() ? std::size_t{400} : a_bar.size()}};
     if (lambdas) lists.emplace_back("--lambda", lambdas->size());
     check_rows(lists);
+    const bool md_direct = parse_md_direct(args, lambdas.has_value(), "a finite --lambda");
     if (lambdas) {
       refuse_unused_tol(args, *lambdas);
       refuse_elastic_indenter(stack, "--lambda");
     }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
-      write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol);
+      write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol, md_direct);
       out.commit();
       return 0;
     }
@@ -279,6 +281,7 @@ int run_pulloff(const Args& raw) {
                        "JKR only, THEORY.md section 10); omit --spring-bar, or --lambda for JKR");
     }
     if (lambdas) check_rows({{"--eta", etas.size()}, {"--lambda", lambdas->size()}});
+    const bool md_direct = parse_md_direct(args, lambdas.has_value(), "a finite --lambda");
     if (const auto text = args.get("--spring-bar")) {
       check_rows({{"--eta", etas.size()}, {"--spring-bar", parse_spring_bar(*text, "--spring-bar").size()}});
     }
@@ -288,7 +291,7 @@ int run_pulloff(const Args& raw) {
     }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
-      write_md_pulloff(out.stream(), stack, etas, *lambdas, tol);
+      write_md_pulloff(out.stream(), stack, etas, *lambdas, tol, md_direct);
       out.commit();
       return 0;
     }
@@ -388,6 +391,7 @@ int run_sphere(const Args& raw) {
       points = static_cast<std::size_t>(n);
     }
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
+    const bool md_direct = parse_md_direct(args, sigma0.has_value(), "--cohesive-stress or --range");
     std::vector<double> contact_radii;
     if (const auto text = args.get("--contact-radius")) {
       if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
@@ -403,7 +407,7 @@ int run_sphere(const Args& raw) {
                          "contact radius to a fixed accuracy, THEORY.md section 13); omit --tol");
       }
       refuse_elastic_indenter(stack, args.has("--range") ? "--range" : "--cohesive-stress");
-      write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points, contact_radii);
+      write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points, contact_radii, md_direct);
       out.commit();
       return 0;
     }
