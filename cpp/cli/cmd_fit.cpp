@@ -368,7 +368,6 @@ void parse_model(FitRun& r) {
     if (!r.radius_data) throw InputError("--model md: fits a,F data only (--columns a,F)");
     if (r.problem.shape) throw InputError("--model md: the Maugis-Dugdale zone is fitted for the sphere only, not --shape");
     if (r.hysteresis) throw InputError("--model md: one adhesion energy only (not w_load,w_unload)");
-    if (!r.problem.indenter.rigid) throw InputError("--model md: a rigid sphere only (not --indenter)");
     if (r.arguments.has("--spring")) throw InputError("--model md: no spring pull-off (leave out --spring)");
     if (const auto text = r.arguments.get("--lambda")) r.problem.lambda = parse_lambda(*text, "--lambda");
     r.problem.maugis_dugdale_direct = r.arguments.has("--md-direct");

@@ -204,7 +204,7 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
 }
 
 void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
-                      const std::vector<double>& lambdas, double tol, bool direct) {
+                      const std::vector<double>& lambdas, double tol, bool direct, const std::vector<double>& k_bars) {
   const MaugisDugdaleModel md(stack, md_options(direct));
   const ReducedSolver solver(stack);
   const AdhesiveModel jkr(solver, tol);
@@ -222,24 +222,69 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                  kMdPulloffEvaluations * static_cast<double>(finite.size()), true, "--eta and --lambda");
   }
   const std::vector<MaugisDugdalePulloff> md_results = md.pulloffs(finite);
+  // The spring pull-offs (the tiles exist now: each costs ~1 ms from the table).
+  std::vector<std::vector<MaugisDugdalePulloffPoint>> md_springs(finite.size());
+  for (std::size_t k = 0; k < finite.size(); ++k) {
+    for (double k_bar : k_bars) {
+      const MaugisDugdalePulloff p = md.pulloff_spring(finite[k].first, finite[k].second, k_bar);
+      md_springs[k].push_back(k_bar == 0.0 ? p.load_control : p.spring_control);
+      for (const auto& w : p.warnings) {
+        if (w.find("spring control") != std::string::npos) notes.emplace_back("warning", w);
+      }
+    }
+  }
+  // Rows: the base columns, then per k_bar its own row with k_bar, P, a_bar, D at the jump and
+  // the error estimate of Z = D + P/k_bar.
+  auto add_rows = [&](std::vector<double> base, const std::vector<PulloffPoint>& jkr_springs,
+                      const std::vector<MaugisDugdalePulloffPoint>* md_spring) {
+    if (k_bars.empty()) {
+      rows.push_back(std::move(base));
+      return;
+    }
+    for (std::size_t k = 0; k < k_bars.size(); ++k) {
+      std::vector<double> row = base;
+      const double k_bar = k_bars[k];
+      if (md_spring != nullptr) {
+        const MaugisDugdalePoint& q = (*md_spring)[k].point;
+        const double z_error = k_bar == 0.0 ? q.load_error : q.penetration_error + q.load_error / k_bar;
+        row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+      } else {
+        const PulloffPoint& q = jkr_springs[k];
+        const double z_error = k_bar == 0.0 ? tol * std::abs(q.load)
+                                            : tol * (std::abs(q.penetration) + std::abs(q.load) / k_bar);
+        row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+      }
+      rows.push_back(std::move(row));
+    }
+  };
   std::size_t next = 0;
   for (double eta : etas) {
     for (double lambda : lambdas) {
       const std::string at = "eta=" + num(eta) + " lambda=" + num(lambda);
       if (std::isinf(lambda)) {
         const Pulloff p = jkr.pulloff(eta);
-        rows.push_back({eta, lambda, p.load_control.load, p.load_control.a_bar, p.load_control.penetration, 1.0,
-                        p.displacement_control.load, p.displacement_control.a_bar,
-                        p.displacement_control.penetration, 1.0, tol * std::abs(p.load_control.load),
-                        tol * std::abs(p.displacement_control.penetration)});
+        std::vector<PulloffPoint> springs;
+        for (double k_bar : k_bars) {
+          const SpringPulloff sp = jkr.pulloff_spring(eta, k_bar);
+          springs.push_back(sp.point);
+          if (!std::isinf(k_bar) && k_bar != 0.0) {
+            for (const auto& w : sp.warnings) notes.emplace_back("warning", w);
+          }
+        }
+        add_rows({eta, lambda, p.load_control.load, p.load_control.a_bar, p.load_control.penetration, 1.0,
+                  p.displacement_control.load, p.displacement_control.a_bar, p.displacement_control.penetration, 1.0,
+                  tol * std::abs(p.load_control.load), tol * std::abs(p.displacement_control.penetration)},
+                 springs, nullptr);
         for (const auto& w : p.warnings) notes.emplace_back("warning", w);
         continue;
       }
-      const MaugisDugdalePulloff& p = md_results[next++];
+      const std::size_t index = next++;
+      const MaugisDugdalePulloff& p = md_results[index];
       const MaugisDugdalePoint& l = p.load_control.point;
       const MaugisDugdalePoint& d = p.displacement_control.point;
-      rows.push_back({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m,
-                      l.load_error, d.penetration_error});
+      add_rows({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m, l.load_error,
+                d.penetration_error},
+               {}, &md_springs[index]);
       for (const auto* c : {&p.load_control, &p.displacement_control}) {
         const bool load = c == &p.load_control;
         notes.emplace_back(std::string(load ? "load" : "displacement") + " control, " + at,
@@ -264,9 +309,19 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                                            "through c(a) (a_bar to ~1e-10, P and D to ~1e-12)"
                                          : " to 1e-7 (P_load_err, D_disp_err: the error estimates of the minima; "
                                            "JKR rows: the tolerance times |P|, |D|)"));
+  if (!k_bars.empty()) {
+    h.emplace_back("k_bar", join(k_bars));
+    h.emplace_back("spring control",
+                   "one row per (eta, lambda, k_bar): the jump where dP/dD = -k_bar, the minimum of Z = D + P/k_bar "
+                   "along the curve or its end a -> 0 (THEORY.md sections 10 and 13); k_bar = 0 and inf are the load "
+                   "and displacement values; Z_spring_err: the error estimate of Z");
+  }
   for (auto& n : notes) h.push_back(std::move(n));
-  const std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load",   "m_load",
-                                            "P_disp", "a_bar_disp", "D_disp", "m_disp",     "P_load_err", "D_disp_err"};
+  std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load",   "m_load",
+                                      "P_disp", "a_bar_disp", "D_disp", "m_disp",     "P_load_err", "D_disp_err"};
+  if (!k_bars.empty()) {
+    for (const char* c : {"k_bar", "P_spring", "a_bar_spring", "D_spring", "Z_spring_err"}) columns.emplace_back(c);
+  }
   write_header(os, h, columns);
   for (const auto& row : rows) write_cells(os, row, columns);
 }

@@ -26,8 +26,10 @@ std::optional<std::vector<double>> parse_lambdas(const Arguments& args);
 // direct: the per-radius solve for every value (--md-direct), else the reduced table.
 void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
                        const std::vector<double>& lambdas, const std::vector<double>& a_bar, double tol, bool direct);
+// k_bars (--spring-bar, may be empty): one row per (eta, lambda, k_bar) with the pull-off through
+// the spring (THEORY.md sections 10 and 13) as extra columns.
 void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
-                      const std::vector<double>& lambdas, double tol, bool direct);
+                      const std::vector<double>& lambdas, double tol, bool direct, const std::vector<double>& k_bars);
 
 std::vector<OptionSpec> cohesive_options();
 // sigma0 [Pa] from --cohesive-stress or w/--range; nullopt when neither is given. InputError

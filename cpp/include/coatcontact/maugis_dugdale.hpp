@@ -72,6 +72,10 @@ struct MaugisDugdalePulloff {
   double lambda = 0.0;
   MaugisDugdalePulloffPoint load_control;          // minimum of P over a_bar
   MaugisDugdalePulloffPoint displacement_control;  // minimum of D over a_bar
+  // pulloff_spring with k_bar > 0: the minimum of Z = D + P/k_bar over a_bar (THEORY.md
+  // section 10; k_bar = inf: displacement control); k_bar = 0: not computed.
+  MaugisDugdalePulloffPoint spring_control;
+  double k_bar = 0.0;
   MaugisDugdalePoint curve_end;                    // a -> 0
   double a_bar_scan_min = 0.0, a_bar_scan_max = 0.0;
   int point_evaluations = 0;
@@ -80,7 +84,9 @@ struct MaugisDugdalePulloff {
 
 class MaugisDugdaleModel {
  public:
-  // Builds the kernel table of the stack once. Rigid indenter only (InputError otherwise).
+  // Builds the kernel table of the stack once. An elastic indenter enters through the stack's
+  // reference modulus E_r and kernel C' (THEORY.md sections 9 and 13); lambda then takes
+  // K = 4E_r/3.
   explicit MaugisDugdaleModel(const Stack& stack, MaugisDugdaleOptions options = {});
   ~MaugisDugdaleModel();
   MaugisDugdaleModel(const MaugisDugdaleModel&) = delete;
@@ -91,6 +97,10 @@ class MaugisDugdaleModel {
   MaugisDugdalePoint point(double eta, double lambda, double a_bar) const;
   std::vector<MaugisDugdalePoint> curve(double eta, double lambda, const std::vector<double>& a_bar) const;
   MaugisDugdalePulloff pulloff(double eta, double lambda) const;
+  // pulloff() plus the pull-off through a spring of normalized stiffness k_bar = k L_D/(pi w R)
+  // (THEORY.md sections 10 and 13): the minimum of Z = D + P/k_bar along the same curve, or its
+  // end a -> 0 when that lies lower; located by the minimiser (~location_tolerance in a_bar).
+  MaugisDugdalePulloff pulloff_spring(double eta, double lambda, double k_bar) const;
   // pulloff(eta_i, lambda_i) for each pair, computed in parallel (OpenMP); the same values as
   // one call per pair. The first failing pair's exception is rethrown.
   std::vector<MaugisDugdalePulloff> pulloffs(const std::vector<std::pair<double, double>>& eta_lambda) const;
