@@ -368,8 +368,19 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
     if (!found || value_of(end, control) <= value_of(best.point, control) + margin) {
       // The contact shrinks to a point at finite force (THEORY.md section 13, no vertical
       // tangent): the pull-off sits at the end of the curve.
+      // An interior minimum below the end, set aside within the estimates, bounds the error
+      // of the value reported: the end's error grows by their difference and the minimum's.
+      const double below = found ? value_of(end, control) - value_of(best.point, control) : 0.0;
+      const double widened = below > 0.0 ? below + error_of(best.point, control) : 0.0;
       best.point = end;
       best.interior = false;
+      if (widened > error_of(end, control)) {
+        if (control.kind == Control::kLoad) {
+          best.point.load_error = widened;
+        } else {
+          best.point.penetration_error = widened;  // D, and Z through a spring (D + P/k_bar)
+        }
+      }
       if (value_of(points[n - 1], control) < value_of(end, control)) {
         w << "eta=" << eta << " lambda=" << lambda << ": " << name << ": no minimum in a_bar [" << lo << ", "
           << hi << "] and the range end is below the curve's end a -> 0";
