@@ -266,6 +266,23 @@ int main() {
                      "pull-off point D within its estimate" + at);
       }
     }
+    // Pull-offs where the curve's end and an interior minimum are within the table's estimates
+    // of each other (stiff film, small lambda): the reported value within its estimate of the
+    // direct pull-off.
+    {
+      MaugisDugdaleOptions stiff_table = with_table;
+      const MaugisDugdaleModel stiff_direct(stiff), stiff_tabled(stiff, stiff_table);
+      for (auto [eta, lambda] : {std::pair{1.0, 0.01}, std::pair{1.0, 0.31622776601683794}, std::pair{10.0, 0.01}}) {
+        const MaugisDugdalePulloff want = stiff_direct.pulloff(eta, lambda), got = stiff_tabled.pulloff(eta, lambda);
+        const std::string at = " stiff film eta=" + g(eta) + " lambda=" + g(lambda);
+        check::below(std::abs(got.load_control.point.load - want.load_control.point.load),
+                     got.load_control.point.load_error + want.load_control.point.load_error,
+                     "pull-off P (load) within its estimate" + at);
+        check::below(std::abs(got.displacement_control.point.penetration - want.displacement_control.point.penetration),
+                     got.displacement_control.point.penetration_error + want.displacement_control.point.penetration_error,
+                     "pull-off D (displacement) within its estimate" + at);
+      }
+    }
     // 6. Curve points of the model (MaugisDugdaleModel::curve, as the CLI and the fit use it)
     //    within their error estimates of the direct ones, with the end of the curve.
     int curve_points = 0;
