@@ -258,132 +258,114 @@ MaugisDugdaleTable::~MaugisDugdaleTable() = default;
 
 double MaugisDugdaleTable::excess_max(double a) const { return options_.c_over_t_max / a - 1.0; }
 
+namespace {
+
+// body(k) for k < count in an OpenMP loop (independent direct solves); the first exception in
+// index order is rethrown after the loop, as a serial loop would.
+void for_each_node(std::size_t count, const std::function<void(std::size_t)>& body) {
+  std::vector<std::exception_ptr> errors(count);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long kl = 0; kl < static_cast<long>(count); ++kl) {
+    const auto k = static_cast<std::size_t>(kl);
+    try {
+      body(k);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  }
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
+// The indices in [first, last] whose flag is not set yet.
+std::vector<std::size_t> unsolved(const std::vector<char>& solved, std::size_t first, std::size_t last) {
+  std::vector<std::size_t> missing;
+  for (std::size_t i = first; i <= last; ++i) {
+    if (!solved[i]) missing.push_back(i);
+  }
+  return missing;
+}
+
+}  // namespace
+
 void MaugisDugdaleTable::solve_nodes(const std::vector<std::pair<std::size_t, std::size_t>>& nodes) const {
   Grids& g = *grids_;
   const std::lock_guard<std::mutex> lock(g.node_lock);
   const std::size_t nx = g.x.size();
   std::vector<std::size_t> columns;
   std::vector<std::pair<std::size_t, std::size_t>> missing;
+  std::vector<char> column_listed(nx, 0), node_listed(g.solved.size(), 0);
   for (const auto& [i, j] : nodes) {
-    if (!g.column_solved[i]) {
+    if (!g.column_solved[i] && !column_listed[i]) {
       columns.push_back(i);
-      g.column_solved[i] = 1;  // reset below if its solve fails
+      column_listed[i] = 1;
     }
-    if (j != kColumnOnly && !g.solved[j * nx + i]) {
+    if (j != kColumnOnly && !g.solved[j * nx + i] && !node_listed[j * nx + i]) {
       missing.emplace_back(i, j);
-      g.solved[j * nx + i] = 1;
+      node_listed[j * nx + i] = 1;
     }
   }
   if (columns.empty() && missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
-  const double s_min = std::log(options_.excess_min);
-  std::vector<std::exception_ptr> errors(columns.size() + missing.size());
   // One factorization per contact radius, shared by the column's nodes.
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long il = 0; il < static_cast<long>(columns.size()); ++il) {
-    const auto c = static_cast<std::size_t>(il);
+  for_each_node(columns.size(), [&](std::size_t c) {
     const std::size_t i = columns[c];
-    try {
-      g.columns[i] = std::make_unique<CohesiveZone>(kernel_, std::exp(g.x[i]), 1.0, disc_, quadrature_);
-    } catch (...) {
-      errors[c] = std::current_exception();
-    }
-  }
+    g.columns[i] = std::make_unique<CohesiveZone>(kernel_, std::exp(g.x[i]), 1.0, disc_, quadrature_);
+  });
+  for (std::size_t i : columns) g.column_solved[i] = 1;
   g.nodes += static_cast<long>(columns.size());
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    if (errors[c]) {
-      for (std::size_t i : columns) g.column_solved[i] = 0;
-      for (const auto& [i, j] : missing) g.solved[j * nx + i] = 0;
-      std::rethrow_exception(errors[c]);
-    }
-  }
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long nl = 0; nl < static_cast<long>(missing.size()); ++nl) {
-    const auto n = static_cast<std::size_t>(nl);
+  const double s_min = std::log(options_.excess_min);
+  for_each_node(missing.size(), [&](std::size_t n) {
     const auto [i, j] = missing[n];
-    try {
-      const double a = std::exp(g.x[i]);
-      const double s_max = std::log(excess_max(a));
-      const double e = std::exp(s_min + g.tau[j] * (s_max - s_min));
-      double value[kTwoD], hom[kTwoD];
-      to_array_2d(g.columns[i]->functions(e), value);
-      to_array_2d(homogeneous_functions(a, e), hom);
-      for (int k = 0; k < kTwoD; ++k) g.z[k][j * nx + i] = value[k] / hom[k];
-    } catch (...) {
-      errors[columns.size() + n] = std::current_exception();
-    }
-  }
+    const double a = std::exp(g.x[i]);
+    const double s_max = std::log(excess_max(a));
+    const double e = std::exp(s_min + g.tau[j] * (s_max - s_min));
+    double value[kTwoD], hom[kTwoD];
+    to_array_2d(g.columns[i]->functions(e), value);
+    to_array_2d(homogeneous_functions(a, e), hom);
+    for (int k = 0; k < kTwoD; ++k) g.z[k][j * nx + i] = value[k] / hom[k];
+  });
+  for (const auto& [i, j] : missing) g.solved[j * nx + i] = 1;
   g.nodes += static_cast<long>(missing.size());
-  for (const auto& e : errors) {
-    if (e) {
-      for (const auto& [i, j] : missing) g.solved[j * nx + i] = 0;
-      std::rethrow_exception(e);
-    }
-  }
 }
 
 void MaugisDugdaleTable::solve_end_nodes(std::size_t first, std::size_t last) const {
   Grids& g = *grids_;
   const std::lock_guard<std::mutex> lock(g.node_lock);
-  std::vector<std::size_t> missing;
-  for (std::size_t i = first; i <= last; ++i) {
-    if (!g.end_solved[i]) missing.push_back(i);
-  }
+  const std::vector<std::size_t> missing = unsolved(g.end_solved, first, last);
   if (missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
   if (!g.end_zone) g.end_zone = std::make_unique<CohesiveZone>(kernel_, 0.0, 1.0, disc_, quadrature_);
-  std::vector<std::exception_ptr> errors(missing.size());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long nl = 0; nl < static_cast<long>(missing.size()); ++nl) {
-    const auto n = static_cast<std::size_t>(nl);
+  for_each_node(missing.size(), [&](std::size_t n) {
     const std::size_t i = missing[n];
-    try {
-      const double c = std::exp(g.xe[i]);
-      double value[kTwoD], hom[kTwoD];
-      to_array_2d(g.end_zone->functions(c), value);
-      to_array_2d(homogeneous_end_functions(c), hom);
-      for (int k = 0; k < kTwoD; ++k) g.ye[k][i] = value[k] / hom[k];
-    } catch (...) {
-      errors[n] = std::current_exception();
-    }
-  }
-  g.nodes += static_cast<long>(missing.size());
-  for (const auto& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+    const double c = std::exp(g.xe[i]);
+    double value[kTwoD], hom[kTwoD];
+    to_array_2d(g.end_zone->functions(c), value);
+    to_array_2d(homogeneous_end_functions(c), hom);
+    for (int k = 0; k < kTwoD; ++k) g.ye[k][i] = value[k] / hom[k];
+  });
   for (std::size_t i : missing) g.end_solved[i] = 1;
+  g.nodes += static_cast<long>(missing.size());
 }
 
 void MaugisDugdaleTable::solve_radius_nodes(std::size_t first, std::size_t last) const {
   Grids& g = *grids_;
   const std::lock_guard<std::mutex> lock(g.node_lock);
-  std::vector<std::size_t> missing;
-  for (std::size_t i = first; i <= last; ++i) {
-    if (!g.radius_solved[i]) missing.push_back(i);
-  }
+  const std::vector<std::size_t> missing = unsolved(g.radius_solved, first, last);
   if (missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
-  std::vector<std::exception_ptr> errors(missing.size());
   // One factorization per radius; the adhesionless solution gives δ_H, F_H.
-#pragma omp parallel for schedule(dynamic, 4)
-  for (long nl = 0; nl < static_cast<long>(missing.size()); ++nl) {
-    const auto n = static_cast<std::size_t>(nl);
+  for_each_node(missing.size(), [&](std::size_t n) {
     const std::size_t i = missing[n];
-    try {
-      const double a = std::exp(g.x1[i]);
-      const CohesiveFunctions v = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).adhesionless();
-      const CohesiveFunctions h = homogeneous_functions(a, 1.0);
-      g.y[0][i] = v.delta_h / h.delta_h;
-      g.y[1][i] = v.force_h / h.force_h;
-    } catch (...) {
-      errors[n] = std::current_exception();
-    }
-  }
-  g.nodes += static_cast<long>(missing.size());
-  for (const auto& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+    const double a = std::exp(g.x1[i]);
+    const CohesiveFunctions v = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).adhesionless();
+    const CohesiveFunctions h = homogeneous_functions(a, 1.0);
+    g.y[0][i] = v.delta_h / h.delta_h;
+    g.y[1][i] = v.force_h / h.force_h;
+  });
   for (std::size_t i : missing) g.radius_solved[i] = 1;
+  g.nodes += static_cast<long>(missing.size());
 }
 
 namespace {

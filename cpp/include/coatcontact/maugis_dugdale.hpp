@@ -35,9 +35,10 @@ struct MaugisDugdaleOptions {
   // zone as a table"), built per model tile by tile as queries need them, wherever it covers a/t in
   // [table_a_over_t_min, table_a_over_t_max] and the root c/a - 1 (c/t <= 1e4), and at the
   // end a = 0 (c/t in [1e-5, 1e4]); the direct solve elsewhere. Values then differ from the
-  // direct ones by the table's error (tests/adhesive/test_md_table.cpp: P and D to ~6e-5,
-  // m to ~4e-4); the pull-off location is the minimiser's (location_tolerance), without the
-  // implicit-derivative refinement.
+  // direct ones by the table's error, each within its estimate (MaugisDugdalePoint::*_error;
+  // tests/adhesive/test_md_table.cpp: P to ~1.2e-4, D to ~9e-5, m to ~4e-4); the pull-off
+  // location is the minimiser's (location_tolerance), without the implicit-derivative
+  // refinement. Off here (the library's reference); the CLI and the fit turn it on.
   bool use_table = false;
   double table_a_over_t_min = 1e-4;
   double table_a_over_t_max = 1e2;
