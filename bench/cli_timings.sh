@@ -62,6 +62,19 @@ time_task "fit a,F, noise on a and F, w,t free, no start (60 points, a/t to 20)"
 # make figures from a built tree, into a fresh folder each run (3 runs: ~14 s each)
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
+
+# Maugis-Dugdale through the reduced table of the cohesive zone (THEORY.md section 13), its
+# tiles built in each run: 33 pull-offs, and fit --model md on 12 points of the sphere command.
+md_lambdas=$(awk 'BEGIN { for (k = 0; k < 33; k++) printf "%s%.6g", (k ? "," : ""), 10 ^ (-2 + 4 * k / 32) }')
+time_task "pulloff --lambda, 33 values (MD table included)" \
+  "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 1 --lambda "$md_lambdas"
+md_glass=(--radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um)
+"$cli" sphere "${md_glass[@]}" --work 50mJ/m2 --cohesive-stress 30kPa --output "$scratch/md.tsv" 2>/dev/null
+grep -v '^#' "$scratch/md.tsv" | awk '$1 >= 1e-5 && $1 <= 1.5e-4' |
+  awk '{ r[n++] = $0 } END { for (i = 0; i < 12; i++) { split(r[int(i * (n - 1) / 11 + 0.5)], f, "\t"); print f[1] "\t" f[3] } }' \
+  > "$scratch/md_a_F.tsv"
+time_task "fit --model md, w,lambda free (12 points, MD table included)" \
+  "$cli" fit "$scratch/md_a_F.tsv" --columns a,F "${md_glass[@]}" --model md --free w,lambda --sigma F=2uN
 figures() {
   rm -rf "$scratch/d" "$scratch/f"
   make -s -C "$root" -f gnuplot/figures.mk figures-only CLI="$(realpath "$cli")" \

@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <atomic>
 #include <exception>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,8 @@ namespace {
 using detail::kPi;
 constexpr int kTwoD = 4;  // d, f, g_r, g_s
 constexpr int kOneD = 2;  // delta_h, force_h
+// The radius functions cost one factorization per node and vary with a/t as fast as the 2-D
+// ones (on a rigid base with nu = 0.5 F_H/a³ spans decades): a grid 8 times finer than x.
 constexpr double kOneDRefinement = 8.0;
 // Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
 constexpr int kSamples = 5;
@@ -91,7 +95,7 @@ void fit_pair(const std::vector<double>& x, const std::vector<double>& x_coarse,
 }
 
 std::vector<double> grid(double lo, double hi, double step) {
-  const int half = std::max(2, static_cast<int>(std::ceil((hi - lo) / (2.0 * step))));
+  const int half = std::max(3, static_cast<int>(std::ceil((hi - lo) / (2.0 * step))));
   const int n = 2 * half + 1;
   std::vector<double> g(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) g[static_cast<std::size_t>(k)] = lo + (hi - lo) * k / (n - 1);
@@ -100,22 +104,7 @@ std::vector<double> grid(double lo, double hi, double step) {
 
 }  // namespace
 
-CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess) {
-  // The problem is linear in σ̂: the σ̂-parts from a second solve at a σ̂ large enough that
-  // the 1/R-part's rounding (~1e-16 of it) is negligible against them.
-  const double a = zone.contact_radius();
-  const double big = 1e6 * std::max(1.0, a);
-  const CohesiveState zero = zone.evaluate(0.0, excess);
-  const CohesiveState loaded = zone.evaluate(big, excess);
-  CohesiveFunctions out;
-  out.delta_h = zero.delta;
-  out.force_h = zero.force;
-  out.g_r = zero.gap;
-  out.d = (loaded.delta - zero.delta) / big;
-  out.f = (loaded.force - zero.force) / big;
-  out.g_s = (loaded.gap - zero.gap) / big;
-  return out;
-}
+CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess) { return zone.functions(excess); }
 
 CohesiveFunctions homogeneous_functions(double a, double excess) {
   const double e = excess;
@@ -140,186 +129,397 @@ CohesiveFunctions homogeneous_end_functions(double c) {
   return h;
 }
 
+// A node request for the factorization of column i alone (δ_H, F_H), no 2-D node.
+constexpr std::size_t kColumnOnly = static_cast<std::size_t>(-1);
+
+// One tile of the 2-D table: own coarse cells [cell_x0, cell_x0 + own_x) x [cell_s0, ...),
+// splines on the fine nodes [node_x0, node_x1] x [node_s0, node_s1] (own cells plus margins).
+struct MaugisDugdaleTable::Tile2d {
+  std::size_t cell_x0 = 0, cell_s0 = 0, own_x = 0, own_s = 0;
+  Spline2d fine[kTwoD], coarse[kTwoD];
+  std::vector<double> cell_error[kTwoD];  // own cells, index (j - cell_s0) own_x + (i - cell_x0)
+};
+
+// One tile of a 1-D function set (the radius functions δ_H, F_H against x, or the curve's end
+// against ln c): own coarse intervals from interval0, error per interval of the tile's range.
+struct MaugisDugdaleTable::Tile1d {
+  std::size_t interval0 = 0;  // the tile's first coarse interval (margin included)
+  std::vector<Spline1d> fine, coarse;
+  std::vector<std::vector<double>> interval_error;
+};
+
 struct MaugisDugdaleTable::Grids {
   // x = ln(a/t); τ in [0, 1] maps to s = ln(c/a - 1) = s_min + τ (s_max(x) - s_min).
   std::vector<double> x, tau, x_coarse, tau_coarse;
-  std::vector<double> x1, x1_coarse;  // the 1-D functions' grid, kOneDRefinement times finer
-  std::vector<double> z[kTwoD], z_coarse[kTwoD], y[kOneD], y_coarse[kOneD];
-  Spline2d fine[kTwoD], coarse[kTwoD];
-  // Largest |fine - coarse| in each coarse cell (2-D: index i + j (cx - 1)) or interval.
-  std::vector<double> cell_error[kTwoD], interval_error[kOneD];
-  Spline1d fine1[kOneD], coarse1[kOneD];
-  // The end of the curve a = 0 against ln(c/t): d, f, g_r, g_s as ratios.
-  std::vector<double> xe, xe_coarse, ye[kTwoD], ye_coarse[kTwoD], end_error[kTwoD];
-  Spline1d fine_end[kTwoD], coarse_end[kTwoD];
-  double seconds = 0.0;
+  std::vector<double> xe, xe_coarse;  // the end of the curve a = 0: ln(c/t)
+  std::vector<double> x1, x1_coarse;  // the radius functions δ_H, F_H, kOneDRefinement times finer
+  std::size_t tiles_x = 0, tiles_s = 0, tiles_e = 0;
+  // Node values (ratios to the homogeneous forms) and whether they are solved; 2-D index j nx + i.
+  std::vector<double> z[kTwoD], y[kOneD], ye[kTwoD];
+  std::vector<char> solved, column_solved, end_solved, radius_solved;
+  std::vector<std::unique_ptr<CohesiveZone>> columns;  // the factored system per radius
+  std::unique_ptr<CohesiveZone> end_zone;
+  std::mutex node_lock;
+  std::vector<std::unique_ptr<Tile2d>> tiles;
+  std::vector<std::unique_ptr<Tile1d>> radius_tiles, end_tiles;
+  std::unique_ptr<std::once_flag[]> tile_once, radius_once, end_once;
+  std::atomic<long> nodes{0};
+  std::atomic<long long> nanoseconds{0};
 };
+
+namespace {
+
+// Fine node range [first, last] of tile t (tile_cells own coarse cells, margin_cells more on
+// each side) on a grid with `cells` coarse cells.
+void tile_range(std::size_t t, std::size_t cells, int tile_cells, int margin_cells, std::size_t& own0,
+                std::size_t& own, std::size_t& first, std::size_t& last) {
+  const std::size_t b = static_cast<std::size_t>(tile_cells), m = static_cast<std::size_t>(margin_cells);
+  own0 = t * b;
+  own = std::min(b, cells - own0);
+  std::size_t c0 = own0 >= m ? own0 - m : 0, c1 = std::min(cells, own0 + own + m);
+  // GSL's bicubic spline needs four coarse nodes: widen a short tile at a grid end.
+  while (c1 - c0 < 3 && (c0 > 0 || c1 < cells)) {
+    if (c1 < cells) ++c1;
+    if (c1 - c0 < 3 && c0 > 0) --c0;
+  }
+  first = 2 * c0;
+  last = 2 * c1;
+}
+
+std::size_t tile_count(std::size_t cells, int tile_cells) {
+  return (cells + static_cast<std::size_t>(tile_cells) - 1) / static_cast<std::size_t>(tile_cells);
+}
+
+class Stopwatch {
+ public:
+  explicit Stopwatch(std::atomic<long long>& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() {
+    total_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_).count();
+  }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  std::atomic<long long>& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
 
 MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discretization& disc,
                                        const CohesiveQuadrature& quadrature, const MdTableOptions& options)
     : kernel_(kernel), disc_(disc), quadrature_(quadrature), options_(options) {
+  if (options.node_points_per_piece >= 4) {
+    quadrature_.points_per_piece = std::min(quadrature_.points_per_piece, options.node_points_per_piece);
+  }
   if (!(options.a_over_t_min > 0.0 && options.a_over_t_min < options.a_over_t_max && options.excess_min > 0.0 &&
         options.excess_min < 1.0 && options.c_over_t_max >= 10.0 * options.a_over_t_max && options.step > 0.0 &&
-        std::isfinite(options.c_over_t_max))) {
+        std::isfinite(options.c_over_t_max) && options.end_c_over_t_min > 0.0 &&
+        options.end_c_over_t_min < options.c_over_t_max && options.tile_cells >= 1 && options.margin_cells >= 0)) {
     throw InputError("Maugis-Dugdale table: need 0 < a_over_t_min < a_over_t_max, c_over_t_max >= 10 a_over_t_max, "
-                     "0 < excess_min < 1 and step > 0");
+                     "0 < excess_min < 1, step > 0, tile_cells >= 1 and margin_cells >= 0");
   }
+  auto g = std::make_unique<Grids>();
+  const double s_min = std::log(options_.excess_min);
+  g->x = grid(std::log(options_.a_over_t_min), std::log(options_.a_over_t_max), options_.step);
+  // τ spacing: `step` in s where the s range is widest (the smallest a).
+  const double widest = std::log(excess_max(options_.a_over_t_min)) - s_min;
+  g->tau = grid(0.0, 1.0, options_.step / widest);
+  g->xe = grid(std::log(options_.end_c_over_t_min), std::log(options_.c_over_t_max), 0.5 * options_.step);
+  for (std::size_t i = 0; i < g->x.size(); i += 2) g->x_coarse.push_back(g->x[i]);
+  for (std::size_t j = 0; j < g->tau.size(); j += 2) g->tau_coarse.push_back(g->tau[j]);
+  for (std::size_t i = 0; i < g->xe.size(); i += 2) g->xe_coarse.push_back(g->xe[i]);
+  g->x1 = grid(g->x.front(), g->x.back(), options_.step / kOneDRefinement);
+  for (std::size_t i = 0; i < g->x1.size(); i += 2) g->x1_coarse.push_back(g->x1[i]);
+  g->radius_solved.assign(g->x1.size(), 0);
+  const std::size_t nx = g->x.size(), ns = g->tau.size(), ne = g->xe.size();
+  for (int k = 0; k < kTwoD; ++k) {
+    g->z[k].assign(nx * ns, 0.0);
+    g->ye[k].assign(ne, 0.0);
+  }
+  for (int k = 0; k < kOneD; ++k) g->y[k].assign(g->x1.size(), 0.0);
+  g->solved.assign(nx * ns, 0);
+  g->column_solved.assign(nx, 0);
+  g->end_solved.assign(ne, 0);
+  g->columns.resize(nx);
+  g->tiles_x = tile_count(g->x_coarse.size() - 1, options_.tile_cells);
+  g->tiles_s = tile_count(g->tau_coarse.size() - 1, options_.tile_cells);
+  g->tiles_e = tile_count(g->xe_coarse.size() - 1, options_.tile_cells);
+  g->tiles.resize(g->tiles_x * g->tiles_s);
+  g->radius_tiles.resize(g->tiles_x);
+  g->end_tiles.resize(g->tiles_e);
+  g->tile_once = std::make_unique<std::once_flag[]>(g->tiles.size());
+  g->radius_once = std::make_unique<std::once_flag[]>(g->tiles_x);
+  g->end_once = std::make_unique<std::once_flag[]>(g->tiles_e);
+  grids_ = std::move(g);
 }
 
 MaugisDugdaleTable::~MaugisDugdaleTable() = default;
 
 double MaugisDugdaleTable::excess_max(double a) const { return options_.c_over_t_max / a - 1.0; }
 
-void MaugisDugdaleTable::build() const {
-  std::call_once(once_, [this] {
-    const auto start = std::chrono::steady_clock::now();
-    auto g = std::make_unique<Grids>();
-    const double s_min = std::log(options_.excess_min);
-    g->x = grid(std::log(options_.a_over_t_min), std::log(options_.a_over_t_max), options_.step);
-    // τ spacing: `step` in s where the s range is widest (the smallest a).
-    const double widest = std::log(excess_max(options_.a_over_t_min)) - s_min;
-    g->tau = grid(0.0, 1.0, options_.step / widest);
-    const std::size_t nx = g->x.size(), ns = g->tau.size();
-    for (int k = 0; k < kTwoD; ++k) g->z[k].assign(nx * ns, 0.0);
-    std::vector<std::exception_ptr> errors(nx);
-    // One factorization per contact radius; the radii are independent.
+namespace {
+
+// body(k) for k < count in an OpenMP loop (independent direct solves); the first exception in
+// index order is rethrown after the loop, as a serial loop would.
+void for_each_node(std::size_t count, const std::function<void(std::size_t)>& body) {
+  std::vector<std::exception_ptr> errors(count);
 #pragma omp parallel for schedule(dynamic, 1)
-    for (long il = 0; il < static_cast<long>(nx); ++il) {
-      const auto i = static_cast<std::size_t>(il);
-      try {
-        const double a = std::exp(g->x[i]);
-        const double s_max = std::log(excess_max(a));
-        const CohesiveZone zone(kernel_, a, 1.0, disc_, quadrature_);
-        for (std::size_t j = 0; j < ns; ++j) {
-          const double e = std::exp(s_min + g->tau[j] * (s_max - s_min));
-          const CohesiveFunctions v = cohesive_functions(zone, e), h = homogeneous_functions(a, e);
-          double value[kTwoD], hom[kTwoD];
-          to_array_2d(v, value);
-          to_array_2d(h, hom);
-          for (int k = 0; k < kTwoD; ++k) g->z[k][j * nx + i] = value[k] / hom[k];
-        }
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
+  for (long kl = 0; kl < static_cast<long>(count); ++kl) {
+    const auto k = static_cast<std::size_t>(kl);
+    try {
+      body(k);
+    } catch (...) {
+      errors[k] = std::current_exception();
     }
-    for (const auto& e : errors) {
-      if (e) std::rethrow_exception(e);
+  }
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
+// The indices in [first, last] whose flag is not set yet.
+std::vector<std::size_t> unsolved(const std::vector<char>& solved, std::size_t first, std::size_t last) {
+  std::vector<std::size_t> missing;
+  for (std::size_t i = first; i <= last; ++i) {
+    if (!solved[i]) missing.push_back(i);
+  }
+  return missing;
+}
+
+}  // namespace
+
+void MaugisDugdaleTable::solve_nodes(const std::vector<std::pair<std::size_t, std::size_t>>& nodes) const {
+  Grids& g = *grids_;
+  const std::lock_guard<std::mutex> lock(g.node_lock);
+  const std::size_t nx = g.x.size();
+  std::vector<std::size_t> columns;
+  std::vector<std::pair<std::size_t, std::size_t>> missing;
+  std::vector<char> column_listed(nx, 0), node_listed(g.solved.size(), 0);
+  for (const auto& [i, j] : nodes) {
+    if (!g.column_solved[i] && !column_listed[i]) {
+      columns.push_back(i);
+      column_listed[i] = 1;
     }
-    // The 1-D functions δ_H, F_H: one adhesionless solve per radius (any c), cheap, so on a
-    // finer grid.
-    g->x1 = grid(g->x.front(), g->x.back(), options_.step / kOneDRefinement);
-    const std::size_t n1 = g->x1.size();
-    for (int k = 0; k < kOneD; ++k) g->y[k].assign(n1, 0.0);
-    errors.assign(n1, nullptr);
-#pragma omp parallel for schedule(dynamic, 4)
-    for (long il = 0; il < static_cast<long>(n1); ++il) {
-      const auto i = static_cast<std::size_t>(il);
-      try {
-        const double a = std::exp(g->x1[i]);
-        const CohesiveState st = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).evaluate(0.0, 1e-3);
-        const CohesiveFunctions h = homogeneous_functions(a, 1e-3);
-        g->y[0][i] = st.delta / h.delta_h;
-        g->y[1][i] = st.force / h.force_h;
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
+    if (j != kColumnOnly && !g.solved[j * nx + i] && !node_listed[j * nx + i]) {
+      missing.emplace_back(i, j);
+      node_listed[j * nx + i] = 1;
     }
-    for (const auto& e : errors) {
-      if (e) std::rethrow_exception(e);
+  }
+  if (columns.empty() && missing.empty()) return;
+  const Stopwatch watch(g.nanoseconds);
+  // One factorization per contact radius, shared by the column's nodes.
+  for_each_node(columns.size(), [&](std::size_t c) {
+    const std::size_t i = columns[c];
+    g.columns[i] = std::make_unique<CohesiveZone>(kernel_, std::exp(g.x[i]), 1.0, disc_, quadrature_);
+  });
+  for (std::size_t i : columns) g.column_solved[i] = 1;
+  g.nodes += static_cast<long>(columns.size());
+  const double s_min = std::log(options_.excess_min);
+  for_each_node(missing.size(), [&](std::size_t n) {
+    const auto [i, j] = missing[n];
+    const double a = std::exp(g.x[i]);
+    const double s_max = std::log(excess_max(a));
+    const double e = std::exp(s_min + g.tau[j] * (s_max - s_min));
+    double value[kTwoD], hom[kTwoD];
+    to_array_2d(g.columns[i]->functions(e), value);
+    to_array_2d(homogeneous_functions(a, e), hom);
+    for (int k = 0; k < kTwoD; ++k) g.z[k][j * nx + i] = value[k] / hom[k];
+  });
+  for (const auto& [i, j] : missing) g.solved[j * nx + i] = 1;
+  g.nodes += static_cast<long>(missing.size());
+}
+
+void MaugisDugdaleTable::solve_end_nodes(std::size_t first, std::size_t last) const {
+  Grids& g = *grids_;
+  const std::lock_guard<std::mutex> lock(g.node_lock);
+  const std::vector<std::size_t> missing = unsolved(g.end_solved, first, last);
+  if (missing.empty()) return;
+  const Stopwatch watch(g.nanoseconds);
+  if (!g.end_zone) g.end_zone = std::make_unique<CohesiveZone>(kernel_, 0.0, 1.0, disc_, quadrature_);
+  for_each_node(missing.size(), [&](std::size_t n) {
+    const std::size_t i = missing[n];
+    const double c = std::exp(g.xe[i]);
+    double value[kTwoD], hom[kTwoD];
+    to_array_2d(g.end_zone->functions(c), value);
+    to_array_2d(homogeneous_end_functions(c), hom);
+    for (int k = 0; k < kTwoD; ++k) g.ye[k][i] = value[k] / hom[k];
+  });
+  for (std::size_t i : missing) g.end_solved[i] = 1;
+  g.nodes += static_cast<long>(missing.size());
+}
+
+void MaugisDugdaleTable::solve_radius_nodes(std::size_t first, std::size_t last) const {
+  Grids& g = *grids_;
+  const std::lock_guard<std::mutex> lock(g.node_lock);
+  const std::vector<std::size_t> missing = unsolved(g.radius_solved, first, last);
+  if (missing.empty()) return;
+  const Stopwatch watch(g.nanoseconds);
+  // One factorization per radius; the adhesionless solution gives δ_H, F_H.
+  for_each_node(missing.size(), [&](std::size_t n) {
+    const std::size_t i = missing[n];
+    const double a = std::exp(g.x1[i]);
+    const CohesiveFunctions v = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).adhesionless();
+    const CohesiveFunctions h = homogeneous_functions(a, 1.0);
+    g.y[0][i] = v.delta_h / h.delta_h;
+    g.y[1][i] = v.force_h / h.force_h;
+  });
+  for (std::size_t i : missing) g.radius_solved[i] = 1;
+  g.nodes += static_cast<long>(missing.size());
+}
+
+namespace {
+
+// Splines on all nodes and on every other node of grid[first..last] for each component, and
+// the largest |fine - coarse| per coarse interval of that range.
+void fit_1d(const std::vector<double>& grid_all, const std::vector<double>* values, int components,
+            std::size_t first, std::size_t last, std::vector<Spline1d>& fine, std::vector<Spline1d>& coarse,
+            std::vector<std::vector<double>>& error) {
+  const std::vector<double> x(grid_all.begin() + static_cast<long>(first),
+                              grid_all.begin() + static_cast<long>(last) + 1);
+  std::vector<double> x_coarse;
+  for (std::size_t i = 0; i < x.size(); i += 2) x_coarse.push_back(x[i]);
+  fine.resize(static_cast<std::size_t>(components));
+  coarse.resize(static_cast<std::size_t>(components));
+  error.resize(static_cast<std::size_t>(components));
+  for (int k = 0; k < components; ++k) {
+    const std::vector<double> y(values[k].begin() + static_cast<long>(first),
+                                values[k].begin() + static_cast<long>(last) + 1);
+    std::vector<double> y_coarse;
+    const auto kk = static_cast<std::size_t>(k);
+    fit_pair(x, x_coarse, y, y_coarse, fine[kk], coarse[kk], error[kk]);
+  }
+}
+
+}  // namespace
+
+const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_radius(std::size_t ti) const {
+  Grids& g = *grids_;
+  std::call_once(g.radius_once[ti], [&] {
+    std::size_t own0, own, first, last;
+    tile_range(ti, g.x_coarse.size() - 1, options_.tile_cells, std::max(2, options_.margin_cells), own0, own, first,
+               last);
+    // The x1 nodes around [x_first, x_last], from and to a coarse x1 node.
+    const std::size_t lo_cell = cell_of(g.x1_coarse, g.x[first]);
+    const std::size_t hi_cell = std::min(cell_of(g.x1_coarse, g.x[last]) + 1, g.x1_coarse.size() - 1);
+    const std::size_t first1 = 2 * lo_cell, last1 = 2 * hi_cell;
+    solve_radius_nodes(first1, last1);
+    auto tile = std::make_unique<Tile1d>();
+    tile->interval0 = lo_cell;
+    GslHandlerOff guard;
+    fit_1d(g.x1, g.y, kOneD, first1, last1, tile->fine, tile->coarse, tile->interval_error);
+    g.radius_tiles[ti] = std::move(tile);
+  });
+  return *g.radius_tiles[ti];
+}
+
+const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_end(std::size_t ti) const {
+  Grids& g = *grids_;
+  std::call_once(g.end_once[ti], [&] {
+    std::size_t own0, own, first, last;
+    tile_range(ti, g.xe_coarse.size() - 1, options_.tile_cells, std::max(2, options_.margin_cells), own0, own, first,
+               last);
+    solve_end_nodes(first, last);
+    auto tile = std::make_unique<Tile1d>();
+    tile->interval0 = first / 2;
+    GslHandlerOff guard;
+    fit_1d(g.xe, g.ye, kTwoD, first, last, tile->fine, tile->coarse, tile->interval_error);
+    g.end_tiles[ti] = std::move(tile);
+  });
+  return *g.end_tiles[ti];
+}
+
+const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::tile_2d(std::size_t ti, std::size_t tj) const {
+  Grids& g = *grids_;
+  const std::size_t index = tj * g.tiles_x + ti;
+  std::call_once(g.tile_once[index], [&] {
+    std::size_t ox0, ox, fx0, fx1, os0, os, fs0, fs1;
+    tile_range(ti, g.x_coarse.size() - 1, options_.tile_cells, options_.margin_cells, ox0, ox, fx0, fx1);
+    tile_range(tj, g.tau_coarse.size() - 1, options_.tile_cells, options_.margin_cells, os0, os, fs0, fs1);
+    std::vector<std::pair<std::size_t, std::size_t>> nodes;
+    for (std::size_t j = fs0; j <= fs1; ++j) {
+      for (std::size_t i = fx0; i <= fx1; ++i) nodes.emplace_back(i, j);
     }
-    for (std::size_t i = 0; i < nx; i += 2) g->x_coarse.push_back(g->x[i]);
-    for (std::size_t j = 0; j < ns; j += 2) g->tau_coarse.push_back(g->tau[j]);
-    const std::size_t cx = g->x_coarse.size(), cs = g->tau_coarse.size();
+    solve_nodes(nodes);
+    const std::size_t nx = g.x.size();
+    const std::size_t tx = fx1 - fx0 + 1, ts = fs1 - fs0 + 1, cx = tx / 2 + 1, cs = ts / 2 + 1;
+    const std::vector<double> x(g.x.begin() + static_cast<long>(fx0), g.x.begin() + static_cast<long>(fx1) + 1);
+    const std::vector<double> tau(g.tau.begin() + static_cast<long>(fs0), g.tau.begin() + static_cast<long>(fs1) + 1);
+    std::vector<double> x_coarse, tau_coarse;
+    for (std::size_t i = 0; i < tx; i += 2) x_coarse.push_back(x[i]);
+    for (std::size_t j = 0; j < ts; j += 2) tau_coarse.push_back(tau[j]);
+    auto tile = std::make_unique<Tile2d>();
+    tile->cell_x0 = ox0;
+    tile->cell_s0 = os0;
+    tile->own_x = ox;
+    tile->own_s = os;
     GslHandlerOff guard;
     for (int k = 0; k < kTwoD; ++k) {
-      g->z_coarse[k].resize(cx * cs);
-      for (std::size_t j = 0; j < cs; ++j) {
-        for (std::size_t i = 0; i < cx; ++i) g->z_coarse[k][j * cx + i] = g->z[k][2 * j * nx + 2 * i];
+      std::vector<double> z(tx * ts), zc(cx * cs);
+      for (std::size_t j = 0; j < ts; ++j) {
+        for (std::size_t i = 0; i < tx; ++i) z[j * tx + i] = g.z[k][(fs0 + j) * nx + fx0 + i];
       }
-      g->fine[k].spline = gsl_spline2d_alloc(gsl_interp2d_bicubic, nx, ns);
-      g->coarse[k].spline = gsl_spline2d_alloc(gsl_interp2d_bicubic, cx, cs);
-      if (!g->fine[k].spline || !g->coarse[k].spline ||
-          gsl_spline2d_init(g->fine[k].spline, g->x.data(), g->tau.data(), g->z[k].data(), nx, ns) != 0 ||
-          gsl_spline2d_init(g->coarse[k].spline, g->x_coarse.data(), g->tau_coarse.data(), g->z_coarse[k].data(),
-                            cx, cs) != 0) {
+      for (std::size_t j = 0; j < cs; ++j) {
+        for (std::size_t i = 0; i < cx; ++i) zc[j * cx + i] = z[2 * j * tx + 2 * i];
+      }
+      tile->fine[k].spline = gsl_spline2d_alloc(gsl_interp2d_bicubic, tx, ts);
+      tile->coarse[k].spline = gsl_spline2d_alloc(gsl_interp2d_bicubic, cx, cs);
+      if (!tile->fine[k].spline || !tile->coarse[k].spline ||
+          gsl_spline2d_init(tile->fine[k].spline, x.data(), tau.data(), z.data(), tx, ts) != 0 ||
+          gsl_spline2d_init(tile->coarse[k].spline, x_coarse.data(), tau_coarse.data(), zc.data(), cx, cs) != 0) {
         throw NumericalError("Maugis-Dugdale table: GSL refused the 2-D spline");
       }
-    }
-    // The end of the curve, a = 0 (no contact system), on a grid twice as fine as the table's.
-    g->xe = grid(std::log(options_.end_c_over_t_min), std::log(options_.c_over_t_max), 0.5 * options_.step);
-    const std::size_t ne = g->xe.size();
-    for (int k = 0; k < kTwoD; ++k) g->ye[k].assign(ne, 0.0);
-    errors.assign(ne, nullptr);
-    {
-      const CohesiveZone end_zone(kernel_, 0.0, 1.0, disc_, quadrature_);
-#pragma omp parallel for schedule(dynamic, 1)
-      for (long il = 0; il < static_cast<long>(ne); ++il) {
-        const auto i = static_cast<std::size_t>(il);
-        try {
-          const double c = std::exp(g->xe[i]);
-          double value[kTwoD], hom[kTwoD];
-          to_array_2d(cohesive_functions(end_zone, c), value);
-          to_array_2d(homogeneous_end_functions(c), hom);
-          for (int k = 0; k < kTwoD; ++k) g->ye[k][i] = value[k] / hom[k];
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
-      }
-    }
-    for (const auto& e : errors) {
-      if (e) std::rethrow_exception(e);
-    }
-    for (std::size_t i = 0; i < n1; i += 2) g->x1_coarse.push_back(g->x1[i]);
-    for (int k = 0; k < kOneD; ++k) {
-      fit_pair(g->x1, g->x1_coarse, g->y[k], g->y_coarse[k], g->fine1[k], g->coarse1[k], g->interval_error[k]);
-    }
-    for (std::size_t i = 0; i < ne; i += 2) g->xe_coarse.push_back(g->xe[i]);
-    for (int k = 0; k < kTwoD; ++k) {
-      fit_pair(g->xe, g->xe_coarse, g->ye[k], g->ye_coarse[k], g->fine_end[k], g->coarse_end[k], g->end_error[k]);
-    }
-    // Error maps: |fine - coarse| sampled on a 5 x 5 grid inside each coarse cell (which
-    // includes the fine nodes between the coarse ones); its largest value is the cell's.
-    for (int k = 0; k < kTwoD; ++k) {
-      g->cell_error[k].assign((cx - 1) * (cs - 1), 0.0);
-      for (std::size_t j = 0; j + 1 < cs; ++j) {
-        for (std::size_t i = 0; i + 1 < cx; ++i) {
+      // Error map of the own cells: |fine - coarse| on a 5 x 5 grid inside each coarse cell and
+      // at the fine nodes on its edges; the largest value is the cell's.
+      const gsl_spline2d* fine = tile->fine[k].spline;
+      const gsl_spline2d* coarse = tile->coarse[k].spline;
+      tile->cell_error[k].assign(ox * os, 0.0);
+      for (std::size_t jj = 0; jj < os; ++jj) {
+        for (std::size_t ii = 0; ii < ox; ++ii) {
+          const std::size_t i = ox0 + ii - fx0 / 2, j = os0 + jj - fs0 / 2;  // coarse index in the tile
           double worst = 0.0;
           for (int p = 1; p < kSamples; ++p) {
             for (int q = 1; q < kSamples; ++q) {
-              const double x = g->x_coarse[i] + (g->x_coarse[i + 1] - g->x_coarse[i]) * p / kSamples;
-              const double t = g->tau_coarse[j] + (g->tau_coarse[j + 1] - g->tau_coarse[j]) * q / kSamples;
-              worst = std::max(worst, std::abs(gsl_spline2d_eval(g->fine[k].spline, x, t, nullptr, nullptr) -
-                                               gsl_spline2d_eval(g->coarse[k].spline, x, t, nullptr, nullptr)));
+              const double xv = x_coarse[i] + (x_coarse[i + 1] - x_coarse[i]) * p / kSamples;
+              const double tv = tau_coarse[j] + (tau_coarse[j + 1] - tau_coarse[j]) * q / kSamples;
+              worst = std::max(worst, std::abs(gsl_spline2d_eval(fine, xv, tv, nullptr, nullptr) -
+                                               gsl_spline2d_eval(coarse, xv, tv, nullptr, nullptr)));
             }
           }
           for (std::size_t p = 2 * i; p <= 2 * i + 2; ++p) {
             for (std::size_t q = 2 * j; q <= 2 * j + 2; ++q) {
-              const double at_node = g->z[k][q * nx + p];
-              worst = std::max(worst, std::abs(at_node - gsl_spline2d_eval(g->coarse[k].spline, g->x[p], g->tau[q],
-                                                                           nullptr, nullptr)));
+              worst = std::max(worst, std::abs(z[q * tx + p] - gsl_spline2d_eval(coarse, x[p], tau[q], nullptr, nullptr)));
             }
           }
-          g->cell_error[k][j * (cx - 1) + i] = worst;
+          tile->cell_error[k][jj * ox + ii] = worst;
         }
       }
     }
-    g->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    grids_ = std::move(g);
+    g.tiles[index] = std::move(tile);
   });
+  return *g.tiles[index];
 }
 
-double MaugisDugdaleTable::build_seconds() const {
-  build();
-  return grids_->seconds;
+void MaugisDugdaleTable::build() const {
+  const Grids& g = *grids_;
+  // Every node first (one parallel pass), then the tiles' splines.
+  std::vector<std::pair<std::size_t, std::size_t>> nodes;
+  for (std::size_t j = 0; j < g.tau.size(); ++j) {
+    for (std::size_t i = 0; i < g.x.size(); ++i) nodes.emplace_back(i, j);
+  }
+  solve_nodes(nodes);
+  solve_end_nodes(0, g.xe.size() - 1);
+  for (std::size_t tj = 0; tj < g.tiles_s; ++tj) {
+    for (std::size_t ti = 0; ti < g.tiles_x; ++ti) tile_2d(ti, tj);
+  }
+  for (std::size_t ti = 0; ti < g.tiles_x; ++ti) tile_radius(ti);
+  for (std::size_t ti = 0; ti < g.tiles_e; ++ti) tile_end(ti);
 }
-int MaugisDugdaleTable::nodes_x() const {
-  build();
-  return static_cast<int>(grids_->x.size());
-}
-int MaugisDugdaleTable::nodes_s() const {
-  build();
-  return static_cast<int>(grids_->tau.size());
-}
+
+double MaugisDugdaleTable::build_seconds() const { return 1e-9 * static_cast<double>(grids_->nanoseconds.load()); }
+long MaugisDugdaleTable::nodes_solved() const { return grids_->nodes.load(); }
+int MaugisDugdaleTable::nodes_x() const { return static_cast<int>(grids_->x.size()); }
+int MaugisDugdaleTable::nodes_s() const { return static_cast<int>(grids_->tau.size()); }
 
 bool MaugisDugdaleTable::covers(double a, double excess) const {
   const MdTableOptions& o = options_;
@@ -334,22 +534,23 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
                      ") outside the table");
   }
-  build();
   const Grids& g = *grids_;
   const double s_min = std::log(options_.excess_min), s_max = std::log(excess_max(a));
   // Clamped: the logarithms of end values may round just outside the grid.
   const double x = std::clamp(std::log(a), g.x.front(), g.x.back());
   const double tau = std::clamp((std::log(excess) - s_min) / (s_max - s_min), 0.0, 1.0);
-  const std::size_t cell_x = cell_of(g.x_coarse, x), cell_s = cell_of(g.tau_coarse, tau),
-                    cell_1 = cell_of(g.x1_coarse, x);
+  const std::size_t cell_x = cell_of(g.x_coarse, x), cell_s = cell_of(g.tau_coarse, tau);
+  const auto b = static_cast<std::size_t>(options_.tile_cells);
+  const Tile2d& tile = tile_2d(cell_x / b, cell_s / b);
+  const Tile1d& radius = tile_radius(cell_x / b);
   const CohesiveFunctions hom = homogeneous_functions(a, excess);
   double hom2[kTwoD], value[kTwoD], error[kTwoD];
   to_array_2d(hom, hom2);
+  const std::size_t cell = (cell_s - tile.cell_s0) * tile.own_x + (cell_x - tile.cell_x0);
   for (int k = 0; k < kTwoD; ++k) {
-    const double r = gsl_spline2d_eval(g.fine[k].spline, x, tau, nullptr, nullptr);
+    const double r = gsl_spline2d_eval(tile.fine[k].spline, x, tau, nullptr, nullptr);
     value[k] = r * hom2[k];
-    error[k] = (options_.error_factor * g.cell_error[k][cell_s * (g.x_coarse.size() - 1) + cell_x] +
-                options_.source_noise * std::abs(r)) *
+    error[k] = (options_.error_factor * tile.cell_error[k][cell] + options_.source_noise * std::abs(r)) *
                std::abs(hom2[k]);
   }
   MdTableValue out;
@@ -357,10 +558,12 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   from_array_2d(error, out.error);
   const double hom1[kOneD] = {hom.delta_h, hom.force_h};
   double v1[kOneD], e1[kOneD];
+  const std::size_t interval = cell_of(g.x1_coarse, x) - radius.interval0;
   for (int k = 0; k < kOneD; ++k) {
-    const double r = gsl_spline_eval(g.fine1[k].spline, x, nullptr);
+    const auto kk = static_cast<std::size_t>(k);
+    const double r = gsl_spline_eval(radius.fine[kk].spline, x, nullptr);
     v1[k] = r * hom1[k];
-    e1[k] = (options_.error_factor * g.interval_error[k][cell_1] + options_.source_noise * std::abs(r)) *
+    e1[k] = (options_.error_factor * radius.interval_error[kk][interval] + options_.source_noise * std::abs(r)) *
             std::abs(hom1[k]);
   }
   out.value.delta_h = v1[0];
@@ -370,18 +573,60 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   return out;
 }
 
+namespace {
+
+// A sign change of f on [lo, hi] bracketed from `start` outward (f grows with its argument),
+// in steps of `step` growing by half each time; nullopt when f keeps its sign to the end.
+std::optional<std::pair<double, double>> bracket_from(const std::function<double(double)>& f, double start,
+                                                      double lo, double hi, double step) {
+  double u0 = std::clamp(start, lo, hi), f0 = f(u0);
+  if (f0 == 0.0) return std::pair{u0, u0};
+  for (int k = 0; k < 200; ++k) {
+    const double u1 = f0 > 0.0 ? std::max(lo, u0 - step) : std::min(hi, u0 + step);
+    if (u1 == u0) return std::nullopt;
+    const double f1 = f(u1);
+    if ((f1 > 0.0) != (f0 > 0.0) || f1 == 0.0) return f0 > 0.0 ? std::pair{u1, u0} : std::pair{u0, u1};
+    u0 = u1;
+    f0 = f1;
+    step *= 1.5;
+  }
+  return std::nullopt;
+}
+
+// Root in s = ln(c/a - 1) of the homogeneous solid's gap (the start of the table's search).
+double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi) {
+  auto f = [&](double s) {
+    const CohesiveFunctions h = homogeneous_functions(a, std::exp(s));
+    return h.g_r + sigma_hat * h.g_s - h0;
+  };
+  if (f(lo) >= 0.0) return lo;
+  if (f(hi) <= 0.0) return hi;
+  const auto root = brent_root(f, lo, hi, {1e-6, 0.0, 200});
+  return root ? root->x : 0.0;
+}
+
+constexpr double kBracketStep = 0.5;  // first step in s (or ln c) from the homogeneous root
+
+}  // namespace
+
 std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a) const {
   const MdTableOptions& o = options_;
   if (!(a >= o.a_over_t_min && a <= o.a_over_t_max)) return std::nullopt;
   // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
-  auto residual = [&](double s) {
+  std::function<double(double)> residual = [&](double s) {
     const MdTableValue v = at(a, std::exp(s));
     return v.value.g_r + sigma_hat * v.value.g_s - h0;
   };
   const double lo = std::log(o.excess_min), hi = std::log(excess_max(a));
-  const auto root = brent_root(residual, lo, hi, {1e-13, 0.0, 200});
-  if (!root) return std::nullopt;
-  const double s = root->x, e = std::exp(s);
+  const auto bracket = bracket_from(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
+  if (!bracket) return std::nullopt;
+  double s = bracket->first;
+  if (bracket->first != bracket->second) {
+    const auto root = brent_root(residual, bracket->first, bracket->second, {1e-13, 0.0, 200});
+    if (!root) return std::nullopt;
+    s = root->x;
+  }
+  const double e = std::exp(s);
   const MdTableValue v = at(a, e);
   // Slopes in s by central differences of the interpolant (only for the error estimate).
   const double step = 1e-5;
@@ -401,35 +646,49 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   return st;
 }
 
+// Values and error estimates of d, f, g_r, g_s at the curve's end, u = ln(c/t).
+void MaugisDugdaleTable::end_values(double u, double* value, double* error) const {
+  const Grids& g = *grids_;
+  u = std::clamp(u, g.xe.front(), g.xe.back());
+  const std::size_t cell = cell_of(g.xe_coarse, u);
+  const Tile1d& tile = tile_end(cell / static_cast<std::size_t>(options_.tile_cells));
+  double hom[kTwoD];
+  to_array_2d(homogeneous_end_functions(std::exp(u)), hom);
+  for (int k = 0; k < kTwoD; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    const double r = gsl_spline_eval(tile.fine[kk].spline, u, nullptr);
+    value[k] = r * hom[k];
+    error[k] = (options_.error_factor * tile.interval_error[kk][cell - tile.interval0] +
+                options_.source_noise * std::abs(r)) *
+               std::abs(hom[k]);
+  }
+}
+
 std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, double h0) const {
-  build();
   const Grids& g = *grids_;
   const double lo = g.xe.front(), hi = g.xe.back();
-  // Values and error estimates of d, f, g_r, g_s at u = ln(c/t).
-  auto eval = [&](double u, double* value, double* error) {
-    u = std::clamp(u, lo, hi);
-    const std::size_t cell = cell_of(g.xe_coarse, u);
-    double hom[kTwoD];
-    to_array_2d(homogeneous_end_functions(std::exp(u)), hom);
-    for (int k = 0; k < kTwoD; ++k) {
-      const double r = gsl_spline_eval(g.fine_end[k].spline, u, nullptr);
-      value[k] = r * hom[k];
-      error[k] = (options_.error_factor * g.end_error[k][cell] + options_.source_noise * std::abs(r)) * std::abs(hom[k]);
-    }
-  };
-  auto residual = [&](double u) {
+  std::function<double(double)> residual = [&](double u) {
     double v[kTwoD], e[kTwoD];
-    eval(u, v, e);
+    end_values(u, v, e);
     return v[2] + sigma_hat * v[3] - h0;
   };
-  const auto root = brent_root(residual, lo, hi, {1e-13, 0.0, 200});
-  if (!root) return std::nullopt;
-  const double u = root->x, step = 1e-5;
+  // Homogeneous start: c²/2 + σ̂ (1 - 2/π) c = h0.
+  const double b = sigma_hat * (1.0 - 2.0 / kPi);
+  const double c_hom = 2.0 * h0 / (b + std::sqrt(b * b + 2.0 * h0));
+  const auto bracket = bracket_from(residual, std::log(c_hom), lo, hi, kBracketStep);
+  if (!bracket) return std::nullopt;
+  double u = bracket->first;
+  if (bracket->first != bracket->second) {
+    const auto root = brent_root(residual, bracket->first, bracket->second, {1e-13, 0.0, 200});
+    if (!root) return std::nullopt;
+    u = root->x;
+  }
+  const double step = 1e-5;
   double v[kTwoD], e[kTwoD], vp[kTwoD], vm[kTwoD], scratch[kTwoD];
-  eval(u, v, e);
+  end_values(u, v, e);
   const double up = std::min(u + step, hi), um = std::max(u - step, lo);
-  eval(up, vp, scratch);
-  eval(um, vm, scratch);
+  end_values(up, vp, scratch);
+  end_values(um, vm, scratch);
   const double h_u = (vp[2] - vm[2] + sigma_hat * (vp[3] - vm[3])) / (up - um);
   const double u_error = (e[2] + sigma_hat * e[3]) / std::abs(h_u);
   MdTableState st;

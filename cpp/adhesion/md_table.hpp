@@ -4,11 +4,13 @@
 // The four 2-D functions are tabulated once per stack as ratios to their homogeneous closed
 // forms against x = ln(a/t) and τ = (s - s_min)/(s_max(x) - s_min), s = ln(c/a - 1), where
 // s_max(x) keeps c below c_over_t_max (GSL bicubic gsl_spline2d), with an error
-// estimate from a second interpolant on every other node. Units as cohesive_zone.hpp (t = 1,
-// E1* = 1, R = 1). Library-private (not installed).
+// estimate from a second interpolant on every other node. The grid is cut into tiles, each
+// interpolated on its own nodes plus a margin and built on first use: a query solves only the
+// nodes of the tiles it touches. Units as cohesive_zone.hpp (t = 1, E1* = 1, R = 1).
+// Library-private (not installed).
 //
-// Thread safety: the table is built on first use under std::call_once; afterwards every
-// const member function may run concurrently.
+// Thread safety: every const member function may run concurrently; a tile is built once
+// (std::call_once), the nodes it needs under one lock.
 #pragma once
 #include <memory>
 #include <mutex>
@@ -20,17 +22,7 @@
 
 namespace coatcontact::detail {
 
-// The functions of the zone at one (a, c = a (1 + excess)), R = 1.
-struct CohesiveFunctions {
-  double delta_h = 0.0;  // adhesionless penetration δ_H = a² Δ_s(a)       (1-D)
-  double force_h = 0.0;  // adhesionless load F_H = a³ Π_s(a)/2            (1-D)
-  double d = 0.0;        // penetration per unit σ̂ (edge condition solved for δ)
-  double f = 0.0;        // load per unit σ̂
-  double g_r = 0.0;      // gap at c per unit 1/R (adhesionless solution)
-  double g_s = 0.0;      // gap at c per unit σ̂
-};
-
-// From two direct solves of `zone` (σ̂ = 0 and a large σ̂) at c/a - 1 = excess.
+// The zone's functions (CohesiveFunctions, cohesive_zone.hpp) at c/a - 1 = excess, R = 1.
 CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess);
 // The homogeneous closed forms (Maugis), free of cancellation as excess -> 0.
 CohesiveFunctions homogeneous_functions(double a, double excess);
@@ -52,6 +44,16 @@ struct MdTableOptions {
   // largest cannot.
   double error_factor = 1.0;
   double source_noise = 1e-11;
+  // Tiles: tile_cells coarse cells per direction, interpolated with margin_cells more on each
+  // side (the splines' end conditions decay over a few nodes; the error estimate sees what is
+  // left, since the coarse spline's end error is the larger). The 1-D functions, cheap, keep
+  // a margin of at least 2 (with 1, the curve's end on a rigid base missed its estimate by
+  // 1e-10 relative where the function is flat).
+  int tile_cells = 4;
+  int margin_cells = 1;
+  // Gauss points per annulus piece at the table's nodes (at most the model's): 10 puts the
+  // quadrature's error near 4^-20 ~ 1e-12 (THEORY.md section 13), far below the interpolation's.
+  int node_points_per_piece = 10;
 };
 
 // The table's answer at (a, excess): values and absolute error estimates.
@@ -85,23 +87,36 @@ class MaugisDugdaleTable {
   std::optional<MdTableState> solve_end(double sigma_hat, double h0) const;
   // Largest c/a - 1 in the table at a.
   double excess_max(double a) const;
-  // nullopt if a is outside the table or the root lies outside its excess range.
+  // nullopt if a is outside the table or the root lies outside its excess range. The root is
+  // bracketed from the homogeneous solid's root outward, so that only the tiles near it are
+  // built.
   std::optional<MdTableState> solve(double sigma_hat, double h0, double a) const;
 
-  void build() const;            // builds now (otherwise on first use)
-  double build_seconds() const;  // wall time of the build
+  void build() const;            // builds every tile now (otherwise each on first use)
+  double build_seconds() const;  // wall time spent building tiles so far
+  long nodes_solved() const;     // direct solves so far (2-D nodes, curve-end nodes, radii)
   int nodes_x() const;
   int nodes_s() const;
   const MdTableOptions& options() const { return options_; }
 
  private:
   struct Grids;
+  struct Tile2d;
+  struct Tile1d;
+  const Tile2d& tile_2d(std::size_t ti, std::size_t tj) const;
+  const Tile1d& tile_radius(std::size_t ti) const;
+  const Tile1d& tile_end(std::size_t ti) const;
+  // Solves the missing 2-D nodes (i, j) (and the factorizations of their columns), or the
+  // missing curve-end nodes, under the node lock.
+  void solve_nodes(const std::vector<std::pair<std::size_t, std::size_t>>& nodes) const;
+  void solve_end_nodes(std::size_t first, std::size_t last) const;
+  void solve_radius_nodes(std::size_t first, std::size_t last) const;
+  void end_values(double u, double* value, double* error) const;
   const KernelSource& kernel_;
   Discretization disc_;
   CohesiveQuadrature quadrature_;
   MdTableOptions options_;
-  mutable std::once_flag once_;
-  mutable std::unique_ptr<Grids> grids_;
+  std::unique_ptr<Grids> grids_;
 };
 
 }  // namespace coatcontact::detail

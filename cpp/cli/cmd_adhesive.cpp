@@ -106,15 +106,6 @@ std::string join(const std::vector<double>& values) {
   return s;
 }
 
-// The Dugdale zone is solved for a rigid indenter only: an elastic one is refused, not dropped.
-void refuse_elastic_indenter(const Stack& stack, const std::string& zone_option) {
-  if (!stack.indenter().rigid) {
-    throw InputError("--indenter: an elastic indenter is not available with " + zone_option +
-                     " (the Maugis-Dugdale zone is implemented for a rigid indenter only, THEORY.md section 13); "
-                     "omit --indenter (rigid), or omit " + zone_option + " (JKR)");
-  }
-}
-
 // --tol sets the accuracy of the JKR blocks (lambda = inf) only: with every lambda finite it
 // would be silently unused, so it is refused.
 void refuse_unused_tol(const Arguments& args, const std::vector<double>& lambdas) {
@@ -170,6 +161,7 @@ std::vector<OptionSpec> normalized_options() {
                                  "v1,v2,... or MIN:MAX:N",
                                  true});
   spec.push_back(lambda_option());
+  spec.push_back(md_direct_option());
   return spec;
 }
 
@@ -215,9 +207,9 @@ int run_adhesive(const Args& raw) {
         {"--eta", etas.size()}, {"--a-bar", a_bar.empty() ? std::size_t{400} : a_bar.size()}};
     if (lambdas) lists.emplace_back("--lambda", lambdas->size());
     check_rows(lists);
+    const bool md_direct = parse_md_direct(args, lambdas.has_value(), "a finite --lambda");
     if (lambdas) {
       refuse_unused_tol(args, *lambdas);
-      refuse_elastic_indenter(stack, "--lambda");
     }
     if (lambdas && args.has("--strict")) {
       throw InputError("--strict: not used with --lambda (it selects how the JKR curve's points are delivered); "
@@ -225,7 +217,7 @@ int run_adhesive(const Args& raw) {
     }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
-      write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol);
+      write_md_adhesive(out.stream(), stack, etas, *lambdas, a_bar, tol, md_direct);
       out.commit();
       return 0;
     }
@@ -305,21 +297,19 @@ int run_pulloff(const Args& raw) {
     }
     const auto [stack, etas, tol] = parse_normalized_inputs(args);
     const auto lambdas = parse_lambdas(args);
-    if (lambdas && args.has("--spring-bar")) {
-      throw InputError("--spring-bar: not available with --lambda (the pull-off through a spring is computed for "
-                       "JKR only, THEORY.md section 10); omit --spring-bar, or --lambda for JKR");
-    }
     if (lambdas) check_rows({{"--eta", etas.size()}, {"--lambda", lambdas->size()}});
+    const bool md_direct = parse_md_direct(args, lambdas.has_value(), "a finite --lambda");
     if (const auto text = args.get("--spring-bar")) {
       check_rows({{"--eta", etas.size()}, {"--spring-bar", parse_spring_bar(*text, "--spring-bar").size()}});
     }
     if (lambdas) {
       refuse_unused_tol(args, *lambdas);
-      refuse_elastic_indenter(stack, "--lambda");
     }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
-      write_md_pulloff(out.stream(), stack, etas, *lambdas, tol);
+      const std::vector<double> k_bars =
+          args.has("--spring-bar") ? parse_spring_bar(*args.get("--spring-bar"), "--spring-bar") : std::vector<double>{};
+      write_md_pulloff(out.stream(), stack, etas, *lambdas, tol, md_direct, k_bars);
       out.commit();
       return 0;
     }
@@ -419,6 +409,7 @@ int run_sphere(const Args& raw) {
       points = static_cast<std::size_t>(n);
     }
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
+    const bool md_direct = parse_md_direct(args, sigma0.has_value(), "--cohesive-stress or --range");
     std::vector<double> contact_radii;
     if (const auto text = args.get("--contact-radius")) {
       if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
@@ -433,8 +424,7 @@ int run_sphere(const Args& raw) {
         throw InputError("--tol: not used with --cohesive-stress/--range (the Maugis-Dugdale zone is solved per "
                          "contact radius to a fixed accuracy, THEORY.md section 13); omit --tol");
       }
-      refuse_elastic_indenter(stack, args.has("--range") ? "--range" : "--cohesive-stress");
-      write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points, contact_radii);
+      write_md_sphere(out.stream(), stack, radius, thickness, work, *sigma0, points, contact_radii, md_direct);
       out.commit();
       return 0;
     }

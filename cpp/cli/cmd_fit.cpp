@@ -57,7 +57,8 @@ const std::vector<OptionSpec>& fit_options() {
       {"--seed", "N", "seed of the bootstrap resampling (default 1)"},
       {"--plot", "FILE", "draw data, fit, residuals and pull-off with gnuplot (PNG or PDF by extension)"},
       indenter_option(),
-      {"--model", "jkr|md", "adhesion model: jkr (default) or md, the Maugis-Dugdale zone (a,F data of a rigid sphere; --free w,lambda; slow: one solve per point and trial, keep to a few tens of points)"},
+      {"--model", "jkr|md", "adhesion model: jkr (default) or md, the Maugis-Dugdale zone (a,F data of a rigid sphere; --free w,lambda; from the stack's reduced table of the zone)"},
+      {"--md-direct", "", "with --model md: every point by the direct per-radius solve (the reference; slow) instead of the reduced table of the cohesive zone"},
       {"--lambda", "L", "Maugis's lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, in [1e-3, 1e3] with --model md: fixed, or the start of the search when --free names lambda (default 1)"},
       {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off. With --columns z,F the spring the data were taken through: fixed, or the start of the search when --free names k"},
   };
@@ -367,11 +368,13 @@ void parse_model(FitRun& r) {
     if (!r.radius_data) throw InputError("--model md: fits a,F data only (--columns a,F)");
     if (r.problem.shape) throw InputError("--model md: the Maugis-Dugdale zone is fitted for the sphere only, not --shape");
     if (r.hysteresis) throw InputError("--model md: one adhesion energy only (not w_load,w_unload)");
-    if (!r.problem.indenter.rigid) throw InputError("--model md: a rigid sphere only (not --indenter)");
     if (r.arguments.has("--spring")) throw InputError("--model md: no spring pull-off (leave out --spring)");
     if (const auto text = r.arguments.get("--lambda")) r.problem.lambda = parse_lambda(*text, "--lambda");
+    r.problem.maugis_dugdale_direct = r.arguments.has("--md-direct");
   } else if (r.arguments.has("--lambda")) {
     throw InputError("--lambda: only with --model md");
+  } else if (r.arguments.has("--md-direct")) {
+    throw InputError("--md-direct: only with --model md (it selects the Maugis-Dugdale solve)");
   }
   r.parameters = fit::parameter_list(r.layer_count, r.hysteresis, r.base_data, r.md);
   r.parameter_count = r.parameters.size();

@@ -60,7 +60,37 @@ void check_lambda(double lambda, const std::string& option, const std::string& t
   }
 }
 
+MaugisDugdaleOptions md_options(bool direct) {
+  MaugisDugdaleOptions o;
+  o.use_table = !direct;
+  return o;
+}
+
+std::string md_solver_text(const MaugisDugdaleModel& md) {
+  const std::string direct = "per contact radius: factored system (p = " + std::to_string(md.options().nodes_per_panel) +
+                             "), Brent root of h(c) = h0 in ln(c/a - 1)";
+  if (!md.options().use_table) return direct + " (--md-direct)";
+  return "reduced table of the cohesive zone (THEORY.md section 13, 'The cohesive zone as a table'), a/t in [" +
+         num(md.options().table_a_over_t_min) + ", " + num(md.options().table_a_over_t_max) +
+         "], c/t <= 1e4, tiles built on demand (" + std::to_string(md.table_solves()) +
+         " direct solves); outside it " + direct + "; each value with its error estimate (--md-direct: the direct "
+         "solve throughout)";
+}
+
 }  // namespace
+
+OptionSpec md_direct_option() {
+  return {"--md-direct", "",
+          "Maugis-Dugdale values by the direct per-radius solve (the reference; slower) instead of the reduced "
+          "table of the cohesive zone",
+          false};
+}
+
+bool parse_md_direct(const Arguments& args, bool used, const std::string& needs) {
+  if (!args.has("--md-direct")) return false;
+  if (!used) throw InputError("--md-direct: only with " + needs + " (it selects the Maugis-Dugdale solve)");
+  return true;
+}
 
 OptionSpec lambda_option() {
   return {"--lambda", "LIST",
@@ -100,8 +130,9 @@ std::optional<std::vector<double>> parse_lambdas(const Arguments& args) {
 }
 
 void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
-                       const std::vector<double>& lambdas, const std::vector<double>& a_bar_given, double tol) {
-  const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
+                       const std::vector<double>& lambdas, const std::vector<double>& a_bar_given, double tol,
+                       bool direct) {
+  const MaugisDugdaleModel md(stack, md_options(direct));
   const ReducedSolver solver(stack);
   const AdhesiveModel jkr(solver, tol);
   const std::vector<double> a_bar =
@@ -130,10 +161,14 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
     for (double lambda : lambdas) {
       Block b{eta, lambda, {}, {}};
       if (std::isinf(lambda)) {
-        for (const CurvePoint& p : jkr.curve(eta, a_bar)) b.rows.push_back({eta, lambda, p.a_bar, p.a_over_t, p.load, p.penetration, 1.0});
+        for (const CurvePoint& p : jkr.curve(eta, a_bar)) {
+          b.rows.push_back({eta, lambda, p.a_bar, p.a_over_t, p.load, p.penetration, 1.0, tol * std::abs(p.load),
+                            tol * std::abs(p.penetration)});
+        }
       } else {
         for (const MaugisDugdalePoint& p : md.curve(eta, lambda, a_bar)) {
-          b.rows.push_back({eta, lambda, p.a_bar, p.a_over_t, p.load, p.penetration, p.m});
+          b.rows.push_back({eta, lambda, p.a_bar, p.a_over_t, p.load, p.penetration, p.m, p.load_error,
+                            p.penetration_error});
         }
         b.end = md.point(eta, lambda, 0.0);
       }
@@ -147,19 +182,20 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
   h.emplace_back("eta", join(etas));
   h.emplace_back("lambda", join(lambdas));
   h.emplace_back("a_bar points", std::to_string(a_bar.size()));
-  h.emplace_back("solver", "per contact radius: factored system (p = " +
-                               std::to_string(md.options().nodes_per_panel) +
-                               "), Brent root of h(c) = h0 in ln(c/a - 1); JKR blocks (lambda = inf) from the "
-                               "reduced-variable table at tolerance " + num(tol));
+  h.emplace_back("solver", md_solver_text(md) + "; JKR blocks (lambda = inf) from the reduced-variable table at "
+                           "tolerance " + num(tol));
+  h.emplace_back("P_err, D_err", "error estimates of P and D: the table's (or the direct solve's, ~1e-11 relative); "
+                                 "JKR blocks: the tolerance times |P|, |D|");
   for (const Block& b : blocks) {
     if (std::isinf(b.lambda)) continue;
     h.emplace_back("end of the curve a -> 0, eta=" + num(b.eta) + " lambda=" + num(b.lambda),
-                   "P = " + num(b.end.load) + ", D = " + num(b.end.penetration) + ", c_bar = " + num(b.end.c_bar) +
+                   "P = " + num(b.end.load) + " +- " + num(b.end.load_error) + ", D = " + num(b.end.penetration) +
+                       " +- " + num(b.end.penetration_error) + ", c_bar = " + num(b.end.c_bar) +
                        " (contact shrunk to a point at finite force)");
   }
   h.emplace_back("blocks", "one per (eta, lambda), eta outer, in the order given, separated by two blank lines "
                            "(gnuplot index)");
-  const std::vector<std::string> columns = {"eta", "lambda", "a_bar", "a_over_t", "P", "D", "m"};
+  const std::vector<std::string> columns = {"eta", "lambda", "a_bar", "a_over_t", "P", "D", "m", "P_err", "D_err"};
   write_header(os, h, columns);
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     if (k > 0) os << "\n\n";
@@ -168,8 +204,8 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
 }
 
 void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
-                      const std::vector<double>& lambdas, double tol) {
-  const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
+                      const std::vector<double>& lambdas, double tol, bool direct, const std::vector<double>& k_bars) {
+  const MaugisDugdaleModel md(stack, md_options(direct));
   const ReducedSolver solver(stack);
   const AdhesiveModel jkr(solver, tol);
   Header notes;
@@ -186,22 +222,69 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                  kMdPulloffEvaluations * static_cast<double>(finite.size()), true, "--eta and --lambda");
   }
   const std::vector<MaugisDugdalePulloff> md_results = md.pulloffs(finite);
+  // The spring pull-offs (the tiles exist now: each costs ~1 ms from the table).
+  std::vector<std::vector<MaugisDugdalePulloffPoint>> md_springs(finite.size());
+  for (std::size_t k = 0; k < finite.size(); ++k) {
+    for (double k_bar : k_bars) {
+      const MaugisDugdalePulloff p = md.pulloff_spring(finite[k].first, finite[k].second, k_bar);
+      md_springs[k].push_back(k_bar == 0.0 ? p.load_control : p.spring_control);
+      for (const auto& w : p.warnings) {
+        if (w.find("spring control") != std::string::npos) notes.emplace_back("warning", w);
+      }
+    }
+  }
+  // Rows: the base columns, then per k_bar its own row with k_bar, P, a_bar, D at the jump and
+  // the error estimate of Z = D + P/k_bar.
+  auto add_rows = [&](std::vector<double> base, const std::vector<PulloffPoint>& jkr_springs,
+                      const std::vector<MaugisDugdalePulloffPoint>* md_spring) {
+    if (k_bars.empty()) {
+      rows.push_back(std::move(base));
+      return;
+    }
+    for (std::size_t k = 0; k < k_bars.size(); ++k) {
+      std::vector<double> row = base;
+      const double k_bar = k_bars[k];
+      if (md_spring != nullptr) {
+        const MaugisDugdalePoint& q = (*md_spring)[k].point;
+        const double z_error = k_bar == 0.0 ? q.load_error : q.penetration_error + q.load_error / k_bar;
+        row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+      } else {
+        const PulloffPoint& q = jkr_springs[k];
+        const double z_error = k_bar == 0.0 ? tol * std::abs(q.load)
+                                            : tol * (std::abs(q.penetration) + std::abs(q.load) / k_bar);
+        row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+      }
+      rows.push_back(std::move(row));
+    }
+  };
   std::size_t next = 0;
   for (double eta : etas) {
     for (double lambda : lambdas) {
       const std::string at = "eta=" + num(eta) + " lambda=" + num(lambda);
       if (std::isinf(lambda)) {
         const Pulloff p = jkr.pulloff(eta);
-        rows.push_back({eta, lambda, p.load_control.load, p.load_control.a_bar, p.load_control.penetration, 1.0,
-                        p.displacement_control.load, p.displacement_control.a_bar,
-                        p.displacement_control.penetration, 1.0});
+        std::vector<PulloffPoint> springs;
+        for (double k_bar : k_bars) {
+          const SpringPulloff sp = jkr.pulloff_spring(eta, k_bar);
+          springs.push_back(sp.point);
+          if (!std::isinf(k_bar) && k_bar != 0.0) {
+            for (const auto& w : sp.warnings) notes.emplace_back("warning", w);
+          }
+        }
+        add_rows({eta, lambda, p.load_control.load, p.load_control.a_bar, p.load_control.penetration, 1.0,
+                  p.displacement_control.load, p.displacement_control.a_bar, p.displacement_control.penetration, 1.0,
+                  tol * std::abs(p.load_control.load), tol * std::abs(p.displacement_control.penetration)},
+                 springs, nullptr);
         for (const auto& w : p.warnings) notes.emplace_back("warning", w);
         continue;
       }
-      const MaugisDugdalePulloff& p = md_results[next++];
+      const std::size_t index = next++;
+      const MaugisDugdalePulloff& p = md_results[index];
       const MaugisDugdalePoint& l = p.load_control.point;
       const MaugisDugdalePoint& d = p.displacement_control.point;
-      rows.push_back({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m});
+      add_rows({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m, l.load_error,
+                d.penetration_error},
+               {}, &md_springs[index]);
       for (const auto* c : {&p.load_control, &p.displacement_control}) {
         const bool load = c == &p.load_control;
         notes.emplace_back(std::string(load ? "load" : "displacement") + " control, " + at,
@@ -218,13 +301,27 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
   h.emplace_back("Maugis-Dugdale", kMaugis);
   h.emplace_back("eta", join(etas));
   h.emplace_back("lambda", join(lambdas));
+  h.emplace_back("solver", md_solver_text(md));
   h.emplace_back("location", "log grid of " + std::to_string(md.options().scan_points_per_decade) +
                                  " points per decade of a_bar and the end a -> 0; each grid minimum refined by "
-                                 "Brent's minimiser in ln a_bar, then as the root of dP/da_bar (dD/da_bar) "
-                                 "differentiated implicitly through c(a) (a_bar to ~1e-10, P and D to ~1e-12)");
+                                 "Brent's minimiser in ln a_bar" +
+                                 (direct ? ", then as the root of dP/da_bar (dD/da_bar) differentiated implicitly "
+                                           "through c(a) (a_bar to ~1e-10, P and D to ~1e-12)"
+                                         : " to 1e-7 (P_load_err, D_disp_err: the error estimates of the minima; "
+                                           "JKR rows: the tolerance times |P|, |D|)"));
+  if (!k_bars.empty()) {
+    h.emplace_back("k_bar", join(k_bars));
+    h.emplace_back("spring control",
+                   "one row per (eta, lambda, k_bar): the jump where dP/dD = -k_bar, the minimum of Z = D + P/k_bar "
+                   "along the curve or its end a -> 0 (THEORY.md sections 10 and 13); k_bar = 0 and inf are the load "
+                   "and displacement values; Z_spring_err: the error estimate of Z");
+  }
   for (auto& n : notes) h.push_back(std::move(n));
-  const std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load", "m_load",
-                                            "P_disp", "a_bar_disp", "D_disp", "m_disp"};
+  std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load",   "m_load",
+                                      "P_disp", "a_bar_disp", "D_disp", "m_disp",     "P_load_err", "D_disp_err"};
+  if (!k_bars.empty()) {
+    for (const char* c : {"k_bar", "P_spring", "a_bar_spring", "D_spring", "Z_spring_err"}) columns.emplace_back(c);
+  }
   write_header(os, h, columns);
   for (const auto& row : rows) write_cells(os, row, columns);
 }
@@ -237,6 +334,7 @@ std::vector<OptionSpec> cohesive_options() {
        "Maugis-Dugdale zone: range of the adhesive stress (m, or mm um nm), at most 1e6 film thicknesses; "
        "sigma0 = w/h0 (not with --cohesive-stress)",
        false},
+      md_direct_option(),
   };
 }
 
@@ -260,7 +358,7 @@ std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& 
 }
 
 void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double thickness, double work,
-                     double sigma0, std::size_t points, const std::vector<double>& contact_radii) {
+                     double sigma0, std::size_t points, const std::vector<double>& contact_radii, bool direct) {
   const MaugisScales scales = [&] {
     try {
       return maugis_scales(radius, thickness, work, stack.reference_modulus(), sigma0);
@@ -270,7 +368,7 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
   }();
   const double length = scales.length, eta = scales.eta, lambda = scales.lambda;
   const double penetration = scales.penetration, force = scales.force;
-  const MaugisDugdaleModel md(stack, MaugisDugdaleOptions{});
+  const MaugisDugdaleModel md(stack, md_options(direct));
   const double r = stack.substrate_length_ratio();
   std::vector<double> a_bar;
   try {
@@ -301,6 +399,7 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
   for (const auto* c : {&p.load_control, &p.displacement_control}) {
     const std::string name = c == &p.load_control ? "load control" : "displacement control";
     h.emplace_back("pull-off force, " + name + " [N]", num(c->point.load * force));
+    h.emplace_back("pull-off force error estimate, " + name + " [N]", num(c->point.load_error * force));
     h.emplace_back("pull-off contact radius, " + name + " [m]", num(c->point.a_bar * length));
     h.emplace_back("pull-off a_bar_M, " + name, num(c->point.a_bar * to_maugis));
     h.emplace_back("pull-off penetration, " + name + " [m]", num(c->point.penetration * penetration));
@@ -313,6 +412,7 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
                                                 num(p.curve_end.penetration * penetration) + " m, c = " +
                                                 num(p.curve_end.c_bar * length) + " m");
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
+  h.emplace_back("solver", md_solver_text(md));
   std::vector<double> a_si, delta_si, force_si;
   for (const MaugisDugdalePoint& q : curve) {
     a_si.push_back(q.a_bar * length);
@@ -328,10 +428,13 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
     h.emplace_back("warning", w);
     std::cerr << "coatcontact sphere: warning: " << w << "\n";
   }
-  const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "c_m"};
+  h.emplace_back("delta_err_m, F_err_N", "error estimates of delta and F (the table's, or the direct solve's)");
+  const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "c_m", "delta_err_m", "F_err_N"};
   write_header(os, h, columns);
   for (const MaugisDugdalePoint& q : curve) {
-    write_row(os, {q.a_bar * length, q.penetration * penetration, q.load * force, q.c_bar * length}, columns);
+    write_row(os, {q.a_bar * length, q.penetration * penetration, q.load * force, q.c_bar * length,
+                   q.penetration_error * penetration, q.load_error * force},
+              columns);
   }
 }
 

@@ -1,8 +1,9 @@
 // The Maugis-Dugdale cohesive zone (THEORY.md section 13, MaugisDugdaleModel of the adhesion
 // floor): F = pi w R P(a_bar; eta, lambda), lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3,
-// the last parameter ("lambda"). a,F data of a rigid sphere; one solve per point and trial, every
-// derivative a central difference in ln p (w included: F is not linear in sqrt(w) at fixed a),
-// no spring pull-off.
+// the last parameter ("lambda"). a,F data of a rigid sphere; the points from the stack's reduced
+// table of the cohesive zone (or one direct solve per point and trial), every derivative a
+// central difference in ln p (w included: F is not linear in sqrt(w) at fixed a), no spring
+// pull-off.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -23,7 +24,25 @@ using coatcontact::detail::short_text;
 constexpr double kMinAOverT = kAOverTRange[0];
 constexpr double kMaxAOverT = kAOverTRange[1];
 
-using MaugisDugdaleEntry = SolverEntry<MaugisDugdaleModel>;
+// The model of one stack: its reduced table of the cohesive zone serves every w, t and lambda
+// (Problem::maugis_dugdale_direct: the direct solve instead).
+class MaugisDugdaleEntry {
+ public:
+  MaugisDugdaleEntry(const Problem& problem, const StackKey& key)
+      : key_(key), solver_(std::make_unique<MaugisDugdaleModel>(stack_of(problem, key), options_of(problem))) {}
+  const MaugisDugdaleModel& solver() const { return *solver_; }
+  const StackKey& key() const { return key_; }
+  long source_evaluations() const { return solver_->table_solves(); }
+
+ private:
+  static MaugisDugdaleOptions options_of(const Problem& problem) {
+    MaugisDugdaleOptions o;
+    o.use_table = !problem.maugis_dugdale_direct;
+    return o;
+  }
+  StackKey key_;
+  std::unique_ptr<MaugisDugdaleModel> solver_;
+};
 
 class MaugisDugdaleFit : public ForceModel {
  public:
@@ -37,7 +56,8 @@ class MaugisDugdaleFit : public ForceModel {
   std::vector<double> shifted_force(const Parameters& q, const ModelAtData&, const Measurements& data) override {
     return evaluate(q, data, false).force;
   }
-  long solver_calls() const override { return solves_; }
+  // Direct cohesive-zone solves: the tables' nodes, or one per point and trial.
+  long solver_calls() const override { return problem_.maugis_dugdale_direct ? solves_ : cache_.solver_calls(); }
   double adhesionless_radius(double penetration) const override {
     return std::sqrt(problem_.sphere_radius * penetration);
   }

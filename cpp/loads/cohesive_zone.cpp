@@ -252,29 +252,66 @@ CohesiveZone::CohesiveZone(const KernelSource& kernel, double a, double radius, 
   edge_s_ = system_->edge_value(gamma_s_.data(), -a * a / radius);
 }
 
+struct CohesiveZone::Pass {
+  double c = 0.0, c_minus_a = 0.0, root = 0.0, phi_end = 0.0;
+  AnnulusRule outer;
+  std::vector<double> gamma_c;  // (I + K) γ_c = b (a > 0)
+  double edge_c = 0.0;          // edge value of γ_c (a > 0)
+  double b0 = 0.0;              // b(0) (a = 0)
+  std::vector<double> rows;     // kernel rows at the outer nodes (a > 0), m x n
+  std::vector<double> sums;     // kernel sums at the outer nodes, m
+};
+
+void CohesiveZone::pass(double excess, Pass& p) const {
+  const double a = a_;
+  // c - a, sqrt(c² - a²) and φa = arccos(a/c) from the excess, free of cancellation.
+  if (a > 0.0) {
+    p.c = a * (1.0 + excess);
+    p.c_minus_a = a * excess;
+    p.root = a * std::sqrt(excess * (2.0 + excess));
+    p.phi_end = std::atan(std::sqrt(excess * (2.0 + excess)));
+  } else {
+    p.c = excess;
+    p.c_minus_a = p.c;
+    p.root = p.c;
+    p.phi_end = 0.5 * kPi;
+  }
+  const double c = p.c;
+  annulus_rule(c, p.c_minus_a, p.phi_end, a, quadrature_, p.outer);
+  const std::size_t m = p.outer.y.size();
+  const std::size_t n = system_ ? system_->size() : 0;
+  if (system_) {
+    const Layout& layout = system_->layout();
+    std::vector<double> points(layout.x);
+    points.push_back(a);
+    std::vector<double> b(n + 1);
+    kernel_sums(kernel_, p.outer, points.data(), n + 1, b.data());
+    for (double& value : b) value *= c * c / kPi;
+    p.gamma_c.assign(b.begin(), b.begin() + static_cast<long>(n));
+    system_->solve(p.gamma_c.data(), 1);
+    p.edge_c = system_->edge_value(p.gamma_c.data(), b[n]);
+    p.rows.resize(m * n);
+    system_->kernel_rows(p.outer.y.data(), m, p.rows.data());
+  } else {
+    const double zero = 0.0;
+    kernel_sums(kernel_, p.outer, &zero, 1, &p.b0);
+    p.b0 *= c * c / kPi;
+  }
+  p.sums.resize(m);
+  kernel_sums_at_nodes(kernel_, c, p.outer, quadrature_, p.sums.data());
+}
+
 CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
   const double a = a_;
   const double R = radius_;
+  Pass p;
+  pass(excess, p);
+  const double c = p.c, c_minus_a = p.c_minus_a, root = p.root, phi_end = p.phi_end;
   CohesiveState st;
   st.a = a;
   st.excess = excess;
-  // c - a, sqrt(c² - a²) and φa = arccos(a/c) from the excess, free of cancellation.
-  double c, c_minus_a, root, phi_end;
-  if (a > 0.0) {
-    c = a * (1.0 + excess);
-    c_minus_a = a * excess;
-    root = a * std::sqrt(excess * (2.0 + excess));
-    phi_end = std::atan(std::sqrt(excess * (2.0 + excess)));
-  } else {
-    c = excess;
-    c_minus_a = c;
-    root = c;
-    phi_end = 0.5 * kPi;
-  }
   st.c = c;
-  AnnulusRule outer;
-  annulus_rule(c, c_minus_a, phi_end, a, quadrature_, outer);
-  const std::size_t m = outer.y.size();
+  const std::size_t m = p.outer.y.size();
 
   // Interior: γ = δ γ_fp + γ_s + σ̂ γ_c with (I + K) γ_c = b; regularity fixes δ.
   const std::size_t n = system_ ? system_->size() : 0;
@@ -282,42 +319,21 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
   double integral = 0.0;  // ∫_0^a γ
   if (system_) {
     const Layout& layout = system_->layout();
-    std::vector<double> points(layout.x);
-    points.push_back(a);
-    std::vector<double> b(n + 1);
-    kernel_sums(kernel_, outer, points.data(), n + 1, b.data());
-    for (double& value : b) value *= c * c / kPi;
-    std::vector<double> gamma_c(b.begin(), b.begin() + static_cast<long>(n));
-    system_->solve(gamma_c.data(), 1);
-    const double edge_c = system_->edge_value(gamma_c.data(), b[n]);
-    st.delta = -(edge_s_ + sigma_hat * (edge_c + root)) / edge_fp_;
+    st.delta = -(edge_s_ + sigma_hat * (p.edge_c + root)) / edge_fp_;
     for (std::size_t i = 0; i < n; ++i) {
-      gamma[i] = st.delta * gamma_fp_[i] + gamma_s_[i] + sigma_hat * gamma_c[i];
+      gamma[i] = st.delta * gamma_fp_[i] + gamma_s_[i] + sigma_hat * p.gamma_c[i];
       integral += layout.w[i] * gamma[i];
     }
   } else {
-    const double zero = 0.0;
-    double b0 = 0.0;
-    kernel_sums(kernel_, outer, &zero, 1, &b0);
-    b0 *= c * c / kPi;
-    st.delta = -sigma_hat * (c + b0);  // θ(0) = γ(0) + θ_K(0)
+    st.delta = -sigma_hat * (c + p.b0);  // θ(0) = γ(0) + θ_K(0)
   }
 
   // ∫_0^φa θ_K(c cos φ) dφ, θ_K(x) = row(x)·γ - σ̂ b(x), b at the outer nodes themselves.
   double theta_integral = 0.0;
-  {
-    std::vector<double> rows;
-    if (system_) {
-      rows.resize(m * n);
-      system_->kernel_rows(outer.y.data(), m, rows.data());
-    }
-    std::vector<double> sums(m);
-    kernel_sums_at_nodes(kernel_, c, outer, quadrature_, sums.data());
-    for (std::size_t k = 0; k < m; ++k) {
-      double theta = 0.0;
-      for (std::size_t j = 0; j < n; ++j) theta += rows[k * n + j] * gamma[j];
-      theta_integral += outer.weight[k] * (theta - sigma_hat * c * c / kPi * sums[k]);
-    }
+  for (std::size_t k = 0; k < m; ++k) {
+    double theta = 0.0;
+    for (std::size_t j = 0; j < n; ++j) theta += p.rows[k * n + j] * gamma[j];
+    theta_integral += p.outer.weight[k] * (theta - sigma_hat * c * c / kPi * p.sums[k]);
   }
   st.force = 2.0 * integral - sigma_hat * (c * c * phi_end - a * root);
   st.gap = 2.0 / kPi *
@@ -328,6 +344,68 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
                          ", c/t = " + short_text(c));
   }
   return st;
+}
+
+CohesiveFunctions CohesiveZone::functions(double excess) const {
+  const double a = a_;
+  const double R = radius_;
+  Pass p;
+  pass(excess, p);
+  const double c = p.c, root = p.root, phi_end = p.phi_end;
+  const std::size_t m = p.outer.y.size();
+  const std::size_t n = system_ ? system_->size() : 0;
+  CohesiveFunctions out;
+  // Integrals of γ_fp, γ_s, γ_c over [0, a] and of θ_K's parts over [0, φa].
+  double i_fp = 0.0, i_s = 0.0, i_c = 0.0;
+  if (system_) {
+    const Layout& layout = system_->layout();
+    out.delta_h = -edge_s_ / edge_fp_;
+    out.d = -(p.edge_c + root) / edge_fp_;
+    for (std::size_t i = 0; i < n; ++i) {
+      i_fp += layout.w[i] * gamma_fp_[i];
+      i_s += layout.w[i] * gamma_s_[i];
+      i_c += layout.w[i] * p.gamma_c[i];
+    }
+  } else {
+    out.d = -(c + p.b0);
+  }
+  double t_fp = 0.0, t_s = 0.0, t_c = 0.0, t_b = 0.0;
+  for (std::size_t k = 0; k < m; ++k) {
+    double r_fp = 0.0, r_s = 0.0, r_c = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double row = p.rows[k * n + j];
+      r_fp += row * gamma_fp_[j];
+      r_s += row * gamma_s_[j];
+      r_c += row * p.gamma_c[j];
+    }
+    const double w = p.outer.weight[k];
+    t_fp += w * r_fp;
+    t_s += w * r_s;
+    t_c += w * r_c;
+    t_b += w * c * c / kPi * p.sums[k];
+  }
+  out.force_h = 2.0 * (i_s + out.delta_h * i_fp);
+  out.f = 2.0 * (i_c + out.d * i_fp) - (c * c * phi_end - a * root);
+  out.g_r = 2.0 / kPi * ((c * c / (2.0 * R) - out.delta_h) * phi_end + a / (2.0 * R) * root + t_s + out.delta_h * t_fp);
+  out.g_s = 2.0 / kPi * (-out.d * phi_end - p.c_minus_a + out.d * t_fp + t_c - t_b);
+  if (!std::isfinite(out.d) || !std::isfinite(out.f) || !std::isfinite(out.g_r) || !std::isfinite(out.g_s)) {
+    throw NumericalError("cohesive zone: non-finite state at a/t = " + short_text(a) + ", c/t = " + short_text(c));
+  }
+  return out;
+}
+
+CohesiveFunctions CohesiveZone::adhesionless() const {
+  CohesiveFunctions out;
+  if (!system_) return out;
+  const Layout& layout = system_->layout();
+  double i_fp = 0.0, i_s = 0.0;
+  for (std::size_t i = 0; i < system_->size(); ++i) {
+    i_fp += layout.w[i] * gamma_fp_[i];
+    i_s += layout.w[i] * gamma_s_[i];
+  }
+  out.delta_h = -edge_s_ / edge_fp_;
+  out.force_h = 2.0 * (i_s + out.delta_h * i_fp);
+  return out;
 }
 
 CohesiveState CohesiveZone::solve(double sigma_hat, double h0, double guess_excess, double first_step) const {

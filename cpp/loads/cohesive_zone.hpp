@@ -24,6 +24,17 @@ struct CohesiveQuadrature {
   double piece_angle = 0.5;    // longest piece in φ (sin² and cos are entire)
 };
 
+// The zone at one (a, c) split by its loads (THEORY.md section 13, "The cohesive zone as a
+// table"): δ = δ_H + σ̂ d, F = F_H + σ̂ f, h(c) = g_R + σ̂ g_σ at the zone's radius R.
+struct CohesiveFunctions {
+  double delta_h = 0.0;  // adhesionless penetration δ_H = a² Δ_s(a) R⁻¹      (1-D)
+  double force_h = 0.0;  // adhesionless load F_H = a³ Π_s(a)/(2R)            (1-D)
+  double d = 0.0;        // penetration per unit σ̂ (edge condition solved for δ)
+  double f = 0.0;        // load per unit σ̂
+  double g_r = 0.0;      // gap at c of the adhesionless solution
+  double g_s = 0.0;      // gap at c per unit σ̂
+};
+
 // One state (a, c) of the zone, units as above.
 struct CohesiveState {
   double a = 0.0;
@@ -42,6 +53,11 @@ class CohesiveZone {
   // δ, F and h(c) for the tension σ̂ on [a, c], c = a (1 + excess) (a > 0) or c = excess (a = 0);
   // excess > 0 given directly so that c - a carries no cancellation.
   CohesiveState evaluate(double sigma_hat, double excess) const;
+  // The parts of evaluate() per load, from one pass (one annulus rule, one cohesive solve):
+  // evaluate(σ̂, e) equals δ_H + σ̂ d, F_H + σ̂ f, g_R + σ̂ g_σ to rounding.
+  CohesiveFunctions functions(double excess) const;
+  // δ_H and F_H alone (the adhesionless solution at a; no annulus), a > 0.
+  CohesiveFunctions adhesionless() const;
   // Solves h(c) = h0 for c by a bracketed Brent root in u = ln(excess); throws NumericalError
   // if no sign change is found for excess in [1e-14, 1e8]. The bracket is searched from the
   // guess in steps of first_step in u, growing threefold up to 1.5 (a close guess, e.g. from
@@ -61,6 +77,12 @@ class CohesiveZone {
   std::vector<double> gamma_fp_, gamma_s_;
   double edge_fp_ = 0.0, edge_s_ = 0.0;
   mutable int last_evaluations_ = 0;
+
+  // What evaluate() and functions() share at one excess: the geometry, the outer rule, the
+  // cohesive solution γ_c and its edge value, the kernel rows at the rule's nodes and the
+  // kernel sums there.
+  struct Pass;
+  void pass(double excess, Pass& out) const;
 };
 
 }  // namespace coatcontact::detail

@@ -138,10 +138,13 @@ struct Problem {
   // Maugis-Dugdale cohesive zone instead of JKR (THEORY.md section 13, MaugisDugdaleModel of
   // the adhesion floor): F = pi w R P(a_bar; eta, lambda), lambda = 2 sigma0 (R/(pi w K^2))^(1/3),
   // K = 4E1*/3. `lambda` (hint if free, else fixed) is appended to the parameter vector as
-  // "lambda". a,F data of a rigid sphere only; one solve per point and trial, every derivative
-  // a central difference in ln p, no spring pull-off (slow: keep the data small).
+  // "lambda". a,F data of a rigid sphere only; every derivative a central difference in ln p,
+  // no spring pull-off.
   bool maugis_dugdale = false;
   double lambda = 1.0;
+  // The Maugis-Dugdale values by the direct per-radius solve (the reference) instead of the
+  // reduced table of the cohesive zone (one table per stack, shared by every w, t and lambda).
+  bool maugis_dugdale_direct = false;
   double solver_tolerance = kDefaultTolerance;  // of the solves behind the interpolant
   int max_iterations = 200;
   bool global_search = true;  // false: start from the values above (bootstrap refits, tests)

@@ -32,12 +32,13 @@ struct MaugisDugdaleOptions {
   int scan_points_per_decade = 8;
   double location_tolerance = 1e-7;
   // Points from the reduced table of the cohesive zone (THEORY.md section 13, "The cohesive
-  // zone as a table"), built once per model on first use, wherever it covers a/t in
+  // zone as a table"), built per model tile by tile as queries need them, wherever it covers a/t in
   // [table_a_over_t_min, table_a_over_t_max] and the root c/a - 1 (c/t <= 1e4), and at the
   // end a = 0 (c/t in [1e-5, 1e4]); the direct solve elsewhere. Values then differ from the
-  // direct ones by the table's error (tests/adhesive/test_md_table.cpp: P and D to ~6e-5,
-  // m to ~4e-4); the pull-off location is the minimiser's (location_tolerance), without the
-  // implicit-derivative refinement.
+  // direct ones by the table's error, each within its estimate (MaugisDugdalePoint::*_error;
+  // tests/adhesive/test_md_table.cpp: P to ~1.2e-4, D to ~9e-5, m to ~4e-4); the pull-off
+  // location is the minimiser's (location_tolerance), without the implicit-derivative
+  // refinement. Off here (the library's reference); the CLI and the fit turn it on.
   bool use_table = false;
   double table_a_over_t_min = 1e-4;
   double table_a_over_t_max = 1e2;
@@ -55,6 +56,10 @@ struct MaugisDugdalePoint {
   double load = 0.0;         // P
   double penetration = 0.0;  // D
   int gap_evaluations = 0;   // cost of the root c(a)
+  // Error estimates of m, P, D: the table's (MaugisDugdaleOptions::use_table), or the direct
+  // solve's own (root to 1e-13 in ln(c/a - 1), values ~1e-11 relative).
+  double m_error = 0.0, load_error = 0.0, penetration_error = 0.0;
+  bool from_table = false;   // false: the direct per-radius solve
 };
 
 struct MaugisDugdalePulloffPoint {
@@ -68,6 +73,10 @@ struct MaugisDugdalePulloff {
   double lambda = 0.0;
   MaugisDugdalePulloffPoint load_control;          // minimum of P over a_bar
   MaugisDugdalePulloffPoint displacement_control;  // minimum of D over a_bar
+  // pulloff_spring with k_bar > 0: the minimum of Z = D + P/k_bar over a_bar (THEORY.md
+  // section 10; k_bar = inf: displacement control); k_bar = 0: not computed.
+  MaugisDugdalePulloffPoint spring_control;
+  double k_bar = 0.0;
   MaugisDugdalePoint curve_end;                    // a -> 0
   double a_bar_scan_min = 0.0, a_bar_scan_max = 0.0;
   int point_evaluations = 0;
@@ -76,7 +85,9 @@ struct MaugisDugdalePulloff {
 
 class MaugisDugdaleModel {
  public:
-  // Builds the kernel table of the stack once. Rigid indenter only (InputError otherwise).
+  // Builds the kernel table of the stack once. An elastic indenter enters through the stack's
+  // reference modulus E_r and kernel C' (THEORY.md sections 9 and 13); lambda then takes
+  // K = 4E_r/3.
   explicit MaugisDugdaleModel(const Stack& stack, MaugisDugdaleOptions options = {});
   ~MaugisDugdaleModel();
   MaugisDugdaleModel(const MaugisDugdaleModel&) = delete;
@@ -87,12 +98,21 @@ class MaugisDugdaleModel {
   MaugisDugdalePoint point(double eta, double lambda, double a_bar) const;
   std::vector<MaugisDugdalePoint> curve(double eta, double lambda, const std::vector<double>& a_bar) const;
   MaugisDugdalePulloff pulloff(double eta, double lambda) const;
+  // pulloff() plus the pull-off through a spring of normalized stiffness k_bar = k L_D/(pi w R)
+  // (THEORY.md sections 10 and 13): the minimum of Z = D + P/k_bar along the same curve, or its
+  // end a -> 0 when that lies lower; located by the minimiser (~location_tolerance in a_bar).
+  MaugisDugdalePulloff pulloff_spring(double eta, double lambda, double k_bar) const;
   // pulloff(eta_i, lambda_i) for each pair, computed in parallel (OpenMP); the same values as
   // one call per pair. The first failing pair's exception is rethrown.
   std::vector<MaugisDugdalePulloff> pulloffs(const std::vector<std::pair<double, double>>& eta_lambda) const;
 
   const Stack& stack() const;
   const MaugisDugdaleOptions& options() const;
+  // With use_table: builds every tile of the table now (otherwise each on first use), and the
+  // table's cost so far (direct solves, wall seconds). Without: nothing, zeros.
+  void build_table() const;
+  long table_solves() const;
+  double table_seconds() const;
 
  private:
   double refine(double eta, double lambda, double ln_a_bar, bool load, double guess_excess, int& evaluations) const;
