@@ -239,7 +239,9 @@ class Engine {
                        full_precision(a_end_) + ", " + full_precision(a_max_) +
                        "] outside the table's range of a/t");
     }
-    model_.table().prepare(a_end_ / eta, a_max_ / eta);
+    // One batch for the usual range; the cone's approach may reach further, a decade of the table
+    // at a time (built on demand, the solver's cost growing with a/t).
+    model_.table().prepare(a_end_ / eta, std::min(a_max_, 100.0 * std::max(1.0, tip_length_ratio(model, tip))) / eta);
     const Local l = local(a_end_);
     state_.a = a_end_;
     state_.x = hertz_drive(l, drive_);
@@ -252,7 +254,7 @@ class Engine {
 
   // The reduced variables at a_bar; the last two radii are remembered, since the stepper asks
   // for the right-hand side, its Jacobian and the events at the same state (each a table lookup
-  // of twelve Chebyshev series).
+  // of eight Chebyshev series).
   Local local(double a) const {
     for (const Local& l : recent_) {
       if (l.a == a) return l;

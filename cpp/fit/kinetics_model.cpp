@@ -253,6 +253,16 @@ int jacobian_callback(const gsl_vector* x, void* params, gsl_matrix* J) {
       for (std::size_t i = 0; i < columns[j].size(); ++i) gsl_matrix_set(J, i, j, columns[j][i] * ctx->scale[i]);
     }
     return GSL_SUCCESS;
+  } catch (const std::runtime_error& e) {
+    // The trust region has reached parameters next to which a curve cannot be simulated (e.g. w
+    // and v* both tiny, where w (v/v*)^n mimics the data): not a fault of the input.
+    const auto p = ctx->parameters(x);
+    ctx->error = std::make_exception_ptr(NumericalError(
+        "kinetics fit: the fit reached w = " + short_text(p[kKinWork]) + ", v_star = " + short_text(p[kKinSpeed]) +
+        ", n = " + short_text(p[kKinExponent]) + ", t = " + short_text(p[kKinThickness]) + ", E1 = " +
+        short_text(p[kKinFilmModulus]) + ", where the curves cannot be simulated (" + e.what() +
+        "); start closer or fix a parameter"));
+    return GSL_EBADFUNC;
   } catch (...) {
     ctx->error = std::current_exception();
     return GSL_EBADFUNC;
@@ -351,10 +361,12 @@ Result fit_kinetics(const Stack& stack, const std::vector<KineticsCurve>& curves
   return fit_kinetics(model, curves, problem);
 }
 
-Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>& measured_curves,
-                    const KineticsFitProblem& problem) {
+namespace {
+
+// One trust-region fit from the problem's start values.
+Result fit_from_start(const AdhesiveModel& model, const std::vector<KineticsCurve>& measured_curves,
+                      const KineticsFitProblem& problem) {
   const auto clock_start = std::chrono::steady_clock::now();
-  validate(measured_curves, problem);
   const std::vector<KineticsCurve> curves = up_to_pulloff(measured_curves);
   coatcontact::detail::GslHandlerOff handler_off;
 
@@ -451,6 +463,30 @@ Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>
   }
   result.solver_calls = ctx.simulations;  // kinetics simulations (one per curve and evaluation)
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace
+
+Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>& measured_curves,
+                    const KineticsFitProblem& problem) {
+  validate(measured_curves, problem);
+  const bool law_free = problem.free[kKinSpeed] || problem.free[kKinExponent];
+  if (!problem.free[kKinFilmModulus] || !law_free) return fit_from_start(model, measured_curves, problem);
+  // E1 free with the law: first E1 (and w, t if free) with the law held at its start, then all
+  // (THEORY.md section 14, fitting: from a start off in E1 the first full step tends to leave into
+  // the valley w, v* -> 0 where w (v/v*)^n mimics the data).
+  KineticsFitProblem first = problem;
+  first.free[kKinSpeed] = first.free[kKinExponent] = false;
+  const Result stage = fit_from_start(model, measured_curves, first);
+  KineticsFitProblem second = problem;
+  second.work = stage.value[kKinWork];
+  second.thickness = stage.value[kKinThickness];
+  second.film_modulus = stage.value[kKinFilmModulus];
+  Result result = fit_from_start(model, measured_curves, second);
+  result.iterations += stage.iterations;
+  result.solver_calls += stage.solver_calls;
+  result.seconds += stage.seconds;
   return result;
 }
 

@@ -44,3 +44,11 @@ def test_bad_input(curves):
     with pytest.raises(ValueError, match="spring"):
         cc.kinetics_fit(**MATERIALS, work=0.04, v_star=1e-6, n=0.6, curves=[{"protocol": PREFIX, "t": [0.0],
                                                                              "F": [0.0]}])
+
+
+def test_film_modulus_free(curves):
+    """free=("w", "E1"): the film's modulus from 1.1 MPa (each trial E1 builds its own table)."""
+    start = dict(MATERIALS, film=(1.1e6, 0.49))
+    r = cc.kinetics_fit(**start, work=0.045, v_star=1e-6, n=0.6, curves=curves, free=("w", "E1"))
+    assert r["free"] == [True, False, False, False, True]
+    np.testing.assert_allclose(r["values"][[0, 4]], [0.04, 1e6], rtol=1e-6)

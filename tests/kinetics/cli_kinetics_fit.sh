@@ -1,7 +1,7 @@
 #!/bin/sh
 # `coatcontact kinetics --fit` (THEORY.md section 14, fitting): curves made by `kinetics` itself at
 # three retract speeds (every third state, no noise) are fitted back from a start 1.5x, 3x, 0.75x
-# off, with the film thickness free from 70 um, and with the film modulus free from 1.3 MPa; bad input exits 2 naming the option and
+# off, with the film thickness free from 70 um, and with the film modulus free from 1.15 MPa; bad input exits 2 naming the option and
 # writes nothing.
 cli="$1"
 tmp=$(mktemp -d) || exit 1
@@ -40,9 +40,9 @@ check 'n' 0.6
   --output "$tmp/fit.tsv" 2>"$tmp/err" || { echo "FAIL: fit with t free"; cat "$tmp/err"; fail=1; }
 check 't \[m\]' 5e-05
 check 'n' 0.6
-# The film modulus (each trial E1 builds its own table): from 1.3 MPa, with w, v*, n.
-"$cli" kinetics --film 1.3e6,0.49 --substrate 70e9,0.22 --radius 2mm --spring 500 $t50 --work 0.05 --v-star 2um/s \
-  --n 0.5 --protocol "$prefix,retract:1um/s" --retract-speeds 1um/s,10um/s,100um/s --fit "$tmp/curves.tsv" \
+# The film modulus (each trial E1 builds its own table): from 1.15 MPa, with w, v*, n.
+"$cli" kinetics --film 1.15e6,0.49 --substrate 70e9,0.22 --radius 2mm --spring 500 $t50 --work 0.045 \
+  --v-star 1.5um/s --n 0.55 --protocol "$prefix,retract:1um/s" --retract-speeds 1um/s,10um/s,100um/s --fit "$tmp/curves.tsv" \
   --free w,v_star,n,E1 --output "$tmp/fit.tsv" 2>"$tmp/err" || { echo "FAIL: fit with E1 free"; cat "$tmp/err"; fail=1; }
 check 'E1 \[Pa\]' 1e+06
 check 'w \[J/m2\]' 0.04
