@@ -1,8 +1,10 @@
 // Benchmarks of the crack kinetics (THEORY.md section 14) on the paper's soft film
 // (E1*/E0* = 0.1, nu = 0.25, eta = 1; n = 0.6, v_a* = v*), spring k_bar = 1: one approach
 // (V = 1 to P = 1), dwell (tau = 1), retract (V = 1) simulation, and a sweep of 30 retract
-// speeds V = 1e-3..1e3 (the part before the retract simulated once). The reduced-variable
-// table is built once, outside the timing. Counters: ODE steps and the pull-off P.
+// speeds V = 1e-3..1e3 (the part before the retract simulated once), the same sweep under load
+// control (k_bar = 0; rates dP/dtau) and the one simulation for a cone (THEORY.md section 14,
+// "The cone"). The reduced-variable table is built once, outside the timing. Counters: ODE steps
+// and the pull-off P.
 // BM_KineticsFitThreeSpeeds: the fit of w, v*, n (THEORY.md section 14, fitting) to three
 // curves (the README's run on its coating, retract at 1, 10, 100 um/s, 60 points each, 1% noise),
 // from a start 1.5x, 3x, 0.75x off; the table is built before the timing.
@@ -80,6 +82,37 @@ void BM_KineticsSweep30(benchmark::State& state) {
   state.counters["P_pulloff_fastest"] = r.back().pulloff.load;
 }
 BENCHMARK(BM_KineticsSweep30)->Unit(benchmark::kMillisecond);
+
+void BM_KineticsSweep30LoadControl(benchmark::State& state) {
+  const AdhesiveModel& model = soft_film_model();
+  warm_up(model);
+  std::vector<double> speeds(30);
+  for (int i = 0; i < 30; ++i) speeds[static_cast<std::size_t>(i)] = 1e-3 * std::pow(1e6, i / 29.0);
+  std::vector<KineticsResult> r;
+  std::size_t steps = 0;
+  for (auto _ : state) {
+    r = sweep_kinetics(model, 1.0, KineticLaw{}, 0.0, protocol(), speeds);
+    benchmark::DoNotOptimize(r);
+  }
+  for (const KineticsResult& run : r) steps += run.steps;
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["P_pulloff_slowest"] = r.front().pulloff.load;
+  state.counters["P_pulloff_fastest"] = r.back().pulloff.load;
+}
+BENCHMARK(BM_KineticsSweep30LoadControl)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
+void BM_KineticsOneSimulationCone(benchmark::State& state) {
+  const AdhesiveModel& model = soft_film_model();
+  // The cone's default range of a_bar reaches further (section 14): its decades of the table first.
+  KineticsResult r = simulate_kinetics(model, KineticsTip::kCone, 1.0, KineticLaw{}, 1.0, protocol());
+  for (auto _ : state) {
+    r = simulate_kinetics(model, KineticsTip::kCone, 1.0, KineticLaw{}, 1.0, protocol());
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["steps"] = static_cast<double>(r.steps);
+  state.counters["P_pulloff"] = r.pulloff.load;
+}
+BENCHMARK(BM_KineticsOneSimulationCone)->Unit(benchmark::kMillisecond);
 
 const AdhesiveModel& coating_model() {
   static const ReducedSolver solver = [] {

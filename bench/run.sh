@@ -45,8 +45,13 @@ for b in report["benchmarks"]:
     name = b["run_name"]
     rows.setdefault(name, {})[b["aggregate_name"]] = b["real_time"] * unit[b["time_unit"]]
     rows[name]["runs"] = b.get("repetitions", 0)
+    # Benchmarks that measure the process's CPU time (all threads) get a second row with it.
+    if "process_time" in name:
+        rows[name].setdefault("cpu", {})[b["aggregate_name"]] = b["cpu_time"] * unit[b["time_unit"]]
 for name, r in rows.items():
     print(f"{name}\t{r.get('median', 0):.4g}\t\t\t{r['runs']}\tlibrary")
+    if "cpu" in r:
+        print(f"{name} (CPU)\t{r['cpu'].get('median', 0):.4g}\t\t\t{r['runs']}\tlibrary-cpu")
 PY
 done
 if [ "$found" -eq 0 ]; then

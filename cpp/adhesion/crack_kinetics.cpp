@@ -21,6 +21,7 @@
 #include <string>
 
 #include "coatcontact/contact.hpp"
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
@@ -31,7 +32,9 @@ namespace {
 
 using detail::full_precision;
 
-// Reduced variables of the sphere at one a_bar and their a_bar derivatives (section 5).
+// Reduced variables of the tip at one a_bar and their a_bar derivatives (section 5; the cone in
+// its own units, section 14): P_H = a^3 Pi_s/2, D_H = a^2 Delta_s (sphere), a^2 Pi_c/2, a Delta_c
+// (cone); K = 2 a E_eq and Gamma(1) for both.
 struct Local {
   double a = 0.0;
   double p_h = 0.0, d_h = 0.0, k = 0.0, gamma = 0.0;
@@ -39,19 +42,51 @@ struct Local {
   double dlog_gamma = 0.0;  // d ln Gamma(1)/d ln a_bar
 };
 
-Local local_at(const AdhesiveModel& model, double eta, double a_bar) {
-  const ReducedPoint r = model.table().at(a_bar / eta);
+Local local_at(const AdhesiveModel& model, KineticsTip tip, double eta, double a_bar) {
+  const ReducedPoint r = model.table().at(a_bar / eta, tip == KineticsTip::kCone ? ReducedTable::Variables::kCone
+                                                                                 : ReducedTable::Variables::kSphere);
   Local l;
   l.a = a_bar;
-  l.p_h = a_bar * a_bar * a_bar * r.pi_s / 2.0;
-  l.d_h = a_bar * a_bar * r.delta_s;
+  if (tip == KineticsTip::kCone) {
+    l.p_h = a_bar * a_bar * r.pi_c / 2.0;
+    l.d_h = a_bar * r.delta_c;
+    l.dp_h = l.p_h * (2.0 + r.dlog_pi_c) / a_bar;
+    l.dd_h = l.d_h * (1.0 + r.dlog_delta_c) / a_bar;
+  } else {
+    l.p_h = a_bar * a_bar * a_bar * r.pi_s / 2.0;
+    l.d_h = a_bar * a_bar * r.delta_s;
+    l.dp_h = l.p_h * (3.0 + r.dlog_pi_s) / a_bar;
+    l.dd_h = l.d_h * (2.0 + r.dlog_delta_s) / a_bar;
+  }
   l.k = 2.0 * a_bar * r.e_eq;
   l.gamma = r.gamma1;
-  l.dp_h = l.p_h * (3.0 + r.dlog_pi_s) / a_bar;
-  l.dd_h = l.d_h * (2.0 + r.dlog_delta_s) / a_bar;
   l.dk = l.k * (1.0 + r.dlog_e_eq) / a_bar;
   l.dlog_gamma = r.dlog_gamma1;
   return l;
+}
+
+// Length ratio r of the base's JKR scale to the film's: (E1*/E0*)^(1/3) for the sphere, its cube
+// for the cone (L_a ~ 1/E, section 14).
+double tip_length_ratio(const AdhesiveModel& model, KineticsTip tip) {
+  const double r = model.stack().substrate_length_ratio();
+  return tip == KineticsTip::kCone ? r * r * r : r;
+}
+
+// Default a_bar of the loss of contact (section 14): a hundredth of the smallest pull-off radius
+// the stack can have, the film's (a_bar ~ 1) or the base's (~ r). The cone's r = E1*/E0* can be
+// tiny, but the base's regime needs a >> t, i.e. a_bar >> eta: its bound is then 1e-2 eta.
+double default_a_end(const AdhesiveModel& model, KineticsTip tip, double eta) {
+  const double r = tip_length_ratio(model, tip);
+  if (tip == KineticsTip::kCone) return 1e-2 * std::min(1.0, std::max(r, 1e-2 * eta));
+  return 1e-2 * std::min(1.0, r);
+}
+
+// Default upper a_bar of an approach: 100 max(1, r) for the sphere; the cone's load grows only
+// like a_bar^2 (and its F_s is small for sharp cones), so 1e4 max(1, r), within the table's range.
+double default_a_max(const AdhesiveModel& model, KineticsTip tip, double eta) {
+  const double r = tip_length_ratio(model, tip);
+  if (tip == KineticsTip::kCone) return std::min(1e4 * std::max(1.0, r), 0.5 * kMaximumScaled * eta);
+  return 100.0 * std::max(1.0, r);
 }
 
 // The mechanical state at (a_bar, X) for a drive of compliance c = 1/k_bar (load control
@@ -155,13 +190,14 @@ double brent(const std::function<double(double)>& f, double lo, double hi, const
 }
 
 // Elastic energy of the adhesionless curve, U_H(a_bar) = int_0^a_bar P_H dD_H (section 14).
-double hertz_energy(const AdhesiveModel& model, double eta, double a_bar, double a_bar_floor) {
+double hertz_energy(const AdhesiveModel& model, KineticsTip tip, double eta, double a_bar, double a_bar_floor) {
   const double a0 = std::min(a_bar, a_bar_floor);
-  const Local l0 = local_at(model, eta, a0);
-  double u = 0.4 * l0.p_h * l0.d_h;  // P_H ~ a^3, D_H ~ a^2 below a0 (film-dominated)
+  const Local l0 = local_at(model, tip, eta, a0);
+  // Below a0 (film-dominated): sphere P_H ~ a^3, D_H ~ a^2; cone P_H ~ a^2, D_H ~ a.
+  double u = (tip == KineticsTip::kCone ? 1.0 / 3.0 : 0.4) * l0.p_h * l0.d_h;
   if (a_bar > a0) {
     std::function<double(double)> f = [&](double a) {
-      const Local l = local_at(model, eta, a);
+      const Local l = local_at(model, tip, eta, a);
       return l.p_h * l.dd_h;
     };
     detail::GslHandlerOff guard;
@@ -190,22 +226,23 @@ struct State {
 
 class Engine {
  public:
-  Engine(const AdhesiveModel& model, double eta, const KineticLaw& law, double k_bar,
+  Engine(const AdhesiveModel& model, KineticsTip tip, double eta, const KineticLaw& law, double k_bar,
          const KineticsOptions& options)
-      : model_(model), eta_(eta), law_(law), options_(options) {
+      : model_(model), tip_(tip), eta_(eta), law_(law), options_(options) {
     drive_.load_control = k_bar == 0.0;
     drive_.compliance = (k_bar == 0.0 || std::isinf(k_bar)) ? 0.0 : 1.0 / k_bar;
     k_bar_ = k_bar;
-    const double r = model.stack().substrate_length_ratio();
-    a_end_ = options.a_bar_end > 0.0 ? options.a_bar_end : 1e-2 * std::min(1.0, r);
-    a_max_ = options.a_bar_max > 0.0 ? options.a_bar_max : 100.0 * std::max(1.0, r);
+    a_end_ = options.a_bar_end > 0.0 ? options.a_bar_end : default_a_end(model, tip, eta);
+    a_max_ = options.a_bar_max > 0.0 ? options.a_bar_max : default_a_max(model, tip, eta);
     if (!(a_end_ / eta >= kMinimumScaled && a_max_ / eta <= kMaximumScaled)) {
       throw InputError("kinetics: eta = " + full_precision(eta) + " puts the contact radii [" +
                        full_precision(a_end_) + ", " + full_precision(a_max_) +
                        "] outside the table's range of a/t");
     }
-    model_.table().prepare(a_end_ / eta, a_max_ / eta);
-    const Local l = local_at(model_, eta_, a_end_);
+    // One batch for the usual range; the cone's approach may reach further, a decade of the table
+    // at a time (built on demand, the solver's cost growing with a/t).
+    model_.table().prepare(a_end_ / eta, std::min(a_max_, 100.0 * std::max(1.0, tip_length_ratio(model, tip))) / eta);
+    const Local l = local(a_end_);
     state_.a = a_end_;
     state_.x = hertz_drive(l, drive_);
     state_.hertz = true;
@@ -214,13 +251,26 @@ class Engine {
 
   const State& state() const { return state_; }
   void set_state(const State& s) { state_ = s; }
+
+  // The reduced variables at a_bar; the last two radii are remembered, since the stepper asks
+  // for the right-hand side, its Jacobian and the events at the same state (each a table lookup
+  // of eight Chebyshev series).
+  Local local(double a) const {
+    for (const Local& l : recent_) {
+      if (l.a == a) return l;
+    }
+    recent_[next_recent_] = local_at(model_, tip_, eta_, a);
+    const Local& l = recent_[next_recent_];
+    next_recent_ = 1 - next_recent_;
+    return l;
+  }
   std::vector<KineticsSample>& samples() { return samples_; }
   std::size_t steps() const { return state_.steps; }
   std::vector<std::string>& warnings() { return warnings_; }
   double a_end() const { return a_end_; }
 
   KineticsSample sample(double tau, double x, double a, bool hertz) const {
-    const Local l = local_at(model_, eta_, a);
+    const Local l = local(a);
     KineticsSample s;
     s.tau = tau;
     s.drive = x;
@@ -245,7 +295,7 @@ class Engine {
 
   double energy_now() const {
     const KineticsSample s = sample(state_.tau, state_.x, state_.a, state_.hertz);
-    return kinetics_energy(model_, eta_, s.a_bar, s.penetration, s.load, k_bar_);
+    return kinetics_energy(model_, eta_, s.a_bar, s.penetration, s.load, k_bar_, tip_);
   }
 
   // Runs one segment; returns false when contact is lost during it.
@@ -295,7 +345,7 @@ class Engine {
   }
   // Speed of the adhesionless edge minus the advancing law's speed at G = 0 (> 0: stays on it).
   double hertz_excess(double a) const {
-    const Local l = local_at(model_, eta_, a);
+    const Local l = local(a);
     return rate_ / hertz_drive_slope(l, drive_) - law_.speed_ratio_adv;
   }
 
@@ -318,12 +368,12 @@ class Engine {
                          " (approach): target load " + full_precision(target) +
                          " not reached below a_bar = " + full_precision(a_max_));
       }
-      const Local ln = local_at(model_, eta_, next);
+      const Local ln = local(next);
       const bool reach = ln.p_h >= target;
       const bool release = hertz_excess(next) <= 0.0;
       if (reach || release) {
         const double a_target =
-            reach ? brent([&](double s) { return local_at(model_, eta_, s).p_h - target; }, a, next,
+            reach ? brent([&](double s) { return local(s).p_h - target; }, a, next,
                           "the approach's target load")
                   : HUGE_VAL;
         const double a_release =
@@ -346,7 +396,7 @@ class Engine {
     return 0;
   }
   void set_hertz_point(double a) {
-    const Local l = local_at(model_, eta_, a);
+    const Local l = local(a);
     state_.a = a;
     state_.x = hertz_drive(l, drive_);
     state_.tau = tau0_ + (state_.x - x0_) / rate_;
@@ -355,7 +405,7 @@ class Engine {
     if (!(a2 > a1)) return;
     // W = int P_H dX_H (load control: int P_H dD_H); dissipation = w times the area gained.
     std::function<double(double)> f = [&](double s) {
-      const Local l = local_at(model_, eta_, s);
+      const Local l = local(s);
       return l.p_h * (drive_.load_control ? l.dd_h : hertz_drive_slope(l, drive_));
     };
     detail::GslHandlerOff guard;
@@ -373,7 +423,7 @@ class Engine {
     const auto* e = static_cast<const Engine*>(params);
     const double a = std::exp(y[0]);
     if (!std::isfinite(a) || a <= 0.0) return GSL_EBADFUNC;
-    const Local l = local_at(e->model_, e->eta_, a);
+    const Local l = e->local(a);
     const Mechanics m = mechanics(l, e->drive_, e->drive_at(tau));
     const double adot = edge_speed(e->law_, m);
     const double g = m.d >= 0.0 ? 0.0 : m.g;
@@ -387,7 +437,7 @@ class Engine {
     const auto* e = static_cast<const Engine*>(params);
     const double a = std::exp(y[0]);
     if (!std::isfinite(a) || a <= 0.0) return GSL_EBADFUNC;
-    const Local l = local_at(e->model_, e->eta_, a);
+    const Local l = e->local(a);
     const Mechanics m = mechanics(l, e->drive_, e->drive_at(tau));
     const double adot = edge_speed(e->law_, m);
     const double slope = edge_speed_slope(e->law_, m);
@@ -413,7 +463,7 @@ class Engine {
   enum Event { kLoss = 0, kTarget, kCompression, kStationary, kEvents };
   std::array<double, kEvents> events(double tau, const double y[]) const {
     const double a = std::exp(y[0]);
-    const Local l = local_at(model_, eta_, a);
+    const Local l = local(a);
     const double x = drive_at(tau);
     const Mechanics m = mechanics(l, drive_, x);
     std::array<double, kEvents> v{};
@@ -473,8 +523,6 @@ class Engine {
       if (++state_.steps > options_.max_steps) {
         throw NumericalError("kinetics: more than " + std::to_string(options_.max_steps) + " steps");
       }
-      const double t_prev = t;
-      double y_prev[3] = {y[0], y[1], y[2]};
       if (t > 0.0 && h < 1e-6 * t) {
         commit(t, y);
         tau_base_ = state_.tau;
@@ -482,6 +530,9 @@ class Engine {
         t = 0.0;
         gsl_odeiv2_driver_reset(drv.get());  // same point: the event values `before` still hold
       }
+      // The step's start in the (possibly rebased) local time: an event is bracketed from here.
+      const double t_prev = t;
+      double y_prev[3] = {y[0], y[1], y[2]};
       const double t1 = std::isfinite(tau_stop_) ? tau_stop_ - tau_base_
                                                  : t + std::max(1e6 * std::fabs(h), 1e3 * (std::fabs(t) + 1.0));
       const int status = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys_, &t, t1, &h, y);
@@ -531,7 +582,7 @@ class Engine {
         if (first == kLoss) y_event[0] = std::log(a_end_);
         commit(t_event, y_event);
         if (first == kCompression) {
-          const Local l = local_at(model_, eta_, state_.a);
+          const Local l = local(state_.a);
           if (rate_ / hertz_drive_slope(l, drive_) > law_.speed_ratio_adv) {
             state_.x = hertz_drive(l, drive_);
             state_.hertz = true;
@@ -570,6 +621,7 @@ class Engine {
   }
 
   const AdhesiveModel& model_;
+  KineticsTip tip_;
   double eta_;
   KineticLaw law_;
   KineticsOptions options_;
@@ -584,6 +636,8 @@ class Engine {
   DriveSegment segment_;
   double rate_ = 0.0, tau0_ = 0.0, x0_ = 0.0, tau_stop_ = HUGE_VAL;
   double tau_base_ = 0.0, x_base_ = 0.0;
+  mutable std::array<Local, 2> recent_{};  // a = 0 marks an empty slot (radii are > 0)
+  mutable int next_recent_ = 0;
 };
 
 void validate(const KineticLaw& law, double k_bar, const std::vector<DriveSegment>& protocol) {
@@ -629,7 +683,7 @@ void validate(const KineticLaw& law, double k_bar, const std::vector<DriveSegmen
   }
 }
 
-KineticsResult finish(Engine& engine, const AdhesiveModel& model, double eta, double k_bar,
+KineticsResult finish(Engine& engine, const AdhesiveModel& model, KineticsTip tip, double eta, double k_bar,
                       double energy_start, int last_index, bool keep_samples) {
   KineticsResult result;
   result.steps = engine.steps();
@@ -640,7 +694,7 @@ KineticsResult finish(Engine& engine, const AdhesiveModel& model, double eta, do
   result.energy_start = energy_start;
   const auto& samples = engine.samples();
   const KineticsSample& end = samples.back();
-  result.energy_end = kinetics_energy(model, eta, end.a_bar, end.penetration, end.load, k_bar);
+  result.energy_end = kinetics_energy(model, eta, end.a_bar, end.penetration, end.load, k_bar, tip);
   result.loss = {end.tau, end.load, end.a_bar, end.penetration, end.z};
   bool found = false;
   for (const KineticsSample& p : samples) {
@@ -657,11 +711,11 @@ KineticsResult finish(Engine& engine, const AdhesiveModel& model, double eta, do
 }  // namespace
 
 double kinetics_energy(const AdhesiveModel& model, double eta, double a_bar, double penetration,
-                       double load, double k_bar) {
-  const Local l = local_at(model, eta, a_bar);
+                       double load, double k_bar, KineticsTip tip) {
+  const Local l = local_at(model, tip, eta, a_bar);
   const double d = penetration - l.d_h;
-  const double floor = std::min(a_bar, 1e-3 * std::min(1.0, model.stack().substrate_length_ratio()));
-  const double u_el = hertz_energy(model, eta, a_bar, floor) + l.p_h * d + 0.5 * l.k * d * d;
+  const double floor = std::min(a_bar, 0.1 * default_a_end(model, tip, eta));
+  const double u_el = hertz_energy(model, tip, eta, a_bar, floor) + l.p_h * d + 0.5 * l.k * d * d;
   const double spring = (k_bar > 0.0 && std::isfinite(k_bar)) ? load * load / (2.0 * k_bar) : 0.0;
   return u_el + spring - a_bar * a_bar;
 }
@@ -669,12 +723,28 @@ double kinetics_energy(const AdhesiveModel& model, double eta, double a_bar, dou
 KineticsResult simulate_kinetics(const AdhesiveModel& model, double eta, const KineticLaw& law,
                                  double k_bar, const std::vector<DriveSegment>& protocol,
                                  const KineticsOptions& options) {
-  return sweep_kinetics(model, eta, law, k_bar, protocol, {protocol.empty() ? 1.0 : protocol.back().rate},
-                        true, options)
+  return simulate_kinetics(model, KineticsTip::kSphere, eta, law, k_bar, protocol, options);
+}
+
+KineticsResult simulate_kinetics(const AdhesiveModel& model, KineticsTip tip, double eta,
+                                 const KineticLaw& law, double k_bar,
+                                 const std::vector<DriveSegment>& protocol,
+                                 const KineticsOptions& options) {
+  return sweep_kinetics(model, tip, eta, law, k_bar, protocol,
+                        {protocol.empty() ? 1.0 : protocol.back().rate}, true, options)
       .front();
 }
 
 std::vector<KineticsResult> sweep_kinetics(const AdhesiveModel& model, double eta,
+                                           const KineticLaw& law, double k_bar,
+                                           const std::vector<DriveSegment>& protocol,
+                                           const std::vector<double>& retract_rates, bool keep_samples,
+                                           const KineticsOptions& options) {
+  return sweep_kinetics(model, KineticsTip::kSphere, eta, law, k_bar, protocol, retract_rates,
+                        keep_samples, options);
+}
+
+std::vector<KineticsResult> sweep_kinetics(const AdhesiveModel& model, KineticsTip tip, double eta,
                                            const KineticLaw& law, double k_bar,
                                            const std::vector<DriveSegment>& protocol,
                                            const std::vector<double>& retract_rates, bool keep_samples,
@@ -688,7 +758,7 @@ std::vector<KineticsResult> sweep_kinetics(const AdhesiveModel& model, double et
       throw InputError("retract speed " + full_precision(v) + " not allowed (need a finite speed > 0)");
     }
   }
-  Engine engine(model, eta, law, k_bar, options);
+  Engine engine(model, tip, eta, law, k_bar, options);
   engine.record();
   const double energy_start = engine.energy_now();
   const int last = static_cast<int>(protocol.size()) - 1;
@@ -709,7 +779,7 @@ std::vector<KineticsResult> sweep_kinetics(const AdhesiveModel& model, double et
     if (engine.run(retract, last)) {
       throw NumericalError("kinetics: the final retract ended without loss of contact");
     }
-    results.push_back(finish(engine, model, eta, k_bar, energy_start, last, keep_samples));
+    results.push_back(finish(engine, model, tip, eta, k_bar, energy_start, last, keep_samples));
   }
   return results;
 }
@@ -721,7 +791,14 @@ KineticsScales kinetics_scales(const AdhesiveModel& model, const KineticsSetupSI
                        unit + ")");
     }
   };
-  positive(setup.radius, "radius", "m");
+  if (setup.tip == KineticsTip::kCone) {
+    if (!(setup.half_angle > 0.0 && setup.half_angle < detail::kPi / 2)) {
+      throw InputError("cone half angle = " + full_precision(setup.half_angle) +
+                       " rad not allowed (need 0 < beta < pi/2)");
+    }
+  } else {
+    positive(setup.radius, "radius", "m");
+  }
   positive(setup.thickness, "thickness", "m");
   positive(setup.work, "work", "J/m2");
   positive(setup.v_star, "v_star", "m/s");
@@ -732,13 +809,24 @@ KineticsScales kinetics_scales(const AdhesiveModel& model, const KineticsSetupSI
     throw InputError("spring = " + full_precision(setup.spring) +
                      " not allowed (need >= 0 N/m: 0 is load control, inf displacement control)");
   }
-  const Contact contact(model, setup.radius, setup.thickness, setup.work);
   KineticsScales s;
-  s.length = contact.length_scale();
-  s.penetration = contact.penetration_scale();
-  s.force = contact.force_scale();
+  if (setup.tip == KineticsTip::kCone) {
+    // The cone's JKR units (section 14): L_a = 4 w tan^2(beta)/(pi E*), L_D = 2 w tan(beta)/E*,
+    // F_s = E* L_a L_D.
+    const double modulus = model.stack().reference_modulus();
+    const double tb = std::tan(setup.half_angle);
+    s.length = 4.0 * setup.work * tb * tb / (detail::kPi * modulus);
+    s.penetration = 2.0 * setup.work * tb / modulus;
+    s.force = modulus * s.length * s.penetration;
+    s.eta = setup.thickness / s.length;
+  } else {
+    const Contact contact(model, setup.radius, setup.thickness, setup.work);
+    s.length = contact.length_scale();
+    s.penetration = contact.penetration_scale();
+    s.force = contact.force_scale();
+    s.eta = contact.eta();
+  }
   s.time = s.length / setup.v_star;
-  s.eta = contact.eta();
   s.k_bar = std::isinf(setup.spring) ? setup.spring : setup.spring * s.penetration / s.force;
   s.drive_rate = setup.spring == 0.0 ? s.time / s.force : s.time / s.penetration;
   return s;
@@ -774,7 +862,7 @@ std::vector<KineticsResultSI> simulate_kinetics_si(const AdhesiveModel& model, c
   }
   const bool keep = keep_samples || retract_speeds.empty();
   const std::vector<KineticsResult> runs =
-      sweep_kinetics(model, sc.eta, law, sc.k_bar, protocol, rates, keep, options);
+      sweep_kinetics(model, setup.tip, sc.eta, law, sc.k_bar, protocol, rates, keep, options);
   std::vector<KineticsResultSI> out;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     KineticsResultSI r;

@@ -237,7 +237,7 @@ const ReducedTable::Segment& ReducedTable::segment_for(double u) const {
   throw NumericalError("internal: no interpolation segment for ln(a/t) = " + format_g(u));
 }
 
-ReducedPoint ReducedTable::at(double a_over_t) const {
+ReducedPoint ReducedTable::at(double a_over_t, Variables which) const {
   if (!(a_over_t > 0.0 && std::isfinite(a_over_t))) {
     throw InputError("a/t = " + format_g(a_over_t) + " not allowed (need finite and > 0)");
   }
@@ -247,6 +247,8 @@ ReducedPoint ReducedTable::at(double a_over_t) const {
   const double uc = std::min(std::max(u, s.u_lo), s.u_hi);
   std::array<double, kVariables> v{}, d{};
   for (int j = 0; j < kVariables; ++j) {
+    const bool cone_variable = j == 2 || j == 3, sphere_variable = j == 0 || j == 1;
+    if ((which == Variables::kSphere && cone_variable) || (which == Variables::kCone && sphere_variable)) continue;
     v[j] = std::exp(gsl_cheb_eval(s.value[j], uc));
     d[j] = gsl_cheb_eval(s.deriv[j], uc);
   }

@@ -15,6 +15,7 @@
 
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
+#include "coatcontact/crack_kinetics.hpp"
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
@@ -70,6 +71,10 @@ struct cc_shape_contact {
   std::shared_ptr<const coatcontact::IndenterShape> shape;
   double sphere_radius = 0.0;
   std::unique_ptr<coatcontact::ShapeContact> contact;
+};
+
+struct cc_kinetics {
+  coatcontact::KineticsResultSI run;
 };
 
 namespace {
@@ -1124,6 +1129,146 @@ int cc_shape_contact_pulloff(const cc_shape_contact* contact, double spring_stif
     copy_out({p.load.force, p.load.radius, p.load.penetration, p.displacement.force, p.displacement.radius,
               p.displacement.penetration, p.spring.force, p.spring.radius, p.spring.penetration},
              out);
+  });
+}
+
+}  // extern "C"
+
+// ---- crack kinetics (THEORY.md section 14) ----
+
+namespace {
+
+// The stack and the SI setup of a kinetics call; the coating thickness is the stack's total.
+coatcontact::KineticsSetupSI kinetics_setup(const coatcontact::Stack& stack, const cc_kinetics_setup& c,
+                                            const char* function) {
+  using coatcontact::DriveSegment;
+  coatcontact::KineticsSetupSI setup;
+  if (c.tip != CC_KINETICS_SPHERE && c.tip != CC_KINETICS_CONE) {
+    throw InputError(std::string(function) + ": setup->tip = " + std::to_string(c.tip) +
+                     " not allowed (CC_KINETICS_SPHERE or CC_KINETICS_CONE)");
+  }
+  setup.tip = c.tip == CC_KINETICS_CONE ? coatcontact::KineticsTip::kCone : coatcontact::KineticsTip::kSphere;
+  setup.radius = c.radius;
+  setup.half_angle = c.half_angle;
+  setup.thickness = stack.total_thickness();
+  setup.work = c.work;
+  setup.v_star = c.v_star;
+  setup.n = c.n;
+  setup.v_star_adv = c.v_star_adv;
+  setup.n_adv = c.n_adv;
+  setup.spring = c.spring;
+  const std::size_t count = count_of(c.segment_count, function);
+  if (count > 0) require(c.segments, function, "setup->segments");
+  for (std::size_t i = 0; i < count; ++i) {
+    const cc_kinetics_segment& in = c.segments[i];
+    coatcontact::KineticsSegmentSI out;
+    switch (in.kind) {
+      case CC_KINETICS_APPROACH: out.kind = DriveSegment::Kind::kApproach; out.has_target = true; break;
+      case CC_KINETICS_DWELL: out.kind = DriveSegment::Kind::kDwell; break;
+      case CC_KINETICS_RETRACT: out.kind = DriveSegment::Kind::kRetract; out.has_target = in.has_target != 0; break;
+      default:
+        throw InputError(std::string(function) + ": segment " + std::to_string(i + 1) + ": kind " +
+                         std::to_string(in.kind) + " not allowed (CC_KINETICS_APPROACH, _DWELL or _RETRACT)");
+    }
+    out.speed = in.speed;
+    out.duration = in.duration;
+    out.target_force = in.target_force;
+    setup.protocol.push_back(out);
+  }
+  return setup;
+}
+
+struct KineticsRuns {
+  std::vector<coatcontact::KineticsResultSI> runs;
+  double drive_rate = 0.0;  // reduced drive rate per SI speed
+};
+
+KineticsRuns kinetics_runs(const cc_stack* stack, const cc_kinetics_setup* setup, const std::vector<double>& speeds,
+                           const char* function) {
+  require(stack, function, "stack");
+  require(setup, function, "setup");
+  const coatcontact::Stack built = build(*stack);
+  const coatcontact::KineticsSetupSI si = kinetics_setup(built, *setup, function);
+  const coatcontact::ReducedSolver solver(built);
+  const coatcontact::AdhesiveModel model(solver, tolerance_or_default(setup->tolerance));
+  KineticsRuns out;
+  out.drive_rate = coatcontact::kinetics_scales(model, si).drive_rate;
+  out.runs = coatcontact::simulate_kinetics_si(model, si, speeds, speeds.empty());
+  return out;
+}
+
+}  // namespace
+
+extern "C" {
+
+int cc_kinetics_run(const cc_stack* stack, const cc_kinetics_setup* setup, cc_kinetics** run) {
+  return guarded([&] {
+    require(run, "cc_kinetics_run", "run");
+    auto out = std::make_unique<cc_kinetics>();
+    out->run = kinetics_runs(stack, setup, {}, "cc_kinetics_run").runs.front();
+    *run = out.release();
+  });
+}
+
+void cc_kinetics_destroy(cc_kinetics* run) { delete run; }
+
+int cc_kinetics_size(const cc_kinetics* run, int* rows) {
+  return guarded([&] {
+    require(run, "cc_kinetics_size", "run");
+    require(rows, "cc_kinetics_size", "rows");
+    *rows = static_cast<int>(run->run.t.size());
+  });
+}
+
+int cc_kinetics_states(const cc_kinetics* run, int rows, double* out) {
+  return guarded([&] {
+    require(run, "cc_kinetics_states", "run");
+    require(out, "cc_kinetics_states", "out");
+    const coatcontact::KineticsResultSI& r = run->run;
+    if (rows < 0 || static_cast<std::size_t>(rows) != r.t.size()) {
+      throw InputError("cc_kinetics_states: rows = " + std::to_string(rows) + " but the run has " +
+                       std::to_string(r.t.size()) + " states (cc_kinetics_size)");
+    }
+    for (std::size_t i = 0; i < r.t.size(); ++i) {
+      const double row[CC_KINETICS_COLUMNS] = {r.t[i], r.z[i], r.delta[i], r.a[i], r.force[i], r.g[i]};
+      std::copy(row, row + CC_KINETICS_COLUMNS, out + i * CC_KINETICS_COLUMNS);
+    }
+  });
+}
+
+int cc_kinetics_events(const cc_kinetics* run, double out[CC_KINETICS_EVENT_COLUMNS]) {
+  return guarded([&] {
+    require(run, "cc_kinetics_events", "run");
+    require(out, "cc_kinetics_events", "out");
+    const coatcontact::KineticsResultSI& r = run->run;
+    const double row[CC_KINETICS_EVENT_COLUMNS] = {r.pulloff.force, r.pulloff.time, r.pulloff.radius,
+                                                   r.loss.force,    r.loss.time,    r.loss.radius};
+    std::copy(row, row + CC_KINETICS_EVENT_COLUMNS, out);
+  });
+}
+
+int cc_kinetics_sweep(const cc_stack* stack, const cc_kinetics_setup* setup, int n, const double* retract_speeds,
+                      double* out) {
+  return guarded([&] {
+    const std::size_t count = count_of(n, "cc_kinetics_sweep");
+    if (count == 0) throw InputError("cc_kinetics_sweep: n = 0 (need at least one retract speed)");
+    require(retract_speeds, "cc_kinetics_sweep", "retract_speeds");
+    require(out, "cc_kinetics_sweep", "out");
+    const std::vector<double> speeds(retract_speeds, retract_speeds + count);
+    const KineticsRuns sweep = kinetics_runs(stack, setup, speeds, "cc_kinetics_sweep");
+    std::vector<double> rows;
+    for (const coatcontact::KineticsResultSI& r : sweep.runs) {
+      const double row[CC_KINETICS_SWEEP_COLUMNS] = {r.retract_speed,
+                                                     r.pulloff.force,
+                                                     r.pulloff.time,
+                                                     r.pulloff.radius,
+                                                     r.loss.force,
+                                                     r.loss.time,
+                                                     r.retract_speed * sweep.drive_rate,
+                                                     r.reduced.pulloff.load};
+      rows.insert(rows.end(), row, row + CC_KINETICS_SWEEP_COLUMNS);
+    }
+    std::copy(rows.begin(), rows.end(), out);
   });
 }
 

@@ -40,7 +40,9 @@ std::vector<std::string> split(const std::string& text, char separator) {
   }
 }
 
-// "70deg", "70 deg" or "1.22rad"; a bare number is in degrees. Must lie in (0, 90) degrees.
+}  // namespace
+
+// Declared in commands.hpp (also the cone of `kinetics --shape`).
 double parse_angle(const std::string& text, const std::string& option) {
   std::string value = text;
   double unit = kPi / 180.0;
@@ -58,6 +60,8 @@ double parse_angle(const std::string& text, const std::string& option) {
   }
   return beta;
 }
+
+namespace {
 
 // A factory's InputError, prefixed with the option and its value.
 template <typename Make>

@@ -1,4 +1,4 @@
-// `coatcontact kinetics`: rate-dependent JKR adhesion of a sphere on a coating, the contact
+// `coatcontact kinetics`: rate-dependent JKR adhesion of a sphere or a cone on a coating, the contact
 // edge obeying a crack-kinetics law, driven through a spring (THEORY.md section 14).
 #include <chrono>
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/crack_kinetics.hpp"
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/kinetics_fit.hpp"
@@ -157,7 +158,9 @@ std::vector<DriveSegment> parse_reduced_protocol(const std::string& text) {
 }
 
 const std::vector<OptionSpec> kSpec = {
-    {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", false},
+    {"--radius", "R", "sphere radius (m, or with a unit: mm um nm); the same as --shape sphere:R", false},
+    {"--shape", "SHAPE", "indenter, as for `contact`: sphere:R or cone:BETA (half included angle, e.g. 70deg), "
+                         "the shapes the JKR table serves", false},
     {"--thickness", "t", "film thickness (m, or with a unit); not with --layer", false},
     film_option(),
     layer_option(true),
@@ -173,8 +176,8 @@ const std::vector<OptionSpec> kSpec = {
     {"--eta", "ETA", "reduced run (THEORY.md section 14): film thickness over L_a; then --k-bar and a protocol in "
                      "reduced units (rates dZ/dtau or dP/dtau, loads P, times tau) replace --radius, "
                      "--thickness, --work, --v-star and --spring", false},
-    {"--k-bar", "K", "reduced spring stiffness k L_D/(pi w R) with --eta: 0 load control, inf displacement "
-                     "control", false},
+    {"--k-bar", "K", "reduced spring stiffness k L_D/F_s with --eta (F_s = pi w R for the sphere): 0 load "
+                     "control, inf displacement control", false},
     {"--protocol", "SEGMENTS", "approach:SPEED:FORCE,dwell:TIME,retract:SPEED[:FORCE],... starting at first "
                                "contact and ending with a retract until contact is lost (e.g. "
                                "approach:1um/s:1mN,dwell:1s,retract:10um/s)", true},
@@ -184,7 +187,8 @@ const std::vector<OptionSpec> kSpec = {
                       "(curve 1..N, t in s since first contact, F in N; units by a '# units:' line); each curve "
                       "runs --protocol with its retract at its entry of --retract-speeds; --work, --v-star, --n "
                       "are start values (THEORY.md section 14, fitting)", false},
-    {"--free", "LIST", "with --fit: the fitted parameters among w, v_star, n, t (default w,v_star,n)", false},
+    {"--free", "LIST", "with --fit: the fitted parameters among w, v_star, n, t, E1 (default w,v_star,n; E1 starts "
+                       "at the --film value, each value builds its own table)", false},
     {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
 };
@@ -225,6 +229,16 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
       throw InputError(std::string(option) + ": not with --eta (a reduced run; see --help)");
     }
   }
+  KineticsTip tip = KineticsTip::kSphere;
+  if (const auto text = args.get("--shape")) {
+    const std::string shape = trim(*text);
+    if (shape == "cone") {
+      tip = KineticsTip::kCone;
+    } else if (shape != "sphere") {
+      throw InputError("--shape: '" + *text + "' not allowed with --eta (need sphere or cone: the reduced units "
+                       "carry no R or beta)");
+    }
+  }
   const std::string eta_text = args.require("--eta");
   const double eta = parse_number(eta_text, "--eta");
   if (!(eta >= kMinimumScaled && eta <= kMaximumScaled)) {
@@ -258,8 +272,8 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
   const AdhesiveModel model(solver, tol);
   std::vector<KineticsResult> runs;
   try {
-    runs = rates.empty() ? std::vector<KineticsResult>{simulate_kinetics(model, eta, law, k_bar, protocol)}
-                         : sweep_kinetics(model, eta, law, k_bar, protocol, rates);
+    runs = rates.empty() ? std::vector<KineticsResult>{simulate_kinetics(model, tip, eta, law, k_bar, protocol)}
+                         : sweep_kinetics(model, tip, eta, law, k_bar, protocol, rates);
   } catch (const InputError& e) {
     const std::string message = e.what();
     throw InputError((message.rfind("protocol", 0) == 0 ? "--protocol: " : "") + message);
@@ -267,8 +281,15 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   Header h{{"command", "kinetics"}};
   add_material_header(h, stack);
-  h.emplace_back("units", "reduced (THEORY.md section 14): a_bar = a/L_a, D = delta/L_D, Z = z/L_D, "
-                          "P = F/(pi w R), tau = t v*/L_a");
+  if (tip == KineticsTip::kCone) {
+    h.emplace_back("indenter", "cone (Pi_c, Delta_c)");
+    h.emplace_back("units", "reduced (THEORY.md section 14, the cone): a_bar = a/L_a, D = delta/L_D, Z = z/L_D, "
+                            "P = F/F_s, tau = t v*/L_a; L_a = 4 w tan^2(beta)/(pi E1*), L_D = 2 w tan(beta)/E1*, "
+                            "F_s = E1* L_a L_D");
+  } else {
+    h.emplace_back("units", "reduced (THEORY.md section 14): a_bar = a/L_a, D = delta/L_D, Z = z/L_D, "
+                            "P = F/(pi w R), tau = t v*/L_a");
+  }
   h.emplace_back("eta = t/L_a", num(eta));
   h.emplace_back("k_bar", std::isinf(k_bar) ? std::string("inf (displacement control)")
                           : k_bar == 0.0    ? std::string("0 (load control: rates are dP/dtau)")
@@ -310,9 +331,32 @@ struct SiSetup {
   KineticsSetupSI setup;
 };
 
+// --radius R or --shape sphere:R|cone:BETA (the shapes the JKR table serves, section 14).
+void parse_tip(const Arguments& args, KineticsSetupSI& setup) {
+  const auto shape = args.get("--shape");
+  if (shape && args.has("--radius")) throw InputError("--radius: not with --shape (give sphere:R there)");
+  if (!shape) {
+    setup.radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
+    return;
+  }
+  const std::string text = trim(*shape);
+  const std::size_t colon = text.find(':');
+  const std::string kind = text.substr(0, colon);
+  const std::string value = colon == std::string::npos ? "" : text.substr(colon + 1);
+  if (kind == "sphere" && !value.empty()) {
+    setup.radius = parse_quantity(value, Quantity::kLength, "--shape");
+  } else if (kind == "cone" && !value.empty()) {
+    setup.tip = KineticsTip::kCone;
+    setup.half_angle = parse_angle(value, "--shape");
+  } else {
+    throw InputError("--shape: '" + *shape + "' not allowed (kinetics serves sphere:R and cone:BETA, the shapes "
+                     "the JKR table serves)");
+  }
+}
+
 SiSetup parse_si_setup(const Arguments& args) {
   KineticsSetupSI setup;
-  setup.radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
+  parse_tip(args, setup);
   const double film_thickness =
       args.has("--layer") ? 0.0 : parse_quantity(args.require("--thickness"), Quantity::kLength, "--thickness");
   Stack stack = parse_stack(args);
@@ -381,6 +425,7 @@ std::vector<fit::KineticsCurve> read_fit_curves(const Arguments& args, const Kin
 ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time_point started) {
   const SiSetup parsed = parse_si_setup(args);
   const KineticsSetupSI& setup = parsed.setup;
+  if (setup.tip != KineticsTip::kSphere) throw InputError("--shape: with --fit only sphere:R (or --radius)");
   if (setup.protocol.back().kind != DriveSegment::Kind::kRetract || setup.protocol.back().has_target) {
     throw InputError("--protocol: with --fit the last segment is the retract until contact is lost (retract:SPEED)");
   }
@@ -394,14 +439,14 @@ ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time
   problem.n_adv = setup.n_adv;
   problem.solver_tolerance = solver_tolerance(args);
   if (const auto text = args.get("--free")) {
-    problem.free = {{false, false, false, false}};
+    problem.free = {{false, false, false, false, false}};
     for (const std::string& raw : split_on(*text, ',')) {
       const std::string name = trim(raw);
       int which = -1;
       for (int j = 0; j < fit::kKineticsParameterCount; ++j) {
         if (name == fit::kinetics_parameter_name(j)) which = j;
       }
-      if (which < 0) throw InputError("--free: '" + name + "' not allowed (names among w, v_star, n, t)");
+      if (which < 0) throw InputError("--free: '" + name + "' not allowed (names among w, v_star, n, t, E1)");
       problem.free[static_cast<std::size_t>(which)] = true;
     }
   }
@@ -466,13 +511,14 @@ int run_kinetics(const Args& raw) {
     const Arguments args(raw, kSpec);
     if (args.help()) {
       std::cout << usage("kinetics",
-                         "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w "
+                         "--radius R|--shape sphere:R|cone:BETA --thickness t --film E1,nu1 "
+                         "--substrate E0,nu0|rigid --work w "
                          "--v-star V --n N --spring k --protocol SEGMENTS [--retract-speeds LIST]\n"
-                         "       coatcontact kinetics --fit FILE [--free w,v_star,n] (and the options above; "
+                         "       coatcontact kinetics --fit FILE [--free w,v_star,n,t,E1] (and the options above; "
                          "--retract-speeds: one per curve)\n"
-                         "       coatcontact kinetics --eta ETA --film E1,nu1 --substrate E0,nu0|rigid --n N "
-                         "--k-bar K --protocol SEGMENTS [--retract-speeds LIST]",
-                         "Rate-dependent JKR adhesion of a sphere on a coating (THEORY.md section 14): the\n"
+                         "       coatcontact kinetics --eta ETA [--shape sphere|cone] --film E1,nu1 "
+                         "--substrate E0,nu0|rigid --n N --k-bar K --protocol SEGMENTS [--retract-speeds LIST]",
+                         "Rate-dependent JKR adhesion of a sphere or a cone on a coating (THEORY.md section 14): the\n"
                          "contact edge moves at the speed the crack-kinetics law gives for G - w, the base\n"
                          "moves z(t) through a spring (F = k (z - delta)). Prints t, z, delta, a, F, G from\n"
                          "first contact to the loss of contact, with the pull-off (most tensile force of the\n"
@@ -483,7 +529,10 @@ int run_kinetics(const Args& raw) {
     }
     const auto started = std::chrono::steady_clock::now();
     if (args.has("--eta")) return run_reduced_kinetics(args, started);
-    for (const char* option : {"--radius", "--work", "--v-star", "--spring"}) {
+    if (!args.has("--radius") && !args.has("--shape")) {
+      throw InputError("missing required option --radius or --shape (or --eta for a reduced run)");
+    }
+    for (const char* option : {"--work", "--v-star", "--spring"}) {
       if (!args.has(option)) {
         throw InputError(std::string("missing required option ") + option + " (or --eta for a reduced run)");
       }
@@ -515,7 +564,8 @@ int run_kinetics(const Args& raw) {
     try {
       scales = kinetics_scales(model, setup);
     } catch (const InputError& e) {
-      throw InputError("--radius, --thickness, --work, --film: " + std::string(e.what()));
+      throw InputError(std::string(args.has("--shape") ? "--shape" : "--radius") + ", --thickness, --work, --film: " +
+                       std::string(e.what()));
     }
     std::vector<KineticsResultSI> runs;
     try {
@@ -526,8 +576,13 @@ int run_kinetics(const Args& raw) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
+    const bool cone = setup.tip == KineticsTip::kCone;
     Header h{{"command", "kinetics"}};
-    h.emplace_back("sphere radius R [m]", num(setup.radius));
+    if (cone) {
+      h.emplace_back("cone half included angle beta [deg]", num(setup.half_angle * 180.0 / detail::kPi));
+    } else {
+      h.emplace_back("sphere radius R [m]", num(setup.radius));
+    }
     h.emplace_back("film thickness t [m]", num(setup.thickness));
     h.emplace_back("work of adhesion w [J/m2]", num(setup.work));
     add_material_header(h, stack);
@@ -541,12 +596,18 @@ int run_kinetics(const Args& raw) {
                             : std::isinf(setup.spring) ? std::string("displacement control")
                                                        : "spring k = " + num(setup.spring) + " N/m, F = k (z - delta)");
     h.emplace_back("protocol", args.require("--protocol"));
-    h.emplace_back("length scale L_a = (pi w R^2/E1*)^(1/3) [m]", num(scales.length));
-    h.emplace_back("penetration scale L_D = L_a^2/R [m]", num(scales.penetration));
-    h.emplace_back("force scale pi w R [N]", num(scales.force));
+    if (cone) {
+      h.emplace_back("length scale L_a = 4 w tan^2(beta)/(pi E1*) [m]", num(scales.length));
+      h.emplace_back("penetration scale L_D = 2 w tan(beta)/E1* [m]", num(scales.penetration));
+      h.emplace_back("force scale F_s = E1* L_a L_D [N]", num(scales.force));
+    } else {
+      h.emplace_back("length scale L_a = (pi w R^2/E1*)^(1/3) [m]", num(scales.length));
+      h.emplace_back("penetration scale L_D = L_a^2/R [m]", num(scales.penetration));
+      h.emplace_back("force scale pi w R [N]", num(scales.force));
+    }
     h.emplace_back("time scale L_a/v* [s]", num(scales.time));
     h.emplace_back("eta = t/L_a", num(scales.eta));
-    if (!load_control) h.emplace_back("k_bar = k L_D/(pi w R)", num(scales.k_bar));
+    if (!load_control) h.emplace_back(cone ? "k_bar = k L_D/F_s" : "k_bar = k L_D/(pi w R)", num(scales.k_bar));
     h.emplace_back(load_control ? "reduced force rate dP/dtau per N/s" : "reduced base speed dZ/dtau per m/s",
                    num(scales.drive_rate));
     h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));

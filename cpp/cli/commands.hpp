@@ -23,6 +23,9 @@ int run_afm(const Args& args);       // cmd_afm.cpp: AFM force curves from instr
 // profile:FILE; cmd_contact.cpp), shared by `contact` and `fit`. InputError naming --shape.
 // `profile_end` is set to "FILE:LINE" of a profile's last point.
 std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::string& profile_end);
+// A cone's half included angle: "70deg", "70 deg" or "1.22rad", a bare number in degrees, in
+// (0, 90) degrees (cmd_contact.cpp). InputError naming `option`.
+double parse_angle(const std::string& text, const std::string& option);
 int run_kinetics(const Args& args);  // cmd_kinetics.cpp: rate-dependent adhesion (crack kinetics)
 // (further subcommands are declared here as they land)
 

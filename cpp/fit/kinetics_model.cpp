@@ -36,8 +36,54 @@ using coatcontact::detail::short_text;
 // then acts on the relative change of p_j).
 constexpr double kOffset = 10.0;
 
+// The stack with the top layer's Young modulus set to e1.
+Stack with_film_modulus(const Stack& stack, double e1) {
+  std::vector<Layer> layers = stack.layers();
+  layers.front().material.youngs_modulus = e1;
+  return Stack(std::move(layers), stack.substrate(), stack.indenter());
+}
+
+// JKR models of the stack at the values of E1 a fit visits: the value at the parameters and its
+// Jacobian neighbours e^(+-h), most recent first (each builds its own table, THEORY.md section 14,
+// fitting). The value of the given model's own stack is served by that model.
+class FilmModulusModels {
+ public:
+  FilmModulusModels(const AdhesiveModel& base, double tolerance) : base_(base), tolerance_(tolerance) {}
+  const AdhesiveModel& at(double e1) {
+    if (e1 == base_.stack().top().youngs_modulus) return base_;
+    for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+      if ((*it)->e1 == e1) {
+        std::rotate(entries_.begin(), it, it + 1);
+        return *entries_.front()->model;
+      }
+    }
+    if (entries_.size() >= kCapacity) entries_.pop_back();
+    auto entry = std::make_unique<Entry>();
+    entry->e1 = e1;
+    entry->solver = std::make_unique<ReducedSolver>(with_film_modulus(base_.stack(), e1));
+    entry->model = std::make_unique<AdhesiveModel>(*entry->solver, tolerance_);
+    entries_.insert(entries_.begin(), std::move(entry));
+    ++built_;
+    return *entries_.front()->model;
+  }
+  long built() const { return built_; }
+
+ private:
+  struct Entry {
+    double e1 = 0.0;
+    std::unique_ptr<ReducedSolver> solver;
+    std::unique_ptr<AdhesiveModel> model;  // refers to *solver: declared after it
+  };
+  static constexpr std::size_t kCapacity = 4;
+  const AdhesiveModel& base_;
+  double tolerance_;
+  std::vector<std::unique_ptr<Entry>> entries_;
+  long built_ = 0;
+};
+
 struct KineticsContext {
   const AdhesiveModel* model = nullptr;
+  FilmModulusModels* models = nullptr;
   const std::vector<KineticsCurve>* curves = nullptr;
   const KineticsFitProblem* problem = nullptr;
   std::vector<int> free_index;
@@ -125,14 +171,15 @@ std::vector<double> model_forces(KineticsContext& ctx, const std::array<double, 
     setup.protocol = curve.protocol;
     return setup;
   };
+  const AdhesiveModel& model = ctx.models->at(p[kKinFilmModulus]);
   std::vector<KineticsResultSI> runs;
   if (curves.size() > 1 && shared_prefix(curves)) {
     std::vector<double> speeds;
     for (const KineticsCurve& c : curves) speeds.push_back(c.protocol.back().speed);
-    runs = simulate_kinetics_si(*ctx.model, setup_of(curves.front()), speeds, true, problem.options);
+    runs = simulate_kinetics_si(model, setup_of(curves.front()), speeds, true, problem.options);
   } else {
     for (const KineticsCurve& curve : curves) {
-      runs.push_back(simulate_kinetics_si(*ctx.model, setup_of(curve), {}, true, problem.options).front());
+      runs.push_back(simulate_kinetics_si(model, setup_of(curve), {}, true, problem.options).front());
     }
   }
   ctx.simulations += static_cast<long>(curves.size());
@@ -206,6 +253,16 @@ int jacobian_callback(const gsl_vector* x, void* params, gsl_matrix* J) {
       for (std::size_t i = 0; i < columns[j].size(); ++i) gsl_matrix_set(J, i, j, columns[j][i] * ctx->scale[i]);
     }
     return GSL_SUCCESS;
+  } catch (const std::runtime_error& e) {
+    // The trust region has reached parameters next to which a curve cannot be simulated (e.g. w
+    // and v* both tiny, where w (v/v*)^n mimics the data): not a fault of the input.
+    const auto p = ctx->parameters(x);
+    ctx->error = std::make_exception_ptr(NumericalError(
+        "kinetics fit: the fit reached w = " + short_text(p[kKinWork]) + ", v_star = " + short_text(p[kKinSpeed]) +
+        ", n = " + short_text(p[kKinExponent]) + ", t = " + short_text(p[kKinThickness]) + ", E1 = " +
+        short_text(p[kKinFilmModulus]) + ", where the curves cannot be simulated (" + e.what() +
+        "); start closer or fix a parameter"));
+    return GSL_EBADFUNC;
   } catch (...) {
     ctx->error = std::current_exception();
     return GSL_EBADFUNC;
@@ -222,6 +279,9 @@ void validate(const std::vector<KineticsCurve>& curves, const KineticsFitProblem
   positive(problem.work, "work");
   positive(problem.v_star, "v_star");
   positive(problem.n, "n");
+  if (!(problem.film_modulus <= 0.0 || std::isfinite(problem.film_modulus))) {
+    throw InputError("kinetics fit: film_modulus must be finite (got " + short_text(problem.film_modulus) + ")");
+  }
   std::size_t points = 0;
   std::set<double> retract_speeds;
   for (std::size_t c = 0; c < curves.size(); ++c) {
@@ -253,7 +313,7 @@ void validate(const std::vector<KineticsCurve>& curves, const KineticsFitProblem
     retract_speeds.insert(curve.protocol.back().speed);
   }
   const auto free_count = static_cast<std::size_t>(std::count(problem.free.begin(), problem.free.end(), true));
-  if (free_count == 0) throw InputError("kinetics fit: no free parameter: name at least one of w, v_star, n, t");
+  if (free_count == 0) throw InputError("kinetics fit: no free parameter: name at least one of w, v_star, n, t, E1");
   if (points <= free_count) {
     throw InputError("kinetics fit: " + std::to_string(points) + " points for " + std::to_string(free_count) +
                      " free parameters: a fit needs more points than free parameters");
@@ -289,6 +349,7 @@ const char* kinetics_parameter_name(int parameter) {
     case kKinSpeed: return "v_star";
     case kKinExponent: return "n";
     case kKinThickness: return "t";
+    case kKinFilmModulus: return "E1";
     default: return "?";
   }
 }
@@ -300,18 +361,25 @@ Result fit_kinetics(const Stack& stack, const std::vector<KineticsCurve>& curves
   return fit_kinetics(model, curves, problem);
 }
 
-Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>& measured_curves,
-                    const KineticsFitProblem& problem) {
+namespace {
+
+// One trust-region fit from the problem's start values.
+Result fit_from_start(const AdhesiveModel& model, const std::vector<KineticsCurve>& measured_curves,
+                      const KineticsFitProblem& problem) {
   const auto clock_start = std::chrono::steady_clock::now();
-  validate(measured_curves, problem);
   const std::vector<KineticsCurve> curves = up_to_pulloff(measured_curves);
   coatcontact::detail::GslHandlerOff handler_off;
 
+  // Other values of E1 are solved (ReducedSolver) at the tolerance of the given model's solver.
+  const auto* solver_source = dynamic_cast<const SolverSource*>(&model.table().source());
+  FilmModulusModels models(model, solver_source != nullptr ? solver_source->tolerance() : problem.solver_tolerance);
   KineticsContext ctx;
   ctx.model = &model;
+  ctx.models = &models;
   ctx.curves = &curves;
   ctx.problem = &problem;
-  ctx.start = {problem.work, problem.v_star, problem.n, problem.thickness};
+  const double e1 = problem.film_modulus > 0.0 ? problem.film_modulus : model.stack().top().youngs_modulus;
+  ctx.start = {problem.work, problem.v_star, problem.n, problem.thickness, e1};
   for (int j = 0; j < kKineticsParameterCount; ++j) {
     if (problem.free[static_cast<std::size_t>(j)]) ctx.free_index.push_back(j);
   }
@@ -361,9 +429,9 @@ Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>
 
   Result result;
   for (int j = 0; j < kKineticsParameterCount; ++j) {
-    static const char* const units[] = {"J/m2", "m/s", "", "m"};
+    static const char* const units[] = {"J/m2", "m/s", "", "m", "Pa"};
     static const ParameterKind kinds[] = {ParameterKind::kWork, ParameterKind::kSpeed, ParameterKind::kExponent,
-                                          ParameterKind::kThickness};
+                                          ParameterKind::kThickness, ParameterKind::kModulus};
     result.parameters.push_back({kinds[j], 0, kinetics_parameter_name(j), units[j]});
     result.free.push_back(problem.free[static_cast<std::size_t>(j)]);
   }
@@ -395,6 +463,30 @@ Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>
   }
   result.solver_calls = ctx.simulations;  // kinetics simulations (one per curve and evaluation)
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace
+
+Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>& measured_curves,
+                    const KineticsFitProblem& problem) {
+  validate(measured_curves, problem);
+  const bool law_free = problem.free[kKinSpeed] || problem.free[kKinExponent];
+  if (!problem.free[kKinFilmModulus] || !law_free) return fit_from_start(model, measured_curves, problem);
+  // E1 free with the law: first E1 (and w, t if free) with the law held at its start, then all
+  // (THEORY.md section 14, fitting: from a start off in E1 the first full step tends to leave into
+  // the valley w, v* -> 0 where w (v/v*)^n mimics the data).
+  KineticsFitProblem first = problem;
+  first.free[kKinSpeed] = first.free[kKinExponent] = false;
+  const Result stage = fit_from_start(model, measured_curves, first);
+  KineticsFitProblem second = problem;
+  second.work = stage.value[kKinWork];
+  second.thickness = stage.value[kKinThickness];
+  second.film_modulus = stage.value[kKinFilmModulus];
+  Result result = fit_from_start(model, measured_curves, second);
+  result.iterations += stage.iterations;
+  result.solver_calls += stage.solver_calls;
+  result.seconds += stage.seconds;
   return result;
 }
 

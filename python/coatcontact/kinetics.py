@@ -31,12 +31,33 @@ def _materials(film, substrate):
     return e1, nu1, False, e0, nu0
 
 
-def kinetics(*, film, substrate, radius, thickness, work, v_star, n, spring, protocol,
+def _tip(radius, shape):
+    """(R, beta) of the indenter: a sphere (beta = 0) or a cone (section 14, "The cone")."""
+    if shape is None:
+        if radius is None:
+            raise ValueError("radius or shape: give the sphere's radius=R or shape=('sphere', R) / ('cone', beta)")
+        return float(radius), 0.0
+    if radius is not None:
+        raise ValueError("radius: not with shape (give shape=('sphere', R))")
+    if isinstance(shape, (tuple, list)) and len(shape) == 2 and shape[0] in ("sphere", "cone"):
+        value = float(shape[1])
+        if shape[0] == "sphere":
+            return value, 0.0
+        if not 0.0 < value < np.pi / 2:
+            raise ValueError("shape: cone half angle %r rad not allowed (need 0 < beta < pi/2)" % (shape[1],))
+        return 0.0, value
+    raise ValueError("shape: expected ('sphere', R) or ('cone', beta [rad]), the shapes the JKR table serves; "
+                     "got %r" % (shape,))
+
+
+def kinetics(*, film, substrate, thickness, work, v_star, n, spring, protocol, radius=None, shape=None,
              v_star_adv=None, n_adv=None, retract_speeds=None, tol=1e-8):
-    """Rate-dependent JKR adhesion of a sphere on a coating (section 14).
+    """Rate-dependent JKR adhesion of a sphere or a cone on a coating (section 14).
 
     film        (E1 [Pa], nu1);  substrate  (E0 [Pa], nu0) or "rigid".
-    radius      sphere radius R [m];  thickness  coating thickness t [m];  work  w [J/m^2].
+    radius      sphere radius R [m]; or shape=("sphere", R) or ("cone", beta), beta the half
+                included angle in rad (as shape_contact); thickness  coating thickness t [m];
+                work  w [J/m^2].
     v_star, n   receding edge: G - w = w (|v|/v_star)^n  (v_star [m/s], n > 0).
     v_star_adv, n_adv
                 advancing edge: w - G = w (v/v_star_adv)^n_adv (default: the receding values).
@@ -51,19 +72,21 @@ def kinetics(*, film, substrate, radius, thickness, work, v_star, n, spring, pro
     Returns a dict: t [s], z [m], delta [m], a [m], F [N], G [J/m^2] (arrays, F compressive
     positive); pulloff (F, t, a: the most tensile force of the last retract); loss (F, t, a
     where contact is lost); work, dissipation (reduced, pi w l^2); scales (l, delta_scale,
-    F_scale, t_scale = l/v_star, eta, k_bar, drive_rate). With retract_speeds: scales and
+    F_scale, t_scale = l/v_star, eta, k_bar, drive_rate; the cone's l, delta_scale, F_scale are
+    its own, section 14). With retract_speeds: scales and
     sweep (arrays V, F, t, a, F_loss, t_loss and the reduced pull-off P).
     """
     e1, nu1, rigid, e0, nu0 = _materials(film, substrate)
+    tip_radius, half_angle = _tip(radius, shape)
     segments = [_segment(item) for item in protocol]
     speeds = [] if retract_speeds is None else [float(v) for v in np.atleast_1d(retract_speeds)]
-    return _core.kinetics(e1, nu1, rigid, e0, nu0, float(radius), float(thickness), float(work),
+    return _core.kinetics(e1, nu1, rigid, e0, nu0, tip_radius, half_angle, float(thickness), float(work),
                           float(v_star), float(n), 0.0 if v_star_adv is None else float(v_star_adv),
                           0.0 if n_adv is None else float(n_adv), float(spring), segments, speeds,
                           float(tol))
 
 
-_FIT_NAMES = ("w", "v_star", "n", "t")
+_FIT_NAMES = ("w", "v_star", "n", "t", "E1")
 
 
 def kinetics_fit(*, film, substrate, radius, thickness, work, v_star, n, curves,
@@ -73,21 +96,23 @@ def kinetics_fit(*, film, substrate, radius, thickness, work, v_star, n, curves,
 
     film, substrate, radius, thickness, v_star_adv, n_adv, tol: as kinetics().
     work, v_star, n
-                start values of the free parameters, values of the fixed ones.
+                start values of the free parameters, values of the fixed ones (E1 starts at
+                film[0]).
     curves      list of dicts, one per measured curve: "protocol" (as kinetics(), from first
                 contact, ending with the retract), "spring" k [N/m], "t" [s since first
                 contact], "F" [N], optional "sigma_F" [N] (all curves or none).
-    free        names among "w", "v_star", "n", "t". v_star and n together need curves at two
-                retract speeds at least (ValueError otherwise).
+    free        names among "w", "v_star", "n", "t", "E1". v_star and n together need curves
+                at two retract speeds at least (ValueError otherwise); each value of E1 the fit
+                tries builds its own table (slower: seconds per iteration).
 
-    Returns a dict: names, values, errors, free (per parameter, in the order w, v_star, n, t),
+    Returns a dict: names, values, errors, free (per parameter, in the order w, v_star, n, t, E1),
     correlation, F_model and residual (all points of all curves in order), r_squared,
     chi2_per_dof (None without sigma_F), residual_sigma, iterations, simulations, seconds.
     """
     e1, nu1, rigid, e0, nu0 = _materials(film, substrate)
     unknown = [name for name in free if name not in _FIT_NAMES]
     if unknown:
-        raise ValueError("free: unknown parameter %r (allowed: w, v_star, n, t)" % unknown[0])
+        raise ValueError("free: unknown parameter %r (allowed: w, v_star, n, t, E1)" % unknown[0])
     packed = []
     for index, curve in enumerate(curves):
         missing = [key for key in ("protocol", "spring", "t", "F") if key not in curve]

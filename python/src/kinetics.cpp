@@ -91,7 +91,7 @@ py::dict kinetics_fit(py::object numerical_error, double film_e, double film_nu,
                       double v_star_adv, double n_adv, const std::vector<Curve>& curves,
                       const std::vector<bool>& free, double tol) {
   using namespace coatcontact;
-  if (free.size() != static_cast<std::size_t>(fit::kKineticsParameterCount)) throw py::value_error("free: four flags");
+  if (free.size() != static_cast<std::size_t>(fit::kKineticsParameterCount)) throw py::value_error("free: five flags");
   fit::KineticsFitProblem problem;
   problem.radius = radius;
   problem.thickness = thickness;
@@ -139,12 +139,16 @@ py::dict kinetics_fit(py::object numerical_error, double film_e, double film_nu,
 }
 
 py::dict kinetics(py::object numerical_error, double film_e, double film_nu, bool rigid, double sub_e, double sub_nu,
-                  double radius, double thickness, double work, double v_star, double n, double v_star_adv,
-                  double n_adv, double spring, const std::vector<Segment>& protocol,
+                  double radius, double half_angle, double thickness, double work, double v_star, double n,
+                  double v_star_adv, double n_adv, double spring, const std::vector<Segment>& protocol,
                   const std::vector<double>& retract_speeds, double tol) {
   using namespace coatcontact;
   KineticsSetupSI setup;
   setup.radius = radius;
+  if (half_angle != 0.0) {  // a cone (section 14, "The cone")
+    setup.tip = KineticsTip::kCone;
+    setup.half_angle = half_angle;
+  }
   setup.thickness = thickness;
   setup.work = work;
   setup.v_star = v_star;
@@ -218,10 +222,10 @@ void register_kinetics(py::module_& m) {
                         v_star, n, v_star_adv, n_adv, curves, free, tol);
   });
   m.def("kinetics", [m](double film_e, double film_nu, bool rigid, double sub_e, double sub_nu, double radius,
-                        double thickness, double work, double v_star, double n, double v_star_adv, double n_adv,
-                        double spring, const std::vector<Segment>& protocol,
+                        double half_angle, double thickness, double work, double v_star, double n,
+                        double v_star_adv, double n_adv, double spring, const std::vector<Segment>& protocol,
                         const std::vector<double>& retract_speeds, double tol) {
-    return kinetics(m.attr("NumericalError"), film_e, film_nu, rigid, sub_e, sub_nu, radius, thickness, work,
-                    v_star, n, v_star_adv, n_adv, spring, protocol, retract_speeds, tol);
+    return kinetics(m.attr("NumericalError"), film_e, film_nu, rigid, sub_e, sub_nu, radius, half_angle, thickness,
+                    work, v_star, n, v_star_adv, n_adv, spring, protocol, retract_speeds, tol);
   });
 }

@@ -65,3 +65,30 @@ def test_bad_input(change, fragment):
 def test_displacement_control_accepts_inf():
     r = cc.kinetics(**dict(README, spring=math.inf), protocol=PROTOCOL)
     assert r["pulloff"]["F"] < 0.0
+
+
+def test_cone_keyword_as_the_cli(cli):
+    """shape=("cone", beta) (rad, as shape_contact) runs the cone of `kinetics --shape cone:BETA`
+    (section 14, "The cone"); radius= and shape= together are refused."""
+    cone = {k: v for k, v in README.items() if k != "radius"}
+    r = cc.kinetics(**cone, shape=("cone", math.radians(70.0)), protocol=PROTOCOL)
+    header, rows, _ = cli("kinetics", "--film", "1e6,0.49", "--substrate", "70e9,0.22", "--shape", "cone:70deg",
+                          "--thickness", "50e-6", "--work", "0.04", "--v-star", "1e-6", "--n", "0.6",
+                          "--spring", "500", "--protocol", "approach:1um/s:1mN,dwell:1s,retract:10um/s")
+    pulloff = float([h for h in header if h.startswith("# pull-off (most")][0].split(": ")[1])
+    assert pulloff == pytest.approx(r["pulloff"]["F"], rel=1e-15)
+    assert len(rows) == len(r["t"])
+    assert r["F"].max() == pytest.approx(1e-3, rel=1e-9)
+    # The cone's own force scale F_s = E1* L_a L_D (section 14).
+    e1 = 1e6 / (1 - 0.49 ** 2)
+    tb = math.tan(math.radians(70.0))
+    l_a, l_d = 4 * 0.04 * tb ** 2 / (math.pi * e1), 2 * 0.04 * tb / e1
+    assert r["scales"]["F_scale"] == pytest.approx(e1 * l_a * l_d, rel=1e-14)
+    sphere = cc.kinetics(**cone, shape=("sphere", 2e-3), protocol=PROTOCOL)
+    assert sphere["pulloff"]["F"] == cc.kinetics(**README, protocol=PROTOCOL)["pulloff"]["F"]
+    with pytest.raises(ValueError, match="radius"):
+        cc.kinetics(**README, shape=("cone", 1.2), protocol=PROTOCOL)
+    with pytest.raises(ValueError, match="shape"):
+        cc.kinetics(**cone, shape=("punch", 1e-3), protocol=PROTOCOL)
+    with pytest.raises(ValueError, match="half angle"):
+        cc.kinetics(**cone, shape=("cone", 2.0), protocol=PROTOCOL)

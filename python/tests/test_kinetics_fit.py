@@ -24,8 +24,8 @@ def curves():
 
 def test_recovers_noise_free_curves(curves):
     r = cc.kinetics_fit(**MATERIALS, work=0.06, v_star=3e-6, n=0.45, curves=curves)
-    assert r["names"] == ["w", "v_star", "n", "t"]
-    assert r["free"] == [True, True, True, False]
+    assert r["names"] == ["w", "v_star", "n", "t", "E1"]
+    assert r["free"] == [True, True, True, False, False]
     # Noise-free data on the true run's own states: recovered to 1e-3 (cli_kinetics_fit.sh).
     np.testing.assert_allclose(r["values"][:3], [0.04, 1e-6, 0.6], rtol=1e-3)
     assert r["chi2_per_dof"] is None and r["r_squared"] > 0.999999
@@ -40,7 +40,15 @@ def test_one_speed_refused(curves):
 
 def test_bad_input(curves):
     with pytest.raises(ValueError, match="free"):
-        cc.kinetics_fit(**MATERIALS, work=0.04, v_star=1e-6, n=0.6, curves=curves, free=("w", "E1"))
+        cc.kinetics_fit(**MATERIALS, work=0.04, v_star=1e-6, n=0.6, curves=curves, free=("w", "E0"))
     with pytest.raises(ValueError, match="spring"):
         cc.kinetics_fit(**MATERIALS, work=0.04, v_star=1e-6, n=0.6, curves=[{"protocol": PREFIX, "t": [0.0],
                                                                              "F": [0.0]}])
+
+
+def test_film_modulus_free(curves):
+    """free=("w", "E1"): the film's modulus from 1.1 MPa (each trial E1 builds its own table)."""
+    start = dict(MATERIALS, film=(1.1e6, 0.49))
+    r = cc.kinetics_fit(**start, work=0.045, v_star=1e-6, n=0.6, curves=curves, free=("w", "E1"))
+    assert r["free"] == [True, False, False, False, True]
+    np.testing.assert_allclose(r["values"][[0, 4]], [0.04, 1e6], rtol=1e-6)

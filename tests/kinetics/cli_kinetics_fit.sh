@@ -1,7 +1,7 @@
 #!/bin/sh
 # `coatcontact kinetics --fit` (THEORY.md section 14, fitting): curves made by `kinetics` itself at
 # three retract speeds (every third state, no noise) are fitted back from a start 1.5x, 3x, 0.75x
-# off, and with the film thickness free from 70 um; bad input exits 2 naming the option and
+# off, with the film thickness free from 70 um, and with the film modulus free from 1.15 MPa; bad input exits 2 naming the option and
 # writes nothing.
 cli="$1"
 tmp=$(mktemp -d) || exit 1
@@ -40,6 +40,12 @@ check 'n' 0.6
   --output "$tmp/fit.tsv" 2>"$tmp/err" || { echo "FAIL: fit with t free"; cat "$tmp/err"; fail=1; }
 check 't \[m\]' 5e-05
 check 'n' 0.6
+# The film modulus (each trial E1 builds its own table): from 1.15 MPa, with w, v*, n.
+"$cli" kinetics --film 1.15e6,0.49 --substrate 70e9,0.22 --radius 2mm --spring 500 $t50 --work 0.045 \
+  --v-star 1.5um/s --n 0.55 --protocol "$prefix,retract:1um/s" --retract-speeds 1um/s,10um/s,100um/s --fit "$tmp/curves.tsv" \
+  --free w,v_star,n,E1 --output "$tmp/fit.tsv" 2>"$tmp/err" || { echo "FAIL: fit with E1 free"; cat "$tmp/err"; fail=1; }
+check 'E1 \[Pa\]' 1e+06
+check 'w \[J/m2\]' 0.04
 grep -q '^# columns: curve	t_s	F_N	F_model_N	residual_N	fitted' "$tmp/fit.tsv" || { echo "FAIL: fit columns"; fail=1; }
 # Bad input: exit 2, message naming the option, no output file.
 expect2() {
@@ -52,7 +58,7 @@ expect2() {
   if [ -e "$tmp/bad.tsv" ]; then echo "FAIL: $name: output written"; fail=1; fi
 }
 expect2 --fit --protocol "$prefix,retract:1um/s" --fit "$tmp/missing.tsv"
-expect2 --free --protocol "$prefix,retract:1um/s" --retract-speeds 1um/s,10um/s,100um/s --fit "$tmp/curves.tsv" --free w,E1
+expect2 --free --protocol "$prefix,retract:1um/s" --retract-speeds 1um/s,10um/s,100um/s --fit "$tmp/curves.tsv" --free w,E0
 expect2 --free --protocol "$prefix,retract:1um/s" --free w
 expect2 --retract-speeds --protocol "$prefix,retract:1um/s" --retract-speeds 1um/s,10um/s --fit "$tmp/curves.tsv"
 # One retract speed for every curve with v_star and n free: refused (one speed fixes only (v/v*)^n).

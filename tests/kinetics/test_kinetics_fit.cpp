@@ -1,13 +1,15 @@
 // Fit of the crack-kinetics law (THEORY.md section 14, fitting, check 5): force-time curves
 // simulated at three retract speeds with Gaussian noise on F are fitted back to the w, v*, n
-// that made them within three standard errors, on the homogeneous solid and on a coating; data
-// at one retract speed with v* and n free are refused.
+// that made them within three standard errors, on the homogeneous solid and on a coating; with
+// the film modulus E1 free too, over several noise seeds; data at one retract speed with v* and
+// n free are refused.
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "check.hpp"
@@ -110,6 +112,39 @@ void recovers(const char* what, const Stack& stack) {
   check::below(std::fabs(r.chi2_per_dof - 1.0), 0.5, (std::string(what) + ": chi2/dof near 1").c_str());
 }
 
+// E1 free with w, v*, n (each trial E1 builds its own table): every parameter within 3 SE of the
+// truth for each of several noise seeds, from a start 20% off in w, 1.5x in v*, 0.55 for n and
+// 15% off in E1 (a modulus known beforehand to that accuracy). Farther starts can lead the trust
+// region into the valley of tiny w and v* where w (v/v*)^n mimics the data (measured: 30% off in
+// E1 and 2x in v* reached w = 7e-8 for seed 22), which the fit reports as a NumericalError.
+void recovers_film_modulus(const Stack& stack) {
+  const Truth truth;
+  for (unsigned long seed : {21ul, 22ul, 23ul}) {
+    std::printf("coating, E1 free, seed %lu\n", seed);
+    const auto curves = synthetic(stack, truth, {1e-6, 1e-5, 1e-4}, 0.01, seed);
+    fit::KineticsFitProblem problem;
+    problem.radius = truth.radius;
+    problem.thickness = truth.thickness;
+    problem.work = 1.2 * truth.work;
+    problem.v_star = 1.5 * truth.v_star;
+    problem.n = 0.55;
+    problem.film_modulus = 1.15 * stack.top().youngs_modulus;
+    problem.free = {{true, true, true, false, true}};
+    const fit::Result r = fit::fit_kinetics(stack, curves, problem);
+    const double expected[] = {truth.work, truth.v_star, truth.n, truth.thickness, stack.top().youngs_modulus};
+    for (int j : {fit::kKinWork, fit::kKinSpeed, fit::kKinExponent, fit::kKinFilmModulus}) {
+      const double deviation = std::fabs(r.value[j] - expected[j]) / r.standard_error[j];
+      std::printf("  %-6s = %.6g +- %.3g (truth %.6g: %.2f standard errors)\n", r.parameters[j].name.c_str(),
+                  r.value[j], r.standard_error[j], expected[j], deviation);
+      check::below(deviation, kStandardErrors, "E1 free: " + r.parameters[j].name + " within 3 SE");
+    }
+    check::below(r.standard_error[fit::kKinFilmModulus] / r.value[fit::kKinFilmModulus], 0.2,
+                 "E1 free: relative error of E1");
+    std::printf("  chi2/dof %.3f, %d iterations, %ld simulations, %.2f s\n", r.chi2_per_dof, r.iterations,
+                r.solver_calls, r.seconds);
+  }
+}
+
 void one_speed_refused(const Stack& stack) {
   const Truth truth;
   const auto curves = synthetic(stack, truth, {1e-5, 1e-5}, 0.01, 11);
@@ -121,7 +156,7 @@ void one_speed_refused(const Stack& stack) {
   problem.n = truth.n;
   check::throws<InputError>([&] { fit::fit_kinetics(stack, curves, problem); }, {"one speed", "fix v_star or n"});
   // With n fixed the same data determine w and v*.
-  problem.free = {{true, true, false, false}};
+  problem.free = {{true, true, false, false, false}};
   problem.v_star = 2.0 * truth.v_star;
   const fit::Result r = fit::fit_kinetics(stack, curves, problem);
   const double deviation = std::fabs(r.value[fit::kKinSpeed] - truth.v_star) / r.standard_error[fit::kKinSpeed];
@@ -132,15 +167,21 @@ void one_speed_refused(const Stack& stack) {
 
 }  // namespace
 
-int main() {
+// Argument "film_modulus": only the fits with E1 free (test kinetics_fit_film_modulus: each
+// builds tables at every trial E1, minutes of CPU); none: the others.
+int main(int argc, char** argv) {
   Substrate glass;
   glass.material = Material{70e9, 0.22};
   Substrate rubber;
   rubber.material = Material{1e6, 0.49};
   const Material film{1e6, 0.49};
   // The homogeneous solid: the film of the substrate's material.
-  recovers("homogeneous solid (E = 1 MPa)", Stack::film_on(film, rubber));
   const Stack coating = Stack::film_on(film, glass);
+  if (argc > 1 && std::string(argv[1]) == "film_modulus") {
+    recovers_film_modulus(coating);
+    return check::exit_code();
+  }
+  recovers("homogeneous solid (E = 1 MPa)", Stack::film_on(film, rubber));
   recovers("coating (1 MPa, 50 um on glass)", coating);
   one_speed_refused(coating);
   return check::exit_code();

@@ -346,6 +346,52 @@ int cc_curve_column(const cc_curve *curve, int column, double *out);
 /* The units as read ("a um, F mN (from the '# units:' line)"), into text (size bytes). */
 int cc_curve_units(const cc_curve *curve, char *text, int size);
 
+/* ---- crack kinetics at the JKR edge (THEORY.md section 14; coatcontact/crack_kinetics.hpp) ----
+ *
+ * A sphere (radius R) or a cone (half included angle beta) on the stack, whose total thickness
+ * is the coating's; the edge obeys G - w = w (|v|/v*)^n receding, w - G = w (v/v_a*)^n_adv
+ * advancing; the base moves through a spring (F = k (z - delta); k = 0 load control, then
+ * speeds are force rates in N/s; k = HUGE_VAL displacement control) along the segments, from
+ * first contact; the last segment is a retract until contact is lost. */
+enum cc_kinetics_tip { CC_KINETICS_SPHERE = 0, CC_KINETICS_CONE = 1 };
+enum cc_kinetics_segment_kind { CC_KINETICS_APPROACH = 0, CC_KINETICS_DWELL = 1, CC_KINETICS_RETRACT = 2 };
+typedef struct cc_kinetics_segment {
+  int kind;            /* cc_kinetics_segment_kind */
+  double speed;        /* approach, retract: m/s (N/s under load control) */
+  double duration;     /* dwell: s */
+  double target_force; /* approach: N to reach; retract: N to reach if has_target */
+  int has_target;      /* retract: 0 runs until contact is lost */
+} cc_kinetics_segment;
+typedef struct cc_kinetics_setup {
+  int tip;                 /* cc_kinetics_tip */
+  double radius;           /* sphere: R [m] */
+  double half_angle;       /* cone: beta [rad] in (0, pi/2) */
+  double work;             /* w [J/m2] */
+  double v_star, n;        /* receding law: v* [m/s], n > 0 */
+  double v_star_adv, n_adv;/* advancing law; <= 0: the receding values */
+  double spring;           /* k [N/m] >= 0, or HUGE_VAL */
+  int segment_count;
+  const cc_kinetics_segment *segments;
+  double tolerance;        /* of the JKR table's solves; 0: the default */
+} cc_kinetics_setup;
+
+typedef struct cc_kinetics cc_kinetics; /* one finished run */
+#define CC_KINETICS_COLUMNS 6           /* t [s], z [m], delta [m], a [m], F [N], G [J/m2] */
+#define CC_KINETICS_EVENT_COLUMNS 6     /* pull-off F [N], t [s], a [m]; loss of contact F, t, a */
+#define CC_KINETICS_SWEEP_COLUMNS 8     /* V, pull-off F, t, a, loss F, t, reduced V, reduced P */
+
+int cc_kinetics_run(const cc_stack *stack, const cc_kinetics_setup *setup, cc_kinetics **run);
+void cc_kinetics_destroy(cc_kinetics *run);
+/* The number of states (rows) of the run. */
+int cc_kinetics_size(const cc_kinetics *run, int *rows);
+/* rows (as cc_kinetics_size gives) * CC_KINETICS_COLUMNS doubles, row by row. */
+int cc_kinetics_states(const cc_kinetics *run, int rows, double *out);
+int cc_kinetics_events(const cc_kinetics *run, double out[CC_KINETICS_EVENT_COLUMNS]);
+/* One run per retract speed of the last segment (the part before it is simulated once); out has
+ * n * CC_KINETICS_SWEEP_COLUMNS doubles, row by row. */
+int cc_kinetics_sweep(const cc_stack *stack, const cc_kinetics_setup *setup, int n, const double *retract_speeds,
+                      double *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,9 +1,11 @@
-// Rate-dependent JKR adhesion: the contact edge of a sphere on a coating moves at the speed
-// that a crack-kinetics law assigns to G - w (THEORY.md section 14), driven through a spring.
+// Rate-dependent JKR adhesion: the contact edge of a sphere or a cone on a coating moves at the
+// speed that a crack-kinetics law assigns to G - w (THEORY.md section 14), driven through a spring.
 //
-// Reduced units (section 14): a_bar = a/L_a, D = delta/L_D, P = F/(pi w R), Z = z/L_D,
-// tau = t v*/L_a (so d a_bar/d tau = (da/dt)/v*), G/w. Built on the interpolated reduced
-// variables of an AdhesiveModel (the JKR table), so every stack the table serves works.
+// Reduced units (section 14): a_bar = a/L_a, D = delta/L_D, P = F/F_s, Z = z/L_D,
+// tau = t v*/L_a (so d a_bar/d tau = (da/dt)/v*), G/w; the sphere's L_a, L_D, F_s = pi w R are
+// Maugis's, the cone's are its own (section 14, "The cone"). Built on the interpolated reduced
+// variables of an AdhesiveModel (the JKR table: Pi_s, Delta_s for the sphere, Pi_c, Delta_c for
+// the cone), so every stack the table serves works.
 //
 // Thread safety: as AdhesiveModel (its table fills lazily); one model per thread.
 #pragma once
@@ -14,6 +16,9 @@
 #include "coatcontact/adhesion.hpp"
 
 namespace coatcontact {
+
+// The indenters the JKR table serves: the paraboloid (Pi_s, Delta_s) and the cone (Pi_c, Delta_c).
+enum class KineticsTip { kSphere, kCone };
 
 // G - w = w (|v|/v*)^n for a receding edge, w - G = w (v/v_a*)^n_adv for an advancing one.
 struct KineticLaw {
@@ -36,9 +41,11 @@ struct DriveSegment {
 struct KineticsOptions {
   double relative_tolerance = 1e-9;  // of the stepper (gsl_odeiv2 msbdf), on a_bar
   double absolute_tolerance = 1e-12;
-  // Contact is lost when a_bar falls to this value (<= 0: 1e-2 min(1, r), section 14).
+  // Contact is lost when a_bar falls to this value (<= 0: 1e-2 min(1, r) for the sphere,
+  // 1e-2 min(1, max(r_c, 1e-2 eta)) for the cone, section 14).
   double a_bar_end = 0.0;
-  // Upper a_bar bound of an approach (<= 0: 100 max(1, r)); an approach past it is InputError.
+  // Upper a_bar bound of an approach (<= 0: 100 max(1, r) for the sphere, 1e4 max(1, r_c) for
+  // the cone, within the table's range); an approach past it is InputError.
   double a_bar_max = 0.0;
   std::size_t max_steps = 2000000;  // NumericalError beyond
 };
@@ -75,7 +82,7 @@ struct KineticsResult {
 
 // Stored energy E/(pi w L_a^2) = U_el(a_bar, D) + P^2/(2 k_bar) - a_bar^2 (section 14).
 double kinetics_energy(const AdhesiveModel& model, double eta, double a_bar, double penetration,
-                       double load, double k_bar);
+                       double load, double k_bar, KineticsTip tip = KineticsTip::kSphere);
 
 // Simulates the protocol from first contact (a_bar = a_bar_end on the adhesionless curve,
 // tau = 0) to the loss of contact. k_bar >= 0: 0 is load control, +inf displacement control.
@@ -83,6 +90,10 @@ double kinetics_energy(const AdhesiveModel& model, double eta, double a_bar, dou
 // reached; NumericalError when the stepper fails.
 KineticsResult simulate_kinetics(const AdhesiveModel& model, double eta, const KineticLaw& law,
                                  double k_bar, const std::vector<DriveSegment>& protocol,
+                                 const KineticsOptions& options = {});
+KineticsResult simulate_kinetics(const AdhesiveModel& model, KineticsTip tip, double eta,
+                                 const KineticLaw& law, double k_bar,
+                                 const std::vector<DriveSegment>& protocol,
                                  const KineticsOptions& options = {});
 
 // The same protocol for each rate of its last segment (a retract until contact is lost); the
@@ -93,8 +104,15 @@ std::vector<KineticsResult> sweep_kinetics(const AdhesiveModel& model, double et
                                            const std::vector<double>& retract_rates,
                                            bool keep_samples = false,
                                            const KineticsOptions& options = {});
+std::vector<KineticsResult> sweep_kinetics(const AdhesiveModel& model, KineticsTip tip, double eta,
+                                           const KineticLaw& law, double k_bar,
+                                           const std::vector<DriveSegment>& protocol,
+                                           const std::vector<double>& retract_rates,
+                                           bool keep_samples = false,
+                                           const KineticsOptions& options = {});
 
-// ---- SI layer: a sphere of radius R on a coating of thickness t (THEORY.md section 14) ----
+// ---- SI layer: a sphere of radius R or a cone of half angle beta on a coating of thickness t
+// (THEORY.md section 14) ----
 
 // One protocol segment in SI: approach/retract at `speed` (m/s; N/s under load control) until
 // the force reaches `target_force` (N; a retract without target runs until contact is lost),
@@ -106,7 +124,10 @@ struct KineticsSegmentSI {
 };
 
 struct KineticsSetupSI {
-  double radius = 0.0, thickness = 0.0, work = 0.0;  // m, m, J/m^2
+  KineticsTip tip = KineticsTip::kSphere;
+  double radius = 0.0;      // m, the sphere's
+  double half_angle = 0.0;  // rad in (0, pi/2), the cone's half included angle
+  double thickness = 0.0, work = 0.0;  // m, J/m^2
   double v_star = 0.0, n = 0.0;                     // m/s, receding law
   double v_star_adv = 0.0, n_adv = 0.0;             // <= 0: the receding values
   double spring = 0.0;                              // N/m; 0 load control, +inf displacement
@@ -118,7 +139,7 @@ struct KineticsEventSI {
 };
 
 struct KineticsScales {
-  double length = 0.0, penetration = 0.0, force = 0.0, time = 0.0;  // L_a, L_D, pi w R, L_a/v*
+  double length = 0.0, penetration = 0.0, force = 0.0, time = 0.0;  // L_a, L_D, F_s, L_a/v*
   double eta = 0.0, k_bar = 0.0;
   double drive_rate = 0.0;  // reduced drive rate per SI speed (per m/s, or per N/s)
 };

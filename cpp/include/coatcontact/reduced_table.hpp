@@ -78,8 +78,11 @@ class ReducedTable {
 
   // Builds every segment covering [a_over_t_min, a_over_t_max] with one batched source call.
   void prepare(double a_over_t_min, double a_over_t_max) const;
+  // Which variables at() evaluates: all six, or only those of one indenter and the flat punch
+  // (E_eq, Gamma(1)); the others are left 0. The kinetics asks for one indenter's at every step.
+  enum class Variables { kAll, kSphere, kCone };
   // Interpolated values and log-derivatives (builds the segment if needed).
-  ReducedPoint at(double a_over_t) const;
+  ReducedPoint at(double a_over_t, Variables which = Variables::kAll) const;
 
   // Largest tail estimate of the built series (an estimate of the relative interpolation
   // error of the values) and the largest error estimate reported by the source.
