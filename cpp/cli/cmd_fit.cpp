@@ -58,7 +58,7 @@ const std::vector<OptionSpec>& fit_options() {
       {"--plot", "FILE", "draw data, fit, residuals and pull-off with gnuplot (PNG or PDF by extension)"},
       indenter_option(),
       {"--model", "jkr|md", "adhesion model: jkr (default) or md, the Maugis-Dugdale zone (a,F data of a rigid sphere; --free w,lambda; slow: one solve per point and trial, keep to a few tens of points)"},
-      {"--lambda", "L", "Maugis's lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, in [1e-3, 1e3] with --model md: fixed, or the start of the search when --free names lambda (default 1)"},
+      {"--lambda", "L", "Maugis's lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, in [1e-3, 1e4] with --model md: fixed, or the start of the search when --free names lambda (default 1)"},
       {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off. With --columns z,F the spring the data were taken through: fixed, or the start of the search when --free names k"},
   };
   return spec;
@@ -135,13 +135,15 @@ int parameter_index(const std::string& name, const std::string& option, std::siz
                    allowed + ")");
 }
 
-// Maugis's lambda: a number in [kLambdaRange] (InputError naming `option`).
+// Maugis's lambda: a number in [kMinimumLambda, kMaximumLambda] of limits.hpp (InputError
+// naming `option`).
 double parse_lambda(const std::string& text, const std::string& option) {
   char* end = nullptr;
   const double lambda = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || !(lambda >= fit::kLambdaRange[0] && lambda <= fit::kLambdaRange[1])) {
-    throw InputError(option + ": '" + text + "' is not allowed (need a number 1e-3 <= lambda <= 1e3; lambda = 2 sigma0 "
-                     "(R/(pi w K^2))^(1/3), K = 4E1*/3)");
+  if (end == text.c_str() || *end != '\0' || !(lambda >= kMinimumLambda && lambda <= kMaximumLambda)) {
+    throw InputError(option + ": '" + text + "' is not allowed (need a number " + short_number(kMinimumLambda) +
+                     " <= lambda <= " + short_number(kMaximumLambda) + "; lambda = 2 sigma0 (R/(pi w K^2))^(1/3), "
+                     "K = 4E1*/3)");
   }
   return lambda;
 }
