@@ -31,6 +31,7 @@
 #include "coatcontact/measured_curve.hpp"
 #include "coatcontact/si_text.hpp"
 #include "checks.hpp"
+#include "number_text.hpp"
 #include "commands.hpp"
 #include "fit_plot_script.hpp"
 
@@ -83,20 +84,8 @@ std::string order_of_magnitude_bound(double value) {
   return "below 1e" + std::to_string(static_cast<int>(std::ceil(std::log10(value))));
 }
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  std::string item;
-  std::istringstream stream(text);
-  while (std::getline(stream, item, separator)) items.push_back(item);
-  if (!text.empty() && text.back() == separator) items.emplace_back();
-  return items;
-}
-
-std::string trim(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
-}
+using detail::split;
+using detail::trim;
 
 // The index of a parameter named on the command line: w, t, E1 (one film); with --layer also
 // h1..hN and E1..EN (t is h1 of a single layer, refused for several).
