@@ -515,6 +515,27 @@ struct ShapeContact {
   }
 };
 
+// A measured force curve read by the library (cc_curve_read: the CLI's reader and unit table):
+// (kind, units text, {column: array}) with the columns the file has, x as "x".
+py::tuple read_curve(const std::string& path, const std::string& columns) {
+  cc_curve* raw = nullptr;
+  call_released([&] { return cc_curve_read(path.c_str(), columns.c_str(), &raw); });
+  const std::unique_ptr<cc_curve, void (*)(cc_curve*)> curve(raw, cc_curve_destroy);
+  int n = 0, kind = 0;
+  call_held([&] { return cc_curve_size(curve.get(), &n, &kind); });
+  py::dict values;
+  const std::pair<const char*, int> names[] = {{"x", CC_CURVE_X}, {"F", CC_CURVE_F}, {"sigma_x", CC_CURVE_SIGMA_X},
+                                               {"sigma_F", CC_CURVE_SIGMA_F}, {"branch", CC_CURVE_BRANCH},
+                                               {"line", CC_CURVE_LINE}};
+  for (const auto& [name, column] : names) {
+    py::array_t<double> a(n);
+    if (cc_curve_column(curve.get(), column, a.mutable_data()) == CC_OK) values[name] = a;
+  }
+  char units[4096];
+  call_held([&] { return cc_curve_units(curve.get(), units, static_cast<int>(sizeof units)); });
+  return py::make_tuple(kind, std::string(units), values);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -579,6 +600,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("FIT_MAUGIS_DUGDALE") = static_cast<int>(CC_FIT_MAUGIS_DUGDALE);
 
   m.def("pulloff_spring", &pulloff_spring);
+  m.def("read_curve", &read_curve);
   py::class_<MaugisDugdale>(m, "MaugisDugdale")
       .def(py::init<const Stack&>())
       .def("curve", &MaugisDugdale::curve)
