@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "coatcontact/coatcontact.h"
+#include "module_errors.hpp"
 
 namespace py = pybind11;
 
@@ -21,20 +22,8 @@ void register_kinetics(py::module_& m);  // kinetics.cpp
 
 namespace {
 
-// Mapped to coatcontact.NumericalError (a RuntimeError) at module import.
-struct NumericalError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Status -> exception, with the library's message (the CLI prints the same text).
-void check(int status, const std::string& message) {
-  switch (status) {
-    case CC_OK: return;
-    case CC_INPUT_ERROR: throw py::value_error(message);
-    case CC_NUMERICAL_ERROR: throw NumericalError(message);
-    default: throw std::runtime_error(message.empty() ? "coatcontact: internal error" : message);
-  }
-}
+using coatcontact_python::check;
+using coatcontact_python::NumericalError;  // registered as coatcontact.NumericalError at import
 
 // Runs a C call without the GIL; the message is read in the same thread, before the GIL
 // comes back (it is per thread and valid until the thread's next call).
