@@ -107,13 +107,7 @@ ReducedTable::~ReducedTable() = default;
 
 ReducedPoint reduced_point_of(const ReducedVariables& v) {
   ReducedPoint r;
-  r.a_over_t = v.a_over_t;
-  r.pi_s = v.pi_s;
-  r.delta_s = v.delta_s;
-  r.pi_c = v.pi_c;
-  r.delta_c = v.delta_c;
-  r.e_eq = v.e_eq;
-  r.gamma1 = v.gamma1;
+  static_cast<ReducedValues&>(r) = v;
   return r;
 }
 

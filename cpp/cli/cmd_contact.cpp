@@ -17,6 +17,7 @@
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/shape_contact.hpp"
 #include "commands.hpp"
+#include "number_text.hpp"
 
 namespace coatcontact::cli {
 
@@ -29,16 +30,7 @@ using Header = std::vector<std::pair<std::string, std::string>>;
 
 std::string num(double v) { return format_parameter(v, "header value"); }
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t end = text.find(separator, start);
-    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) return parts;
-    start = end + 1;
-  }
-}
+using detail::split;
 
 }  // namespace
 

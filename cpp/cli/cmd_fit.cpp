@@ -31,6 +31,7 @@
 #include "coatcontact/measured_curve.hpp"
 #include "coatcontact/si_text.hpp"
 #include "checks.hpp"
+#include "number_text.hpp"
 #include "commands.hpp"
 #include "fit_plot_script.hpp"
 
@@ -59,7 +60,7 @@ const std::vector<OptionSpec>& fit_options() {
       indenter_option(),
       {"--model", "jkr|md", "adhesion model: jkr (default) or md, the Maugis-Dugdale zone (a,F data of a rigid sphere; --free w,lambda; from the stack's reduced table of the zone)"},
       {"--md-direct", "", "with --model md: every point by the direct per-radius solve (the reference; slow) instead of the reduced table of the cohesive zone"},
-      {"--lambda", "L", "Maugis's lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, in [1e-3, 1e3] with --model md: fixed, or the start of the search when --free names lambda (default 1)"},
+      {"--lambda", "L", "Maugis's lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = 4E1*/3, in [1e-3, 1e4] with --model md: fixed, or the start of the search when --free names lambda (default 1)"},
       {"--spring", "k", "machine or cantilever stiffness in N/m (e.g. 500N/m, 0.5mN/um): report its pull-off. With --columns z,F the spring the data were taken through: fixed, or the start of the search when --free names k"},
   };
   return spec;
@@ -84,20 +85,8 @@ std::string order_of_magnitude_bound(double value) {
   return "below 1e" + std::to_string(static_cast<int>(std::ceil(std::log10(value))));
 }
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  std::string item;
-  std::istringstream stream(text);
-  while (std::getline(stream, item, separator)) items.push_back(item);
-  if (!text.empty() && text.back() == separator) items.emplace_back();
-  return items;
-}
-
-std::string trim(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
-}
+using detail::split;
+using detail::trim;
 
 // The index of a parameter named on the command line: w, t, E1 (one film); with --layer also
 // h1..hN and E1..EN (t is h1 of a single layer, refused for several).
@@ -136,13 +125,15 @@ int parameter_index(const std::string& name, const std::string& option, std::siz
                    allowed + ")");
 }
 
-// Maugis's lambda: a number in [kLambdaRange] (InputError naming `option`).
+// Maugis's lambda: a number in [kMinimumLambda, kMaximumLambda] of limits.hpp (InputError
+// naming `option`).
 double parse_lambda(const std::string& text, const std::string& option) {
   char* end = nullptr;
   const double lambda = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || !(lambda >= fit::kLambdaRange[0] && lambda <= fit::kLambdaRange[1])) {
-    throw InputError(option + ": '" + text + "' is not allowed (need a number 1e-3 <= lambda <= 1e3; lambda = 2 sigma0 "
-                     "(R/(pi w K^2))^(1/3), K = 4E1*/3)");
+  if (end == text.c_str() || *end != '\0' || !(lambda >= kMinimumLambda && lambda <= kMaximumLambda)) {
+    throw InputError(option + ": '" + text + "' is not allowed (need a number " + short_number(kMinimumLambda) +
+                     " <= lambda <= " + short_number(kMaximumLambda) + "; lambda = 2 sigma0 (R/(pi w K^2))^(1/3), "
+                     "K = 4E1*/3)");
   }
   return lambda;
 }

@@ -16,6 +16,7 @@
 #include "coatcontact/kinetics_fit.hpp"
 #include "coatcontact/reduced.hpp"
 #include "commands.hpp"
+#include "number_text.hpp"
 
 namespace coatcontact::cli {
 
@@ -25,22 +26,8 @@ using Header = std::vector<std::pair<std::string, std::string>>;
 
 std::string num(double v) { return format_parameter(v, "header value"); }
 
-std::vector<std::string> split_on(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t end = text.find(separator, start);
-    parts.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) return parts;
-    start = end + 1;
-  }
-}
-
-std::string trim(const std::string& s) {
-  const std::size_t b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
+constexpr auto split_on = detail::split;
+using detail::trim;
 
 // A number with one of `units` (suffix, optionally after one space); bare numbers are SI.
 double with_unit(const std::string& raw, const std::vector<std::pair<std::string, double>>& units,

@@ -138,9 +138,9 @@ void Model::check_range(const Parameters& p) const {
   for (std::size_t which = 0; which < p.values.size(); ++which) {
     const double v = p.values[which];
     const ParameterInfo& info = names_[which];
-    if (info.kind == ParameterKind::kLambda && !(v >= kLambdaRange[0] && v <= kLambdaRange[1])) {
-      throw NumericalError("lambda ran to " + short_text(v) + ", outside [" + short_text(kLambdaRange[0]) + ", " +
-                           short_text(kLambdaRange[1]) + "]: the data do not determine lambda");
+    if (info.kind == ParameterKind::kLambda && !(v >= kMinimumLambda && v <= kMaximumLambda)) {
+      throw NumericalError("lambda ran to " + short_text(v) + ", outside [" + short_text(kMinimumLambda) + ", " +
+                           short_text(kMaximumLambda) + "]: the data do not determine lambda");
     }
     if (info.kind == ParameterKind::kSpring && (!(v > 0.0) || !std::isfinite(v))) {
       throw NumericalError("k ran to " + short_text(v) + " N/m: the data do not determine the spring stiffness k");

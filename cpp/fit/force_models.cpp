@@ -46,9 +46,9 @@ void validate_model(const Measurements& data, const Problem& problem) {
     if (problem.shape || problem.base_displacement || problem.hysteresis || !problem.indenter.rigid) {
       throw InputError("fit: the Maugis-Dugdale model takes a rigid sphere, one w and a,F data");
     }
-    if (!(problem.lambda >= kLambdaRange[0] && problem.lambda <= kLambdaRange[1])) {
-      throw InputError("fit: lambda = " + short_text(problem.lambda) + " is outside [" + short_text(kLambdaRange[0]) +
-                       ", " + short_text(kLambdaRange[1]) + "]");
+    if (!(problem.lambda >= kMinimumLambda && problem.lambda <= kMaximumLambda)) {
+      throw InputError("fit: lambda = " + short_text(problem.lambda) + " is outside [" + short_text(kMinimumLambda) +
+                       ", " + short_text(kMaximumLambda) + "]");
     }
   }
   if (problem.base_displacement) {

@@ -66,15 +66,15 @@ class MaugisDugdaleFit : public ForceModel {
     const double f_min = *std::min_element(data.force.begin(), data.force.end());
     return f_min < 0.0 ? jkr_work_estimate(data, problem_.sphere_radius) : 0.0;
   }
-  // lambda within kSearchLambdaFactor of its hint, inside kLambdaRange.
+  // lambda within kSearchLambdaFactor of its hint, inside [kMinimumLambda, kMaximumLambda].
   void add_search_axes(const Parameters& hint, const std::vector<int>& free_index,
                        std::vector<SearchAxis>& axes) const override {
     const int last = static_cast<int>(hint.values.size() - 1);
     if (std::find(free_index.begin(), free_index.end(), last) == free_index.end()) return;
     const double lambda = hint.lambda();
     axes.push_back({hint.values.size() - 1,
-                    log_axis(std::max(kLambdaRange[0], lambda / kSearchLambdaFactor),
-                             std::min(kLambdaRange[1], lambda * kSearchLambdaFactor), kCoarsePointsPerDecade)});
+                    log_axis(std::max(kMinimumLambda, lambda / kSearchLambdaFactor),
+                             std::min(kMaximumLambda, lambda * kSearchLambdaFactor), kCoarsePointsPerDecade)});
   }
 
  private:

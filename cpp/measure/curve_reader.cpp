@@ -11,24 +11,13 @@
 #include "coatcontact/data_file.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/units.hpp"
+#include "number_text.hpp"
 
 namespace coatcontact::measure {
 namespace {
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  std::string item;
-  std::istringstream stream(text);
-  while (std::getline(stream, item, separator)) items.push_back(item);
-  if (!text.empty() && text.back() == separator) items.emplace_back();
-  return items;
-}
-
-std::string trim(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
-}
+using detail::split;
+using detail::trim;
 
 bool is_comment_or_blank(const std::string& line) {
   const auto first = line.find_first_not_of(" \t\r");

@@ -6,6 +6,7 @@
 #include <limits>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "coatcontact/detail/format.hpp"
 #include "number_text.hpp"
@@ -17,6 +18,18 @@ std::string_view trim_blanks(std::string_view text) {
   while (!text.empty() && blank(text.front())) text.remove_prefix(1);
   while (!text.empty() && blank(text.back())) text.remove_suffix(1);
   return text;
+}
+
+std::string trim(std::string_view text) { return std::string(trim_blanks(text)); }
+
+std::vector<std::string> split(std::string_view text, char separator) {
+  std::vector<std::string> items;
+  for (;;) {
+    const std::size_t end = text.find(separator);
+    items.emplace_back(text.substr(0, end));
+    if (end == std::string_view::npos) return items;
+    text.remove_prefix(end + 1);
+  }
 }
 
 NumberStatus parse_decimal(std::string_view text, double& value) {

@@ -1,8 +1,9 @@
-// Internal helpers of coatcontact_support shared by the parsers and the data file reader
-// (not a public header).
+// Internal helpers shared by the data file reader (measure floor), the CLI's value parsers
+// and its subcommands (not a public header).
 #pragma once
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace coatcontact::detail {
 
@@ -16,6 +17,11 @@ NumberStatus parse_decimal(std::string_view text, double& value);
 
 // `text` without leading and trailing spaces and tabs.
 std::string_view trim_blanks(std::string_view text);
+std::string trim(std::string_view text);  // the same, as a string
+
+// `text` cut at every `separator`: n separators give n + 1 items, empty ones included (so ""
+// gives one empty item, which the list parsers report as an empty item).
+std::vector<std::string> split(std::string_view text, char separator);
 
 // `text` in single quotes for a message: non-printable bytes as \xNN, cut after 60 bytes.
 std::string quote(std::string_view text);

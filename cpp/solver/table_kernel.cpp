@@ -9,10 +9,10 @@
 namespace coatcontact::detail {
 
 namespace {
-// C - 1 ~ q² e^{-2q}: H is analytic in |Im u| < 2 (THEORY.md section 4); a stack's
-// C - 1 ~ exp(-2 q h_top/T): |Im u| < 2 h_top/T (section 12).
+// A stack's C - 1 ~ exp(-2 q h_top/T): H is analytic in |Im u| < 2 h_top/T (THEORY.md section
+// 12); one film (h_top = T) gives section 4's |Im u| < 2.
 double analytic_half_width_of(const Stack& stack) {
-  return stack.is_multilayer() ? 2.0 * stack.layers().front().thickness / stack.total_thickness() : 2.0;
+  return 2.0 * stack.layers().front().thickness / stack.total_thickness();
 }
 }  // namespace
 

@@ -3,9 +3,9 @@
 as `coatcontact fit DATA --columns a,F --free w,t` does, and plot data, fit and residuals.
 
 usage: fit_data.py [DATA] [--output DIR]   DATA: two columns a, F ('#' comments), in m and N
-unless a '# units: um mN' line says otherwise (as the CLI reads it); default
-data/example_a_F.tsv (1 MPa elastomer film on glass, 5 mm sphere, in um and mN). Writes
-DIR/fit_python.png.
+unless a '# units: um mN' line says otherwise (read by coatcontact.read_curve, as the CLI
+reads it); default data/example_a_F.tsv (1 MPa elastomer film on glass, 5 mm sphere, in um
+and mN). Writes DIR/fit_python.png.
 """
 import argparse
 import os
@@ -13,25 +13,9 @@ import os
 import matplotlib
 matplotlib.use("Agg")  # headless: tests and CI have no display
 import matplotlib.pyplot as plt
-import numpy as np
-
 import coatcontact as cc
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-# Divisors to SI: dividing by an exact integer is what the CLI does (bit-equal input).
-DIVISOR = {"m": 1, "cm": 100, "mm": 1000, "um": 10**6, "nm": 10**9,
-           "N": 1, "mN": 1000, "uN": 10**6, "nN": 10**9}
-
-
-def load(path):
-    """The two columns in SI: numpy.loadtxt, scaled by the file's '# units:' line if any."""
-    a, F = np.loadtxt(path, unpack=True)
-    with open(path) as f:
-        for line in f:
-            if line.startswith("# units:"):
-                unit_a, unit_F = line.split(":", 1)[1].split()
-                return a / DIVISOR[unit_a], F / DIVISOR[unit_F]
-    return a, F
 
 
 def main():
@@ -40,7 +24,8 @@ def main():
     parser.add_argument("--output", default=".", help="folder of fit_python.png")
     args = parser.parse_args()
 
-    a, F = load(args.data)  # a [m], F [N]
+    data = cc.read_curve(args.data, "a,F")  # the CLI's reader and unit table: a [m], F [N]
+    a, F = data["a"], data["F"]
     r = cc.fit(a, F, kind="a", radius=5e-3, film=(1e6, 0.49), substrate=(70e9, 0.22),
                thickness=40e-6, free=("w", "t"))
     est, err = r["estimates"], r["errors"]

@@ -59,7 +59,7 @@ from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError", "ValidityWarning",
            "PointsNotDeliveredWarning",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
-           "stack_parameter_names", "pulloff_spring",
+           "stack_parameter_names", "pulloff_spring", "read_curve",
            "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "kinetics_fit",
            "REDUCED_KEYS"]
 
@@ -870,4 +870,25 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     out["pulloff"] = {"F_load": p[0], "a_load": p[1], "delta_load": p[2],
                       "F_disp": p[3], "a_disp": p[4], "delta_disp": p[5],
                       "F_spring": p[6], "a_spring": p[7], "delta_spring": p[8]}
+    return out
+
+
+def read_curve(path, columns="a,F"):
+    """A measured force curve in SI units, read as `coatcontact fit` reads DATA (the library's
+    reader and unit table): tab-, comma- or semicolon-separated, '#' comments, a '# units: um mN'
+    line or units in the column names ("a [um]").
+
+    columns  as the CLI's --columns: "a,F", "delta,F", "z,F" (or F first), or named/numbered
+             columns such as "a=2,F=5,sigma_F=6,branch=7".
+    Returns a dict: the abscissa under its name ("a", "delta" or "z") [m], "F" [N], the
+    columns the file has of "sigma_a"/"sigma_delta"/"sigma_z", "sigma_F", "branch", "line"
+    (the file's line number of each row), and "units" (how the units were read).
+    ValueError for a bad file or column choice."""
+    kind, units, values = _core.read_curve(str(path), str(columns))
+    x = {_core.FIT_RADIUS_FORCE: "a", _core.FIT_PENETRATION_FORCE: "delta"}.get(kind, "z")
+    out = {x: values.pop("x")}
+    if "sigma_x" in values:
+        out["sigma_" + x] = values.pop("sigma_x")
+    out.update(values)
+    out["units"] = units
     return out

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "coatcontact/coatcontact.h"
+#include "module_errors.hpp"
 
 namespace py = pybind11;
 
@@ -21,20 +22,8 @@ void register_kinetics(py::module_& m);  // kinetics.cpp
 
 namespace {
 
-// Mapped to coatcontact.NumericalError (a RuntimeError) at module import.
-struct NumericalError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Status -> exception, with the library's message (the CLI prints the same text).
-void check(int status, const std::string& message) {
-  switch (status) {
-    case CC_OK: return;
-    case CC_INPUT_ERROR: throw py::value_error(message);
-    case CC_NUMERICAL_ERROR: throw NumericalError(message);
-    default: throw std::runtime_error(message.empty() ? "coatcontact: internal error" : message);
-  }
-}
+using coatcontact_python::check;
+using coatcontact_python::NumericalError;  // registered as coatcontact.NumericalError at import
 
 // Runs a C call without the GIL; the message is read in the same thread, before the GIL
 // comes back (it is per thread and valid until the thread's next call).
@@ -597,6 +586,27 @@ struct ShapeContact {
   }
 };
 
+// A measured force curve read by the library (cc_curve_read: the CLI's reader and unit table):
+// (kind, units text, {column: array}) with the columns the file has, x as "x".
+py::tuple read_curve(const std::string& path, const std::string& columns) {
+  cc_curve* raw = nullptr;
+  call_released([&] { return cc_curve_read(path.c_str(), columns.c_str(), &raw); });
+  const std::unique_ptr<cc_curve, void (*)(cc_curve*)> curve(raw, cc_curve_destroy);
+  int n = 0, kind = 0;
+  call_held([&] { return cc_curve_size(curve.get(), &n, &kind); });
+  py::dict values;
+  const std::pair<const char*, int> names[] = {{"x", CC_CURVE_X}, {"F", CC_CURVE_F}, {"sigma_x", CC_CURVE_SIGMA_X},
+                                               {"sigma_F", CC_CURVE_SIGMA_F}, {"branch", CC_CURVE_BRANCH},
+                                               {"line", CC_CURVE_LINE}};
+  for (const auto& [name, column] : names) {
+    py::array_t<double> a(n);
+    if (cc_curve_column(curve.get(), column, a.mutable_data()) == CC_OK) values[name] = a;
+  }
+  char units[4096];
+  call_held([&] { return cc_curve_units(curve.get(), units, static_cast<int>(sizeof units)); });
+  return py::make_tuple(kind, std::string(units), values);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -665,6 +675,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("FIT_MAUGIS_DUGDALE") = static_cast<int>(CC_FIT_MAUGIS_DUGDALE);
 
   m.def("pulloff_spring", &pulloff_spring);
+  m.def("read_curve", &read_curve);
   py::class_<MaugisDugdale>(m, "MaugisDugdale")
       .def(py::init<const Stack&>())
       .def("curve", &MaugisDugdale::curve)

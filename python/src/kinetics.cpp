@@ -14,6 +14,7 @@
 #include "coatcontact/errors.hpp"
 #include "coatcontact/kinetics_fit.hpp"
 #include "coatcontact/reduced.hpp"
+#include "module_errors.hpp"
 
 namespace py = pybind11;
 
@@ -35,27 +36,7 @@ py::dict event(const coatcontact::KineticsEventSI& e) {
   return d;
 }
 
-// Runs `body` without the GIL; its InputError becomes ValueError, its NumericalError the
-// module's NumericalError (raised with the GIL held again).
-template <class Body>
-void without_gil(const py::object& numerical_error, Body&& body) {
-  std::string input_message, numerical_message;
-  {
-    py::gil_scoped_release release;
-    try {
-      body();
-    } catch (const coatcontact::InputError& e) {
-      input_message = e.what();
-    } catch (const coatcontact::NumericalError& e) {
-      numerical_message = e.what();
-    }
-  }
-  if (!input_message.empty()) throw py::value_error(input_message);
-  if (!numerical_message.empty()) {
-    PyErr_SetString(numerical_error.ptr(), numerical_message.c_str());
-    throw py::error_already_set();
-  }
-}
+using coatcontact_python::without_gil;
 
 std::vector<coatcontact::KineticsSegmentSI> segments_of(const std::vector<Segment>& protocol) {
   using coatcontact::DriveSegment;

@@ -113,6 +113,22 @@ def test_fit_maugis_dugdale_equals_cli(cli, source_dir, tmp_path):
     assert_estimates_equal(values, r)
 
 
+def test_fit_maugis_dugdale_lambda_range(source_dir):
+    # The library's one lambda range, [1e-3, 1e4] (coatcontact/limits.hpp, THEORY.md section 13):
+    # its upper end is accepted, and there the fit is JKR's (the curves differ by ~1/lambda^2 =
+    # 1e-8; tier 1e-6 relative on w as in tests/fit/test_fit_md.sh); just outside either end,
+    # ValueError naming the range.
+    a, F = example(source_dir, "example_a_F.tsv")
+    rows = np.arange(4, 40, 5)
+    r = cc.fit(a[rows], F[rows], radius=5e-3, **MATERIAL, model="md", lambda_=1e4)
+    assert r["estimates"]["lambda"] == 1e4
+    jkr = cc.fit(a[rows], F[rows], radius=5e-3, **MATERIAL)
+    assert abs(r["estimates"]["w"] / jkr["estimates"]["w"] - 1) < 1e-6
+    for bad in (1.0001e4, 9.99e-4):
+        with pytest.raises(ValueError, match=r"lambda = .* is outside \[0\.001, 10000\]"):
+            cc.fit(a[rows], F[rows], radius=5e-3, **MATERIAL, model="md", lambda_=bad)
+
+
 def test_fit_stack_equals_cli(cli, source_dir):
     # The two-layer example (a 20 um skin on a 30 um layer), h2 free from half its value:
     # the CLI's --layer repeated and --free w,h2, through cc_fit_run as fit() of one film.

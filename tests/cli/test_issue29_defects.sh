@@ -4,50 +4,8 @@
 # curve reaching its pull-off, units in ranges, bounded list products, the output path and
 # the smaller input defects. Every case works in its own temporary folder.
 # Usage: test_issue29_defects.sh PATH/TO/coatcontact DATA_DIR CASE
-set -u
-cli="$1"
-data="$2"
-case_name="$3"
-work="$(mktemp -d)"
-cleanup() {
-  chattr -i "$work"/* 2>/dev/null
-  rm -rf "$work"
-}
-trap cleanup EXIT
-cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-ok() { echo "ok   $*"; }
-
-# run EXPECTED_EXIT ARGS...: runs the program (stdout -> out, stderr -> err), checks the exit.
-run() {
-  local want="$1"
-  shift
-  timeout 200 "$cli" "$@" >out 2>err
-  local rc=$?
-  if [ "$rc" -ne "$want" ]; then
-    fail "exit $rc (expected $want): coatcontact $(echo "$*" | cut -c1-200); stderr: $(head -c 400 err)"
-    return 1
-  fi
-  return 0
-}
-# expect_error TEXT ARGS...: exit 2, stderr contains TEXT, nothing on stdout.
-expect_error() {
-  local text="$1"
-  shift
-  run 2 "$@" || return 1
-  if ! grep -q -F -- "$text" err; then
-    fail "stderr does not say '$text': $(head -c 400 err)"
-    return 1
-  elif [ -s out ]; then
-    fail "stdout not empty for coatcontact $*"
-    return 1
-  fi
-  ok "$text: $(head -n 1 err | cut -c1-160)"
-}
+source "$(dirname "$0")/cli_case_preamble.sh"
 rows() { grep -vc '^#' "$1"; }
-
-FIT=(--columns a,F --radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um)
 
 case "$case_name" in
 pulloff_probe_refuses_feasible_curve)

@@ -3,42 +3,8 @@
 # temporary folder and makes its own device node (mknod, skipped when not root), FIFO and
 # symbolic links there; no case writes to the system's /dev entries.
 # Usage: test_regressions.sh PATH/TO/coatcontact DATA_DIR CASE
-set -u
-cli="$1"
-data="$2"
-case_name="$3"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-ok() { echo "ok   $*"; }
-
-# run EXPECTED_EXIT ARGS...: runs the program (stdout -> out, stderr -> err), checks the exit.
-run() {
-  local want="$1"
-  shift
-  timeout 120 "$cli" "$@" >out 2>err
-  local rc=$?
-  if [ "$rc" -ne "$want" ]; then
-    fail "exit $rc (expected $want): coatcontact $(echo "$*" | cut -c1-200); stderr: $(head -c 300 err)"
-    return 1
-  fi
-  return 0
-}
-# expect_error OPTION ARGS...: exit 2, stderr names OPTION, nothing on stdout.
-expect_error() {
-  local option="$1"
-  shift
-  run 2 "$@" || return
-  if ! grep -q -F -- "$option" err; then
-    fail "stderr does not name '$option': $(head -c 300 err)"
-  elif [ -s out ]; then
-    fail "stdout not empty for coatcontact $*"
-  else
-    ok "$option: $(head -n 1 err | cut -c1-150)"
-  fi
-}
+CLI_TIMEOUT=120
+source "$(dirname "$0")/cli_case_preamble.sh"
 no_temporaries() {
   if compgen -G "$1/*.tmp.*" >/dev/null; then fail "temporary files left: $(ls "$1")"; fi
 }
@@ -52,8 +18,6 @@ quick_commands=(
   "sphere --radius 5um --thickness 1um --film 1GPa,0.3 --substrate 10GPa,0.25 --work 50mJ/m2 --points 5"
   "fit $data/example_a_F.tsv --columns a,F --radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um"
 )
-FIT=(--columns a,F --radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um)
-
 case "$case_name" in
 output_replaces_device)
   # Defect 1: a character device at the --output path became a regular file.

@@ -3,6 +3,8 @@
 #   recovery: w and lambda from 12 noisy a,F points of `coatcontact sphere --cohesive-stress`
 #     (an independent path: the curve of the sphere command, no fit code), within 3 standard
 #     errors;
+#   the ends of the lambda range: 1e-3 and 1e4 accepted (at 1e4 w equals the JKR fit's), just
+#     outside them refused;
 #   bad input (exit 2, naming the option, no output file): bad --model, bad --lambda, lambda
 #     free without --model md, --model md with delta,F data.
 # Usage: test_fit_md.sh COATCONTACT
@@ -30,6 +32,39 @@ echo "     ($(( $(date +%s) - start )) s)"
 if grep -v '^#' "$work/out" | grep -Eiq 'nan|inf'; then fail "md: NaN/inf in the output"; fi
 within3 "w [J/m2]" "$(sed -n 's/^# w_J_per_m2: //p' "$work/out")" "$(sed -n 's/^# w_stderr_J_per_m2: //p' "$work/out")" 0.05
 within3 "lambda" "$(sed -n 's/^# lambda_1: //p' "$work/out")" "$(sed -n 's/^# lambda_stderr_1: //p' "$work/out")" "$lambda"
+
+# --- the ends of the lambda range, [1e-3, 1e4] (coatcontact/limits.hpp, THEORY.md section 13),
+# the one range of the sphere, adhesive and pull-off commands and of the fit ---
+# At lambda = 1e4 the Maugis-Dugdale curve is the JKR one to ~1/lambda^2 = 1e-8 (section 13), so
+# the fitted w equals the JKR fit's; tier 1e-6 relative: two solver tolerances (1e-8) of
+# curve difference, times the fit's sensitivity of w to F (~1 here), with margin 50.
+expect "md: lambda = 1e4 accepted" 0 "" -- "$cli" fit "$work/md_a_F.tsv" --columns a,F "${glass[@]}" --thickness 20um \
+  --model md --lambda 1e4 --sigma F=2uN
+w_md=$(sed -n 's/^# w_J_per_m2: //p' "$work/out")
+[[ $(sed -n 's/^# lambda_1: //p' "$work/out") == 10000 ]] || fail "md: lambda_1 is not 10000"
+expect "jkr: the same data" 0 "" -- "$cli" fit "$work/md_a_F.tsv" --columns a,F "${glass[@]}" --thickness 20um --sigma F=2uN
+w_jkr=$(sed -n 's/^# w_J_per_m2: //p' "$work/out")
+awk -v a="$w_md" -v b="$w_jkr" 'BEGIN { d = (a - b) / b; if (d < 0) d = -d; exit !(b > 0 && d < 1e-6) }' \
+  && ok "w at lambda 1e4 = $w_md, JKR $w_jkr" || fail "w at lambda 1e4 = '$w_md' differs from JKR's '$w_jkr' by more than 1e-6"
+# The lower end: 4 exact points of the sphere command's curve at sigma0 = 31.5 Pa, lambda = 1.0024e-3
+# (a zone of ~1e3 contact radii: one direct solve per point and trial).
+"$cli" sphere "${glass[@]}" --thickness 20um --work 50mJ/m2 --cohesive-stress 31.5Pa --points 20 \
+  --output "$work/md_low.tsv" 2>/dev/null || fail "sphere --cohesive-stress 31.5Pa (data)"
+grep -v '^#' "$work/md_low.tsv" | awk 'NR % 5 == 3 { printf "%s\t%s\n", $1, $3 }' >"$work/md_4.tsv"
+expect "md: lambda = 1e-3 accepted" 0 "" -- "$cli" fit "$work/md_4.tsv" --columns a,F "${glass[@]}" --thickness 20um \
+  --model md --lambda 1e-3
+[[ $(sed -n 's/^# lambda_1: //p' "$work/out") == 0.001 ]] || fail "md: lambda_1 is not 0.001"
+# w recovered to 1e-4 relative: near lambda = 1e-3 the curve is DMT's (F = -2 pi w R at
+# separation to 2.7e-4, section 13), so the data's lambda, 0.24 % above the fixed 1e-3, moves w
+# by far less than that (measured 4e-6).
+w_low=$(sed -n 's/^# w_J_per_m2: //p' "$work/out")
+awk -v w="$w_low" 'BEGIN { d = w / 0.05 - 1; if (d < 0) d = -d; exit !(d < 1e-4) }' \
+  && ok "w at lambda 1e-3 = $w_low (truth 0.05)" || fail "w at lambda 1e-3 = '$w_low', truth 0.05: not within 1e-4"
+for bad in 1.0001e4 9.99e-4; do
+  expect "md: lambda = $bad refused" 2 "--lambda: '$bad' is not allowed \\(need a number 0.001 <= lambda <= 10000" -- \
+    "$cli" fit "$work/md_a_F.tsv" --columns a,F "${glass[@]}" --thickness 20um --model md --lambda "$bad" \
+    --output "$work/never.tsv"
+done
 
 # --- bad input: exit 2 ---
 expect "bad --model" 2 "--model: 'dmt' is not allowed" -- "$cli" fit "$work/md_a_F.tsv" --columns a,F "${glass[@]}" \

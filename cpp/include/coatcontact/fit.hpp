@@ -42,6 +42,7 @@
 
 #include "coatcontact/errors.hpp"
 #include "coatcontact/indenter_shape.hpp"
+#include "coatcontact/limits.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/stack.hpp"
 
@@ -163,7 +164,8 @@ constexpr double kSearchModulusFactor = 10.0;
 constexpr double kSearchThicknessFactor = 10.0;
 constexpr double kSearchSpringFactor = 10.0;  // k of z,F data, around its hint (--spring)
 constexpr double kSearchLambdaFactor = 10.0;  // Maugis-Dugdale lambda, around its hint
-constexpr double kLambdaRange[2] = {1e-3, 1e3};  // lambda the fit may ask for
+// The lambda the fit accepts and may run to is the library's one range, [kMinimumLambda,
+// kMaximumLambda] of limits.hpp (THEORY.md section 13); inf (JKR) is the JKR model, not a fit value.
 
 // Physical ranges of the parameters the model accepts (leaving them means the data do not
 // determine them), and the a/t (a/T for a stack) it is tabulated for.

@@ -94,23 +94,19 @@ inline StackArrays stack_arrays(const Stack& stack) {
   return a;
 }
 
-// C or C - 1 at q: section 3's closed form for one bonded layer (faster than the recursion,
-// which agrees with it to rounding), section 12's recursion otherwise.
+// C or C - 1 at q. Every stack goes to the stack entry points: the kernel library itself
+// decides "one film or a stack" (one bonded layer takes section 3's closed form there, bit for
+// bit the film entry's; otherwise section 12's recursion).
 inline int compliance_values(const Stack& stack, const std::vector<double>& q, double* out,
                              bool minus_one, const std::string& context) {
   const int n = checked_size(q.size(), context);
-  if (stack.is_multilayer()) {
-    const StackArrays a = stack_arrays(stack);
-    return minus_one ? cc_stack_compliance_minus_one(a.n(), a.thickness.data(), a.youngs.data(),
-                                                     a.poisson.data(), a.slip.data(), a.rigid,
-                                                     a.e_base, a.nu_base, n, q.data(), out)
-                     : cc_stack_compliance(a.n(), a.thickness.data(), a.youngs.data(),
-                                           a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
-                                           a.nu_base, n, q.data(), out);
-  }
-  const auto p = film_pair(stack);
-  return minus_one ? cc_compliance_minus_one(p.e1, p.nu1, p.e0, p.nu0, p.rigid, n, q.data(), out)
-                   : cc_compliance(p.e1, p.nu1, p.e0, p.nu0, p.rigid, n, q.data(), out);
+  const StackArrays a = stack_arrays(stack);
+  return minus_one ? cc_stack_compliance_minus_one(a.n(), a.thickness.data(), a.youngs.data(),
+                                                   a.poisson.data(), a.slip.data(), a.rigid,
+                                                   a.e_base, a.nu_base, n, q.data(), out)
+                   : cc_stack_compliance(a.n(), a.thickness.data(), a.youngs.data(),
+                                         a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
+                                         a.nu_base, n, q.data(), out);
 }
 
 // 1/(1 + rho): C' - 1 = (C - 1)/(1 + rho) (THEORY.md section 9); exactly 1 when rigid.
@@ -127,7 +123,6 @@ inline void scale_values(std::vector<double>& values, double scale) {
 // exp(-2 q h_top/T)) up to cc_kernel_stack_max_refinement(): a thinner top layer is refused
 // here with its numbers, not after a failed build.
 inline void check_stack_table_supported(const Stack& stack) {
-  if (!stack.is_multilayer()) return;
   const double fraction = stack.layers().front().thickness / stack.total_thickness();
   const int refinement = cc_kernel_stack_max_refinement();
   if (fraction * refinement < 1.0) {
@@ -221,16 +216,10 @@ class KernelTable {
       : scale_(kernel_detail::indenter_scale(stack)), rho_(stack.indenter_ratio()) {
     kernel_detail::check_stack_table_supported(stack);
     cc_kernel_table* raw = nullptr;
-    int status = CC_OK;
-    if (stack.is_multilayer()) {
-      const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
-      status = cc_kernel_table_create_stack_range(a.n(), a.thickness.data(), a.youngs.data(),
-                                                  a.poisson.data(), a.slip.data(), a.rigid,
-                                                  a.e_base, a.nu_base, u_range, &raw);
-    } else {
-      const auto p = kernel_detail::film_pair(stack);
-      status = cc_kernel_table_create_range(p.e1, p.nu1, p.e0, p.nu0, p.rigid, u_range, &raw);
-    }
+    const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
+    const int status = cc_kernel_table_create_stack_range(a.n(), a.thickness.data(), a.youngs.data(),
+                                                          a.poisson.data(), a.slip.data(), a.rigid,
+                                                          a.e_base, a.nu_base, u_range, &raw);
     kernel_detail::check_status(status, stack, "kernel table");
     table_.reset(raw);
   }
@@ -296,17 +285,12 @@ class KernelTable {
     }
     kernel_detail::check_stack_table_supported(stack);
     cc_kernel_table* raw = nullptr;
-    int status = CC_OK;
-    if (stack.is_multilayer()) {  // THEORY.md section 12: q and u in units of T
-      const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
-      status = (h_only ? cc_kernel_table_create_stack_h : cc_kernel_table_create_stack)(
-          a.n(), a.thickness.data(), a.youngs.data(), a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
-          a.nu_base, grid_variant, &raw);
-    } else {
-      const auto p = kernel_detail::film_pair(stack);
-      status = (h_only ? cc_kernel_table_create_h : cc_kernel_table_create_ex)(p.e1, p.nu1, p.e0, p.nu0, p.rigid,
-                                                                              grid_variant, &raw);
-    }
+    // THEORY.md section 12: q and u in units of T (the film thickness for one layer, whose
+    // table the kernel library builds as cc_kernel_table_create_ex's, bit for bit).
+    const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
+    const int status = (h_only ? cc_kernel_table_create_stack_h : cc_kernel_table_create_stack)(
+        a.n(), a.thickness.data(), a.youngs.data(), a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
+        a.nu_base, grid_variant, &raw);
     kernel_detail::check_status(status, stack, "kernel table");
     table_.reset(raw);
   }

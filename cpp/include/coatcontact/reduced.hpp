@@ -11,7 +11,10 @@
 
 namespace coatcontact {
 
-struct ReducedVariables {
+// The six reduced variables at one a/t: what a solve returns and the interpolant
+// (ReducedPoint, reduced_table.hpp) hands on, so one is passed as the other without a copy
+// field by field.
+struct ReducedValues {
   double a_over_t = 0.0;
   double pi_s = 0.0;
   double delta_s = 0.0;
@@ -19,6 +22,9 @@ struct ReducedVariables {
   double delta_c = 0.0;
   double e_eq = 0.0;
   double gamma1 = 0.0;
+};
+
+struct ReducedVariables : ReducedValues {
   double error_estimate = 0.0;  // estimated max relative error over the six values
   int unknowns = 0;             // size of the final linear system
 };

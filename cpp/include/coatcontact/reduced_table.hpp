@@ -47,9 +47,7 @@ class SolverSource final : public ReducedSource {
 // ---- interpolation of the reduced variables -----------------------------------------
 
 // Values and logarithmic derivatives d ln(X) / d ln(a/t) of the six reduced variables.
-struct ReducedPoint {
-  double a_over_t = 0.0;
-  double pi_s = 0.0, delta_s = 0.0, pi_c = 0.0, delta_c = 0.0, e_eq = 0.0, gamma1 = 0.0;
+struct ReducedPoint : ReducedValues {
   double dlog_pi_s = 0.0, dlog_delta_s = 0.0, dlog_pi_c = 0.0, dlog_delta_c = 0.0,
          dlog_e_eq = 0.0, dlog_gamma1 = 0.0;
 };
