@@ -24,14 +24,15 @@ install(TARGETS coatcontact_library coatcontact_fortran
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS coatcontact RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
-# Public headers; the CLI's own headers and the GSL helpers (sources only) stay private. detail/format.hpp is installed: kernel.hpp formats its messages with it.
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/cpp/include/coatcontact/
+# Public headers: every floor's include/coatcontact/ (COATCONTACT_PUBLIC_HEADER_DIRS, cpp/) into
+# the one installed include/coatcontact/. The CLI's headers (cpp/support, never listed), the data
+# file reader's and the GSL helpers (sources only) stay private. detail/format.hpp is installed:
+# kernel.hpp formats its messages with it.
+get_property(cc_public_header_dirs GLOBAL PROPERTY COATCONTACT_PUBLIC_HEADER_DIRS)
+install(DIRECTORY ${cc_public_header_dirs}
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/coatcontact
   FILES_MATCHING PATTERN "*.h" PATTERN "*.hpp"
-  PATTERN "cli_support.hpp" EXCLUDE
   PATTERN "data_file.hpp" EXCLUDE
-  PATTERN "si_text.hpp" EXCLUDE
-  PATTERN "gnuplot_run.hpp" EXCLUDE
   PATTERN "gsl_handler_off.hpp" EXCLUDE
   PATTERN "brent.hpp" EXCLUDE)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/fortran/include/coatcontact/

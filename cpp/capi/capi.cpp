@@ -1,4 +1,4 @@
-// The C interface (cpp/include/coatcontact/coatcontact.h) over the C++ floors. Every entry
+// The C interface (cpp/capi/include/coatcontact/coatcontact.h) over the C++ floors. Every entry
 // point runs inside guarded(): exceptions become status codes, results are computed in full
 // before anything is written to the caller's memory.
 #include "coatcontact/coatcontact.h"

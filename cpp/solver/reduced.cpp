@@ -1,4 +1,4 @@
-// coatcontact::ReducedSolver (cpp/include/coatcontact/reduced.hpp): input checks, the kernel
+// coatcontact::ReducedSolver (cpp/solver/include/coatcontact/reduced.hpp): input checks, the kernel
 // table of the material pair, and the refinement loop of reduced_core.
 #include "coatcontact/reduced.hpp"
 

@@ -1,4 +1,4 @@
-// The Fortran kernel table (coatcontact::KernelTable, cpp/include/coatcontact/kernel.hpp) as
+// The Fortran kernel table (coatcontact::KernelTable, cpp/solver/include/coatcontact/kernel.hpp) as
 // the solver's KernelSource (internal to coatcontact_solver).
 #pragma once
 #include <array>

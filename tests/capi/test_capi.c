@@ -1,4 +1,4 @@
-/* The C API (cpp/include/coatcontact/coatcontact.h) used from C: stack, solver, adhesive
+/* The C API (cpp/capi/include/coatcontact/coatcontact.h) used from C: stack, solver, adhesive
  * sphere, contact in SI units, fit, and every error path. Argument 1: E_eq at a/t = 1 for the
  * soft film (0.1, 0.25 on 1, 0.25) as printed by `coatcontact reduced` (run_test_capi.sh). */
 #include <math.h>
