@@ -523,45 +523,156 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   return {problem, coated, modulus_name, free_text, segment_name, kind, range};
 }
 
+// The help text of `afm fit` (one curve, or one row per curve of many).
+void print_fit_help() {
+  std::cout << usage("afm fit",
+                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                     "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
+                     "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
+                     "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
+                     "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):\n"
+                     "F(z) = b + E/(1 - nu^2) g(z_c - z) on the tip-position axis z (decreasing toward\n"
+                     "the sample), g the Hertz/Sneddon force of the tip per reduced modulus, zero out of\n"
+                     "contact. E, the contact point z_c and the baseline b are free by default; z_c is\n"
+                     "found by profiling the least-squares sum over the whole fitted range (the global\n"
+                     "optimum), E and b in closed form at each z_c. Range options are combined; the\n"
+                     "relative ones refer to the preprocessing's contact point and baseline (`afm export\n"
+                     "--preprocess`), fixed before the fit. chi2 uses the noise of the baseline fit\n"
+                     "(its residual sigma). The pull-off is the retract segment's most tensile force\n"
+                     "less the fitted baseline. Output: the segment's points with indentation, model,\n"
+                     "residual and whether each was fitted; the header holds the estimates.\n"
+                     "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
+                     "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
+                     "searched on a log grid within a factor 10 of the given values, then refined.\n"
+                     "--model jkr (retract by default): F(z) = b + m (z - z_c) + F_JKR(z_c - z), the JKR force of\n"
+                     "the sphere on the half-space or the coating on the branch stable under the cantilever's\n"
+                     "spring k (the file's, or --spring-constant), zero past its jump-off; E (E1, t), w, z_c, b\n"
+                     "and the tilt m free by default. Reports Tabor's mu and Maugis's lambda for the surface-\n"
+                     "force range --range and warns when lambda is below the JKR range.\n"
+                     "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
+                     "by extension) give one row per curve instead: file, curve, grid index and position,\n"
+                     "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
+                     "A curve that cannot be fitted is flagged and the run goes on (exit 0; the count\n"
+                     "in the header and on stderr). The baseline tilt of each curve's preprocessing is\n"
+                     "subtracted (b: the baseline at its contact point). --jobs N fits in parallel with\n"
+                     "the same table; with --output FILE the rows go to FILE.partial chunk by chunk\n"
+                     "and FILE is written at the end; --resume continues an interrupted FILE.partial.\n"
+                     "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
+                         std::string(kFormats),
+                     kFitSpec);
+}
+
+// The model, tip and sample lines of a one-curve fit's header.
+void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem) {
+  const bool jkr = problem.model == fit::AfmModel::kJkr;
+  items.push_back({"model", jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
+                                  "under the spring k (0 past its jump-off)"
+                                : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+  items.push_back({"tip", problem.tip.description});
+  if (problem.coating) {
+    const fit::AfmCoating& c = *problem.coating;
+    items.push_back({"sample", "coating: film nu1 = " + format_parameter(c.film.poisson_ratio, "nu1") + ", substrate " +
+                                   (c.substrate.rigid ? std::string("rigid")
+                                                      : "E0 = " + format_parameter(c.substrate.material.youngs_modulus, "E0") +
+                                                            " Pa, nu0 = " + format_parameter(c.substrate.material.poisson_ratio, "nu0")) +
+                                   " (THEORY.md sections 5, 14: reduced solver swept over a/t, log-log table)"});
+  } else {
+    items.push_back({"sample", "homogeneous half-space, nu = " + format_parameter(problem.poisson, "nu")});
+  }
+}
+
+// The estimates, statistics, lambda and pull-off lines of a one-curve fit's header (the JKR
+// warnings also to stderr).
+void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem,
+                       const fit::AfmFitResult& r, const std::string& modulus_name, const fit::AfmPulloff& pulloff) {
+  const bool jkr = problem.model == fit::AfmModel::kJkr;
+  items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
+                                                                : format_parameter(r.modulus, modulus_name) + " (fixed)"});
+  if (problem.coating) {
+    items.push_back({"t [m]", problem.free.thickness ? with_error(r.thickness, r.thickness_error, "t")
+                                                     : format_parameter(r.thickness, "t") + " (fixed)"});
+  }
+  if (jkr) {
+    items.push_back({"w [J/m2]", problem.free.work ? with_error(r.work, r.work_error, "w") : format_parameter(r.work, "w") + " (fixed)"});
+    items.push_back({"tilt [N/m]", (problem.free.tilt ? with_error(r.tilt, r.tilt_error, "tilt") : format_parameter(r.tilt, "tilt") + " (fixed)") +
+                                       " (baseline slope about the contact point)"});
+  }
+  items.push_back({"contact point [m]", problem.free.contact_point ? with_error(r.contact_point, r.contact_point_error, "contact point")
+                                                                   : format_parameter(r.contact_point, "contact point") + " (fixed)"});
+  items.push_back({"baseline [N]", problem.free.baseline ? with_error(r.baseline, r.baseline_error, "baseline")
+                                                         : format_parameter(r.baseline, "baseline") + " (fixed)"});
+  items.push_back({problem.coating ? "E1* [Pa]" : "E* [Pa]", format_parameter(r.reduced_modulus, "E*")});
+  items.push_back({"max indentation [m]", format_parameter(r.max_indentation, "max indentation")});
+  items.push_back({"residual sigma [N]", format_parameter(r.residual_sigma, "residual sigma")});
+  items.push_back({"chi2", format_parameter(r.chi2, "chi2") + " (chi2/dof " + format_parameter(r.chi2_per_dof, "chi2/dof") + ", " +
+                               std::to_string(r.points - static_cast<std::size_t>(r.free_count)) + " dof)"});
+  items.push_back({"R^2", format_parameter(r.r_squared, "R^2")});
+  if (jkr) {
+    items.push_back({"spring constant [N/m]", format_parameter(problem.spring_constant, "k")});
+    items.push_back({"model jump-off", format_parameter(r.jump_off_force, "jump-off force") + " N above the baseline at indentation " +
+                                           format_parameter(r.jump_off_indentation, "jump-off indentation") + " m"});
+    items.push_back({"Tabor mu", format_parameter(r.tabor_mu, "mu") + " (surface-force range z0 = " +
+                                     format_parameter(problem.surface_force_range, "z0") + " m, --range)"});
+    items.push_back({"Maugis lambda", format_parameter(r.maugis_lambda, "lambda") + " (Dugdale stress w/(0.97 z0); JKR needs lambda >= " +
+                                          format_parameter(fit::kJkrMinimumLambda, "lambda") + ")"});
+    for (const std::string& warning : r.warnings) {
+      items.push_back({"warning", warning});
+      std::cerr << "coatcontact afm fit: warning: " << warning << "\n";
+    }
+  }
+  if (pulloff.found) {
+    items.push_back({"pull-off (retract, measured) [N]", format_parameter(pulloff.force, "pull-off force") + " at tip position " +
+                                                              format_parameter(pulloff.tip_position, "pull-off position") + " m"});
+  } else {
+    items.push_back({"pull-off (retract, measured)", "no retract segment"});
+  }
+}
+
+// The gnuplot settings of a one-curve fit's plot: scales and SI prefixes, the contact region,
+// the title and the estimates' label.
+std::string fit_plot_settings(const std::string& term, const std::string& path, std::size_t index,
+                              const std::string& segment_name, const std::string& modulus_name,
+                              const fit::AfmFitProblem& problem, const fit::AfmFitResult& r,
+                              const std::vector<double>& z_segment, const std::vector<double>& f_segment,
+                              const fit::AfmPulloff& pulloff) {
+  const bool jkr = problem.model == fit::AfmModel::kJkr;
+  double z_big = 0.0, f_big = 0.0;
+  for (std::size_t i = 0; i < z_segment.size(); ++i) {
+    z_big = std::max(z_big, std::abs(z_segment[i]));
+    f_big = std::max(f_big, std::abs(f_segment[i] - r.baseline));
+  }
+  const auto [z_scale, z_prefix] = prefix_of(z_big);
+  // The contact region: from the deepest point to 2 largest indentations above z_c.
+  const double z_low = *std::min_element(z_segment.begin(), z_segment.end());
+  double z_high = r.contact_point + 2.0 * std::max(r.contact_point - z_low, 1e-12);
+  if (jkr) z_high = std::max(z_high, r.contact_point - 2.0 * r.jump_off_indentation);
+  const auto [f_scale, f_prefix] = prefix_of(f_big);
+  const std::string title = std::filesystem::path(path).filename().string() + " #" + std::to_string(index) + ", " +
+                            segment_name + ": " + problem.tip.description;
+  char label[400];
+  char thickness_text[160] = "";
+  if (problem.coating) std::snprintf(thickness_text, sizeof thickness_text, ", t = %.4g ± %.2g µm", r.thickness * 1e6, r.thickness_error * 1e6);
+  if (jkr) {
+    const std::size_t used = std::strlen(thickness_text);
+    std::snprintf(thickness_text + used, sizeof thickness_text - used, ", w = %.3g ± %.2g mJ/m², λ = %.3g", r.work * 1e3,
+                  r.work_error * 1e3, r.maugis_lambda);
+  }
+  std::snprintf(label, sizeof label, "%s = %.4g ± %.2g Pa (ν = %g)%s, z_c = %.6g ± %.2g µm, σ = %.3g %sN, χ²/dof = %.3g",
+                modulus_name.c_str(), r.modulus, r.modulus_error, problem.poisson, thickness_text, r.contact_point * 1e6,
+                r.contact_point_error * 1e6, r.residual_sigma * f_scale, f_prefix.c_str(), r.chi2_per_dof);
+  return "term='" + term + "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(label) +
+                               "; zs=" + gp_number(z_scale) + "; zunit='" + z_prefix + "m'; fs=" + gp_number(f_scale) +
+                               "; funit='" + f_prefix + "N'; zc=" + gp_number(r.contact_point) + "; zlo=" + gp_number(z_low) +
+                               "; zhi=" + gp_number(z_high) + "; base=" +
+                               gp_number(r.baseline) + "; po_z=" + gp_number(pulloff.found ? pulloff.tip_position : NAN) +
+                               "; po_F=" + gp_number(pulloff.found ? pulloff.force + r.baseline : NAN);
+}
+
 int run_fit_curve(const Args& args) {
   return run_guarded("afm fit", [&]() -> int {
     const Arguments arguments(args, kFitSpec, kMaxFitInputs);
     if (arguments.help()) {
-      std::cout << usage("afm fit",
-                         "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
-                         "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
-                         "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
-                         "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
-                         "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):\n"
-                         "F(z) = b + E/(1 - nu^2) g(z_c - z) on the tip-position axis z (decreasing toward\n"
-                         "the sample), g the Hertz/Sneddon force of the tip per reduced modulus, zero out of\n"
-                         "contact. E, the contact point z_c and the baseline b are free by default; z_c is\n"
-                         "found by profiling the least-squares sum over the whole fitted range (the global\n"
-                         "optimum), E and b in closed form at each z_c. Range options are combined; the\n"
-                         "relative ones refer to the preprocessing's contact point and baseline (`afm export\n"
-                         "--preprocess`), fixed before the fit. chi2 uses the noise of the baseline fit\n"
-                         "(its residual sigma). The pull-off is the retract segment's most tensile force\n"
-                         "less the fitted baseline. Output: the segment's points with indentation, model,\n"
-                         "residual and whether each was fitted; the header holds the estimates.\n"
-                         "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
-                         "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
-                         "searched on a log grid within a factor 10 of the given values, then refined.\n"
-                         "--model jkr (retract by default): F(z) = b + m (z - z_c) + F_JKR(z_c - z), the JKR force of\n"
-                         "the sphere on the half-space or the coating on the branch stable under the cantilever's\n"
-                         "spring k (the file's, or --spring-constant), zero past its jump-off; E (E1, t), w, z_c, b\n"
-                         "and the tilt m free by default. Reports Tabor's mu and Maugis's lambda for the surface-\n"
-                         "force range --range and warns when lambda is below the JKR range.\n"
-                         "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
-                         "by extension) give one row per curve instead: file, curve, grid index and position,\n"
-                         "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
-                         "A curve that cannot be fitted is flagged and the run goes on (exit 0; the count\n"
-                         "in the header and on stderr). The baseline tilt of each curve's preprocessing is\n"
-                         "subtracted (b: the baseline at its contact point). --jobs N fits in parallel with\n"
-                         "the same table; with --output FILE the rows go to FILE.partial chunk by chunk\n"
-                         "and FILE is written at the end; --resume continues an interrupted FILE.partial.\n"
-                         "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
-                             std::string(kFormats),
-                         kFitSpec);
+      print_fit_help();
       return kExitSuccess;
     }
     if (arguments.positionals().empty()) throw InputError("expected a FILE, several FILEs or a FOLDER (see --help)");
@@ -656,20 +767,7 @@ int run_fit_curve(const Args& args) {
                                     : "adhesionless Hertz/Sneddon fit of one AFM force-curve segment (THEORY.md section 15)"}};
     add_curve_header(items, curve);
     items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
-    items.push_back({"model", jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
-                                    "under the spring k (0 past its jump-off)"
-                                  : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
-    items.push_back({"tip", problem.tip.description});
-    if (problem.coating) {
-      const fit::AfmCoating& c = *problem.coating;
-      items.push_back({"sample", "coating: film nu1 = " + format_parameter(c.film.poisson_ratio, "nu1") + ", substrate " +
-                                     (c.substrate.rigid ? std::string("rigid")
-                                                        : "E0 = " + format_parameter(c.substrate.material.youngs_modulus, "E0") +
-                                                              " Pa, nu0 = " + format_parameter(c.substrate.material.poisson_ratio, "nu0")) +
-                                     " (THEORY.md sections 5, 14: reduced solver swept over a/t, log-log table)"});
-    } else {
-      items.push_back({"sample", "homogeneous half-space, nu = " + format_parameter(problem.poisson, "nu")});
-    }
+    add_fit_model_lines(items, problem);
     items.push_back({"segment", segment_name + " (" + std::to_string(z_segment.size()) + " points)"});
     items.push_back({"free", free_text});
     items.push_back({"preprocessing contact point [m]", format_parameter(steps.contact_point, "contact point") +
@@ -679,46 +777,7 @@ int run_fit_curve(const Args& args) {
     const std::string range_text = fit_range_text(range);
     items.push_back({"fit range", range_text + " (" + std::to_string(z.size()) + " points fitted, " +
                                       std::to_string(r.points_in_contact) + " in contact)"});
-    items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
-                                                                  : format_parameter(r.modulus, modulus_name) + " (fixed)"});
-    if (problem.coating) {
-      items.push_back({"t [m]", problem.free.thickness ? with_error(r.thickness, r.thickness_error, "t")
-                                                       : format_parameter(r.thickness, "t") + " (fixed)"});
-    }
-    if (jkr) {
-      items.push_back({"w [J/m2]", problem.free.work ? with_error(r.work, r.work_error, "w") : format_parameter(r.work, "w") + " (fixed)"});
-      items.push_back({"tilt [N/m]", (problem.free.tilt ? with_error(r.tilt, r.tilt_error, "tilt") : format_parameter(r.tilt, "tilt") + " (fixed)") +
-                                         " (baseline slope about the contact point)"});
-    }
-    items.push_back({"contact point [m]", problem.free.contact_point ? with_error(r.contact_point, r.contact_point_error, "contact point")
-                                                                     : format_parameter(r.contact_point, "contact point") + " (fixed)"});
-    items.push_back({"baseline [N]", problem.free.baseline ? with_error(r.baseline, r.baseline_error, "baseline")
-                                                           : format_parameter(r.baseline, "baseline") + " (fixed)"});
-    items.push_back({problem.coating ? "E1* [Pa]" : "E* [Pa]", format_parameter(r.reduced_modulus, "E*")});
-    items.push_back({"max indentation [m]", format_parameter(r.max_indentation, "max indentation")});
-    items.push_back({"residual sigma [N]", format_parameter(r.residual_sigma, "residual sigma")});
-    items.push_back({"chi2", format_parameter(r.chi2, "chi2") + " (chi2/dof " + format_parameter(r.chi2_per_dof, "chi2/dof") + ", " +
-                                 std::to_string(r.points - static_cast<std::size_t>(r.free_count)) + " dof)"});
-    items.push_back({"R^2", format_parameter(r.r_squared, "R^2")});
-    if (jkr) {
-      items.push_back({"spring constant [N/m]", format_parameter(problem.spring_constant, "k")});
-      items.push_back({"model jump-off", format_parameter(r.jump_off_force, "jump-off force") + " N above the baseline at indentation " +
-                                             format_parameter(r.jump_off_indentation, "jump-off indentation") + " m"});
-      items.push_back({"Tabor mu", format_parameter(r.tabor_mu, "mu") + " (surface-force range z0 = " +
-                                       format_parameter(problem.surface_force_range, "z0") + " m, --range)"});
-      items.push_back({"Maugis lambda", format_parameter(r.maugis_lambda, "lambda") + " (Dugdale stress w/(0.97 z0); JKR needs lambda >= " +
-                                            format_parameter(fit::kJkrMinimumLambda, "lambda") + ")"});
-      for (const std::string& warning : r.warnings) {
-        items.push_back({"warning", warning});
-        std::cerr << "coatcontact afm fit: warning: " << warning << "\n";
-      }
-    }
-    if (pulloff.found) {
-      items.push_back({"pull-off (retract, measured) [N]", format_parameter(pulloff.force, "pull-off force") + " at tip position " +
-                                                                format_parameter(pulloff.tip_position, "pull-off position") + " m"});
-    } else {
-      items.push_back({"pull-off (retract, measured)", "no retract segment"});
-    }
+    add_fit_estimates(items, problem, r, modulus_name, pulloff);
     items.push_back({"fit time [s]", format_parameter(r.seconds, "time") + " (" + std::to_string(r.profile_evaluations) +
                                          " contact-point profile evaluations" +
                                          (problem.coating ? ", " + std::to_string(r.solver_calls) + " reduced-variable solves" : "") + ")"});
@@ -736,37 +795,8 @@ int run_fit_curve(const Args& args) {
     }
     std::string picture;
     if (plot_path) {
-      double z_big = 0.0, f_big = 0.0;
-      for (std::size_t i = 0; i < z_segment.size(); ++i) {
-        z_big = std::max(z_big, std::abs(z_segment[i]));
-        f_big = std::max(f_big, std::abs(f_segment[i] - r.baseline));
-      }
-      const auto [z_scale, z_prefix] = prefix_of(z_big);
-      // The contact region: from the deepest point to 2 largest indentations above z_c.
-      const double z_low = *std::min_element(z_segment.begin(), z_segment.end());
-      double z_high = r.contact_point + 2.0 * std::max(r.contact_point - z_low, 1e-12);
-      if (jkr) z_high = std::max(z_high, r.contact_point - 2.0 * r.jump_off_indentation);
-      const auto [f_scale, f_prefix] = prefix_of(f_big);
-      const std::string title = std::filesystem::path(path).filename().string() + " #" + std::to_string(index) + ", " +
-                                segment_name + ": " + problem.tip.description;
-      char label[400];
-      char thickness_text[160] = "";
-      if (problem.coating) std::snprintf(thickness_text, sizeof thickness_text, ", t = %.4g ± %.2g µm", r.thickness * 1e6, r.thickness_error * 1e6);
-      if (jkr) {
-        const std::size_t used = std::strlen(thickness_text);
-        std::snprintf(thickness_text + used, sizeof thickness_text - used, ", w = %.3g ± %.2g mJ/m², λ = %.3g", r.work * 1e3,
-                      r.work_error * 1e3, r.maugis_lambda);
-      }
-      std::snprintf(label, sizeof label, "%s = %.4g ± %.2g Pa (ν = %g)%s, z_c = %.6g ± %.2g µm, σ = %.3g %sN, χ²/dof = %.3g",
-                    modulus_name.c_str(), r.modulus, r.modulus_error, problem.poisson, thickness_text, r.contact_point * 1e6,
-                    r.contact_point_error * 1e6, r.residual_sigma * f_scale, f_prefix.c_str(), r.chi2_per_dof);
-      const std::string settings = "term='" + term + "'; plottitle=" + gnuplot_string(title) + "; fitlabel=" + gnuplot_string(label) +
-                                   "; zs=" + gp_number(z_scale) + "; zunit='" + z_prefix + "m'; fs=" + gp_number(f_scale) +
-                                   "; funit='" + f_prefix + "N'; zc=" + gp_number(r.contact_point) + "; zlo=" + gp_number(z_low) +
-                                   "; zhi=" + gp_number(z_high) + "; base=" +
-                                   gp_number(r.baseline) + "; po_z=" + gp_number(pulloff.found ? pulloff.tip_position : NAN) +
-                                   "; po_F=" + gp_number(pulloff.found ? pulloff.force + r.baseline : NAN);
-      picture = render_afm_plot(table.str(), settings);
+      picture = render_afm_plot(table.str(), fit_plot_settings(term, path, index, segment_name, modulus_name, problem, r,
+                                                               z_segment, f_segment, pulloff));
     }
     Output output(output_path);
     output.stream() << table.str();

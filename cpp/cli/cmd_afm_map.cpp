@@ -268,44 +268,77 @@ bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration)
   return afm::CurveSource(positionals.front(), calibration).size() > 1;
 }
 
-int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
-  if (arguments.has("--plot")) {
-    throw InputError("--plot: draws one curve (FILE --index N); for a map, several files or a folder use --map-plot FILE.png|pdf");
-  }
-  const std::vector<std::string> files = input_files(arguments.positionals());
-  for (const std::string& f : files) register_input(f, "AFM file");
-  const unsigned jobs = parse_jobs(arguments);
-  const std::string output_path = arguments.get("--output").value_or("");
-  const bool to_stdout = output_path.empty() || output_path == "-" || output_path == "/dev/stdout";
-  const bool resume = arguments.has("--resume");
-  if (resume && to_stdout) throw InputError("--resume: needs --output FILE (the rows of the interrupted run are in FILE.partial)");
-  std::optional<std::string> plot_path = arguments.get("--map-plot");
-  std::string term;
-  if (plot_path) {
-    const std::size_t dot = plot_path->rfind('.');
-    term = dot == std::string::npos ? "" : plot_path->substr(dot + 1);
-    if (term != "png" && term != "pdf") {
-      throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
+// The rows an interrupted run left in FILE.partial: checks that its header is this run's (the
+// command line aside), counts its rows by flag (and keeps them for the map plot), and cuts a
+// last line the process died inside. InputError when the file is not this run's.
+struct ResumedRows {
+  std::size_t skip = 0;
+  fit::AfmBatchSummary before;  // the flags of the rows kept
+  std::vector<std::string> kept_rows;
+};
+
+ResumedRows resume_partial(const std::string& partial_path, const std::string& header, const std::vector<std::string>& columns,
+                           std::size_t total, bool keep_rows) {
+  ResumedRows resumed;
+  std::size_t& skip = resumed.skip;
+  fit::AfmBatchSummary& before = resumed.before;
+  std::vector<std::string>& kept_rows = resumed.kept_rows;
+  const std::string text = read_whole(partial_path);
+  const std::vector<std::string> lines = lines_of(text);
+  const std::vector<std::string> expected = lines_of(header);
+  std::size_t h = 0;
+  std::size_t e = 0;
+  while (h < lines.size() && starts_with(lines[h], "#")) {
+    if (starts_with(lines[h], "# command:")) {
+      ++h;
+      continue;
     }
+    while (e < expected.size() && starts_with(expected[e], "# command:")) ++e;
+    if (e >= expected.size() || lines[h] != expected[e]) {
+      throw InputError("--resume: " + cli::quoted(partial_path) + " was written by another run (header line " + cli::quoted(lines[h]) +
+                       " differs); remove it or give the same FILEs and options");
+    }
+    ++h;
+    ++e;
   }
-  const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
-  check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
-  if (!to_stdout) check_output_path(partial_path, "--output");
-  if (!to_stdout && !resume && std::filesystem::exists(partial_path)) {
-    throw InputError("--output: " + cli::quoted(partial_path) + " exists (the rows of an interrupted run); continue it with --resume or remove it");
+  while (e < expected.size() && starts_with(expected[e], "# command:")) ++e;
+  if (e != expected.size()) throw InputError("--resume: " + cli::quoted(partial_path) + " has no complete header; remove it");
+  for (std::size_t i = h; i < lines.size(); ++i) {
+    const std::size_t tab1 = lines[i].find('\t');
+    std::size_t field = 0, start = 0;
+    int flag = -1;
+    for (std::size_t pos = 0; pos <= lines[i].size(); ++pos) {
+      if (pos == lines[i].size() || lines[i][pos] == '\t') {
+        if (field == 6) flag = std::atoi(lines[i].substr(start, pos - start).c_str());
+        ++field;
+        start = pos + 1;
+      }
+    }
+    if (tab1 == std::string::npos || field != columns.size() || flag < 0 || flag >= fit::kAfmFlagCount) {
+      throw InputError("--resume: row " + std::to_string(i - h + 1) + " of " + cli::quoted(partial_path) + " is not a row of this table; remove the file");
+    }
+    ++before.by_flag[flag];
+    ++skip;
+    if (keep_rows) kept_rows.push_back(lines[i]);
   }
+  if (skip > total) throw InputError("--resume: " + cli::quoted(partial_path) + " holds more rows than the run has curves");
+  // Drop a cut last line (the process died inside a write).
+  std::size_t keep_bytes = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i) keep_bytes += lines[i].size() + 1;
+  if (keep_bytes != text.size() && ::truncate(partial_path.c_str(), static_cast<off_t>(keep_bytes)) != 0) {
+    throw InputError("--resume: cannot cut the last partial line of " + cli::quoted(partial_path));
+  }
+  std::cerr << "coatcontact afm fit: resuming after " << skip << " of " << total << " curves in " << partial_path << "\n";
 
-  fit::AfmBatchSettings settings;
-  settings.problem = setup.problem;
-  settings.segment = setup.kind;
-  settings.range = setup.range;
-  const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
-  const bool contact_point_column = !settings.problem.free.contact_point;
-  const std::vector<std::size_t> counts = fit::afm_count_curves(files, calibration);
-  std::size_t total = 0;
-  for (std::size_t c : counts) total += c;
+  return resumed;
+}
 
-  // The header (without the flagged count, which only the end knows).
+// The table's header without the flagged count (which only the end knows); `columns` receives
+// the column names.
+std::string map_table_header(const std::vector<std::string>& files, const std::vector<std::size_t>& counts, std::size_t total,
+                             const afm::Calibration& calibration, const AfmFitSetup& setup,
+                             const fit::AfmBatchSettings& settings, const std::vector<fit::AfmBatchParameter>& parameters,
+                             bool contact_point_column, std::vector<std::string>& columns) {
   std::vector<std::pair<std::string, std::string>> items = {
       {"coatcontact afm fit", settings.problem.model == fit::AfmModel::kJkr
                                   ? "one row per curve: adhesive JKR fit through the cantilever of each curve of the files (THEORY.md section 15)"
@@ -350,7 +383,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
                                 " of its largest force), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
                                 "8 unreadable, 9 bad_data; '-' where a flagged curve has no value"});
   items.push_back({"pull-off", "the retract segment's most tensile force less the fitted baseline, and its tip position"});
-  std::vector<std::string> columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
+  columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
   std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
   for (const auto& p : parameters) {
     columns.push_back(p.name);
@@ -366,60 +399,56 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   items.push_back({"units", units});
   std::ostringstream header_stream;
   write_header(header_stream, items, columns);
-  const std::string header = header_stream.str();
+  return header_stream.str();
+}
+
+int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
+  if (arguments.has("--plot")) {
+    throw InputError("--plot: draws one curve (FILE --index N); for a map, several files or a folder use --map-plot FILE.png|pdf");
+  }
+  const std::vector<std::string> files = input_files(arguments.positionals());
+  for (const std::string& f : files) register_input(f, "AFM file");
+  const unsigned jobs = parse_jobs(arguments);
+  const std::string output_path = arguments.get("--output").value_or("");
+  const bool to_stdout = output_path.empty() || output_path == "-" || output_path == "/dev/stdout";
+  const bool resume = arguments.has("--resume");
+  if (resume && to_stdout) throw InputError("--resume: needs --output FILE (the rows of the interrupted run are in FILE.partial)");
+  std::optional<std::string> plot_path = arguments.get("--map-plot");
+  std::string term;
+  if (plot_path) {
+    const std::size_t dot = plot_path->rfind('.');
+    term = dot == std::string::npos ? "" : plot_path->substr(dot + 1);
+    if (term != "png" && term != "pdf") {
+      throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
+    }
+  }
+  const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
+  check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
+  if (!to_stdout) check_output_path(partial_path, "--output");
+  if (!to_stdout && !resume && std::filesystem::exists(partial_path)) {
+    throw InputError("--output: " + cli::quoted(partial_path) + " exists (the rows of an interrupted run); continue it with --resume or remove it");
+  }
+
+  fit::AfmBatchSettings settings;
+  settings.problem = setup.problem;
+  settings.segment = setup.kind;
+  settings.range = setup.range;
+  const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
+  const bool contact_point_column = !settings.problem.free.contact_point;
+  const std::vector<std::size_t> counts = fit::afm_count_curves(files, calibration);
+  std::size_t total = 0;
+  for (std::size_t c : counts) total += c;
+
+  std::vector<std::string> columns;
+  const std::string header = map_table_header(files, counts, total, calibration, setup, settings, parameters,
+                                              contact_point_column, columns);
 
   // Resume: the rows already in FILE.partial.
-  std::size_t skip = 0;
-  fit::AfmBatchSummary before;  // the flags of the rows kept
-  std::vector<std::string> kept_rows;
-  if (resume && std::filesystem::exists(partial_path)) {
-    const std::string text = read_whole(partial_path);
-    const std::vector<std::string> lines = lines_of(text);
-    const std::vector<std::string> expected = lines_of(header);
-    std::size_t h = 0;
-    std::size_t e = 0;
-    while (h < lines.size() && starts_with(lines[h], "#")) {
-      if (starts_with(lines[h], "# command:")) {
-        ++h;
-        continue;
-      }
-      while (e < expected.size() && starts_with(expected[e], "# command:")) ++e;
-      if (e >= expected.size() || lines[h] != expected[e]) {
-        throw InputError("--resume: " + cli::quoted(partial_path) + " was written by another run (header line " + cli::quoted(lines[h]) +
-                         " differs); remove it or give the same FILEs and options");
-      }
-      ++h;
-      ++e;
-    }
-    while (e < expected.size() && starts_with(expected[e], "# command:")) ++e;
-    if (e != expected.size()) throw InputError("--resume: " + cli::quoted(partial_path) + " has no complete header; remove it");
-    for (std::size_t i = h; i < lines.size(); ++i) {
-      const std::size_t tab1 = lines[i].find('\t');
-      std::size_t field = 0, start = 0;
-      int flag = -1;
-      for (std::size_t pos = 0; pos <= lines[i].size(); ++pos) {
-        if (pos == lines[i].size() || lines[i][pos] == '\t') {
-          if (field == 6) flag = std::atoi(lines[i].substr(start, pos - start).c_str());
-          ++field;
-          start = pos + 1;
-        }
-      }
-      if (tab1 == std::string::npos || field != columns.size() || flag < 0 || flag >= fit::kAfmFlagCount) {
-        throw InputError("--resume: row " + std::to_string(i - h + 1) + " of " + cli::quoted(partial_path) + " is not a row of this table; remove the file");
-      }
-      ++before.by_flag[flag];
-      ++skip;
-      if (plot_path) kept_rows.push_back(lines[i]);
-    }
-    if (skip > total) throw InputError("--resume: " + cli::quoted(partial_path) + " holds more rows than the run has curves");
-    // Drop a cut last line (the process died inside a write).
-    std::size_t keep_bytes = 0;
-    for (std::size_t i = 0; i < lines.size(); ++i) keep_bytes += lines[i].size() + 1;
-    if (keep_bytes != text.size() && ::truncate(partial_path.c_str(), static_cast<off_t>(keep_bytes)) != 0) {
-      throw InputError("--resume: cannot cut the last partial line of " + cli::quoted(partial_path));
-    }
-    std::cerr << "coatcontact afm fit: resuming after " << skip << " of " << total << " curves in " << partial_path << "\n";
-  }
+  ResumedRows resumed;
+  if (resume && std::filesystem::exists(partial_path)) resumed = resume_partial(partial_path, header, columns, total, plot_path.has_value());
+  const std::size_t skip = resumed.skip;
+  const fit::AfmBatchSummary before = resumed.before;
+  std::vector<std::string> kept_rows = std::move(resumed.kept_rows);
 
   std::unique_ptr<PartialFile> partial;
   if (!to_stdout) {

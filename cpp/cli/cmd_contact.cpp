@@ -161,21 +161,26 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   throw InputError(option + ": unknown shape " + quoted(kind) + " in " + quoted(text) + "; " + expected);
 }
 
+// The help text of `contact`.
+void print_contact_help() {
+  std::cout << usage("contact",
+                     "--shape SHAPE --thickness t --film E1,nu1 --substrate E0,nu0|rigid "
+                     "[--indenter E2,nu2] --work w [--spring k] [--contact-radius LIST | --points N] [--strict]",
+                     "Adhesive (JKR) contact of an axisymmetric indenter on a coated substrate in SI\n"
+                     "units: per contact radius the adhesive penetration and force and the adhesionless\n"
+                     "ones (THEORY.md sections 5, 11); the pull-off forces under load, displacement and\n"
+                     "spring control (section 10) in the header, with a warning when F(a) has several\n"
+                     "local minima (the global one is the load-controlled pull-off). A radius the solver\n"
+                     "cannot serve at --tol is a '# not delivered' row with its reason (exit 0 while one\n"
+                     "radius is delivered); with --strict, exit 3 at the first one.",
+                     kSpec);
+}
+
 int run_contact(const Args& raw) {
   return run_guarded("contact", [&]() {
     const Arguments args(raw, kSpec);
     if (args.help()) {
-      std::cout << usage("contact",
-                         "--shape SHAPE --thickness t --film E1,nu1 --substrate E0,nu0|rigid "
-                         "[--indenter E2,nu2] --work w [--spring k] [--contact-radius LIST | --points N] [--strict]",
-                         "Adhesive (JKR) contact of an axisymmetric indenter on a coated substrate in SI\n"
-                         "units: per contact radius the adhesive penetration and force and the adhesionless\n"
-                         "ones (THEORY.md sections 5, 11); the pull-off forces under load, displacement and\n"
-                         "spring control (section 10) in the header, with a warning when F(a) has several\n"
-                         "local minima (the global one is the load-controlled pull-off). A radius the solver\n"
-                         "cannot serve at --tol is a '# not delivered' row with its reason (exit 0 while one\n"
-                         "radius is delivered); with --strict, exit 3 at the first one.",
-                         kSpec);
+      print_contact_help();
       return kExitSuccess;
     }
     const auto started = std::chrono::steady_clock::now();
