@@ -49,9 +49,13 @@ class Archive {
   explicit Archive(const std::string& path) : path_(path) { open(ZIP_CREATE | ZIP_TRUNCATE); }
   ~Archive() { close(); }
   void add(const std::string& name, std::string data) {
-    auto* copy = static_cast<char*>(std::malloc(data.size() ? data.size() : 1));
-    std::memcpy(copy, data.data(), data.size());
-    zip_source_t* source = zip_source_buffer(archive_, copy, data.size(), 1);
+    // libzip frees a buffer it was given only when it holds bytes: an empty entry gets none.
+    char* copy = nullptr;
+    if (!data.empty()) {
+      copy = static_cast<char*>(std::malloc(data.size()));
+      std::memcpy(copy, data.data(), data.size());
+    }
+    zip_source_t* source = zip_source_buffer(archive_, copy, data.size(), copy != nullptr ? 1 : 0);
     const zip_int64_t index = zip_file_add(archive_, name.c_str(), source, ZIP_FL_OVERWRITE);
     if (index < 0) die("cannot add " + name);
     zip_set_file_compression(archive_, static_cast<zip_uint64_t>(index), ZIP_CM_STORE, 0);
