@@ -59,6 +59,17 @@ constexpr const char* kFormats =
     ".jpk-qi-series; Asylum Research .ibw; AFM Workshop .csv and zipped maps (.zip); NT-MDT\n"
     "Nova text exports (.txt). Units: SI (N, m, s); spring constant N/m, sensitivity m/V.";
 
+// --index N: the curve of a map (0 without the option).
+std::size_t parse_curve_index(const Arguments& arguments) {
+  const auto text = arguments.get("--index");
+  if (!text) return 0;
+  const double value = parse_number(*text, "--index");
+  if (!(value >= 0.0 && value <= 1e9) || value != static_cast<double>(static_cast<long>(value))) {
+    throw InputError("--index: '" + *text + "' is not allowed; expected a curve index 0, 1, 2, ...");
+  }
+  return static_cast<std::size_t>(value);
+}
+
 afm::Calibration parse_calibration(const Arguments& arguments) {
   afm::Calibration calibration;
   if (auto k = arguments.get("--spring-constant")) {
@@ -184,14 +195,7 @@ int run_export(const Args& args) {
     if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
     const std::string path = arguments.positionals().front();
     const afm::Calibration calibration = parse_calibration(arguments);
-    std::size_t index = 0;
-    if (auto text = arguments.get("--index")) {
-      const double value = parse_number(*text, "--index");
-      if (!(value >= 0.0 && value <= 1e9) || value != static_cast<double>(static_cast<long>(value))) {
-        throw InputError("--index: '" + *text + "' is not allowed; expected a curve index 0, 1, 2, ...");
-      }
-      index = static_cast<std::size_t>(value);
-    }
+    const std::size_t index = parse_curve_index(arguments);
     const bool preprocess = arguments.has("--preprocess");
     afm::PreprocessOptions options;
     if (auto method = arguments.get("--contact-point")) {
@@ -678,14 +682,7 @@ int run_fit_curve(const Args& args) {
     if (arguments.positionals().empty()) throw InputError("expected a FILE, several FILEs or a FOLDER (see --help)");
     const std::string path = arguments.positionals().front();
     const afm::Calibration calibration = parse_calibration(arguments);
-    std::size_t index = 0;
-    if (auto text = arguments.get("--index")) {
-      const double value = parse_number(*text, "--index");
-      if (!(value >= 0.0 && value <= 1e9) || value != static_cast<double>(static_cast<long>(value))) {
-        throw InputError("--index: '" + *text + "' is not allowed; expected a curve index 0, 1, 2, ...");
-      }
-      index = static_cast<std::size_t>(value);
-    }
+    const std::size_t index = parse_curve_index(arguments);
     const AfmFitSetup setup = parse_fit_setup(arguments);
     if (batch_mode(arguments, calibration)) return run_fit_map(arguments, setup, calibration);
     fit::AfmFitProblem problem = setup.problem;
