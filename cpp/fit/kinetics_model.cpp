@@ -4,15 +4,12 @@
 // statistics are the fit floor's (fill_statistics).
 #include "coatcontact/kinetics_fit.hpp"
 
-#include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_interp.h>
-#include <gsl/gsl_multifit_nlinear.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -26,15 +23,14 @@
 #include "coatcontact/reduced.hpp"
 #include "force_model.hpp"
 #include "statistics.hpp"
+#include "trust_region.hpp"
 
 namespace coatcontact::fit {
 namespace {
 
 using coatcontact::detail::short_text;
-
-// GSL works on x_j = kOffset + ln(p_j / p_start_j) (least_squares.cpp: the relative step test
-// then acts on the relative change of p_j).
-constexpr double kOffset = 10.0;
+using internal::kLogOffset;
+using internal::TrustRegion;
 
 // The stack with the top layer's Young modulus set to e1.
 Stack with_film_modulus(const Stack& stack, double e1) {
@@ -89,7 +85,6 @@ struct KineticsContext {
   std::vector<int> free_index;
   std::array<double, kKineticsParameterCount> start{};
   std::vector<double> scale;  // per point: 1/sigma, or 1/max|F|
-  std::exception_ptr error;
   long simulations = 0;
   long evaluations_done = 0;  // residual evaluations that ran
   long failed_steps = 0;      // trial steps the simulation could not run (kFailedStepResidual)
@@ -97,7 +92,7 @@ struct KineticsContext {
   std::array<double, kKineticsParameterCount> parameters(const gsl_vector* x) const {
     auto p = start;
     for (std::size_t j = 0; j < free_index.size(); ++j) {
-      p[free_index[j]] = start[free_index[j]] * std::exp(gsl_vector_get(x, j) - kOffset);
+      p[free_index[j]] = start[free_index[j]] * std::exp(gsl_vector_get(x, j) - kLogOffset);
     }
     return p;
   }
@@ -218,54 +213,38 @@ std::vector<double> measured_forces(const std::vector<KineticsCurve>& curves) {
 // reachable one, so the trust region rejects the step and shrinks instead of stopping.
 constexpr double kFailedStepResidual = 1e6;
 
-int residual_callback(const gsl_vector* x, void* params, gsl_vector* f) {
-  auto* ctx = static_cast<KineticsContext*>(params);
+void residuals(KineticsContext& ctx, const gsl_vector* x, gsl_vector* f) {
   try {
-    const std::vector<double> model = model_forces(*ctx, ctx->parameters(x));
+    const std::vector<double> model = model_forces(ctx, ctx.parameters(x));
     std::size_t i = 0;
-    for (const KineticsCurve& c : *ctx->curves) {
+    for (const KineticsCurve& c : *ctx.curves) {
       for (double measured : c.force) {
-        gsl_vector_set(f, i, (model[i] - measured) * ctx->scale[i]);
+        gsl_vector_set(f, i, (model[i] - measured) * ctx.scale[i]);
         ++i;
       }
     }
-    ++ctx->evaluations_done;
-    return GSL_SUCCESS;
+    ++ctx.evaluations_done;
   } catch (const std::runtime_error&) {  // InputError, NumericalError of the simulation
-    if (ctx->evaluations_done == 0) {  // the start itself: nothing to fall back on
-      ctx->error = std::current_exception();
-      return GSL_EBADFUNC;
-    }
+    if (ctx.evaluations_done == 0) throw;  // the start itself: nothing to fall back on
     gsl_vector_set_all(f, kFailedStepResidual);
-    ++ctx->failed_steps;
-    return GSL_SUCCESS;
-  } catch (...) {
-    ctx->error = std::current_exception();
-    return GSL_EBADFUNC;
+    ++ctx.failed_steps;
   }
 }
 
-int jacobian_callback(const gsl_vector* x, void* params, gsl_matrix* J) {
-  auto* ctx = static_cast<KineticsContext*>(params);
+void jacobian(KineticsContext& ctx, const gsl_vector* x, gsl_matrix* J) {
   try {
-    const auto columns = derivatives(*ctx, ctx->parameters(x));
+    const auto columns = derivatives(ctx, ctx.parameters(x));
     for (std::size_t j = 0; j < columns.size(); ++j) {
-      for (std::size_t i = 0; i < columns[j].size(); ++i) gsl_matrix_set(J, i, j, columns[j][i] * ctx->scale[i]);
+      for (std::size_t i = 0; i < columns[j].size(); ++i) gsl_matrix_set(J, i, j, columns[j][i] * ctx.scale[i]);
     }
-    return GSL_SUCCESS;
   } catch (const std::runtime_error& e) {
     // The trust region has reached parameters next to which a curve cannot be simulated (e.g. w
     // and v* both tiny, where w (v/v*)^n mimics the data): not a fault of the input.
-    const auto p = ctx->parameters(x);
-    ctx->error = std::make_exception_ptr(NumericalError(
-        "kinetics fit: the fit reached w = " + short_text(p[kKinWork]) + ", v_star = " + short_text(p[kKinSpeed]) +
-        ", n = " + short_text(p[kKinExponent]) + ", t = " + short_text(p[kKinThickness]) + ", E1 = " +
-        short_text(p[kKinFilmModulus]) + ", where the curves cannot be simulated (" + e.what() +
-        "); start closer or fix a parameter"));
-    return GSL_EBADFUNC;
-  } catch (...) {
-    ctx->error = std::current_exception();
-    return GSL_EBADFUNC;
+    const auto p = ctx.parameters(x);
+    throw NumericalError("kinetics fit: the fit reached w = " + short_text(p[kKinWork]) + ", v_star = " +
+                         short_text(p[kKinSpeed]) + ", n = " + short_text(p[kKinExponent]) + ", t = " +
+                         short_text(p[kKinThickness]) + ", E1 = " + short_text(p[kKinFilmModulus]) +
+                         ", where the curves cannot be simulated (" + e.what() + "); start closer or fix a parameter");
   }
 }
 
@@ -398,31 +377,15 @@ Result fit_from_start(const AdhesiveModel& model, const std::vector<KineticsCurv
     for (std::size_t i = 0; i < c.force.size(); ++i) ctx.scale.push_back(weighted ? 1.0 / c.sigma_force[i] : 1.0 / largest);
   }
 
-  gsl_multifit_nlinear_fdf fdf;
-  fdf.f = residual_callback;
-  fdf.df = jacobian_callback;
-  fdf.fvv = nullptr;
-  fdf.n = n;
-  fdf.p = p_count;
-  fdf.params = &ctx;
-  gsl_multifit_nlinear_parameters fit_parameters = gsl_multifit_nlinear_default_parameters();
-  std::unique_ptr<gsl_multifit_nlinear_workspace, void (*)(gsl_multifit_nlinear_workspace*)> work(
-      gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &fit_parameters, n, p_count), gsl_multifit_nlinear_free);
-  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> x0(gsl_vector_alloc(p_count), gsl_vector_free);
-  if (!work || !x0) throw NumericalError("out of memory allocating the fit workspace");
-  gsl_vector_set_all(x0.get(), kOffset);
-  if (gsl_multifit_nlinear_init(x0.get(), &fdf, work.get()) != GSL_SUCCESS) {
-    if (ctx.error) std::rethrow_exception(ctx.error);
-    throw NumericalError("kinetics fit: could not evaluate the model at the start values");
-  }
-  // Relative change of each parameter ~ xtol * kOffset = 1e-7: far below any standard error
+  TrustRegion region(
+      n, p_count, [&ctx](const gsl_vector* x, gsl_vector* f) { residuals(ctx, x, f); },
+      [&ctx](const gsl_vector* x, gsl_matrix* J) { jacobian(ctx, x, J); });
+  if (!region.start()) throw NumericalError("kinetics fit: could not evaluate the model at the start values");
+  // Relative change of each parameter ~ xtol * kLogOffset = 1e-7: far below any standard error
   // the interpolated runs could support.
   int info = 0;
-  const int status =
-      gsl_multifit_nlinear_driver(static_cast<std::size_t>(problem.max_iterations), 1e-8, 1e-10, 0.0, nullptr, nullptr,
-                                  &info, work.get());
-  if (ctx.error) std::rethrow_exception(ctx.error);
-  const auto estimate = ctx.parameters(gsl_multifit_nlinear_position(work.get()));
+  const int status = region.run(problem.max_iterations, 1e-8, 1e-10, 0.0, &info);
+  const auto estimate = ctx.parameters(region.position());
   if (status != GSL_SUCCESS && status != GSL_ENOPROG) {
     throw NumericalError(std::string("kinetics fit did not converge: ") + gsl_strerror(status));
   }
@@ -438,7 +401,7 @@ Result fit_from_start(const AdhesiveModel& model, const std::vector<KineticsCurv
   result.value.assign(estimate.begin(), estimate.end());
   result.points = n;
   result.free_count = static_cast<int>(p_count);
-  result.iterations = static_cast<int>(gsl_multifit_nlinear_niter(work.get()));
+  result.iterations = region.iterations();
   result.converged = true;
   result.stop_reason = status == GSL_ENOPROG ? "no further progress" : (info == 1 ? "small step" : "small gradient");
   result.model_force = model_forces(ctx, estimate);

@@ -3,24 +3,18 @@
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
-#include <gsl/gsl_multifit_nlinear.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <exception>
-#include <memory>
 
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
+#include "trust_region.hpp"
 
 namespace coatcontact::fit::internal {
 namespace {
-
-// GSL works on x_j = kOffset + ln(p_j / p_start_j): the relative step test
-// |dx| <= xtol (|x| + xtol) then acts as a test on the relative change of p_j.
-constexpr double kOffset = 10.0;
 
 struct FitContext {
   const Measurements* data;
@@ -31,53 +25,38 @@ struct FitContext {
   // |F_model - F| below which a residual is the model's own noise [N]: the interpolant's values
   // are accurate to the solver tolerance relative to the forces.
   double noise_floor = 0.0;
-  std::exception_ptr error;
 
   Parameters parameters(const gsl_vector* x) const {
     Parameters value = start;
     for (std::size_t j = 0; j < free_index.size(); ++j) {
-      value.values[free_index[j]] = start.values[free_index[j]] * std::exp(gsl_vector_get(x, j) - kOffset);
+      value.values[free_index[j]] = start.values[free_index[j]] * std::exp(gsl_vector_get(x, j) - kLogOffset);
     }
     return value;
   }
 };
 
-int residual_callback(const gsl_vector* x, void* params, gsl_vector* f) {
-  auto* ctx = static_cast<FitContext*>(params);
-  try {
-    const ModelAtData m = ctx->model->at_data(ctx->parameters(x));
-    for (std::size_t i = 0; i < ctx->data->size(); ++i) {
-      gsl_vector_set(f, i, (m.force[i] - ctx->data->force[i]) * ctx->scale[i]);
-    }
-    return GSL_SUCCESS;
-  } catch (...) {
-    ctx->error = std::current_exception();
-    return GSL_EBADFUNC;
+void residuals(const FitContext& ctx, const gsl_vector* x, gsl_vector* f) {
+  const ModelAtData m = ctx.model->at_data(ctx.parameters(x));
+  for (std::size_t i = 0; i < ctx.data->size(); ++i) {
+    gsl_vector_set(f, i, (m.force[i] - ctx.data->force[i]) * ctx.scale[i]);
   }
 }
 
-int jacobian_callback(const gsl_vector* x, void* params, gsl_matrix* J) {
-  auto* ctx = static_cast<FitContext*>(params);
-  try {
-    const Parameters p = ctx->parameters(x);
-    const ModelAtData m = ctx->model->at_data(p);
-    const auto columns = ctx->model->force_derivatives(p, m, ctx->free_index);
-    for (std::size_t j = 0; j < columns.size(); ++j) {
-      for (std::size_t i = 0; i < columns[j].size(); ++i) {
-        gsl_matrix_set(J, i, j, columns[j][i] * ctx->scale[i]);
-      }
+void jacobian(const FitContext& ctx, const gsl_vector* x, gsl_matrix* J) {
+  const Parameters p = ctx.parameters(x);
+  const ModelAtData m = ctx.model->at_data(p);
+  const auto columns = ctx.model->force_derivatives(p, m, ctx.free_index);
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    for (std::size_t i = 0; i < columns[j].size(); ++i) {
+      gsl_matrix_set(J, i, j, columns[j][i] * ctx.scale[i]);
     }
-    return GSL_SUCCESS;
-  } catch (...) {
-    ctx->error = std::current_exception();
-    return GSL_EBADFUNC;
   }
 }
 
 std::string estimates_text(const FitContext& ctx, const std::vector<double>& x) {
   std::vector<double> value = ctx.start.values;
   for (std::size_t j = 0; j < ctx.free_index.size(); ++j) {
-    value[ctx.free_index[j]] = ctx.start.values[ctx.free_index[j]] * std::exp(x[j] - kOffset);
+    value[ctx.free_index[j]] = ctx.start.values[ctx.free_index[j]] * std::exp(x[j] - kLogOffset);
   }
   std::string text;
   for (int which : ctx.free_index) {
@@ -102,43 +81,26 @@ struct Stage {
 Stage run_stage(FitContext& ctx, int max_iterations) {
   const std::size_t n = ctx.data->size();
   const std::size_t p_count = ctx.free_index.size();
-  gsl_multifit_nlinear_fdf fdf;
-  fdf.f = residual_callback;
-  fdf.df = jacobian_callback;
-  fdf.fvv = nullptr;
-  fdf.n = n;
-  fdf.p = p_count;
-  fdf.params = &ctx;
-  gsl_multifit_nlinear_parameters fit_parameters = gsl_multifit_nlinear_default_parameters();
-  std::unique_ptr<gsl_multifit_nlinear_workspace, void (*)(gsl_multifit_nlinear_workspace*)> work(
-      gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &fit_parameters, n, p_count),
-      gsl_multifit_nlinear_free);
-  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> x0(gsl_vector_alloc(p_count), gsl_vector_free);
-  if (!work || !x0) throw NumericalError("out of memory allocating the fit workspace");
-  gsl_vector_set_all(x0.get(), kOffset);
-  ctx.error = nullptr;
-  if (gsl_multifit_nlinear_init(x0.get(), &fdf, work.get()) != GSL_SUCCESS) {
-    if (ctx.error) std::rethrow_exception(ctx.error);
-    throw NumericalError("could not evaluate the model at the start values");
-  }
-  const double xtol = 1e-10;  // relative change of each parameter ~ xtol * kOffset = 1e-9
+  TrustRegion region(
+      n, p_count, [&ctx](const gsl_vector* x, gsl_vector* f) { residuals(ctx, x, f); },
+      [&ctx](const gsl_vector* x, gsl_matrix* J) { jacobian(ctx, x, J); });
+  if (!region.start()) throw NumericalError("could not evaluate the model at the start values");
+  const double xtol = 1e-10;  // relative change of each parameter ~ xtol * kLogOffset = 1e-9
   const double gtol = 1e-10;
   const double ftol = 0.0;
   Stage stage;
-  stage.status = gsl_multifit_nlinear_driver(static_cast<std::size_t>(max_iterations), xtol, gtol, ftol,
-                                             nullptr, nullptr, &stage.info, work.get());
-  if (ctx.error) std::rethrow_exception(ctx.error);
-  stage.iterations = static_cast<int>(gsl_multifit_nlinear_niter(work.get()));
-  const gsl_vector* x = gsl_multifit_nlinear_position(work.get());
+  stage.status = region.run(max_iterations, xtol, gtol, ftol, &stage.info);
+  stage.iterations = region.iterations();
+  const gsl_vector* x = region.position();
   for (std::size_t j = 0; j < p_count; ++j) stage.x.push_back(gsl_vector_get(x, j));
   stage.values = ctx.parameters(x);
-  const gsl_vector* f_end = gsl_multifit_nlinear_residual(work.get());
+  const gsl_vector* f_end = region.residual();
   stage.cost = gsl_blas_dnrm2(f_end) * gsl_blas_dnrm2(f_end);
   if (stage.status == GSL_ENOPROG || stage.status == GSL_EMAXITER) {
     // No step decreases the cost any more: accept only if the gradient is at the noise level
     // of the model (the interpolated values carry relative noise ~ solver tolerance).
-    const gsl_vector* f = gsl_multifit_nlinear_residual(work.get());
-    const gsl_matrix* J = gsl_multifit_nlinear_jac(work.get());
+    const gsl_vector* f = region.residual();
+    const gsl_matrix* J = region.jacobian();
     const double f_norm = gsl_blas_dnrm2(f);
     // Data without noise: the residuals are the interpolant's own rounding, their direction is
     // random, and the gradient test cannot pass; the fit is then as good as the model allows.
