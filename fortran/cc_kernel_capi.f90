@@ -95,6 +95,24 @@ contains
                             substrate_rigid /= 0, pair, status)
   end subroutine pair_from_c
 
+  ! A validated stack from the C arrays; the layer count is checked before any array is read.
+  subroutine stack_from_c(n_layers, thickness, youngs, poisson, slip_below, base_rigid, e_base, &
+      nu_base, stack, status)
+    integer(c_int), intent(in) :: n_layers
+    real(c_double), intent(in) :: thickness(max(n_layers, 0)), youngs(max(n_layers, 0)), &
+                                  poisson(max(n_layers, 0))
+    integer(c_int), intent(in) :: slip_below(max(n_layers, 0))
+    integer(c_int), intent(in) :: base_rigid
+    real(c_double), intent(in) :: e_base, nu_base
+    type(layer_stack), intent(out) :: stack
+    integer, intent(out) :: status
+    status = CC_ERR_LAYER_COUNT
+    if (n_layers < 1 .or. n_layers > max_stack_layers) return
+    call make_layer_stack(real(thickness, dp), real(youngs, dp), real(poisson, dp), &
+                          slip_below /= 0, base_rigid /= 0, real(e_base, dp), real(nu_base, dp), &
+                          stack, status)
+  end subroutine stack_from_c
+
   integer(c_int) function capi_compliance(e1, nu1, e0, nu0, substrate_rigid, n, q, c) &
       result(status) bind(C, name="cc_compliance")
     real(c_double), value, intent(in) :: e1, nu1, e0, nu0
@@ -184,11 +202,8 @@ contains
     logical, intent(in) :: minus_one
     type(layer_stack) :: stack
     integer :: s
-    status = CC_ERR_LAYER_COUNT
-    if (n_layers < 1 .or. n_layers > max_stack_layers) return
-    call make_layer_stack(real(thickness, dp), real(youngs, dp), real(poisson, dp), &
-                          slip_below /= 0, base_rigid /= 0, real(e_base, dp), real(nu_base, dp), &
-                          stack, s)
+    call stack_from_c(n_layers, thickness, youngs, poisson, slip_below, base_rigid, e_base, &
+                      nu_base, stack, s)
     status = int(s, c_int)
     if (s /= CC_OK) return
     status = CC_ERR_ARGUMENT
@@ -277,9 +292,8 @@ contains
     real(dp), intent(in), optional :: u_range
     logical, intent(in), optional :: h_only
     type(c_ptr), pointer :: handle
-    type(kernel_table), pointer :: t
     type(material_pair) :: pair
-    integer :: s, ierr
+    integer :: s
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table)) return
     call c_f_pointer(table, handle)
@@ -287,21 +301,37 @@ contains
     call pair_from_c(e1, nu1, e0, nu0, substrate_rigid, pair, s)
     status = int(s, c_int)
     if (s /= CC_OK) return
+    status = build_into(handle, variant, u_range, h_only, pair=pair)
+  end function create_table
+
+  ! A new table of the pair or (present) the stack in handle, on grid variant `variant`;
+  ! handle untouched on failure.
+  integer(c_int) function build_into(handle, variant, u_range, h_only, pair, stack) result(status)
+    type(c_ptr), intent(inout) :: handle
+    integer, intent(in) :: variant
+    real(dp), intent(in), optional :: u_range
+    logical, intent(in), optional :: h_only
+    type(material_pair), intent(in), optional :: pair
+    type(layer_stack), intent(in), optional :: stack
+    type(kernel_table), pointer :: t
+    integer :: s, ierr
     status = CC_ERR_ARGUMENT
     if (variant < 0 .or. variant >= n_grid_variants) return
+    status = CC_ERR_ALLOCATION
     allocate(t, stat=ierr)
-    if (ierr /= 0) then
-      status = CC_ERR_ALLOCATION
-      return
+    if (ierr /= 0) return
+    if (present(stack)) then
+      call build_stack_kernel_table_variant(stack, variant, t, s, u_range, h_only)
+    else
+      call build_kernel_table_variant(pair, variant, t, s, u_range, h_only)
     end if
-    call build_kernel_table_variant(pair, variant, t, s, u_range, h_only)
     status = int(s, c_int)
     if (s /= CC_OK) then
       deallocate(t)
       return
     end if
     handle = c_loc(t)
-  end function create_table
+  end function build_into
 
   ! Table of a stack (THEORY.md section 12); one bonded layer goes through create_table, so
   ! its table is cc_kernel_table_create_ex's bit for bit.
@@ -366,39 +396,22 @@ contains
     real(dp), intent(in), optional :: u_range
     logical, intent(in), optional :: h_only
     type(c_ptr), pointer :: handle
-    type(kernel_table), pointer :: t
     type(layer_stack) :: stack
-    integer :: s, ierr
+    integer :: s
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table)) return
     call c_f_pointer(table, handle)
     handle = c_null_ptr
-    status = CC_ERR_LAYER_COUNT
-    if (n_layers < 1 .or. n_layers > max_stack_layers) return
-    call make_layer_stack(real(thickness, dp), real(youngs, dp), real(poisson, dp), &
-                          slip_below /= 0, base_rigid /= 0, real(e_base, dp), real(nu_base, dp), &
-                          stack, s)
+    call stack_from_c(n_layers, thickness, youngs, poisson, slip_below, base_rigid, e_base, &
+                      nu_base, stack, s)
     status = int(s, c_int)
     if (s /= CC_OK) return
-    status = CC_ERR_ARGUMENT
-    if (grid_variant < 0 .or. grid_variant >= n_grid_variants) return
     if (stack%closed_form) then
       status = create_table(youngs(1), poisson(1), e_base, nu_base, base_rigid, &
                             grid_variant, table, u_range, h_only)
       return
     end if
-    allocate(t, stat=ierr)
-    if (ierr /= 0) then
-      status = CC_ERR_ALLOCATION
-      return
-    end if
-    call build_stack_kernel_table_variant(stack, grid_variant, t, s, u_range, h_only)
-    status = int(s, c_int)
-    if (s /= CC_OK) then
-      deallocate(t)
-      return
-    end if
-    handle = c_loc(t)
+    status = build_into(handle, grid_variant, u_range, h_only, stack=stack)
   end function create_stack_table
 
   subroutine capi_kernel_table_destroy(table) bind(C, name="cc_kernel_table_destroy")

@@ -753,24 +753,7 @@ contains
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u
     real(dp), intent(out) :: h, h1
-    real(dp) :: v, t
-    integer :: i
-
-    v = abs(u)
-    if (v <= table%u_max) then
-      t = v / table%du
-      i = int(t)
-      t = t - real(i, dp)
-      if (t == 0.0_dp) then
-        h = table%h(i)
-        h1 = table%h1(i)
-      else
-        ! Lagrange form on the nodes i + k, k = -left .. stencil-1-left
-        call interpolate(table, i, t, .true., h, h1)
-      end if
-    else
-      call far_field(table, v, .true., h, h1)
-    end if
+    call look_up(table, abs(u), .true., h, h1)
     if (u < 0.0_dp) h1 = -h1
   end subroutine evaluate_kernel_table
 
@@ -779,23 +762,34 @@ contains
   elemental real(dp) function evaluate_kernel_h(table, u) result(h)
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u
-    real(dp) :: v, t, h1
+    real(dp) :: h1
+    call look_up(table, abs(u), .false., h, h1)
+  end function evaluate_kernel_h
+
+  ! H(v) and (with_h1) H1(v) at v >= 0: a node's values, the Lagrange form on the nodes
+  ! i + k, k = -left .. stencil-1-left, or beyond the table the far field.
+  elemental subroutine look_up(table, v, with_h1, h, h1)
+    type(kernel_table), intent(in) :: table
+    real(dp), intent(in) :: v
+    logical, intent(in) :: with_h1
+    real(dp), intent(out) :: h, h1
+    real(dp) :: t
     integer :: i
 
-    v = abs(u)
     if (v <= table%u_max) then
       t = v / table%du
       i = int(t)
       t = t - real(i, dp)
       if (t == 0.0_dp) then
         h = table%h(i)
+        if (with_h1) h1 = table%h1(i)
       else
-        call interpolate(table, i, t, .false., h, h1)
+        call interpolate(table, i, t, with_h1, h, h1)
       end if
     else
-      call far_field(table, v, .false., h, h1)
+      call far_field(table, v, with_h1, h, h1)
     end if
-  end function evaluate_kernel_h
+  end subroutine look_up
 
   ! H and (with_h1) H1 beyond the table, v > u_max: the pole terms plus the asymptotic series
   ! of the smooth remainder (its Taylor coefficients at q = 0); without with_h1, H1 is

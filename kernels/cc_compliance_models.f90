@@ -12,7 +12,7 @@ module cc_compliance_models
   implicit none
   private
   public :: coefficients_of, compliance, compliance_minus_one, compliance_taylor
-  public :: compliance_series, max_taylor_order
+  public :: compliance_series, max_taylor_order, valid_wavenumbers
 
 contains
 
@@ -29,6 +29,7 @@ contains
     end select
   end function coefficients_of
 
+  ! Every q finite and >= 0 (the domain of every compliance routine).
   pure logical function valid_wavenumbers(q) result(ok)
     real(dp), intent(in) :: q(:)
     ok = all(ieee_is_finite(q))

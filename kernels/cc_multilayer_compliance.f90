@@ -40,7 +40,7 @@ module cc_multilayer_compliance
                                   validate_poisson, CC_OK, CC_ERR_ARGUMENT, CC_ERR_FILM_MODULUS, &
                                   CC_ERR_FILM_POISSON, CC_ERR_SUBSTRATE_MODULUS, &
                                   CC_ERR_SUBSTRATE_POISSON, CC_ERR_THICKNESS, CC_ERR_LAYER_COUNT
-  use cc_compliance_models, only: compliance, compliance_minus_one
+  use cc_compliance_models, only: compliance, compliance_minus_one, valid_wavenumbers
   implicit none
   private
 
@@ -156,12 +156,6 @@ contains
                               status)
     end if
   end subroutine make_layer_stack
-
-  pure logical function valid_wavenumbers(q) result(ok)
-    real(dp), intent(in) :: q(:)
-    ok = all(ieee_is_finite(q))
-    if (ok) ok = all(q >= 0.0_dp)
-  end function valid_wavenumbers
 
   ! C(q) at every q >= 0.
   pure subroutine stack_compliance(stack, q, c, status)
