@@ -78,19 +78,14 @@ std::vector<ShapePoint> ShapeContact::curve(const std::vector<double>& radii) co
 
 std::vector<ShapePoint> ShapeContact::curve(const std::vector<double>& radii, std::vector<PointStatus>& status) const {
   for (double a : radii) check_si(a, "contact radius");
-  std::vector<ShapePoint> out(radii.size());
-  std::vector<PointStatus> outcome(radii.size());
-  detail::parallel_for(radii.size(), [&](std::size_t i) {
-    try {
-      out[i] = at(radii[i]);
-    } catch (const NumericalError& e) {
-      out[i] = ShapePoint{};
-      out[i].radius = radii[i];
-      outcome[i] = PointStatus{false, e.what()};
-    }
-  });
-  status = std::move(outcome);
-  return out;
+  return detail::parallel_points<ShapePoint>(
+      radii.size(), [&](std::size_t i) { return at(radii[i]); },
+      [&](std::size_t i) {
+        ShapePoint blank{};
+        blank.radius = radii[i];
+        return blank;
+      },
+      status);
 }
 
 std::pair<double, double> ShapeContact::default_range() const {

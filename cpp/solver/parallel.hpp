@@ -6,9 +6,34 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <utility>
+#include <vector>
+
+#include "coatcontact/errors.hpp"
+#include "coatcontact/point_status.hpp"
 
 namespace coatcontact::detail {
 
 void parallel_for(std::size_t count, const std::function<void(std::size_t index)>& body);
+
+// The points at(0) .. at(count - 1) in the parallel loop, point by point (point_status.hpp): a
+// NumericalError leaves blank(i) in its place and its reason in status[i] instead of failing
+// the array.
+template <class Point, class At, class Blank>
+std::vector<Point> parallel_points(std::size_t count, const At& at, const Blank& blank,
+                                   std::vector<PointStatus>& status) {
+  std::vector<Point> out(count);
+  std::vector<PointStatus> outcome(count);
+  parallel_for(count, [&](std::size_t i) {
+    try {
+      out[i] = at(i);
+    } catch (const NumericalError& e) {
+      out[i] = blank(i);
+      outcome[i] = PointStatus{false, e.what()};
+    }
+  });
+  status = std::move(outcome);
+  return out;
+}
 
 }  // namespace coatcontact::detail

@@ -123,19 +123,14 @@ std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_
 std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_over_t, double tolerance,
                                                    std::vector<PointStatus>& status) const {
   for (double a : a_over_t) check_arguments(a, tolerance);
-  std::vector<ReducedVariables> results(a_over_t.size());
-  std::vector<PointStatus> outcome(a_over_t.size());
-  detail::parallel_for(a_over_t.size(), [&](std::size_t i) {
-    try {
-      results[i] = solve(a_over_t[i], tolerance);
-    } catch (const NumericalError& e) {
-      results[i] = ReducedVariables{};
-      results[i].a_over_t = a_over_t[i];
-      outcome[i] = PointStatus{false, e.what()};
-    }
-  });
-  status = std::move(outcome);
-  return results;
+  return detail::parallel_points<ReducedVariables>(
+      a_over_t.size(), [&](std::size_t i) { return solve(a_over_t[i], tolerance); },
+      [&](std::size_t i) {
+        ReducedVariables blank{};
+        blank.a_over_t = a_over_t[i];
+        return blank;
+      },
+      status);
 }
 
 }  // namespace coatcontact
