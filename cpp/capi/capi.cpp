@@ -21,6 +21,7 @@
 #include "coatcontact/errors.hpp"
 #include "coatcontact/fit.hpp"
 #include "coatcontact/indenter_shape.hpp"
+#include "coatcontact/kinetics_fit.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/measured_curve.hpp"
 #include "coatcontact/progress.hpp"
@@ -1138,10 +1139,35 @@ int cc_shape_contact_pulloff(const cc_shape_contact* contact, double spring_stif
 
 namespace {
 
+// The SI protocol of segment_count C segments (`name`: the array, for the messages).
+std::vector<coatcontact::KineticsSegmentSI> kinetics_protocol(int segment_count, const cc_kinetics_segment* segments,
+                                                              const char* function, const char* name) {
+  using coatcontact::DriveSegment;
+  std::vector<coatcontact::KineticsSegmentSI> protocol;
+  const std::size_t count = count_of(segment_count, function);
+  if (count > 0) require(segments, function, name);
+  for (std::size_t i = 0; i < count; ++i) {
+    const cc_kinetics_segment& in = segments[i];
+    coatcontact::KineticsSegmentSI out;
+    switch (in.kind) {
+      case CC_KINETICS_APPROACH: out.kind = DriveSegment::Kind::kApproach; out.has_target = true; break;
+      case CC_KINETICS_DWELL: out.kind = DriveSegment::Kind::kDwell; break;
+      case CC_KINETICS_RETRACT: out.kind = DriveSegment::Kind::kRetract; out.has_target = in.has_target != 0; break;
+      default:
+        throw InputError(std::string(function) + ": segment " + std::to_string(i + 1) + ": kind " +
+                         std::to_string(in.kind) + " not allowed (CC_KINETICS_APPROACH, _DWELL or _RETRACT)");
+    }
+    out.speed = in.speed;
+    out.duration = in.duration;
+    out.target_force = in.target_force;
+    protocol.push_back(out);
+  }
+  return protocol;
+}
+
 // The stack and the SI setup of a kinetics call; the coating thickness is the stack's total.
 coatcontact::KineticsSetupSI kinetics_setup(const coatcontact::Stack& stack, const cc_kinetics_setup& c,
                                             const char* function) {
-  using coatcontact::DriveSegment;
   coatcontact::KineticsSetupSI setup;
   if (c.tip != CC_KINETICS_SPHERE && c.tip != CC_KINETICS_CONE) {
     throw InputError(std::string(function) + ": setup->tip = " + std::to_string(c.tip) +
@@ -1157,24 +1183,7 @@ coatcontact::KineticsSetupSI kinetics_setup(const coatcontact::Stack& stack, con
   setup.v_star_adv = c.v_star_adv;
   setup.n_adv = c.n_adv;
   setup.spring = c.spring;
-  const std::size_t count = count_of(c.segment_count, function);
-  if (count > 0) require(c.segments, function, "setup->segments");
-  for (std::size_t i = 0; i < count; ++i) {
-    const cc_kinetics_segment& in = c.segments[i];
-    coatcontact::KineticsSegmentSI out;
-    switch (in.kind) {
-      case CC_KINETICS_APPROACH: out.kind = DriveSegment::Kind::kApproach; out.has_target = true; break;
-      case CC_KINETICS_DWELL: out.kind = DriveSegment::Kind::kDwell; break;
-      case CC_KINETICS_RETRACT: out.kind = DriveSegment::Kind::kRetract; out.has_target = in.has_target != 0; break;
-      default:
-        throw InputError(std::string(function) + ": segment " + std::to_string(i + 1) + ": kind " +
-                         std::to_string(in.kind) + " not allowed (CC_KINETICS_APPROACH, _DWELL or _RETRACT)");
-    }
-    out.speed = in.speed;
-    out.duration = in.duration;
-    out.target_force = in.target_force;
-    setup.protocol.push_back(out);
-  }
+  setup.protocol = kinetics_protocol(c.segment_count, c.segments, function, "setup->segments");
   return setup;
 }
 
@@ -1269,6 +1278,91 @@ int cc_kinetics_sweep(const cc_stack* stack, const cc_kinetics_setup* setup, int
       rows.insert(rows.end(), row, row + CC_KINETICS_SWEEP_COLUMNS);
     }
     std::copy(rows.begin(), rows.end(), out);
+  });
+}
+
+int cc_kinetics_scales(const cc_stack* stack, const cc_kinetics_setup* setup, double out[CC_KINETICS_SCALE_COLUMNS]) {
+  return guarded([&] {
+    require(stack, "cc_kinetics_scales", "stack");
+    require(setup, "cc_kinetics_scales", "setup");
+    require(out, "cc_kinetics_scales", "out");
+    const coatcontact::Stack built = build(*stack);
+    const coatcontact::KineticsSetupSI si = kinetics_setup(built, *setup, "cc_kinetics_scales");
+    const coatcontact::ReducedSolver solver(built);
+    const coatcontact::AdhesiveModel model(solver, tolerance_or_default(setup->tolerance));
+    const coatcontact::KineticsScales s = coatcontact::kinetics_scales(model, si);
+    const double row[CC_KINETICS_SCALE_COLUMNS] = {s.length, s.penetration, s.force, s.time,
+                                                   s.eta,    s.k_bar,       s.drive_rate};
+    std::copy(row, row + CC_KINETICS_SCALE_COLUMNS, out);
+  });
+}
+
+int cc_kinetics_energy(const cc_kinetics* run, double out[CC_KINETICS_ENERGY_COLUMNS]) {
+  return guarded([&] {
+    require(run, "cc_kinetics_energy", "run");
+    require(out, "cc_kinetics_energy", "out");
+    const coatcontact::KineticsResult& r = run->run.reduced;
+    const double row[CC_KINETICS_ENERGY_COLUMNS] = {r.work, r.dissipation, static_cast<double>(r.steps)};
+    std::copy(row, row + CC_KINETICS_ENERGY_COLUMNS, out);
+  });
+}
+
+int cc_kinetics_fit(const cc_stack* stack, const cc_kinetics_fit_request* request, double* values,
+                    double* standard_errors, double* correlation, double* model_force, double* residual,
+                    cc_kinetics_fit_summary* summary) {
+  return guarded([&] {
+    const char* function = "cc_kinetics_fit";
+    require(stack, function, "stack");
+    require(request, function, "request");
+    require(values, function, "values");
+    require(standard_errors, function, "standard_errors");
+    require(summary, function, "summary");
+    const coatcontact::Stack built = build(*stack);
+    namespace fit = coatcontact::fit;
+    fit::KineticsFitProblem problem;
+    problem.radius = request->radius;
+    problem.thickness = built.total_thickness();
+    problem.work = request->work;
+    problem.v_star = request->v_star;
+    problem.n = request->n;
+    problem.v_star_adv = request->v_star_adv;
+    problem.n_adv = request->n_adv;
+    problem.solver_tolerance = tolerance_or_default(request->tolerance);
+    for (int j = 0; j < CC_KINETICS_FIT_PARAMETERS; ++j) problem.free[static_cast<std::size_t>(j)] = request->free[j] != 0;
+    const std::size_t curve_count = count_of(request->curve_count, function);
+    if (curve_count > 0) require(request->curves, function, "request->curves");
+    std::vector<fit::KineticsCurve> curves;
+    for (std::size_t c = 0; c < curve_count; ++c) {
+      const cc_kinetics_curve& in = request->curves[c];
+      fit::KineticsCurve curve;
+      curve.protocol = kinetics_protocol(in.segment_count, in.segments, function, "curve segments");
+      curve.spring = in.spring;
+      const std::size_t n = count_of(in.n, function);
+      if (n > 0) {
+        require(in.time, function, "curve time");
+        require(in.force, function, "curve force");
+      }
+      curve.time.assign(in.time, in.time + n);
+      curve.force.assign(in.force, in.force + n);
+      if (in.sigma_force != nullptr) curve.sigma_force.assign(in.sigma_force, in.sigma_force + n);
+      curves.push_back(std::move(curve));
+    }
+    const fit::Result r = fit::fit_kinetics(built, curves, problem);
+    std::copy(r.value.begin(), r.value.end(), values);
+    std::copy(r.standard_error.begin(), r.standard_error.end(), standard_errors);
+    if (correlation != nullptr) {
+      for (const std::vector<double>& row : r.correlation) correlation = std::copy(row.begin(), row.end(), correlation);
+    }
+    if (model_force != nullptr) std::copy(r.model_force.begin(), r.model_force.end(), model_force);
+    if (residual != nullptr) std::copy(r.residual.begin(), r.residual.end(), residual);
+    summary->points = static_cast<int>(r.points);
+    summary->iterations = r.iterations;
+    summary->simulations = r.solver_calls;
+    summary->weighted = r.weighted ? 1 : 0;
+    summary->r_squared = r.r_squared;
+    summary->chi2_per_dof = r.chi2_per_dof;
+    summary->residual_sigma = r.residual_sigma;
+    summary->seconds = r.seconds;
   });
 }
 

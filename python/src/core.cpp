@@ -22,22 +22,10 @@ void register_kinetics(py::module_& m);  // kinetics.cpp
 
 namespace {
 
+using coatcontact_python::call_held;
+using coatcontact_python::call_released;
 using coatcontact_python::check;
 using coatcontact_python::NumericalError;  // registered as coatcontact.NumericalError at import
-
-// Runs a C call without the GIL; the message is read in the same thread, before the GIL
-// comes back (it is per thread and valid until the thread's next call).
-template <typename Call>
-void call_released(Call&& call) {
-  int status;
-  std::string message;
-  {
-    py::gil_scoped_release release;
-    status = call();
-    if (status != CC_OK) message = cc_last_error_message();
-  }
-  check(status, message);
-}
 
 // Ctrl-C and progress during a long C call (cc_set_progress_hook): the library calls the hook
 // on this thread between units of work (radii, pull-offs); it takes the GIL, runs Python's
@@ -81,11 +69,6 @@ void call_monitored(Monitor& monitor, Call&& call) {
   check(status, message);
 }
 
-template <typename Call>
-void call_held(Call&& call) {
-  const int status = call();
-  check(status, status == CC_OK ? std::string() : std::string(cc_last_error_message()));
-}
 
 using InArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 

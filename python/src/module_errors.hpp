@@ -1,15 +1,13 @@
-// The error vocabulary of the compiled module _core, shared by its sources (core.cpp on the C
-// API, kinetics.cpp on the C++ library): bad input raises ValueError, a result that cannot be
-// delivered raises coatcontact.NumericalError (a RuntimeError; core.cpp registers the type).
+// The error vocabulary of the compiled module _core's sources on the C API (core.cpp,
+// kinetics.cpp): bad input raises ValueError, a result that cannot be delivered raises
+// coatcontact.NumericalError (a RuntimeError; core.cpp registers the type).
 #pragma once
 #include <pybind11/pybind11.h>
 
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "coatcontact/coatcontact.h"
-#include "coatcontact/errors.hpp"
 
 namespace coatcontact_python {
 
@@ -27,31 +25,25 @@ inline void check(int status, const std::string& message) {
   }
 }
 
-// Runs `body` (calls of the C++ library) without the GIL; its InputError and NumericalError
-// are raised as above once the GIL is held again.
-template <class Body>
-void without_gil(Body&& body) {
-  int status = CC_OK;
+// Runs a C call without the GIL; the message is read in the same thread, before the GIL
+// comes back (it is per thread and valid until the thread's next call).
+template <typename Call>
+void call_released(Call&& call) {
+  int status;
   std::string message;
   {
     pybind11::gil_scoped_release release;
-    try {
-      body();
-    } catch (const coatcontact::InputError& e) {
-      status = CC_INPUT_ERROR;
-      message = e.what();
-    } catch (const coatcontact::NumericalError& e) {
-      status = CC_NUMERICAL_ERROR;
-      message = e.what();
-    }
+    status = call();
+    if (status != CC_OK) message = cc_last_error_message();
   }
   check(status, message);
 }
-// The same, for functions handed the module's NumericalError class (the type registered for
-// NumericalError above).
-template <class Body>
-void without_gil(const pybind11::object& /*numerical_error*/, Body&& body) {
-  without_gil(std::forward<Body>(body));
+
+// A C call that returns at once (handles, sizes), with the GIL held.
+template <typename Call>
+void call_held(Call&& call) {
+  const int status = call();
+  check(status, status == CC_OK ? std::string() : std::string(cc_last_error_message()));
 }
 
 }  // namespace coatcontact_python

@@ -2,7 +2,8 @@
  * used from C, against the C++ library behind `coatcontact kinetics`: the README's run (sphere
  * R = 2 mm, 1 MPa film of 50 um on glass, spring 500 N/m) and a 70-degree cone on the same
  * stack. Arguments (run_test_capi_kinetics.sh, the CLI's header in round-trip digits): for the
- * sphere, then the cone: pull-off F, t, a, loss-of-contact t, and the number of states. */
+ * sphere, then the cone: pull-off F, t, a, loss-of-contact t, and the number of states. Then
+ * the units, the energy and the fit (scales_energy_and_fit). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -136,6 +137,101 @@ static void sweep_and_errors(void) {
   cc_stack_destroy(stack);
 }
 
+/* cc_kinetics_scales against the cone's units written out (THEORY.md section 14, "The cone"),
+ * cc_kinetics_energy of a run, and cc_kinetics_fit recovering the law from curves the C API
+ * itself simulated (noise-free, every third state; as tests/kinetics/cli_kinetics_fit.sh). */
+static void scales_energy_and_fit(void) {
+  cc_stack *stack = coating();
+  cc_kinetics_setup setup = setup_of(CC_KINETICS_CONE);
+  const double e_star = 1e6 / (1.0 - 0.49 * 0.49), tb = tan(setup.half_angle);
+  const double l_a = 4.0 * 0.04 * tb * tb / (3.14159265358979323846 * e_star), l_d = 2.0 * 0.04 * tb / e_star;
+  double scales[CC_KINETICS_SCALE_COLUMNS], energy[CC_KINETICS_ENERGY_COLUMNS];
+  static const double speeds[3] = {1e-6, 1e-5, 1e-4};
+  cc_kinetics_segment protocols[3][3];
+  cc_kinetics_curve curves[3];
+  double *time[3], *force[3], values[CC_KINETICS_FIT_PARAMETERS], errors[CC_KINETICS_FIT_PARAMETERS];
+  double correlation[CC_KINETICS_FIT_PARAMETERS * CC_KINETICS_FIT_PARAMETERS], *model, *residual;
+  cc_kinetics_fit_request request;
+  cc_kinetics_fit_summary summary;
+  cc_kinetics *run = NULL;
+  int c, i, total = 0;
+  check("cc_kinetics_scales", cc_kinetics_scales(stack, &setup, scales) == CC_OK);
+  check("cone L_a", same(scales[0], l_a));
+  check("cone L_D", same(scales[1], l_d));
+  check("cone F_s = E* L_a L_D", same(scales[2], e_star * l_a * l_d));
+  check("t_s = L_a / v*", same(scales[3], l_a / 1e-6));
+  check("eta = t / L_a", same(scales[4], 50e-6 / l_a));
+  check("k_bar = k L_D / F_s", same(scales[5], 500.0 * l_d / (e_star * l_a * l_d)));
+  check("scales: NULL out refused", cc_kinetics_scales(stack, &setup, NULL) == CC_INPUT_ERROR);
+
+  setup = setup_of(CC_KINETICS_SPHERE);
+  for (c = 0; c < 3; ++c) {
+    int rows = 0, n = 0;
+    double *states;
+    memcpy(protocols[c], readme_protocol, sizeof protocols[c]);
+    protocols[c][2].speed = speeds[c];
+    setup.segments = protocols[c];
+    check("fit data: cc_kinetics_run", cc_kinetics_run(stack, &setup, &run) == CC_OK);
+    check("fit data: cc_kinetics_size", cc_kinetics_size(run, &rows) == CC_OK && rows > 9);
+    if (c == 0) {
+      check("cc_kinetics_energy", cc_kinetics_energy(run, energy) == CC_OK);
+      check("energy: the receding edge dissipates", energy[1] > 0.0);
+      check("energy: a whole number of steps", energy[2] >= 1.0 && energy[2] == floor(energy[2]));
+    }
+    states = malloc(sizeof(double) * rows * CC_KINETICS_COLUMNS);
+    time[c] = malloc(sizeof(double) * rows);
+    force[c] = malloc(sizeof(double) * rows);
+    check("fit data: cc_kinetics_states", cc_kinetics_states(run, rows, states) == CC_OK);
+    for (i = 2; i < rows; i += 3, ++n) {
+      time[c][n] = states[i * CC_KINETICS_COLUMNS];
+      force[c][n] = states[i * CC_KINETICS_COLUMNS + 4];
+    }
+    free(states);
+    cc_kinetics_destroy(run);
+    memset(&curves[c], 0, sizeof curves[c]);
+    curves[c].segment_count = 3;
+    curves[c].segments = protocols[c];
+    curves[c].spring = 500.0;
+    curves[c].n = n;
+    curves[c].time = time[c];
+    curves[c].force = force[c];
+    total += n;
+  }
+  memset(&request, 0, sizeof request);
+  request.radius = 2e-3;
+  request.work = 0.06;
+  request.v_star = 3e-6;
+  request.n = 0.45;
+  request.free[0] = request.free[1] = request.free[2] = 1;
+  request.curve_count = 3;
+  request.curves = curves;
+  model = malloc(sizeof(double) * total);
+  residual = malloc(sizeof(double) * total);
+  check("cc_kinetics_fit", cc_kinetics_fit(stack, &request, values, errors, correlation, model, residual, &summary) ==
+                               CC_OK);
+  /* Noise-free data on the true run's states: 1e-3 (the bound of cli_kinetics_fit.sh). */
+  check("fit: w", fabs(values[0] / 0.04 - 1.0) <= 1e-3);
+  check("fit: v_star", fabs(values[1] / 1e-6 - 1.0) <= 1e-3);
+  check("fit: n", fabs(values[2] / 0.6 - 1.0) <= 1e-3);
+  check("fit: t and E1 fixed at the stack's", values[3] == 50e-6 && values[4] == 1e6 && errors[3] == 0.0);
+  check("fit: unweighted, R^2 ~ 1", summary.weighted == 0 && summary.r_squared > 0.999999);
+  check("fit: correlation diagonal", correlation[0] == 1.0 && correlation[6] == 1.0);
+  check("fit: model + residual = data", fabs(model[total - 1] - residual[total - 1] - force[2][curves[2].n - 1]) <=
+                                            1e-12 * fabs(force[2][curves[2].n - 1]));
+  request.curve_count = 1;
+  check("fit: one retract speed with v_star and n free refused",
+        cc_kinetics_fit(stack, &request, values, errors, NULL, NULL, NULL, &summary) == CC_INPUT_ERROR);
+  check("fit: NULL request refused",
+        cc_kinetics_fit(stack, NULL, values, errors, NULL, NULL, NULL, &summary) == CC_INPUT_ERROR);
+  for (c = 0; c < 3; ++c) {
+    free(time[c]);
+    free(force[c]);
+  }
+  free(model);
+  free(residual);
+  cc_stack_destroy(stack);
+}
+
 int main(int argc, char **argv) {
   if (argc != 11) {
     printf("usage: test_capi_kinetics F t a t_loss states (sphere) F t a t_loss states (cone)\n");
@@ -144,6 +240,7 @@ int main(int argc, char **argv) {
   compare_with_cli("sphere", CC_KINETICS_SPHERE, argv + 1);
   compare_with_cli("cone", CC_KINETICS_CONE, argv + 6);
   sweep_and_errors();
+  scales_energy_and_fit();
   if (failures != 0) {
     printf("%d failure(s)\n", failures);
     return 1;

@@ -392,6 +392,55 @@ int cc_kinetics_events(const cc_kinetics *run, double out[CC_KINETICS_EVENT_COLU
 int cc_kinetics_sweep(const cc_stack *stack, const cc_kinetics_setup *setup, int n, const double *retract_speeds,
                       double *out);
 
+/* The units of a setup, as the runs use them: L_a [m], L_D [m], F_s [N], t_s = L_a/v* [s], eta,
+ * k_bar and the reduced drive rate per SI speed (per m/s; per N/s under load control). The
+ * cone's L_a, L_D, F_s are its own (THEORY.md section 14, "The cone"). */
+#define CC_KINETICS_SCALE_COLUMNS 7
+int cc_kinetics_scales(const cc_stack *stack, const cc_kinetics_setup *setup,
+                       double out[CC_KINETICS_SCALE_COLUMNS]);
+/* The run's drive work and dissipation (reduced: in units of pi w L_a^2) and its accepted ODE steps. */
+#define CC_KINETICS_ENERGY_COLUMNS 3
+int cc_kinetics_energy(const cc_kinetics *run, double out[CC_KINETICS_ENERGY_COLUMNS]);
+
+/* ---- fit of the kinetics law to force-time curves (THEORY.md section 14, fitting;
+ * coatcontact/kinetics_fit.hpp) ----
+ * Parameters in the order w [J/m2], v_star [m/s], n, t [m], E1 [Pa]; t starts at the stack's total
+ * thickness, E1 at its top layer's modulus. The residual is each curve's points up to its
+ * measured pull-off; model_force and residual are given for every point of every curve. */
+#define CC_KINETICS_FIT_PARAMETERS 5
+typedef struct cc_kinetics_curve {
+  int segment_count;                  /* from first contact, ending with the retract */
+  const cc_kinetics_segment *segments;
+  double spring;                      /* k [N/m]; 0 load control, HUGE_VAL displacement control */
+  int n;                              /* points */
+  const double *time;                 /* s since first contact, increasing */
+  const double *force;                /* N, compressive positive */
+  const double *sigma_force;          /* N per point, or NULL: unweighted (all curves or none) */
+} cc_kinetics_curve;
+typedef struct cc_kinetics_fit_request {
+  double radius;                      /* sphere R [m] */
+  double work, v_star, n;             /* start values of the free ones, values of the fixed */
+  double v_star_adv, n_adv;           /* advancing law; <= 0: the receding values */
+  int free[CC_KINETICS_FIT_PARAMETERS]; /* non-zero: fitted */
+  int curve_count;
+  const cc_kinetics_curve *curves;
+  double tolerance;                   /* of the JKR table's solves; 0: the default */
+} cc_kinetics_fit_request;
+typedef struct cc_kinetics_fit_summary {
+  int points;                         /* fitted points (up to the pull-offs) */
+  int iterations;
+  long simulations;                   /* kinetics runs (one per curve and evaluation) */
+  int weighted;                       /* sigma_force given: chi2_per_dof is meaningful */
+  double r_squared, chi2_per_dof, residual_sigma;
+  double seconds;                     /* wall time of the fit */
+} cc_kinetics_fit_summary;
+/* values, standard_errors: CC_KINETICS_FIT_PARAMETERS doubles (errors 0 for fixed ones);
+ * correlation (may be NULL): CC_KINETICS_FIT_PARAMETERS^2, row-major; model_force, residual (may
+ * be NULL): the sum of the curves' n doubles each. */
+int cc_kinetics_fit(const cc_stack *stack, const cc_kinetics_fit_request *request, double *values,
+                    double *standard_errors, double *correlation, double *model_force, double *residual,
+                    cc_kinetics_fit_summary *summary);
+
 #ifdef __cplusplus
 }
 #endif
