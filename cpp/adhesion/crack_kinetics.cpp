@@ -419,13 +419,27 @@ class Engine {
   }
 
   // ---- the kinetic ODE ----
+  // The edge at the ODE state (tau, y): a_bar = exp(y[0]), the mechanics there and the edge
+  // speed; false where a_bar is not a finite positive radius.
+  struct Edge {
+    double a = 0.0;
+    Mechanics m;
+    double adot = 0.0;
+  };
+  bool edge_at(double tau, const double y[], Edge& edge) const {
+    edge.a = std::exp(y[0]);
+    if (!std::isfinite(edge.a) || edge.a <= 0.0) return false;
+    edge.m = mechanics(local(edge.a), drive_, drive_at(tau));
+    edge.adot = edge_speed(law_, edge.m);
+    return true;
+  }
+
   static int rhs(double tau, const double y[], double f[], void* params) {
     const auto* e = static_cast<const Engine*>(params);
-    const double a = std::exp(y[0]);
-    if (!std::isfinite(a) || a <= 0.0) return GSL_EBADFUNC;
-    const Local l = e->local(a);
-    const Mechanics m = mechanics(l, e->drive_, e->drive_at(tau));
-    const double adot = edge_speed(e->law_, m);
+    Edge edge;
+    if (!e->edge_at(tau, y, edge)) return GSL_EBADFUNC;
+    const double a = edge.a, adot = edge.adot;
+    const Mechanics& m = edge.m;
     const double g = m.d >= 0.0 ? 0.0 : m.g;
     f[0] = adot / a;
     const double dpen = m.dpen_da * adot + m.dpen_dx * e->rate_;
@@ -435,11 +449,10 @@ class Engine {
   }
   static int jacobian(double tau, const double y[], double* dfdy, double dfdt[], void* params) {
     const auto* e = static_cast<const Engine*>(params);
-    const double a = std::exp(y[0]);
-    if (!std::isfinite(a) || a <= 0.0) return GSL_EBADFUNC;
-    const Local l = e->local(a);
-    const Mechanics m = mechanics(l, e->drive_, e->drive_at(tau));
-    const double adot = edge_speed(e->law_, m);
+    Edge edge;
+    if (!e->edge_at(tau, y, edge)) return GSL_EBADFUNC;
+    const double a = edge.a, adot = edge.adot;
+    const Mechanics& m = edge.m;
     const double slope = edge_speed_slope(e->law_, m);
     const double dadot_da = slope * m.dg_da;  // at fixed X
     const double dadot_dx = slope * m.dg_dx;
