@@ -13,6 +13,7 @@
 #include <map>
 #include <set>
 
+#include "../number_text.hpp"
 #include "read_support.hpp"
 #include "zip_archive.hpp"
 
@@ -34,17 +35,7 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
-std::vector<std::string> split(const std::string& line, char separator) {
-  std::vector<std::string> fields;
-  std::size_t pos = 0;
-  for (;;) {
-    const std::size_t next = line.find(separator, pos);
-    fields.push_back(line.substr(pos, next == std::string::npos ? std::string::npos : next - pos));
-    if (next == std::string::npos) break;
-    pos = next + 1;
-  }
-  return fields;
-}
+using coatcontact::detail::split;  // the measure floor's: n separators, n + 1 fields
 
 const char* const kMonths[] = {"January", "February", "March", "April", "May", "June", "July",
                                "August", "September", "October", "November", "December"};
