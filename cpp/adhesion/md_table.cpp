@@ -13,6 +13,7 @@
 #include <exception>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "coatcontact/detail/constants.hpp"
@@ -20,6 +21,7 @@
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/progress.hpp"
 
 namespace coatcontact::detail {
 
@@ -260,19 +262,30 @@ double MaugisDugdaleTable::excess_max(double a) const { return options_.c_over_t
 
 namespace {
 
-// body(k) for k < count in an OpenMP loop (independent direct solves); the first exception in
-// index order is rethrown after the loop, as a serial loop would.
+// body(k) for k < count on every core (independent direct solves); the first exception in
+// index order is rethrown after the loop, as a serial loop would. Threads of its own rather
+// than an OpenMP loop: the tiles are mostly built from inside the parallel pull-offs
+// (MaugisDugdaleModel::pulloffs), where a nested OpenMP loop would run on one thread while the
+// other pull-offs wait for the node lock. Serial in a forked child (progress.hpp).
 void for_each_node(std::size_t count, const std::function<void(std::size_t)>& body) {
   std::vector<std::exception_ptr> errors(count);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long kl = 0; kl < static_cast<long>(count); ++kl) {
-    const auto k = static_cast<std::size_t>(kl);
-    try {
-      body(k);
-    } catch (...) {
-      errors[k] = std::current_exception();
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t k = next++; k < count; k = next++) {
+      try {
+        body(k);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
     }
-  }
+  };
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t helpers = parallel_sweeps_allowed() ? std::min(cores, count) - std::min<std::size_t>(count, 1) : 0;
+  std::vector<std::thread> threads;
+  threads.reserve(helpers);
+  for (std::size_t t = 0; t < helpers; ++t) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
   for (const auto& e : errors) {
     if (e) std::rethrow_exception(e);
   }

@@ -966,12 +966,28 @@ int cc_pulloff_spring(cc_adhesive_model* model, double eta, double k_bar, double
 
 // ---- Maugis-Dugdale ---------------------------------------------------------------------
 
-int cc_md_model_create(const cc_stack* stack, cc_md_model** model) {
+namespace {
+
+// THEORY.md section 13: the reduced table of the cohesive zone (the default) or the direct
+// per-radius solve (the reference, the CLI's --md-direct).
+int create_md_model(const cc_stack* stack, bool direct, const char* function, cc_md_model** model) {
   return guarded([&] {
-    require(stack, "cc_md_model_create", "stack");
-    require(model, "cc_md_model_create", "model");
-    *model = new cc_md_model{std::make_shared<const coatcontact::MaugisDugdaleModel>(build(*stack))};
+    require(stack, function, "stack");
+    require(model, function, "model");
+    coatcontact::MaugisDugdaleOptions options;
+    options.use_table = !direct;
+    *model = new cc_md_model{std::make_shared<const coatcontact::MaugisDugdaleModel>(build(*stack), options)};
   });
+}
+
+}  // namespace
+
+int cc_md_model_create(const cc_stack* stack, cc_md_model** model) {
+  return create_md_model(stack, false, "cc_md_model_create", model);
+}
+
+int cc_md_model_create_direct(const cc_stack* stack, cc_md_model** model) {
+  return create_md_model(stack, true, "cc_md_model_create_direct", model);
 }
 
 void cc_md_model_destroy(cc_md_model* model) { delete model; }
@@ -993,17 +1009,33 @@ int cc_md_curve(const cc_md_model* model, double eta, double lambda, int n, cons
   });
 }
 
-int cc_md_pulloff(const cc_md_model* model, double eta, double lambda,
-                  double out[CC_MD_PULLOFF_COLUMNS], int* flags) {
+namespace {
+
+int md_pulloff(const char* function, const cc_md_model* model, double eta, double lambda, double* out,
+               double* errors, int* flags) {
   return guarded([&] {
-    require(model, "cc_md_pulloff", "model");
-    require(out, "cc_md_pulloff", "out");
+    require(model, function, "model");
+    require(out, function, "out");
     const coatcontact::MaugisDugdalePulloff p = model->model->pulloff(eta, lambda);
     const auto& l = p.load_control.point;
     const auto& d = p.displacement_control.point;
     copy_out({l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m}, out);
+    if (errors != nullptr) copy_out({l.load_error, d.penetration_error}, errors);
     if (flags != nullptr) *flags = p.displacement_control.interior ? 0 : 1;
   });
+}
+
+}  // namespace
+
+int cc_md_pulloff(const cc_md_model* model, double eta, double lambda,
+                  double out[CC_MD_PULLOFF_COLUMNS], int* flags) {
+  return md_pulloff("cc_md_pulloff", model, eta, lambda, out, nullptr, flags);
+}
+
+int cc_md_pulloff_errors(const cc_md_model* model, double eta, double lambda,
+                         double out[CC_MD_PULLOFF_COLUMNS], double errors[CC_MD_PULLOFF_ERROR_COLUMNS],
+                         int* flags) {
+  return md_pulloff("cc_md_pulloff_errors", model, eta, lambda, out, errors, flags);
 }
 
 // ---- shapes and their SI contact --------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -206,8 +207,15 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
 void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
                       const std::vector<double>& lambdas, double tol, bool direct, const std::vector<double>& k_bars) {
   const MaugisDugdaleModel md(stack, md_options(direct));
-  const ReducedSolver solver(stack);
-  const AdhesiveModel jkr(solver, tol);
+  // The JKR solver only for lambda = inf rows: its kernel table would be a second build of the
+  // MD model's.
+  const bool any_jkr = std::any_of(lambdas.begin(), lambdas.end(), [](double l) { return std::isinf(l); });
+  std::optional<ReducedSolver> solver;
+  std::optional<AdhesiveModel> jkr;
+  if (any_jkr) {
+    solver.emplace(stack);
+    jkr.emplace(*solver, tol);
+  }
   Header notes;
   std::vector<std::vector<double>> rows;
   // The Maugis-Dugdale pull-offs first, in parallel; rows and notes below in the given order.
@@ -262,10 +270,10 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
     for (double lambda : lambdas) {
       const std::string at = "eta=" + num(eta) + " lambda=" + num(lambda);
       if (std::isinf(lambda)) {
-        const Pulloff p = jkr.pulloff(eta);
+        const Pulloff p = jkr->pulloff(eta);
         std::vector<PulloffPoint> springs;
         for (double k_bar : k_bars) {
-          const SpringPulloff sp = jkr.pulloff_spring(eta, k_bar);
+          const SpringPulloff sp = jkr->pulloff_spring(eta, k_bar);
           springs.push_back(sp.point);
           if (!std::isinf(k_bar) && k_bar != 0.0) {
             for (const auto& w : sp.warnings) notes.emplace_back("warning", w);

@@ -231,25 +231,39 @@ double brent_root(F&& f, double lo, double hi, double f_lo, double f_hi, double 
 CohesiveZone::CohesiveZone(const KernelSource& kernel, double a, double radius, const Discretization& disc,
                            const CohesiveQuadrature& quadrature)
     : kernel_(kernel), a_(a), radius_(radius), quadrature_(quadrature) {
-  quadrature_.piece_length *= strip_scale(kernel);  // H varies on the scale of its strip
+  factor(disc);
+}
+
+CohesiveZone::CohesiveZone(const KernelSource& kernel, double a, ShapeLoad delta0, const Discretization& disc,
+                           const CohesiveQuadrature& quadrature)
+    : kernel_(kernel), a_(a), radius_(1.0), shape_(std::move(delta0)), quadrature_(quadrature) {
+  if (!shape_) throw InputError("cohesive zone: no shape load given");
+  factor(disc);
+}
+
+void CohesiveZone::factor(const Discretization& disc) {
+  const double a = a_, radius = radius_;
+  quadrature_.piece_length *= strip_scale(kernel_);  // H varies on the scale of its strip
   if (!(a >= 0.0) || !std::isfinite(a) || !(radius > 0.0)) {
     throw InputError("cohesive zone: contact radius a/t = " + short_text(a) + " not allowed");
   }
   if (a == 0.0) return;
-  system_ = std::make_unique<FactoredSystem>(kernel, a, disc);
+  system_ = std::make_unique<FactoredSystem>(kernel_, a, disc);
   const std::size_t n = system_->size();
   const Layout& layout = system_->layout();
-  // Flat punch θ = 1 and sphere θ = -x²/R (THEORY.md section 5), solved once per radius.
+  // Flat punch θ = 1 and the shape θ = -δ0(x) (sphere: -x²/R; THEORY.md sections 5 and 11),
+  // solved once per radius.
+  auto load = [&](double x) { return shape_ ? shape_(x) : x * x / radius; };
   std::vector<double> rhs(2 * n);
   for (std::size_t i = 0; i < n; ++i) {
     rhs[i] = 1.0;
-    rhs[n + i] = -layout.x[i] * layout.x[i] / radius;
+    rhs[n + i] = -load(layout.x[i]);
   }
   system_->solve(rhs.data(), 2);
   gamma_fp_.assign(rhs.begin(), rhs.begin() + static_cast<long>(n));
   gamma_s_.assign(rhs.begin() + static_cast<long>(n), rhs.end());
   edge_fp_ = system_->edge_value(gamma_fp_.data(), 1.0);
-  edge_s_ = system_->edge_value(gamma_s_.data(), -a * a / radius);
+  edge_s_ = system_->edge_value(gamma_s_.data(), -load(a));
 }
 
 struct CohesiveZone::Pass {
@@ -301,6 +315,12 @@ void CohesiveZone::pass(double excess, Pass& p) const {
   kernel_sums_at_nodes(kernel_, c, p.outer, quadrature_, p.sums.data());
 }
 
+double CohesiveZone::shape_gap(const Pass& p) const {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < p.outer.y.size(); ++k) sum += p.outer.weight[k] * shape_(p.outer.y[k]);
+  return sum;
+}
+
 CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
   const double a = a_;
   const double R = radius_;
@@ -336,9 +356,11 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
     theta_integral += p.outer.weight[k] * (theta - sigma_hat * c * c / kPi * p.sums[k]);
   }
   st.force = 2.0 * integral - sigma_hat * (c * c * phi_end - a * root);
-  st.gap = 2.0 / kPi *
-           ((c * c / (2.0 * R) - st.delta) * phi_end + a / (2.0 * R) * root - sigma_hat * c_minus_a +
-            theta_integral);
+  // The paraboloid's shape term in closed form.
+  st.gap = shape_ ? 2.0 / kPi * (shape_gap(p) - st.delta * phi_end - sigma_hat * c_minus_a + theta_integral)
+                  : 2.0 / kPi *
+                        ((c * c / (2.0 * R) - st.delta) * phi_end + a / (2.0 * R) * root - sigma_hat * c_minus_a +
+                         theta_integral);
   if (!std::isfinite(st.delta) || !std::isfinite(st.force) || !std::isfinite(st.gap)) {
     throw NumericalError("cohesive zone: non-finite state at a/t = " + short_text(a) +
                          ", c/t = " + short_text(c));
@@ -386,7 +408,9 @@ CohesiveFunctions CohesiveZone::functions(double excess) const {
   }
   out.force_h = 2.0 * (i_s + out.delta_h * i_fp);
   out.f = 2.0 * (i_c + out.d * i_fp) - (c * c * phi_end - a * root);
-  out.g_r = 2.0 / kPi * ((c * c / (2.0 * R) - out.delta_h) * phi_end + a / (2.0 * R) * root + t_s + out.delta_h * t_fp);
+  out.g_r = shape_ ? 2.0 / kPi * (shape_gap(p) - out.delta_h * phi_end + t_s + out.delta_h * t_fp)
+                   : 2.0 / kPi * ((c * c / (2.0 * R) - out.delta_h) * phi_end + a / (2.0 * R) * root + t_s +
+                                  out.delta_h * t_fp);
   out.g_s = 2.0 / kPi * (-out.d * phi_end - p.c_minus_a + out.d * t_fp + t_c - t_b);
   if (!std::isfinite(out.d) || !std::isfinite(out.f) || !std::isfinite(out.g_r) || !std::isfinite(out.g_s)) {
     throw NumericalError("cohesive zone: non-finite state at a/t = " + short_text(a) + ", c/t = " + short_text(c));

@@ -9,6 +9,7 @@
 // annulus y = c cos φ (no square-root end points). a = 0 is the end of the curve: no contact,
 // a disk of tension, δ = θ(0) = -σ̂ (c + b(0)).
 #pragma once
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -45,10 +46,20 @@ struct CohesiveState {
   double gap = 0.0;     // h(c)
 };
 
+// An axisymmetric indenter other than the paraboloid (THEORY.md section 13, "Any axisymmetric
+// shape"): its load δ0(x) of section 11 in the zone's units (t = 1), defined and smooth on
+// [0, c] for every zone edge c asked for.
+using ShapeLoad = std::function<double(double x)>;
+
 class CohesiveZone {
  public:
   // a > 0: assembles and factors I + K at ã = a once; a == 0: no system (the curve's end).
   CohesiveZone(const KernelSource& kernel, double a, double radius, const Discretization& disc,
+               const CohesiveQuadrature& quadrature = {});
+  // The same for the indenter whose load is delta0 (the paraboloid of radius R: x²/R): the shape
+  // enters the right-hand side -δ0(x), the edge value and the gap's term ∫_0^φa δ0(c cos φ) dφ,
+  // integrated on the annulus rule. The functions() split then holds for this shape (R = 1).
+  CohesiveZone(const KernelSource& kernel, double a, ShapeLoad delta0, const Discretization& disc,
                const CohesiveQuadrature& quadrature = {});
   // δ, F and h(c) for the tension σ̂ on [a, c], c = a (1 + excess) (a > 0) or c = excess (a = 0);
   // excess > 0 given directly so that c - a carries no cancellation.
@@ -71,7 +82,8 @@ class CohesiveZone {
  private:
   const KernelSource& kernel_;
   double a_;
-  double radius_;
+  double radius_;   // the paraboloid's R (1 with a shape load)
+  ShapeLoad shape_;  // empty: the paraboloid z = x²/2R
   CohesiveQuadrature quadrature_;
   std::unique_ptr<FactoredSystem> system_;
   std::vector<double> gamma_fp_, gamma_s_;
@@ -83,6 +95,10 @@ class CohesiveZone {
   // kernel sums there.
   struct Pass;
   void pass(double excess, Pass& out) const;
+  void factor(const Discretization& disc);
+  // ∫_0^φa δ0(c cos φ) dφ on the annulus rule: a shape load's part of the gap h(c) (THEORY.md
+  // section 13; the paraboloid's is in closed form).
+  double shape_gap(const Pass& p) const;
 };
 
 }  // namespace coatcontact::detail

@@ -789,31 +789,42 @@ def pulloff_spring(stack=None, *, film=None, substrate=None, indenter=None, eta,
     return {"k_bar": k, "P": rows[:, 0], "a_bar": rows[:, 1], "D": rows[:, 2]}
 
 
+# One model per stack and solve: the table's tiles, built on first use, serve later calls.
 @functools.lru_cache(maxsize=8)
-def _maugis_dugdale(stack):
-    return _core.MaugisDugdale(stack._core)
+def _maugis_dugdale(stack, direct_solve=False):
+    return _core.MaugisDugdale(stack._core, bool(direct_solve))
 
 
 def maugis_dugdale_curve(stack=None, *, film=None, substrate=None, indenter=None, eta, lambda_,
-                         a_bar):
+                         a_bar, direct_solve=False):
     """Sphere with a Dugdale interaction zone (section 13) at one eta and lambda.
 
-    lambda_  2 sigma0 (R/(pi w K^2))^(1/3), K = 4E*/3 (inf is JKR: use adhesive_curve);
-    a_bar    contact radii a/l, >= 0 (0: the end of the curve, a -> 0).
+    lambda_       2 sigma0 (R/(pi w K^2))^(1/3), K = 4E*/3 (inf is JKR: use adhesive_curve);
+    a_bar         contact radii a/l, >= 0 (0: the end of the curve, a -> 0).
+    direct_solve  False (default): from the reduced table of the cohesive zone, each value
+                  within its error estimate of the direct solve; True: the direct per-radius
+                  solve (the reference, the command line's --md-direct; slower).
     Returns a dict of arrays a_bar, a_over_t, m = c/a (inf at a = 0), P, D.
     """
-    rows = _maugis_dugdale(_stack(stack, film, substrate, indenter)).curve(
+    rows = _maugis_dugdale(_stack(stack, film, substrate, indenter), bool(direct_solve)).curve(
         float(eta), float(lambda_), np.atleast_1d(np.asarray(a_bar, dtype=float)))
     return {key: rows[:, i] for i, key in enumerate(("a_bar", "a_over_t", "m", "P", "D"))}
 
 
-def maugis_dugdale_pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, lambda_):
+def maugis_dugdale_pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, lambda_,
+                           direct_solve=False):
     """Maugis-Dugdale pull-off (section 13): dict P_load, a_bar_load, D_load, m_load (minimum
     of P), P_disp, a_bar_disp, D_disp, m_disp (minimum of D; at the end of the curve, a -> 0,
-    when end_of_curve is True). Homogeneous: -1.81556, -1.60073, -1.51676 at lambda 0.3, 1, 3."""
-    row, flags = _maugis_dugdale(_stack(stack, film, substrate, indenter)).pulloff(float(eta), float(lambda_))
+    when end_of_curve is True), and P_load_err, D_disp_err, the error estimates of the two
+    minima. direct_solve as maugis_dugdale_curve: False reads the reduced table of the
+    cohesive zone (error estimates ~1e-5 relative), True the direct per-radius solve (~1e-11).
+    Homogeneous: -1.81556, -1.60073, -1.51676 at lambda 0.3, 1, 3."""
+    row, errors, flags = _maugis_dugdale(_stack(stack, film, substrate, indenter), bool(direct_solve)).pulloff(
+        float(eta), float(lambda_))
     keys = ("P_load", "a_bar_load", "D_load", "m_load", "P_disp", "a_bar_disp", "D_disp", "m_disp")
     out = {key: float(row[i]) for i, key in enumerate(keys)}
+    out["P_load_err"] = float(errors[0])
+    out["D_disp_err"] = float(errors[1])
     out["end_of_curve"] = bool(flags & 1)
     return out
 

@@ -390,12 +390,15 @@ py::array_t<double> pulloff_spring(const Model& model, double eta, const InArray
   return out;
 }
 
-// Maugis-Dugdale (THEORY.md section 13): no cache, so no lock.
+// Maugis-Dugdale (THEORY.md section 13): the model's table is thread-safe, so no lock.
 struct MaugisDugdale {
   std::shared_ptr<cc_md_model> handle;
-  explicit MaugisDugdale(const Stack& stack) {
+  // direct_solve: the per-radius solve (the reference) instead of the reduced table.
+  MaugisDugdale(const Stack& stack, bool direct_solve) {
     cc_md_model* m = nullptr;
-    call_released([&] { return cc_md_model_create(stack.handle.get(), &m); });
+    call_released([&] {
+      return direct_solve ? cc_md_model_create_direct(stack.handle.get(), &m) : cc_md_model_create(stack.handle.get(), &m);
+    });
     handle.reset(m, cc_md_model_destroy);
   }
   py::array_t<double> curve(double eta, double lambda, const InArray& a_bar) const {
@@ -406,12 +409,15 @@ struct MaugisDugdale {
     call_released([&] { return n == 0 ? static_cast<int>(CC_OK) : cc_md_curve(handle.get(), eta, lambda, n, in, o); });
     return out;
   }
+  // (values, error estimates of P_load and D_disp, flags)
   py::tuple pulloff(double eta, double lambda) const {
     auto out = py::array_t<double>(CC_MD_PULLOFF_COLUMNS);
+    auto errors = py::array_t<double>(CC_MD_PULLOFF_ERROR_COLUMNS);
     double* o = out.mutable_data();
+    double* e = errors.mutable_data();
     int flags = 0;
-    call_released([&] { return cc_md_pulloff(handle.get(), eta, lambda, o, &flags); });
-    return py::make_tuple(out, flags);
+    call_released([&] { return cc_md_pulloff_errors(handle.get(), eta, lambda, o, e, &flags); });
+    return py::make_tuple(out, errors, flags);
   }
 };
 
@@ -660,7 +666,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("pulloff_spring", &pulloff_spring);
   m.def("read_curve", &read_curve);
   py::class_<MaugisDugdale>(m, "MaugisDugdale")
-      .def(py::init<const Stack&>())
+      .def(py::init<const Stack&, bool>())
       .def("curve", &MaugisDugdale::curve)
       .def("pulloff", &MaugisDugdale::pulloff);
   py::class_<Shape>(m, "Shape");

@@ -49,6 +49,23 @@ def test_maugis_dugdale_pulloff_homogeneous():
     assert math.isinf(curve["m"][0]) and np.all(np.isfinite(curve["P"]))
 
 
+@pytest.mark.parametrize("film, lam", [((0.1, 0.25), 0.3), ((0.1, 0.25), 3.0), ((10.0, 0.25), 1.0)])
+def test_maugis_dugdale_pulloff_table_within_its_estimate_of_the_direct_solve(film, lam):
+    """Section 13 "Checks": the pull-off from the reduced table of the cohesive zone (the
+    default) lies within its error estimate (plus the direct solve's) of the direct solve
+    (direct_solve=True); the estimates are the table's (above the direct solve's ~1e-11) and
+    informative, below 5 % of the value (measured at pull-offs: estimates 2.7e-5 to 1.2e-2
+    relative, errors at most 3.4e-4 relative; tests/capi/test_capi.c)."""
+    stack = cc.Stack(film=film, substrate=(1.0, 0.25))
+    table = cc.maugis_dugdale_pulloff(stack, eta=1.0, lambda_=lam)
+    direct = cc.maugis_dugdale_pulloff(stack, eta=1.0, lambda_=lam, direct_solve=True)
+    assert abs(table["P_load"] - direct["P_load"]) <= table["P_load_err"] + direct["P_load_err"]
+    assert abs(table["D_disp"] - direct["D_disp"]) <= table["D_disp_err"] + direct["D_disp_err"]
+    assert direct["P_load_err"] < table["P_load_err"] < 0.05 * abs(table["P_load"])
+    assert 0.0 < direct["D_disp_err"] < table["D_disp_err"] < 0.05 * abs(table["D_disp"])
+    assert table["end_of_curve"] == direct["end_of_curve"]
+
+
 def test_paraboloid_shape_equals_the_sphere():
     """Section 11: the shape path of a paraboloid reproduces the sphere's pull-off."""
     film, substrate = (1e6, 0.25), (1e7, 0.25)

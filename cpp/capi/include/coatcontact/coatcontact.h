@@ -206,12 +206,18 @@ int cc_pulloff_spring(cc_adhesive_model *model, double eta, double k_bar, double
 
 /* ---- Maugis-Dugdale cohesive zone (THEORY.md section 13) -------------------------------
  * lambda = 2 sigma0 (R/(pi w K^2))^(1/3), K = (4/3) E*, > 0; the sphere, a rigid indenter.
- * A model solves c(a) at each contact radius (no interpolant): it caches nothing and may be
- * shared across threads. */
+ * cc_md_model_create: values from the reduced table of the cohesive zone (THEORY.md section 13,
+ * "The cohesive zone as a table"), its tiles built on first use and kept by the model, each
+ * value within its error estimate of the direct solve; outside the table (a/t beyond
+ * [1e-4, 1e2] or c/t > 1e4) the direct solve. cc_md_model_create_direct: the direct
+ * per-radius solve everywhere (the reference, the command line's --md-direct; no cache).
+ * Either model may be shared across threads. */
 typedef struct cc_md_model cc_md_model;
 #define CC_MD_CURVE_COLUMNS 5   /* a_bar, a_over_t, m = c/a, P, D */
 #define CC_MD_PULLOFF_COLUMNS 8 /* P_load, a_bar_load, D_load, m_load, P_disp, a_bar_disp, D_disp, m_disp */
+#define CC_MD_PULLOFF_ERROR_COLUMNS 2 /* P_load_err, D_disp_err: error estimates of the two minima */
 int cc_md_model_create(const cc_stack *stack, cc_md_model **model);
+int cc_md_model_create_direct(const cc_stack *stack, cc_md_model **model);
 void cc_md_model_destroy(cc_md_model *model);
 /* a_bar >= 0 (0: the end of the curve, a -> 0, where m is INFINITY). */
 int cc_md_curve(const cc_md_model *model, double eta, double lambda, int n, const double *a_bar,
@@ -219,6 +225,11 @@ int cc_md_curve(const cc_md_model *model, double eta, double lambda, int n, cons
 /* flags bit 1: the displacement-controlled pull-off is the end of the curve (a -> 0). */
 int cc_md_pulloff(const cc_md_model *model, double eta, double lambda,
                   double out[CC_MD_PULLOFF_COLUMNS], int *flags);
+/* cc_md_pulloff plus the error estimates of P_load and D_disp (the table's, or the direct
+ * solve's own ~1e-11 relative); errors may be NULL. */
+int cc_md_pulloff_errors(const cc_md_model *model, double eta, double lambda,
+                         double out[CC_MD_PULLOFF_COLUMNS], double errors[CC_MD_PULLOFF_ERROR_COLUMNS],
+                         int *flags);
 
 /* ---- indenters of any axisymmetric shape, SI units (THEORY.md section 11) --------------
  * Lengths in m, angles (half included angle beta) in radians, in (0, pi/2). */
