@@ -136,6 +136,7 @@ class Branch {
     // The top radius: delta(a_top) >= the deepest indentation (bounded doubling).
     double a_top = std::max(2.0 * a_s_, std::sqrt(radius_ * std::max(max_indentation, 0.0)));
     for (int k = 0; k < 80 && point(a_top).first < max_indentation; ++k) a_top *= 2.0;
+    a_top_ = a_top;
     for (int k = 0; k < kBranchNodes; ++k) {
       const double a = a_s_ * std::pow(a_top / a_s_, k / (kBranchNodes - 1.0));
       const auto [d, f] = point(a);
@@ -188,13 +189,14 @@ class Branch {
   double jump_force() const { return jump_force_; }
   double max_indentation() const { return delta_.back(); }
   double max_radius() const { return a_max_; }
+  double top_radius() const { return a_top_; }  // the largest radius evaluated for the table
   double reduced_modulus() const { return reduced_; }
 
  private:
   std::shared_ptr<const CoatingSweep> sweep_;
   Trial trial_;
   double radius_, spring_, reduced_ = 0.0, length_ = 0.0;
-  double a_s_ = 0.0, a_max_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
+  double a_s_ = 0.0, a_max_ = 0.0, a_top_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
   std::vector<double> delta_, force_;
   gsl_interp* interp_ = nullptr;
   gsl_interp_accel* accel_ = nullptr;
@@ -519,23 +521,46 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
 
   // Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
   // (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
-  // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15).
-  std::map<long, std::vector<ReducedVariables>> nodes;
+  // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15). The
+  // sweeps cover a prefix of the a/t lattice of kCoatingAOverT, extended (on every node, by the
+  // missing radii only) when a trial's branch reaches past it: the solves at large a/t cost
+  // most, and a curve's indentations rarely reach them.
+  struct Node {
+    std::unique_ptr<ReducedSolver> solver;
+    std::vector<ReducedVariables> values;
+  };
+  std::map<long, Node> nodes;
   long solver_calls = 0;
-  std::vector<double> a_over_t;
+  std::vector<double> lattice;  // the whole a/t lattice
+  std::size_t swept = 0;        // its prefix the sweeps cover
   if (coated) {
     const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
     const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
-    for (int k = 0; k < count; ++k) a_over_t.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
+    for (int k = 0; k < count; ++k) lattice.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
   }
+  // The prefix up to the first radius >= a_over_t (at least 8 radii past 1/2 of the lattice's
+  // start, at most the whole lattice).
+  const auto prefix_for = [&](double a_over_t) {
+    std::size_t k = 0;
+    while (k < lattice.size() && lattice[k] < a_over_t) ++k;
+    return std::min(lattice.size(), std::max<std::size_t>(k + 1, 8));
+  };
+  const auto fill = [&](Node& v) {
+    if (v.values.size() >= swept) return;
+    const std::vector<double> extra(lattice.begin() + static_cast<long>(v.values.size()), lattice.begin() + static_cast<long>(swept));
+    const std::vector<ReducedVariables> more = v.solver->sweep(extra, problem.coating->solver_tolerance);
+    v.values.insert(v.values.end(), more.begin(), more.end());
+    solver_calls += static_cast<long>(extra.size());
+  };
   const auto node = [&](long j) -> const std::vector<ReducedVariables>& {
     auto it = nodes.find(j);
-    if (it != nodes.end()) return it->second;
-    Material film = problem.coating->film;
-    film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
-    const ReducedSolver solver(Stack::film_on(film, problem.coating->substrate));
-    solver_calls += static_cast<long>(a_over_t.size());
-    return nodes.emplace(j, solver.sweep(a_over_t, problem.coating->solver_tolerance)).first->second;
+    if (it == nodes.end()) {
+      Material film = problem.coating->film;
+      film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+      it = nodes.emplace(j, Node{std::make_unique<ReducedSolver>(Stack::film_on(film, problem.coating->substrate)), {}}).first;
+    }
+    fill(it->second);
+    return it->second.values;
   };
   std::map<double, std::shared_ptr<const CoatingSweep>> sweeps;
   const auto sweep_of = [&](double film_modulus) -> std::shared_ptr<const CoatingSweep> {
@@ -556,11 +581,11 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
           if (b != a) weight[a] *= (x - static_cast<double>(j0 + b)) / static_cast<double>(a - b);
         }
       }
-      std::vector<ReducedVariables> mixed(a_over_t.size());
+      std::vector<ReducedVariables> mixed(swept);
       for (int a = 0; a < 4; ++a) {
         const std::vector<ReducedVariables>& v = node(j0 + a);
         for (std::size_t k = 0; k < mixed.size(); ++k) {
-          mixed[k].a_over_t = a_over_t[k];
+          mixed[k].a_over_t = lattice[k];
           mixed[k].pi_s += weight[a] * v[k].pi_s;
           mixed[k].delta_s += weight[a] * v[k].delta_s;
           mixed[k].e_eq += weight[a] * v[k].e_eq;
@@ -573,10 +598,17 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
     sweeps.emplace(film_modulus, sweep);
     return sweep;
   };
+  if (coated) swept = prefix_for(2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint);
   int tables = 0;
   const auto branch_of = [&](const Trial& t) {
-    ++tables;
-    return std::make_unique<Branch>(p, sweep_of(t.modulus), t, max_delta);
+    for (;;) {
+      ++tables;
+      auto branch = std::make_unique<Branch>(p, sweep_of(t.modulus), t, max_delta);
+      // The branch's radii past the swept a/t would take the sweep's end values: widen it.
+      if (!coated || swept == lattice.size() || branch->top_radius() / t.thickness <= lattice[swept - 1]) return branch;
+      swept = prefix_for(branch->top_radius() / t.thickness);
+      sweeps.clear();
+    }
   };
 
   const Objective coarse(search, problem);
