@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <string>
 #include <tuple>
@@ -88,6 +89,51 @@ class CoatingSweep {
   std::vector<gsl_interp*> splines_;
   gsl_interp_accel* accel_ = nullptr;
 };
+
+// Reduced-solver sweeps of the E1 nodes, shared by every fit of the process: the curves of a
+// map share the coating and E1's start, hence their nodes (THEORY.md section 15). A node's sweep
+// is a prefix of the a/t lattice, extended on demand; a fit uses the prefix of its own reach
+// only, so its result does not depend on what other fits computed before (the values at one a/t
+// do not depend on the other radii solved, coatcontact/reduced.hpp).
+struct SharedNode {
+  std::mutex mutex;
+  std::unique_ptr<ReducedSolver> solver;
+  std::vector<ReducedVariables> values;
+};
+using NodeKey = std::tuple<double, double, bool, double, double, double, std::size_t>;
+constexpr std::size_t kSharedNodes = 96;
+std::mutex shared_nodes_mutex;
+std::map<NodeKey, std::shared_ptr<SharedNode>>& shared_nodes() {
+  static std::map<NodeKey, std::shared_ptr<SharedNode>> nodes;
+  return nodes;
+}
+
+// The first `count` values of the lattice's sweep of film on substrate (the lattice is
+// identified by its size: kCoatingAOverT at kCoatingPerDecade).
+std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate& substrate, double tolerance,
+                                           const std::vector<double>& lattice, std::size_t count) {
+  std::shared_ptr<SharedNode> node;
+  {
+    const std::lock_guard<std::mutex> lock(shared_nodes_mutex);
+    auto& nodes = shared_nodes();
+    const NodeKey key{film.youngs_modulus, film.poisson_ratio, substrate.rigid, substrate.rigid ? 0.0 : substrate.material.youngs_modulus,
+                      substrate.rigid ? 0.0 : substrate.material.poisson_ratio, tolerance, lattice.size()};
+    auto it = nodes.find(key);
+    if (it == nodes.end()) {
+      if (nodes.size() >= kSharedNodes) nodes.clear();  // the fits holding one keep it
+      it = nodes.emplace(key, std::make_shared<SharedNode>()).first;
+    }
+    node = it->second;
+  }
+  const std::lock_guard<std::mutex> lock(node->mutex);
+  if (!node->solver) node->solver = std::make_unique<ReducedSolver>(Stack::film_on(film, substrate));
+  if (node->values.size() < count) {
+    const std::vector<double> extra(lattice.begin() + static_cast<long>(node->values.size()), lattice.begin() + static_cast<long>(count));
+    const std::vector<ReducedVariables> more = node->solver->sweep(extra, tolerance);
+    node->values.insert(node->values.end(), more.begin(), more.end());
+  }
+  return {node->values.begin(), node->values.begin() + static_cast<long>(count)};
+}
 
 // Parameters of one trial.
 struct Trial {
@@ -381,6 +427,11 @@ std::vector<double> simplex(const std::function<double(const std::vector<double>
 
 }  // namespace
 
+void afm_clear_shared_sweeps() {
+  const std::lock_guard<std::mutex> lock(shared_nodes_mutex);
+  shared_nodes().clear();
+}
+
 namespace internal {
 
 std::vector<double> afm_least_squares_step(const std::vector<std::vector<double>>& columns, const std::vector<double>& residual) {
@@ -525,11 +576,7 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
   // sweeps cover a prefix of the a/t lattice of kCoatingAOverT, extended (on every node, by the
   // missing radii only) when a trial's branch reaches past it: the solves at large a/t cost
   // most, and a curve's indentations rarely reach them.
-  struct Node {
-    std::unique_ptr<ReducedSolver> solver;
-    std::vector<ReducedVariables> values;
-  };
-  std::map<long, Node> nodes;
+  std::map<long, std::vector<ReducedVariables>> nodes;  // this fit's prefix of each node's sweep
   long solver_calls = 0;
   std::vector<double> lattice;  // the whole a/t lattice
   std::size_t swept = 0;        // its prefix the sweeps cover
@@ -545,22 +592,16 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
     while (k < lattice.size() && lattice[k] < a_over_t) ++k;
     return std::min(lattice.size(), std::max<std::size_t>(k + 1, 8));
   };
-  const auto fill = [&](Node& v) {
-    if (v.values.size() >= swept) return;
-    const std::vector<double> extra(lattice.begin() + static_cast<long>(v.values.size()), lattice.begin() + static_cast<long>(swept));
-    const std::vector<ReducedVariables> more = v.solver->sweep(extra, problem.coating->solver_tolerance);
-    v.values.insert(v.values.end(), more.begin(), more.end());
-    solver_calls += static_cast<long>(extra.size());
-  };
+  // (solver_calls: the solves the fit's model rests on, whether this fit or an earlier one made them)
   const auto node = [&](long j) -> const std::vector<ReducedVariables>& {
-    auto it = nodes.find(j);
-    if (it == nodes.end()) {
+    std::vector<ReducedVariables>& v = nodes[j];
+    if (v.size() < swept) {
       Material film = problem.coating->film;
       film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
-      it = nodes.emplace(j, Node{std::make_unique<ReducedSolver>(Stack::film_on(film, problem.coating->substrate)), {}}).first;
+      solver_calls += static_cast<long>(swept - v.size());
+      v = shared_sweep(film, problem.coating->substrate, problem.coating->solver_tolerance, lattice, swept);
     }
-    fill(it->second);
-    return it->second.values;
+    return v;
   };
   std::map<double, std::shared_ptr<const CoatingSweep>> sweeps;
   const auto sweep_of = [&](double film_modulus) -> std::shared_ptr<const CoatingSweep> {

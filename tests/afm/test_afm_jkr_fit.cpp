@@ -13,6 +13,9 @@
 //  - Coating, E1 fixed (one sweep, no interpolation in E1): the fit sweeps a/t only as far as
 //    its branches reach (THEORY.md section 15); its model against afm_model_force (a sweep of
 //    the whole lattice) at the estimates.
+//  - Shared node sweeps: a coating fit (E1 free) after other fits of the same sample, which
+//    left the E1 nodes swept (a curve of larger w, reaching further in a/t, among them), equals
+//    the same fit from none, bit for bit.
 //  - Tabor's mu and Maugis's lambda against their formulas; the warning below lambda = 5.
 //  - Bad input: no spring constant, a cone tip, a fixed w <= 0.
 #include <algorithm>
@@ -347,12 +350,39 @@ void check_swept_range() {
   check::below(worst, 1e-3 * sigma, "the fit's model on its swept a/t within a thousandth of the noise of the whole lattice's");
 }
 
+// The E1 nodes' sweeps are kept for later fits (coatcontact/afm_fit.hpp); each fit uses its own
+// prefix of them, so the result cannot depend on which fits ran before.
+void check_shared_sweeps() {
+  Truth t;
+  t.coated = true;
+  const double sigma = 5e-9;
+  fit::AfmFitProblem p = problem_of(t);
+  p.coating->film.youngs_modulus = t.modulus * 2.5;
+  p.work = 0.0;
+  p.tilt = 0.0;
+  p.free = {true, true, true, false, true, true};
+  const Synthetic first = make_retract(t, sigma, 11u, 800);
+  Truth deeper = t;
+  deeper.work = 30e-3;  // a larger w: larger contact radii
+  const Synthetic other = make_retract(deeper, sigma, 12u, 800);
+  fit::afm_clear_shared_sweeps();
+  const fit::AfmFitResult cold = fit::afm_fit(first.z, first.f, p);
+  (void)fit::afm_fit(other.z, other.f, p);
+  const fit::AfmFitResult warm = fit::afm_fit(first.z, first.f, p);
+  std::printf("shared sweeps: cold E1 %.17g w %.17g rss %.17g (%.1f ms), warm (%.1f ms)\n", cold.modulus, cold.work, cold.rss,
+              cold.seconds * 1e3, warm.seconds * 1e3);
+  check::that(cold.modulus == warm.modulus && cold.work == warm.work && cold.contact_point == warm.contact_point &&
+                  cold.rss == warm.rss && cold.modulus_error == warm.modulus_error,
+              "a fit after others of the same sample equals the fit from no shared sweeps, bit for bit");
+}
+
 }  // namespace
 
 int main() {
   check_half_space_model();
   check_coating_model();
   check_swept_range();
+  check_shared_sweeps();
   Truth half;
   check_recovery(half, "half-space", 4);
   Truth coated;

@@ -140,6 +140,11 @@ struct AfmFitResult {
 // g(delta) = F/E* of the tip on a half-space at each penetration delta >= 0 [N/Pa].
 std::vector<double> afm_force_per_modulus(const AfmTip& tip, const std::vector<double>& penetration);
 
+// JKR on a coating keeps the reduced-solver sweeps of its E1 nodes for the fits that follow
+// (the curves of a map share them; results do not depend on it). This drops them (benchmarks of
+// a first fit, memory).
+void afm_clear_shared_sweeps();
+
 // The model force at tip positions z for E (E1 and t of a coating), z_c, b and the tilt m of `problem`.
 std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vector<double>& tip_position);
 
