@@ -6,6 +6,11 @@
 #  - 64 x 64 and 256 x 256 maps (100 points per segment): peak RSS (GNU time's %M) of the batch
 #    and of opening the archive and fitting one curve (--index 0): their difference is what the
 #    batch itself holds beyond libzip's copy of the archive's central directory.
+#  - a 32 x 32 map of adhesive retracts on a coating (make_afm_map --jkr: the library's JKR
+#    spring model, film 100 kPa, t = 4 um on 1 MPa, w 8-14 mJ/m2, k = 1 N/m, noise, tilt, bad
+#    curves) fitted with `--model jkr` (E1 from 250 kPa, w, contact point, baseline, tilt free),
+#    --jobs 2: wall and CPU time, and the recovered E1 and w against the truth (mean and RMS of
+#    the relative error, mean |z-score|) over the fitted curves, and the flags against the truth's.
 # Rows "task value ... kind" like cli_timings.sh (kind: cli for times in ms, rss_kB, ratio).
 # The machine is shared: compare user + system (CPU) time as well as wall time.
 # Usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR]
@@ -37,6 +42,33 @@ awk -v w1="$w1" -v u1="$u1" -v s1="$s1" -v w2="$w2" -v u2="$u2" -v s2="$s2" 'BEG
   printf "afm fit 32x32 map, --jobs 2 speed-up (wall 1 / wall 2)\t%.3g\t\t\t1\tratio\n", w1 / w2
   printf "afm fit 32x32 map, curves per second, --jobs 2\t%.4g\t\t\t1\tratio\n", 1024 / w2
 }'
+
+"$make_map" "$work/map32jkr.jpk-force-map" 32 32 --seed 5 --jkr --truth "$work/map32jkr.truth"
+read -r wj uj sj mj < <(run jkr afm fit "$work/map32jkr.jpk-force-map" --model jkr --radius 10um --film 250kPa,0.5 \
+  --substrate 1MPa,0.3 --thickness 4um --jobs 2)
+awk -v wj="$wj" -v uj="$uj" -v sj="$sj" 'BEGIN { FS = "\t" }
+  FNR == NR { if ($0 !~ /^#/) { e[$1] = $4; w[$1] = $9; flag[$1] = $8 }; next }
+  /^# columns:/ { sub(/^# columns: /, ""); for (k = 1; k <= NF; ++k) col[$k] = k; next }
+  /^#/ { next }
+  {
+    n = $col["curve"]; ++curves
+    if ($col["flag"] != flag[n]) ++wrong_flags
+    if ($col["flag"] != 0) next
+    de = $col["E1"] / e[n] - 1; dw = $col["w"] / w[n] - 1
+    ze = ($col["E1"] - e[n]) / $col["E1_error"]; zw = ($col["w"] - w[n]) / $col["w_error"]
+    ++fitted; se += de; see += de * de; sw += dw; sww += dw * dw; aze += (ze < 0 ? -ze : ze); azw += (zw < 0 ? -zw : zw)
+  }
+  END {
+    printf "afm fit 32x32 JKR coating map, --jobs 2 (wall)\t%.4g\t\t\t1\tcli\n", wj * 1000
+    printf "afm fit 32x32 JKR coating map, --jobs 2 (user+sys CPU)\t%.4g\t\t\t1\tcli\n", (uj + sj) * 1000
+    printf "afm fit 32x32 JKR coating map, fitted curves (of %d; flags unlike the truth: %d)\t%d\t\t\t1\tratio\n", curves, wrong_flags, fitted
+    printf "afm fit 32x32 JKR coating map, E1 mean relative error\t%.3g\t\t\t1\tratio\n", se / fitted
+    printf "afm fit 32x32 JKR coating map, E1 RMS relative error\t%.3g\t\t\t1\tratio\n", sqrt(see / fitted)
+    printf "afm fit 32x32 JKR coating map, w mean relative error\t%.3g\t\t\t1\tratio\n", sw / fitted
+    printf "afm fit 32x32 JKR coating map, w RMS relative error\t%.3g\t\t\t1\tratio\n", sqrt(sww / fitted)
+    printf "afm fit 32x32 JKR coating map, E1 mean |z-score|\t%.3g\t\t\t1\tratio\n", aze / fitted
+    printf "afm fit 32x32 JKR coating map, w mean |z-score|\t%.3g\t\t\t1\tratio\n", azw / fitted
+  }' "$work/map32jkr.truth" "$work/jkr.tsv"
 
 "$make_map" "$work/map64.jpk-force-map" 64 64 --points 100 --seed 4 --clean
 "$make_map" "$work/map256.jpk-force-map" 256 256 --points 100 --seed 6 --clean

@@ -298,6 +298,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--thickness", "t", "the coating's thickness [m] (the value if fixed, else the centre of its search)", false},
     {"--free", "LIST", "free parameters: E, contact_point, baseline on a half-space (default all three); "
                        "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline); "
+                       "tilt adds a baseline slope (hertz: fitted instead of the preprocessing's being subtracted); "
                        "jkr adds w and tilt (default E or E1, w, contact_point, baseline, tilt)", false},
     {"--contact-point", "Z", "the contact point [m, tip position] when it is fixed", false},
     {"--baseline", "B", "the force baseline [N] when it is fixed", false},
@@ -468,7 +469,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   problem.free = {false, false, false, false};
   const std::string modulus_name = coated ? "E1" : "E";
   const std::string allowed = std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") +
-                              (jkr ? ", w, tilt" : "");
+                              (jkr ? ", w, tilt" : ", tilt");
   const std::string free_text =
       arguments.get("--free").value_or(modulus_name + (jkr ? ",w,contact_point,baseline,tilt" : ",contact_point,baseline"));
   std::size_t start = 0;
@@ -480,7 +481,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     if (item == modulus_name) problem.free.modulus = true;
     else if (item == "t" && coated) problem.free.thickness = true;
     else if (item == "w" && jkr) problem.free.work = true;
-    else if (item == "tilt" && jkr) problem.free.tilt = true;
+    else if (item == "tilt") problem.free.tilt = true;
     else if (item == "contact_point") problem.free.contact_point = true;
     else if (item == "baseline") problem.free.baseline = true;
     else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
@@ -571,7 +572,9 @@ void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items
   const bool jkr = problem.model == fit::AfmModel::kJkr;
   items.push_back({"model", jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
                                   "under the spring k (0 past its jump-off)"
-                                : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+                      : problem.free.tilt
+                          ? "F = b + m (z - z_c) + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"
+                          : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
   items.push_back({"tip", problem.tip.description});
   if (problem.coating) {
     const fit::AfmCoating& c = *problem.coating;
@@ -598,6 +601,8 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
   }
   if (jkr) {
     items.push_back({"w [J/m2]", problem.free.work ? with_error(r.work, r.work_error, "w") : format_parameter(r.work, "w") + " (fixed)"});
+  }
+  if (jkr || problem.free.tilt) {
     items.push_back({"tilt [N/m]", (problem.free.tilt ? with_error(r.tilt, r.tilt_error, "tilt") : format_parameter(r.tilt, "tilt") + " (fixed)") +
                                        " (baseline slope about the contact point)"});
   }

@@ -353,6 +353,9 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   if (settings.problem.model == fit::AfmModel::kJkr) {
     items.push_back({"model", "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
                               "under the cantilever's spring k (each curve's), 0 past its jump-off"});
+  } else if (settings.problem.free.tilt) {
+    items.push_back({"model", "F = b + m (z - z_c) + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out "
+                              "of contact); the tilt m fitted, not subtracted"});
   } else {
     items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
   }

@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <string>
 #include <tuple>
@@ -89,6 +90,51 @@ class CoatingSweep {
   gsl_interp_accel* accel_ = nullptr;
 };
 
+// Reduced-solver sweeps of the E1 nodes, shared by every fit of the process: the curves of a
+// map share the coating and E1's start, hence their nodes (THEORY.md section 15). A node's sweep
+// is a prefix of the a/t lattice, extended on demand; a fit uses the prefix of its own reach
+// only, so its result does not depend on what other fits computed before (the values at one a/t
+// do not depend on the other radii solved, coatcontact/reduced.hpp).
+struct SharedNode {
+  std::mutex mutex;
+  std::unique_ptr<ReducedSolver> solver;
+  std::vector<ReducedVariables> values;
+};
+using NodeKey = std::tuple<double, double, bool, double, double, double, std::size_t>;
+constexpr std::size_t kSharedNodes = 96;
+std::mutex shared_nodes_mutex;
+std::map<NodeKey, std::shared_ptr<SharedNode>>& shared_nodes() {
+  static std::map<NodeKey, std::shared_ptr<SharedNode>> nodes;
+  return nodes;
+}
+
+// The first `count` values of the lattice's sweep of film on substrate (the lattice is
+// identified by its size: kCoatingAOverT at kCoatingPerDecade).
+std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate& substrate, double tolerance,
+                                           const std::vector<double>& lattice, std::size_t count) {
+  std::shared_ptr<SharedNode> node;
+  {
+    const std::lock_guard<std::mutex> lock(shared_nodes_mutex);
+    auto& nodes = shared_nodes();
+    const NodeKey key{film.youngs_modulus, film.poisson_ratio, substrate.rigid, substrate.rigid ? 0.0 : substrate.material.youngs_modulus,
+                      substrate.rigid ? 0.0 : substrate.material.poisson_ratio, tolerance, lattice.size()};
+    auto it = nodes.find(key);
+    if (it == nodes.end()) {
+      if (nodes.size() >= kSharedNodes) nodes.clear();  // the fits holding one keep it
+      it = nodes.emplace(key, std::make_shared<SharedNode>()).first;
+    }
+    node = it->second;
+  }
+  const std::lock_guard<std::mutex> lock(node->mutex);
+  if (!node->solver) node->solver = std::make_unique<ReducedSolver>(Stack::film_on(film, substrate));
+  if (node->values.size() < count) {
+    const std::vector<double> extra(lattice.begin() + static_cast<long>(node->values.size()), lattice.begin() + static_cast<long>(count));
+    const std::vector<ReducedVariables> more = node->solver->sweep(extra, tolerance);
+    node->values.insert(node->values.end(), more.begin(), more.end());
+  }
+  return {node->values.begin(), node->values.begin() + static_cast<long>(count)};
+}
+
 // Parameters of one trial.
 struct Trial {
   double modulus = 0.0;    // E (half-space) or E1 [Pa]
@@ -136,6 +182,7 @@ class Branch {
     // The top radius: delta(a_top) >= the deepest indentation (bounded doubling).
     double a_top = std::max(2.0 * a_s_, std::sqrt(radius_ * std::max(max_indentation, 0.0)));
     for (int k = 0; k < 80 && point(a_top).first < max_indentation; ++k) a_top *= 2.0;
+    a_top_ = a_top;
     for (int k = 0; k < kBranchNodes; ++k) {
       const double a = a_s_ * std::pow(a_top / a_s_, k / (kBranchNodes - 1.0));
       const auto [d, f] = point(a);
@@ -188,13 +235,14 @@ class Branch {
   double jump_force() const { return jump_force_; }
   double max_indentation() const { return delta_.back(); }
   double max_radius() const { return a_max_; }
+  double top_radius() const { return a_top_; }  // the largest radius evaluated for the table
   double reduced_modulus() const { return reduced_; }
 
  private:
   std::shared_ptr<const CoatingSweep> sweep_;
   Trial trial_;
   double radius_, spring_, reduced_ = 0.0, length_ = 0.0;
-  double a_s_ = 0.0, a_max_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
+  double a_s_ = 0.0, a_max_ = 0.0, a_top_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
   std::vector<double> delta_, force_;
   gsl_interp* interp_ = nullptr;
   gsl_interp_accel* accel_ = nullptr;
@@ -379,6 +427,11 @@ std::vector<double> simplex(const std::function<double(const std::vector<double>
 
 }  // namespace
 
+void afm_clear_shared_sweeps() {
+  const std::lock_guard<std::mutex> lock(shared_nodes_mutex);
+  shared_nodes().clear();
+}
+
 namespace internal {
 
 std::vector<double> afm_least_squares_step(const std::vector<std::vector<double>>& columns, const std::vector<double>& residual) {
@@ -519,23 +572,36 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
 
   // Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
   // (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
-  // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15).
-  std::map<long, std::vector<ReducedVariables>> nodes;
+  // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15). The
+  // sweeps cover a prefix of the a/t lattice of kCoatingAOverT, extended (on every node, by the
+  // missing radii only) when a trial's branch reaches past it: the solves at large a/t cost
+  // most, and a curve's indentations rarely reach them.
+  std::map<long, std::vector<ReducedVariables>> nodes;  // this fit's prefix of each node's sweep
   long solver_calls = 0;
-  std::vector<double> a_over_t;
+  std::vector<double> lattice;  // the whole a/t lattice
+  std::size_t swept = 0;        // its prefix the sweeps cover
   if (coated) {
     const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
     const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
-    for (int k = 0; k < count; ++k) a_over_t.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
+    for (int k = 0; k < count; ++k) lattice.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
   }
+  // The prefix up to the first radius >= a_over_t (at least 8 radii past 1/2 of the lattice's
+  // start, at most the whole lattice).
+  const auto prefix_for = [&](double a_over_t) {
+    std::size_t k = 0;
+    while (k < lattice.size() && lattice[k] < a_over_t) ++k;
+    return std::min(lattice.size(), std::max<std::size_t>(k + 1, 8));
+  };
+  // (solver_calls: the solves the fit's model rests on, whether this fit or an earlier one made them)
   const auto node = [&](long j) -> const std::vector<ReducedVariables>& {
-    auto it = nodes.find(j);
-    if (it != nodes.end()) return it->second;
-    Material film = problem.coating->film;
-    film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
-    const ReducedSolver solver(Stack::film_on(film, problem.coating->substrate));
-    solver_calls += static_cast<long>(a_over_t.size());
-    return nodes.emplace(j, solver.sweep(a_over_t, problem.coating->solver_tolerance)).first->second;
+    std::vector<ReducedVariables>& v = nodes[j];
+    if (v.size() < swept) {
+      Material film = problem.coating->film;
+      film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+      solver_calls += static_cast<long>(swept - v.size());
+      v = shared_sweep(film, problem.coating->substrate, problem.coating->solver_tolerance, lattice, swept);
+    }
+    return v;
   };
   std::map<double, std::shared_ptr<const CoatingSweep>> sweeps;
   const auto sweep_of = [&](double film_modulus) -> std::shared_ptr<const CoatingSweep> {
@@ -556,11 +622,11 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
           if (b != a) weight[a] *= (x - static_cast<double>(j0 + b)) / static_cast<double>(a - b);
         }
       }
-      std::vector<ReducedVariables> mixed(a_over_t.size());
+      std::vector<ReducedVariables> mixed(swept);
       for (int a = 0; a < 4; ++a) {
         const std::vector<ReducedVariables>& v = node(j0 + a);
         for (std::size_t k = 0; k < mixed.size(); ++k) {
-          mixed[k].a_over_t = a_over_t[k];
+          mixed[k].a_over_t = lattice[k];
           mixed[k].pi_s += weight[a] * v[k].pi_s;
           mixed[k].delta_s += weight[a] * v[k].delta_s;
           mixed[k].e_eq += weight[a] * v[k].e_eq;
@@ -573,10 +639,17 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
     sweeps.emplace(film_modulus, sweep);
     return sweep;
   };
+  if (coated) swept = prefix_for(2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint);
   int tables = 0;
   const auto branch_of = [&](const Trial& t) {
-    ++tables;
-    return std::make_unique<Branch>(p, sweep_of(t.modulus), t, max_delta);
+    for (;;) {
+      ++tables;
+      auto branch = std::make_unique<Branch>(p, sweep_of(t.modulus), t, max_delta);
+      // The branch's radii past the swept a/t would take the sweep's end values: widen it.
+      if (!coated || swept == lattice.size() || branch->top_radius() / t.thickness <= lattice[swept - 1]) return branch;
+      swept = prefix_for(branch->top_radius() / t.thickness);
+      sweeps.clear();
+    }
   };
 
   const Objective coarse(search, problem);

@@ -131,7 +131,9 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   std::vector<double> f_segment(curve.force.begin() + static_cast<std::ptrdiff_t>(segment->begin),
                                 curve.force.begin() + static_cast<std::ptrdiff_t>(segment->end));
   // The baseline's tilt about the reference contact point: b is then the offset there.
-  const double tilt = settings.correct_tilt ? steps.baseline_slope : 0.0;
+  // A Hertz model with its own free tilt fits it with its error instead (THEORY.md section 15).
+  const bool model_tilt = problem.model == AfmModel::kHertz && problem.free.tilt;
+  const double tilt = settings.correct_tilt && !model_tilt ? steps.baseline_slope : 0.0;
   for (std::size_t i = 0; i < f_segment.size(); ++i) f_segment[i] -= tilt * (z_segment[i] - steps.contact_point);
   const double reference_baseline = steps.baseline_offset + steps.baseline_slope * steps.contact_point;
   const std::vector<std::size_t> kept = afm_select(z_segment, f_segment, settings.range, steps.contact_point, reference_baseline);

@@ -11,6 +11,7 @@
 #include <gsl/gsl_matrix.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -18,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -34,6 +36,7 @@ namespace {
 
 using coatcontact::detail::short_text;
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // F(delta) per unit scale and dF/d delta at delta > 0: a tip on a half-space (per E*) or a
 // coating (in N).
@@ -241,7 +244,7 @@ class CoatingForces {
 // At one z_c: the closed-form (E*, b) (E* >= 0) and the residual sum of squares. Forces are
 // centred on their mean (b is then relative to it) to keep the sums well conditioned.
 struct LinearFit {
-  double reduced_modulus = 0.0, baseline = 0.0, rss = 0.0;
+  double reduced_modulus = 0.0, baseline = 0.0, rss = 0.0, tilt = 0.0;
 };
 
 class Profile {
@@ -264,9 +267,19 @@ class Profile {
     }
     for (double v : centred_) sff_ += v * v;
   }
+  // A free baseline tilt m: F = b + m (z - z_c) + E* g (THEORY.md section 15, "Free tilt").
+  void free_tilt() {
+    free_tilt_ = true;
+    origin_ = 0.5 * (z_.front() + z_.back());
+    for (std::size_t i = 0; i < z_.size(); ++i) {
+      const double x = z_[i] - origin_;
+      sx_ += x, sxx_ += x * x, sxf_ += x * centred_[i];
+    }
+  }
 
   LinearFit at(double contact_point) const {
     ++evaluations_;
+    if (free_tilt_) return at_with_tilt(contact_point);
     double sg = 0.0, sgg = 0.0, sgf = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
@@ -294,11 +307,76 @@ class Profile {
   int evaluations() const { return evaluations_; }
 
  private:
+  // The least squares of F' = b + m u + e g (u = z - z_c) over the free ones of (e, b, m), the
+  // others at their fixed values (m free here), e >= 0: the normal equations of the free
+  // columns; a negative e is clamped at 0 and (b, m) solved again.
+  LinearFit at_with_tilt(double contact_point) const {
+    double sg = 0.0, sgg = 0.0, sgf = 0.0, sxg = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i) {
+      const double delta = contact_point - z_[i];
+      if (delta <= 0.0) break;
+      const double g = force_.at(delta).first;
+      sg += g, sgg += g * g, sgf += g * centred_[i], sxg += (z_[i] - origin_) * g;
+    }
+    const double n = static_cast<double>(z_.size()), c = contact_point - origin_;
+    // Sums over u = x - c.
+    const double su = sx_ - n * c, suu = sxx_ - 2.0 * c * sx_ + n * c * c, suf = sxf_, sug = sxg - c * sg;
+    // Columns 0: g, 1: 1, 2: u; gram[a][b] and right side r[a] = column . F'.
+    const double gram[3][3] = {{sgg, sg, sug}, {sg, n, su}, {sug, su, suu}};
+    const double right[3] = {sgf, 0.0, suf};
+    const auto solve = [&](bool with_scale, double e_fixed) {
+      std::vector<int> cols;
+      if (with_scale) cols.push_back(0);
+      if (free_baseline_) cols.push_back(1);
+      cols.push_back(2);
+      double fixed[3] = {with_scale ? 0.0 : e_fixed, free_baseline_ ? 0.0 : fixed_baseline_, 0.0};
+      const std::size_t k = cols.size();
+      double a[3][4];
+      for (std::size_t i = 0; i < k; ++i) {
+        for (std::size_t j = 0; j < k; ++j) a[i][j] = gram[cols[i]][cols[j]];
+        a[i][k] = right[cols[i]];
+        for (int f = 0; f < 3; ++f) a[i][k] -= gram[cols[i]][f] * fixed[f];
+      }
+      // Gaussian elimination with partial pivoting (k <= 3).
+      for (std::size_t p = 0; p < k; ++p) {
+        std::size_t best = p;
+        for (std::size_t i = p + 1; i < k; ++i) {
+          if (std::abs(a[i][p]) > std::abs(a[best][p])) best = i;
+        }
+        for (std::size_t j = 0; j <= k; ++j) std::swap(a[p][j], a[best][j]);
+        if (!(std::abs(a[p][p]) > 0.0)) return std::optional<std::array<double, 3>>{};
+        for (std::size_t i = p + 1; i < k; ++i) {
+          const double m = a[i][p] / a[p][p];
+          for (std::size_t j = p; j <= k; ++j) a[i][j] -= m * a[p][j];
+        }
+      }
+      double x[3] = {0.0, 0.0, 0.0};
+      for (std::size_t p = k; p-- > 0;) {
+        double v = a[p][k];
+        for (std::size_t j = p + 1; j < k; ++j) v -= a[p][j] * x[j];
+        x[p] = v / a[p][p];
+      }
+      std::array<double, 3> out = {fixed[0], fixed[1], fixed[2]};
+      for (std::size_t i = 0; i < k; ++i) out[static_cast<std::size_t>(cols[i])] = x[i];
+      return std::optional<std::array<double, 3>>{out};
+    };
+    std::optional<std::array<double, 3>> v = solve(free_scale_, fixed_scale_);
+    if (v && free_scale_ && !((*v)[0] >= 0.0)) v = solve(false, 0.0);
+    if (!v) return {0.0, 0.0, kInfinity, 0.0};
+    const double e = (*v)[0], b = (*v)[1], m = (*v)[2];
+    // sum (F' - e g - b - m u)^2
+    const double rss = sff_ + e * e * sgg + n * b * b + m * m * suu - 2.0 * e * sgf - 2.0 * m * suf + 2.0 * e * b * sg +
+                       2.0 * e * m * sug + 2.0 * b * m * su;
+    return {e, b + mean_, std::max(0.0, rss), m};
+  }
+
   const PenetrationForce& force_;
   bool free_scale_, free_baseline_;
   double fixed_scale_, fixed_baseline_ = 0.0;
   std::vector<double> z_, centred_;
   double mean_ = 0.0, sff_ = 0.0;
+  bool free_tilt_ = false;
+  double origin_ = 0.0, sx_ = 0.0, sxx_ = 0.0, sxf_ = 0.0;
   mutable int evaluations_ = 0;
 };
 
@@ -465,6 +543,8 @@ std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vec
   }
   if (problem.model == AfmModel::kJkr) return internal::afm_jkr_model_force(problem, tip_position);
   std::vector<double> f(delta.size(), problem.baseline);
+  // The baseline's tilt (0 unless a fit estimated it).
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] += problem.tilt * (tip_position[i] - problem.contact_point);
   if (problem.coating) {
     CoatingForces forces(problem);
     const auto table = forces.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
@@ -576,12 +656,11 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
   const auto start = std::chrono::steady_clock::now();
   const bool adhesive = problem.model == AfmModel::kJkr;
   const int free_count = int(problem.free.modulus) + int(problem.free.contact_point) + int(problem.free.baseline) +
-                         int(problem.free.thickness) + int(adhesive && problem.free.work) + int(adhesive && problem.free.tilt);
+                         int(problem.free.thickness) + int(adhesive && problem.free.work) + int(problem.free.tilt);
   check_fit_input(z, force, problem, free_count);
   if (adhesive) return internal::afm_fit_jkr(z, force, problem, free_count);
-  if (problem.free.work || problem.free.tilt) {
-    throw InputError("afm fit: w and the baseline tilt are parameters of the adhesive (jkr) model only");
-  }
+  if (problem.free.work) throw InputError("afm fit: w is a parameter of the adhesive (jkr) model only");
+  // The Hertz model's tilt is free or 0 (the batch subtracts the preprocessing's otherwise).
   const std::size_t n = z.size();
   const auto [z_lo_it, z_hi_it] = std::minmax_element(z.begin(), z.end());
   const double z_lo = *z_lo_it, z_hi = *z_hi_it, span = z_hi - z_lo;
@@ -597,8 +676,9 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
   if (!problem.coating) {
     const TipForce tip(problem.tip, max_delta);
     const double nu_factor = 1.0 - problem.poisson * problem.poisson;
-    const Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
-                          problem.baseline);
+    Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
+                    problem.baseline);
+    if (problem.free.tilt) profile.free_tilt();
     const ContactSearch found = search_contact(profile, problem, z_lo, c_hi, problem.profile_points);
     if (!(found.linear.reduced_modulus > 0.0)) {
       throw NumericalError("afm fit: the data show no contact in the fitted range (the best modulus is 0); "
@@ -608,8 +688,9 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     r.modulus = r.reduced_modulus * nu_factor;
     r.contact_point = found.contact_point;
     r.baseline = found.linear.baseline;
+    r.tilt = found.linear.tilt;
     r.profile_evaluations = found.evaluations;
-    std::vector<double> col_e(n, 0.0), col_c(n, 0.0), col_b(n, 1.0);
+    std::vector<double> col_e(n, 0.0), col_c(n, 0.0), col_b(n, 1.0), col_m(n, 0.0);
     r.model_force.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const double delta = r.contact_point - z[i];
@@ -618,10 +699,16 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
       r.model_force[i] = r.baseline + r.reduced_modulus * g;
       col_e[i] = g / nu_factor;
       col_c[i] = r.reduced_modulus * slope;
+      if (problem.free.tilt) {
+        r.model_force[i] += r.tilt * (z[i] - r.contact_point);
+        col_c[i] -= r.tilt;
+        col_m[i] = z[i] - r.contact_point;
+      }
     }
     if (problem.free.modulus) columns.push_back(col_e), error_slots.push_back(&r.modulus_error);
     if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
     if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
+    if (problem.free.tilt) columns.push_back(col_m), error_slots.push_back(&r.tilt_error);
   } else {
     // A coating: E1 and/or t by a log search (t inside E1 when both are free: a new E1 needs a
     // sweep of the solver, a new t only a rescaled table), z_c and b profiled as above.
@@ -632,7 +719,8 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     // the search; at the optimum it is an error.
     const auto fit_at = [&](double e1, double t, bool final) {
       const auto table = forces.force(e1, t);
-      const Profile profile(z, force, *table, false, 1.0, problem.free.baseline, problem.baseline);
+      Profile profile(z, force, *table, false, 1.0, problem.free.baseline, problem.baseline);
+      if (problem.free.tilt) profile.free_tilt();
       // Trials of the E1/t search localize z_c on a quarter of the grid (Brent polishes it);
       // the final fit on the full grid.
       const std::size_t grid = final ? problem.profile_points : std::max<std::size_t>(problem.profile_points / 4, 16);
@@ -661,12 +749,14 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     r.reduced_modulus = film.reduced_modulus();
     r.contact_point = found.contact_point;
     r.baseline = found.linear.baseline;
+    r.tilt = found.linear.tilt;
     r.profile_evaluations = evaluations;
     const auto table = forces.force(e1, t);
     const auto model_at = [&](const LogLogTable& tab, std::vector<double>* slope) {
       std::vector<double> f(n, r.baseline);
       for (std::size_t i = 0; i < n; ++i) {
         const double delta = r.contact_point - z[i];
+        f[i] += r.tilt * (z[i] - r.contact_point);
         if (delta <= 0.0) continue;
         const auto [g, dg] = tab.at(delta);
         f[i] += g;
@@ -693,11 +783,15 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
       columns.push_back(difference(e1, t * (1 - h), e1, t * (1 + h), 2 * h * t));
       error_slots.push_back(&r.thickness_error);
     }
+    std::vector<double> col_m(n);
+    for (std::size_t i = 0; i < n; ++i) col_c[i] -= r.tilt, col_m[i] = z[i] - r.contact_point;
     if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
     if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
+    if (problem.free.tilt) columns.push_back(col_m), error_slots.push_back(&r.tilt_error);
     r.solver_calls = forces.solver_calls();
   }
 
+  if (problem.free.tilt) r.tilt_origin = r.contact_point;
   r.indentation.resize(n);
   for (std::size_t i = 0; i < n; ++i) r.indentation[i] = r.contact_point - z[i];
   internal::afm_residual_statistics(r, force, problem.noise_sigma, free_count, 0.0,

@@ -150,6 +150,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     toward the sample), g the Hertz/Sneddon force of the tip per reduced modulus, 0 out of
     contact. The contact point is found by profiling the least-squares sum over the whole
     fitted range (the global optimum); E and the baseline in closed form at each contact point.
+    "tilt" in free adds a baseline slope, F = baseline + tilt (z - contact_point) + E* g (in closed
+    form with E and the baseline; the result's "tilt" [N/m] with its error).
 
     curve      a Curve of read(); any mapping with "force" and "tip position" (or heights and
                spring_constant=), and optionally "segment" (0 approach, 1 retract, as afmformats);

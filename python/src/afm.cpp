@@ -258,13 +258,13 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
   }
   const std::string modulus_name = coated ? "E1" : "E";
   const std::string allowed = std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") +
-                              (jkr ? ", w, tilt" : "");
+                              (jkr ? ", w, tilt" : ", tilt");
   problem.free = {false, false, false, false};
   for (const auto& name : free) {
     if (name == modulus_name) problem.free.modulus = true;
     else if (name == "t" && coated) problem.free.thickness = true;
     else if (name == "w" && jkr) problem.free.work = true;
-    else if (name == "tilt" && jkr) problem.free.tilt = true;
+    else if (name == "tilt") problem.free.tilt = true;
     else if (name == "contact_point") problem.free.contact_point = true;
     else if (name == "baseline") problem.free.baseline = true;
     else throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
@@ -329,11 +329,13 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
       values.insert(values.begin() + (coated ? 2 : 1), r.work);
       errors.insert(errors.begin() + (coated ? 2 : 1), r.work_error);
       is_free.insert(is_free.begin() + (coated ? 2 : 1), problem.free.work);
+      units["w"] = "J/m2";
+    }
+    if (jkr || problem.free.tilt) {
       names.push_back("tilt");
       values.push_back(r.tilt);
       errors.push_back(r.tilt_error);
       is_free.push_back(problem.free.tilt);
-      units["w"] = "J/m2";
       units["tilt"] = "N/m";
     }
     py::list free_names;

@@ -63,6 +63,21 @@ def test_plain_arrays_recover_within_three_standard_errors():
         assert 0.85 < r["chi2_per_dof"] < 1.15
 
 
+def test_hertz_free_tilt_recovered():
+    """free=("E", "contact_point", "baseline", "tilt"): a tilted baseline (THEORY.md section 15,
+    "Free tilt") comes back with E, z_c and b within 3 standard errors."""
+    tilt = 2e-4  # N/m: 8e-10 N over the curve, 40 noise sigmas
+    for seed in range(4):
+        z, F = synthetic(seed)
+        F = F + tilt * (z - 2e-6)
+        r = cc.afm.fit((z, F), radius=5e-6, halfspace=(1.0, 0.5), noise=2e-11,
+                       free=("E", "contact_point", "baseline", "tilt"))
+        assert r["names"] == ["E", "contact_point", "baseline", "tilt"] and r["units"]["tilt"] == "N/m"
+        for name, truth in (("E", 3e3), ("contact_point", 2e-6), ("baseline", 1e-10), ("tilt", tilt)):
+            assert abs(r["estimates"][name] - truth) < 3 * r["errors"][name], (seed, name)
+        assert 0.85 < r["chi2_per_dof"] < 1.15
+
+
 def test_mapping_with_afm_tool_keys():
     z, F = synthetic(7)
     segment = np.zeros(len(z), dtype=int)

@@ -7,13 +7,20 @@
 //   as retract), F = E*(x, y) g(z_c - z) on a 10 um sphere (nu = 0.5) + a tilted baseline
 //   b0 + s z + Gaussian noise; the retract adds an adhesive dip (pull-off). The height channel
 //   is z - F/k, vDeflection F/(k sens). E and z_c vary smoothly over the map.
+//   --jkr: the adhesive retract of a film (E1 = 100 kPa, nu1 = 0.5, t = 4 um) on E0 = 1 MPa
+//   (nu0 = 0.3) under a k = 1 N/m cantilever, noise 5 nN: the library's JKR spring model
+//   (fit::afm_model_force, model jkr) on a uniform piezo grid, the tip leaving at the jump-off
+//   (so the tip axis has its gap), w in {8, 10, 12, 14} mJ/m2 by (i + j) % 4; the approach is the
+//   adhesionless model of the same coating. The truth file gains a column w; the jump-in curves
+//   (n % 16 == 7) expect no flag, since a retract fit does not look at the approach's jump-in.
 //   Bad curves (unless --clean), by curve index n: n % 16 == 3 never reaches the sample
 //   (no_contact), n % 16 == 7 has a jump-in dip of -60 sigma before contact (jump_in),
 //   n % 16 == 11 has an empty retract segment (empty_segment), n % 16 == 13 has no force
 //   calibration slot (calibration).
-// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean]
+// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr]
 #include <zip.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -37,6 +44,56 @@ constexpr double kSensitivity = 50e-9;   // [m/V]
 constexpr double kNoise = 0.1e-9;        // [N]
 constexpr double kRadius = 10e-6;        // [m]
 constexpr double kPitch = 2e-6;          // grid pitch [m]
+// --jkr: the coating, cantilever and noise of the adhesive maps.
+constexpr double kJkrSpring = 1.0, kJkrNoise = 5e-9, kFilm = 100e3, kSubstrate = 1e6, kThickness = 4e-6;
+constexpr double kJkrWork[4] = {8e-3, 10e-3, 12e-3, 14e-3};
+
+fit::AfmFitProblem coating_problem(fit::AfmModel model, double work) {
+  fit::AfmFitProblem p;
+  p.model = model;
+  p.tip = fit::afm_paraboloid(kRadius);
+  fit::AfmCoating c;
+  c.film = {kFilm, 0.5};
+  c.substrate.material = {kSubstrate, 0.3};
+  c.thickness = kThickness;
+  p.coating = c;
+  p.poisson = 0.5;
+  p.work = work;
+  p.spring_constant = kJkrSpring;
+  return p;
+}
+
+// The spring-stable JKR branch at z_c = 0: indentation, force and base coordinate
+// Z = delta + F/k (increasing along the branch), from its jump-off to 2 um.
+struct JkrBranch {
+  std::vector<double> delta, force, base;
+  // (delta, F) where Z = target on the branch (linear between its 6000 points); false below
+  // the jump-off.
+  bool at(double target, double& d, double& f) const {
+    if (target < base.front()) return false;
+    const auto it = std::upper_bound(base.begin(), base.end(), target);
+    const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - base.begin()), base.size() - 1);
+    const std::size_t a = k == 0 ? 0 : k - 1;
+    const double x = base[k] > base[a] ? std::clamp((target - base[a]) / (base[k] - base[a]), 0.0, 1.0) : 0.0;
+    d = delta[a] + x * (delta[k] - delta[a]);
+    f = force[a] + x * (force[k] - force[a]);
+    return true;
+  }
+};
+
+JkrBranch jkr_branch(double work) {
+  std::vector<double> z;
+  for (int k = 0; k < 6000; ++k) z.push_back(1e-6 - 3e-6 * k / 5999.0);
+  const std::vector<double> f = fit::afm_model_force(coating_problem(fit::AfmModel::kJkr, work), z);
+  JkrBranch b;
+  for (std::size_t k = 0; k < z.size(); ++k) {
+    if (f[k] == 0.0) continue;  // off the sample
+    b.delta.push_back(-z[k]);
+    b.force.push_back(f[k]);
+    b.base.push_back(-z[k] + f[k] / kJkrSpring);
+  }
+  return b;
+}
 
 // Truth of curve (i, j) of an nx x ny map.
 double modulus_at(long i, long j, long nx, long ny) {
@@ -106,7 +163,7 @@ std::string number(double v) {
 
 // lcd-info 0: height (volts -> nominal [m], multiplier 1); 1: vDeflection (volts -> distance
 // [m] by the sensitivity -> force [N] by k); 2: the same without its force slot.
-std::string shared_header() {
+std::string shared_header(double spring) {
   std::string s;
   s += "lcd-info.0.type=float-data\nlcd-info.0.channel.name=height\nlcd-info.0.unit.unit=V\n";
   s += "lcd-info.0.conversion-set.conversions.list=nominal\nlcd-info.0.conversion-set.conversions.base=volts\n";
@@ -128,7 +185,7 @@ std::string shared_header() {
       s += p + "conversion-set.conversion.force.defined=true\n";
       s += p + "conversion-set.conversion.force.base-calibration-slot=distance\n";
       s += p + "conversion-set.conversion.force.scaling.offset=0.0\n";
-      s += p + "conversion-set.conversion.force.scaling.multiplier=" + number(kSpring) + "\n";
+      s += p + "conversion-set.conversion.force.scaling.multiplier=" + number(spring) + "\n";
       s += p + "conversion-set.conversion.force.scaling.unit.unit=N\n";
     } else {
       s += p + "conversion-set.conversion.force.defined=false\n";
@@ -163,13 +220,14 @@ int main(int argc, char** argv) {
   std::size_t points = 400;
   unsigned long seed = 1;
   std::string truth_path;
-  bool clean = false;
+  bool clean = false, jkr = false;
   for (int a = 4; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--points" && a + 1 < argc) points = static_cast<std::size_t>(std::atol(argv[++a]));
     else if (arg == "--seed" && a + 1 < argc) seed = std::strtoul(argv[++a], nullptr, 10);
     else if (arg == "--truth" && a + 1 < argc) truth_path = argv[++a];
     else if (arg == "--clean") clean = true;
+    else if (arg == "--jkr") jkr = true;
     else {
       std::fprintf(stderr, "make_afm_map: unknown argument %s\n", arg.c_str());
       return 2;
@@ -179,14 +237,32 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "make_afm_map: need NX, NY >= 1 and --points >= 20\n");
     return 2;
   }
+  const double spring = jkr ? kJkrSpring : kSpring, noise_sigma = jkr ? kJkrNoise : kNoise;
   std::ofstream truth;
   if (!truth_path.empty()) {
     truth.open(truth_path);
     truth << "# synthetic JPK force map written by tests/afm/make_afm_map (truth of each curve)\n"
-          << "# sphere R = " << number(kRadius) << " m, nu = 0.5, k = " << number(kSpring) << " N/m, sensitivity = "
-          << number(kSensitivity) << " m/V, noise sigma = " << number(kNoise) << " N, points per segment = " << points << "\n"
-          << "# columns: curve\tgrid_x\tgrid_y\tE\tcontact_point\tbaseline_at_contact\tbaseline_slope\texpected_flag\n"
-          << "# units: -\t-\t-\tPa\tm\tN\tN/m\t-\n";
+          << "# sphere R = " << number(kRadius) << " m, nu = 0.5, k = " << number(spring) << " N/m, sensitivity = "
+          << number(kSensitivity) << " m/V, noise sigma = " << number(noise_sigma) << " N, points per segment = " << points << "\n";
+    if (jkr) {
+      truth << "# JKR retract on a coating: film E1 (column E), nu1 = 0.5, t = " << number(kThickness) << " m, substrate E0 = "
+            << number(kSubstrate) << " Pa, nu0 = 0.3\n"
+            << "# columns: curve\tgrid_x\tgrid_y\tE\tcontact_point\tbaseline_at_contact\tbaseline_slope\texpected_flag\tw\n"
+            << "# units: -\t-\t-\tPa\tm\tN\tN/m\t-\tJ/m2\n";
+    } else {
+      truth << "# columns: curve\tgrid_x\tgrid_y\tE\tcontact_point\tbaseline_at_contact\tbaseline_slope\texpected_flag\n"
+            << "# units: -\t-\t-\tPa\tm\tN\tN/m\t-\n";
+    }
+  }
+  // --jkr: the branches of the four w, and the approach (adhesionless, the same coating) on the
+  // tip grid relative to the contact point (the same for every curve).
+  std::vector<JkrBranch> branches;
+  std::vector<double> coated_approach;
+  if (jkr) {
+    for (double w : kJkrWork) branches.push_back(jkr_branch(w));
+    std::vector<double> z(points);
+    for (std::size_t p = 0; p < points; ++p) z[p] = 3e-6 - 4e-6 * static_cast<double>(p) / static_cast<double>(points - 1);
+    coated_approach = fit::afm_model_force(coating_problem(fit::AfmModel::kHertz, 0.0), z);
   }
   Archive archive(out);
   archive.add("header.properties",
@@ -195,13 +271,13 @@ int main(int argc, char** argv) {
                   "\nforce-scan-map.position-pattern.grid.jlength=" + std::to_string(ny) +
                   "\nforce-scan-map.position-pattern.grid.ulength=" + number(kPitch * nx) +
                   "\nforce-scan-map.position-pattern.grid.vlength=" + number(kPitch * ny) + "\n");
-  archive.add("shared-data/header.properties", shared_header());
+  archive.add("shared-data/header.properties", shared_header(spring));
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (long n = 0; n < nx * ny; ++n) {
     const long i = n % nx, j = n / nx;
     const int kind = clean ? -1 : static_cast<int>(n % 16);
-    const double modulus = modulus_at(i, j, nx, ny);
+    const double modulus = jkr ? kFilm : modulus_at(i, j, nx, ny);
     double contact = contact_at(i, j);
     const double slope = 2e-4 * (1.0 + 0.1 * std::sin(0.7 * n));  // [N/m] tilt of the baseline
     const double offset = 1e-9 * std::cos(0.3 * n);
@@ -218,16 +294,36 @@ int main(int argc, char** argv) {
       truth_problem.contact_point = bottom - 1e-6;
       contact = truth_problem.contact_point;
     }
-    const std::vector<double> model = fit::afm_model_force(truth_problem, z);
+    const std::vector<double> model = jkr ? (kind == 3 ? std::vector<double>(points, 0.0) : coated_approach)
+                                          : fit::afm_model_force(truth_problem, z);
     std::vector<double> f_approach(points), f_retract(points), z_retract(z.rbegin(), z.rend());
     for (std::size_t p = 0; p < points; ++p) {
-      f_approach[p] = model[p] + offset + slope * z[p] + kNoise * gauss(rng);
-      if (kind == 7 && z[p] > contact && z[p] < contact + 0.1e-6) f_approach[p] -= 60.0 * kNoise;
+      f_approach[p] = model[p] + offset + slope * z[p] + noise_sigma * gauss(rng);
+      if (kind == 7 && z[p] > contact && z[p] < contact + 0.1e-6) f_approach[p] -= 60.0 * noise_sigma;
     }
-    for (std::size_t p = 0; p < points; ++p) {
-      const double zr = z_retract[p];
-      const double dip = -3e-9 * std::exp(-0.5 * std::pow((zr - (contact + 0.05e-6)) / 0.05e-6, 2));
-      f_retract[p] = model[points - 1 - p] + dip + offset + slope * zr + kNoise * gauss(rng);
+    const double work = kJkrWork[(i + j) % 4];
+    if (jkr) {
+      // A uniform piezo grid h from the approach's deepest point up: on the branch while
+      // Z = z_c - h is above its jump-off, else off the sample at z = h.
+      const JkrBranch& branch = branches[static_cast<std::size_t>((i + j) % 4)];
+      double d = 0.0, f = 0.0;
+      const double deepest = contact - bottom;
+      std::size_t top_index = 0;
+      while (top_index + 1 < branch.delta.size() && branch.delta[top_index] < deepest) ++top_index;
+      const double h_lo = kind == 3 ? bottom : contact - branch.base[top_index], h_hi = top;
+      for (std::size_t p = 0; p < points; ++p) {
+        const double h = h_lo + (h_hi - h_lo) * static_cast<double>(p) / static_cast<double>(points - 1);
+        double zr = h, fr = 0.0;
+        if (kind != 3 && branch.at(contact - h, d, f)) zr = contact - d, fr = f;
+        z_retract[p] = zr;
+        f_retract[p] = fr + offset + slope * zr + noise_sigma * gauss(rng);
+      }
+    } else {
+      for (std::size_t p = 0; p < points; ++p) {
+        const double zr = z_retract[p];
+        const double dip = -3e-9 * std::exp(-0.5 * std::pow((zr - (contact + 0.05e-6)) / 0.05e-6, 2));
+        f_retract[p] = model[points - 1 - p] + dip + offset + slope * zr + kNoise * gauss(rng);
+      }
     }
     const std::string folder = "index/" + std::to_string(n) + "/";
     archive.add(folder + "header.properties",
@@ -241,8 +337,8 @@ int main(int argc, char** argv) {
       const std::size_t count = (kind == 11 && s == 1) ? 0 : points;
       std::vector<double> height(count), volts(count);
       for (std::size_t p = 0; p < count; ++p) {
-        height[p] = zs[p] - fs[p] / kSpring;
-        volts[p] = fs[p] / (kSpring * kSensitivity);
+        height[p] = zs[p] - fs[p] / spring;
+        volts[p] = fs[p] / (spring * kSensitivity);
       }
       const std::string seg = folder + "segments/" + std::to_string(s) + "/";
       archive.add(seg + "segment-header.properties", segment_header(count, s == 0 ? "extend" : "retract", deflection_info));
@@ -250,9 +346,12 @@ int main(int argc, char** argv) {
       archive.add(seg + "channels/vDeflection.dat", big_endian_floats(volts));
     }
     if (truth) {
-      const int expected = kind == 3 ? 1 : kind == 7 ? 2 : kind == 11 ? 4 : kind == 13 ? 6 : 0;
+      // (--jkr fits the retract: the approach's jump-in does not concern it)
+      const int expected = kind == 3 ? 1 : kind == 7 && !jkr ? 2 : kind == 11 ? 4 : kind == 13 ? 6 : 0;
       truth << n << '\t' << i << '\t' << j << '\t' << number(modulus) << '\t' << number(contact) << '\t'
-            << number(offset + slope * contact) << '\t' << number(slope) << '\t' << expected << '\n';
+            << number(offset + slope * contact) << '\t' << number(slope) << '\t' << expected;
+      if (jkr) truth << '\t' << number(work);
+      truth << '\n';
     }
   }
   archive.close();

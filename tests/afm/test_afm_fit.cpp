@@ -7,6 +7,9 @@
 //  - Recovery: synthetic curves (library model + Gaussian noise) for the paraboloid, the cone
 //    and the pyramid give E, z_c and b within 3 standard errors for every seed, and the
 //    standard errors are calibrated (RMS of the z-scores over the seeds in [0.5, 1.6]).
+//  - Free tilt: synthetic curves with a tilted baseline, F = b + m (z - z_c) + E* g, give E,
+//    z_c, b and m within 3 standard errors for every seed (the tilt fitted with the model, in
+//    closed form with E* and b); with the tilt left out, chi2/dof shows the misfit.
 //  - Coating (THEORY.md sections 5, 14): the model force against the reduced solver called
 //    here at the a/t of each check point (F_H = a^3 E1* Pi_s/(2R) at delta_H = a^2 Delta_s/R),
 //    and recovery of E1 (t fixed) and of t (E1 fixed) within 3 standard errors.
@@ -182,6 +185,48 @@ void check_recovery(const fit::AfmTip& tip, double modulus, const char* name) {
   check::that(zs.rms() > 0.5 && zs.rms() < 1.6, std::string(name) + ": standard errors calibrated");
 }
 
+void check_tilt_recovery(const fit::AfmTip& tip, double modulus, const char* name) {
+  fit::AfmFitProblem truth;
+  truth.tip = tip;
+  truth.modulus = modulus;
+  truth.poisson = 0.5;
+  truth.contact_point = 2.0e-6;
+  truth.baseline = -3e-11;
+  const double sigma = 3e-11, tilt = 3e-4;  // 1.2e-9 N over the 4 um curve: 40 sigma
+  ZScores zs;
+  double least_untilted_chi2 = 1e300;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    Synthetic s = make_curve(truth, sigma, seed);
+    for (std::size_t i = 0; i < s.z.size(); ++i) s.f[i] += tilt * (s.z[i] - truth.contact_point);
+    fit::AfmFitProblem problem = truth;
+    problem.modulus = 1.0;  // free: not a start value
+    problem.noise_sigma = sigma;
+    problem.free.tilt = true;
+    const fit::AfmFitResult r = fit::afm_fit(s.z, s.f, problem);
+    const double ze = (r.modulus - modulus) / r.modulus_error;
+    const double zc = (r.contact_point - truth.contact_point) / r.contact_point_error;
+    const double zb = (r.baseline - truth.baseline) / r.baseline_error;
+    const double zm = (r.tilt - tilt) / r.tilt_error;
+    std::printf("%s, free tilt, seed %u: E %.2f SE, z_c %.2f SE, b %.2f SE, tilt %.4g (%.2f SE), chi2/dof %.3f\n", name,
+                seed, ze, zc, zb, r.tilt, zm, r.chi2_per_dof);
+    const std::string tag = std::string(name) + ", free tilt";
+    check::below(std::abs(ze), 3.0, tag + ": E within 3 standard errors");
+    check::below(std::abs(zc), 3.0, tag + ": contact point within 3 standard errors");
+    check::below(std::abs(zb), 3.0, tag + ": baseline within 3 standard errors");
+    check::below(std::abs(zm), 3.0, tag + ": tilt within 3 standard errors");
+    check::below(std::abs(r.chi2_per_dof - 1.0), 0.15, tag + ": chi2/dof near 1 with the true noise");
+    check::that(r.free_count == 4, tag + ": four free parameters");
+    zs.add(ze), zs.add(zc), zs.add(zb), zs.add(zm);
+    problem.free.tilt = false;
+    const fit::AfmFitResult flat = fit::afm_fit(s.z, s.f, problem);
+    least_untilted_chi2 = std::min(least_untilted_chi2, flat.chi2_per_dof);
+  }
+  std::printf("%s, free tilt: RMS z-score %.3f over %d estimates; tilt left out: chi2/dof >= %.3f\n", name, zs.rms(),
+              zs.count, least_untilted_chi2);
+  check::that(zs.rms() > 0.5 && zs.rms() < 1.6, std::string(name) + ", free tilt: standard errors calibrated");
+  check::that(least_untilted_chi2 > 1.15, std::string(name) + ": the tilt matters (chi2/dof > 1.15 without it)");
+}
+
 fit::AfmFitProblem coated_truth() {
   fit::AfmFitProblem truth;
   truth.tip = fit::afm_paraboloid(10e-6);
@@ -296,6 +341,8 @@ int main(int argc, char** argv) {
   check_recovery(fit::afm_paraboloid(10e-6), 2e3, "paraboloid");
   check_recovery(fit::afm_cone(70.0 * kPi / 180.0), 5e3, "cone");
   check_recovery(fit::afm_pyramid(35.0 * kPi / 180.0), 5e3, "pyramid");
+  check_tilt_recovery(fit::afm_paraboloid(10e-6), 2e3, "paraboloid");
+  check_tilt_recovery(fit::afm_cone(70.0 * kPi / 180.0), 5e3, "cone");
   check_coating_model();
   check_coating_recovery();
   check_bad_input();

@@ -8,7 +8,10 @@
 #  - --resume after a cut FILE.partial, and after a run killed by SIGTERM, gives the same table;
 #  - the real maps in data/afm/ (JPK force map 2x2, JPK QI data, AFM Workshop zipped map with the
 #    calibration supplied) and a folder of files are processed;
-#  - --map-plot writes a PNG; bad options exit 2 naming the option, with no output.
+#  - --map-plot writes a PNG; bad options exit 2 naming the option, with no output;
+#  - a synthetic map of adhesive retracts on a coating (make_afm_map --jkr: the library's JKR
+#    spring model) fitted with --model jkr (E1, w, contact point, baseline, tilt free) at
+#    --jobs 2: the flags of the truth, E1 and w within 3 standard errors of the truth.
 # Usage: test_afm_map_cli.sh COATCONTACT MAKE_AFM_MAP DATA_DIR WORK_DIR
 set -u
 cli="$1"; make_map="$2"; data="$3"; work="$4"
@@ -142,6 +145,25 @@ rm -f "$work/bad.tsv.partial"
 # One curve with --index keeps the one-curve fit (its table of points).
 "$cli" afm fit "$map" "${model[@]}" --index 0 --output "$work/one.tsv" 2>/dev/null || fail "--index 0 of the map"
 grep -q '^# columns: point' "$work/one.tsv" || fail "--index: not the one-curve table"
+
+# Adhesive retracts on a coating: E1 starts 2.5 times off, the nodes shared by the curves.
+"$make_map" "$work/jkr.jpk-force-map" 4 4 --seed 5 --jkr --truth "$work/jkr_truth.tsv" || fail "make_afm_map --jkr"
+"$cli" afm fit "$work/jkr.jpk-force-map" --model jkr --radius 10um --film 250kPa,0.5 --substrate 1MPa,0.3 --thickness 4um \
+  --jobs 2 --output "$work/jkr.tsv" 2>"$work/jkr.err" || fail "the jkr map fit: $(cat "$work/jkr.err")"
+awk 'BEGIN { FS = "\t" }
+  FNR == NR { if ($0 !~ /^#/) { e[$1] = $4; w[$1] = $9; flag[$1] = $8 }; next }
+  /^# columns:/ { sub(/^# columns: /, ""); for (k = 1; k <= NF; ++k) col[$k] = k; next }
+  /^#/ { next }
+  {
+    n = $col["curve"]; ++rows
+    if ($col["flag"] != flag[n]) { print "curve " n ": flag " $col["flag"] ", truth " flag[n]; bad = 1 }
+    if ($col["flag"] != 0) next
+    ++fitted
+    ze = ($col["E1"] - e[n]) / $col["E1_error"]; zw = ($col["w"] - w[n]) / $col["w_error"]
+    if (ze > 3 || ze < -3 || zw > 3 || zw < -3) { print "curve " n ": E1 " ze " SE, w " zw " SE"; bad = 1 }
+  }
+  END { if (rows != 16 || fitted != 13) { print rows " rows, " fitted " fitted (16, 13 expected)"; bad = 1 }; exit bad }' \
+  "$work/jkr_truth.tsv" "$work/jkr.tsv" || fail "the jkr map against its truth"
 
 [ "$failures" -eq 0 ] && echo "afm fit over maps: all checks passed"
 [ "$failures" -eq 0 ]

@@ -44,7 +44,7 @@ struct AfmFree {
   bool modulus = true, contact_point = true, baseline = true;
   bool thickness = false;
   bool work = false;  // w of the adhesive (JKR) model
-  bool tilt = false;  // a baseline slope m of the adhesive model: F += m (z - z_ref)
+  bool tilt = false;  // a baseline slope m (either model): F += m (z - z_c)
 };
 
 // The tip force: adhesionless Hertz/Sneddon, or JKR (a sphere on the half-space or the coating)
@@ -140,7 +140,12 @@ struct AfmFitResult {
 // g(delta) = F/E* of the tip on a half-space at each penetration delta >= 0 [N/Pa].
 std::vector<double> afm_force_per_modulus(const AfmTip& tip, const std::vector<double>& penetration);
 
-// The model force at tip positions z for E (E1 and t of a coating), z_c, b of `problem`.
+// JKR on a coating keeps the reduced-solver sweeps of its E1 nodes for the fits that follow
+// (the curves of a map share them; results do not depend on it). This drops them (benchmarks of
+// a first fit, memory).
+void afm_clear_shared_sweeps();
+
+// The model force at tip positions z for E (E1 and t of a coating), z_c, b and the tilt m of `problem`.
 std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vector<double>& tip_position);
 
 // Fits force[i] at tip_position[i]. InputError: fewer points than free parameters + 1,
