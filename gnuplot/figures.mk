@@ -21,6 +21,8 @@ FIGURES_CONF ?= data/figures.conf
 DATA_DIR     ?= $(BUILD)/data
 FIG_DIR      ?= $(BUILD)/figures
 PARAMS_DIR   := $(DATA_DIR)/params
+# Solve cache of the CLI (docs/solver.md): none unless given; `make figures` uses $(BUILD)/cache.
+SOLVE_CACHE  ?=
 
 include $(FIGURES_CONF)
 
@@ -198,7 +200,8 @@ $(foreach f,$(FIGURE_NAMES),$(eval \
 # `make figures`: build the CLI (top-level Makefile's `build`), then the figures with
 # $(JOBS) parallel jobs unless the caller already passed -j.
 figures: build
-	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only \
+	  SOLVE_CACHE='$(if $(SOLVE_CACHE),$(SOLVE_CACHE),$(BUILD)/cache)'
 
 figures-only: $(FIGURE_FILES)
 	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png, fig_stack.png, fig_kinetics.png and .pdf   data: $(DATA_DIR)/*.tsv"
@@ -221,7 +224,7 @@ $(PARAMS_DIR)/%.params: $(FIGURES_CONF) FORCE | $(PARAMS_DIR)
 
 $(DATA_DIR)/%.tsv: $(PARAMS_DIR)/%.params $(CLI)
 	@echo "  data  $@"
-	@$(CLI) $(CMD_$*) --output $@
+	@$(if $(SOLVE_CACHE),COATCONTACT_CACHE='$(SOLVE_CACHE)' )$(CLI) $(CMD_$*) --output $@
 
 # One gnuplot run per output format; fmt selects the terminal in style.gp.
 $(FIG_DIR)/%.png: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(FIG_DIR)
