@@ -21,6 +21,8 @@ FIGURES_CONF ?= data/figures.conf
 DATA_DIR     ?= $(BUILD)/data
 FIG_DIR      ?= $(BUILD)/figures
 PARAMS_DIR   := $(DATA_DIR)/params
+# Solve cache of the CLI (docs/solver.md): none unless given; `make figures` uses $(BUILD)/cache.
+SOLVE_CACHE  ?=
 
 include $(FIGURES_CONF)
 
@@ -192,15 +194,32 @@ SCRIPTS_fig9 := $(GNUPLOT_DIR)/eeq_models.gp
 $(foreach f,$(FIGURE_NAMES),$(eval \
   $(FIG_DIR)/$(f).png $(FIG_DIR)/$(f).pdf: $(DATA_$(f)) $(SCRIPTS_$(f))))
 
+# Every dataset by name.
+DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_points \
+  $(foreach r,$(ADHESIVE_RATIOS),adhesive_E$(r) pulloffeta_E$(r)) \
+  $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r)) \
+  $(foreach r,$(SPRING_RATIOS),spring_E$(r)) $(foreach i,$(INDENTER_NAMES),indenter_I$(i)) \
+  $(foreach s,$(SHAPE_LIST),shape_$(call shape_name,$(s))) \
+  $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous \
+  mdcurves mdcurves_jkr \
+  $(foreach m,$(STACK_MODELS),stackreduced_$(m) stackpulloff_$(m)) \
+  $(foreach m,$(SLIP_MODELS),slipreduced_$(m) slippulloff_$(m)) \
+  $(foreach r,$(KIN_RATIOS),kinsweep_E$(r)) $(foreach v,$(KIN_LOOPS),kinloop_V$(v))
+
 # ---- targets -------------------------------------------------------------------------
 .PHONY: figures figures-only figures-data figures-docs FORCE
 
 # `make figures`: build the CLI (top-level Makefile's `build`), then the figures with
 # $(JOBS) parallel jobs unless the caller already passed -j.
 figures: build
-	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only \
+	  SOLVE_CACHE='$(if $(SOLVE_CACHE),$(SOLVE_CACHE),$(BUILD)/cache)'
 
-figures-only: $(FIGURE_FILES)
+# The slowest datasets first (measured, docs/solver.md "Solve cache"), so that with -j the
+# short ones fill the other slots instead of one long run finishing alone at the end.
+SLOW_DATASETS := $(foreach n,$(filter $(DATASET_NAMES),mdlambda_E$(SOFT_RATIO) mdlambda_E$(STIFF_RATIO) \
+  stackpulloff_stack pulloff_E0.01 mdlambda_homogeneous stackreduced_stack),$(call data,$(n)))
+figures-only: $(SLOW_DATASETS) $(FIGURE_FILES)
 	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png, fig_stack.png, fig_kinetics.png and .pdf   data: $(DATA_DIR)/*.tsv"
 	@awk -v etas='$(PULLOFF_TABLE_ETA)' -f $(GNUPLOT_DIR)/pulloff_table.awk $(PULLOFF_FILES)
 
@@ -219,35 +238,27 @@ $(PARAMS_DIR)/%.params: $(FIGURES_CONF) FORCE | $(PARAMS_DIR)
 	@printf '%s\n' "$(CMD_$*)$(GP_$*)" > $@.tmp; \
 	 if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv -f $@.tmp $@; fi
 
+# Passive OpenMP waits: $(JOBS) processes share the cores, so a thread spinning for work
+# takes them from another dataset (the numbers do not depend on it).
 $(DATA_DIR)/%.tsv: $(PARAMS_DIR)/%.params $(CLI)
 	@echo "  data  $@"
-	@$(CLI) $(CMD_$*) --output $@
+	@$(if $(SOLVE_CACHE),COATCONTACT_CACHE='$(SOLVE_CACHE)' )OMP_WAIT_POLICY=PASSIVE $(CLI) $(CMD_$*) --output $@
 
-# One gnuplot run per output format; fmt selects the terminal in style.gp.
-$(FIG_DIR)/%.png: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(FIG_DIR)
-	@echo "  plot  $@"
-	@$(GNUPLOT) -e "fmt='png'; outfile='$@.tmp'; $(GP_$*)" $< && mv -f $@.tmp $@ \
-	 || { rm -f $@.tmp; exit 1; }
-
-$(FIG_DIR)/%.pdf: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(FIG_DIR)
-	@echo "  plot  $@"
-	@$(GNUPLOT) -e "fmt='pdf'; outfile='$@.tmp'; $(GP_$*)" $< && mv -f $@.tmp $@ \
-	 || { rm -f $@.tmp; exit 1; }
+# One gnuplot run per figure writes both formats (a pattern rule with two targets: make runs
+# it once for both); fmt selects the terminal in style.gp, and `reset session` between the two
+# passes starts the PDF from gnuplot's defaults as a separate run would.
+$(FIG_DIR)/%.png $(FIG_DIR)/%.pdf: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(FIG_DIR)
+	@echo "  plot  $(FIG_DIR)/$*.png"; echo "  plot  $(FIG_DIR)/$*.pdf"
+	@$(GNUPLOT) -e "fmt='png'; outfile='$(FIG_DIR)/$*.png.tmp'; $(GP_$*)" $< -e "reset session" \
+	   -e "fmt='pdf'; outfile='$(FIG_DIR)/$*.pdf.tmp'; $(GP_$*)" $< \
+	 && mv -f $(FIG_DIR)/$*.png.tmp $(FIG_DIR)/$*.png && mv -f $(FIG_DIR)/$*.pdf.tmp $(FIG_DIR)/$*.pdf \
+	 || { rm -f $(FIG_DIR)/$*.png.tmp $(FIG_DIR)/$*.pdf.tmp; exit 1; }
 
 $(CLI):
 	@echo "figures: $(CLI) not found: build it first (make build, or pass CLI=...)"; exit 1
 
 FORCE:
 
-# Name every stamp explicitly so make treats none of them as an intermediate file.
-DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_points \
-  $(foreach r,$(ADHESIVE_RATIOS),adhesive_E$(r) pulloffeta_E$(r)) \
-  $(foreach r,$(PULLOFF_RATIOS),pulloff_E$(r)) \
-  $(foreach r,$(SPRING_RATIOS),spring_E$(r)) $(foreach i,$(INDENTER_NAMES),indenter_I$(i)) \
-  $(foreach s,$(SHAPE_LIST),shape_$(call shape_name,$(s))) \
-  $(foreach r,$(ADHESIVE_RATIOS),mdlambda_E$(r) mdjkr_E$(r)) mdlambda_homogeneous \
-  mdcurves mdcurves_jkr \
-  $(foreach m,$(STACK_MODELS),stackreduced_$(m) stackpulloff_$(m)) \
-  $(foreach m,$(SLIP_MODELS),slipreduced_$(m) slippulloff_$(m)) \
-  $(foreach r,$(KIN_RATIOS),kinsweep_E$(r)) $(foreach v,$(KIN_LOOPS),kinloop_V$(v))
+# Name every stamp explicitly so make treats none of them as an intermediate file (DATASET_NAMES
+# above).
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):

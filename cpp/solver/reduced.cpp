@@ -10,8 +10,10 @@
 
 #include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/solve_cache.hpp"
 #include "parallel.hpp"
 #include "reduced_core.hpp"
+#include "solve_cache.hpp"
 #include "table_kernel.hpp"
 
 namespace coatcontact {
@@ -31,6 +33,31 @@ struct ReducedSolver::Impl {
 
   // The same H on independent grids, for the a-posteriori kernel-error estimate.
   detail::IndependentTables independent{stack};
+
+  // Radii solved before, by this process or others (coatcontact/solve_cache.hpp), or null.
+  // Declared last: destroyed (and written) first.
+  std::unique_ptr<detail::SolveCache> cache;
+  const ReducedVariables* cached(double a_over_t, double tolerance, ReducedVariables& out) const {
+    if (!cache) return nullptr;
+    const auto hit = cache->find(a_over_t, tolerance);
+    if (!hit) return nullptr;
+    out = *hit;
+    return &out;
+  }
+  // Before radii the cache lacks: the table that the constructor builds without a cache, so
+  // that a stack whose table cannot be built fails the same way, outside any per-radius status.
+  // True when the cache holds every radius (the sweep then starts no threads).
+  bool prepare_to_solve(const std::vector<double>& a_over_t, double tolerance) {
+    if (!cache) return false;
+    ReducedVariables ignored;
+    for (double a : a_over_t) {
+      if (cached(a, tolerance, ignored) == nullptr) {
+        kernel(0);
+        return false;
+      }
+    }
+    return true;
+  }
 };
 
 namespace {
@@ -56,7 +83,15 @@ void check_tolerance(double tolerance) {
 }
 
 ReducedSolver::ReducedSolver(const Stack& stack) : impl_(std::make_unique<Impl>(stack)) {
-  impl_->kernel(0);  // constants the kernel library rejects fail here, at construction
+  const std::string cache_directory = solve_cache_directory();
+  if (cache_directory.empty()) {
+    impl_->kernel(0);  // constants the kernel library rejects fail here, at construction
+  } else {
+    // The table waits for the first radius the cache lacks (prepare_to_solve); its cheap
+    // input check stays here.
+    kernel_detail::check_stack_table_supported(impl_->stack);
+    impl_->cache = std::make_unique<detail::SolveCache>(cache_directory, impl_->stack);
+  }
 }
 
 ReducedSolver::~ReducedSolver() = default;
@@ -68,6 +103,9 @@ const Stack& ReducedSolver::stack() const { return impl_->stack; }
 ReducedVariables ReducedSolver::solve(double a_over_t, double tolerance) const {
   check_arguments(a_over_t, tolerance);
   Impl* impl = impl_.get();
+  ReducedVariables hit;
+  if (impl->cached(a_over_t, tolerance, hit) != nullptr) return hit;
+  impl->prepare_to_solve({a_over_t}, tolerance);
   const detail::AdaptiveSolve solution = detail::solve_on_solver_tables(
       [impl](int level) -> const detail::KernelSource& { return impl->kernel(level); }, a_over_t,
       tolerance, impl->independent.source());
@@ -107,6 +145,7 @@ ReducedVariables ReducedSolver::solve(double a_over_t, double tolerance) const {
   v.gamma1 = solution.values[detail::kGamma1];
   v.error_estimate = solution.error_estimate;
   v.unknowns = solution.unknowns;
+  if (impl->cache) impl->cache->add(tolerance, v);
   return v;
 }
 
@@ -114,7 +153,12 @@ std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_
                                                    double tolerance) const {
   // Check everything first, so that bad input fails before any work.
   for (double a : a_over_t) check_arguments(a, tolerance);
+  const bool all_cached = impl_->prepare_to_solve(a_over_t, tolerance);
   std::vector<ReducedVariables> results(a_over_t.size());
+  if (all_cached) {
+    for (std::size_t i = 0; i < a_over_t.size(); ++i) results[i] = solve(a_over_t[i], tolerance);
+    return results;
+  }
   // Each radius is independent and deterministic: the parallel result equals the serial one.
   detail::parallel_for(a_over_t.size(), [&](std::size_t i) { results[i] = solve(a_over_t[i], tolerance); });
   return results;
@@ -123,6 +167,10 @@ std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_
 std::vector<ReducedVariables> ReducedSolver::sweep(const std::vector<double>& a_over_t, double tolerance,
                                                    std::vector<PointStatus>& status) const {
   for (double a : a_over_t) check_arguments(a, tolerance);
+  if (impl_->prepare_to_solve(a_over_t, tolerance)) {
+    status.assign(a_over_t.size(), PointStatus{});
+    return sweep(a_over_t, tolerance);
+  }
   return detail::parallel_points<ReducedVariables>(
       a_over_t.size(), [&](std::size_t i) { return solve(a_over_t[i], tolerance); },
       [&](std::size_t i) {

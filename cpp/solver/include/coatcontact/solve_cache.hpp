@@ -1,0 +1,20 @@
+// The solve cache (docs/solver.md, "Solve cache"): opt-in, persistent store of the reduced
+// variables the ReducedSolver has solved, in the spirit of FFTW's wisdom. A process that finds
+// a radius there reads the exact doubles a solve would return, so every printed number is the
+// same with a cold cache, a warm one and none. Entries are keyed by the stack, the tolerance
+// and the build id (a hash of the code that produces them and of its build); a corrupt or
+// foreign entry is ignored (corrupt ones removed) and solved again.
+#pragma once
+#include <string>
+
+namespace coatcontact {
+
+// Directory of the cache, or "" (no cache, the default). Initially the environment variable
+// COATCONTACT_CACHE (unset or empty: none). Affects ReducedSolvers constructed afterwards.
+void set_solve_cache_directory(const std::string& directory);
+std::string solve_cache_directory();
+
+// The build id that keys the entries (hex SHA-256).
+const char* solve_cache_build_id();
+
+}  // namespace coatcontact
