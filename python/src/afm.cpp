@@ -9,8 +9,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <tuple>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "coatcontact/afm_batch.hpp"
@@ -509,14 +510,20 @@ std::vector<std::string> expand_paths(const std::vector<std::string>& paths) {
   return files;
 }
 
-std::size_t count_curves(const std::vector<std::string>& files, const py::object& spring_constant, const py::object& sensitivity) {
+// (curves, why unreadable or "") of each file (afm_survey_files): with `tolerate` a file that
+// cannot be read is one flagged row of the run instead of a ValueError.
+std::vector<std::pair<std::size_t, std::string>> survey_files(const std::vector<std::string>& files,
+                                                              const py::object& spring_constant,
+                                                              const py::object& sensitivity, bool tolerate) {
+  std::vector<std::pair<std::size_t, std::string>> out;
   try {
-    std::size_t total = 0;
-    for (std::size_t c : coatcontact::fit::afm_count_curves(files, calibration_of(spring_constant, sensitivity))) total += c;
-    return total;
+    const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
+    py::gil_scoped_release release;
+    for (auto& s : coatcontact::fit::afm_survey_files(files, calibration, tolerate)) out.emplace_back(s.curves, std::move(s.unreadable));
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   }
+  return out;
 }
 
 // Curves [first, first + count) of the run over `files`, fitted with `jobs` threads (0: cores).
@@ -525,7 +532,7 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const std::string& segment, const py::object& tip_min, const py::object& tip_max,
                        const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
                        const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
-                       const py::object& count) {
+                       const py::object& count, const py::object& survey, bool tolerate) {
   namespace fit = coatcontact::fit;
   std::vector<fit::AfmCurveRow> rows;
   fit::AfmBatchSettings settings;
@@ -537,6 +544,12 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
     options.jobs = jobs;
     options.skip = first;
     if (!count.is_none()) options.count = count.cast<std::size_t>();
+    if (!survey.is_none()) {
+      for (auto& [curves, why] : survey.cast<std::vector<std::pair<std::size_t, std::string>>>()) {
+        options.survey.push_back({curves, std::move(why)});
+      }
+    }
+    options.unreadable_file_rows = tolerate;
     options.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) { rows.insert(rows.end(), chunk.begin(), chunk.end()); };
     py::gil_scoped_release release;
     fit::afm_fit_batch(files, calibration, settings, options);
@@ -593,12 +606,13 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none(), py::arg("adhesion") = py::none());
   m.def("expand_paths", &expand_paths, py::arg("paths"));
-  m.def("count_curves", &count_curves, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"));
+  m.def("survey_files", &survey_files, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"),
+        py::arg("tolerate"));
   m.def("fit_map_files", &fit_map_files, py::arg("files"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
-        py::arg("count"));
+        py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false);
   m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
