@@ -399,9 +399,14 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     paths_or_curves  a path, a folder (its AFM files by extension) or a list of them; or a list
                      of curves (read()'s, or mappings with "force", a height and "segment").
     jobs             threads (default: the machine's cores); the rows are the same for any jobs.
-    client           a dask.distributed.Client: the curves of the files are split into shares
-                     fitted by the cluster's workers (each with one thread) and gathered in
-                     order; the rows are the serial ones. Dask is imported only then.
+    client           a dask.distributed.Client: the curves of the files are split into one run of
+                     consecutive curves per worker, each read and fitted by that worker (with one
+                     thread) from the files themselves, and gathered in order; the rows are the
+                     serial ones. Dask is imported only then.
+
+    A file of several, or of a folder, that cannot be read (not a force-curve file, corrupt) is
+    one row flagged unreadable (8) with a warning naming it and why; a single file given that
+    cannot be read is a ValueError.
     as_frame         a pandas DataFrame instead of the NumPy structured array (needs pandas).
 
     Columns: file, curve, grid_x, grid_y (-1 when unknown), x, y [m], flag (0 fitted; 1
