@@ -284,13 +284,17 @@ int run_pulloff(const Args& raw) {
   return run_guarded("pulloff", [&]() {
     auto spec = normalized_options();
     spec.push_back(spring_bar_option());
+    spec.push_back(strict_option());
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("pulloff", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
                          "Normalized pull-off of the adhesive sphere for each eta: under load control\n"
                          "(minimum of P over a_bar) and under displacement control (minimum of D), with\n"
                          "a_bar, P and D at each. Located by a root of dP/da_bar (dD/da_bar) after a Brent\n"
-                         "minimisation; a '# warning' header line flags several minima or none in range.\n" +
+                         "minimisation; a '# warning' header line flags several minima or none in range.\n"
+                         "JKR: an eta whose pull-off cannot be located at --tol (its reduced-variable table\n"
+                         "cannot be built) is a '# not delivered' row with its reason (exit 0 while one eta\n"
+                         "is delivered); with --strict, exit 3 at the first one.\n" +
                              std::string(kNormalization),
                          spec);
       return 0;
@@ -305,6 +309,9 @@ int run_pulloff(const Args& raw) {
     if (lambdas) {
       refuse_unused_tol(args, *lambdas);
     }
+    if (lambdas && args.has("--strict")) {
+      throw InputError("--strict: not used with --lambda (it selects how the JKR pull-offs are delivered); omit --strict");
+    }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       const std::vector<double> k_bars =
@@ -317,13 +324,25 @@ int run_pulloff(const Args& raw) {
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
     const auto [scan_lo, scan_hi] = model.default_curve_range();  // pull-off scans from 0.1 scan_lo
+    const bool strict = args.has("--strict");
     plan_table_work(solver, tol, 0.1 * scan_lo / *std::max_element(etas.begin(), etas.end()),
-                    scan_hi / *std::min_element(etas.begin(), etas.end()), "--tol " + num(tol) + " with --eta");
-    std::vector<Pulloff> results;
-    for (double eta : etas) {
-      results.push_back(with_options("--eta " + num(eta), [&] { return model.pulloff(eta); }));
+                    scan_hi / *std::min_element(etas.begin(), etas.end()), "--tol " + num(tol) + " with --eta", !strict);
+    // One pull-off per eta; without --strict an eta whose table cannot be built at --tol is not
+    // delivered (its reason kept) and the others are.
+    std::vector<Pulloff> results;  // the delivered etas', in order
+    std::vector<double> delivered_etas;
+    std::vector<PointStatus> status(etas.size());
+    for (std::size_t i = 0; i < etas.size(); ++i) {
+      try {
+        results.push_back(with_options("--eta " + num(etas[i]), [&] { return model.pulloff(etas[i]); }));
+        delivered_etas.push_back(etas[i]);
+      } catch (const NumericalError& e) {
+        if (strict) throw;
+        status[i] = {false, e.what()};
+      }
     }
-    const SpringRows springs(args, model, etas);  // THEORY.md section 10; empty without --spring-bar
+    require_some_delivered(status, "pull-off");
+    const SpringRows springs(args, model, delivered_etas);  // THEORY.md section 10; empty without --spring-bar
 
     Header h{{"command", "pulloff"}};
     add_material_header(h, stack);
@@ -342,21 +361,28 @@ int run_pulloff(const Args& raw) {
     describe_table(h, model, tol);
     for (const auto& r : results) add_pulloff_warnings(h, r);
     springs.describe(h);
+    const auto where = [&](std::size_t i) { return "eta = " + format_value(etas[i], "eta"); };
+    report_not_delivered(h, "pulloff", status, where);
     std::vector<std::string> columns = {"eta",   "P_load",     "a_bar_load", "D_load",
                                         "P_disp", "a_bar_disp", "D_disp"};
     springs.extend(columns);
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const Pulloff& r = results[i];
+    for (std::size_t i = 0, d = 0; i < etas.size(); ++i) {
+      if (!status[i].delivered) {
+        write_not_delivered(os, where(i), status[i].reason);
+        continue;
+      }
+      const Pulloff& r = results[d];
       const std::vector<double> row = {
           r.eta, r.load_control.load, r.load_control.a_bar, r.load_control.penetration,
           r.displacement_control.load, r.displacement_control.a_bar, r.displacement_control.penetration};
       if (springs.empty()) {
         write_row(os, row, columns);
       } else {
-        springs.write(os, i, row, columns);
+        springs.write(os, d, row, columns);
       }
+      ++d;
     }
     out.commit();
     return 0;

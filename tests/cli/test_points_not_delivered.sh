@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Regression tests of issue 25 item 6 (label cli): `reduced`, `adhesive` and `contact` over an
-# array used to fail the whole array (exit 3, no output) when one point could not meet its
-# tolerance. Each case forces one point to fail honestly (a tolerance the solver cannot meet
+# Regression tests of issue 25 item 6 (label cli): `reduced`, `adhesive`, `contact` and
+# `pulloff` (its --eta list) used to fail the whole array (exit 3, or 2 from a probe, no output)
+# when one point could not meet its tolerance. Each case forces one point to fail honestly (a tolerance the solver cannot meet
 # at the largest radius: the rounding term eps cond(A) or the kernel table's accuracy exceeds
 # it there, THEORY.md section 6) and checks: exit 0, the failed point as a '# not delivered'
 # row in its place with its reason, the count in the header and on stderr, no NaN, every
@@ -94,6 +94,18 @@ contact)
     { [ "$(data_rows one)" = "$(data_rows all | tail -n 1)" ] && ok "a = 10um equals its single-point call" ||
       fail "a = 10um differs: $(data_rows one) vs $(data_rows all | tail -n 1)"; }
   strict_checks 3 "${M[@]}" --contact-radius 1um,2mm,10um
+  ;;
+pulloff)
+  # At 1e-12 the table stops at a/t = 10 (its node at a/t = 99.8 fails): eta = 1 finds its
+  # minima below, eta = 0.001 (a_bar = a/t eta) has none below a_bar = 0.01.
+  M=(pulloff --film 1MPa,0.49 --substrate 70GPa,0.22 --tol 1e-12)
+  run 0 all "${M[@]}" --eta 1,0.001 && tolerant_checks all 1 1 "eta = 0.001"
+  run 0 one "${M[@]}" --eta 1 &&
+    { [ "$(data_rows one)" = "$(data_rows all)" ] && ok "eta = 1 equals its single-eta call" ||
+      fail "eta = 1 differs: $(data_rows one) vs $(data_rows all)"; }
+  strict_checks 2 "${M[@]}" --eta 1,0.001
+  run 3 none "${M[@]}" --eta 0.001,0.002 && { [ -s none ] && fail "output with no eta delivered" ||
+    ok "no eta delivered: exit 3 ($(head -c 120 none.err))"; }
   ;;
 *)
   echo "unknown case $case_name"
