@@ -137,6 +137,34 @@ std::vector<CurvePoint> sphere_curve(const AdhesiveModel& model, double eta, con
   }
 }
 
+// sphere_curve returning every point it can: through the table, points of a decade that cannot
+// be built are not delivered; when the radii are solved alone, each radius that cannot be
+// solved at `tol` is not delivered (`status`, one per radius, receives the reasons).
+std::vector<CurvePoint> sphere_curve_tolerant(const AdhesiveModel& model, double eta, const std::vector<double>& a_bar,
+                                              bool solve_alone, double tol, std::string& note,
+                                              std::vector<PointStatus>& status) {
+  if (!solve_alone) return model.curve(eta, a_bar, status);
+  try {
+    return sphere_curve(model, eta, a_bar, solve_alone, tol, note);
+  } catch (const NumericalError&) {
+  }
+  // A radius failed its own solve too: each alone, so that the others are delivered.
+  note = "solved at each contact radius at tolerance " + num(tol) +
+         " (the interpolation table's decades of a/t around these radii cannot be built)";
+  std::vector<CurvePoint> points(a_bar.size());
+  status.assign(a_bar.size(), PointStatus{});
+  for (std::size_t i = 0; i < a_bar.size(); ++i) {
+    try {
+      points[i] = model.curve_solved(eta, {a_bar[i]}).front();
+    } catch (const NumericalError& e) {
+      status[i] = {false, e.what()};
+      points[i].eta = eta;
+      points[i].a_bar = a_bar[i];
+    }
+  }
+  return points;
+}
+
 // The pull-off of `sphere` in SI units, header lines.
 void add_sphere_pulloff(Header& h, const Contact& sphere, const Pulloff& pulloff) {
   h.emplace_back("pull-off force, load control [N]", num(sphere.pulloff_force_load()));
@@ -406,6 +434,7 @@ int run_sphere(const Args& raw) {
                                    "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
                                    false});
     for (const auto& option : cohesive_options()) spec.push_back(option);
+    spec.push_back(strict_option());
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("sphere",
@@ -414,7 +443,9 @@ int run_sphere(const Args& raw) {
                          "force versus contact radius, with the pull-off forces under load and displacement\n"
                          "control in the header. F is compressive positive. '# warning:' header lines (also on\n"
                          "stderr) flag a curve beyond the model: penetration above t, a above 0.1 R, mean\n"
-                         "pressure above 0.1 E1*.",
+                         "pressure above 0.1 E1*. JKR: a contact radius the solver cannot serve at --tol is a\n"
+                         "'# not delivered' row with its reason (exit 0 while one radius is delivered); with\n"
+                         "--strict, exit 3 at the first one.",
                          spec);
       return 0;
     }
@@ -443,6 +474,11 @@ int run_sphere(const Args& raw) {
       // A contact wider than the sphere is no sphere at all: refused before any solve.
       with_options("--contact-radius with --radius", [&] { check_sphere_contact_radii(contact_radii, radius); });
     }
+    if (sigma0 && args.has("--strict")) {
+      throw InputError("--strict: not used with --cohesive-stress/--range (it selects how the JKR curve's points are "
+                       "delivered); omit --strict");
+    }
+    const bool strict = args.has("--strict");
     Output out(args.get("--output").value_or(""));
     if (sigma0) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       // The zone's accuracy is fixed by its discretization (MaugisDugdaleOptions), not by --tol.
@@ -477,7 +513,7 @@ int run_sphere(const Args& raw) {
     } catch (const InputError& e) {
       if (a_bar.empty()) throw;
       plan_table_work(solver, tol, *std::min_element(a_bar.begin(), a_bar.end()) / eta,
-                      *std::max_element(a_bar.begin(), a_bar.end()) / eta, probe_options);
+                      *std::max_element(a_bar.begin(), a_bar.end()) / eta, probe_options, !strict);
       pulloff_missing = e.what();
     }
     const Pulloff* pulloff = nullptr;
@@ -488,14 +524,20 @@ int run_sphere(const Args& raw) {
       a_bar = sphere_default_a_bar(model, sphere, lo, hi, reach, points);
     }
     std::string solved_note;
+    std::vector<PointStatus> status(a_bar.size());
     const std::vector<CurvePoint> curve =
-        sphere_curve(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note);
-    std::vector<Contact::Point> si;
-    for (const auto& p : curve) {
+        strict ? sphere_curve(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note)
+               : sphere_curve_tolerant(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note, status);
+    require_some_delivered(status, "contact radius");
+    std::vector<Contact::Point> si;  // every point; only the delivered ones are read
+    std::vector<Contact::Point> delivered;
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      const CurvePoint& p = curve[i];
       si.push_back({p.a_bar * sphere.length_scale(), p.penetration * sphere.penetration_scale(),
                     p.load * sphere.force_scale()});
+      if (status[i].delivered) delivered.push_back(si.back());
     }
-    const std::vector<std::string> warnings = sphere.validity_warnings(si);
+    const std::vector<std::string> warnings = sphere.validity_warnings(delivered);
 
     Header h{{"command", "sphere"}};
     h.emplace_back("sphere radius R [m]", num(radius));
@@ -525,10 +567,18 @@ int run_sphere(const Args& raw) {
       h.emplace_back("warning", w);
       std::cerr << "coatcontact sphere: warning: " << w << "\n";
     }
+    const auto where = [&](std::size_t i) { return "a_m = " + format_value(a_bar[i] * sphere.length_scale(), "a_m"); };
+    report_not_delivered(h, "sphere", status, where);
     const std::vector<std::string> columns = {"a_m", "delta_m", "F_N"};
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (const auto& p : si) write_row(os, {p.radius, p.penetration, p.force}, columns);
+    for (std::size_t i = 0; i < si.size(); ++i) {
+      if (!status[i].delivered) {
+        write_not_delivered(os, where(i), status[i].reason);
+        continue;
+      }
+      write_row(os, {si[i].radius, si[i].penetration, si[i].force}, columns);
+    }
     out.commit();
     return 0;
   });
