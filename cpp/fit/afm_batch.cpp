@@ -213,12 +213,6 @@ std::vector<AfmFileSurvey> afm_survey_files(const std::vector<std::string>& file
   return survey;
 }
 
-std::vector<std::size_t> afm_count_curves(const std::vector<std::string>& files, const afm::Calibration& calibration) {
-  std::vector<std::size_t> counts;
-  for (const AfmFileSurvey& s : afm_survey_files(files, calibration, false)) counts.push_back(s.curves);
-  return counts;
-}
-
 namespace {
 
 // Sets the OpenMP thread count of the calling thread for the lifetime of the object.

@@ -130,9 +130,6 @@ struct AfmBatchSummary {
   std::string first_message[kAfmFlagCount];  // the first reason of each flag, for a summary
 };
 
-// The number of curves in each file (afm_survey_files without `tolerate`).
-std::vector<std::size_t> afm_count_curves(const std::vector<std::string>& files, const afm::Calibration& calibration);
-
 AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::Calibration& calibration,
                               const AfmBatchSettings& settings, const AfmBatchOptions& options);
 
