@@ -353,8 +353,11 @@ int run_pulloff(const Args& raw) {
     const AdhesiveModel model(solver, tol);
     const auto [scan_lo, scan_hi] = model.default_curve_range();  // pull-off scans from 0.1 scan_lo
     const bool strict = args.has("--strict");
+    // One end of the a/t range out of reach may leave the other etas deliverable; a single eta
+    // is refused up front (its scan would build the table for minutes, then fail).
     plan_table_work(solver, tol, 0.1 * scan_lo / *std::max_element(etas.begin(), etas.end()),
-                    scan_hi / *std::min_element(etas.begin(), etas.end()), "--tol " + num(tol) + " with --eta", !strict);
+                    scan_hi / *std::min_element(etas.begin(), etas.end()), "--tol " + num(tol) + " with --eta",
+                    !strict && etas.size() > 1);
     // One pull-off per eta; without --strict an eta whose table cannot be built at --tol is not
     // delivered (its reason kept) and the others are.
     std::vector<Pulloff> results;  // the delivered etas', in order
