@@ -11,13 +11,17 @@
 #    curves) fitted with `--model jkr` (E1 from 250 kPa, w, contact point, baseline, tilt free),
 #    --jobs 2: wall and CPU time, and the recovered E1 and w against the truth (mean and RMS of
 #    the relative error, mean |z-score|) over the fitted curves, and the flags against the truth's.
+#  - with ZIP_OPEN_RSS (bench/zip_open_rss.cpp): the heap libzip alone keeps for each opened
+#    map (per entry of its central directory) and the peak RSS of a process that only opens it:
+#    the memory budget of THEORY.md section 15, "Memory of a run".
 # Rows "task value ... kind" like cli_timings.sh (kind: cli for times in ms, rss_kB, ratio).
 # The machine is shared: compare user + system (CPU) time as well as wall time.
-# Usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR]
+# Usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR [ZIP_OPEN_RSS]]
 set -euo pipefail
-cli="${1:?usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR]}"
-make_map="${2:?usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR]}"
+cli="${1:?usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR [ZIP_OPEN_RSS]]}"
+make_map="${2:?usage: bench/afm_maps.sh CLI MAKE_AFM_MAP [WORK_DIR [ZIP_OPEN_RSS]]}"
 work="${3:-$(mktemp -d)}"
+zip_open="${4:-}"
 mkdir -p "$work"
 model=(--radius 10um --halfspace 5kPa,0.5)
 
@@ -90,3 +94,17 @@ awk -v oa="$oa" -v ob="$ob" -v wa="$wa" -v ma="$ma" -v wb="$wb" -v mb="$mb" -v u
   printf "afm fit --index 0 (archive opened, one curve) 256x256, peak RSS\t%d\t\t\t1\trss_kB\n", ob
   printf "afm fit 256x256 map, peak RSS beyond the opened archive\t%d\t\t\t1\trss_kB\n", mb - ob
 }'
+
+if [ -n "$zip_open" ]; then
+  for size in 64 256; do
+    # "rdonly entries rss_kB heap_kB heap_bytes_per_entry" and the process's peak RSS.
+    /usr/bin/time -f '%M' -o "$work/zip$size.time" "$zip_open" "$work/map$size.jpk-force-map" rdonly >"$work/zip$size.out"
+    read -r _ entries _ heap per_entry <"$work/zip$size.out"
+    awk -v size="$size" -v entries="$entries" -v heap="$heap" -v per="$per_entry" -v peak="$(cat "$work/zip$size.time")" 'BEGIN {
+      printf "zip_open (libzip alone, ZIP_RDONLY) %dx%d map: entries\t%d\t\t\t1\tcount\n", size, size, entries
+      printf "zip_open (libzip alone, ZIP_RDONLY) %dx%d map: heap kept\t%d\t\t\t1\trss_kB\n", size, size, heap
+      printf "zip_open (libzip alone, ZIP_RDONLY) %dx%d map: heap bytes per entry\t%.4g\t\t\t1\tbytes\n", size, size, per
+      printf "zip_open (libzip alone, ZIP_RDONLY) %dx%d map: process peak RSS\t%d\t\t\t1\trss_kB\n", size, size, peak
+    }'
+  done
+fi

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `make bench`: every bench_* executable in BUILD_DIR/bench (configure with
 # -DCOATCONTACT_BUILD_BENCH=ON), then whole-process timings of the CLI (bench/cli_timings.sh),
-# the batch AFM fits of synthetic force maps (bench/afm_maps.sh) and the explorer's slider
-# updates (bench/explore_sliders.py).
+# the batch AFM fits of synthetic force maps (bench/afm_maps.sh), the explorer's slider
+# updates (bench/explore_sliders.py) and afm.fit_map threaded and on a Dask LocalCluster
+# (bench/dask_map.py).
 # Results: BUILD_DIR/bench/results.tsv (one row per task: median, min, max over the runs, with
 # the machine and the commit) and BUILD_DIR/bench/<name>.json (the benchmark library's own
 # report, medians of 5 repetitions). Usage: bench/run.sh BUILD_DIR [extra benchmark flags]
@@ -64,7 +65,8 @@ bash "$(dirname "$0")/cli_timings.sh" "$build/bin/coatcontact" >> "$tmp"
 
 echo "== afm fit over synthetic force maps (time, scaling, peak RSS)"
 scratch_maps=$(mktemp -d)
-bash "$(dirname "$0")/afm_maps.sh" "$build/bin/coatcontact" "$build/tests/afm/make_afm_map" "$scratch_maps" >> "$tmp"
+bash "$(dirname "$0")/afm_maps.sh" "$build/bin/coatcontact" "$build/tests/afm/make_afm_map" "$scratch_maps" \
+  "$build/bench/zip_open_rss" >> "$tmp"
 rm -rf "$scratch_maps"
 
 # The interpreter the Python module was built for.
@@ -75,6 +77,12 @@ if [ -d "$build/python/coatcontact" ] && "$python" -c "import matplotlib, numpy"
   PYTHONPATH="$build/python" "$python" "$(dirname "$0")/explore_sliders.py" --tsv >> "$tmp"
 else
   echo "bench/run.sh: no Python module in $build/python or no matplotlib: explorer timings left out" >&2
+fi
+if [ -d "$build/python/coatcontact" ] && "$python" -c "import distributed, numpy" 2>/dev/null; then
+  echo "== Python afm.fit_map: jobs=1, jobs=2 and a Dask LocalCluster of 2 workers"
+  PYTHONPATH="$build/python" "$python" "$(dirname "$0")/dask_map.py" "$build/tests/afm/make_afm_map" --tsv >> "$tmp"
+else
+  echo "bench/run.sh: no Python module in $build/python or no python3-distributed: Dask timings left out" >&2
 fi
 mv "$tmp" "$results"
 trap - EXIT

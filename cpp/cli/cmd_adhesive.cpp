@@ -137,6 +137,34 @@ std::vector<CurvePoint> sphere_curve(const AdhesiveModel& model, double eta, con
   }
 }
 
+// sphere_curve returning every point it can: through the table, points of a decade that cannot
+// be built are not delivered; when the radii are solved alone, each radius that cannot be
+// solved at `tol` is not delivered (`status`, one per radius, receives the reasons).
+std::vector<CurvePoint> sphere_curve_tolerant(const AdhesiveModel& model, double eta, const std::vector<double>& a_bar,
+                                              bool solve_alone, double tol, std::string& note,
+                                              std::vector<PointStatus>& status) {
+  if (!solve_alone) return model.curve(eta, a_bar, status);
+  try {
+    return sphere_curve(model, eta, a_bar, solve_alone, tol, note);
+  } catch (const NumericalError&) {
+  }
+  // A radius failed its own solve too: each alone, so that the others are delivered.
+  note = "solved at each contact radius at tolerance " + num(tol) +
+         " (the interpolation table's decades of a/t around these radii cannot be built)";
+  std::vector<CurvePoint> points(a_bar.size());
+  status.assign(a_bar.size(), PointStatus{});
+  for (std::size_t i = 0; i < a_bar.size(); ++i) {
+    try {
+      points[i] = model.curve_solved(eta, {a_bar[i]}).front();
+    } catch (const NumericalError& e) {
+      status[i] = {false, e.what()};
+      points[i].eta = eta;
+      points[i].a_bar = a_bar[i];
+    }
+  }
+  return points;
+}
+
 // The pull-off of `sphere` in SI units, header lines.
 void add_sphere_pulloff(Header& h, const Contact& sphere, const Pulloff& pulloff) {
   h.emplace_back("pull-off force, load control [N]", num(sphere.pulloff_force_load()));
@@ -284,13 +312,17 @@ int run_pulloff(const Args& raw) {
   return run_guarded("pulloff", [&]() {
     auto spec = normalized_options();
     spec.push_back(spring_bar_option());
+    spec.push_back(strict_option());
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("pulloff", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
                          "Normalized pull-off of the adhesive sphere for each eta: under load control\n"
                          "(minimum of P over a_bar) and under displacement control (minimum of D), with\n"
                          "a_bar, P and D at each. Located by a root of dP/da_bar (dD/da_bar) after a Brent\n"
-                         "minimisation; a '# warning' header line flags several minima or none in range.\n" +
+                         "minimisation; a '# warning' header line flags several minima or none in range.\n"
+                         "JKR: an eta whose pull-off cannot be located at --tol (its reduced-variable table\n"
+                         "cannot be built) is a '# not delivered' row with its reason (exit 0 while one eta\n"
+                         "is delivered); with --strict, exit 3 at the first one.\n" +
                              std::string(kNormalization),
                          spec);
       return 0;
@@ -305,6 +337,9 @@ int run_pulloff(const Args& raw) {
     if (lambdas) {
       refuse_unused_tol(args, *lambdas);
     }
+    if (lambdas && args.has("--strict")) {
+      throw InputError("--strict: not used with --lambda (it selects how the JKR pull-offs are delivered); omit --strict");
+    }
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       const std::vector<double> k_bars =
@@ -317,13 +352,28 @@ int run_pulloff(const Args& raw) {
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
     const auto [scan_lo, scan_hi] = model.default_curve_range();  // pull-off scans from 0.1 scan_lo
+    const bool strict = args.has("--strict");
+    // One end of the a/t range out of reach may leave the other etas deliverable; a single eta
+    // is refused up front (its scan would build the table for minutes, then fail).
     plan_table_work(solver, tol, 0.1 * scan_lo / *std::max_element(etas.begin(), etas.end()),
-                    scan_hi / *std::min_element(etas.begin(), etas.end()), "--tol " + num(tol) + " with --eta");
-    std::vector<Pulloff> results;
-    for (double eta : etas) {
-      results.push_back(with_options("--eta " + num(eta), [&] { return model.pulloff(eta); }));
+                    scan_hi / *std::min_element(etas.begin(), etas.end()), "--tol " + num(tol) + " with --eta",
+                    !strict && etas.size() > 1);
+    // One pull-off per eta; without --strict an eta whose table cannot be built at --tol is not
+    // delivered (its reason kept) and the others are.
+    std::vector<Pulloff> results;  // the delivered etas', in order
+    std::vector<double> delivered_etas;
+    std::vector<PointStatus> status(etas.size());
+    for (std::size_t i = 0; i < etas.size(); ++i) {
+      try {
+        results.push_back(with_options("--eta " + num(etas[i]), [&] { return model.pulloff(etas[i]); }));
+        delivered_etas.push_back(etas[i]);
+      } catch (const NumericalError& e) {
+        if (strict) throw;
+        status[i] = {false, e.what()};
+      }
     }
-    const SpringRows springs(args, model, etas);  // THEORY.md section 10; empty without --spring-bar
+    require_some_delivered(status, "pull-off");
+    const SpringRows springs(args, model, delivered_etas);  // THEORY.md section 10; empty without --spring-bar
 
     Header h{{"command", "pulloff"}};
     add_material_header(h, stack);
@@ -342,21 +392,28 @@ int run_pulloff(const Args& raw) {
     describe_table(h, model, tol);
     for (const auto& r : results) add_pulloff_warnings(h, r);
     springs.describe(h);
+    const auto where = [&](std::size_t i) { return "eta = " + format_value(etas[i], "eta"); };
+    report_not_delivered(h, "pulloff", status, where);
     std::vector<std::string> columns = {"eta",   "P_load",     "a_bar_load", "D_load",
                                         "P_disp", "a_bar_disp", "D_disp"};
     springs.extend(columns);
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const Pulloff& r = results[i];
+    for (std::size_t i = 0, d = 0; i < etas.size(); ++i) {
+      if (!status[i].delivered) {
+        write_not_delivered(os, where(i), status[i].reason);
+        continue;
+      }
+      const Pulloff& r = results[d];
       const std::vector<double> row = {
           r.eta, r.load_control.load, r.load_control.a_bar, r.load_control.penetration,
           r.displacement_control.load, r.displacement_control.a_bar, r.displacement_control.penetration};
       if (springs.empty()) {
         write_row(os, row, columns);
       } else {
-        springs.write(os, i, row, columns);
+        springs.write(os, d, row, columns);
       }
+      ++d;
     }
     out.commit();
     return 0;
@@ -380,6 +437,7 @@ int run_sphere(const Args& raw) {
                                    "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
                                    false});
     for (const auto& option : cohesive_options()) spec.push_back(option);
+    spec.push_back(strict_option());
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("sphere",
@@ -388,7 +446,9 @@ int run_sphere(const Args& raw) {
                          "force versus contact radius, with the pull-off forces under load and displacement\n"
                          "control in the header. F is compressive positive. '# warning:' header lines (also on\n"
                          "stderr) flag a curve beyond the model: penetration above t, a above 0.1 R, mean\n"
-                         "pressure above 0.1 E1*.",
+                         "pressure above 0.1 E1*. JKR: a contact radius the solver cannot serve at --tol is a\n"
+                         "'# not delivered' row with its reason (exit 0 while one radius is delivered); with\n"
+                         "--strict, exit 3 at the first one.",
                          spec);
       return 0;
     }
@@ -417,6 +477,11 @@ int run_sphere(const Args& raw) {
       // A contact wider than the sphere is no sphere at all: refused before any solve.
       with_options("--contact-radius with --radius", [&] { check_sphere_contact_radii(contact_radii, radius); });
     }
+    if (sigma0 && args.has("--strict")) {
+      throw InputError("--strict: not used with --cohesive-stress/--range (it selects how the JKR curve's points are "
+                       "delivered); omit --strict");
+    }
+    const bool strict = args.has("--strict");
     Output out(args.get("--output").value_or(""));
     if (sigma0) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       // The zone's accuracy is fixed by its discretization (MaugisDugdaleOptions), not by --tol.
@@ -451,7 +516,7 @@ int run_sphere(const Args& raw) {
     } catch (const InputError& e) {
       if (a_bar.empty()) throw;
       plan_table_work(solver, tol, *std::min_element(a_bar.begin(), a_bar.end()) / eta,
-                      *std::max_element(a_bar.begin(), a_bar.end()) / eta, probe_options);
+                      *std::max_element(a_bar.begin(), a_bar.end()) / eta, probe_options, !strict);
       pulloff_missing = e.what();
     }
     const Pulloff* pulloff = nullptr;
@@ -462,14 +527,20 @@ int run_sphere(const Args& raw) {
       a_bar = sphere_default_a_bar(model, sphere, lo, hi, reach, points);
     }
     std::string solved_note;
+    std::vector<PointStatus> status(a_bar.size());
     const std::vector<CurvePoint> curve =
-        sphere_curve(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note);
-    std::vector<Contact::Point> si;
-    for (const auto& p : curve) {
+        strict ? sphere_curve(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note)
+               : sphere_curve_tolerant(model, sphere.eta(), a_bar, !pulloff_missing.empty(), tol, solved_note, status);
+    require_some_delivered(status, "contact radius");
+    std::vector<Contact::Point> si;  // every point; only the delivered ones are read
+    std::vector<Contact::Point> delivered;
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      const CurvePoint& p = curve[i];
       si.push_back({p.a_bar * sphere.length_scale(), p.penetration * sphere.penetration_scale(),
                     p.load * sphere.force_scale()});
+      if (status[i].delivered) delivered.push_back(si.back());
     }
-    const std::vector<std::string> warnings = sphere.validity_warnings(si);
+    const std::vector<std::string> warnings = sphere.validity_warnings(delivered);
 
     Header h{{"command", "sphere"}};
     h.emplace_back("sphere radius R [m]", num(radius));
@@ -499,10 +570,18 @@ int run_sphere(const Args& raw) {
       h.emplace_back("warning", w);
       std::cerr << "coatcontact sphere: warning: " << w << "\n";
     }
+    const auto where = [&](std::size_t i) { return "a_m = " + format_value(a_bar[i] * sphere.length_scale(), "a_m"); };
+    report_not_delivered(h, "sphere", status, where);
     const std::vector<std::string> columns = {"a_m", "delta_m", "F_N"};
     std::ostream& os = out.stream();
     write_header(os, h, columns);
-    for (const auto& p : si) write_row(os, {p.radius, p.penetration, p.force}, columns);
+    for (std::size_t i = 0; i < si.size(); ++i) {
+      if (!status[i].delivered) {
+        write_not_delivered(os, where(i), status[i].reason);
+        continue;
+      }
+      write_row(os, {si[i].radius, si[i].penetration, si[i].force}, columns);
+    }
     out.commit();
     return 0;
   });

@@ -557,11 +557,12 @@ void print_fit_help() {
                      "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
                      "by extension) give one row per curve instead: file, curve, grid index and position,\n"
                      "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
-                     "A curve that cannot be fitted is flagged and the run goes on (exit 0; the count\n"
-                     "in the header and on stderr). The baseline tilt of each curve's preprocessing is\n"
-                     "subtracted (b: the baseline at its contact point). --jobs N fits in parallel with\n"
-                     "the same table; with --output FILE the rows go to FILE.partial chunk by chunk\n"
-                     "and FILE is written at the end; --resume continues an interrupted FILE.partial.\n"
+                     "A curve that cannot be fitted, or a file of several that cannot be read, is flagged\n"
+                     "and the run goes on (exit 0; the count in the header and on stderr). The baseline\n"
+                     "tilt of each curve's preprocessing is subtracted (b: the baseline at its contact\n"
+                     "point). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
+                     "go to FILE.partial chunk by chunk and FILE is written at the end; --resume\n"
+                     "continues an interrupted FILE.partial.\n"
                      "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
                          std::string(kFormats),
                      kFitSpec);

@@ -333,9 +333,18 @@ ResumedRows resume_partial(const std::string& partial_path, const std::string& h
   return resumed;
 }
 
+// Why a file cannot be read: the reader's message without its leading "FILE: " (the header
+// line names the file).
+std::string why_unreadable(const std::string& file, const fit::AfmFileSurvey& survey) {
+  std::string why = survey.unreadable;
+  if (starts_with(why, file + ": ")) why.erase(0, file.size() + 2);
+  std::replace_if(why.begin(), why.end(), [](char c) { return c == '\t' || c == '\n' || c == '\r'; }, ' ');
+  return why;
+}
+
 // The table's header without the flagged count (which only the end knows); `columns` receives
 // the column names.
-std::string map_table_header(const std::vector<std::string>& files, const std::vector<std::size_t>& counts, std::size_t total,
+std::string map_table_header(const std::vector<std::string>& files, const std::vector<fit::AfmFileSurvey>& survey, std::size_t total,
                              const afm::Calibration& calibration, const AfmFitSetup& setup,
                              const fit::AfmBatchSettings& settings, const std::vector<fit::AfmBatchParameter>& parameters,
                              bool contact_point_column, std::vector<std::string>& columns) {
@@ -345,7 +354,9 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
                                   : "one row per curve: Hertz/Sneddon fit of each curve of the files (THEORY.md section 15)"}};
   items.push_back({"files", std::to_string(files.size())});
   for (std::size_t f = 0; f < files.size(); ++f) {
-    items.push_back({"file " + std::to_string(f), files[f] + " (" + std::to_string(counts[f]) + " curves)"});
+    items.push_back({"file " + std::to_string(f), files[f] + (survey[f].unreadable.empty()
+                                                                   ? " (" + std::to_string(survey[f].curves) + " curves)"
+                                                                   : " (unreadable, one flagged row: " + why_unreadable(files[f], survey[f]) + ")")});
   }
   items.push_back({"curves", std::to_string(total)});
   if (calibration.spring_constant) items.push_back({"spring constant [N/m]", format_parameter(*calibration.spring_constant, "k") + " (user, every curve)"});
@@ -405,6 +416,30 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   return header_stream.str();
 }
 
+// The run's summary on stderr: curves, flagged count, each unreadable file and why, the first
+// reason of each other flag.
+void report_run(const std::vector<std::string>& files, const std::vector<fit::AfmFileSurvey>& survey, std::size_t total,
+                const std::string& flag_text, const fit::AfmBatchSummary& summary) {
+  std::string first_unreadable_file;
+  for (const fit::AfmFileSurvey& s : survey) {
+    if (!s.unreadable.empty()) {
+      first_unreadable_file = s.unreadable;
+      break;
+    }
+  }
+  std::cerr << "coatcontact afm fit: " << total << " curves in " << files.size() << (files.size() == 1 ? " file" : " files")
+            << "; flagged: " << flag_text << "\n";
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    if (!survey[f].unreadable.empty()) std::cerr << "  unreadable file: " << survey[f].unreadable << "\n";
+  }
+  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
+    if (f == static_cast<int>(fit::AfmFlag::kUnreadable) && summary.first_message[f] == first_unreadable_file) continue;
+    if (!summary.first_message[f].empty()) {
+      std::cerr << "  first " << fit::afm_flag_name(static_cast<fit::AfmFlag>(f)) << ": " << summary.first_message[f] << "\n";
+    }
+  }
+}
+
 int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
   if (arguments.has("--plot")) {
     throw InputError("--plot: draws one curve (FILE --index N); for a map, several files or a folder use --map-plot FILE.png|pdf");
@@ -438,12 +473,16 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   settings.range = setup.range;
   const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
   const bool contact_point_column = !settings.problem.free.contact_point;
-  const std::vector<std::size_t> counts = fit::afm_count_curves(files, calibration);
+  // A file that cannot be read is a flagged row when the run has several files or a folder; a
+  // single FILE named is the run's input (exit 2).
+  const auto& positionals = arguments.positionals();
+  const bool tolerate = positionals.size() > 1 || is_folder(positionals.front());
+  const std::vector<fit::AfmFileSurvey> survey = fit::afm_survey_files(files, calibration, tolerate);
   std::size_t total = 0;
-  for (std::size_t c : counts) total += c;
+  for (const fit::AfmFileSurvey& s : survey) total += s.curves;
 
   std::vector<std::string> columns;
-  const std::string header = map_table_header(files, counts, total, calibration, setup, settings, parameters,
+  const std::string header = map_table_header(files, survey, total, calibration, setup, settings, parameters,
                                               contact_point_column, columns);
 
   // Resume: the rows already in FILE.partial.
@@ -466,6 +505,8 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   fit::AfmBatchOptions options;
   options.jobs = jobs;
   options.skip = skip;
+  options.survey = survey;
+  options.unreadable_file_rows = tolerate;
   options.sink = [&](const std::vector<fit::AfmCurveRow>& rows) {
     std::string text;
     for (const auto& row : rows) {
@@ -533,13 +574,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     plot_output.stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
     plot_output.commit();
   }
-  std::cerr << "coatcontact afm fit: " << total << " curves in " << files.size() << (files.size() == 1 ? " file" : " files")
-            << "; flagged: " << flag_text << "\n";
-  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
-    if (!summary.first_message[f].empty()) {
-      std::cerr << "  first " << fit::afm_flag_name(static_cast<fit::AfmFlag>(f)) << ": " << summary.first_message[f] << "\n";
-    }
-  }
+  report_run(files, survey, total, flag_text, summary);
   return kExitSuccess;
 }
 

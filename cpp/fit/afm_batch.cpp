@@ -3,6 +3,8 @@
 // per-curve failure turned into a flag, over files read curve by curve in parallel chunks.
 #include "coatcontact/afm_batch.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -189,10 +191,28 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   return row;
 }
 
-std::vector<std::size_t> afm_count_curves(const std::vector<std::string>& files, const afm::Calibration& calibration) {
-  std::vector<std::size_t> counts;
-  for (const std::string& file : files) counts.push_back(afm::CurveSource(file, calibration).size());
-  return counts;
+std::vector<AfmFileSurvey> afm_survey_files(const std::vector<std::string>& files, const afm::Calibration& calibration,
+                                            bool tolerate) {
+  std::vector<AfmFileSurvey> survey;
+  for (const std::string& file : files) {
+    AfmFileSurvey s;
+    struct stat info {};
+    if (tolerate && ::stat(file.c_str(), &info) == 0 && S_ISREG(info.st_mode)) {
+      try {
+        s.curves = afm::CurveSource(file, calibration).size();
+      } catch (const InputError& error) {
+        s.curves = 1;
+        s.unreadable = error.what();
+      } catch (const NumericalError& error) {
+        s.curves = 1;
+        s.unreadable = error.what();
+      }
+    } else {
+      s.curves = afm::CurveSource(file, calibration).size();
+    }
+    survey.push_back(std::move(s));
+  }
+  return survey;
 }
 
 namespace {
@@ -225,8 +245,13 @@ class ScopedThreads {
 AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::Calibration& calibration,
                               const AfmBatchSettings& settings, const AfmBatchOptions& options) {
   AfmBatchSummary summary;
-  const std::vector<std::size_t> counts = afm_count_curves(files, calibration);
-  for (std::size_t c : counts) summary.curves += c;
+  const std::vector<AfmFileSurvey> survey =
+      options.survey.empty() ? afm_survey_files(files, calibration, options.unreadable_file_rows) : options.survey;
+  if (survey.size() != files.size()) throw InputError("afm_fit_batch: the survey does not match the files");
+  for (const AfmFileSurvey& s : survey) {
+    if (!s.unreadable.empty() && !options.unreadable_file_rows) throw InputError(s.unreadable);
+    summary.curves += s.curves;
+  }
   const unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   const std::size_t chunk = options.chunk_curves > 0 ? options.chunk_curves : 16 * static_cast<std::size_t>(jobs);
   const ScopedThreads threads(jobs);
@@ -245,13 +270,21 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
   const auto read_chunk = [&]() {
     std::vector<Item> items;
     while (items.size() < chunk && next < stop) {
-      while (next >= first_of_file + counts[file]) {
-        first_of_file += counts[file++];
+      while (next >= first_of_file + survey[file].curves) {
+        first_of_file += survey[file++].curves;
         source.reset();
+      }
+      Item item;
+      if (!survey[file].unreadable.empty()) {
+        afm::CurveMetadata place;
+        place.source_file = files[file];
+        item.row = flagged(row_of(place), AfmFlag::kUnreadable, survey[file].unreadable);
+        items.push_back(std::move(item));
+        ++next;
+        continue;
       }
       if (!source) source = std::make_unique<afm::CurveSource>(files[file], calibration);
       const std::size_t i = next - first_of_file;
-      Item item;
       try {
         item.curve = source->read(i);
       } catch (const InputError& error) {

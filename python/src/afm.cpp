@@ -9,8 +9,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <tuple>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "coatcontact/afm_batch.hpp"
@@ -429,69 +430,98 @@ coatcontact::fit::AfmBatchSettings settings_of(const py::tuple& shape, double mo
   return settings;
 }
 
-// The rows as columns (the CLI table's): NaN (floats) and -1 (grid indices) where a curve has no value.
-py::dict columns_of(const std::vector<coatcontact::fit::AfmCurveRow>& rows, const coatcontact::fit::AfmBatchSettings& settings) {
-  namespace fit = coatcontact::fit;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const auto parameters = fit::afm_batch_parameters(settings.problem);
-  const bool contact_column = !settings.problem.free.contact_point;
-  const std::size_t n = rows.size();
-  py::list file, reason;
-  std::vector<long> curve(n), grid_x(n), grid_y(n), points(n);
-  std::vector<int> flag(n);
-  std::vector<double> x(n), y(n), chi2(n), chi2_per_dof(n), sigma(n), pulloff(n), pulloff_position(n), contact(n);
-  std::vector<std::vector<double>> value(parameters.size(), std::vector<double>(n)), error = value;
-  for (std::size_t i = 0; i < n; ++i) {
-    const fit::AfmCurveRow& r = rows[i];
-    const bool fitted = r.flag == fit::AfmFlag::kFitted;
-    file.append(r.source_file);
-    reason.append(fit::afm_flag_name(r.flag));
-    curve[i] = static_cast<long>(r.curve_index);
-    grid_x[i] = r.grid_x.value_or(-1);
-    grid_y[i] = r.grid_y.value_or(-1);
-    x[i] = r.position_x.value_or(nan);
-    y[i] = r.position_y.value_or(nan);
-    flag[i] = static_cast<int>(r.flag);
-    for (std::size_t p = 0; p < parameters.size(); ++p) {
-      value[p][i] = fitted ? r.estimates[p] : nan;
-      error[p][i] = fitted ? r.errors[p] : nan;
+// The rows as columns (the CLI table's): NaN (floats) and -1 (grid indices) where a curve has no
+// value. Rows are added chunk by chunk (a run never holds its AfmCurveRow's, only these ~100
+// bytes per curve); the file and reason cells of equal text are one Python string (a map's
+// rows share their file), which also keeps them once in a pickle sent from a Dask worker.
+class Columns {
+ public:
+  explicit Columns(const coatcontact::fit::AfmBatchSettings& settings)
+      : parameters_(coatcontact::fit::afm_batch_parameters(settings.problem)),
+        contact_column_(!settings.problem.free.contact_point),
+        value_(parameters_.size()),
+        error_(parameters_.size()) {}
+
+  // Called with the GIL held (the Python strings).
+  void add(const std::vector<coatcontact::fit::AfmCurveRow>& rows) {
+    namespace fit = coatcontact::fit;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const fit::AfmCurveRow& r : rows) {
+      const bool fitted = r.flag == fit::AfmFlag::kFitted;
+      if (!last_file_ || r.source_file != last_file_text_) {
+        last_file_text_ = r.source_file;
+        last_file_ = py::str(r.source_file);
+      }
+      file_.append(*last_file_);
+      reason_.append(reason_name(r.flag));
+      curve_.push_back(static_cast<long>(r.curve_index));
+      grid_x_.push_back(r.grid_x.value_or(-1));
+      grid_y_.push_back(r.grid_y.value_or(-1));
+      x_.push_back(r.position_x.value_or(nan));
+      y_.push_back(r.position_y.value_or(nan));
+      flag_.push_back(static_cast<int>(r.flag));
+      for (std::size_t p = 0; p < parameters_.size(); ++p) {
+        value_[p].push_back(fitted ? r.estimates[p] : nan);
+        error_[p].push_back(fitted ? r.errors[p] : nan);
+      }
+      contact_.push_back(fitted ? r.contact_point : nan);
+      chi2_.push_back(fitted ? r.chi2 : nan);
+      chi2_per_dof_.push_back(fitted ? r.chi2_per_dof : nan);
+      sigma_.push_back(fitted ? r.residual_sigma : nan);
+      pulloff_.push_back(fitted ? r.pulloff_force.value_or(nan) : nan);
+      pulloff_position_.push_back(fitted ? r.pulloff_position.value_or(nan) : nan);
+      points_.push_back(fitted ? static_cast<long>(r.points) : 0);
     }
-    contact[i] = fitted ? r.contact_point : nan;
-    chi2[i] = fitted ? r.chi2 : nan;
-    chi2_per_dof[i] = fitted ? r.chi2_per_dof : nan;
-    sigma[i] = fitted ? r.residual_sigma : nan;
-    pulloff[i] = fitted ? r.pulloff_force.value_or(nan) : nan;
-    pulloff_position[i] = fitted ? r.pulloff_position.value_or(nan) : nan;
-    points[i] = fitted ? static_cast<long>(r.points) : 0;
   }
-  py::dict out;
-  py::list names;
-  const auto put = [&](const std::string& name, py::object column) {
-    out[py::str(name)] = column;
-    names.append(name);
-  };
-  put("file", file);
-  put("curve", to_array(curve));
-  put("grid_x", to_array(grid_x));
-  put("grid_y", to_array(grid_y));
-  put("x", to_array(x));
-  put("y", to_array(y));
-  put("flag", to_array(flag));
-  put("reason", reason);
-  for (std::size_t p = 0; p < parameters.size(); ++p) {
-    put(parameters[p].name, to_array(value[p]));
-    put(parameters[p].name + "_error", to_array(error[p]));
+
+  py::dict dict() const {
+    py::dict out;
+    py::list names;
+    const auto put = [&](const std::string& name, py::object column) {
+      out[py::str(name)] = column;
+      names.append(name);
+    };
+    put("file", file_);
+    put("curve", to_array(curve_));
+    put("grid_x", to_array(grid_x_));
+    put("grid_y", to_array(grid_y_));
+    put("x", to_array(x_));
+    put("y", to_array(y_));
+    put("flag", to_array(flag_));
+    put("reason", reason_);
+    for (std::size_t p = 0; p < parameters_.size(); ++p) {
+      put(parameters_[p].name, to_array(value_[p]));
+      put(parameters_[p].name + "_error", to_array(error_[p]));
+    }
+    if (contact_column_) put("contact_point", to_array(contact_));
+    put("chi2", to_array(chi2_));
+    put("chi2_per_dof", to_array(chi2_per_dof_));
+    put("residual_sigma", to_array(sigma_));
+    put("pulloff", to_array(pulloff_));
+    put("pulloff_position", to_array(pulloff_position_));
+    put("points", to_array(points_));
+    out["names"] = names;
+    return out;
   }
-  if (contact_column) put("contact_point", to_array(contact));
-  put("chi2", to_array(chi2));
-  put("chi2_per_dof", to_array(chi2_per_dof));
-  put("residual_sigma", to_array(sigma));
-  put("pulloff", to_array(pulloff));
-  put("pulloff_position", to_array(pulloff_position));
-  put("points", to_array(points));
-  out["names"] = names;
-  return out;
-}
+
+ private:
+  py::str reason_name(coatcontact::fit::AfmFlag flag) {
+    auto& name = reasons_[static_cast<std::size_t>(flag)];
+    if (!name) name = py::str(coatcontact::fit::afm_flag_name(flag));
+    return *name;
+  }
+
+  std::vector<coatcontact::fit::AfmBatchParameter> parameters_;
+  bool contact_column_;
+  py::list file_, reason_;
+  std::optional<py::str> last_file_;
+  std::string last_file_text_;
+  std::optional<py::str> reasons_[coatcontact::fit::kAfmFlagCount];
+  std::vector<long> curve_, grid_x_, grid_y_, points_;
+  std::vector<int> flag_;
+  std::vector<double> x_, y_, chi2_, chi2_per_dof_, sigma_, pulloff_, pulloff_position_, contact_;
+  std::vector<std::vector<double>> value_, error_;
+};
 
 // The files of `paths` (a folder: its AFM files by extension, sorted), in order.
 std::vector<std::string> expand_paths(const std::vector<std::string>& paths) {
@@ -511,14 +541,20 @@ std::vector<std::string> expand_paths(const std::vector<std::string>& paths) {
   return files;
 }
 
-std::size_t count_curves(const std::vector<std::string>& files, const py::object& spring_constant, const py::object& sensitivity) {
+// (curves, why unreadable or "") of each file (afm_survey_files): with `tolerate` a file that
+// cannot be read is one flagged row of the run instead of a ValueError.
+std::vector<std::pair<std::size_t, std::string>> survey_files(const std::vector<std::string>& files,
+                                                              const py::object& spring_constant,
+                                                              const py::object& sensitivity, bool tolerate) {
+  std::vector<std::pair<std::size_t, std::string>> out;
   try {
-    std::size_t total = 0;
-    for (std::size_t c : coatcontact::fit::afm_count_curves(files, calibration_of(spring_constant, sensitivity))) total += c;
-    return total;
+    const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
+    py::gil_scoped_release release;
+    for (auto& s : coatcontact::fit::afm_survey_files(files, calibration, tolerate)) out.emplace_back(s.curves, std::move(s.unreadable));
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   }
+  return out;
 }
 
 // Curves [first, first + count) of the run over `files`, fitted with `jobs` threads (0: cores).
@@ -527,19 +563,30 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const std::string& segment, const py::object& tip_min, const py::object& tip_max,
                        const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
                        const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
-                       const py::object& count) {
+                       const py::object& count, const py::object& survey, bool tolerate) {
   namespace fit = coatcontact::fit;
-  std::vector<fit::AfmCurveRow> rows;
   fit::AfmBatchSettings settings;
+  std::optional<Columns> columns;
   try {
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
                            indentation_min, indentation_max, max_force);
+    columns.emplace(settings);
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     fit::AfmBatchOptions options;
     options.jobs = jobs;
     options.skip = first;
     if (!count.is_none()) options.count = count.cast<std::size_t>();
-    options.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) { rows.insert(rows.end(), chunk.begin(), chunk.end()); };
+    if (!survey.is_none()) {
+      for (auto& [curves, why] : survey.cast<std::vector<std::pair<std::size_t, std::string>>>()) {
+        options.survey.push_back({curves, std::move(why)});
+      }
+    }
+    options.unreadable_file_rows = tolerate;
+    // The sink runs on the calling thread, which holds no GIL during the batch.
+    options.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) {
+      py::gil_scoped_acquire acquire;
+      columns->add(chunk);
+    };
     py::gil_scoped_release release;
     fit::afm_fit_batch(files, calibration, settings, options);
   } catch (const coatcontact::InputError& e) {
@@ -547,7 +594,7 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
   } catch (const coatcontact::NumericalError& e) {
     throw std::runtime_error(std::string("numerical failure: ") + e.what());
   }
-  return columns_of(rows, settings);
+  return columns->dict();
 }
 
 // Curves given as arrays: (force, height_piezo, height_measured, segments, spring_constant,
@@ -579,7 +626,9 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   }
-  return columns_of(rows, settings);
+  Columns columns(settings);
+  columns.add(rows);
+  return columns.dict();
 }
 
 }  // namespace
@@ -595,12 +644,13 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none(), py::arg("adhesion") = py::none());
   m.def("expand_paths", &expand_paths, py::arg("paths"));
-  m.def("count_curves", &count_curves, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"));
+  m.def("survey_files", &survey_files, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"),
+        py::arg("tolerate"));
   m.def("fit_map_files", &fit_map_files, py::arg("files"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
-        py::arg("count"));
+        py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false);
   m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),

@@ -71,14 +71,45 @@ def test_synthetic_flags_and_jobs(synthetic):
     same_rows(serial, cc.afm.fit_map(path, radius=10e-6, halfspace=(5e3, 0.5), jobs=2))
 
 
-def test_dask_local_cluster(synthetic):
+def test_dask_local_cluster(synthetic, tmp_path):
     distributed = pytest.importorskip("distributed", reason="python3-distributed (scripts/install-deps.sh)")
     path, _ = synthetic
+    # Several files, one of them unreadable: the workers' shares cross the files.
+    bad = tmp_path / "notes.jpk-force"
+    bad.write_text("not a force curve\n")
+    files = [MAP, str(bad), path]
     serial = cc.afm.fit_map(path, radius=10e-6, halfspace=(5e3, 0.5), jobs=1)
+    with pytest.warns(UserWarning, match="notes.jpk-force"):
+        serial_files = cc.afm.fit_map(files, radius=10e-6, halfspace=(5e3, 0.5), jobs=1)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as client:
         spread = cc.afm.fit_map(path, radius=10e-6, halfspace=(5e3, 0.5), client=client)
+        with pytest.warns(UserWarning, match="notes.jpk-force"):
+            spread_files = cc.afm.fit_map(files, radius=10e-6, halfspace=(5e3, 0.5), client=client)
     same_rows(serial, spread)
+    same_rows(serial_files, spread_files)
+    assert len(spread_files) == 4 + 1 + 36 and list(spread_files["flag"][4:5]) == [8]
+
+
+def test_unreadable_file_is_a_flagged_row(tmp_path):
+    """A non-AFM file with an AFM extension in a folder or a list: one row flagged unreadable
+    (8), a warning naming the file and why, and the other files' curves fitted; a single such
+    file named is a ValueError (issue 25 item 1)."""
+    folder = tmp_path / "mixed"
+    folder.mkdir()
+    (folder / "map.jpk-force-map").write_bytes(open(MAP, "rb").read())
+    bad = folder / "notes.jpk-force"
+    bad.write_text("not a force curve\n")
+    for given in (str(folder), [str(folder / "map.jpk-force-map"), str(bad)]):
+        with pytest.warns(UserWarning, match="notes.jpk-force: not a zip archive"):
+            rows = cc.afm.fit_map(given, radius=10e-6, halfspace=(1e3, 0.5), jobs=1)
+        assert len(rows) == 5
+        flagged = rows["flag"] != 0
+        assert list(rows["file"][flagged]) == [str(bad)] and list(rows["reason"][flagged]) == ["unreadable"]
+        assert list(rows["flag"][flagged]) == [8] and rows["curve"][flagged][0] == 0
+        assert np.all(np.isnan(rows["E"][flagged])) and np.all(rows["E"][~flagged] > 0)
+    with pytest.raises(ValueError, match="notes.jpk-force: not a zip archive"):
+        cc.afm.fit_map(str(bad), radius=10e-6, halfspace=(1e3, 0.5))
 
 
 @pytest.mark.parametrize("kwargs, words", [

@@ -7,7 +7,8 @@
 #  - --jobs 2 gives the table of --jobs 1 byte for byte (but the command line);
 #  - --resume after a cut FILE.partial, and after a run killed by SIGTERM, gives the same table;
 #  - the real maps in data/afm/ (JPK force map 2x2, JPK QI data, AFM Workshop zipped map with the
-#    calibration supplied) and a folder of files are processed;
+#    calibration supplied) and a folder of files are processed; a non-AFM file in a folder or a
+#    list is one unreadable row and the run goes on, a single such FILE exits 2;
 #  - --map-plot writes a PNG; bad options exit 2 naming the option, with no output;
 #  - a synthetic map of adhesive retracts on a coating (make_afm_map --jkr: the library's JKR
 #    spring model) fitted with --model jkr (E1, w, contact point, baseline, tilt free) at
@@ -113,6 +114,27 @@ cp "$data/fmt-jpk-fd_map2x2_extracted.jpk-force-map" "$data/fmt-jpk-fd_spot3-019
 [ "$(grep -vc '^#' "$work/stdout.tsv")" -eq 5 ] || fail "two files to stdout: 5 rows expected"
 tail -1 "$work/stdout.tsv" | grep -q '^# flagged curves: ' || fail "stdout table does not end with the flagged count"
 
+# A non-AFM file with an AFM extension in a folder or a list of files is one flagged row
+# (unreadable; the header and stderr name it and why) and the run goes on, exit 0 (issue 25 item 1).
+mkdir -p "$work/mixed"
+cp "$data/fmt-jpk-fd_map2x2_extracted.jpk-force-map" "$work/mixed/"
+echo "not a force curve" >"$work/mixed/notes.jpk-force"
+"$cli" afm fit "$work/mixed" --radius 10um --halfspace 1kPa,0.5 --output "$work/mixed.tsv" 2>"$work/mixed.err" \
+  || fail "folder with a non-AFM file: exit $? :: $(cat "$work/mixed.err")"
+[ "$(grep -vc '^#' "$work/mixed.tsv")" -eq 5 ] || fail "folder with a non-AFM file: 5 rows expected"
+[ "$(awk -F'\t' '$0 !~ /^#/ && $1 ~ /notes.jpk-force$/ && $2 == 0 && $7 == 8 && $8 == "unreadable"' "$work/mixed.tsv" | wc -l)" -eq 1 ] \
+  || fail "folder with a non-AFM file: no unreadable row for it"
+[ "$(awk -F'\t' '$0 !~ /^#/ && $7 == 0' "$work/mixed.tsv" | wc -l)" -eq 4 ] || fail "folder with a non-AFM file: the map's 4 curves not fitted"
+grep -q '^# flagged curves: 1 of 5 (unreadable 1)$' "$work/mixed.tsv" || fail "folder with a non-AFM file: header count"
+grep -q '^# file 1: .*notes.jpk-force (unreadable, one flagged row: not a zip archive' "$work/mixed.tsv" \
+  || fail "folder with a non-AFM file: the header does not say why: $(grep '^# file' "$work/mixed.tsv")"
+grep -q 'flagged: 1 of 5 (unreadable 1)' "$work/mixed.err" && grep -q 'unreadable file: .*notes.jpk-force: not a zip archive' "$work/mixed.err" \
+  || fail "folder with a non-AFM file: stderr: $(cat "$work/mixed.err")"
+"$cli" afm fit "$work/mixed/notes.jpk-force" "$data/fmt-jpk-fd_spot3-0192.jpk-force" --radius 10um --halfspace 1kPa,0.5 \
+  >"$work/mixed_list.tsv" 2>"$work/mixed_list.err" || fail "list with a non-AFM file: exit $? :: $(cat "$work/mixed_list.err")"
+[ "$(grep -vc '^#' "$work/mixed_list.tsv")" -eq 2 ] && tail -1 "$work/mixed_list.tsv" | grep -q '^# flagged curves: 1 of 2 (unreadable 1)$' \
+  || fail "list with a non-AFM file: rows or count"
+
 # ---- bad options: exit 2, the option named, no output ----------------------------------------
 expect_error() {  # FRAGMENT... -- ARGS
   local fragments=()
@@ -135,6 +157,10 @@ expect_error "--plot" "--map-plot" -- afm fit "$map" "${model[@]}" --plot "$work
 expect_error "--index" "one FILE" -- afm fit "$map" "$map" "${model[@]}" --index 1 --output "$work/bad.tsv"
 expect_error "given twice" -- afm fit "$map" "$map" "${model[@]}" --output "$work/bad.tsv"
 expect_error "no such file" -- afm fit "$map" "$work/none.jpk-force" "${model[@]}" --output "$work/bad.tsv"
+# A single FILE named that cannot be read is the run's input: exit 2, no output (with or without
+# the batch options).
+expect_error "notes.jpk-force" "not a zip archive" -- afm fit "$work/mixed/notes.jpk-force" "${model[@]}" --output "$work/bad.tsv"
+expect_error "notes.jpk-force" "not a zip archive" -- afm fit "$work/mixed/notes.jpk-force" "${model[@]}" --jobs 2 --output "$work/bad.tsv"
 echo "not a table" >"$work/bad.tsv.partial.src"
 cp "$work/full_partial" "$work/other.partial"
 sed -i 's/^# sample: .*/# sample: another/' "$work/other.partial"

@@ -161,7 +161,7 @@ CurveSource::~CurveSource() = default;
 const std::string& CurveSource::path() const { return impl_->path; }
 FileFormat CurveSource::format() const { return impl_->format; }
 std::size_t CurveSource::size() const {
-  return impl_->archive ? impl_->layout.curve_folders.size() : impl_->curves.size();
+  return impl_->archive ? impl_->layout.size() : impl_->curves.size();
 }
 
 ForceCurve CurveSource::read(std::size_t index) const {

@@ -12,8 +12,12 @@
 namespace coatcontact::afm::detail {
 
 struct JpkLayout {
-  std::vector<std::string> curve_folders;  // "" for a single curve, "index/N/" for a map's
+  // A map's curve folders "index/N/" by their numbers N, sorted (8 bytes per curve: a map
+  // holds up to 65536 curves); empty with `single` for a single curve (folder "").
+  std::vector<long> curve_numbers;
   bool single = false;
+  std::size_t size() const { return single ? 1 : curve_numbers.size(); }
+  std::string folder(std::size_t index) const;  // "" or "index/N/"; std::out_of_range past size()
   Properties general, shared;  // header.properties, shared-data/header.properties
   std::string format;
 };

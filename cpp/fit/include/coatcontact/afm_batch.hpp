@@ -1,10 +1,12 @@
 // Batch fit of many AFM force curves (maps, QI data, many files; THEORY.md section 15, "Many curves"): one
 // result row per curve. A curve that cannot be fitted gets a flag and its reason, and the batch
-// goes on; only a file that cannot be opened at all stops it (InputError). The curves are read
+// goes on; a file that cannot be opened at all stops it (InputError) unless the caller asks for
+// it as a flagged row (AfmBatchOptions::unreadable_file_rows). The curves are read
 // one at a time from each file (afm::CurveSource) in chunks: a chunk is fitted in parallel (the
 // library's one parallel loop, one of whose units reads the next chunk meanwhile) and handed
 // over in curve order, so the memory of a run is two chunks of curves plus the rows the caller
-// keeps. The per-curve fit
+// keeps (and libzip's central directory of the archive being read: THEORY.md section 15,
+// "Memory of a run"). The per-curve fit
 // is afm_fit (coatcontact/afm_fit.hpp) on the problem given, unchanged: every model and free
 // parameter it supports runs in the batch; each free estimate has its column (afm_batch_parameters).
 #pragma once
@@ -91,11 +93,29 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
 // what is known of the curve (afm::CurveSource::place).
 AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::exception& error);
 
+// What a run knows of one file before fitting: its curves, or why it cannot be read at all.
+struct AfmFileSurvey {
+  std::size_t curves = 0;  // 1 for an unreadable file: its one flagged row
+  std::string unreadable;  // empty, or the reader's message (naming the file and why)
+};
+
+// Opens each file once to count its curves (the archive is closed again). A file that cannot
+// be opened: InputError, or with `tolerate` an AfmFileSurvey with its reason (a file that does
+// not exist or is not a regular file stays an InputError: the command line names it wrongly).
+std::vector<AfmFileSurvey> afm_survey_files(const std::vector<std::string>& files, const afm::Calibration& calibration,
+                                            bool tolerate);
+
 struct AfmBatchOptions {
   unsigned jobs = 0;             // threads; 0: the machine's cores
   std::size_t chunk_curves = 0;  // curves per chunk; 0: 16 x jobs
   std::size_t skip = 0;          // the first `skip` curves of the run (over all files) are not fitted (resume)
   std::size_t count = static_cast<std::size_t>(-1);  // curves fitted after them at most (a share of the run)
+  // The files' afm_survey_files, when the caller has it (a share of a run on a cluster: no file
+  // is opened to be counted, and only the files of the share are opened); empty: surveyed here.
+  std::vector<AfmFileSurvey> survey;
+  // A file that cannot be opened (not a force-curve file, corrupt) becomes one row flagged
+  // unreadable with the reason, and the run goes on; false: InputError (a single FILE named).
+  bool unreadable_file_rows = false;
   // Rows of each chunk, in curve order. Called on the calling thread.
   std::function<void(const std::vector<AfmCurveRow>& rows)> sink;
   // (curves done including skipped, total); false stops the run (Interrupted after the last
@@ -109,9 +129,6 @@ struct AfmBatchSummary {
   std::size_t by_flag[kAfmFlagCount] = {};
   std::string first_message[kAfmFlagCount];  // the first reason of each flag, for a summary
 };
-
-// The number of curves in each file (opens each; InputError if one cannot be opened).
-std::vector<std::size_t> afm_count_curves(const std::vector<std::string>& files, const afm::Calibration& calibration);
 
 AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::Calibration& calibration,
                               const AfmBatchSettings& settings, const AfmBatchOptions& options);
