@@ -464,6 +464,7 @@ std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vec
     max_delta = std::max(max_delta, delta[i]);
   }
   if (problem.model == AfmModel::kJkr) return internal::afm_jkr_model_force(problem, tip_position);
+  if (problem.model == AfmModel::kMd) return internal::afm_md_model_force(problem, tip_position);
   std::vector<double> f(delta.size(), problem.baseline);
   if (problem.coating) {
     CoatingForces forces(problem);
@@ -574,10 +575,11 @@ void afm_residual_statistics(AfmFitResult& r, const std::vector<double>& force, 
 
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
   const auto start = std::chrono::steady_clock::now();
-  const bool adhesive = problem.model == AfmModel::kJkr;
+  const bool adhesive = problem.model != AfmModel::kHertz;
   const int free_count = int(problem.free.modulus) + int(problem.free.contact_point) + int(problem.free.baseline) +
                          int(problem.free.thickness) + int(adhesive && problem.free.work) + int(adhesive && problem.free.tilt);
   check_fit_input(z, force, problem, free_count);
+  if (problem.model == AfmModel::kMd) return internal::afm_fit_md(z, force, problem, free_count);
   if (adhesive) return internal::afm_fit_jkr(z, force, problem, free_count);
   if (problem.free.work || problem.free.tilt) {
     throw InputError("afm fit: w and the baseline tilt are parameters of the adhesive (jkr) model only");

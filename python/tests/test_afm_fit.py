@@ -77,11 +77,13 @@ def test_mapping_with_afm_tool_keys():
 
 def test_refusals():
     z, F = synthetic(1)
-    with pytest.raises(ValueError, match="Maugis-Dugdale.*allowed: 'hertz', 'jkr'"):
+    with pytest.raises(ValueError, match="model: 'dmt' is not a model; allowed: 'hertz', 'jkr', 'md'"):
+        cc.afm.fit((z, F), model="dmt", radius=5e-6, halfspace=(1.0, 0.5))
+    with pytest.raises(ValueError, match="spring_constant: the md model"):
         cc.afm.fit((z, F), model="md", radius=5e-6, halfspace=(1.0, 0.5))
     with pytest.raises(ValueError, match="spring_constant"):
         cc.afm.fit((z, F), model="jkr", radius=5e-6, halfspace=(1.0, 0.5))
-    with pytest.raises(ValueError, match="model='jkr' only"):
+    with pytest.raises(ValueError, match="model='jkr' or 'md' only"):
         cc.afm.fit((z, F), radius=5e-6, halfspace=(1.0, 0.5), work=1e-3)
     with pytest.raises(ValueError, match="a coating takes a sphere"):
         cc.afm.fit((z, F), shape=("punch", 1e-6), film=(1e3, 0.5), substrate=(1e9, 0.3), thickness=1e-6)

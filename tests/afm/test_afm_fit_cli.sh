@@ -91,7 +91,8 @@ grep -q "warning: Maugis's lambda = .* is below 5" "$work/stderr" || fail "jkr s
 grep -q "^# warning: Maugis's lambda" "$work/spotj.tsv" || fail "jkr spot3: no lambda warning in the header"
 
 # ---- refusals ----------------------------------------------------------------------------------
-expect_error 2 "--model" "'md'" "Maugis-Dugdale" "--range" "allowed: hertz, jkr" -- afm fit "$spot" --model md --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "'dmt'" "allowed: hertz, jkr, md" -- afm fit "$spot" --model dmt --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "md takes a sphere" -- afm fit "$spot" --model md --shape cone:70deg --halfspace 1kPa,0.5
 expect_error 2 "--work" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --work 1mJ/m2
 expect_error 2 "--range" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --range 1nm
 expect_error 2 "--model" "jkr takes a sphere" -- afm fit "$spot" --model jkr --shape cone:70deg --halfspace 1kPa,0.5
