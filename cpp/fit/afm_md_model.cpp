@@ -31,6 +31,10 @@ constexpr int kScanPerDecade = 12;
 constexpr int kBranchNodes = 128;
 // The table's a/t range (MaugisDugdaleOptions' default), kept inside by the scan and by eta.
 constexpr double kTableAOverT[2] = {1e-4, 1e2};
+// A half-space's eta = t/L at most: the scan then starts at a_bar = 1e-4 kMaxEta = 0.1, and
+// trials whose contact reaches beyond 1e2 t (a weak adhesion, L tiny) are not representable.
+constexpr double kMaxEta = 1e3;
+constexpr double kForceLimit = 1e3;
 
 // The Maugis-Dugdale curves of one fit: one stack's model (half-space; a coating with E1 fixed)
 // or one per node E1_j = E1 10^(j/kModulusNodesPerDecade) (a coating with E1 free), each with its
@@ -60,8 +64,10 @@ class MdCurves {
     const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
     const double a_top = std::sqrt(radius * std::max(max_indentation, 0.0));
     // The table's length unit t: the coating's; on a half-space any, chosen so that the radii
-    // the branch needs lie in the table (eta = t/L in [1, 10]).
-    const double t = coated_ ? trial.thickness : length * std::clamp(2.0 * a_top / (kTableAOverT[1] * length), 1.0, 10.0);
+    // the branch needs (up to a few times the Hertz radius a_top) lie in the table:
+    // eta = t/L in [1, kMaxEta].
+    const double t = coated_ ? trial.thickness
+                             : length * std::clamp(4.0 * a_top / (kTableAOverT[1] * length), 1.0, kMaxEta);
     // The nodes and weights of the trial's modulus (one node unless E1 is free on a coating).
     std::vector<std::pair<const MaugisDugdaleModel*, double>> mix;
     std::vector<double> node_reduced;
@@ -82,6 +88,12 @@ class MdCurves {
     }
     // (delta, F) at radius a (a = 0: the curve's end): the weighted nodes' SI values.
     const auto point = [&](double a) -> std::pair<double, double> {
+      if (a > 0.0 && !(a / t >= kTableAOverT[0] && a / t <= kTableAOverT[1])) {
+        // (the direct solve would take ~0.03 s a point)
+        throw NumericalError("afm fit: the Maugis-Dugdale branch needs a/t = " + short_text(a / t) +
+                             ", outside the cohesive-zone table's [" + short_text(kTableAOverT[0]) + ", " +
+                             short_text(kTableAOverT[1]) + "]");
+      }
       double delta = 0.0, force = 0.0;
       for (std::size_t k = 0; k < mix.size(); ++k) {
         const double l = std::cbrt(kPi * trial.work * radius * radius / node_reduced[k]);
@@ -102,9 +114,19 @@ class MdCurves {
     const double lo = std::max(kScanLow, 1.0001 * kTableAOverT[0] * eta);
     const double hi = std::min(kScanHigh, 0.9999 * kTableAOverT[1] * eta);
     if (!(lo < hi)) throw NumericalError("afm fit: the Maugis-Dugdale scan leaves the table (a/t range)");
-    return std::make_unique<SpringBranch>(point, length, lo, hi, kScanPerDecade, problem_.spring_constant,
-                                          max_indentation, a_top, kBranchNodes, point(0.0), reduced);
+    auto made = std::make_unique<SpringBranch>(point, length, lo, hi, kScanPerDecade, problem_.spring_constant,
+                                               max_indentation, a_top, kBranchNodes, point(0.0), reduced);
+    if (force_limit_ > 0.0 && !(std::abs(made->jump_force()) <= force_limit_)) {
+      throw NumericalError("afm fit: a Maugis-Dugdale trial's jump-off force " + short_text(made->jump_force()) +
+                           " N exceeds kForceLimit times the data's force range");
+    }
+    return made;
   }
+
+  // Trials whose jump-off force exceeds kForceLimit times `range` [N] (the data's) cost +inf:
+  // they cannot describe the data, and the least-squares sums of the profile (closed-form
+  // normal equations) lose every digit to cancellation for model forces ~1e8 times the data's.
+  void limit_force(double range) { force_limit_ = kForceLimit * range; }
 
   long solves() const {
     long n = 0;
@@ -137,7 +159,7 @@ class MdCurves {
 
   const AfmFitProblem& problem_;
   bool coated_;
-  double poisson_, hint_, h0_;
+  double poisson_, hint_, h0_, force_limit_ = 0.0;
   std::map<long, std::unique_ptr<MaugisDugdaleModel>> models_;
 };
 
@@ -164,6 +186,10 @@ AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>&
                         int free_count) {
   check_md_problem(problem);
   MdCurves curves(problem);
+  if (!force.empty()) {
+    const auto [lo, hi] = std::minmax_element(force.begin(), force.end());
+    curves.limit_force(*hi - *lo);
+  }
   SpringModel model;
   model.name = "Maugis-Dugdale";
   model.branch = [&](const AdhesiveTrial& t, double max_indentation) { return curves.branch(t, max_indentation); };
