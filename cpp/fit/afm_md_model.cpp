@@ -31,9 +31,6 @@ constexpr int kScanPerDecade = 12;
 constexpr int kBranchNodes = 128;
 // The table's a/t range (MaugisDugdaleOptions' default), kept inside by the scan and by eta.
 constexpr double kTableAOverT[2] = {1e-4, 1e2};
-// A half-space's eta = t/L at most: the scan then starts at a_bar = 1e-4 kMaxEta = 0.1, and
-// trials whose contact reaches beyond 1e2 t (a weak adhesion, L tiny) are not representable.
-constexpr double kMaxEta = 1e3;
 constexpr double kForceLimit = 1e3;
 
 // The Maugis-Dugdale curves of one fit: one stack's model (half-space; a coating with E1 fixed)
@@ -65,9 +62,8 @@ class MdCurves {
     const double a_top = std::sqrt(radius * std::max(max_indentation, 0.0));
     // The table's length unit t: the coating's; on a half-space any, chosen so that the radii
     // the branch needs (up to a few times the Hertz radius a_top) lie in the table:
-    // eta = t/L in [1, kMaxEta].
-    const double t = coated_ ? trial.thickness
-                             : length * std::clamp(4.0 * a_top / (kTableAOverT[1] * length), 1.0, kMaxEta);
+    // eta = t/L >= 1.
+    const double t = coated_ ? trial.thickness : length * std::max(4.0 * a_top / (kTableAOverT[1] * length), 1.0);
     // The nodes and weights of the trial's modulus (one node unless E1 is free on a coating).
     std::vector<std::pair<const MaugisDugdaleModel*, double>> mix;
     std::vector<double> node_reduced;
@@ -109,10 +105,12 @@ class MdCurves {
       }
       return {delta, force};
     };
-    // The scan inside the table's a/t (eta = t/L: a/t = a_bar/eta).
+    // The scan inside the table's a/t (eta = t/L: a/t = a_bar/eta). A weak adhesion (L small
+    // against the table's smallest radius) scans from there over half a decade: its minimum of
+    // Z is the curve's end (DMT's limit), found as the scan's first point.
     const double eta = t / length;
     const double lo = std::max(kScanLow, 1.0001 * kTableAOverT[0] * eta);
-    const double hi = std::min(kScanHigh, 0.9999 * kTableAOverT[1] * eta);
+    const double hi = std::min(std::max(kScanHigh, 3.0 * lo), 0.9999 * kTableAOverT[1] * eta);
     if (!(lo < hi)) throw NumericalError("afm fit: the Maugis-Dugdale scan leaves the table (a/t range)");
     auto made = std::make_unique<SpringBranch>(point, length, lo, hi, kScanPerDecade, problem_.spring_constant,
                                                max_indentation, a_top, kBranchNodes, point(0.0), reduced);
