@@ -628,7 +628,8 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
                                      format_parameter(problem.surface_force_range, "z0") + " m, --range)"});
     items.push_back({"Maugis lambda", format_parameter(r.maugis_lambda, "lambda") + " (Dugdale stress w/(0.97 z0); " +
                                           (problem.model == fit::AfmModel::kMd
-                                               ? "the Maugis-Dugdale table holds lambda in " + coatcontact::lambda_range_text()
+                                               ? "the Maugis-Dugdale table holds lambda in [" + format_parameter(kMinimumLambda, "lambda") + ", " +
+                                                     format_parameter(kMaximumLambda, "lambda") + "]"
                                                : "JKR needs lambda >= " + format_parameter(fit::kJkrMinimumLambda, "lambda")) +
                                           ")"});
     for (const std::string& warning : r.warnings) {
