@@ -103,6 +103,14 @@ grep -q '^# model: F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale' "$
 grep -qE '^# Maugis lambda: [0-9.e+-]+ .*table holds lambda in \[0.001, 10000\]' "$work/md.tsv" || fail "md: lambda line"
 head -c 8 "$work/md.png" | od -An -c | grep -q 'P   N   G' || fail "md --plot did not write a PNG"
 grep -qE 'NaN|nan|inf' "$work/md.tsv" && fail "md output holds a NaN or inf"
+# The spot3 retract has no adhesion to speak of: w runs toward 0, lambda below the table's 1e-3,
+# and the spring holds the tip down to the curve's end: both warnings, on stderr and in the header.
+"$cli" afm fit "$spot" --model md --radius 10um --halfspace 10kPa,0.5 --output "$work/spotmd.tsv" 2>"$work/stderr" \
+  || fail "md spot3: $(cat "$work/stderr")"
+grep -q "warning: Maugis's lambda = .* is below 0.001: outside the cohesive-zone table" "$work/stderr" \
+  || fail "md spot3: no lambda warning on stderr"
+grep -q "^# warning: Maugis's lambda = .*the spring holds the tip down to the curve's end" "$work/spotmd.tsv" \
+  || fail "md spot3: no curve's-end warning in the header"
 
 # ---- refusals ----------------------------------------------------------------------------------
 expect_error 2 "--model" "'dmt'" "allowed: hertz, jkr, md" -- afm fit "$spot" --model dmt --radius 10um --halfspace 1kPa,0.5
