@@ -25,6 +25,7 @@
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/cli_support.hpp"
+#include "coatcontact/limits.hpp"
 #include "commands.hpp"
 
 namespace coatcontact::cli {
@@ -282,13 +283,15 @@ int run_export(const Args& args) {
 
 const std::vector<OptionSpec> kFitSpec = {
     {"--index", "N", "fit only curve N of a map (0-based; `afm show` lists them); without it every curve, one row each", false},
-    {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default) or jkr (adhesive: JKR of a sphere on the half-space or "
+    {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default), jkr (adhesive: JKR of a sphere on the half-space or "
                          "the coating through the cantilever's spring k, the stable branch and its jump-off; default segment "
-                         "retract)", false},
-    {"--work", "W", "jkr: the work of adhesion w [J/m2] (the value if fixed; if free, the centre of its search; default "
+                         "retract) or md (the same with a Maugis-Dugdale zone of range h0 = 0.97 z0, --range: for lambda "
+                         "below ~5)", false},
+    {"--work", "W", "jkr, md: the work of adhesion w [J/m2] (the value if fixed; if free, the centre of its search; default "
                     "from the segment's most tensile force)", false},
-    {"--range", "Z0", "jkr: the surface-force range z0 of Tabor's and Maugis's lambda [m] (default 0.3nm)", false},
-    {"--tilt", "M", "jkr: the baseline slope [N/m] when it is fixed (default 0; free by default)", false},
+    {"--range", "Z0", "jkr, md: the surface-force range z0 [m] (default 0.3nm): Tabor's and Maugis's lambda, and md's "
+                      "Dugdale range h0 = w/sigma0 = 0.97 z0", false},
+    {"--tilt", "M", "jkr, md: the baseline slope [N/m] when it is fixed (default 0; free by default)", false},
     {"--radius", "R", "tip radius of a spherical (paraboloidal) tip [m], e.g. 10um", false},
     {"--shape", "SPEC", "the tip instead: sphere:R, cone:BETA, pyramid:THETA (face half angle; the cone of equal area), "
                         "punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (as `contact --shape`)", false},
@@ -299,7 +302,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--free", "LIST", "free parameters: E, contact_point, baseline on a half-space (default all three); "
                        "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline); "
                        "tilt adds a baseline slope (hertz: fitted instead of the preprocessing's being subtracted); "
-                       "jkr adds w and tilt (default E or E1, w, contact_point, baseline, tilt)", false},
+                       "jkr and md add w and tilt (default E or E1, w, contact_point, baseline, tilt)", false},
     {"--contact-point", "Z", "the contact point [m, tip position] when it is fixed", false},
     {"--baseline", "B", "the force baseline [N] when it is fixed", false},
     {"--segment", "KIND", "approach (default) or retract", false},
@@ -422,18 +425,17 @@ std::pair<double, std::string> prefix_of(double magnitude) {
 // The model, tip, sample, free parameters, segment and fit range of `afm fit` (one curve or a batch).
 AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const std::string model = arguments.get("--model").value_or("hertz");
-  if (model == "md" || model == "maugis-dugdale") {
-    throw InputError("--model: '" + model + "' (Maugis-Dugdale through the cantilever) is not available in afm fit; "
-                     "allowed: hertz, jkr (jkr reports Maugis's lambda for the surface-force range --range)");
+  const bool md = model == "md" || model == "maugis-dugdale";
+  if (model != "hertz" && model != "jkr" && !md) {
+    throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr, md");
   }
-  if (model != "hertz" && model != "jkr") throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr");
-  const bool jkr = model == "jkr";
+  const bool jkr = model == "jkr" || md;  // the adhesive models share their options
   fit::AfmFitProblem problem;
   problem.tip = parse_tip(arguments);
   if (jkr) {
-    problem.model = fit::AfmModel::kJkr;
+    problem.model = md ? fit::AfmModel::kMd : fit::AfmModel::kJkr;
     if (problem.tip.kind != fit::AfmTip::Kind::kParaboloid) {
-      throw InputError("--model: jkr takes a sphere tip (--radius R or --shape sphere:R); got " + problem.tip.description);
+      throw InputError("--model: " + model + " takes a sphere tip (--radius R or --shape sphere:R); got " + problem.tip.description);
     }
     if (auto text = arguments.get("--work")) problem.work = parse_quantity(*text, Quantity::kEnergy, "--work");
     if (auto text = arguments.get("--range")) {
@@ -443,7 +445,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     if (auto text = arguments.get("--tilt")) problem.tilt = parse_number(*text, "--tilt");
   } else {
     for (const char* option : {"--work", "--range", "--tilt"}) {
-      if (arguments.has(option)) throw InputError(std::string(option) + ": needs --model jkr");
+      if (arguments.has(option)) throw InputError(std::string(option) + ": needs --model jkr or md");
     }
   }
   const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
@@ -531,7 +533,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
 // The help text of `afm fit` (one curve, or one row per curve of many).
 void print_fit_help() {
   std::cout << usage("afm fit",
-                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                      "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                      "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
                      "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
@@ -554,6 +556,9 @@ void print_fit_help() {
                      "spring k (the file's, or --spring-constant), zero past its jump-off; E (E1, t), w, z_c, b\n"
                      "and the tilt m free by default. Reports Tabor's mu and Maugis's lambda for the surface-\n"
                      "force range --range and warns when lambda is below the JKR range.\n"
+                     "--model md: the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with\n"
+                     "sigma0 = w/h0, h0 = 0.97 z0 (--range), so lambda follows w and E; warns when lambda leaves\n"
+                     "the table's [1e-3, 1e4] or the spring holds the tip down to the curve's end (a = 0).\n"
                      "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
                      "by extension) give one row per curve instead: file, curve, grid index and position,\n"
                      "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
@@ -570,12 +575,16 @@ void print_fit_help() {
 
 // The model, tip and sample lines of a one-curve fit's header.
 void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem) {
-  const bool jkr = problem.model == fit::AfmModel::kJkr;
-  items.push_back({"model", jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
-                                  "under the spring k (0 past its jump-off)"
-                      : problem.free.tilt
-                          ? "F = b + m (z - z_c) + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"
-                          : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
+  const bool md = problem.model == fit::AfmModel::kMd;
+  items.push_back({"model", md    ? "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
+                                    "h0 = 0.97 z0) of the sphere on the sample on the branch stable under the spring k (0 past its "
+                                    "jump-off)"
+                            : jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
+                                    "under the spring k (0 past its jump-off)"
+                            : problem.free.tilt
+                                ? "F = b + m (z - z_c) + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"
+                                : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
   items.push_back({"tip", problem.tip.description});
   if (problem.coating) {
     const fit::AfmCoating& c = *problem.coating;
@@ -593,7 +602,7 @@ void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items
 // warnings also to stderr).
 void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem,
                        const fit::AfmFitResult& r, const std::string& modulus_name, const fit::AfmPulloff& pulloff) {
-  const bool jkr = problem.model == fit::AfmModel::kJkr;
+  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
                                                                 : format_parameter(r.modulus, modulus_name) + " (fixed)"});
   if (problem.coating) {
@@ -623,8 +632,12 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
                                            format_parameter(r.jump_off_indentation, "jump-off indentation") + " m"});
     items.push_back({"Tabor mu", format_parameter(r.tabor_mu, "mu") + " (surface-force range z0 = " +
                                      format_parameter(problem.surface_force_range, "z0") + " m, --range)"});
-    items.push_back({"Maugis lambda", format_parameter(r.maugis_lambda, "lambda") + " (Dugdale stress w/(0.97 z0); JKR needs lambda >= " +
-                                          format_parameter(fit::kJkrMinimumLambda, "lambda") + ")"});
+    items.push_back({"Maugis lambda", format_parameter(r.maugis_lambda, "lambda") + " (Dugdale stress w/(0.97 z0); " +
+                                          (problem.model == fit::AfmModel::kMd
+                                               ? "the Maugis-Dugdale table holds lambda in [" + format_parameter(kMinimumLambda, "lambda") + ", " +
+                                                     format_parameter(kMaximumLambda, "lambda") + "]"
+                                               : "JKR needs lambda >= " + format_parameter(fit::kJkrMinimumLambda, "lambda")) +
+                                          ")"});
     for (const std::string& warning : r.warnings) {
       items.push_back({"warning", warning});
       std::cerr << "coatcontact afm fit: warning: " << warning << "\n";
@@ -645,7 +658,7 @@ std::string fit_plot_settings(const std::string& term, const std::string& path, 
                               const fit::AfmFitProblem& problem, const fit::AfmFitResult& r,
                               const std::vector<double>& z_segment, const std::vector<double>& f_segment,
                               const fit::AfmPulloff& pulloff) {
-  const bool jkr = problem.model == fit::AfmModel::kJkr;
+  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   double z_big = 0.0, f_big = 0.0;
   for (std::size_t i = 0; i < z_segment.size(); ++i) {
     z_big = std::max(z_big, std::abs(z_segment[i]));
@@ -697,7 +710,7 @@ int run_fit_curve(const Args& args) {
     const std::string& segment_name = setup.segment_name;
     const afm::SegmentKind kind = setup.kind;
     const fit::AfmRange& range = setup.range;
-    const bool jkr = problem.model == fit::AfmModel::kJkr;
+    const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
     std::optional<std::string> plot_path = arguments.get("--plot");
     std::string term;
     if (plot_path) {
@@ -727,7 +740,7 @@ int run_fit_curve(const Args& args) {
     if (jkr) {
       problem.spring_constant = curve.metadata.spring_constant;
       if (!(problem.spring_constant > 0.0)) {
-        throw InputError(path + ": the jkr model needs the cantilever's spring constant; the file has none (give --spring-constant K)");
+        throw InputError(path + ": the adhesive model needs the cantilever's spring constant; the file has none (give --spring-constant K)");
       }
     }
     const std::vector<double> tip = curve.tip_position();

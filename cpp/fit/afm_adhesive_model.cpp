@@ -135,118 +135,33 @@ std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate
   return {node->values.begin(), node->values.begin() + static_cast<long>(count)};
 }
 
-// Parameters of one trial.
-struct Trial {
-  double modulus = 0.0;    // E (half-space) or E1 [Pa]
-  double work = 0.0;       // w [J/m2]
-  double thickness = 0.0;  // t [m] (coating)
-};
+using Trial = internal::AdhesiveTrial;
+using Branch = internal::SpringBranch;
 
-// The JKR branch F(delta) under spring control for one trial: (delta, F) at kBranchNodes
-// radii from a_s (the minimum of delta + F/k) up past the deepest indentation, F against
-// delta by a cubic spline; off contact (delta <= delta_s) zero; past the last node the power
-// law of the last two nodes (trial contact points only).
-class Branch {
- public:
-  Branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep, const Trial& trial, double max_indentation)
-      : sweep_(std::move(sweep)), trial_(trial), radius_(problem.tip.radius), spring_(problem.spring_constant) {
-    reduced_ = trial.modulus / (1.0 - problem.poisson * problem.poisson);
-    if (!(reduced_ > 0.0) || !std::isfinite(reduced_) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
-        (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
-      throw NumericalError("afm fit: a JKR trial left the finite positive parameters");
-    }
-    length_ = std::cbrt(kPi * trial.work * radius_ * radius_ / reduced_);
-    // a_s: the global minimum of Z = delta + F/k on the scan, polished by Brent.
-    const int count = static_cast<int>(std::ceil(std::log10(kScanHigh / kScanLow) * kScanPerDecade)) + 1;
-    std::vector<double> grid(count), z(count);
-    int best = 0;
-    for (int k = 0; k < count; ++k) {
-      grid[k] = length_ * kScanLow * std::pow(kScanHigh / kScanLow, k / (count - 1.0));
-      const auto [d, f] = point(grid[k]);
-      z[k] = d + f / spring_;
-      if (z[k] < z[best]) best = k;
-    }
-    if (best == 0 || best + 1 == count) {
-      throw NumericalError("afm fit: delta + F/k has no minimum in a/L_a [" + short_text(kScanLow) + ", " +
-                           short_text(kScanHigh) + "] (no jump-off through the spring)");
-    }
-    a_s_ = grid[best];
-    const auto zof = [&](double a) {
-      const auto [d, f] = point(a);
-      return d + f / spring_;
-    };
-    const auto found = coatcontact::detail::brent_minimum(zof, grid[best - 1], z[best - 1], grid[best], z[best],
-                                                          grid[best + 1], z[best + 1], {0.0, 1e-10, 100});
-    if (found) a_s_ = found->x;
-    std::tie(jump_delta_, jump_force_) = point(a_s_);
-    // The top radius: delta(a_top) >= the deepest indentation (bounded doubling).
-    double a_top = std::max(2.0 * a_s_, std::sqrt(radius_ * std::max(max_indentation, 0.0)));
-    for (int k = 0; k < 80 && point(a_top).first < max_indentation; ++k) a_top *= 2.0;
-    a_top_ = a_top;
-    for (int k = 0; k < kBranchNodes; ++k) {
-      const double a = a_s_ * std::pow(a_top / a_s_, k / (kBranchNodes - 1.0));
-      const auto [d, f] = point(a);
-      if (!std::isfinite(d) || !std::isfinite(f)) throw NumericalError("afm fit: the JKR branch is not finite");
-      if (!delta_.empty() && !(d > delta_.back())) continue;  // a second minimum of delta: keep the monotone part
-      delta_.push_back(d);
-      force_.push_back(f);
-      a_max_ = a;
-    }
-    if (delta_.size() < 8) throw NumericalError("afm fit: the JKR branch has too few monotone nodes");
-    const std::size_t n = delta_.size();
-    const double d1 = delta_[n - 1] - jump_delta_, d0 = delta_[n - 2] - jump_delta_;
-    last_slope_ = force_[n - 1] > 0.0 && force_[n - 2] > 0.0 && d0 > 0.0
-                      ? std::log(force_[n - 1] / force_[n - 2]) / std::log(d1 / d0)
-                      : 1.5;
-    interp_ = gsl_interp_alloc(gsl_interp_cspline, n);
-    accel_ = gsl_interp_accel_alloc();
-    gsl_interp_init(interp_, delta_.data(), force_.data(), n);
+// The JKR branch F(delta) under spring control for one trial (internal::SpringBranch): the
+// scan of delta + F/k over a/L_a in [kScanLow, kScanHigh], kBranchNodes radii from a_s.
+std::unique_ptr<Branch> jkr_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
+                                   const Trial& trial, double max_indentation) {
+  const double reduced = trial.modulus / (1.0 - problem.poisson * problem.poisson);
+  if (!(reduced > 0.0) || !std::isfinite(reduced) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
+      (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
+    throw NumericalError("afm fit: a JKR trial left the finite positive parameters");
   }
-  ~Branch() {
-    if (interp_) gsl_interp_free(interp_);
-    if (accel_) gsl_interp_accel_free(accel_);
-  }
-  Branch(const Branch&) = delete;
-  Branch& operator=(const Branch&) = delete;
-
+  const double radius = problem.tip.radius;
+  const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
   // (delta, F) at contact radius a [THEORY.md section 5, steps 3-4].
-  std::pair<double, double> point(double a) const {
+  const auto point = [&](double a) -> std::pair<double, double> {
     Reduced v;
-    if (sweep_) v = sweep_->at(a / trial_.thickness);
-    const double fp = -std::sqrt(2.0 * kPi * a * trial_.work / reduced_) / v.gamma1;  // delta_fp
-    const double delta = a * a / radius_ * v.delta_s + fp;
-    const double force = a * a * a * reduced_ / (2.0 * radius_) * v.pi_s + 2.0 * a * reduced_ * v.e_eq * fp;
+    if (sweep) v = sweep->at(a / trial.thickness);
+    const double fp = -std::sqrt(2.0 * kPi * a * trial.work / reduced) / v.gamma1;  // delta_fp
+    const double delta = a * a / radius * v.delta_s + fp;
+    const double force = a * a * a * reduced / (2.0 * radius) * v.pi_s + 2.0 * a * reduced * v.e_eq * fp;
     return {delta, force};
-  }
-
-  // F and dF/d delta at indentation delta (0 off contact).
-  std::pair<double, double> at(double delta) const {
-    if (delta <= jump_delta_) return {0.0, 0.0};
-    if (delta < delta_.front()) return {force_.front(), 0.0};  // rounding next to a_s
-    if (delta >= delta_.back()) {
-      const double x = (delta - jump_delta_) / (delta_.back() - jump_delta_);
-      const double g = force_.back() * std::pow(x, last_slope_);
-      return {g, last_slope_ * g / (delta - jump_delta_)};
-    }
-    return {gsl_interp_eval(interp_, delta_.data(), force_.data(), delta, accel_),
-            gsl_interp_eval_deriv(interp_, delta_.data(), force_.data(), delta, accel_)};
-  }
-  double jump_delta() const { return jump_delta_; }
-  double jump_force() const { return jump_force_; }
-  double max_indentation() const { return delta_.back(); }
-  double max_radius() const { return a_max_; }
-  double top_radius() const { return a_top_; }  // the largest radius evaluated for the table
-  double reduced_modulus() const { return reduced_; }
-
- private:
-  std::shared_ptr<const CoatingSweep> sweep_;
-  Trial trial_;
-  double radius_, spring_, reduced_ = 0.0, length_ = 0.0;
-  double a_s_ = 0.0, a_max_ = 0.0, a_top_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
-  std::vector<double> delta_, force_;
-  gsl_interp* interp_ = nullptr;
-  gsl_interp_accel* accel_ = nullptr;
-};
+  };
+  return std::make_unique<Branch>(point, length, kScanLow, kScanHigh, kScanPerDecade, problem.spring_constant,
+                                  max_indentation, std::sqrt(radius * std::max(max_indentation, 0.0)), kBranchNodes,
+                                  std::nullopt, reduced);
+}
 
 // Weighted points sorted by tip position (bins of a dense curve carry their counts).
 struct Points {
@@ -454,18 +369,23 @@ std::vector<double> afm_least_squares_step(const std::vector<std::vector<double>
   return out;
 }
 
-void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r) {
+void afm_tabor_maugis(const AfmFitProblem& problem, AfmFitResult& r) {
   const double z0 = problem.surface_force_range, reduced = r.reduced_modulus, w = r.work, radius = problem.tip.radius;
   r.tabor_mu = std::cbrt(radius * w * w / (reduced * reduced * z0 * z0 * z0));
   // Maugis's lambda with the Dugdale stress of the Lennard-Jones law of range z0: h0 = w/sigma0
   // = 0.97 z0 (Johnson & Greenwood 1997); the scales' thickness does not enter lambda.
   const double length = std::cbrt(kPi * w * radius * radius / reduced);
   const MaugisScales scales = maugis_scales(radius, length, w, reduced);
-  r.maugis_lambda = maugis_lambda(scales, w / (0.97 * z0));
+  r.maugis_lambda = maugis_lambda(scales, w / (kDugdaleRangeOverZ0 * z0));
+}
+
+void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r) {
+  afm_tabor_maugis(problem, r);
+  const double z0 = problem.surface_force_range;
   if (r.maugis_lambda < kJkrMinimumLambda) {
     r.warnings.push_back("Maugis's lambda = " + short_text(r.maugis_lambda) + " (Tabor's mu = " + short_text(r.tabor_mu) +
                          ", surface-force range z0 = " + short_text(z0) + " m) is below " + short_text(kJkrMinimumLambda) +
-                         ": outside JKR's range; the Maugis-Dugdale model would be needed (not available through the cantilever)");
+                         ": outside JKR's range; fit the Maugis-Dugdale model (--model md)");
   }
 }
 
@@ -490,22 +410,28 @@ std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std:
     for (int k = 0; k < count; ++k) grid.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
     sweep = std::make_shared<const CoatingSweep>(solver.sweep(grid, c.solver_tolerance));
   }
-  const Branch branch(p, sweep, trial, std::max(max_delta, 1e-12));
+  const auto branch = jkr_branch(p, sweep, trial, std::max(max_delta, 1e-12));
   std::vector<double> f(z.size());
   for (std::size_t i = 0; i < z.size(); ++i) {
-    f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch.at(problem.contact_point - z[i]).first;
+    f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch->at(problem.contact_point - z[i]).first;
   }
   return f;
 }
 
 AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<double>& f_data, const AfmFitProblem& problem,
                          int free_count) {
+  return afm_fit_adhesive(z_data, f_data, problem, free_count, nullptr);
+}
+
+AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
+                              const AfmFitProblem& problem, int free_count, const SpringModel* model) {
+  const std::string name = model ? model->name : "JKR";
   const auto start = std::chrono::steady_clock::now();
   if (problem.tip.kind != AfmTip::Kind::kParaboloid) {
-    throw InputError("afm fit: the JKR model takes a sphere tip (radius R); got " + problem.tip.description);
+    throw InputError("afm fit: the " + name + " model takes a sphere tip (radius R); got " + problem.tip.description);
   }
   if (!(problem.spring_constant > 0.0) || !std::isfinite(problem.spring_constant)) {
-    throw InputError("afm fit: the JKR model needs the cantilever's spring constant k > 0 (got " +
+    throw InputError("afm fit: the " + name + " model needs the cantilever's spring constant k > 0 (got " +
                      short_text(problem.spring_constant) + " N/m)");
   }
   if (!(problem.surface_force_range > 0.0) || !std::isfinite(problem.surface_force_range)) {
@@ -644,9 +570,11 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
   const auto branch_of = [&](const Trial& t) {
     for (;;) {
       ++tables;
-      auto branch = std::make_unique<Branch>(p, sweep_of(t.modulus), t, max_delta);
+      auto branch = model ? model->branch(t, max_delta) : jkr_branch(p, sweep_of(t.modulus), t, max_delta);
       // The branch's radii past the swept a/t would take the sweep's end values: widen it.
-      if (!coated || swept == lattice.size() || branch->top_radius() / t.thickness <= lattice[swept - 1]) return branch;
+      if (model || !coated || swept == lattice.size() || branch->top_radius() / t.thickness <= lattice[swept - 1]) {
+        return branch;
+      }
       swept = prefix_for(branch->top_radius() / t.thickness);
       sweeps.clear();
     }
@@ -700,7 +628,7 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
     }
   }
   if (!std::isfinite(best_fit.linear.rss)) {
-    throw NumericalError("afm fit: no JKR trial near the given E/E1 and w fits the data (check the tip radius, "
+    throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
                          "the spring constant and the segment)");
   }
   // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near the start's.
@@ -712,7 +640,7 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
   }
   Trial estimate = trial_of(u_best);
   ContactFit fit = trial_cost(estimate, nullptr);
-  if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the JKR search ended on a trial without a jump-off");
+  if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the " + name + " search ended on a trial without a jump-off");
 
   // 3. Every point: the contact point re-profiled, then damped Gauss-Newton steps on all free
   // parameters (bounded; a step is kept only if it lowers the sum).
@@ -812,8 +740,8 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
     // Only the radii the data reach matter: the deepest fitted indentation's.
     double deepest = r.contact_point - z_lo;
     if (deepest > 0.0) {
-      const Branch check(p, sweep_of(estimate.modulus), estimate, deepest);
-      if (check.max_radius() / estimate.thickness > kCoatingAOverT[1]) {
+      const auto check = model ? model->branch(estimate, deepest) : jkr_branch(p, sweep_of(estimate.modulus), estimate, deepest);
+      if (check->max_radius() / estimate.thickness > kCoatingAOverT[1]) {
         throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
                              short_text(estimate.thickness) + " m; the coating model is tabulated up to there");
       }
@@ -853,16 +781,20 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
   if (problem.free.tilt) columns.push_back(col_m), slots.push_back(&r.tilt_error);
 
   afm_residual_statistics(r, f_data, problem.noise_sigma, free_count, r.jump_off_indentation,
-                          "the JKR fit leaves no point in contact; check the segment (retract) and the range");
+                          "the " + name + " fit leaves no point in contact; check the segment (retract) and the range");
   const std::vector<double> errors = afm_standard_errors(columns, r.residual_sigma);
   for (std::size_t a = 0; a < errors.size(); ++a) *slots[a] = errors[a];
   for (double v : {r.modulus, r.work, r.contact_point, r.baseline, r.tilt, r.rss, r.jump_off_force}) {
-    if (!std::isfinite(v)) throw NumericalError("afm fit: the JKR fit did not converge (a non-finite estimate)");
+    if (!std::isfinite(v)) throw NumericalError("afm fit: the " + name + " fit did not converge (a non-finite estimate)");
   }
   for (double v : errors) {
-    if (!std::isfinite(v)) throw NumericalError("afm fit: the JKR fit's standard errors are not finite (parameters not identifiable)");
+    if (!std::isfinite(v)) throw NumericalError("afm fit: the " + name + " fit's standard errors are not finite (parameters not identifiable)");
   }
-  afm_jkr_lambda(p, r);
+  if (model) {
+    model->report(estimate, r);
+  } else {
+    afm_jkr_lambda(p, r);
+  }
   for (std::size_t k = 0; k < axes.size(); ++k) {
     if (std::abs(state.u[k] - u0[k]) > std::log(10.0) * 2.5) {
       r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +

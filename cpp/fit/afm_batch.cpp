@@ -121,10 +121,10 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   }
   AfmFitProblem problem = settings.problem;
   problem.noise_sigma = steps.baseline_sigma;
-  if (problem.model == AfmModel::kJkr && !(problem.spring_constant > 0.0)) {
+  if (problem.model != AfmModel::kHertz && !(problem.spring_constant > 0.0)) {
     problem.spring_constant = curve.metadata.spring_constant;
     if (!(problem.spring_constant > 0.0)) {
-      return flagged(std::move(row), AfmFlag::kCalibration, "the jkr model needs the cantilever's spring constant; the curve has none");
+      return flagged(std::move(row), AfmFlag::kCalibration, "the adhesive model needs the cantilever's spring constant; the curve has none");
     }
   }
   const std::vector<double> tip = curve.tip_position();

@@ -1,7 +1,11 @@
 // Library-private pieces shared by the AFM curve fits (afm_curve_model.cpp: Hertz/Sneddon;
 // afm_adhesive_model.cpp: JKR through the cantilever). Not installed.
 #pragma once
+#include <functional>
+#include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coatcontact/afm_fit.hpp"
@@ -21,12 +25,75 @@ void afm_residual_statistics(AfmFitResult& r, const std::vector<double>& force, 
 // The least-squares step x minimizing |J x - residual| (J by columns; SVD, tiny singular values dropped).
 std::vector<double> afm_least_squares_step(const std::vector<std::vector<double>>& columns, const std::vector<double>& residual);
 
+// Parameters of one trial of an adhesive model: E (half-space) or E1 [Pa], w [J/m2], t [m] (coating).
+struct AdhesiveTrial {
+  double modulus = 0.0;
+  double work = 0.0;
+  double thickness = 0.0;
+};
+
+// The adhesive force F(delta) on the branch a cantilever of stiffness k holds (THEORY.md
+// section 15, JKR and Maugis-Dugdale alike): from the curve point(a) = (delta, F) [SI], the
+// jump-off a_s is the lowest minimum of Z = delta + F/k on a scan of a in [a_lo, a_hi]
+// (per_decade points, polished by Brent) or, when given and lower, the curve's end a -> 0
+// (`end`: its (delta, F)); then (delta, F) at `nodes` radii from a_s up past max_indentation,
+// F against delta by a cubic spline (past the last node the power law of the last two nodes,
+// for trial contact points only), zero for delta <= delta(a_s). NumericalError when Z has no
+// minimum on the scan (and no end) or the branch is not finite.
+class SpringBranch {
+ public:
+  using CurvePoint = std::function<std::pair<double, double>(double)>;
+  SpringBranch(const CurvePoint& point, double scale, double lo, double hi, int per_decade, double spring,
+               double max_indentation, double a_top, int nodes, std::optional<std::pair<double, double>> end,
+               double reduced_modulus);
+  ~SpringBranch();
+  SpringBranch(const SpringBranch&) = delete;
+  SpringBranch& operator=(const SpringBranch&) = delete;
+
+  std::pair<double, double> at(double delta) const;  // F and dF/ddelta (0 off contact)
+  double jump_delta() const { return jump_delta_; }
+  double jump_force() const { return jump_force_; }
+  bool jump_at_end() const { return jump_at_end_; }  // the jump-off is the curve's end a -> 0
+  double max_indentation() const { return delta_.back(); }
+  double max_radius() const { return a_max_; }
+  double top_radius() const { return a_top_; }  // the largest radius evaluated for the table
+  double reduced_modulus() const { return reduced_; }
+
+ private:
+  struct Spline;
+  double reduced_ = 0.0, a_max_ = 0.0, a_top_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
+  bool jump_at_end_ = false;
+  std::vector<double> delta_, force_;
+  std::unique_ptr<Spline> spline_;
+};
+
+// A spring-held adhesive model other than JKR for the shared search of the adhesive fit: the
+// branch of a trial, and the report of the estimates (lambda, warnings) once fitted.
+struct SpringModel {
+  std::string name;
+  std::function<std::unique_ptr<SpringBranch>(const AdhesiveTrial&, double max_indentation)> branch;
+  std::function<void(const AdhesiveTrial&, AfmFitResult&)> report;
+};
+
+// The adhesive fit through the cantilever (THEORY.md section 15): JKR (model null) or `model`.
+AfmFitResult afm_fit_adhesive(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                              int free_count, const SpringModel* model);
+
+// Cubic Lagrange weights of the nodes j0..j0+3 at x (node j at x = j).
+void lagrange_weights(double x, long j0, double weight[4]);
+
+// The Maugis-Dugdale fit through the cantilever (problem.model == kMd) and its model force at z.
+AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                        int free_count);
+std::vector<double> afm_md_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
+
 // The JKR fit through the cantilever (problem.model == kJkr) and its model force at z.
 AfmFitResult afm_fit_jkr(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                          int free_count);
 std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
-// Tabor's mu and Maugis's lambda of the estimates in r (reduced_modulus, work), and the warning
-// when lambda is below kJkrMinimumLambda.
+// Tabor's mu and Maugis's lambda (h0 = kDugdaleRangeOverZ0 z0) of the estimates in r
+// (reduced_modulus, work); afm_jkr_lambda adds the warning when lambda is below kJkrMinimumLambda.
+void afm_tabor_maugis(const AfmFitProblem& problem, AfmFitResult& r);
 void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r);
 
 }  // namespace coatcontact::fit::internal

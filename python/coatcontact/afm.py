@@ -166,6 +166,9 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                reported Tabor mu and Maugis lambda (default 0.3 nm). The result adds "w", "tilt"
                (estimates, errors), "tabor_mu", "maugis_lambda", "jump_off" ({"F" [N] above the
                baseline, "indentation" [m]}) and "warnings" (lambda outside JKR's range, ...).
+               Or "md": the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with
+               sigma0 = w/h0, h0 = 0.97 surface_force_range (so lambda follows w and E); warns when
+               lambda leaves [1e-3, 1e4] or the spring holds the tip down to the curve's end.
     radius     tip radius R [m] (a paraboloid); or shape=("sphere", R), ("cone", beta),
                ("pyramid", theta: face half angle; the cone of equal area), ("punch", A),
                ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
@@ -177,7 +180,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     free       names among "E" (half-space) or "E1", "t" (coating), "contact_point", "baseline"
                (default: the modulus, contact_point and baseline); a fixed contact_point [m] or
                baseline [N] is given by the keyword of that name.
-    segment    "approach" (default for hertz) or "retract" (default for jkr).
+    segment    "approach" (default for hertz) or "retract" (default for jkr and md).
     tip_range (min, max) [m]; indentation_range (min, max) [m] and max_indentation [m] relative
                to the preprocessing's contact point; max_force [N] above its baseline. Without
                a range the whole segment is fitted. Ranges combine.
@@ -191,14 +194,13 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     points_in_contact, contact_point [m], pulloff ({"F" [N] less the baseline, "z" [m]} of the
     retract segment, or None), and per fitted point index (into the curve), tip_position, F,
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
-    if model in ("md", "maugis-dugdale"):
-        raise ValueError(f"model: {model!r} (Maugis-Dugdale through the cantilever) is not available in afm.fit; "
-                         "allowed: 'hertz', 'jkr' (jkr reports Maugis's lambda for surface_force_range=)")
-    jkr = model == "jkr"
+    if model == "maugis-dugdale":
+        model = "md"
+    jkr = model in ("jkr", "md")  # the adhesive models share their keywords
     if segment is None:
         segment = "retract" if jkr else "approach"
     if not jkr and (work is not None or tilt is not None):
-        raise ValueError("work, tilt: parameters of model='jkr' only")
+        raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")
     tip, E, nu, free, coating = _problem("afm.fit", model, radius, shape, halfspace, film, substrate, thickness, free,
                                          contact_point)
 
@@ -242,13 +244,13 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         meta = getattr(mapping, "metadata", None) or {}
         k = spring_constant if spring_constant is not None else meta.get("spring constant")
         if k is None:
-            raise ValueError("spring_constant: the jkr model needs the cantilever's spring constant (N/m); "
+            raise ValueError(f"spring_constant: the {model} model needs the cantilever's spring constant (N/m); "
                              "the curve has none, pass spring_constant=")
         if "w" not in free and work is None:
             raise ValueError("work: a fixed w needs work= (J/m2)")
         if "tilt" in free and tilt is not None:
             raise ValueError("tilt: the tilt is free; drop it from free to fix it")
-        adhesion = (float(work or 0.0), float(k), float(surface_force_range), float(tilt or 0.0))
+        adhesion = _adhesion(model, work, k, surface_force_range, tilt)
     relative = indentation_range is not None or max_indentation is not None or max_force is not None
     if relative and not have_reference:
         # Plain arrays: the reference is a first fit of the whole segment.
@@ -285,11 +287,20 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     return r
 
 
+def _adhesion(model, work, k, surface_force_range, tilt):
+    """The adhesive model's settings as _afm takes them: (w, k, z0, tilt, model); k 0: each curve's."""
+    z0 = float(surface_force_range)
+    if not z0 > 0.0:
+        raise ValueError(f"surface_force_range: {surface_force_range!r} is not allowed; expected a length > 0 (m), "
+                         "e.g. 0.3e-9")
+    return (float(work or 0.0), float(k), z0, float(tilt or 0.0), model)
+
+
 def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
     """The tip, sample and free parameters of fit and fit_map as _afm takes them."""
-    if model not in ("hertz", "jkr"):
-        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr'")
-    if model == "jkr" and free == ("E", "contact_point", "baseline"):
+    if model not in ("hertz", "jkr", "md"):
+        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr', 'md'")
+    if model in ("jkr", "md") and free == ("E", "contact_point", "baseline"):
         free = ("E", "w", "contact_point", "baseline", "tilt")
     coating = None
     if film is not None or substrate is not None or thickness is not None:
@@ -347,11 +358,12 @@ def _curve_arrays(curve, number, spring_constant):
             meta.get("grid index x"), meta.get("grid index y"), meta.get("position x"), meta.get("position y"))
 
 
-def _fit_part(files, survey, tolerate, first, count, args):
+def _fit_part(files, survey, tolerate, first, count, args, adhesion=None):
     """One share of a fit_map run (a task of a Dask worker): curves first..first+count-1 of the
     files, read by the worker itself (the survey spares it counting the curves: it opens only
     the files of its share, once)."""
-    return _afm.fit_map_files(files, *args, jobs=1, first=first, count=count, survey=survey, tolerate=tolerate)
+    return _afm.fit_map_files(files, *args, jobs=1, first=first, count=count, survey=survey, tolerate=tolerate,
+                               adhesion=adhesion)
 
 
 def _concatenated(parts):
@@ -390,8 +402,9 @@ def _structured(columns):
 
 def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspace=None, film=None, substrate=None,
             thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
-            segment="approach", spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
-            max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False):
+            segment=None, spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
+            max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False, work=None,
+            surface_force_range=0.3e-9, tilt=None):
     """Fits every curve of maps, QI data, files or folders (or of the curves given) and returns
     one row per curve, as `coatcontact afm fit FILES...` does (THEORY.md section 15, "Many
     curves"): each curve preprocessed (baseline offset and tilt, contact point), its tilt
@@ -405,23 +418,37 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
                      consecutive curves per worker, each read and fitted by that worker (with one
                      thread) from the files themselves, and gathered in order; the rows are the
                      serial ones. Dask is imported only then.
+    as_frame         a pandas DataFrame instead of the NumPy structured array (needs pandas).
+    model            "hertz" (segment "approach" by default), or "jkr" / "md" with fit()'s keywords
+                     work=, tilt=, surface_force_range= (segment "retract" by default; each curve's
+                     spring constant, or spring_constant= for every curve).
 
     A file of several, or of a folder, that cannot be read (not a force-curve file, corrupt) is
     one row flagged unreadable (8) with a warning naming it and why; a single file given that
     cannot be read is a ValueError.
-    as_frame         a pandas DataFrame instead of the NumPy structured array (needs pandas).
 
     Columns: file, curve, grid_x, grid_y (-1 when unknown), x, y [m], flag (0 fitted; 1
     no_contact, 2 jump_in, 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration,
     7 too_few_points, 8 unreadable, 9 bad_data), reason, each free estimate ("E" [Pa], "E1" [Pa],
-    "t" [m], "contact_point" [m], "baseline" [N]) and its "_error", contact_point [m] when
+    "t" [m], "w" [J/m2] and "tilt" [N/m] of jkr and md, "contact_point" [m], "baseline" [N]) and its
+    "_error", contact_point [m] when
     fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m], points;
     NaN where a flagged curve has no value."""
-    if model == "jkr":
-        raise ValueError("model: 'jkr' is not available in afm.fit_map; allowed: 'hertz' (afm.fit fits one retract "
-                         "with jkr, and the CLI's `afm fit --model jkr` fits maps)")
+    if model == "maugis-dugdale":
+        model = "md"
     tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
                                          free, contact_point)
+    adhesive = model in ("jkr", "md")
+    if not adhesive and (work is not None or tilt is not None):
+        raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")
+    if adhesive and "w" not in free and work is None:
+        raise ValueError("work: a fixed w needs work= (J/m2)")
+    if adhesive and "tilt" in free and tilt is not None:
+        raise ValueError("tilt: the tilt is free; drop it from free to fix it")
+    # k 0: each curve's spring constant (spring_constant= sets every curve's through the calibration).
+    adhesion = _adhesion(model, work, 0.0, surface_force_range, tilt) if adhesive else None
+    if segment is None:
+        segment = "retract" if adhesive else "approach"
     lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]),
                                                                   float(indentation_range[1]))
     if max_indentation is not None:
@@ -446,20 +473,21 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
                 warnings.warn(f"afm.fit_map: unreadable file, one flagged row: {why}", stacklevel=2)
         if client is None:
             columns = _afm.fit_map_files(files, *args, k, s, jobs=int(jobs or 0), first=0, count=None, survey=survey,
-                                         tolerate=tolerate)
+                                         tolerate=tolerate, adhesion=adhesion)
         else:
             workers = max(1, len(client.scheduler_info().get("workers", {})))
             shares = _shares(survey, workers)
-            futures = [client.submit(_fit_part, files, survey, tolerate, first, count, args + (k, s), pure=False)
+            futures = [client.submit(_fit_part, files, survey, tolerate, first, count, args + (k, s), adhesion, pure=False)
                        for first, count in shares]
             parts = client.gather(futures)
             columns = _concatenated(parts) if parts else _afm.fit_map_files(files, *args, k, s, jobs=1, first=0,
-                                                                             count=0, survey=survey, tolerate=tolerate)
+                                                                             count=0, survey=survey, tolerate=tolerate,
+                                                                             adhesion=adhesion)
     elif items and not any(_is_path(i) for i in items):
         if client is not None:
             raise ValueError("client: spreads the curves of files; give paths, or fit given curves without client=")
         curves = [_curve_arrays(c, n, spring_constant) for n, c in enumerate(items)]
-        columns = _afm.fit_map_curves(curves, *args)
+        columns = _afm.fit_map_curves(curves, *args, adhesion=adhesion)
     else:
         raise ValueError("paths_or_curves: expected a path, a folder, a list of them, or a list of curves (not mixed)")
     rows = _structured(columns)

@@ -247,11 +247,12 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
     problem.coating = layer;
     problem.poisson = layer.film.poisson_ratio;
   }
-  // adhesion: (w, k, z0, tilt) of the JKR model (k 0: each curve's), or None (Hertz/Sneddon)
+  // adhesion: (w, k, z0, tilt, model) of the adhesive model, "jkr" or "md" (k 0: each curve's),
+  // or None (Hertz/Sneddon)
   const bool jkr = !adhesion.is_none();
   if (jkr) {
     const py::tuple a = adhesion.cast<py::tuple>();
-    problem.model = fit::AfmModel::kJkr;
+    problem.model = a.size() > 4 && a[4].cast<std::string>() == "md" ? fit::AfmModel::kMd : fit::AfmModel::kJkr;
     problem.work = a[0].cast<double>();
     problem.spring_constant = a[1].cast<double>();
     problem.surface_force_range = a[2].cast<double>();
@@ -293,7 +294,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
   try {
     problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
     const bool coated = problem.coating.has_value();
-    const bool jkr = problem.model == fit::AfmModel::kJkr;
+    const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
     const std::string modulus_name = coated ? "E1" : "E";
     problem.noise_sigma = noise;
     fit::AfmRange range;
@@ -379,7 +380,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     out["seconds"] = r.seconds;
     out["tip"] = problem.tip.description;
     if (jkr) {
-      out["model"] = "jkr";
+      out["model"] = problem.model == fit::AfmModel::kMd ? "md" : "jkr";
       out["spring_constant"] = problem.spring_constant;
       out["surface_force_range"] = problem.surface_force_range;
       out["tabor_mu"] = r.tabor_mu;
@@ -416,9 +417,9 @@ coatcontact::fit::AfmBatchSettings settings_of(const py::tuple& shape, double mo
                                                double baseline, const py::object& coating, const std::string& segment,
                                                const py::object& tip_min, const py::object& tip_max,
                                                const py::object& indentation_min, const py::object& indentation_max,
-                                               const py::object& max_force) {
+                                               const py::object& max_force, const py::object& adhesion) {
   coatcontact::fit::AfmBatchSettings settings;
-  settings.problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, py::none());
+  settings.problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
   if (segment == "approach") settings.segment = afm::SegmentKind::kApproach;
   else if (segment == "retract") settings.segment = afm::SegmentKind::kRetract;
   else throw coatcontact::InputError("segment: '" + segment + "' is not allowed; expected 'approach' or 'retract'");
@@ -563,13 +564,14 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const std::string& segment, const py::object& tip_min, const py::object& tip_max,
                        const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
                        const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
-                       const py::object& count, const py::object& survey, bool tolerate) {
+                       const py::object& count, const py::object& survey, bool tolerate,
+                       const py::object& adhesion) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::optional<Columns> columns;
   try {
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
-                           indentation_min, indentation_max, max_force);
+                           indentation_min, indentation_max, max_force, adhesion);
     columns.emplace(settings);
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     fit::AfmBatchOptions options;
@@ -603,13 +605,13 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
                         const std::vector<std::string>& free, double contact_point, double baseline,
                         const py::object& coating, const std::string& segment, const py::object& tip_min,
                         const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
-                        const py::object& max_force) {
+                        const py::object& max_force, const py::object& adhesion) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::vector<fit::AfmCurveRow> rows;
   try {
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
-                           indentation_min, indentation_max, max_force);
+                           indentation_min, indentation_max, max_force, adhesion);
     for (const py::handle item : curves) {
       const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
       afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
@@ -650,9 +652,10 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
-        py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false);
+        py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false,
+        py::arg("adhesion") = py::none());
   m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"));
+        py::arg("max_force"), py::arg("adhesion") = py::none());
 }

@@ -92,11 +92,13 @@ def test_mapping_with_afm_tool_keys():
 
 def test_refusals():
     z, F = synthetic(1)
-    with pytest.raises(ValueError, match="Maugis-Dugdale.*allowed: 'hertz', 'jkr'"):
+    with pytest.raises(ValueError, match="model: 'dmt' is not a model; allowed: 'hertz', 'jkr', 'md'"):
+        cc.afm.fit((z, F), model="dmt", radius=5e-6, halfspace=(1.0, 0.5))
+    with pytest.raises(ValueError, match="spring_constant: the md model"):
         cc.afm.fit((z, F), model="md", radius=5e-6, halfspace=(1.0, 0.5))
     with pytest.raises(ValueError, match="spring_constant"):
         cc.afm.fit((z, F), model="jkr", radius=5e-6, halfspace=(1.0, 0.5))
-    with pytest.raises(ValueError, match="model='jkr' only"):
+    with pytest.raises(ValueError, match="model='jkr' or 'md' only"):
         cc.afm.fit((z, F), radius=5e-6, halfspace=(1.0, 0.5), work=1e-3)
     with pytest.raises(ValueError, match="a coating takes a sphere"):
         cc.afm.fit((z, F), shape=("punch", 1e-6), film=(1e3, 0.5), substrate=(1e9, 0.3), thickness=1e-6)
@@ -210,3 +212,20 @@ def test_jkr_real_retract():
     for name in ("E", "w", "contact_point", "baseline", "tilt"):
         assert np.isfinite(r["estimates"][name]) and r["errors"][name] > 0
     assert r["points"] == 3000 and np.isfinite(r["maugis_lambda"])
+
+
+def test_md_real_retract_jkr_limit(cli):
+    """model="md" on the Asylum retract (lambda ~ 400, inside JKR's range): the Maugis-Dugdale fit
+    gives JKR's w and E to 1e-4 (the 1/lambda^2 approach and the zone table's ~1e-4, THEORY.md
+    section 15), far inside their standard errors; the CLI's header has the same numbers."""
+    path = os.path.join(DATA, "fmt-igor-fd_U3_3_p10004.ibw")
+    curve = cc.afm.read(path)[0]
+    md = cc.afm.fit(curve, model="md", radius=10e-6, halfspace=(10e3, 0.5))
+    jkr = cc.afm.fit(curve, model="jkr", radius=10e-6, halfspace=(10e3, 0.5))
+    assert md["model"] == "md" and 100 < md["maugis_lambda"] < 1e4
+    for name in ("w", "E"):
+        assert abs(md["estimates"][name] - jkr["estimates"][name]) < 1e-4 * jkr["estimates"][name], name
+        assert abs(md["estimates"][name] - jkr["estimates"][name]) < 0.1 * jkr["errors"][name], name
+    header, _, _ = cli("afm", "fit", path, "--model", "md", "--radius", "10um", "--halfspace", "10kPa,0.5")
+    assert header_value(header, "w [J/m2]") == md["estimates"]["w"]
+    assert header_value(header, "Maugis lambda") == md["maugis_lambda"]

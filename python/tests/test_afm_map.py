@@ -122,3 +122,67 @@ def test_refusals(kwargs, words):
         cc.afm.fit_map(MAP, **{"radius": 10e-6, "halfspace": (1e3, 0.5), **kwargs})
     for w in words:
         assert w in str(error.value)
+
+
+def cli_rows(*args):
+    """The CLI's table as the columns fit_map returns (strings for file and reason, floats else)."""
+    header, table, _ = run_cli("afm", "fit", *args, "--jobs", "1")
+    columns = [h for h in header if h.startswith("# columns: ")][0][len("# columns: "):].split("\t")
+    return columns, {name: [r[i] for r in table] for i, name in enumerate(columns)}
+
+
+def same_as_cli(rows, columns, table):
+    """Every column of the rows equals the CLI's printed value (NaN where both have none)."""
+    assert list(rows.dtype.names) == columns
+    for name in columns:
+        if name in ("file", "reason"):
+            assert [str(v) for v in rows[name]] == table[name], name
+        else:
+            # "-" where the CLI has no value: NaN, or -1 (grid index) and 0 (points) in the rows.
+            missing = {"grid_x": -1.0, "grid_y": -1.0, "points": 0.0}.get(name, np.nan)
+            np.testing.assert_array_equal(np.asarray(rows[name], dtype=float),
+                                          np.array([missing if v == "-" else float(v) for v in table[name]]),
+                                          err_msg=name)
+
+
+def test_jkr_real_map_same_as_cli(cli):
+    """model="jkr" over the real 2x2 JPK map: one row per curve with w and tilt columns, the
+    CLI's `afm fit MAP --model jkr` table value for value."""
+    columns, table = cli_rows(MAP, "--model", "jkr", "--radius", "10um", "--halfspace", "1kPa,0.5")
+    rows = cc.afm.fit_map(MAP, model="jkr", radius=10e-6, halfspace=(1e3, 0.5), jobs=1)
+    for name in ("w", "w_error", "tilt", "tilt_error"):
+        assert name in rows.dtype.names
+    assert len(rows) == 4
+    same_as_cli(rows, columns, table)
+    fitted = rows["flag"] == 0
+    assert np.any(fitted) and np.all(rows["w_error"][fitted] > 0) and np.all(np.isnan(rows["w"][~fitted]))
+
+
+def test_jkr_synthetic_map_same_as_cli(cli, synthetic):
+    """model="jkr" over the synthetic map (its bad curves flagged as the CLI flags them), jobs=2
+    identical to jobs=1, and the CLI's table value for value."""
+    path, truth = synthetic
+    columns, table = cli_rows(path, "--model", "jkr", "--radius", "10um", "--halfspace", "5kPa,0.5")
+    serial = cc.afm.fit_map(path, model="jkr", radius=10e-6, halfspace=(5e3, 0.5), jobs=1)
+    same_as_cli(serial, columns, table)
+    # Its bad curves keep their flags (no_contact, empty_segment, calibration), but for jump_in:
+    # the jump-in is the approach's, and the adhesive fit takes the retract.
+    bad = (truth[:, 7] != 0) & (truth[:, 7] != 2)
+    assert list(serial["flag"][bad]) == [int(v) for v in truth[bad, 7]]
+    same_rows(serial, cc.afm.fit_map(path, model="jkr", radius=10e-6, halfspace=(5e3, 0.5), jobs=2))
+
+
+def test_md_real_map_same_as_cli(cli):
+    """model="md" (Maugis-Dugdale through the cantilever) over the real map: the CLI's table."""
+    columns, table = cli_rows(MAP, "--model", "md", "--radius", "10um", "--halfspace", "1kPa,0.5")
+    rows = cc.afm.fit_map(MAP, model="md", radius=10e-6, halfspace=(1e3, 0.5), jobs=1)
+    same_as_cli(rows, columns, table)
+
+
+def test_adhesive_map_refusals():
+    with pytest.raises(ValueError, match="work, tilt: parameters of model='jkr' or 'md' only"):
+        cc.afm.fit_map(MAP, radius=10e-6, halfspace=(1e3, 0.5), work=1e-3)
+    with pytest.raises(ValueError, match="surface_force_range"):
+        cc.afm.fit_map(MAP, model="md", radius=10e-6, halfspace=(1e3, 0.5), surface_force_range=0.0)
+    with pytest.raises(ValueError, match="work: a fixed w needs work="):
+        cc.afm.fit_map(MAP, model="jkr", radius=10e-6, halfspace=(1e3, 0.5), free=("E", "contact_point", "baseline", "tilt"))

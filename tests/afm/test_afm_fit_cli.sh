@@ -90,8 +90,31 @@ awk -v a="$l1" -v b="$l3" 'BEGIN { r = a / b; exit !(r > 9.999 && r < 10.001) }'
 grep -q "warning: Maugis's lambda = .* is below 5" "$work/stderr" || fail "jkr spot3: no lambda warning on stderr"
 grep -q "^# warning: Maugis's lambda" "$work/spotj.tsv" || fail "jkr spot3: no lambda warning in the header"
 
+# ---- the Maugis-Dugdale retract fit (--model md) ------------------------------------------------
+# The flipsign retract (JKR's lambda 2.5, below JKR's range): the md fit runs with the file's spring
+# constant, its header has the estimates, lambda against the table's range, the model line.
+flip="$data/fmt-jpk-fd_flipsign_2015.05.22-15.31.49.352.jpk-force"
+"$cli" afm fit "$flip" --model md --radius 10um --halfspace 1kPa,0.5 --output "$work/md.tsv" --plot "$work/md.png" \
+  2>"$work/stderr" || fail "afm fit --model md: $(cat "$work/stderr")"
+for key in 'E \[Pa\]' 'w \[J/m2\]' 'contact point \[m\]' 'baseline \[N\]' 'tilt \[N/m\]'; do
+  grep -qE "^# $key: [-0-9.e+]+ \+- [0-9.e+-]+" "$work/md.tsv" || fail "md header lacks '$key: value +- error'"
+done
+grep -q '^# model: F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale' "$work/md.tsv" || fail "md: model line"
+grep -qE '^# Maugis lambda: [0-9.e+-]+ .*table holds lambda in \[0.001, 10000\]' "$work/md.tsv" || fail "md: lambda line"
+head -c 8 "$work/md.png" | od -An -c | grep -q 'P   N   G' || fail "md --plot did not write a PNG"
+grep -qE 'NaN|nan|inf' "$work/md.tsv" && fail "md output holds a NaN or inf"
+# The spot3 retract has no adhesion to speak of: w runs toward 0, lambda below the table's 1e-3,
+# and the spring holds the tip down to the curve's end: both warnings, on stderr and in the header.
+"$cli" afm fit "$spot" --model md --radius 10um --halfspace 10kPa,0.5 --output "$work/spotmd.tsv" 2>"$work/stderr" \
+  || fail "md spot3: $(cat "$work/stderr")"
+grep -q "warning: Maugis's lambda = .* is below 0.001: outside the cohesive-zone table" "$work/stderr" \
+  || fail "md spot3: no lambda warning on stderr"
+grep -q "^# warning: Maugis's lambda = .*the spring holds the tip down to the curve's end" "$work/spotmd.tsv" \
+  || fail "md spot3: no curve's-end warning in the header"
+
 # ---- refusals ----------------------------------------------------------------------------------
-expect_error 2 "--model" "'md'" "Maugis-Dugdale" "--range" "allowed: hertz, jkr" -- afm fit "$spot" --model md --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "'dmt'" "allowed: hertz, jkr, md" -- afm fit "$spot" --model dmt --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "md takes a sphere" -- afm fit "$spot" --model md --shape cone:70deg --halfspace 1kPa,0.5
 expect_error 2 "--work" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --work 1mJ/m2
 expect_error 2 "--range" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --range 1nm
 expect_error 2 "--model" "jkr takes a sphere" -- afm fit "$spot" --model jkr --shape cone:70deg --halfspace 1kPa,0.5

@@ -51,8 +51,11 @@ struct AfmFree {
 // on the branch stable under the cantilever's spring k, zero past its jump-off (THEORY.md
 // section 15, "Adhesive retract"): at contact radius a,
 //   delta = delta_H(a) - sqrt(2 pi a w/E1*)/Gamma1,  F = F_H(a) - 2 a E1* E_eq sqrt(2 pi a w/E1*)/Gamma1
-// for a >= a_s, the minimum of delta + F/k; below delta(a_s) the tip is off the sample.
-enum class AfmModel { kHertz, kJkr };
+// for a >= a_s, the minimum of delta + F/k; below delta(a_s) the tip is off the sample. Or
+// Maugis-Dugdale (kMd): the same through the cohesive-zone table, sigma0 = w/h0 with
+// h0 = kDugdaleRangeOverZ0 z0 (surface_force_range), so lambda follows w and E1; the jump-off
+// may be the curve's end a -> 0 (THEORY.md section 15).
+enum class AfmModel { kHertz, kJkr, kMd };
 
 // A coating instead of the half-space: film (E1 the value if fixed, else the centre of its
 // search; nu1 fixed) of thickness t on a fixed substrate, adhesionless (THEORY.md sections 5
@@ -104,6 +107,9 @@ constexpr std::size_t kAdhesiveSearchPoints = 300;
 // Maugis's lambda below which JKR is outside its range (Johnson & Greenwood's map: the
 // Maugis-Dugdale model is needed below ~5; a warning).
 constexpr double kJkrMinimumLambda = 5.0;
+// The Dugdale range h0 = w/sigma0 of a surface-force range z0 (Lennard-Jones law matched by
+// Johnson & Greenwood 1997): h0 = 0.97 z0. Maugis's lambda of every adhesive fit uses it.
+constexpr double kDugdaleRangeOverZ0 = 0.97;
 // JKR on a coating with E1 free: reduced-solver sweeps on nodes of E1 this many per decade,
 // interpolated (cubic in ln E1) between them.
 constexpr double kModulusNodesPerDecade = 8.0;

@@ -1,0 +1,240 @@
+// The Maugis-Dugdale AFM retract fit (THEORY.md section 15, "Maugis-Dugdale through the
+// cantilever"): the cohesive-zone table's curve (MaugisDugdaleModel, section 13) in SI units on
+// the branch the cantilever holds, searched by the adhesive fit it shares with JKR
+// (internal::afm_fit_adhesive). See coatcontact/afm_fit.hpp.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "afm_internal.hpp"
+#include "coatcontact/afm_fit.hpp"
+#include "coatcontact/detail/constants.hpp"
+#include "coatcontact/detail/format.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/limits.hpp"
+#include "coatcontact/maugis_dugdale.hpp"
+
+namespace coatcontact::fit::internal {
+
+namespace {
+
+using coatcontact::detail::kPi;
+using coatcontact::detail::short_text;
+
+// Scan of Z = delta + F/k over a_bar = a/L in [kScanLow, kScanHigh] (the library's MD pull-off
+// scan starts at 1e-3 too), kScanPerDecade per decade; kBranchNodes radii on the branch.
+constexpr double kScanLow = 1e-3, kScanHigh = 30.0;
+constexpr int kScanPerDecade = 12;
+constexpr int kBranchNodes = 128;
+// The table's a/t range (MaugisDugdaleOptions' default), kept inside by the scan and by eta.
+constexpr double kTableAOverT[2] = {1e-4, 1e2};
+constexpr double kForceLimit = 1e3;
+
+// The Maugis-Dugdale curves of one fit: one stack's model (half-space; a coating with E1 fixed)
+// or one per node E1_j = E1 10^(j/kModulusNodesPerDecade) (a coating with E1 free), each with its
+// cohesive-zone table built tile by tile as the trials need it.
+class MdCurves {
+ public:
+  explicit MdCurves(const AfmFitProblem& problem)
+      : problem_(problem),
+        coated_(problem.coating.has_value()),
+        poisson_(coated_ ? problem.coating->film.poisson_ratio : problem.poisson),
+        hint_(coated_ ? problem.coating->film.youngs_modulus : problem.modulus),
+        h0_(kDugdaleRangeOverZ0 * problem.surface_force_range) {}
+
+  // lambda of a trial's w and reduced modulus: 2 (w/h0) (R/(pi w K^2))^(1/3), K = 4E*/3.
+  double lambda(double work, double reduced) const {
+    const double k = 4.0 * reduced / 3.0;
+    return 2.0 * (work / h0_) * std::cbrt(problem_.tip.radius / (kPi * work * k * k));
+  }
+
+  std::unique_ptr<SpringBranch> branch(const AdhesiveTrial& trial, double max_indentation) {
+    const double reduced = trial.modulus / (1.0 - poisson_ * poisson_);
+    if (!(reduced > 0.0) || !std::isfinite(reduced) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
+        (coated_ && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
+      throw NumericalError("afm fit: a Maugis-Dugdale trial left the finite positive parameters");
+    }
+    const double radius = problem_.tip.radius;
+    const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
+    const double a_top = std::sqrt(radius * std::max(max_indentation, 0.0));
+    // The table's length unit t: the coating's; on a half-space any, chosen so that the radii
+    // the branch needs (up to a few times the Hertz radius a_top) lie in the table:
+    // eta = t/L >= 1.
+    const double t = coated_ ? trial.thickness : length * std::max(4.0 * a_top / (kTableAOverT[1] * length), 1.0);
+    // The nodes and weights of the trial's modulus (one node unless E1 is free on a coating).
+    std::vector<std::pair<const MaugisDugdaleModel*, double>> mix;
+    std::vector<double> node_reduced;
+    if (coated_ && problem_.free.modulus) {
+      const double x = std::log10(trial.modulus / hint_) * kModulusNodesPerDecade;
+      const double nearest = std::round(x);
+      if (std::abs(x - nearest) < 1e-9) {
+        add_node(static_cast<long>(nearest), 1.0, mix, node_reduced);
+      } else {
+        const long j0 = static_cast<long>(std::floor(x)) - 1;
+        double weight[4];
+        lagrange_weights(x, j0, weight);
+        for (int a = 0; a < 4; ++a) add_node(j0 + a, weight[a], mix, node_reduced);
+      }
+    } else {
+      mix.push_back({&model(trial.modulus, 0), 1.0});
+      node_reduced.push_back(reduced);
+    }
+    // (delta, F) at radius a (a = 0: the curve's end): the weighted nodes' SI values.
+    const auto point = [&](double a) -> std::pair<double, double> {
+      if (a > 0.0 && !(a / t >= kTableAOverT[0] && a / t <= kTableAOverT[1])) {
+        // (the direct solve would take ~0.03 s a point)
+        throw NumericalError("afm fit: the Maugis-Dugdale branch needs a/t = " + short_text(a / t) +
+                             ", outside the cohesive-zone table's [" + short_text(kTableAOverT[0]) + ", " +
+                             short_text(kTableAOverT[1]) + "]");
+      }
+      double delta = 0.0, force = 0.0;
+      for (std::size_t k = 0; k < mix.size(); ++k) {
+        const double l = std::cbrt(kPi * trial.work * radius * radius / node_reduced[k]);
+        const double lam = std::clamp(lambda(trial.work, node_reduced[k]), kMinimumLambda, kMaximumLambda);
+        MaugisDugdalePoint p;
+        try {
+          p = mix[k].first->point(t / l, lam, a / l);
+        } catch (const InputError& e) {
+          throw NumericalError(std::string("afm fit: a Maugis-Dugdale trial: ") + e.what());
+        }
+        delta += mix[k].second * p.penetration * l * l / radius;
+        force += mix[k].second * p.load * kPi * trial.work * radius;
+      }
+      return {delta, force};
+    };
+    // The scan inside the table's a/t (eta = t/L: a/t = a_bar/eta). A weak adhesion (L small
+    // against the table's smallest radius) scans from there over half a decade: its minimum of
+    // Z is the curve's end (DMT's limit), found as the scan's first point.
+    const double eta = t / length;
+    const double lo = std::max(kScanLow, 1.0001 * kTableAOverT[0] * eta);
+    const double hi = std::min(std::max(kScanHigh, 3.0 * lo), 0.9999 * kTableAOverT[1] * eta);
+    if (!(lo < hi)) throw NumericalError("afm fit: the Maugis-Dugdale scan leaves the table (a/t range)");
+    auto made = std::make_unique<SpringBranch>(point, length, lo, hi, kScanPerDecade, problem_.spring_constant,
+                                               max_indentation, a_top, kBranchNodes, point(0.0), reduced);
+    if (force_limit_ > 0.0 && !(std::abs(made->jump_force()) <= force_limit_)) {
+      throw NumericalError("afm fit: a Maugis-Dugdale trial's jump-off force " + short_text(made->jump_force()) +
+                           " N exceeds kForceLimit times the data's force range");
+    }
+    return made;
+  }
+
+  // Trials whose jump-off force exceeds kForceLimit times `range` [N] (the data's) cost +inf:
+  // they cannot describe the data, and the least-squares sums of the profile (closed-form
+  // normal equations) lose every digit to cancellation for model forces ~1e8 times the data's.
+  void limit_force(double range) { force_limit_ = kForceLimit * range; }
+
+  long solves() const {
+    long n = 0;
+    for (const auto& m : models_) n += m.second->table_solves();
+    return n;
+  }
+
+ private:
+  void add_node(long j, double weight, std::vector<std::pair<const MaugisDugdaleModel*, double>>& mix,
+                std::vector<double>& node_reduced) {
+    const double e = hint_ * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+    mix.push_back({&model(e, j), weight});
+    node_reduced.push_back(e / (1.0 - poisson_ * poisson_));
+  }
+  // The model of the stack at film modulus e (node j; one model when E1 is not free).
+  const MaugisDugdaleModel& model(double e, long j) {
+    auto it = models_.find(j);
+    if (it != models_.end()) return *it->second;
+    Material film{coated_ ? e : hint_, poisson_};
+    Substrate substrate;
+    substrate.material = film;
+    if (coated_) substrate = problem_.coating->substrate;
+    MaugisDugdaleOptions options;
+    options.use_table = true;
+    options.table_a_over_t_min = kTableAOverT[0];
+    options.table_a_over_t_max = kTableAOverT[1];
+    auto made = std::make_unique<MaugisDugdaleModel>(Stack::film_on(film, substrate), options);
+    return *models_.emplace(j, std::move(made)).first->second;
+  }
+
+  const AfmFitProblem& problem_;
+  bool coated_;
+  double poisson_, hint_, h0_, force_limit_ = 0.0;
+  std::map<long, std::unique_ptr<MaugisDugdaleModel>> models_;
+};
+
+void check_md_problem(const AfmFitProblem& problem) {
+  if (problem.tip.kind != AfmTip::Kind::kParaboloid) {
+    throw InputError("afm fit: the Maugis-Dugdale model takes a sphere tip (radius R); got " + problem.tip.description);
+  }
+  if (!(problem.spring_constant > 0.0) || !std::isfinite(problem.spring_constant)) {
+    throw InputError("afm fit: the Maugis-Dugdale model needs the cantilever's spring constant k > 0 (got " +
+                     short_text(problem.spring_constant) + " N/m)");
+  }
+  if (!(problem.surface_force_range > 0.0) || !std::isfinite(problem.surface_force_range)) {
+    throw InputError("afm fit: the surface-force range z0 must be > 0 (got " + short_text(problem.surface_force_range) + " m)");
+  }
+  const double e = problem.coating ? problem.coating->film.youngs_modulus : problem.modulus;
+  if (!(e > 0.0 && std::isfinite(e))) {
+    throw InputError("afm fit: E must be > 0 (the value if fixed, the centre of its search if free; got " + short_text(e) + ")");
+  }
+}
+
+}  // namespace
+
+AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                        int free_count) {
+  check_md_problem(problem);
+  MdCurves curves(problem);
+  if (!force.empty()) {
+    const auto [lo, hi] = std::minmax_element(force.begin(), force.end());
+    curves.limit_force(*hi - *lo);
+  }
+  SpringModel model;
+  model.name = "Maugis-Dugdale";
+  model.branch = [&](const AdhesiveTrial& t, double max_indentation) { return curves.branch(t, max_indentation); };
+  model.report = [&](const AdhesiveTrial& estimate, AfmFitResult& r) {
+    afm_tabor_maugis(problem, r);
+    const double z0 = problem.surface_force_range;
+    const std::string where = "Maugis's lambda = " + short_text(r.maugis_lambda) + " (Dugdale range h0 = " +
+                              short_text(kDugdaleRangeOverZ0 * z0) + " m from --range z0 = " + short_text(z0) + " m)";
+    if (r.maugis_lambda > kMaximumLambda) {
+      r.warnings.push_back(where + " is above " + short_text(kMaximumLambda) +
+                           ": the curve is JKR's (computed at lambda = " + short_text(kMaximumLambda) +
+                           "); the JKR fit (--model jkr) is the same fit at a fraction of the cost");
+    } else if (r.maugis_lambda < kMinimumLambda) {
+      r.warnings.push_back(where + " is below " + short_text(kMinimumLambda) +
+                           ": outside the cohesive-zone table; computed at lambda = " + short_text(kMinimumLambda) +
+                           " (DMT's curve to ~3e-4)");
+    }
+    const auto branch = curves.branch(estimate, std::max(r.max_indentation, 1e-12));
+    if (branch->jump_at_end()) {
+      r.warnings.push_back(where + ", k = " + short_text(problem.spring_constant) +
+                           " N/m: the spring holds the tip down to the curve's end (contact radius 0); the "
+                           "separated-surfaces branch beyond it is not in the model, which jumps off there "
+                           "(outside the Maugis-Dugdale model's range through the cantilever)");
+    }
+    r.solver_calls = curves.solves();
+  };
+  return afm_fit_adhesive(z, force, problem, free_count, &model);
+}
+
+std::vector<double> afm_md_model_force(const AfmFitProblem& problem, const std::vector<double>& z) {
+  check_md_problem(problem);
+  if (!(problem.work > 0.0 && std::isfinite(problem.work))) {
+    throw InputError("afm fit: the Maugis-Dugdale model needs w > 0 (got " + short_text(problem.work) + " J/m2)");
+  }
+  double max_delta = 0.0;
+  for (double v : z) max_delta = std::max(max_delta, problem.contact_point - v);
+  AfmFitProblem fixed = problem;
+  fixed.free.modulus = false;  // one stack: the given E or E1
+  MdCurves curves(fixed);
+  AdhesiveTrial trial{problem.coating ? problem.coating->film.youngs_modulus : problem.modulus, problem.work,
+                      problem.coating ? problem.coating->thickness : 0.0};
+  const auto branch = curves.branch(trial, std::max(max_delta, 1e-12));
+  std::vector<double> f(z.size());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch->at(problem.contact_point - z[i]).first;
+  }
+  return f;
+}
+
+}  // namespace coatcontact::fit::internal
