@@ -422,34 +422,49 @@ int run_pulloff(const Args& raw) {
 
 // ---- coatcontact sphere -----------------------------------------------------------
 
+namespace {
+
+// The options of `sphere`: the materials, the sphere, the work, the curve's radii, the
+// cohesive zone and --strict.
+std::vector<OptionSpec> sphere_options() {
+  auto spec = material_options(true);
+  spec.insert(spec.begin(), {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", true});
+  spec.insert(spec.begin() + 1, {"--thickness", "t", "film thickness (m, or mm um nm); not with --layer", false});
+  spec.insert(spec.begin() + 5, {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true});
+  spec.insert(spec.begin() + 6, {"--points", "N",
+                                 "number of contact radii, log-spaced over a_bar from 0.01 min(1,r) up to 10 max(1,r), "
+                                 "r = (E1*/E0*)^(1/3), ending before a > 0.1 R, delta > t or F/(pi a^2) > 0.1 E1* "
+                                 "(default 400)",
+                                 false});
+  spec.insert(spec.begin() + 7, {"--contact-radius", "LIST",
+                                 "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
+                                 false});
+  for (const auto& option : cohesive_options()) spec.push_back(option);
+  spec.push_back(strict_option());
+  return spec;
+}
+
+void print_sphere_help(const std::vector<OptionSpec>& spec) {
+  std::cout << usage("sphere",
+                     "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w [options]",
+                     "Adhesive rigid sphere on a coated substrate in physical units: penetration and\n"
+                     "force versus contact radius, with the pull-off forces under load and displacement\n"
+                     "control in the header. F is compressive positive. '# warning:' header lines (also on\n"
+                     "stderr) flag a curve beyond the model: penetration above t, a above 0.1 R, mean\n"
+                     "pressure above 0.1 E1*. JKR: a contact radius the solver cannot serve at --tol is a\n"
+                     "'# not delivered' row with its reason (exit 0 while one radius is delivered); with\n"
+                     "--strict, exit 3 at the first one.",
+                     spec);
+}
+
+}  // namespace
+
 int run_sphere(const Args& raw) {
   return run_guarded("sphere", [&]() {
-    auto spec = material_options(true);
-    spec.insert(spec.begin(), {"--radius", "R", "sphere radius (m, or with a unit: mm um nm)", true});
-    spec.insert(spec.begin() + 1, {"--thickness", "t", "film thickness (m, or mm um nm); not with --layer", false});
-    spec.insert(spec.begin() + 5, {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true});
-    spec.insert(spec.begin() + 6, {"--points", "N",
-                                   "number of contact radii, log-spaced over a_bar from 0.01 min(1,r) up to 10 max(1,r), "
-                                   "r = (E1*/E0*)^(1/3), ending before a > 0.1 R, delta > t or F/(pi a^2) > 0.1 E1* "
-                                   "(default 400)",
-                                   false});
-    spec.insert(spec.begin() + 7, {"--contact-radius", "LIST",
-                                   "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
-                                   false});
-    for (const auto& option : cohesive_options()) spec.push_back(option);
-    spec.push_back(strict_option());
+    const auto spec = sphere_options();
     const Arguments args(raw, spec);
     if (args.help()) {
-      std::cout << usage("sphere",
-                         "--radius R --thickness t --film E1,nu1 --substrate E0,nu0|rigid --work w [options]",
-                         "Adhesive rigid sphere on a coated substrate in physical units: penetration and\n"
-                         "force versus contact radius, with the pull-off forces under load and displacement\n"
-                         "control in the header. F is compressive positive. '# warning:' header lines (also on\n"
-                         "stderr) flag a curve beyond the model: penetration above t, a above 0.1 R, mean\n"
-                         "pressure above 0.1 E1*. JKR: a contact radius the solver cannot serve at --tol is a\n"
-                         "'# not delivered' row with its reason (exit 0 while one radius is delivered); with\n"
-                         "--strict, exit 3 at the first one.",
-                         spec);
+      print_sphere_help(spec);
       return 0;
     }
     const double radius = parse_quantity(args.require("--radius"), Quantity::kLength, "--radius");
