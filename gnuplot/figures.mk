@@ -209,9 +209,9 @@ DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_po
 # ---- targets -------------------------------------------------------------------------
 .PHONY: figures figures-only figures-data figures-docs FORCE
 
-# `make figures`: build the CLI (top-level Makefile's `build`), then the figures with
+# `make figures`: build the CLI (top-level Makefile's `build-cli`), then the figures with
 # $(JOBS) parallel jobs unless the caller already passed -j.
-figures: build
+figures: build-cli
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-only \
 	  SOLVE_CACHE='$(if $(SOLVE_CACHE),$(SOLVE_CACHE),$(BUILD)/cache)'
 
