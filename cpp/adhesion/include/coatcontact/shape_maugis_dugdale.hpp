@@ -22,6 +22,21 @@ struct ShapeMdPoint {
   double force_h = 0.0;        // F_H [N]
 };
 
+// One pull-off of the cohesive-zone curve: an interior minimum, or the curve's end a -> 0.
+struct ShapeMdJump {
+  ShapeMdPoint point;
+  int local_minima = 0;   // interior local minima of the minimised quantity in the scan
+  bool interior = false;  // false: the end of the curve a -> 0 (no vertical tangent)
+};
+
+struct ShapeMdPulloff {
+  ShapeMdJump load;          // minimum of F
+  ShapeMdJump displacement;  // minimum of δ
+  ShapeMdPoint curve_end;    // a -> 0
+  double scan_min = 0.0, scan_max = 0.0;
+  std::vector<std::string> warnings;
+};
+
 // Whether the cohesive zone is defined under the shape (section 13: a continuous non-decreasing
 // profile beyond the contact); false for the flat punch. `why` receives the reason and what is
 // allowed when false.
@@ -45,6 +60,12 @@ class ShapeMaugisDugdale {
   // Many radii in parallel (same results as serial); radii the solve cannot serve get
   // status[i].delivered = false and the reason.
   std::vector<ShapeMdPoint> curve(const std::vector<double>& radii, std::vector<PointStatus>& status) const;
+
+  // Pull-offs under load and displacement control (THEORY.md sections 10 and 13): the minimum
+  // of F (δ) over contact radii in [scan_min, scan_max] [m], log-spaced, points_per_decade,
+  // each interior local minimum refined by Brent's minimiser, against the curve's end a -> 0,
+  // which is reported when it is lower (the MD curve reaches a = 0 at finite force).
+  ShapeMdPulloff pulloff(double scan_min, double scan_max, int points_per_decade = 24) const;
 
   double cohesive_stress() const { return sigma0_; }
   double reference_modulus() const { return modulus_; }
