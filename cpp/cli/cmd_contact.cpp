@@ -169,11 +169,12 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
 namespace {
 
 // `contact --shape ... --cohesive-stress`: the Maugis-Dugdale curve by the direct cohesive-zone
-// solve per contact radius (THEORY.md section 13, "Any axisymmetric shape"); no pull-off.
+// solve per contact radius (THEORY.md section 13, "Any axisymmetric shape"), and the pull-offs
+// under load and displacement control.
 void write_md_shape_contact(std::ostream& os, const Stack& stack, const ShapeMaugisDugdale& md,
                             const IndenterShape& shape, double thickness, double work,
-                            const std::vector<double>& radii, bool strict, double sphere_radius,
-                            const std::chrono::steady_clock::time_point& started) {
+                            const std::vector<double>& radii, std::pair<double, double> scan, bool strict,
+                            double sphere_radius, const std::chrono::steady_clock::time_point& started) {
   std::vector<PointStatus> status(radii.size());
   std::vector<ShapeMdPoint> curve = md.curve(radii, status);
   if (strict) {
@@ -182,13 +183,14 @@ void write_md_shape_contact(std::ostream& os, const Stack& stack, const ShapeMau
     }
   }
   require_some_delivered(status, "contact radius");
-  std::optional<ShapeMdPoint> end;
-  std::string end_missing;
+  // Without --strict a pull-off the solve cannot locate leaves the curve standing.
+  std::optional<ShapeMdPulloff> pulloff;
+  std::string pulloff_missing;
   try {
-    end = md.curve_end();
+    pulloff = md.pulloff(scan.first, scan.second);
   } catch (const NumericalError& e) {
     if (strict) throw;
-    end_missing = e.what();
+    pulloff_missing = e.what();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   Header h{{"command", "contact"}};
@@ -206,15 +208,26 @@ void write_md_shape_contact(std::ostream& os, const Stack& stack, const ShapeMau
                              "(THEORY.md section 13, 'Any axisymmetric shape'); the shape is one more load");
   h.emplace_back("solver", "per contact radius: factored system (p = 14), Brent root of h(c) = h0 in ln(c/a - 1), "
                            "direct solve (no table)");
-  if (end) {
-    h.emplace_back("end of the curve a -> 0", "F = " + num(end->force) + " N, delta = " + num(end->penetration) +
-                                                  " m, c = " + num(end->zone_edge) + " m");
+  if (pulloff) {
+    const auto jump = [](const ShapeMdJump& j) {
+      return num(j.point.force) + " (contact radius " + num(j.point.radius) + " m, penetration " +
+             num(j.point.penetration) + " m, zone edge " + num(j.point.zone_edge) + " m; " +
+             (j.interior ? "stationary minimum" : "end of the curve a -> 0") + ")";
+    };
+    h.emplace_back("pull-off force, load control [N]", jump(pulloff->load));
+    h.emplace_back("pull-off force, displacement control [N]", jump(pulloff->displacement));
+    const ShapeMdPoint& end = pulloff->curve_end;
+    h.emplace_back("end of the curve a -> 0", "F = " + num(end.force) + " N, delta = " + num(end.penetration) +
+                                                  " m, c = " + num(end.zone_edge) + " m");
+    h.emplace_back("pull-off scan", "contact radii [" + num(pulloff->scan_min) + ", " + num(pulloff->scan_max) +
+                                        "] m, 24 per decade, every local minimum refined (Brent), against a -> 0");
+    for (const auto& w : pulloff->warnings) h.emplace_back("warning", w);
   } else {
-    h.emplace_back("end of the curve a -> 0", "not computed: " + end_missing);
+    h.emplace_back("pull-off", "not computed: " + pulloff_missing + " (--strict: exit 3 instead)");
   }
-  h.emplace_back("pull-off", "not computed with --cohesive-stress (the curve and its end a -> 0 are)");
   const auto where = [&](std::size_t i) { return "a_m = " + format_value(radii[i], "a_m"); };
   progress_pause();
+  if (!pulloff) std::cerr << "coatcontact contact: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";
   report_not_delivered(h, "contact", status, where);
   std::vector<double> a, delta, force;
   for (std::size_t i = 0; i < curve.size(); ++i) {
@@ -260,7 +273,8 @@ void print_contact_help() {
                      "cannot serve at --tol is a '# not delivered' row with its reason (exit 0 while one\n"
                      "radius is delivered); with --strict, exit 3 at the first one.\n"
                      "--cohesive-stress sigma0: the Maugis-Dugdale curve instead (any shape but the punch), with\n"
-                     "the zone edge c_m, by the direct cohesive-zone solve per radius (section 13); no pull-off.",
+                     "the zone edge c_m, by the direct cohesive-zone solve per radius (section 13); pull-offs\n"
+                     "under load and displacement control (not with --spring).",
                      kSpec);
 }
 
@@ -312,8 +326,8 @@ int run_contact(const Args& raw) {
         throw InputError("--shape: " + quoted(args.require("--shape")) + " not allowed with --cohesive-stress: " + why);
       }
       if (args.has("--spring")) {
-        throw InputError("--spring: not used with --cohesive-stress (no pull-off is computed for the cohesive zone); "
-                         "omit --spring");
+        throw InputError("--spring: not used with --cohesive-stress (the cohesive zone's pull-offs are under load and "
+                         "displacement control only); omit --spring");
       }
       if (args.has("--tol")) {
         throw InputError("--tol: not used with --cohesive-stress (the zone is solved per contact radius to a fixed "
@@ -359,7 +373,8 @@ int run_contact(const Args& raw) {
     if (sigma0) {
       const ShapeMaugisDugdale md(stack, shape, thickness, work, *sigma0);
       Output out(args.get("--output").value_or(""));
-      write_md_shape_contact(out.stream(), stack, md, *shape, thickness, work, radii, strict, sphere_radius, started);
+      write_md_shape_contact(out.stream(), stack, md, *shape, thickness, work, radii, {lo, hi}, strict, sphere_radius,
+                             started);
       out.commit();
       return kExitSuccess;
     }
