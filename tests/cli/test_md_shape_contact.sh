@@ -137,6 +137,37 @@ cone_tends_to_jkr)
     fail "cone pull-off: JKR $pj N, 300 MPa $p3 N, 3 GPa $p30 N ($(cat cmp))"
   fi
   ;;
+profile_inside_and_beyond)
+  # Check: "a measured profile as far as it reaches" (section 13): data/example_tip_profile.tsv
+  # samples blunted-cone:20nm,70deg every 1 nm up to 60 nm. Inside, its MD curve (delta, F, c)
+  # and load-control pull-off equal the blunted cone's within 5 times the header's interpolation
+  # error estimate (1.3e-3; measured <= 2.2e-4 relative to the column's largest |value|, the
+  # pull-off 3.1e-4); at a = 50 nm the zone would reach the profile's last r: a '# not
+  # delivered' row naming it, the other rows written, exit 0.
+  TIP=(--thickness 20nm --film 100MPa,0.35 --substrate 10GPa,0.25 --work 100mJ/m2 --cohesive-stress 20MPa)
+  run 0 contact --shape profile:"$data"/example_tip_profile.tsv "${TIP[@]}" --contact-radius 5nm,10nm,30nm,50nm \
+    --output tip.tsv || { echo "$failures failure(s)"; exit 1; }
+  run 0 contact --shape blunted-cone:20nm,70deg "${TIP[@]}" --contact-radius 5nm,10nm,30nm --output cone.tsv ||
+    { echo "$failures failure(s)"; exit 1; }
+  est=$(grep "^# profile interpolation error estimate" tip.tsv | sed 's/.*: //')
+  for name in delta_m F_N c_m; do
+    i=$(col tip.tsv "$name")
+    paste <(rows tip.tsv | cut -f"$i") <(rows cone.tsv | cut -f"$i") >pair
+    if awk -v est="$est" '{ x[NR] = $1; y[NR] = $2; s = ($2 < 0 ? -$2 : $2); if (s > m) m = s }
+        END { for (k = 1; k <= NR; k++) { d = x[k] - y[k]; if (d < 0) d = -d; if (d > e) e = d }
+              printf "%.2g", e / m; exit !(NR == 3 && est > 0 && e <= 5 * est * m) }' pair >diff; then
+      ok "profile $name = blunted cone's within $(cat diff) (5 x estimate $est)"
+    else
+      fail "profile $name differs by $(cat diff) (estimate $est): $(tr '\n' ' ' <pair)"
+    fi
+  done
+  pt=$(grep "^# pull-off force, load control" tip.tsv | sed 's/.*\[N\]: //; s/ .*//')
+  pc=$(grep "^# pull-off force, load control" cone.tsv | sed 's/.*\[N\]: //; s/ .*//')
+  awk -v a="$pt" -v b="$pc" -v est="$est" 'BEGIN { d = (a - b) / b; if (d < 0) d = -d; exit !(a != "" && d <= 5 * est) }' &&
+    ok "profile load-control pull-off $pt N = blunted cone's $pc N" || fail "pull-off: profile $pt N, blunted cone $pc N"
+  grep -q "^# not delivered: a_m = 4.99.*last radius" tip.tsv && ok "a = 50 nm not delivered: the zone reaches the profile's end" ||
+    fail "no '# not delivered' row for a = 50 nm: $(grep -v '^#' tip.tsv | wc -l) rows"
+  ;;
 bad_cohesive_stress)
   # Bad values of --cohesive-stress and options it excludes: exit 2 naming the option, no output.
   for bad in -5MPa 0 nan abc 10m; do
