@@ -16,6 +16,7 @@
 #include "coatcontact/limits.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/shape_contact.hpp"
+#include "coatcontact/shape_maugis_dugdale.hpp"
 #include "commands.hpp"
 #include "number_text.hpp"
 
@@ -101,6 +102,10 @@ const std::vector<OptionSpec> kSpec = {
     substrate_option(),
     indenter_option(),
     {"--work", "w", "work of adhesion (J/m2, or mJ/m2)", true},
+    {"--cohesive-stress", "sigma0",
+     "Maugis-Dugdale zone instead of JKR: adhesive stress (Pa, or kPa MPa GPa), range h0 = w/sigma0 at most 1e6 "
+     "film thicknesses; every shape but punch (THEORY.md section 13); adds the zone edge c_m",
+     false},
     {"--spring", "k", "spring stiffness in N/m, in [1e-100, 1e100] (cantilever, machine frame): adds the spring-controlled pull-off", false},
     {"--contact-radius", "LIST", "contact radii: v1,v2,... or MIN:MAX:N (log-spaced); m, or with a unit (mm um nm)", false},
     {"--points", "N", "number of contact radii over the default range (default 100; not with --contact-radius)", false},
@@ -161,18 +166,115 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   throw InputError(option + ": unknown shape " + quoted(kind) + " in " + quoted(text) + "; " + expected);
 }
 
+namespace {
+
+// `contact --shape ... --cohesive-stress`: the Maugis-Dugdale curve by the direct cohesive-zone
+// solve per contact radius (THEORY.md section 13, "Any axisymmetric shape"), and the pull-offs
+// under load and displacement control.
+void write_md_shape_contact(std::ostream& os, const Stack& stack, const ShapeMaugisDugdale& md,
+                            const IndenterShape& shape, double thickness, double work,
+                            const std::vector<double>& radii, std::pair<double, double> scan, bool strict,
+                            double sphere_radius, const std::chrono::steady_clock::time_point& started) {
+  std::vector<PointStatus> status(radii.size());
+  std::vector<ShapeMdPoint> curve = md.curve(radii, status);
+  if (strict) {
+    for (const PointStatus& s : status) {
+      if (!s.delivered) throw NumericalError(s.reason);
+    }
+  }
+  require_some_delivered(status, "contact radius");
+  // Without --strict a pull-off the solve cannot locate leaves the curve standing.
+  std::optional<ShapeMdPulloff> pulloff;
+  std::string pulloff_missing;
+  try {
+    pulloff = md.pulloff(scan.first, scan.second);
+  } catch (const NumericalError& e) {
+    if (strict) throw;
+    pulloff_missing = e.what();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  Header h{{"command", "contact"}};
+  h.emplace_back("shape", shape.description());
+  h.emplace_back("film thickness t [m]", num(thickness));
+  h.emplace_back("work of adhesion w [J/m2]", num(work));
+  add_material_header(h, stack);
+  h.emplace_back("reference modulus [Pa]", num(stack.reference_modulus()));
+  if (shape.interpolation_error() > 0.0) {
+    h.emplace_back("profile interpolation error estimate (relative, delta0)", num(shape.interpolation_error()));
+  }
+  h.emplace_back("Maugis-Dugdale adhesive stress sigma0 [Pa]", num(md.cohesive_stress()));
+  h.emplace_back("Maugis-Dugdale range h0 = w/sigma0 [m]", num(work / md.cohesive_stress()));
+  h.emplace_back("adhesion", "Maugis-Dugdale: per contact radius the zone edge c from h(c) = h0, then delta and F "
+                             "(THEORY.md section 13, 'Any axisymmetric shape'); the shape is one more load");
+  h.emplace_back("solver", "per contact radius: factored system (p = 14), Brent root of h(c) = h0 in ln(c/a - 1), "
+                           "direct solve (no table)");
+  if (pulloff) {
+    const auto jump = [](const ShapeMdJump& j) {
+      return num(j.point.force) + " (contact radius " + num(j.point.radius) + " m, penetration " +
+             num(j.point.penetration) + " m, zone edge " + num(j.point.zone_edge) + " m; " +
+             (j.interior ? "stationary minimum" : "end of the curve a -> 0") + ")";
+    };
+    h.emplace_back("pull-off force, load control [N]", jump(pulloff->load));
+    h.emplace_back("pull-off force, displacement control [N]", jump(pulloff->displacement));
+    const ShapeMdPoint& end = pulloff->curve_end;
+    h.emplace_back("end of the curve a -> 0", "F = " + num(end.force) + " N, delta = " + num(end.penetration) +
+                                                  " m, c = " + num(end.zone_edge) + " m");
+    h.emplace_back("pull-off scan", "contact radii [" + num(pulloff->scan_min) + ", " + num(pulloff->scan_max) +
+                                        "] m, 24 per decade, every local minimum refined (Brent), against a -> 0");
+    for (const auto& w : pulloff->warnings) h.emplace_back("warning", w);
+  } else {
+    h.emplace_back("pull-off", "not computed: " + pulloff_missing + " (--strict: exit 3 instead)");
+  }
+  const auto where = [&](std::size_t i) { return "a_m = " + format_value(radii[i], "a_m"); };
+  progress_pause();
+  if (!pulloff) std::cerr << "coatcontact contact: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";
+  report_not_delivered(h, "contact", status, where);
+  std::vector<double> a, delta, force;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    if (!status[i].delivered) continue;
+    a.push_back(curve[i].radius);
+    delta.push_back(curve[i].penetration);
+    force.push_back(curve[i].force);
+  }
+  ValidityLimits limits;
+  limits.thickness = thickness;
+  limits.modulus = md.reference_modulus();
+  limits.sphere_radius = sphere_radius;
+  limits.max_contact_radius = shape.max_contact_radius();
+  for (const auto& w : validity_warnings(a, delta, force, limits)) {
+    h.emplace_back("warning", w);
+    std::cerr << "coatcontact contact: warning: " << w << "\n";
+  }
+  h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+  const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "delta_H_m", "F_H_N", "c_m"};
+  write_header(os, h, columns);
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const ShapeMdPoint& p = curve[i];
+    if (!status[i].delivered) {
+      write_not_delivered(os, where(i), status[i].reason);
+      continue;
+    }
+    write_row(os, {p.radius, p.penetration, p.force, p.penetration_h, p.force_h, p.zone_edge}, columns);
+  }
+}
+
+}  // namespace
+
 // The help text of `contact`.
 void print_contact_help() {
   std::cout << usage("contact",
                      "--shape SHAPE --thickness t --film E1,nu1 --substrate E0,nu0|rigid "
-                     "[--indenter E2,nu2] --work w [--spring k] [--contact-radius LIST | --points N] [--strict]",
+                     "[--indenter E2,nu2] --work w [--cohesive-stress sigma0] [--spring k] [--contact-radius LIST | --points N] [--strict]",
                      "Adhesive (JKR) contact of an axisymmetric indenter on a coated substrate in SI\n"
                      "units: per contact radius the adhesive penetration and force and the adhesionless\n"
                      "ones (THEORY.md sections 5, 11); the pull-off forces under load, displacement and\n"
                      "spring control (section 10) in the header, with a warning when F(a) has several\n"
                      "local minima (the global one is the load-controlled pull-off). A radius the solver\n"
                      "cannot serve at --tol is a '# not delivered' row with its reason (exit 0 while one\n"
-                     "radius is delivered); with --strict, exit 3 at the first one.",
+                     "radius is delivered); with --strict, exit 3 at the first one.\n"
+                     "--cohesive-stress sigma0: the Maugis-Dugdale curve instead (any shape but the punch), with\n"
+                     "the zone edge c_m, by the direct cohesive-zone solve per radius (section 13); pull-offs\n"
+                     "under load and displacement control (not with --spring).",
                      kSpec);
 }
 
@@ -216,6 +318,27 @@ int run_contact(const Args& raw) {
     }
     std::string profile_end;
     const auto shape = parse_shape(args.require("--shape"), profile_end);
+    std::optional<double> sigma0;
+    if (const auto text = args.get("--cohesive-stress")) {
+      sigma0 = parse_quantity(*text, Quantity::kPressure, "--cohesive-stress");
+      std::string why;
+      if (!cohesive_zone_allowed(*shape, &why)) {
+        throw InputError("--shape: " + quoted(args.require("--shape")) + " not allowed with --cohesive-stress: " + why);
+      }
+      if (args.has("--spring")) {
+        throw InputError("--spring: not used with --cohesive-stress (the cohesive zone's pull-offs are under load and "
+                         "displacement control only); omit --spring");
+      }
+      if (args.has("--tol")) {
+        throw InputError("--tol: not used with --cohesive-stress (the zone is solved per contact radius to a fixed "
+                         "accuracy, THEORY.md section 13); omit --tol");
+      }
+      try {
+        check_cohesive_range(work / *sigma0, thickness);
+      } catch (const InputError& e) {
+        throw InputError("--cohesive-stress: " + std::string(e.what()));
+      }
+    }
     if (shape->flat() && args.has("--points")) {
       throw InputError("--points: a flat punch has one contact radius, its own (" + shape->description() +
                        "); omit --points, or give --contact-radius");
@@ -247,6 +370,14 @@ int run_contact(const Args& raw) {
       }
     }
     const bool strict = args.has("--strict");
+    if (sigma0) {
+      const ShapeMaugisDugdale md(stack, shape, thickness, work, *sigma0);
+      Output out(args.get("--output").value_or(""));
+      write_md_shape_contact(out.stream(), stack, md, *shape, thickness, work, radii, {lo, hi}, strict, sphere_radius,
+                             started);
+      out.commit();
+      return kExitSuccess;
+    }
     std::vector<PointStatus> status(radii.size());
     const std::vector<ShapePoint> curve = strict ? contact.curve(radii) : contact.curve(radii, status);
     require_some_delivered(status, "contact radius");
