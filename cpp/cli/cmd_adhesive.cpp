@@ -475,14 +475,7 @@ int run_sphere(const Args& raw) {
     const double thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
     const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
     const double tol = parse_tolerance(args);
-    std::size_t points = 400;
-    if (const auto text = args.get("--points")) {
-      const double n = parse_number(*text, "--points");
-      if (!(n >= 2 && n <= 1e6 && n == std::floor(n))) {
-        throw InputError("--points: value " + quoted(*text) + " not allowed (need an integer, 2 <= N <= 1000000)");
-      }
-      points = static_cast<std::size_t>(n);
-    }
+    const std::size_t points = parse_point_count(args, 400);
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
     const bool md_direct = parse_md_direct(args, sigma0.has_value(), "--cohesive-stress or --range");
     std::vector<double> contact_radii;

@@ -258,7 +258,44 @@ void write_md_shape_contact(std::ostream& os, const Stack& stack, const ShapeMau
   }
 }
 
+// --cohesive-stress with --shape (THEORY.md section 13, "Any axisymmetric shape"): sigma0, or
+// nothing without the option; the shapes, options and ranges the zone allows.
+std::optional<double> parse_shape_cohesive_stress(const Arguments& args, const IndenterShape& shape, double work,
+                                                  double thickness) {
+  const auto text = args.get("--cohesive-stress");
+  if (!text) return std::nullopt;
+  const double sigma0 = parse_quantity(*text, Quantity::kPressure, "--cohesive-stress");
+  std::string why;
+  if (!cohesive_zone_allowed(shape, &why)) {
+    throw InputError("--shape: " + quoted(args.require("--shape")) + " not allowed with --cohesive-stress: " + why);
+  }
+  if (args.has("--spring")) {
+    throw InputError("--spring: not used with --cohesive-stress (the cohesive zone's pull-offs are under load and "
+                     "displacement control only); omit --spring");
+  }
+  if (args.has("--tol")) {
+    throw InputError("--tol: not used with --cohesive-stress (the zone is solved per contact radius to a fixed "
+                     "accuracy, THEORY.md section 13); omit --tol");
+  }
+  try {
+    check_cohesive_range(work / sigma0, thickness);
+  } catch (const InputError& e) {
+    throw InputError("--cohesive-stress: " + std::string(e.what()));
+  }
+  return sigma0;
+}
+
 }  // namespace
+
+std::size_t parse_point_count(const Arguments& args, std::size_t fallback) {
+  const auto text = args.get("--points");
+  if (!text) return fallback;
+  const double n = parse_number(*text, "--points");
+  if (!(n >= 2 && n <= 1e6 && n == std::floor(n))) {
+    throw InputError("--points: value " + quoted(*text) + " not allowed (need an integer, 2 <= N <= 1000000)");
+  }
+  return static_cast<std::size_t>(n);
+}
 
 // The help text of `contact`.
 void print_contact_help() {
@@ -304,41 +341,14 @@ int run_contact(const Args& raw) {
     if (args.has("--contact-radius") && args.has("--points")) {
       throw InputError("--contact-radius and --points exclude each other");
     }
-    std::size_t points = kDefaultPoints;
-    if (const auto text = args.get("--points")) {
-      const double n = parse_number(*text, "--points");
-      if (!(n >= 2 && n <= 1e6 && n == std::floor(n))) {
-        throw InputError("--points: value " + quoted(*text) + " not allowed (need an integer, 2 <= N <= 1000000)");
-      }
-      points = static_cast<std::size_t>(n);
-    }
+    const std::size_t points = parse_point_count(args, kDefaultPoints);
     std::vector<double> radii;
     if (const auto text = args.get("--contact-radius")) {
       radii = parse_quantity_list(*text, Quantity::kLength, "--contact-radius");
     }
     std::string profile_end;
     const auto shape = parse_shape(args.require("--shape"), profile_end);
-    std::optional<double> sigma0;
-    if (const auto text = args.get("--cohesive-stress")) {
-      sigma0 = parse_quantity(*text, Quantity::kPressure, "--cohesive-stress");
-      std::string why;
-      if (!cohesive_zone_allowed(*shape, &why)) {
-        throw InputError("--shape: " + quoted(args.require("--shape")) + " not allowed with --cohesive-stress: " + why);
-      }
-      if (args.has("--spring")) {
-        throw InputError("--spring: not used with --cohesive-stress (the cohesive zone's pull-offs are under load and "
-                         "displacement control only); omit --spring");
-      }
-      if (args.has("--tol")) {
-        throw InputError("--tol: not used with --cohesive-stress (the zone is solved per contact radius to a fixed "
-                         "accuracy, THEORY.md section 13); omit --tol");
-      }
-      try {
-        check_cohesive_range(work / *sigma0, thickness);
-      } catch (const InputError& e) {
-        throw InputError("--cohesive-stress: " + std::string(e.what()));
-      }
-    }
+    const std::optional<double> sigma0 = parse_shape_cohesive_stress(args, *shape, work, thickness);
     if (shape->flat() && args.has("--points")) {
       throw InputError("--points: a flat punch has one contact radius, its own (" + shape->description() +
                        "); omit --points, or give --contact-radius");

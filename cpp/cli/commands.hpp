@@ -1,10 +1,12 @@
 // Subcommands of the `coatcontact` program. Each takes the arguments after its name and
 // returns the process exit code (0 success, 2 bad usage or input, 3 numerical failure).
 #pragma once
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "coatcontact/cli_support.hpp"
 #include "coatcontact/indenter_shape.hpp"
 
 namespace coatcontact::cli {
@@ -26,6 +28,9 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
 // A cone's half included angle: "70deg", "70 deg" or "1.22rad", a bare number in degrees, in
 // (0, 90) degrees (cmd_contact.cpp). InputError naming `option`.
 double parse_angle(const std::string& text, const std::string& option);
+// The number of curve points of `--points N` (an integer, 2 <= N <= 1e6), `fallback` without it
+// (cmd_contact.cpp; `contact` and `sphere`). InputError naming --points.
+std::size_t parse_point_count(const Arguments& args, std::size_t fallback);
 int run_kinetics(const Args& args);  // cmd_kinetics.cpp: rate-dependent adhesion (crack kinetics)
 // (further subcommands are declared here as they land)
 
