@@ -9,7 +9,8 @@ lines after a command (up to the next `$ ` line or the end of the block) are its
     last digits between machines);
   - every other line is a data line; the shown data lines must match the first data lines of
     the real output (blank lines included), up to a line `...` that marks truncation.
-    Numbers agree to kRelTol relative (plus kAbsTol absolute), words exactly.
+    Numbers agree to kRelTol relative (plus kAbsTol absolute; kRelTolZoneLocation for the
+    Maugis-Dugdale commands, --lambda), words exactly.
 Each command must exit with status 0. Any other `$ ` command in a console block is an error,
 so the tutorial cannot show a command that this test does not run.
 
@@ -29,6 +30,10 @@ import tempfile
 # within it when the refinement path changes (compiler, thread count). 1e-7 catches any real
 # change of the numbers while ignoring that.
 kRelTol = 1e-7
+# A Maugis-Dugdale pull-off (--lambda) is a minimum located by Brent to ~1e-7 relative in a_bar
+# (THEORY.md section 13); the values read at that location (a_bar, m, D_load) then move by a few
+# 1e-7 with the compiler's rounding (Release against the sanitizer build: 1.4e-7 in D_load).
+kRelTolZoneLocation = 1e-6
 kAbsTol = 1e-12
 TRUNCATION = "..."
 
@@ -83,7 +88,7 @@ def run(cli, command, workdir):
 STOP_REASON = re.compile(r"converged \(.*\) after")
 
 
-def tokens_match(shown, actual):
+def tokens_match(shown, actual, rel_tol=kRelTol):
     shown, actual = (STOP_REASON.sub("converged after", x) for x in (shown, actual))
     a, b = shown.split(), actual.split()
     if len(a) != len(b):
@@ -95,7 +100,7 @@ def tokens_match(shown, actual):
             fx, fy = float(x), float(y)
         except ValueError:
             return False
-        if abs(fx - fy) > kRelTol * max(abs(fx), abs(fy)) + kAbsTol:
+        if abs(fx - fy) > rel_tol * max(abs(fx), abs(fy)) + kAbsTol:
             return False
     return True
 
@@ -109,8 +114,8 @@ def split_output(text):
     return headers, data
 
 
-def check_command(shown_lines, stdout):
-    """Returns a list of problems (empty if the shown output matches)."""
+def check_command(shown_lines, stdout, rel_tol=kRelTol):
+    """Returns a list of problems (empty if the shown output matches to rel_tol)."""
     problems = []
     headers, data = split_output(stdout)
     columns = [h for h in headers if h.startswith("# columns:")]
@@ -124,7 +129,7 @@ def check_command(shown_lines, stdout):
     if len(shown_data) > len(data):
         problems.append("shows %d data lines, the command prints %d" % (len(shown_data), len(data)))
     for k, (s, a) in enumerate(zip(shown_data, data)):
-        if not tokens_match(s, a):
+        if not tokens_match(s, a, rel_tol):
             problems.append("data line %d differs:\n    shown:  %s\n    actual: %s" % (k + 1, s, a))
     return problems
 
@@ -192,7 +197,8 @@ def main():
                 replacements.append((out_idx, updated_output(shown, stdout)))
                 print("updated line %d: %s" % (index + 1, command))
                 continue
-            problems = check_command(shown, stdout)
+            problems = check_command(shown, stdout,
+                                     kRelTolZoneLocation if "--lambda" in command else kRelTol)
             if problems:
                 failures += 1
                 print("FAIL  line %d: %s" % (index + 1, command))
