@@ -14,6 +14,7 @@
 // differentiated implicitly through c(a) (THEORY.md section 13), to ~1e-10.
 #include "coatcontact/detail/constants.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
+#include "coatcontact/solve_cache.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +32,7 @@
 #include "parallel.hpp"
 #include "cohesive_zone.hpp"
 #include "md_table.hpp"
+#include "solve_cache.hpp"
 #include "table_kernel.hpp"
 
 namespace coatcontact {
@@ -122,7 +124,9 @@ struct MaugisDugdaleModel::Impl {
       detail::MdTableOptions range;
       range.a_over_t_min = o.table_a_over_t_min;
       range.a_over_t_max = o.table_a_over_t_max;
-      table = std::make_unique<detail::MaugisDugdaleTable>(kernel, disc, quadrature, range);
+      const bool cached = !solve_cache_directory().empty();
+      table = std::make_unique<detail::MaugisDugdaleTable>(kernel, disc, quadrature, range,
+                                                           cached ? detail::SolveCache::key_of(s) : "");
     }
   }
   Stack stack;
@@ -216,7 +220,7 @@ const MaugisDugdaleOptions& MaugisDugdaleModel::options() const { return impl_->
 void MaugisDugdaleModel::build_table() const {
   if (impl_->table) impl_->table->build();
 }
-long MaugisDugdaleModel::table_solves() const { return impl_->table ? impl_->table->nodes_solved() : 0; }
+long MaugisDugdaleModel::table_nodes() const { return impl_->table ? impl_->table->nodes_used() : 0; }
 double MaugisDugdaleModel::table_seconds() const { return impl_->table ? impl_->table->build_seconds() : 0.0; }
 
 MaugisDugdalePoint MaugisDugdaleModel::point(double eta, double lambda, double a_bar) const {

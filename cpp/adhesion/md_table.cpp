@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <atomic>
 #include <exception>
 #include <functional>
@@ -22,6 +24,8 @@
 #include "coatcontact/detail/gsl_handler_off.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/progress.hpp"
+#include "coatcontact/solve_cache.hpp"
+#include "solve_cache.hpp"
 
 namespace coatcontact::detail {
 
@@ -131,8 +135,18 @@ CohesiveFunctions homogeneous_end_functions(double c) {
   return h;
 }
 
-// A node request for the factorization of column i alone (δ_H, F_H), no 2-D node.
-constexpr std::size_t kColumnOnly = static_cast<std::size_t>(-1);
+// A node in the solve cache: its kind, its index in that kind's grid, its values (ratios).
+enum NodeKind : std::int64_t { kNode2d = 0, kNodeEnd = 1, kNodeRadius = 2 };
+constexpr std::size_t kNodeRecordBytes = 2 * sizeof(std::int64_t) + kTwoD * sizeof(double);
+
+std::string node_record(NodeKind kind, std::size_t index, const double* values, int count) {
+  std::string r(kNodeRecordBytes, '\0');
+  const auto k = static_cast<std::int64_t>(kind), i = static_cast<std::int64_t>(index);
+  std::memcpy(r.data(), &k, sizeof k);
+  std::memcpy(r.data() + sizeof k, &i, sizeof i);
+  std::memcpy(r.data() + 2 * sizeof k, values, static_cast<std::size_t>(count) * sizeof(double));
+  return r;
+}
 
 // One tile of the 2-D table: own coarse cells [cell_x0, cell_x0 + own_x) x [cell_s0, ...),
 // splines on the fine nodes [node_x0, node_x1] x [node_s0, node_s1] (own cells plus margins).
@@ -159,14 +173,17 @@ struct MaugisDugdaleTable::Grids {
   // Node values (ratios to the homogeneous forms) and whether they are solved; 2-D index j nx + i.
   std::vector<double> z[kTwoD], y[kOneD], ye[kTwoD];
   std::vector<char> solved, column_solved, end_solved, radius_solved;
+  // Nodes the built tiles rest on (solved here or read from the cache).
+  std::vector<char> used, end_used, radius_used;
   std::vector<std::unique_ptr<CohesiveZone>> columns;  // the factored system per radius
   std::unique_ptr<CohesiveZone> end_zone;
   std::mutex node_lock;
   std::vector<std::unique_ptr<Tile2d>> tiles;
   std::vector<std::unique_ptr<Tile1d>> radius_tiles, end_tiles;
   std::unique_ptr<std::once_flag[]> tile_once, radius_once, end_once;
-  std::atomic<long> nodes{0};
+  std::atomic<long> nodes{0}, nodes_used{0};
   std::atomic<long long> nanoseconds{0};
+  std::unique_ptr<CacheRecords> cache;  // null without the solve cache; written on destruction
 };
 
 namespace {
@@ -209,7 +226,8 @@ class Stopwatch {
 }  // namespace
 
 MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discretization& disc,
-                                       const CohesiveQuadrature& quadrature, const MdTableOptions& options)
+                                       const CohesiveQuadrature& quadrature, const MdTableOptions& options,
+                                       const std::string& cache_key)
     : kernel_(kernel), disc_(disc), quadrature_(quadrature), options_(options) {
   if (options.node_points_per_piece >= 4) {
     quadrature_.points_per_piece = std::min(quadrature_.points_per_piece, options.node_points_per_piece);
@@ -241,8 +259,11 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
   }
   for (int k = 0; k < kOneD; ++k) g->y[k].assign(g->x1.size(), 0.0);
   g->solved.assign(nx * ns, 0);
+  g->used.assign(nx * ns, 0);
   g->column_solved.assign(nx, 0);
   g->end_solved.assign(ne, 0);
+  g->end_used.assign(ne, 0);
+  g->radius_used.assign(g->x1.size(), 0);
   g->columns.resize(nx);
   g->tiles_x = tile_count(g->x_coarse.size() - 1, options_.tile_cells);
   g->tiles_s = tile_count(g->tau_coarse.size() - 1, options_.tile_cells);
@@ -253,7 +274,48 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
   g->tile_once = std::make_unique<std::once_flag[]>(g->tiles.size());
   g->radius_once = std::make_unique<std::once_flag[]>(g->tiles_x);
   g->end_once = std::make_unique<std::once_flag[]>(g->tiles_e);
+  const std::string directory = solve_cache_directory();
+  if (!cache_key.empty() && !directory.empty()) {
+    // Everything a node's value depends on besides its grid index.
+    const MdTableOptions& o = options_;
+    const std::string key = cache_key + "; zone table " + exact_text(o.a_over_t_min) + " " +
+                            exact_text(o.a_over_t_max) + " " + exact_text(o.excess_min) + " " +
+                            exact_text(o.c_over_t_max) + " " + exact_text(o.end_c_over_t_min) + " " +
+                            exact_text(o.step) + "; panels " + std::to_string(disc_.nodes_per_panel) + " " +
+                            exact_text(disc_.edge_panel) + " " + exact_text(disc_.growth) + " " +
+                            exact_text(disc_.single_panel_limit) + " " + exact_text(disc_.quadrature_accuracy) +
+                            "; annulus " + std::to_string(quadrature_.points_per_piece) + " " +
+                            exact_text(quadrature_.piece_length) + " " + exact_text(quadrature_.piece_angle);
+    g->cache = std::make_unique<CacheRecords>(directory, "zone", key, kNodeRecordBytes);
+  }
   grids_ = std::move(g);
+  load_cached_nodes();
+}
+
+// The nodes earlier processes solved: set as if solved here (out-of-range or non-finite
+// records, which a complete file of this key cannot hold, are ignored).
+void MaugisDugdaleTable::load_cached_nodes() const {
+  Grids& g = *grids_;
+  if (!g.cache) return;
+  for (const std::string& r : g.cache->loaded()) {
+    std::int64_t kind = 0, index = 0;
+    double v[kTwoD];
+    std::memcpy(&kind, r.data(), sizeof kind);
+    std::memcpy(&index, r.data() + sizeof kind, sizeof index);
+    std::memcpy(v, r.data() + 2 * sizeof kind, sizeof v);
+    if (index < 0 || !std::all_of(v, v + kTwoD, [](double x) { return std::isfinite(x); })) continue;
+    const auto i = static_cast<std::size_t>(index);
+    if (kind == kNode2d && i < g.solved.size()) {
+      for (int k = 0; k < kTwoD; ++k) g.z[k][i] = v[k];
+      g.solved[i] = 1;
+    } else if (kind == kNodeEnd && i < g.end_solved.size()) {
+      for (int k = 0; k < kTwoD; ++k) g.ye[k][i] = v[k];
+      g.end_solved[i] = 1;
+    } else if (kind == kNodeRadius && i < g.radius_solved.size()) {
+      for (int k = 0; k < kOneD; ++k) g.y[k][i] = v[k];
+      g.radius_solved[i] = 1;
+    }
+  }
 }
 
 MaugisDugdaleTable::~MaugisDugdaleTable() = default;
@@ -291,15 +353,6 @@ void for_each_node(std::size_t count, const std::function<void(std::size_t)>& bo
   }
 }
 
-// The indices in [first, last] whose flag is not set yet.
-std::vector<std::size_t> unsolved(const std::vector<char>& solved, std::size_t first, std::size_t last) {
-  std::vector<std::size_t> missing;
-  for (std::size_t i = first; i <= last; ++i) {
-    if (!solved[i]) missing.push_back(i);
-  }
-  return missing;
-}
-
 }  // namespace
 
 void MaugisDugdaleTable::solve_nodes(const std::vector<std::pair<std::size_t, std::size_t>>& nodes) const {
@@ -310,16 +363,20 @@ void MaugisDugdaleTable::solve_nodes(const std::vector<std::pair<std::size_t, st
   std::vector<std::pair<std::size_t, std::size_t>> missing;
   std::vector<char> column_listed(nx, 0), node_listed(g.solved.size(), 0);
   for (const auto& [i, j] : nodes) {
+    const std::size_t n = j * nx + i;
+    if (!g.used[n]) {
+      g.used[n] = 1;
+      ++g.nodes_used;
+    }
+    if (g.solved[n] || node_listed[n]) continue;
+    missing.emplace_back(i, j);
+    node_listed[n] = 1;
     if (!g.column_solved[i] && !column_listed[i]) {
       columns.push_back(i);
       column_listed[i] = 1;
     }
-    if (j != kColumnOnly && !g.solved[j * nx + i] && !node_listed[j * nx + i]) {
-      missing.emplace_back(i, j);
-      node_listed[j * nx + i] = 1;
-    }
   }
-  if (columns.empty() && missing.empty()) return;
+  if (missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
   // One factorization per contact radius, shared by the column's nodes.
   for_each_node(columns.size(), [&](std::size_t c) {
@@ -339,14 +396,35 @@ void MaugisDugdaleTable::solve_nodes(const std::vector<std::pair<std::size_t, st
     to_array_2d(homogeneous_functions(a, e), hom);
     for (int k = 0; k < kTwoD; ++k) g.z[k][j * nx + i] = value[k] / hom[k];
   });
-  for (const auto& [i, j] : missing) g.solved[j * nx + i] = 1;
+  for (const auto& [i, j] : missing) {
+    const std::size_t n = j * nx + i;
+    g.solved[n] = 1;
+    if (g.cache) {
+      const double v[kTwoD] = {g.z[0][n], g.z[1][n], g.z[2][n], g.z[3][n]};
+      g.cache->add(node_record(kNode2d, n, v, kTwoD));
+    }
+  }
   g.nodes += static_cast<long>(missing.size());
+}
+
+// Marks [first, last] as used; the indices among them not solved yet.
+std::vector<std::size_t> MaugisDugdaleTable::use_nodes(std::vector<char>& used, const std::vector<char>& solved,
+                                                      std::size_t first, std::size_t last) const {
+  std::vector<std::size_t> missing;
+  for (std::size_t i = first; i <= last; ++i) {
+    if (!used[i]) {
+      used[i] = 1;
+      ++grids_->nodes_used;
+    }
+    if (!solved[i]) missing.push_back(i);
+  }
+  return missing;
 }
 
 void MaugisDugdaleTable::solve_end_nodes(std::size_t first, std::size_t last) const {
   Grids& g = *grids_;
   const std::lock_guard<std::mutex> lock(g.node_lock);
-  const std::vector<std::size_t> missing = unsolved(g.end_solved, first, last);
+  const std::vector<std::size_t> missing = use_nodes(g.end_used, g.end_solved, first, last);
   if (missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
   if (!g.end_zone) g.end_zone = std::make_unique<CohesiveZone>(kernel_, 0.0, 1.0, disc_, quadrature_);
@@ -358,14 +436,20 @@ void MaugisDugdaleTable::solve_end_nodes(std::size_t first, std::size_t last) co
     to_array_2d(homogeneous_end_functions(c), hom);
     for (int k = 0; k < kTwoD; ++k) g.ye[k][i] = value[k] / hom[k];
   });
-  for (std::size_t i : missing) g.end_solved[i] = 1;
+  for (std::size_t i : missing) {
+    g.end_solved[i] = 1;
+    if (g.cache) {
+      const double v[kTwoD] = {g.ye[0][i], g.ye[1][i], g.ye[2][i], g.ye[3][i]};
+      g.cache->add(node_record(kNodeEnd, i, v, kTwoD));
+    }
+  }
   g.nodes += static_cast<long>(missing.size());
 }
 
 void MaugisDugdaleTable::solve_radius_nodes(std::size_t first, std::size_t last) const {
   Grids& g = *grids_;
   const std::lock_guard<std::mutex> lock(g.node_lock);
-  const std::vector<std::size_t> missing = unsolved(g.radius_solved, first, last);
+  const std::vector<std::size_t> missing = use_nodes(g.radius_used, g.radius_solved, first, last);
   if (missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
   // One factorization per radius; the adhesionless solution gives δ_H, F_H.
@@ -377,7 +461,13 @@ void MaugisDugdaleTable::solve_radius_nodes(std::size_t first, std::size_t last)
     g.y[0][i] = v.delta_h / h.delta_h;
     g.y[1][i] = v.force_h / h.force_h;
   });
-  for (std::size_t i : missing) g.radius_solved[i] = 1;
+  for (std::size_t i : missing) {
+    g.radius_solved[i] = 1;
+    if (g.cache) {
+      const double v[kTwoD] = {g.y[0][i], g.y[1][i], 0.0, 0.0};
+      g.cache->add(node_record(kNodeRadius, i, v, kTwoD));
+    }
+  }
   g.nodes += static_cast<long>(missing.size());
 }
 
@@ -531,6 +621,7 @@ void MaugisDugdaleTable::build() const {
 
 double MaugisDugdaleTable::build_seconds() const { return 1e-9 * static_cast<double>(grids_->nanoseconds.load()); }
 long MaugisDugdaleTable::nodes_solved() const { return grids_->nodes.load(); }
+long MaugisDugdaleTable::nodes_used() const { return grids_->nodes_used.load(); }
 int MaugisDugdaleTable::nodes_x() const { return static_cast<int>(grids_->x.size()); }
 int MaugisDugdaleTable::nodes_s() const { return static_cast<int>(grids_->tau.size()); }
 

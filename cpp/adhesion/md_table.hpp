@@ -11,10 +11,16 @@
 //
 // Thread safety: every const member function may run concurrently; a tile is built once
 // (std::call_once), the nodes it needs under one lock.
+//
+// With a cache key and the solve cache on (coatcontact/solve_cache.hpp), the nodes solved by
+// earlier processes are read instead of solved, and the new ones are written when the table
+// is destroyed: a node is a pure function of the stack, the options and its grid index, so
+// every value the table returns is the same with and without the cache.
 #pragma once
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 
 #include "cohesive_zone.hpp"
 #include "factored_system.hpp"
@@ -74,9 +80,10 @@ struct MdTableState {
 
 class MaugisDugdaleTable {
  public:
-  // kernel must outlive the table. Nothing is solved until the first query.
+  // kernel must outlive the table. Nothing is solved until the first query. cache_key: the
+  // text that identifies the kernel's stack and build (SolveCache::key_of), or "" for no cache.
   MaugisDugdaleTable(const KernelSource& kernel, const Discretization& disc, const CohesiveQuadrature& quadrature,
-                     const MdTableOptions& options = {});
+                     const MdTableOptions& options = {}, const std::string& cache_key = "");
   ~MaugisDugdaleTable();
   MaugisDugdaleTable(const MaugisDugdaleTable&) = delete;
   MaugisDugdaleTable& operator=(const MaugisDugdaleTable&) = delete;
@@ -96,7 +103,11 @@ class MaugisDugdaleTable {
 
   void build() const;            // builds every tile now (otherwise each on first use)
   double build_seconds() const;  // wall time spent building tiles so far
-  long nodes_solved() const;     // direct solves so far (2-D nodes, curve-end nodes, radii)
+  // Nodes (2-D, curve-end, radius) the tiles built so far rest on, solved here or read from the
+  // cache (the same count either way); and those solved by this table (column factorizations
+  // included).
+  long nodes_used() const;
+  long nodes_solved() const;
   int nodes_x() const;
   int nodes_s() const;
   const MdTableOptions& options() const { return options_; }
@@ -114,6 +125,9 @@ class MaugisDugdaleTable {
   void solve_end_nodes(std::size_t first, std::size_t last) const;
   void solve_radius_nodes(std::size_t first, std::size_t last) const;
   void end_values(double u, double* value, double* error) const;
+  void load_cached_nodes() const;
+  std::vector<std::size_t> use_nodes(std::vector<char>& used, const std::vector<char>& solved, std::size_t first,
+                                     std::size_t last) const;
   const KernelSource& kernel_;
   Discretization disc_;
   CohesiveQuadrature quadrature_;

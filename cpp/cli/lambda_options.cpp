@@ -73,8 +73,8 @@ std::string md_solver_text(const MaugisDugdaleModel& md) {
   if (!md.options().use_table) return direct + " (--md-direct)";
   return "reduced table of the cohesive zone (THEORY.md section 13, 'The cohesive zone as a table'), a/t in [" +
          num(md.options().table_a_over_t_min) + ", " + num(md.options().table_a_over_t_max) +
-         "], c/t <= 1e4, tiles built on demand (" + std::to_string(md.table_solves()) +
-         " direct solves); outside it " + direct + "; each value with its error estimate (--md-direct: the direct "
+         "], c/t <= 1e4, tiles built on demand (resting on " + std::to_string(md.table_nodes()) +
+         " direct solves, read from the solve cache where it holds them); outside it " + direct + "; each value with its error estimate (--md-direct: the direct "
          "solve throughout)";
 }
 

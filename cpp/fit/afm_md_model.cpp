@@ -128,7 +128,7 @@ class MdCurves {
 
   long solves() const {
     long n = 0;
-    for (const auto& m : models_) n += m.second->table_solves();
+    for (const auto& m : models_) n += m.second->table_nodes();
     return n;
   }
 

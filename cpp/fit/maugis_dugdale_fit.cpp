@@ -32,7 +32,7 @@ class MaugisDugdaleEntry {
       : key_(key), solver_(std::make_unique<MaugisDugdaleModel>(stack_of(problem, key), options_of(problem))) {}
   const MaugisDugdaleModel& solver() const { return *solver_; }
   const StackKey& key() const { return key_; }
-  long source_evaluations() const { return solver_->table_solves(); }
+  long source_evaluations() const { return solver_->table_nodes(); }
 
  private:
   static MaugisDugdaleOptions options_of(const Problem& problem) {

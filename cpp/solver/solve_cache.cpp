@@ -1,11 +1,12 @@
 // The solve cache (coatcontact/solve_cache.hpp, solve_cache.hpp; docs/solver.md).
 //
-// One folder per stack, <directory>/<build id, 16 digits>/solve-<FNV-1a of the key>; in it, files written by the
-// processes that solved something new, each complete or absent (written under a temporary
-// name starting with '.', then renamed): several processes (make -j) add entries at once
-// without locks, and a reader takes the union. File: the line "coatcontact solve cache 1",
-// the key line, a count, per entry the tolerance, a/t, the six values and the error estimate
-// (binary doubles) and the unknowns (int64), then an FNV-1a checksum of all that precedes.
+// One folder per kind and key, <directory>/<build id, 16 digits>/<kind>-<FNV-1a of the key>; in
+// it, files written by the processes that solved something new, each complete or absent
+// (written under a temporary name starting with '.', then renamed): several processes (make -j)
+// add entries at once without locks, and a reader takes the union. File: the line
+// "coatcontact <kind> cache 1", the key line, a count, the fixed-size records, then an FNV-1a
+// checksum of all that precedes. A "solve" record: the tolerance, a/t, the six values and the
+// error estimate (binary doubles) and the unknowns (int64).
 #include "solve_cache.hpp"
 
 #include <unistd.h>
@@ -57,7 +58,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char kMagic[] = "coatcontact solve cache 1\n";
 constexpr std::size_t kDoublesPerEntry = 9;
 constexpr std::size_t kEntryBytes = kDoublesPerEntry * sizeof(double) + sizeof(std::int64_t);
 // A folder with more files than this is merged into one by the next process that writes.
@@ -76,12 +76,6 @@ std::uint64_t bits(double x) {
   std::uint64_t b = 0;
   std::memcpy(&b, &x, sizeof b);
   return b;
-}
-
-std::string exact(double x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%a", x);
-  return buffer;
 }
 
 template <class T>
@@ -106,49 +100,73 @@ std::string unique_name() {
   return name.str();
 }
 
-// Parses one file; false if it is not a complete file of this format.
-bool parse(const std::string& text, const std::string& key, bool& foreign,
-           std::vector<std::pair<double, ReducedVariables>>& out) {
+// Parses one file into its records; false if it is not a complete file of this format and key.
+bool parse(const std::string& text, const std::string& magic, const std::string& key, std::size_t record_bytes,
+           bool& foreign, std::vector<std::string>& out) {
   foreign = false;
-  const std::size_t magic = std::strlen(kMagic);
-  if (text.size() < magic || text.compare(0, magic, kMagic) != 0) return false;
-  const std::size_t key_end = text.find('\n', magic);
+  if (text.size() < magic.size() || text.compare(0, magic.size(), magic) != 0) return false;
+  const std::size_t key_end = text.find('\n', magic.size());
   if (key_end == std::string::npos) return false;
-  if (text.compare(magic, key_end - magic, key) != 0) {
+  if (text.compare(magic.size(), key_end - magic.size(), key) != 0) {
     foreign = true;  // another key with the same hash: leave it alone
     return false;
   }
   std::size_t at = key_end + 1;
   if (text.size() < at + 2 * sizeof(std::uint64_t)) return false;
   const auto count = get<std::uint64_t>(text, at);
-  if (count > (text.size() - at) / kEntryBytes || text.size() != at + count * kEntryBytes + sizeof(std::uint64_t)) {
+  if (count > (text.size() - at) / record_bytes || text.size() != at + count * record_bytes + sizeof(std::uint64_t)) {
     return false;
   }
   std::size_t sum_at = text.size() - sizeof(std::uint64_t);
   if (get<std::uint64_t>(text, sum_at) != fnv1a(text.data(), text.size() - sizeof(std::uint64_t))) return false;
-  for (std::uint64_t i = 0; i < count; ++i) {
-    double d[kDoublesPerEntry];
-    for (double& x : d) x = get<double>(text, at);
-    ReducedVariables v;
-    v.a_over_t = d[1];
-    v.pi_s = d[2];
-    v.delta_s = d[3];
-    v.pi_c = d[4];
-    v.delta_c = d[5];
-    v.e_eq = d[6];
-    v.gamma1 = d[7];
-    v.error_estimate = d[8];
-    v.unknowns = static_cast<int>(get<std::int64_t>(text, at));
-    out.emplace_back(d[0], v);
-  }
+  for (std::uint64_t i = 0; i < count; ++i, at += record_bytes) out.push_back(text.substr(at, record_bytes));
   return true;
 }
 
 }  // namespace
 
+std::string exact_text(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%a", x);
+  return buffer;
+}
+
+CacheRecords::CacheRecords(const std::string& directory, const std::string& kind, const std::string& key,
+                           std::size_t record_bytes)
+    : magic_("coatcontact " + kind + " cache 1\n"), key_(key), record_bytes_(record_bytes) {
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key_.data(), key_.size())));
+  build_folder_ = (fs::path(directory) / std::string(kBuildId).substr(0, 16)).string();
+  folder_ = (fs::path(build_folder_) / (kind + "-" + hash)).string();
+  std::error_code ec;
+  for (fs::directory_iterator it(folder_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.empty() || name[0] == '.') continue;  // being written
+    std::ifstream in(it->path(), std::ios::binary);
+    if (!in) continue;
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    bool foreign = false;
+    std::vector<std::string> read;
+    if (!parse(text, magic_, key_, record_bytes_, foreign, read)) {
+      std::error_code ignored;
+      if (!foreign) fs::remove(it->path(), ignored);  // corrupt or truncated: solved again
+      continue;
+    }
+    loaded_.insert(loaded_.end(), std::make_move_iterator(read.begin()), std::make_move_iterator(read.end()));
+    loaded_files_.push_back(it->path().string());
+  }
+}
+
+CacheRecords::~CacheRecords() { flush(); }
+
+void CacheRecords::add(std::string record) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (record.size() == record_bytes_) added_.push_back(std::move(record));
+}
+
 // Entries of other builds can never be read again by this one: the first process of a new
 // build removes them (a cache shared by two builds then only loses time, never numbers).
-void SolveCache::remove_other_builds() const {
+void CacheRecords::remove_other_builds() const {
   const fs::path own = fs::path(build_folder_);
   std::error_code ec;
   for (fs::directory_iterator it(own.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
@@ -161,86 +179,20 @@ void SolveCache::remove_other_builds() const {
   }
 }
 
-std::string SolveCache::key_of(const Stack& stack) {
-  std::ostringstream key;
-  key << "build " << kBuildId << "; layers";
-  for (const Layer& layer : stack.layers()) {
-    key << " " << exact(layer.thickness) << "," << exact(layer.material.youngs_modulus) << ","
-        << exact(layer.material.poisson_ratio) << (layer.slip_below ? ",slip" : "");
-  }
-  const Substrate& s = stack.substrate();
-  key << "; substrate "
-      << (s.rigid ? std::string("rigid") : exact(s.material.youngs_modulus) + "," + exact(s.material.poisson_ratio));
-  const Indenter& i = stack.indenter();
-  key << "; indenter "
-      << (i.rigid ? std::string("rigid") : exact(i.material.youngs_modulus) + "," + exact(i.material.poisson_ratio));
-  return key.str();
-}
-
-SolveCache::SolveCache(const std::string& directory, const Stack& stack) : key_(key_of(stack)) {
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key_.data(), key_.size())));
-  build_folder_ = (fs::path(directory) / std::string(kBuildId).substr(0, 16)).string();
-  folder_ = (fs::path(build_folder_) / (std::string("solve-") + hash)).string();
-  std::error_code ec;
-  for (fs::directory_iterator it(folder_, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.empty() || name[0] == '.') continue;  // being written
-    std::ifstream in(it->path(), std::ios::binary);
-    if (!in) continue;
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<std::pair<double, ReducedVariables>> read;
-    bool foreign = false;
-    if (!parse(text, key_, foreign, read)) {
-      std::error_code ignored;
-      if (!foreign) fs::remove(it->path(), ignored);  // corrupt or truncated: solved again
-      continue;
-    }
-    for (const auto& [tolerance, v] : read) entries_[{bits(tolerance), bits(v.a_over_t)}] = v;
-    loaded_files_.push_back(it->path().string());
-  }
-}
-
-SolveCache::~SolveCache() { flush(); }
-
-std::optional<ReducedVariables> SolveCache::find(double a_over_t, double tolerance) const {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  const auto it = entries_.find({bits(tolerance), bits(a_over_t)});
-  if (it == entries_.end()) return std::nullopt;
-  return it->second;
-}
-
-void SolveCache::add(double tolerance, const ReducedVariables& values) {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  if (entries_.emplace(Key{bits(tolerance), bits(values.a_over_t)}, values).second) {
-    added_.emplace_back(tolerance, values);
-  }
-}
-
-void SolveCache::flush() {
+void CacheRecords::flush() {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (added_.empty()) return;
   const bool merge = loaded_files_.size() >= kMergeAbove;
-  std::vector<std::pair<double, ReducedVariables>> write;
+  const std::size_t count = added_.size() + (merge ? loaded_.size() : 0);
+  std::string text = magic_ + key_ + "\n";
+  text.reserve(text.size() + (count + 2) * record_bytes_);
+  put<std::uint64_t>(text, count);
   if (merge) {
-    for (const auto& [key, v] : entries_) {
-      double tolerance = 0.0;
-      std::memcpy(&tolerance, &key.first, sizeof tolerance);
-      write.emplace_back(tolerance, v);
-    }
-  } else {
-    write = added_;
+    for (const std::string& r : loaded_) text += r;
   }
-  std::string text = kMagic + key_ + "\n";
-  put<std::uint64_t>(text, write.size());
-  for (const auto& [tolerance, v] : write) {
-    for (double x : {tolerance, v.a_over_t, v.pi_s, v.delta_s, v.pi_c, v.delta_c, v.e_eq, v.gamma1,
-                     v.error_estimate}) {
-      put<double>(text, x);
-    }
-    put<std::int64_t>(text, v.unknowns);
-  }
+  for (const std::string& r : added_) text += r;
   put<std::uint64_t>(text, fnv1a(text.data(), text.size()));
+  if (merge) loaded_.insert(loaded_.end(), added_.begin(), added_.end());
   added_.clear();
 
   std::error_code ec;
@@ -266,8 +218,65 @@ void SolveCache::flush() {
   }
   if (merge) {
     for (const std::string& file : loaded_files_) fs::remove(file, ec);
-    loaded_files_.clear();
+    loaded_files_.assign(1, (fs::path(folder_) / name).string());
   }
+}
+
+std::string SolveCache::key_of(const Stack& stack) {
+  std::ostringstream key;
+  key << "build " << kBuildId << "; layers";
+  for (const Layer& layer : stack.layers()) {
+    key << " " << exact_text(layer.thickness) << "," << exact_text(layer.material.youngs_modulus) << ","
+        << exact_text(layer.material.poisson_ratio) << (layer.slip_below ? ",slip" : "");
+  }
+  const Substrate& s = stack.substrate();
+  key << "; substrate "
+      << (s.rigid ? std::string("rigid")
+                  : exact_text(s.material.youngs_modulus) + "," + exact_text(s.material.poisson_ratio));
+  const Indenter& i = stack.indenter();
+  key << "; indenter "
+      << (i.rigid ? std::string("rigid")
+                  : exact_text(i.material.youngs_modulus) + "," + exact_text(i.material.poisson_ratio));
+  return key.str();
+}
+
+SolveCache::SolveCache(const std::string& directory, const Stack& stack)
+    : records_(directory, "solve", key_of(stack), kEntryBytes) {
+  for (const std::string& r : records_.loaded()) {
+    std::size_t at = 0;
+    double d[kDoublesPerEntry];
+    for (double& x : d) x = get<double>(r, at);
+    ReducedVariables v;
+    v.a_over_t = d[1];
+    v.pi_s = d[2];
+    v.delta_s = d[3];
+    v.pi_c = d[4];
+    v.delta_c = d[5];
+    v.e_eq = d[6];
+    v.gamma1 = d[7];
+    v.error_estimate = d[8];
+    v.unknowns = static_cast<int>(get<std::int64_t>(r, at));
+    entries_[{bits(d[0]), bits(v.a_over_t)}] = v;
+  }
+}
+
+std::optional<ReducedVariables> SolveCache::find(double a_over_t, double tolerance) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = entries_.find({bits(tolerance), bits(a_over_t)});
+  if (it == entries_.end()) return std::nullopt;
+  return it->second;
+}
+
+void SolveCache::add(double tolerance, const ReducedVariables& values) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!entries_.emplace(Key{bits(tolerance), bits(values.a_over_t)}, values).second) return;
+  std::string record;
+  for (double x : {tolerance, values.a_over_t, values.pi_s, values.delta_s, values.pi_c, values.delta_c,
+                   values.e_eq, values.gamma1, values.error_estimate}) {
+    put<double>(record, x);
+  }
+  put<std::int64_t>(record, values.unknowns);
+  records_.add(std::move(record));
 }
 
 }  // namespace detail

@@ -299,8 +299,8 @@ int main() {
         ++curve_points;
       }
     }
-    std::printf("model curve points from the table: %d compared; table solves %ld\n", curve_points,
-                tabled.table_solves());
+    std::printf("model curve points from the table: %d compared; table nodes %ld\n", curve_points,
+                tabled.table_nodes());
     // 7. Through a spring (THEORY.md sections 10 and 13): between load and displacement control,
     //    from the table within its estimate of the direct one.
     for (double k_bar : {0.3, 3.0}) {

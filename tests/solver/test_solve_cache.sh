@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Solve cache (docs/solver.md, "Solve cache"; label cli): outputs of `reduced`, `pulloff` and
-# `adhesive` byte-identical with no cache, a cold cache (COATCONTACT_CACHE) and a warm one
+# `adhesive`, and of the Maugis-Dugdale table's `pulloff --lambda` and `adhesive --lambda`,
+# byte-identical with no cache, a cold cache (COATCONTACT_CACHE) and a warm one
 # (--cache DIR); a warm run solves nothing new (writes no entry); a corrupted entry is
 # removed and solved again with the same outputs; an entry under another stack's key is
 # ignored; another build's folder is removed; --cache without a directory is exit 2.
@@ -19,6 +20,8 @@ commands=(
   "pulloff ${film[*]} --eta 0.3,1,3"
   "adhesive ${film[*]} --eta 1 --a-bar 0.05:2:7"
   "pulloff ${other[*]} --eta 1"
+  "pulloff ${film[*]} --eta 1 --lambda 0.1,1"
+  "adhesive ${film[*]} --eta 1 --lambda 0.3 --a-bar 0.05:2:5"
 )
 # run <label> <cache mode: none | env | option>: every command's stdout into $tmp/<label>.<i>
 run() {
@@ -49,6 +52,8 @@ run cold env
 [ ! -e "$cache/0000000000000000" ] || fail "another build's folder was not removed"
 folders=$(find "$cache" -mindepth 2 -maxdepth 2 -type d -name 'solve-*' | wc -l)
 [ "$folders" -eq 2 ] || fail "expected one folder per stack (2), found $folders"
+zones=$(find "$cache" -mindepth 2 -maxdepth 2 -type d -name 'zone-*' | wc -l)
+[ "$zones" -eq 1 ] || fail "expected one cohesive-zone table folder (the film's), found $zones"
 before=$(entries)
 run warm option
 [ "$before" = "$(entries)" ] || fail "the warm run wrote entries: it solved radii the cache held"

@@ -108,10 +108,12 @@ class MaugisDugdaleModel {
 
   const Stack& stack() const;
   const MaugisDugdaleOptions& options() const;
-  // With use_table: builds every tile of the table now (otherwise each on first use), and the
-  // table's cost so far (direct solves, wall seconds). Without: nothing, zeros.
+  // With use_table: builds every tile of the table now (otherwise each on first use); the
+  // direct solves the tiles built so far rest on, whether solved by this process or read from
+  // the solve cache (coatcontact/solve_cache.hpp), and the wall seconds spent building them.
+  // Without: nothing, zeros.
   void build_table() const;
-  long table_solves() const;
+  long table_nodes() const;
   double table_seconds() const;
 
  private:
