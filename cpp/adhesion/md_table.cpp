@@ -625,11 +625,18 @@ long MaugisDugdaleTable::nodes_used() const { return grids_->nodes_used.load(); 
 int MaugisDugdaleTable::nodes_x() const { return static_cast<int>(grids_->x.size()); }
 int MaugisDugdaleTable::nodes_s() const { return static_cast<int>(grids_->tau.size()); }
 
+// The table's radii, with a margin of rounding at the ends: a_bar/eta at a_bar = eta a_over_t_max
+// may round just beyond it (at() clamps ln a to the grid).
+bool MaugisDugdaleTable::covers_radius(double a) const {
+  constexpr double kRounding = 1e-12;
+  return a >= options_.a_over_t_min * (1.0 - kRounding) && a <= options_.a_over_t_max * (1.0 + kRounding);
+}
+
 bool MaugisDugdaleTable::covers(double a, double excess) const {
   const MdTableOptions& o = options_;
   // The ends with a margin of rounding: ln and exp of an end need not return it exactly.
   constexpr double kRounding = 1e-12;
-  return a >= o.a_over_t_min && a <= o.a_over_t_max && excess >= o.excess_min * (1.0 - kRounding) &&
+  return covers_radius(a) && excess >= o.excess_min * (1.0 - kRounding) &&
          excess <= excess_max(a) * (1.0 + kRounding);
 }
 
@@ -715,7 +722,7 @@ constexpr double kBracketStep = 0.5;  // first step in s (or ln c) from the homo
 
 std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a) const {
   const MdTableOptions& o = options_;
-  if (!(a >= o.a_over_t_min && a <= o.a_over_t_max)) return std::nullopt;
+  if (!covers_radius(a)) return std::nullopt;
   // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
   std::function<double(double)> residual = [&](double s) {
     const MdTableValue v = at(a, std::exp(s));

@@ -89,6 +89,7 @@ class MaugisDugdaleTable {
   MaugisDugdaleTable& operator=(const MaugisDugdaleTable&) = delete;
 
   bool covers(double a, double excess) const;
+  bool covers_radius(double a) const;
   // InputError outside the table (see covers()).
   MdTableValue at(double a, double excess) const;
   // The end of the curve a = 0: root c of g_R + σ̂ g_σ = h0 in ln c; `excess` holds c (as
