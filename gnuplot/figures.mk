@@ -239,10 +239,12 @@ $(PARAMS_DIR) $(FIG_DIR):
 # process (a shell, cmp and rm each cost ~0.15 s of CPU per run). The text is first held in a
 # simple variable: make 4.3 compared it wrongly when findstring's argument expanded nested
 # calls (the fig_md_lambda stamp was rewritten on every run).
+# A dry run (make -n) leaves the stamps alone, as it leaves every file.
 same_text = $(and $(findstring $(1),$(2)),$(findstring $(2),$(1)))
+dry_run := $(findstring n,$(firstword -$(MAKEFLAGS)))
 $(PARAMS_DIR)/%.params: $(FIGURES_CONF) FORCE | $(PARAMS_DIR)
-	$(eval stamp_text := $(CMD_$*)$(GP_$*))$(eval stamp_old := $(file <$@))$(if \
-	  $(call same_text,$(stamp_old),$(stamp_text)),,$(file >$@,$(stamp_text)))
+	$(if $(dry_run),,$(eval stamp_text := $(CMD_$*)$(GP_$*))$(eval stamp_old := $(file <$@))$(if \
+	  $(call same_text,$(stamp_old),$(stamp_text)),,$(file >$@,$(stamp_text))))
 
 # Passive OpenMP waits: $(JOBS) processes share the cores, so a thread spinning for work
 # takes them from another dataset (the numbers do not depend on it).
