@@ -9,7 +9,8 @@
 # holding its exact command line. The stamps are rewritten on every run but only replaced
 # (new mtime) when their content changes, so a changed parameter in $(FIGURES_CONF) rebuilds
 # just the datasets and figures that use it, and a second run rebuilds nothing.
-# Atomic writes: the CLI's --output is atomic; gnuplot writes <file>.tmp, then mv.
+# Atomic writes: the CLI's --output is atomic; gnuplot writes $(FIG_DIR)/.partial/<file>, then
+# mv renames it into $(FIG_DIR).
 
 GNUPLOT_DIR := $(patsubst %/,%,$(dir $(lastword $(MAKEFILE_LIST))))
 
@@ -21,6 +22,8 @@ FIGURES_CONF ?= data/figures.conf
 DATA_DIR     ?= $(BUILD)/data
 FIG_DIR      ?= $(BUILD)/figures
 PARAMS_DIR   := $(DATA_DIR)/params
+# gnuplot writes into PLOT_TMP; one mv then renames a group of plots into FIG_DIR.
+PLOT_TMP     := $(FIG_DIR)/.partial
 # Solve cache of the CLI (docs/solver.md): none unless given; `make figures` uses $(BUILD)/cache.
 SOLVE_CACHE  ?=
 
@@ -231,7 +234,7 @@ figures-docs: figures-only
 	cp $(foreach f,$(FIGURE_NAMES),$(FIG_DIR)/$(f).png) docs/figures/
 
 # ---- rules ---------------------------------------------------------------------------
-$(PARAMS_DIR) $(FIG_DIR):
+$(PARAMS_DIR) $(PLOT_TMP):
 	@mkdir -p $@
 
 # Parameter stamp: replaced only when the command line it records changes. Read, compared
@@ -263,13 +266,13 @@ $(DATA_DIR)/%.tsv: $(PARAMS_DIR)/%.params $(CLI)
 PLOT_GROUPS ?= $(JOBS)
 PLOT_BATCH  := $(filter figures-only figures-docs,$(MAKECMDGOALS))
 PLOT_QUEUE  :=
-plot_passes = -e "reset session" -e "fmt='png'; outfile='$(FIG_DIR)/$(1).png.tmp'; $(GP_$(1))" $(GNUPLOT_DIR)/$(1).gp \
-  -e "reset session" -e "fmt='pdf'; outfile='$(FIG_DIR)/$(1).pdf.tmp'; $(GP_$(1))" $(GNUPLOT_DIR)/$(1).gp
-# plot_figures(names): one gnuplot process for them all, then the atomic renames; when it
-# fails, no .tmp file stays and the figures stay out of date.
+plot_passes = -e "reset session" -e "fmt='png'; outfile='$(PLOT_TMP)/$(1).png'; $(GP_$(1))" $(GNUPLOT_DIR)/$(1).gp \
+  -e "reset session" -e "fmt='pdf'; outfile='$(PLOT_TMP)/$(1).pdf'; $(GP_$(1))" $(GNUPLOT_DIR)/$(1).gp
+# plot_figures(names): one gnuplot process for them all, then the renames; when it fails, no
+# partial file stays and the figures stay out of date.
 plot_figures = $(GNUPLOT) $(foreach f,$(1),$(call plot_passes,$(f))) \
-  && $(foreach f,$(1),mv -f $(FIG_DIR)/$(f).png.tmp $(FIG_DIR)/$(f).png && mv -f $(FIG_DIR)/$(f).pdf.tmp $(FIG_DIR)/$(f).pdf &&) : \
-  || { rm -f $(foreach f,$(1),$(FIG_DIR)/$(f).png.tmp $(FIG_DIR)/$(f).pdf.tmp); exit 1; }
+  && mv -f $(foreach f,$(1),$(PLOT_TMP)/$(f).png $(PLOT_TMP)/$(f).pdf) $(FIG_DIR)/ \
+  || { rm -f $(foreach f,$(1),$(PLOT_TMP)/$(f).png $(PLOT_TMP)/$(f).pdf); exit 1; }
 plot_echo = $(foreach f,$(1),echo "  plot  $(FIG_DIR)/$(f).png"; echo "  plot  $(FIG_DIR)/$(f).pdf";)
 # every_nth(list, n words): the 1st, (n+1)th, (2n+1)th, ... word of list.
 every_nth = $(if $(1),$(firstword $(1)) $(call every_nth,$(wordlist $(words x $(2)),$(words $(1)),$(1)),$(2)))
@@ -283,7 +286,7 @@ $(if $(PLOT_QUEUE),@$(call plot_echo,$(filter $(PLOT_QUEUE),$(FIGURE_NAMES))) pi
   rc=0; for p in $$pids; do wait $$p || rc=1; done; exit $$rc)
 endef
 
-$(FIG_DIR)/%.png $(FIG_DIR)/%.pdf: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(FIG_DIR)
+$(FIG_DIR)/%.png $(FIG_DIR)/%.pdf: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(PLOT_TMP)
 	$(if $(PLOT_BATCH),$(eval PLOT_QUEUE += $*),@$(call plot_echo,$*) $(call plot_figures,$*))
 
 $(CLI):
