@@ -240,8 +240,8 @@ $(PARAMS_DIR) $(PLOT_TMP):
 # Parameter stamp: replaced only when the command line it records changes. Read, compared
 # and written by make itself: the recipe expands to nothing, so the 63 stamps of a run start no
 # process (a shell, cmp and rm each cost ~0.15 s of CPU per run). The text is first held in a
-# simple variable: make 4.3 compared it wrongly when findstring's argument expanded nested
-# calls (the fig_md_lambda stamp was rewritten on every run).
+# simple variable: with the expansion inside findstring, make 4.3 found fig_md_lambda's text
+# (nested foreach and call) different from its own stamp and rewrote it on every run.
 # A dry run (make -n) leaves the stamps alone, as it leaves every file.
 same_text = $(and $(findstring $(1),$(2)),$(findstring $(2),$(1)))
 dry_run := $(findstring n,$(firstword -$(MAKEFLAGS)))
