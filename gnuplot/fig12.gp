@@ -16,8 +16,11 @@ eval need('c_d', h, 'delta_m', f1)
 eval need('c_f', h, 'F_N', f1)
 eval need('c_dh', h, 'delta_H_m', f1)
 eval need('c_fh', h, 'F_H_N', f1)
-header_value(file, key, field) = real(system(sprintf( \
-    "awk -F': ' '/^# %s/ { n = split($2, v, \" \"); print v[%d] }' '%s'", key, field, file)))
+# From a file's header, one awk per file: the load-controlled pull-off force and penetration
+# (fields 1 and 7 of that line) and the paraboloid's R (0 for other shapes).
+header_values(file) = system(sprintf("awk -F': ' '/^# pull-off force, load control/ { split($2, v, \" \"); f = v[1]; d = v[7] } \
+    /^# shape: paraboloid/ { r = substr($0, index($0, \"R = \") + 4) + 0 } \
+    END { printf \"%%s %%s %%.12e\\n\", f == \"\" ? 0 : f, d == \"\" ? 0 : d, r }' '%s'", file))
 coating = system(sprintf("awk -F': ' '/^# film E1\\* /{e=$2} /^# film thickness/{t=$2} /^# substrate E0\\* /{s=$2} \
     /^# work of adhesion/{w=$2} END{printf \"t = %%.3g nm, E_1^* = %%.3g MPa, E_0^* = %%.3g GPa, w = %%.3g mJ/m^2\", \
     t*1e9, e*1e-6, s*1e-9, w*1e3}' '%s'", f1))
@@ -44,9 +47,10 @@ array RDH[n]
 array RFH[n]
 do for [k = 1:n] {
     file = word(files, k)
-    F[k] = header_value(file, 'pull-off force, load control', 1)
-    D[k] = header_value(file, 'pull-off force, load control', 7)
-    r = real(system(sprintf("awk -F'R = ' '/^# shape: paraboloid/ { r = $2 + 0 } END { printf \"%%.12e\\n\", r }' '%s'", file)))
+    hv = header_values(file)
+    F[k] = real(word(hv, 1))
+    D[k] = real(word(hv, 2))
+    r = real(word(hv, 3))
     R[k] = 1e300
     RD[k] = NaN; RF[k] = NaN; RDH[k] = NaN; RFH[k] = NaN
     if (r > 0) {

@@ -22,11 +22,15 @@ if [ "${COATCONTACT_EXTRAS:-0}" = 1 ]; then
   packages+=(libbenchmark-dev clang libclang-rt-14-dev)
 fi
 
+# One dpkg-query for all packages (`make figures` runs this check every time: one query per
+# package cost ~0.2 s); a package that is unknown, removed or half-installed is missing.
+declare -A installed=()
+while read -r status name; do
+  if [ "$status" = installed ]; then installed[$name]=1; fi
+done < <(dpkg-query -W -f='${db:Status-Status} ${Package}\n' "${packages[@]}" 2>/dev/null || true)
 missing=()
 for p in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$p")
-  fi
+  [ -n "${installed[$p]:-}" ] || missing+=("$p")
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
