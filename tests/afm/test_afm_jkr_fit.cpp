@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "afm_adhesive_problem.hpp"
 #include "check.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/errors.hpp"
@@ -47,29 +48,10 @@ struct Truth {
   double radius = 10e-6, modulus = 100e3, poisson = 0.5, work = 10e-3, spring = 1.0;
   double contact = 1.0e-6, baseline = 2e-9, tilt = 0.01;
   bool coated = false;
-  double substrate_modulus = 1e6, thickness = 4e-6;
+  double substrate_modulus = 1e6, substrate_poisson = 0.3, thickness = 4e-6;
 };
 
-fit::AfmFitProblem problem_of(const Truth& t) {
-  fit::AfmFitProblem p;
-  p.model = fit::AfmModel::kJkr;
-  p.tip = fit::afm_paraboloid(t.radius);
-  p.modulus = t.modulus;
-  p.poisson = t.poisson;
-  p.work = t.work;
-  p.spring_constant = t.spring;
-  p.contact_point = t.contact;
-  p.baseline = t.baseline;
-  p.tilt = t.tilt;
-  if (t.coated) {
-    fit::AfmCoating c;
-    c.film = {t.modulus, t.poisson};
-    c.substrate.material = {t.substrate_modulus, 0.3};
-    c.thickness = t.thickness;
-    p.coating = c;
-  }
-  return p;
-}
+fit::AfmFitProblem problem_of(const Truth& t) { return adhesive_problem(t, fit::AfmModel::kJkr); }
 
 // JKR of a sphere on a half-space, written here: delta(a), F(a) and the root a(delta) on the
 // branch a >= a_s.
@@ -145,7 +127,7 @@ void check_coating_model() {
   fit::Problem lib;
   lib.sphere_radius = t.radius;
   lib.film = {t.modulus, t.poisson};
-  lib.substrate.material = {t.substrate_modulus, 0.3};
+  lib.substrate.material = {t.substrate_modulus, t.substrate_poisson};
   lib.thickness = t.thickness;
   lib.work = t.work;
   // The branch start: the minimum of delta + F/k over a dense scan of exact points.
@@ -181,7 +163,7 @@ Synthetic make_retract(const Truth& t, double sigma, unsigned seed, std::size_t 
   lib.sphere_radius = t.radius;
   lib.film = {t.modulus, t.poisson};
   if (t.coated) {
-    lib.substrate.material = {t.substrate_modulus, 0.3};
+    lib.substrate.material = {t.substrate_modulus, t.substrate_poisson};
     lib.thickness = t.thickness;
   } else {  // a film on its own material: the half-space
     lib.substrate.material = {t.modulus, t.poisson};

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "afm_adhesive_problem.hpp"
 #include "check.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/errors.hpp"
@@ -46,7 +47,7 @@ struct Truth {
   double contact = 5e-9, baseline = 0.2e-9, tilt = 0.01;
   double deepest = 2e-9;  // indentation at the start of the retract
   bool coated = false;
-  double substrate_modulus = 50e9, thickness = 3e-9;
+  double substrate_modulus = 50e9, substrate_poisson = 0.25, thickness = 3e-9;
   double reduced() const { return modulus / (1 - poisson * poisson); }
   double h0() const { return fit::kDugdaleRangeOverZ0 * range; }
   double lambda() const {
@@ -56,24 +57,8 @@ struct Truth {
 };
 
 fit::AfmFitProblem problem_of(const Truth& t) {
-  fit::AfmFitProblem p;
-  p.model = fit::AfmModel::kMd;
-  p.tip = fit::afm_paraboloid(t.radius);
-  p.modulus = t.modulus;
-  p.poisson = t.poisson;
-  p.work = t.work;
-  p.spring_constant = t.spring;
+  fit::AfmFitProblem p = adhesive_problem(t, fit::AfmModel::kMd);
   p.surface_force_range = t.range;
-  p.contact_point = t.contact;
-  p.baseline = t.baseline;
-  p.tilt = t.tilt;
-  if (t.coated) {
-    fit::AfmCoating c;
-    c.film = {t.modulus, t.poisson};
-    c.substrate.material = {t.substrate_modulus, 0.25};
-    c.thickness = t.thickness;
-    p.coating = c;
-  }
   return p;
 }
 
@@ -112,7 +97,7 @@ std::vector<CurvePoint> half_space_curve(const Truth& t, int n) {
 std::vector<CurvePoint> coating_curve(const Truth& t, int n, double* a_bar_jump, bool* at_end) {
   coatcontact::Material film{t.modulus, t.poisson};
   coatcontact::Substrate substrate;
-  substrate.material = {t.substrate_modulus, 0.25};
+  substrate.material = {t.substrate_modulus, t.substrate_poisson};
   coatcontact::MaugisDugdaleOptions o;
   o.use_table = true;
   const coatcontact::MaugisDugdaleModel md(coatcontact::Stack::film_on(film, substrate), o);

@@ -1,6 +1,7 @@
 # Shared start of the one-case-per-defect CLI scripts (sourced; label cli). Arguments of the
 # sourcing script: PATH/TO/coatcontact DATA_DIR CASE. Sets cli, data, case_name, FIT; makes a
-# temporary folder of the case's own and enters it; defines fail/ok, run and expect_error.
+# temporary folder of the case's own and enters it; defines fail/ok, run, expect_error and the
+# end of the script (unknown_case, finish_cases).
 # CLI_TIMEOUT (seconds) bounds one run of the program.
 set -u
 cli="$1"
@@ -46,3 +47,16 @@ expect_error() {
 }
 
 FIT=(--columns a,F --radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22 --thickness 50um)
+
+# The end of a case script: `*) unknown_case ;;` in its case statement, then finish_cases.
+unknown_case() {
+  echo "unknown case $case_name"
+  exit 1
+}
+finish_cases() {
+  if [ "$failures" -gt 0 ]; then
+    echo "$failures failure(s)"
+    exit 1
+  fi
+  echo "all passed"
+}

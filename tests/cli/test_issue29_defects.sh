@@ -250,14 +250,6 @@ smaller_input_defects)
   run 2 reduced --layer 1,1,0.3 --layer 31.0000001,2,0.3 --substrate 10,0.3 --a-over-t 1
   grep -q "0.03125 of" err && fail "reads as exactly 1/32: $(cat err)" || ok "$(head -c 160 err)"
   ;;
-*)
-  echo "unknown case $case_name"
-  exit 1
-  ;;
+*) unknown_case ;;
 esac
-
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all passed"
+finish_cases

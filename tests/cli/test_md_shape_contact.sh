@@ -186,14 +186,6 @@ punch_refused)
     fail "message: $(cat err)"
   [ -e punch.tsv ] && fail "output file written" || ok "no output file"
   ;;
-*)
-  echo "unknown case $case_name"
-  exit 1
-  ;;
+*) unknown_case ;;
 esac
-
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "all passed"
+finish_cases
