@@ -210,28 +210,16 @@ void check_recovery(const Truth& t, const char* name, int seeds) {
   for (int seed = 1; seed <= seeds; ++seed) {
     const double sigma = 5e-9;
     const Synthetic s = make_retract(t, sigma, static_cast<unsigned>(seed), 1500);
-    fit::AfmFitProblem p = problem_of(t);
-    // Starts away from the truth: E (E1) a factor 2.5 off, w from the data, tilt free.
-    if (p.coating) p.coating->film.youngs_modulus = t.modulus * 2.5;
-    p.modulus = t.modulus * 2.5;
-    p.work = 0.0;
-    p.tilt = 0.0;
-    p.free = {true, true, true, false, true, true};
-    p.noise_sigma = sigma;
-    const fit::AfmFitResult r = fit::afm_fit(s.z, s.f, p);
-    const double ze = (r.modulus - t.modulus) / r.modulus_error, zw = (r.work - t.work) / r.work_error;
-    const double zc = (r.contact_point - t.contact) / r.contact_point_error, zb = (r.baseline - t.baseline) / r.baseline_error;
-    const double zm = (r.tilt - t.tilt) / r.tilt_error;
+    const fit::AfmFitProblem p = problem_of(t);
+    const fit::AfmFitResult r = fit_from_far_start(p, sigma, s.z, s.f);
+    const RecoveryScores z = scores_of(r, t);
     std::printf("%s seed %d: E %.6g (%.2f SE) w %.6g (%.2f SE) z_c %.2f SE b %.2f SE tilt %.2f SE chi2/dof %.3f "
                 "lambda %.3g, %.1f ms, %d tables, %d profile evaluations\n",
-                name, seed, r.modulus, ze, r.work, zw, zc, zb, zm, r.chi2_per_dof, r.maugis_lambda, r.seconds * 1e3,
+                name, seed, r.modulus, z.modulus, r.work, z.work, z.contact, z.baseline, z.tilt, r.chi2_per_dof,
+                r.maugis_lambda, r.seconds * 1e3,
                 r.model_evaluations, r.profile_evaluations);
     const std::string tag = std::string(name) + " seed " + std::to_string(seed);
-    check::below(std::abs(ze), 3.0, tag + ": E within 3 SE");
-    check::below(std::abs(zw), 3.0, tag + ": w within 3 SE");
-    check::below(std::abs(zc), 3.0, tag + ": contact point within 3 SE");
-    check::below(std::abs(zb), 3.0, tag + ": baseline within 3 SE");
-    check::below(std::abs(zm), 3.0, tag + ": tilt within 3 SE");
+    check_within_3_se(z, tag);
     check::below(std::abs(r.chi2_per_dof - 1.0), 0.15, tag + ": chi2/dof near 1 with the true noise");
     check::that(r.points_in_contact > 100 && r.points_in_contact < s.z.size(), tag + ": contact and free points");
     // The fit's own model (a coating: E1 between sweep nodes, interpolated) against the model

@@ -201,28 +201,16 @@ void check_half_space_model() {
 }
 
 void check_recovery(const Truth& t, const Synthetic& s, const char* name, int seed, double sigma) {
-  fit::AfmFitProblem p = problem_of(t);
-  if (p.coating) p.coating->film.youngs_modulus = t.modulus * 2.5;
-  p.modulus = t.modulus * 2.5;
-  p.work = 0.0;
-  p.tilt = 0.0;
-  p.free = {true, true, true, false, true, true};
-  p.noise_sigma = sigma;
-  const fit::AfmFitResult r = fit::afm_fit(s.z, s.f, p);
-  const double ze = (r.modulus - t.modulus) / r.modulus_error, zw = (r.work - t.work) / r.work_error;
-  const double zc = (r.contact_point - t.contact) / r.contact_point_error, zb = (r.baseline - t.baseline) / r.baseline_error;
-  const double zm = (r.tilt - t.tilt) / r.tilt_error;
+  const fit::AfmFitResult r = fit_from_far_start(problem_of(t), sigma, s.z, s.f);
+  const RecoveryScores z = scores_of(r, t);
   std::printf("%s seed %d: E %.6g (%.2f SE) w %.6g (%.2f SE) z_c %.2f SE b %.2f SE tilt %.2f SE chi2/dof %.3f "
               "lambda %.3g (true %.3g), %.0f ms, %d tables, %ld table solves\n",
-              name, seed, r.modulus, ze, r.work, zw, zc, zb, zm, r.chi2_per_dof, r.maugis_lambda, t.lambda(),
+              name, seed, r.modulus, z.modulus, r.work, z.work, z.contact, z.baseline, z.tilt, r.chi2_per_dof,
+              r.maugis_lambda, t.lambda(),
               r.seconds * 1e3, r.model_evaluations, r.solver_calls);
   for (const auto& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
   const std::string tag = std::string(name) + " seed " + std::to_string(seed);
-  check::below(std::abs(ze), 3.0, tag + ": E within 3 SE");
-  check::below(std::abs(zw), 3.0, tag + ": w within 3 SE");
-  check::below(std::abs(zc), 3.0, tag + ": contact point within 3 SE");
-  check::below(std::abs(zb), 3.0, tag + ": baseline within 3 SE");
-  check::below(std::abs(zm), 3.0, tag + ": tilt within 3 SE");
+  check_within_3_se(z, tag);
   check::below(std::abs(r.chi2_per_dof - 1.0), 0.15, tag + ": chi2/dof near 1 with the true noise");
   const double reduced = r.modulus / (1 - t.poisson * t.poisson), k = 4 * reduced / 3;
   check::close(r.maugis_lambda, 2 * (r.work / t.h0()) * std::cbrt(t.radius / (kPi * r.work * k * k)), check::tier::kMachine,
