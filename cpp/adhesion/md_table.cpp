@@ -138,6 +138,7 @@ CohesiveFunctions homogeneous_end_functions(double c) {
 // A node in the solve cache: its kind, its index in that kind's grid, its values (ratios).
 enum NodeKind : std::int64_t { kNode2d = 0, kNodeEnd = 1, kNodeRadius = 2 };
 constexpr std::size_t kNodeRecordBytes = 2 * sizeof(std::int64_t) + kTwoD * sizeof(double);
+constexpr std::size_t kNodeIdBytes = 2 * sizeof(std::int64_t);  // the kind and the index identify a node
 
 std::string node_record(NodeKind kind, std::size_t index, const double* values, int count) {
   std::string r(kNodeRecordBytes, '\0');
@@ -286,7 +287,7 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
                             exact_text(disc_.single_panel_limit) + " " + exact_text(disc_.quadrature_accuracy) +
                             "; annulus " + std::to_string(quadrature_.points_per_piece) + " " +
                             exact_text(quadrature_.piece_length) + " " + exact_text(quadrature_.piece_angle);
-    g->cache = std::make_unique<CacheRecords>(directory, "zone", key, kNodeRecordBytes);
+    g->cache = std::make_unique<CacheRecords>(directory, "zone", key, kNodeRecordBytes, kNodeIdBytes);
   }
   grids_ = std::move(g);
   load_cached_nodes();

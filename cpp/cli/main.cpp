@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "coatcontact/cli_support.hpp"
+#include "coatcontact/errors.hpp"
 #include "coatcontact/solve_cache.hpp"
 #include "commands.hpp"
 
@@ -51,7 +52,13 @@ int dispatch(std::vector<std::string> args) {
       std::cerr << "coatcontact: error: --cache needs a directory (--cache DIR before the command)\n";
       return 2;
     }
-    coatcontact::set_solve_cache_directory(args[1]);
+    try {
+      coatcontact::check_solve_cache_directory(args[1], "--cache");
+      coatcontact::set_solve_cache_directory(args[1]);
+    } catch (const coatcontact::InputError& e) {
+      std::cerr << "coatcontact: error: " << e.what() << "\n";
+      return 2;
+    }
     args.erase(args.begin(), args.begin() + 2);
   }
   if (args.empty()) {
@@ -68,6 +75,12 @@ int dispatch(std::vector<std::string> args) {
   }
   for (const auto& c : kCommands) {
     if (args[0] == c.name) {
+      try {
+        coatcontact::solve_cache_directory();  // a COATCONTACT_CACHE the cache may not use: refused before any work
+      } catch (const coatcontact::InputError& e) {
+        std::cerr << "coatcontact: error: " << e.what() << "\n";
+        return 2;
+      }
       return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
     }
   }

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -14,36 +15,58 @@
 
 namespace coatcontact::detail {
 
+// The cache's size cap (bytes of entries under DIR): above it, the folders used longest ago are
+// removed until a quarter of it is free. kDefaultCacheSizeCap unless a test sets another.
+constexpr std::uintmax_t kDefaultCacheSizeCap = std::uintmax_t{256} << 20;
+void set_cache_size_cap(std::uintmax_t bytes);
+std::uintmax_t cache_size_cap();
+
+// Whether `directory` cannot be the cache (a file, a device, a non-empty folder without the
+// cache's CACHEDIR.TAG, ...); `why` says what it is.
+bool solve_cache_root_refused(const std::string& directory, std::string& why);
+
 // The files of one kind of entry ("solve": reduced variables; "zone": the cohesive zone
 // table's nodes) under one key, in <directory>/<build id>/<kind>-<hash of the key>/: fixed-size
-// binary records, each file complete or absent. Several processes may add files at once.
+// binary records, the first id_bytes of which identify one (a record is kept once), each file
+// complete or absent. Several processes may add files at once; one at a time merges them.
+// Nothing is read or removed unless <directory> holds the cache's CACHEDIR.TAG, and only files
+// whose name and first line are the cache's are ever removed.
 class CacheRecords {
  public:
-  // Reads every complete file of this key (a corrupt one is removed, a foreign key's left).
+  // Reads every complete file of this key (a corrupt one of the cache's is removed, a foreign
+  // key's left).
   CacheRecords(const std::string& directory, const std::string& kind, const std::string& key,
-               std::size_t record_bytes);
+               std::size_t record_bytes, std::size_t id_bytes);
   ~CacheRecords();  // flush()
   CacheRecords(const CacheRecords&) = delete;
   CacheRecords& operator=(const CacheRecords&) = delete;
 
-  // The records read at construction, in file order (later files may repeat earlier records).
+  // The records read at construction, each id once.
   const std::vector<std::string>& loaded() const { return loaded_; }
-  // A record of record_bytes bytes, written by the next flush().
+  // A record of record_bytes bytes, written by the next flush() unless its id is known already.
   void add(std::string record);
-  // New records into one file, written atomically (a temporary name, then rename); every
-  // failure is silent (the cache only saves time). Merges the folder's files when they are many.
+  // New records into one file, written atomically (a temporary name, then rename), after
+  // making DIR the cache's if it is absent or empty; every failure is silent (the cache only
+  // saves time). The folder's files are merged when they are many (under its lock file), and
+  // the cache is trimmed when it exceeds the size cap.
   void flush();
 
  private:
-  void remove_other_builds() const;
+  bool read_entry(const std::string& path, std::vector<std::string>& out, bool& foreign) const;
+  void keep_new(std::vector<std::string>& records, std::vector<std::string>& out);
+  std::uintmax_t write_entry(const std::vector<std::string>& records) const;
+  std::uintmax_t merge(const std::vector<std::string>& records);
+  std::string root_;
   std::string build_folder_;
   std::string folder_;
   std::string magic_;
   std::string key_;
   std::size_t record_bytes_;
+  std::size_t id_bytes_;
   std::mutex mutex_;
   std::vector<std::string> loaded_, added_;
-  std::vector<std::string> loaded_files_;
+  std::unordered_set<std::string> ids_;  // of loaded_ and of every record added
+  std::size_t files_ = 0;                // complete files of this key in the folder, as far as known
 };
 
 // Exact text of a double (hexadecimal floating point), for keys.

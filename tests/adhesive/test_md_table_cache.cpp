@@ -54,7 +54,7 @@ bool identical(const std::vector<double>& a, const std::vector<double>& b) {
 std::vector<fs::path> files(const fs::path& root) {
   std::vector<fs::path> out;
   for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) out.push_back(e.path());
+    if (e.is_regular_file() && e.path().extension() == ".bin") out.push_back(e.path());  // not its tag
   }
   return out;
 }

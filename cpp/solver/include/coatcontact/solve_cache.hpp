@@ -11,8 +11,16 @@ namespace coatcontact {
 
 // Directory of the cache, or "" (no cache, the default). Initially the environment variable
 // COATCONTACT_CACHE (unset or empty: none). Affects ReducedSolvers constructed afterwards.
+// The directory must not exist yet, be empty (it is then made the cache's, with a CACHEDIR.TAG)
+// or be one the cache made: otherwise set_solve_cache_directory throws InputError, and so does
+// solve_cache_directory for a COATCONTACT_CACHE that names another (a file, a device, a
+// non-empty folder of the user's). The cache removes only files it can identify as its own.
 void set_solve_cache_directory(const std::string& directory);
 std::string solve_cache_directory();
+
+// Throws InputError, naming `name` (the option or variable that gave it), the directory and what
+// is allowed, if `directory` cannot be the cache (see above); "" (no cache) is allowed.
+void check_solve_cache_directory(const std::string& directory, const std::string& name);
 
 // The build id that keys the entries (hex SHA-256).
 const char* solve_cache_build_id();

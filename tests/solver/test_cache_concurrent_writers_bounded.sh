@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Regression (issue 40, item 2; label cli): with concurrent writers the cache grew ~10x per
+# round (each process that found 8 files merged everything it had loaded, duplicates included,
+# into a new file): 206 KB -> 6.6 GB -> out of memory. Now records are kept once on reading and
+# merging, one process at a time merges (a lock file), and the size is capped
+# (docs/solver.md, "Solve cache").
+# ROUNDS rounds of 10 `reduced` processes started together on one cache and one stack: each
+# asks the same SHARED radii and 3 radii of its own. Checked after every round:
+#  - every output is byte for byte that of the same command without a cache;
+#  - the records on disk are at most the distinct radii asked so far plus 9 extra copies of
+#    the shared ones (the first round's writers all solve them before any file exists), and
+#    the folder holds at most 8 + 10 + 1 files;
+# and at the end a warm run asking every radius solves nothing (writes no file).
+# usage: test_cache_concurrent_writers_bounded.sh <coatcontact binary> [ROUNDS, default 4]
+set -uo pipefail
+cli=$1
+rounds=${2:-4}
+writers=10
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() {
+  echo "FAIL: $*"
+  exit 1
+}
+cache="$tmp/cache"
+stack=(--film 0.1,0.25 --substrate 1,0.25)
+shared="0.05,0.2,1,4,15"
+shared_count=5
+# The radii of writer w in round r: three of its own, never asked by another command.
+own() { echo "0.3$1$2,0.5$1$2,2.7$1$2"; }
+
+# Records in one cache file: the count after its two text lines (an unsigned 64-bit integer).
+records_in() {
+  local offset
+  offset=$(head -n 2 "$1" | wc -c)
+  od -A n -t u8 -j "$offset" -N 8 "$1" | tr -d ' '
+}
+
+distinct=$shared_count
+for r in $(seq 1 "$rounds"); do
+  for w in $(seq 0 $((writers - 1))); do
+    env -u COATCONTACT_CACHE "$cli" reduced "${stack[@]}" --a-over-t "$shared,$(own "$r" "$w")" \
+      > "$tmp/reference.$r.$w" || fail "reference run $r.$w"
+  done
+  pids=()
+  for w in $(seq 0 $((writers - 1))); do
+    env -u COATCONTACT_CACHE "$cli" --cache "$cache" reduced "${stack[@]}" --a-over-t "$shared,$(own "$r" "$w")" \
+      > "$tmp/out.$r.$w" 2> "$tmp/err.$r.$w" &
+    pids+=($!)
+  done
+  for i in "${!pids[@]}"; do
+    wait "${pids[$i]}" || fail "round $r, writer $i: exit $? ($(head -c 300 "$tmp/err.$r.$i"))"
+  done
+  for w in $(seq 0 $((writers - 1))); do
+    cmp -s "$tmp/out.$r.$w" "$tmp/reference.$r.$w" || fail "round $r, writer $w: output differs from no cache"
+  done
+  distinct=$((distinct + 3 * writers))
+  files=0
+  records=0
+  while IFS= read -r f; do
+    files=$((files + 1))
+    records=$((records + $(records_in "$f")))
+  done < <(find "$cache" -name '*.bin')
+  bytes=$(find "$cache" -type f -printf '%s\n' | awk '{s += $1} END {print s + 0}')
+  echo "round $r: $files files, $records records ($distinct distinct radii), $bytes bytes"
+  allowed=$((distinct + (writers - 1) * shared_count))
+  [ "$records" -le "$allowed" ] || fail "round $r: $records records on disk for $distinct distinct radii (allowed $allowed)"
+  [ "$files" -le $((8 + writers + 1)) ] || fail "round $r: $files files in the cache"
+done
+
+echo "== a warm run asking every radius solves nothing"
+all="$shared"
+for r in $(seq 1 "$rounds"); do
+  for w in $(seq 0 $((writers - 1))); do all="$all,$(own "$r" "$w")"; done
+done
+before=$(find "$cache" -name '*.bin' | sort)
+env -u COATCONTACT_CACHE "$cli" --cache "$cache" reduced "${stack[@]}" --a-over-t "$all" > "$tmp/warm" || fail "warm run"
+env -u COATCONTACT_CACHE "$cli" reduced "${stack[@]}" --a-over-t "$all" > "$tmp/cold" || fail "no-cache run"
+cmp -s "$tmp/warm" "$tmp/cold" || fail "warm run: output differs from no cache"
+[ "$before" = "$(find "$cache" -name '*.bin' | sort)" ] || fail "the warm run wrote entries: a radius was lost"
+echo "the cache stayed bounded"
