@@ -390,22 +390,31 @@ CacheRecords::CacheRecords(const std::string& directory, const std::string& kind
   build_folder_ = (fs::path(root_) / std::string(kBuildId).substr(0, 16)).string();
   folder_ = (fs::path(build_folder_) / (kind + "-" + hash)).string();
   if (!own_tag(root_) || !real_directory(build_folder_) || !real_directory(folder_)) return;
-  for (const fs::path& path : entries_of(folder_)) {
-    bool temporary = false;
-    if (!own_entry_name(path.filename().string(), temporary)) continue;  // not the cache's: never touched
-    std::error_code ec;
-    if (temporary) {  // being written, or left by a killed process an hour ago
-      const auto age = fs::file_time_type::clock::now() - fs::last_write_time(path, ec);
-      if (!ec && age > std::chrono::hours(1)) remove_own_entry(path);
-      continue;
-    }
-    std::vector<std::string> read;
-    bool foreign = false;
-    if (read_entry(path, read, foreign)) {
-      keep_new(read, loaded_);
-      ++files_;
-    } else if (!foreign) {
-      remove_own_entry(path);  // corrupt or truncated: solved again
+  // A merger renames its file into place before it removes the files it merged: a file that
+  // vanished while this one read the folder means a merged file to find by looking again.
+  std::unordered_set<std::string> seen;
+  for (int pass = 0, vanished = 1; vanished != 0 && pass < 4; ++pass) {
+    vanished = 0;
+    for (const fs::path& path : entries_of(folder_)) {
+      bool temporary = false;
+      const std::string name = path.filename().string();
+      if (!own_entry_name(name, temporary) || !seen.insert(name).second) continue;  // not the cache's: never touched
+      std::error_code ec;
+      if (temporary) {  // being written, or left by a killed process an hour ago
+        const auto age = fs::file_time_type::clock::now() - fs::last_write_time(path, ec);
+        if (!ec && age > std::chrono::hours(1)) remove_own_entry(path);
+        continue;
+      }
+      std::vector<std::string> read;
+      bool foreign = false;
+      if (read_entry(path, read, foreign)) {
+        keep_new(read, loaded_);
+        ++files_;
+      } else if (!foreign) {
+        remove_own_entry(path);  // corrupt or truncated: solved again
+      } else if (!fs::exists(fs::symlink_status(path, ec))) {
+        vanished = 1;
+      }
     }
   }
   std::error_code ec;
