@@ -1,7 +1,7 @@
 // The solve cache (coatcontact/solve_cache.hpp, solve_cache.hpp; docs/solver.md, "Solve cache").
 //
-// DIR holds CACHEDIR.TAG (written when the cache creates DIR or adopts an empty one; a non-empty
-// DIR without it is refused) and <build id, 16 hex>/<kind>-<FNV-1a of the key>/ folders; in
+// DIR holds CACHEDIR.TAG (written when the cache creates DIR or adopts an empty one or one that
+// holds only what the cache writes; any other DIR without it is refused) and <build id, 16 hex>/<kind>-<FNV-1a of the key>/ folders; in
 // each, files written by the processes that solved something new, each complete or absent
 // (written under a temporary name starting with '.', then renamed). File: the line
 // "coatcontact <kind> cache 1", the key line, a count, the fixed-size records, then an FNV-1a
@@ -204,7 +204,27 @@ bool own_tag(const fs::path& root) {
   return in.gcount() == static_cast<std::streamsize>(head.size()) && head == kTagOwnLines;
 }
 
-enum class Root { absent, empty, own, refused };
+// A folder holding nothing but what the cache writes (nothing at all, or the untagged cache of
+// an earlier version: build folders of key folders of its entries and locks) may be adopted.
+bool only_cache_content(const fs::path& root) {
+  for (const fs::path& build : entries_of(root)) {
+    const std::string name = build.filename().string();
+    if (name.rfind(kTagTemporaryPrefix, 0) == 0) continue;  // an adoption under way
+    if (name == kLockName && real_file(build)) continue;
+    if (!build_folder_name(name) || !real_directory(build)) return false;
+    for (const fs::path& folder : entries_of(build)) {
+      if (!key_folder_name(folder.filename().string()) || !real_directory(folder)) return false;
+      for (const fs::path& p : entries_of(folder)) {
+        bool temporary = false;
+        const bool entry = own_entry_name(p.filename().string(), temporary) && own_header(p);
+        if (!real_file(p) || !(entry || p.filename() == kLockName)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+enum class Root { absent, adoptable, own, refused };
 
 // What DIR is (following a link given as DIR itself); `why` says why it is refused.
 Root root_state(const fs::path& root, std::string& why) {
@@ -232,16 +252,13 @@ Root root_state(const fs::path& root, std::string& why) {
     why = "cannot be read (" + ec.message() + ")";
     return Root::refused;
   }
-  for (const fs::directory_iterator end; it != end; it.increment(ec)) {
-    if (it->path().filename().string().rfind(kTagTemporaryPrefix, 0) == 0) continue;  // an adoption under way
-    why = real_file(root / kTagName) ? "is another program's cache folder (its CACHEDIR.TAG is not coatcontact's)"
-                                     : "is a folder with other files in it and no coatcontact CACHEDIR.TAG";
-    return Root::refused;
-  }
-  return ec ? Root::refused : Root::empty;
+  if (only_cache_content(root)) return Root::adoptable;
+  why = real_file(root / kTagName) ? "is another program's cache folder (its CACHEDIR.TAG is not coatcontact's)"
+                                   : "is a folder with other files in it and no coatcontact CACHEDIR.TAG";
+  return Root::refused;
 }
 
-// DIR is the cache's own, creating it or adopting an empty folder (writing the tag) if needed.
+// DIR is the cache's own, creating it or adopting it (writing the tag) if needed.
 bool ensure_own_root(const fs::path& root) {
   std::string why;
   std::error_code ec;
@@ -251,7 +268,7 @@ bool ensure_own_root(const fs::path& root) {
     if (ec) return false;
     state = root_state(root, why);
   }
-  if (state != Root::empty) return state == Root::own;
+  if (state != Root::adoptable) return state == Root::own;
   // Whole or absent for a reader: written under a temporary name, then renamed.
   const fs::path temporary = root / (kTagTemporaryPrefix + unique_name());
   {
@@ -389,7 +406,9 @@ CacheRecords::CacheRecords(const std::string& directory, const std::string& kind
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key_.data(), key_.size())));
   build_folder_ = (fs::path(root_) / std::string(kBuildId).substr(0, 16)).string();
   folder_ = (fs::path(build_folder_) / (kind + "-" + hash)).string();
-  if (!own_tag(root_) || !real_directory(build_folder_) || !real_directory(folder_)) return;
+  std::error_code exists;
+  const bool own = own_tag(root_) || (fs::exists(root_, exists) && ensure_own_root(root_));  // adopted if it may be
+  if (!own || !real_directory(build_folder_) || !real_directory(folder_)) return;
   // A merger renames its file into place before it removes the files it merged: a file that
   // vanished while this one read the folder means a merged file to find by looking again.
   std::unordered_set<std::string> seen;

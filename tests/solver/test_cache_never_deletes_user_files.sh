@@ -74,6 +74,15 @@ for dir in "$tmp/empty" "$tmp/absent/cache"; do
   [ -n "$(find "$dir" -name '*.bin')" ] || fail "$dir: no entry written"
 done
 
+echo "== a folder holding only what the cache writes, untagged (an earlier version's): adopted and read"
+cp -r "$tmp/empty" "$tmp/legacy"
+rm "$tmp/legacy/CACHEDIR.TAG"
+before=$(find "$tmp/legacy" -name '*.bin' | sort)
+env -u COATCONTACT_CACHE "$cli" --cache "$tmp/legacy" "${command[@]}" > "$tmp/out" || fail "--cache LEGACY: exit $?"
+cmp -s "$tmp/out" "$tmp/reference" || fail "--cache LEGACY: output differs from no cache"
+[ -f "$tmp/legacy/CACHEDIR.TAG" ] || fail "--cache LEGACY: not adopted (no tag)"
+[ "$before" = "$(find "$tmp/legacy" -name '*.bin' | sort)" ] || fail "--cache LEGACY: its entries were not read (solved again)"
+
 echo "== inside its own folder: only its own files removed"
 cache="$tmp/empty"
 build=$(cd "$cache" && find . -mindepth 1 -maxdepth 1 -type d -name '????????????????' | head -n 1)
