@@ -42,7 +42,8 @@ void print_overview(std::ostream& out) {
   }
   out << "\noptions: --version (print the version and exit), -h/--help\n"
          "  --cache DIR (before the command): keep solved reduced variables in DIR and reuse them\n"
-         "  (the same numbers, less time; default: the environment variable COATCONTACT_CACHE)\n"
+         "  (the same numbers, less time; default: the environment variable COATCONTACT_CACHE;\n"
+         "  DIR new, empty or made by the cache, which removes only its own files)\n"
          "exit codes: 0 success, 2 bad usage or input, 3 numerical failure\n";
 }
 
