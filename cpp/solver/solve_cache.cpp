@@ -1,15 +1,15 @@
 // The solve cache (coatcontact/solve_cache.hpp, solve_cache.hpp; docs/solver.md, "Solve cache").
 //
-// DIR holds CACHEDIR.TAG (written when the cache creates DIR or adopts an empty one or one that
-// holds only what the cache writes; any other DIR without it is refused) and <build id, 16 hex>/<kind>-<FNV-1a of the key>/ folders; in
-// each, files written by the processes that solved something new, each complete or absent
-// (written under a temporary name starting with '.', then renamed). File: the line
-// "coatcontact <kind> cache 1", the key line, a count, the fixed-size records, then an FNV-1a
-// checksum of all that precedes. A record's first id_bytes identify it (a "solve" record: the
-// tolerance and a/t, then the six values, the error estimate and the unknowns): a record read
-// twice is kept once. Only a file whose name and first line are the cache's own is ever
-// removed, and only inside a tagged DIR, never behind a symbolic link; then the folders that
-// leaves empty and the cache's lock files.
+// DIR holds CACHEDIR.TAG (written when the cache creates DIR or adopts one that is empty or
+// holds only what the cache writes; any other DIR is refused) and the folders
+// <build id, 16 hex>/<kind>-<FNV-1a of the key>/; in each, files written by the processes that
+// solved something new, each complete or absent (written under a temporary name starting with
+// '.', then renamed). File: the line "coatcontact <kind> cache 1", the key line, a count, the
+// fixed-size records, then an FNV-1a checksum of all that precedes. A record's first id_bytes
+// identify it (a "solve" record: the tolerance and a/t, then the six values, the error estimate
+// and the unknowns): a record read twice is kept once. Only a file whose name and first line
+// are the cache's own is ever removed, and only inside a tagged DIR, never behind a symbolic
+// link; then the folders that leaves empty and the cache's lock files.
 #include "solve_cache.hpp"
 
 #include <fcntl.h>
@@ -243,7 +243,8 @@ Root root_state(const fs::path& root, std::string& why) {
     return Root::refused;
   }
   if (target.type() != fs::file_type::directory) {
-    why = target.type() == fs::file_type::regular ? "is a file, not a folder" : "is not a folder (a device or other special file)";
+    why = target.type() == fs::file_type::regular ? "is a file, not a folder"
+                                                  : "is not a folder (a device or other special file)";
     return Root::refused;
   }
   if (own_tag(root)) return Root::own;
@@ -444,8 +445,9 @@ CacheRecords::~CacheRecords() { flush(); }
 
 bool CacheRecords::read_entry(const std::string& path, std::vector<std::string>& out, bool& foreign) const {
   foreign = false;
-  if (!real_file(path)) {
-    foreign = true;  // a folder, a link or a device under a cache file's name: left alone
+  std::error_code ec;
+  if (!real_file(path) || fs::file_size(path, ec) > g_size_cap || ec) {
+    foreign = true;  // a folder, a link, a device or a file above the cap under an entry's name: left alone
     return false;
   }
   std::ifstream in(path, std::ios::binary);

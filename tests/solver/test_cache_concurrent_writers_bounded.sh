@@ -23,6 +23,7 @@ fail() {
   exit 1
 }
 cache="$tmp/cache"
+# shellcheck disable=SC2054  # commas inside an option value
 stack=(--film 0.1,0.25 --substrate 1,0.25)
 shared="0.05,0.2,1,4,15"
 shared_count=5

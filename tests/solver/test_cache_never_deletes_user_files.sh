@@ -16,6 +16,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+# shellcheck disable=SC2054  # commas inside an option value
 command=(reduced --film 0.1,0.25 --substrate 1,0.25 --a-over-t 0.1:10:3)
 env -u COATCONTACT_CACHE "$cli" "${command[@]}" > "$tmp/reference" || { echo "FAIL: reference run"; exit 1; }
 

@@ -114,7 +114,8 @@ int main() {
                                                     std::to_string(entries(folder_of(root, 0))) + " files)");
   check::that(loads_exactly(root, 0, 0, 190), "after merging every record is read once, bit for bit");
   const std::uintmax_t key0_bytes = entry_bytes(root);
-  check::that(key0_bytes < 3 * 190 * kRecordBytes, "merged size " + std::to_string(key0_bytes) + " bytes for 190 records");
+  check::that(key0_bytes < 3 * 190 * kRecordBytes,
+              "merged size " + std::to_string(key0_bytes) + " bytes for 190 records");
 
   // The size cap: keys of 100 records (~3.3 kB a folder) under a cap of 64 KiB.
   const std::uintmax_t cap = 64 * 1024;
