@@ -5,6 +5,7 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)      # PkgConfig::FFTW3
 pkg_check_modules(LAPACKE REQUIRED IMPORTED_TARGET lapacke)  # PkgConfig::LAPACKE
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)    # PkgConfig::LIBZIP (AFM archives)
+pkg_check_modules(FREEXL REQUIRED IMPORTED_TARGET freexl)    # PkgConfig::FREEXL (NanoSuite .xls)
 find_package(Threads REQUIRED)           # Threads::Threads (the FFTW planner lock)
 find_package(OpenMP COMPONENTS CXX)       # OpenMP::OpenMP_CXX (optional)
 

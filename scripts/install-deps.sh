@@ -9,6 +9,8 @@ packages=(
   gnuplot-nox python3
   # the AFM readers (JPK archives, zipped AFM Workshop maps)
   libzip-dev
+  # the NanoSuite .xls indentation reader (legacy Excel)
+  libfreexl-dev
   # the Python package and its tests (python/, examples/python/)
   python3-dev python3-numpy pybind11-dev python3-pytest python3-matplotlib
   # the notebooks (examples/notebooks/, run headless by nbclient) and the explorer's Jupyter

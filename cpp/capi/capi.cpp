@@ -2,6 +2,7 @@
 // point runs inside guarded(): exceptions become status codes, results are computed in full
 // before anything is written to the caller's memory.
 #include "coatcontact/coatcontact.h"
+#include "capi_guard.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -108,6 +109,12 @@ int guarded(Body&& body) {
     return CC_INTERNAL_ERROR;
   }
 }
+
+}  // namespace
+
+int coatcontact::capi::guard(const std::function<void()>& body) { return guarded(body); }
+
+namespace {
 
 void require(const void* pointer, const char* function, const char* argument) {
   if (pointer == nullptr) {

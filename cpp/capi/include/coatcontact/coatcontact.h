@@ -30,6 +30,7 @@
 #define COATCONTACT_COATCONTACT_H
 
 #include "coatcontact/cc_status.h"
+#include "coatcontact/coatcontact_indent.h" /* nanoindentation files: cc_indent_* */
 
 #ifdef __cplusplus
 extern "C" {
