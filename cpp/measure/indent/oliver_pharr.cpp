@@ -225,10 +225,15 @@ OliverPharrResult oliver_pharr(const IndentTest& test, const OliverPharrOptions&
     throw InputError("test '" + test.name + "' states no area function: give its coefficients (area)");
   collect_points(test, o, r);
   std::vector<double> keep_depth, keep_load, keep_s, keep_hc, keep_a;
+  const double indenter_compliance = o.indenter.rigid ? 0.0 : 1.0 / o.indenter.material.reduced_modulus();
   for (std::size_t i = 0; i < r.depth.size(); ++i) {
     const double hc = r.depth[i] - o.epsilon * r.load[i] / r.stiffness[i];
     const double a = o.area_from_hardness ? r.area[i] : contact_area(area, hc);
-    if (!(a > 0.0) || !(hc > 0.0)) continue;
+    // Near the surface h_c, A or 1/E_r - 1/E_i* can come out <= 0 (the tip's first contact).
+    if (!(a > 0.0) || !(hc > 0.0) || !(1.0 / reduced_modulus(r.stiffness[i], a, o.beta) > indenter_compliance)) {
+      ++r.dropped;
+      continue;
+    }
     keep_depth.push_back(r.depth[i]); keep_load.push_back(r.load[i]); keep_s.push_back(r.stiffness[i]);
     keep_hc.push_back(hc); keep_a.push_back(a);
   }

@@ -55,12 +55,13 @@ struct OliverPharrResult {
   std::size_t range_points = 0;
   double modulus_mean = 0.0, modulus_sd = 0.0, hardness_mean = 0.0, hardness_sd = 0.0;
   double poisson = 0.0;
-  UnloadingFit unloading;  // quasi-static only
+  std::size_t dropped = 0;  // points without a positive h_c, area or sample modulus (first contact)
+  UnloadingFit unloading;   // quasi-static only
 };
 
 // InputError for a missing Poisson ratio or area function, a bad option (named), or no point
-// to analyse; NumericalError when the unloading fit fails. Points outside the area function's
-// domain (h_c <= 0) are dropped.
+// to analyse; NumericalError when the unloading fit fails. Points with h_c <= 0, A <= 0 or an
+// E_r above the indenter's E* (the first contact) are dropped and counted.
 OliverPharrResult oliver_pharr(const IndentTest& test, const OliverPharrOptions& options = {});
 
 // The pieces, for callers that hold plain arrays.
