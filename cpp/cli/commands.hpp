@@ -32,6 +32,7 @@ double parse_angle(const std::string& text, const std::string& option);
 // (cmd_contact.cpp; `contact` and `sphere`). InputError naming --points.
 std::size_t parse_point_count(const Arguments& args, std::size_t fallback);
 int run_kinetics(const Args& args);  // cmd_kinetics.cpp: rate-dependent adhesion (crack kinetics)
+int run_indent(const Args& args);    // cmd_indent.cpp: nanoindentation files (show; the table of indent_commands.hpp)
 // (further subcommands are declared here as they land)
 
 }  // namespace coatcontact::cli

@@ -29,6 +29,7 @@ const Command kCommands[] = {
     {"contact", coatcontact::cli::run_contact, "any axisymmetric indenter (cone, power law, blunted cone, profile) in SI units"},
     {"afm", coatcontact::cli::run_afm, "AFM force curves from instrument files: show, export"},
     {"kinetics", coatcontact::cli::run_kinetics, "rate-dependent adhesion: crack kinetics at the edge, driven through a spring"},
+    {"indent", coatcontact::cli::run_indent, "nanoindentation files: show (the vendors' files in SI)"},
 };
 
 void print_overview(std::ostream& out) {

@@ -55,6 +55,7 @@ from . import _core
 from ._core import NumericalError
 from ._version import __version__, __license__
 from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
+from . import indent  # nanoindentation files: coatcontact.indent.read (indent.py)
 
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError", "ValidityWarning",
            "PointsNotDeliveredWarning",

@@ -19,6 +19,7 @@
 namespace py = pybind11;
 
 void register_kinetics(py::module_& m);  // kinetics.cpp
+void register_indent(py::module_& m);    // indent.cpp
 
 namespace {
 
@@ -681,4 +682,5 @@ PYBIND11_MODULE(_core, m) {
       .def("pulloff", &ShapeContact::pulloff)
       .def("validity", &ShapeContact::validity);
   register_kinetics(m);
+  register_indent(m);
 }

@@ -21,6 +21,20 @@ void read_position(std::string_view line, IndentTest& test) {
   if (y != std::string_view::npos) test.metadata["y"] = std::string(trim(line.substr(y + 2)));
 }
 
+// A vendor result "name <tab> [unit] <tab> value": in SI into vendor_results, pressures under
+// their name ("HIT", "EIT/(1-vs^2)"), other quantities with their SI unit ("hmax [m]").
+void read_result(const std::string& key, const std::vector<std::string_view>& fields, IndentTest& test) {
+  if (fields.size() < 3) return;
+  std::string_view unit = trim(fields[1]);
+  double value = 0.0;
+  SiUnit si;
+  if (unit.size() < 2 || unit.front() != '[' || unit.back() != ']' || !parse_number(fields[2], value) ||
+      !si_unit(std::string(unit.substr(1, unit.size() - 2)), si)) {
+    return;
+  }
+  test.vendor_results[si.name == "Pa" ? key : key + " [" + si.name + "]"] = scale(value, si.factor);
+}
+
 // One line of a test's header (before its "F h t" line).
 void read_test_header(std::string_view line, IndentTest& test, const std::string& file, std::size_t number) {
   const auto t = trim(line);
@@ -44,15 +58,22 @@ void read_test_header(std::string_view line, IndentTest& test, const std::string
     test.calibration.eps = eps;
     test.calibration.source = "the file's power-law tangent line";
     test.metadata["tangent range"] = std::string(trim(t.substr(0, at)));
-  } else if (t.find('\t') != std::string_view::npos) {  // "We [µJ] 0.1 79.01%"
+  } else if (t.find('\t') != std::string_view::npos) {  // "HIT <tab> [N/mm²] <tab> 8289.9", "We <tab> [µJ] <tab> 0.1 <tab> 79%"
     const auto fields = split(t, '\t');
     std::string value;
     for (std::size_t k = 1; k < fields.size(); ++k) value += (k > 1 ? " " : "") + std::string(trim(fields[k]));
-    test.metadata[to_utf8(trim(fields[0]))] = to_utf8(value);
+    const std::string key = to_utf8(trim(fields[0]));
+    test.metadata[key] = to_utf8(value);
+    read_result(key, fields, test);
   } else {
     const auto colon = t.find(':');
-    if (colon != std::string_view::npos) test.metadata[to_utf8(trim(t.substr(0, colon)))] = to_utf8(trim(t.substr(colon + 1)));
-    else test.metadata["comment " + std::to_string(test.metadata.size())] = to_utf8(t);
+    if (colon != std::string_view::npos) {
+      test.metadata[to_utf8(trim(t.substr(0, colon)))] = to_utf8(trim(t.substr(colon + 1)));
+    } else {
+      int notes = 1;
+      while (test.metadata.count("note " + std::to_string(notes)) != 0) ++notes;
+      test.metadata["note " + std::to_string(notes)] = to_utf8(t);
+    }
   }
 }
 

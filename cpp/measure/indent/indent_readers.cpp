@@ -1,6 +1,7 @@
 // The one entry point of the nanoindentation readers: detect the format, read, dispatch.
 // A new reader: its file, its IndentFormat value and name, its detection and dispatch lines here.
 #include <algorithm>
+#include <cctype>
 
 #include "indent_support.hpp"
 
@@ -34,8 +35,11 @@ IndentFormat detect_format_of(const std::string& bytes, const std::string& file)
   if (bytes.compare(0, 4, "PK\x03\x04", 4) == 0) return IndentFormat::kMicromaterialsZip;
   const std::string head = bytes.substr(0, 4096);
   if (head.rfind("File Version: Hysitron", 0) == 0) return IndentFormat::kHysitronHld;
-  if (head.find("Name of the application") != std::string::npos) return IndentFormat::kFischerScopeTxt;
-  if (head.find("Number of Points =") != std::string::npos) return IndentFormat::kHysitronTxt;
+  if (head.substr(0, head.find('\n')).find("\tName of the application") != std::string::npos) return IndentFormat::kFischerScopeTxt;
+  // Hysitron text: "Number of Points = N" among the first lines (after the date).
+  std::size_t line_end = 0;
+  for (int line = 0; line < 4 && line_end != std::string::npos; ++line) line_end = head.find('\n', line_end + 1);
+  if (head.substr(0, line_end).find("Number of Points =") != std::string::npos) return IndentFormat::kHysitronTxt;
   if (has_extension(file, ".xls")) fail(file, "", 0, "not an Excel 97-2003 workbook (no OLE2 signature), so not a NanoSuite export");
   if (has_extension(file, ".zip")) fail(file, "", 0, "not a zip archive (truncated or corrupt?)");
   if (has_extension(file, ".hld")) fail(file, "", 1, "a Hysitron .hld file starts with 'File Version: Hysitron'");

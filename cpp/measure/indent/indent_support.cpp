@@ -133,7 +133,7 @@ struct ExtraUnit {
 constexpr ExtraUnit kExtraUnits[] = {
     {"s", 1.0, "s"},         {"ms", 1e-3, "s"},       {"N/m", 1.0, "N/m"},    {"nm/s", 1e-9, "m/s"},
     {"V", 1.0, "V"},         {"Hz", 1.0, "Hz"},       {"1/s", 1.0, "1/s"},    {"%", 1.0, "%"},
-    {"N/mm2", 1e6, "Pa"},    {"N/mm^2", 1e6, "Pa"},   {"uJ", 1e-6, "J"},      {"nJ", 1e-9, "J"},
+    {"N/mm2", 1e6, "Pa"},    {"N/mm^2", 1e6, "Pa"},   {"N/mm\xc2\xb2", 1e6, "Pa"}, {"um/N", 1e-6, "m/N"},   {"uJ", 1e-6, "J"},      {"nJ", 1e-9, "J"},
     {"mJ", 1e-3, "J"},       {"J", 1.0, "J"},         {"N/V", 1.0, "N/V"},    {"m/V", 1.0, "m/V"},
 };
 

@@ -49,7 +49,10 @@ struct IndentTest {
   std::map<std::string, std::vector<double>> extra;  // other channels in SI, named "<name> [unit]"
   Calibration calibration;
   std::map<std::string, std::string> metadata;       // everything else the file states
-  std::map<std::string, double> vendor_results;      // e.g. "E_mean" [Pa], "H_mean" [Pa]
+  // The vendor's own results in SI: pressures [Pa] by name ("E_mean", "H_mean" of NanoSuite's
+  // Results sheet; "HM", "HIT", "EIT/(1-vs^2)" of FischerScope), others with their SI unit
+  // in the key ("hmax [m]").
+  std::map<std::string, double> vendor_results;
 };
 
 enum class IndentFormat { kNanoSuiteXls, kHysitronTxt, kHysitronHld, kMicromaterialsZip, kFischerScopeTxt };
