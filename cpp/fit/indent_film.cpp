@@ -291,6 +291,8 @@ void check_film_options(const FilmOptions& o) {
   if (o.model != FilmModel::kExact && (o.layers.size() != 1 || o.substrate.rigid))
     throw InputError(std::string("model = ") + film_model_name(o.model) +
                      " needs one film on an elastic substrate (use model = exact for layers or a rigid base)");
+  if (o.model != FilmModel::kExact && o.unknown == FilmUnknown::kThickness)
+    throw InputError(std::string("model = ") + film_model_name(o.model) + " gives the modulus only; the thickness needs model = exact");
   if (o.model != FilmModel::kExact && o.contact_depth == ContactDepth::kCoated)
     throw InputError("contact depth = coated comes from the exact solution: use it with model = exact");
   if (!std::isnan(o.alpha) && !(std::isfinite(o.alpha) && o.alpha > 0))
@@ -380,10 +382,24 @@ FilmResult film(const IndentTest& test, const OliverPharrOptions& op_options, co
         n, [&](std::size_t k) { return root_one(st, all[pick[k]], fit.u, r.alpha, &geo[k]); },
         [](std::size_t) { return 0.0; }, r.status);
   }
-  const std::vector<double> up = predict(st, [&] { std::vector<Pt> p; for (auto k : pick) p.push_back(all[k]); return p; }(),
-                                         fit.u + 1e-4, r.alpha);
-  const std::vector<double> um = predict(st, [&] { std::vector<Pt> p; for (auto k : pick) p.push_back(all[k]); return p; }(),
-                                         fit.u - 1e-4, r.alpha);
+  // The sensitivity d ln S / du at each depth, at the fitted u (an empirical model can be out
+  // of its range at some depths: their error is 0 and they are not delivered anyway).
+  std::vector<Pt> picked;
+  for (auto k : pick) picked.push_back(all[k]);
+  std::vector<double> up(n, 0.0), um(n, 0.0);
+  if (o.model == FilmModel::kExact) {
+    up = predict(st, picked, fit.u + 1e-4, r.alpha);
+    um = predict(st, picked, fit.u - 1e-4, r.alpha);
+  } else {
+    for (std::size_t k = 0; k < n; ++k) {
+      try {
+        up[k] = predict_one(st, picked[k], fit.u + 1e-4, r.alpha, nullptr);
+        um[k] = predict_one(st, picked[k], fit.u - 1e-4, r.alpha, nullptr);
+      } catch (const NumericalError&) {
+        up[k] = um[k] = 0.0;
+      }
+    }
+  }
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = pick[k];
     const bool ok = r.status[k].delivered;
