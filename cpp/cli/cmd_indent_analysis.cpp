@@ -326,7 +326,11 @@ indent::FilmOptions film_options(const Arguments& args) {
 std::vector<indent::FilmModel> chosen_models(const Arguments& args) {
   const std::string m = args.get("--model").value_or("exact");
   if (m == "all") return indent::film_models();
-  return {indent::film_model_from_name(m)};
+  try {
+    return {indent::film_model_from_name(m)};
+  } catch (const InputError& e) {
+    throw InputError(std::string("--model: ") + e.what());
+  }
 }
 
 // Per depth: the geometry of the first model, then each model's value and error ("-" where a
