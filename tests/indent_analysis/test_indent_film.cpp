@@ -129,6 +129,21 @@ void coated_contact_depth() {
               coated.value.back() / 1e9, half.value.back() / 1e9);
 }
 
+// The contact area from the vendor's hardness column (A = P/H) instead of the area function:
+// with H written as the data's own P/A the two give the same film modulus at every depth.
+void area_from_hardness() {
+  Film f;
+  f.options = one_film(70e9, 0.17, 500e-9, 162e9, 0.22);
+  IndentTest t = make_test(f, 10e-9, 200e-9, 8);
+  for (std::size_t i = 0; i < t.depth.size(); ++i)
+    t.hardness.push_back(t.load[i] / contact_area(t.calibration.area, t.depth[i] - 0.75 * t.load[i] / t.stiffness[i]));
+  OliverPharrOptions by_area = op_of(f), by_h = op_of(f);
+  by_h.area_from_hardness = true;
+  const FilmResult a = film(t, by_area, f.options), h = film(t, by_h, f.options);
+  for (std::size_t i = 0; i < a.value.size(); ++i)
+    check::close(h.value[i], a.value[i], 1e-12, "area = hardness gives the area function's E1");
+}
+
 void bad_input() {
   Film f;
   f.options = one_film(70e9, 0.17, 500e-9, 162e9, 0.22);
@@ -152,6 +167,7 @@ int main() {
   multilayer_equals_bilayer();
   thickness();
   coated_contact_depth();
+  area_from_hardness();
   bad_input();
   return check::exit_code();
 }
