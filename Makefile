@@ -52,7 +52,7 @@ clean:
 include gnuplot/figures.mk
 
 # Fuzzing (issue 7): libFuzzer + ASan/UBSan on the value parsers, the data file reader and the
-# AFM readers (corpus_afm: small real files), in
+# AFM and indentation readers (corpus_afm, corpus_indent: small real files or their heads), in
 # a separate clang tree (Fortran stays gfortran); only the fuzz targets are built. New corpus
 # entries go to $(FUZZ_BUILD)/corpus, crash reproducers to $(FUZZ_BUILD)/artifacts.
 FUZZ_BUILD   ?= build-fuzz
@@ -62,8 +62,8 @@ fuzz:
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_Fortran_COMPILER=gfortran \
 	  -DCOATCONTACT_BUILD_FUZZ=ON
-	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_parsers fuzz_data_file fuzz_afm
-	@for f in parsers data_file afm; do \
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_parsers fuzz_data_file fuzz_afm fuzz_indent
+	@for f in parsers data_file afm indent; do \
 	  mkdir -p $(FUZZ_BUILD)/corpus/$$f $(FUZZ_BUILD)/artifacts/$$f || exit 1; \
 	  echo "== fuzz_$$f for $(FUZZ_SECONDS) s"; \
 	  $(FUZZ_BUILD)/fuzz/fuzz_$$f -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \

@@ -75,8 +75,9 @@ void add_indent_test_header(std::vector<std::pair<std::string, std::string>>& it
   const indent::IndentTest& t = tests.at(index);
   items.push_back({"file", path});
   items.push_back({"test", t.name + " (index " + std::to_string(index) + " of " + std::to_string(tests.size()) + ")"});
-  std::string names;
-  for (const auto& other : tests) names += (names.empty() ? "" : ", ") + other.name;
+  std::string names;  // the first 100 (a file of thousands would make one very long line)
+  for (std::size_t i = 0; i < tests.size() && i < 100; ++i) names += (i ? ", " : "") + tests[i].name;
+  if (tests.size() > 100) names += ", ... (" + std::to_string(tests.size()) + " in all)";
   if (tests.size() > 1) items.push_back({"tests in the file", names});
   items.push_back({"points", std::to_string(t.depth.size())});
   const indent::Calibration& c = t.calibration;

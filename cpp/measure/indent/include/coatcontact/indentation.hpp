@@ -45,7 +45,9 @@ struct IndentTest {
   std::vector<double> depth, load, time;   // [m], [N], [s], same length (time empty if none)
   std::vector<double> stiffness;           // [N/m] CSM harmonic contact stiffness, empty if none
   std::vector<double> hardness, modulus;   // [Pa] the vendor's own columns, empty if none
-  std::vector<int> segment;                // vendor segment number per point, empty if none
+  std::vector<int> segment;                // segment per point, empty if none (NanoSuite from 1,
+                                           // Hysitron text from 0, .hld the header's numbers)
+  // In every channel NaN marks a value the vendor wrote as missing (NanoSuite's 1.797e308).
   std::map<std::string, std::vector<double>> extra;  // other channels in SI, named "<name> [unit]"
   Calibration calibration;
   std::map<std::string, std::string> metadata;       // everything else the file states
