@@ -218,11 +218,11 @@ OliverPharrResult oliver_pharr(const IndentTest& test, const OliverPharrOptions&
   OliverPharrResult r;
   r.poisson = std::isnan(o.poisson) ? test.calibration.poisson : o.poisson;
   if (std::isnan(r.poisson))
-    throw InputError("test '" + test.name + "' states no Poisson ratio: give the sample's (poisson)");
+    throw InputError("test '" + test.name + "' states no Poisson ratio: give the sample's (poisson; CLI --poisson)");
   require_option(r.poisson > -1.0 && r.poisson <= 0.5, "poisson", r.poisson, "a ratio in (-1, 0.5]");
   const AreaFunction& area = o.area.coefficients.empty() ? test.calibration.area : o.area;
   if (!o.area_from_hardness && area.coefficients.empty())
-    throw InputError("test '" + test.name + "' states no area function: give its coefficients (area)");
+    throw InputError("test '" + test.name + "' states no area function: give its coefficients (area; CLI --area C0,C1,..)");
   collect_points(test, o, r);
   std::vector<double> keep_depth, keep_load, keep_s, keep_hc, keep_a;
   const double indenter_compliance = o.indenter.rigid ? 0.0 : 1.0 / o.indenter.material.reduced_modulus();
