@@ -206,6 +206,9 @@ class ModulusNodes {
                              " Pa reproduces the stiffness at depth " + num(h) + " m");
       f0 = f1;
       f1 = value(j + dir, x) - y;
+      // Upwards ln(E_ref E_eq) saturates at the substrate's and the diamond's limit: stop there.
+      if (dir > 0 && f1 - f0 < 1e-6 * kStep && (f1 > 0) == (f0 > 0))
+        throw NumericalError("the stiffness at depth " + num(h) + " m exceeds what any film modulus gives on this substrate");
     }
     const int lo = std::min(j, j + dir);
     double uu[4], ff[4];
