@@ -20,6 +20,9 @@ namespace {
 // indent_commands.hpp.
 const IndentCommand kIndentCommands[] = {
     {"show", run_indent_show, "the channels of one test as TSV in SI, calibration and metadata in the header"},
+    {"analyse", run_indent_analyse, "Oliver-Pharr: E and H per depth and over a range (one test or --all)"},
+    {"calibrate", run_indent_calibrate, "the tip's area function and the frame compliance on a reference"},
+    {"film", run_indent_film, "the film's modulus (or thickness) from the exact coated stiffness, and the empirical models"},
 };
 
 constexpr const char* kIndentFormats =

@@ -21,6 +21,9 @@ struct IndentCommand {
 };
 
 int run_indent_show(const Args& args);  // cmd_indent.cpp: the channels of one test as TSV
+int run_indent_analyse(const Args& args);    // cmd_indent_analysis.cpp: Oliver-Pharr
+int run_indent_calibrate(const Args& args);  // cmd_indent_analysis.cpp: area function and frame
+int run_indent_film(const Args& args);       // cmd_indent_analysis.cpp: the film's modulus or thickness
 
 // The options that choose one test of a file: --test NAME, --index N (0-based).
 OptionSpec indent_test_option();

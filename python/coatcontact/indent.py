@@ -10,8 +10,9 @@ Formats (chosen by content and extension): Agilent/KLA NanoSuite .xls, Hysitron 
 sheet or archive entry and the line.
 """
 from . import _core
+from .indent_analysis import MODELS, analyse, film
 
-__all__ = ["read", "Test"]
+__all__ = ["read", "Test", "analyse", "film", "MODELS"]
 
 _STANDARD = ("depth", "load", "time", "stiffness", "hardness", "modulus", "segment")
 

@@ -20,6 +20,7 @@ namespace py = pybind11;
 
 void register_kinetics(py::module_& m);  // kinetics.cpp
 void register_indent(py::module_& m);    // indent.cpp
+void register_indent_analysis(py::module_& m);  // indent_analysis.cpp
 
 namespace {
 
@@ -683,4 +684,5 @@ PYBIND11_MODULE(_core, m) {
       .def("validity", &ShapeContact::validity);
   register_kinetics(m);
   register_indent(m);
+  register_indent_analysis(m);
 }

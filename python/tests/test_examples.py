@@ -20,6 +20,7 @@ def check_png():
 @pytest.mark.parametrize("script,png,size", [
     ("fig5.py", "fig5_python.png", (1000, 720)),
     ("fit_data.py", "fit_python.png", (800, 700)),
+    ("thin_film.py", "thin_film_python.png", (1000, 720)),
 ])
 def test_example_writes_a_png(tmp_path, script, png, size):
     env = dict(os.environ, MPLBACKEND="Agg", MPLCONFIGDIR=str(tmp_path / "mpl"))
