@@ -218,21 +218,7 @@ void ReducedTable::build_segments(std::vector<Pending> pending) const {
       }
       for (double u : end_u) a_over_t.push_back(std::exp(u));
     }
-    std::vector<ReducedVariables> solved = source_.evaluate(
-        std::vector<double>(a_over_t.begin(), a_over_t.end() - static_cast<std::ptrdiff_t>(end_u.size())));
-    if (!end_u.empty()) {
-      const std::vector<double> end_radii(a_over_t.end() - static_cast<std::ptrdiff_t>(end_u.size()), a_over_t.end());
-      std::vector<ReducedVariables> end_values;
-      if (options_.check_source != nullptr) {
-        try {
-          end_values = options_.check_source->evaluate(end_radii);
-        } catch (const NumericalError&) {
-          end_values.clear();  // the tighter tolerance is out of reach: the table's own source
-        }
-      }
-      if (end_values.size() != end_radii.size()) end_values = source_.evaluate(end_radii);
-      solved.insert(solved.end(), end_values.begin(), end_values.end());
-    }
+    const std::vector<ReducedVariables> solved = source_.evaluate(a_over_t);
     if (solved.size() != a_over_t.size()) {
       throw NumericalError("reduced-variable source returned " + std::to_string(solved.size()) +
                            " values for " + std::to_string(a_over_t.size()) + " radii");
@@ -393,7 +379,7 @@ ReducedPoint ReducedTable::at(double a_over_t, Variables which) const {
 
 TableOptions sweep_table_options(double tolerance) {
   TableOptions options;
-  // check_source: set by interpolated_sweep. Measured on a/t in [1e-3, 1e4] (E1*/E0* = 10 and 0.1, nu = 0.25; docs/solver.md, Sweeps):
+  // Measured on a/t in [1e-3, 1e4] (E1*/E0* = 10 and 0.1, nu = 0.25; docs/solver.md, Sweeps):
   // order 14 on two-decade segments needs ~130 solves where order 24 on decades needs ~180.
   options.order = 14;
   options.decades_per_segment = 2.0;
@@ -443,11 +429,7 @@ InterpolatedSweep interpolated_sweep(const ReducedSolver& solver, const std::vec
       (std::ceil(std::log10(hi / lo) / options.decades_per_segment) + 1.0) * static_cast<double>(options.order + 2);
   if (hi > lo && static_cast<double>(a_over_t.size()) >= 1.5 * expected_solves) {
     const SolverSource source(solver, tolerance);
-    // The ends at 100x the tolerance (docs/solver.md, Sweeps).
-    const SolverSource check(solver, std::max(kMinimumTolerance, 0.01 * tolerance));
-    TableOptions verified = options;
-    verified.check_source = &check;
-    ReducedTable table(source, verified);
+    ReducedTable table(source, options);
     try {
       table.prepare_range(lo, hi);
       for (std::size_t i = 0; i < a_over_t.size(); ++i) {

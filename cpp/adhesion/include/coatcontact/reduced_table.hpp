@@ -70,10 +70,6 @@ struct TableOptions {
   // tail_tolerance + tail_noise_factor x the nodes' estimates (max_halvings reached: the
   // segment is kept, its estimate says what it is worth).
   bool verify = false;
-  // With verify: the ends are solved by this source when given (a tighter tolerance, so that
-  // the difference there measures the interpolant's error rather than the end's own; the table's
-  // source where it throws). Must outlive the table.
-  const ReducedSource* check_source = nullptr;
   // Initial width of a segment of prepare_range, in decades of a/t.
   double decades_per_segment = 1.0;
 };
