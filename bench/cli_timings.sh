@@ -47,6 +47,9 @@ time_task "one radius (reduced, a/t = 1)" \
   "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 1
 time_task_cpu "200 radii (reduced, a/t 1e-3..1e4)" \
   "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 0.001:10000:200
+# the same radii each solved on its own (the path before the verified interpolant, issue 37)
+time_task_cpu "200 radii (reduced --direct, a/t 1e-3..1e4)" \
+  "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 0.001:10000:200 --direct
 time_task_cpu "pulloff, 100 eta" \
   "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 0.01:100:100
 

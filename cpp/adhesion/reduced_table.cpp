@@ -23,7 +23,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "coatcontact/detail/constants.hpp"
 #include "coatcontact/reduced_table.hpp"
@@ -83,6 +85,8 @@ struct ReducedTable::Segment {
   std::array<gsl_cheb_series*, kVariables> value{};
   std::array<gsl_cheb_series*, kVariables> deriv{};
   double tail = 0.0;
+  double check = 0.0;  // largest relative difference from the direct solves at the ends (verify)
+  double noise = 0.0;  // largest error estimate of the source at the nodes and ends
   Segment() = default;
   Segment(const Segment&) = delete;
   Segment& operator=(const Segment&) = delete;
@@ -90,6 +94,15 @@ struct ReducedTable::Segment {
     for (auto* s : value) gsl_cheb_free(s);
     for (auto* s : deriv) gsl_cheb_free(s);
   }
+  // Verified: the measured end difference, or a tenth of the tail where that is larger (the
+  // tail overestimates the error ~10x, table above); else the tail alone.
+  bool verified = false;
+  double interpolation_error() const { return verified ? std::max(check, 0.1 * tail) : tail; }
+};
+
+struct ReducedTable::Pending {
+  double u_lo, u_hi;
+  int halvings;
 };
 
 ReducedTable::ReducedTable(const ReducedSource& source, TableOptions options)
@@ -100,6 +113,10 @@ ReducedTable::ReducedTable(const ReducedSource& source, TableOptions options)
   if (!(options_.tail_tolerance > 0.0) || !(options_.tail_noise_factor >= 0.0) ||
       options_.max_halvings < 0) {
     throw InputError("table tolerances must be > 0 and max_halvings >= 0");
+  }
+  if (!(options_.decades_per_segment > 0.0 && options_.decades_per_segment <= 20.0)) {
+    throw InputError("table decades_per_segment " + format_g(options_.decades_per_segment) +
+                     " not allowed (0 < width <= 20)");
   }
 }
 
@@ -115,26 +132,91 @@ std::size_t ReducedTable::segments() const { return segments_.size(); }
 double ReducedTable::interpolation_error_estimate() const { return interpolation_error_; }
 double ReducedTable::source_error_estimate() const { return source_error_; }
 
+namespace {
+
+// ln X of the six variables at the nodes of one segment (NumericalError unless finite, > 0).
+std::array<std::vector<double>, kVariables> logs_at(const std::vector<ReducedVariables>& solved, std::size_t first,
+                                                    std::size_t count) {
+  std::array<std::vector<double>, kVariables> logs;
+  for (std::size_t k = first; k < first + count; ++k) {
+    const auto vals = values_of(solved[k]);
+    for (int j = 0; j < kVariables; ++j) {
+      if (!(std::isfinite(vals[j]) && vals[j] > 0.0)) {
+        throw NumericalError(std::string("reduced variable ") + kNames[j] + " = " + format_g(vals[j]) +
+                             " at a/t = " + format_g(solved[k].a_over_t) + " (expected finite and > 0)");
+      }
+      logs[j].push_back(std::log(vals[j]));
+    }
+  }
+  return logs;
+}
+
+// Fills one series per variable (and its derivative) from the node values; returns the tail
+// |c_n| + |c_(n-1)| of the worst variable.
+double fill_series(std::array<gsl_cheb_series*, kVariables>& value, std::array<gsl_cheb_series*, kVariables>& deriv,
+                   std::size_t order, double u_lo, double u_hi, const std::vector<double>& nodes,
+                   const std::array<std::vector<double>, kVariables>& logs) {
+  double tail = 0.0;
+  for (int j = 0; j < kVariables; ++j) {
+    value[j] = gsl_cheb_alloc(order);
+    deriv[j] = gsl_cheb_alloc(order);
+    if (value[j] == nullptr || deriv[j] == nullptr) throw NumericalError("cannot allocate a Chebyshev series");
+    CachedValues cache{&nodes, &logs[j]};
+    gsl_function f{&cached_value, &cache};
+    const int status = gsl_cheb_init(value[j], &f, u_lo, u_hi);
+    if (status != GSL_SUCCESS || cache.mismatch || cache.next != nodes.size()) {
+      throw NumericalError("Chebyshev interpolation setup failed (node mismatch)");
+    }
+    gsl_cheb_calc_deriv(deriv[j], value[j]);
+    const double* c = gsl_cheb_coeffs(value[j]);
+    tail = std::max(tail, std::abs(c[order]) + std::abs(c[order - 1]));
+  }
+  return tail;
+}
+
+// Largest relative difference of the interpolated values at u from the solved ones.
+double difference_at(const std::array<gsl_cheb_series*, kVariables>& value, double u, const ReducedVariables& solved) {
+  const auto direct = values_of(solved);
+  double worst = 0.0;
+  for (int j = 0; j < kVariables; ++j) {
+    const double interpolated = std::exp(gsl_cheb_eval(value[j], u));
+    worst = std::max(worst, std::abs(interpolated - direct[j]) / std::abs(direct[j]));
+  }
+  return worst;
+}
+
+}  // namespace
+
 void ReducedTable::build_decades(const std::vector<long>& decades) const {
-  struct Pending {
-    double u_lo, u_hi;
-    int halvings;
-  };
   std::vector<Pending> pending;
   for (long k : decades) {
     pending.push_back({static_cast<double>(k) * kLn10, static_cast<double>(k + 1) * kLn10, 0});
   }
+  build_segments(std::move(pending));
+  for (long k : decades) built_decades_[k] = true;
+}
+
+void ReducedTable::build_segments(std::vector<Pending> pending) const {
   const std::size_t n_nodes = options_.order + 1;
   detail::GslHandlerOff gsl_guard;
+  std::map<double, ReducedVariables> ends;  // verified ends, shared by neighbouring segments
 
   while (!pending.empty()) {
-    // One batched source call for all nodes of all pending intervals.
+    // One batched source call for all nodes (and new ends) of all pending intervals.
     std::vector<std::vector<double>> nodes(pending.size());
-    std::vector<double> a_over_t;
-    a_over_t.reserve(pending.size() * n_nodes);
+    std::vector<double> a_over_t, end_u;
+    a_over_t.reserve(pending.size() * (n_nodes + 2));
     for (std::size_t p = 0; p < pending.size(); ++p) {
       nodes[p] = cheb_nodes(options_.order, pending[p].u_lo, pending[p].u_hi);
       for (double u : nodes[p]) a_over_t.push_back(std::exp(u));
+    }
+    if (options_.verify) {
+      for (const Pending& p : pending) {
+        for (double u : {p.u_lo, p.u_hi}) {
+          if (ends.count(u) == 0 && std::find(end_u.begin(), end_u.end(), u) == end_u.end()) end_u.push_back(u);
+        }
+      }
+      for (double u : end_u) a_over_t.push_back(std::exp(u));
     }
     const std::vector<ReducedVariables> solved = source_.evaluate(a_over_t);
     if (solved.size() != a_over_t.size()) {
@@ -142,64 +224,48 @@ void ReducedTable::build_decades(const std::vector<long>& decades) const {
                            " values for " + std::to_string(a_over_t.size()) + " radii");
     }
     evaluations_ += solved.size();
+    for (std::size_t e = 0; e < end_u.size(); ++e) ends[end_u[e]] = solved[pending.size() * n_nodes + e];
+    logs_at(solved, pending.size() * n_nodes, end_u.size());  // the ends' values are checked too
 
     std::vector<Pending> next;
     for (std::size_t p = 0; p < pending.size(); ++p) {
       auto segment = std::make_unique<Segment>();
       segment->u_lo = pending[p].u_lo;
       segment->u_hi = pending[p].u_hi;
-      double noise = 0.0;
-      std::array<std::vector<double>, kVariables> logs;
       for (std::size_t k = 0; k < n_nodes; ++k) {
-        const ReducedVariables& v = solved[p * n_nodes + k];
-        noise = std::max(noise, v.error_estimate);
-        const auto vals = values_of(v);
-        for (int j = 0; j < kVariables; ++j) {
-          if (!(std::isfinite(vals[j]) && vals[j] > 0.0)) {
-            throw NumericalError(std::string("reduced variable ") + kNames[j] + " = " +
-                                 format_g(vals[j]) + " at a/t = " + format_g(a_over_t[p * n_nodes + k]) +
-                                 " (expected finite and > 0)");
-          }
-          logs[j].push_back(std::log(vals[j]));
+        segment->noise = std::max(segment->noise, solved[p * n_nodes + k].error_estimate);
+      }
+      segment->tail = fill_series(segment->value, segment->deriv, options_.order, segment->u_lo, segment->u_hi,
+                                  nodes[p], logs_at(solved, p * n_nodes, n_nodes));
+      if (options_.verify) {
+        segment->verified = true;
+        for (double u : {segment->u_lo, segment->u_hi}) {
+          const ReducedVariables& end = ends.at(u);
+          segment->noise = std::max(segment->noise, end.error_estimate);
+          segment->check = std::max(segment->check, difference_at(segment->value, u, end));
         }
       }
-      for (int j = 0; j < kVariables; ++j) {
-        segment->value[j] = gsl_cheb_alloc(options_.order);
-        segment->deriv[j] = gsl_cheb_alloc(options_.order);
-        if (segment->value[j] == nullptr || segment->deriv[j] == nullptr) {
-          throw NumericalError("cannot allocate a Chebyshev series");
+      const double allowed = options_.tail_tolerance + options_.tail_noise_factor * segment->noise;
+      if (segment->interpolation_error() > allowed) {
+        if (pending[p].halvings < options_.max_halvings) {
+          const double mid = 0.5 * (pending[p].u_lo + pending[p].u_hi);
+          next.push_back({pending[p].u_lo, mid, pending[p].halvings + 1});
+          next.push_back({mid, pending[p].u_hi, pending[p].halvings + 1});
+          continue;
         }
-        CachedValues cache{&nodes[p], &logs[j]};
-        gsl_function f{&cached_value, &cache};
-        const int status = gsl_cheb_init(segment->value[j], &f, segment->u_lo, segment->u_hi);
-        if (status != GSL_SUCCESS || cache.mismatch || cache.next != n_nodes) {
-          throw NumericalError("Chebyshev interpolation setup failed (node mismatch)");
+        if (!options_.verify) {  // verified segments keep their (large) estimate instead
+          throw NumericalError("reduced variables not resolved by order-" + std::to_string(options_.order) +
+                               " Chebyshev series on a/t in [" + format_g(std::exp(pending[p].u_lo)) + ", " +
+                               format_g(std::exp(pending[p].u_hi)) + "]: tail " + format_g(segment->tail) +
+                               " > " + format_g(allowed));
         }
-        gsl_cheb_calc_deriv(segment->deriv[j], segment->value[j]);
-        const double* c = gsl_cheb_coeffs(segment->value[j]);
-        segment->tail = std::max(segment->tail, std::abs(c[options_.order]) + std::abs(c[options_.order - 1]));
       }
-      const double allowed = options_.tail_tolerance + options_.tail_noise_factor * noise;
-      if (segment->tail > allowed) {
-        if (pending[p].halvings >= options_.max_halvings) {
-          throw NumericalError("reduced variables not resolved by order-" +
-                               std::to_string(options_.order) + " Chebyshev series on a/t in [" +
-                               format_g(std::exp(pending[p].u_lo)) + ", " +
-                               format_g(std::exp(pending[p].u_hi)) + "]: tail " +
-                               format_g(segment->tail) + " > " + format_g(allowed));
-        }
-        const double mid = 0.5 * (pending[p].u_lo + pending[p].u_hi);
-        next.push_back({pending[p].u_lo, mid, pending[p].halvings + 1});
-        next.push_back({mid, pending[p].u_hi, pending[p].halvings + 1});
-        continue;
-      }
-      interpolation_error_ = std::max(interpolation_error_, segment->tail);
-      source_error_ = std::max(source_error_, noise);
+      interpolation_error_ = std::max(interpolation_error_, segment->interpolation_error());
+      source_error_ = std::max(source_error_, segment->noise);
       segments_[segment->u_lo] = std::move(segment);
     }
     pending = std::move(next);
   }
-  for (long k : decades) built_decades_[k] = true;
 }
 
 void ReducedTable::prepare(double a_over_t_min, double a_over_t_max) const {
@@ -214,14 +280,62 @@ void ReducedTable::prepare(double a_over_t_min, double a_over_t_max) const {
   for (long k = k_lo; k <= k_hi; ++k) {
     if (built_decades_.count(k) == 0) missing.push_back(k);
   }
+  if (ranged_) throw std::logic_error("ReducedTable::prepare on a table of prepare_range");
   if (!missing.empty()) build_decades(missing);
 }
 
+void ReducedTable::prepare_range(double a_over_t_min, double a_over_t_max) const {
+  if (!(a_over_t_min > 0.0 && std::isfinite(a_over_t_min) && a_over_t_max > a_over_t_min &&
+        std::isfinite(a_over_t_max))) {
+    throw InputError("a/t range [" + format_g(a_over_t_min) + ", " + format_g(a_over_t_max) +
+                     "] not allowed (need 0 < min < max, finite)");
+  }
+  if (!segments_.empty()) throw std::logic_error("ReducedTable::prepare_range on a table already built");
+  // Segment ends on multiples of the width (in decades), clipped to the range: the same grid
+  // whatever the range, so two sweeps share their inner segments' nodes.
+  const double u_lo = std::log(a_over_t_min), u_hi = std::log(a_over_t_max);
+  const double width = options_.decades_per_segment * kLn10;
+  std::vector<Pending> pending;
+  for (double left = u_lo; left < u_hi;) {
+    const double right = std::min(u_hi, (std::floor(left / width + 1e-9) + 1.0) * width);
+    if (right - left > 1e-9 * width || pending.empty()) {
+      pending.push_back({left, right, 0});
+    } else {
+      pending.back().u_hi = right;  // a sliver of rounding: merged into the segment before
+    }
+    left = right;
+  }
+  ranged_ = true;
+  range_lo_ = u_lo;
+  range_hi_ = u_hi;
+  build_segments(std::move(pending));
+}
+
+double ReducedTable::error_estimate_at(double a_over_t) const {
+  if (!(a_over_t > 0.0 && std::isfinite(a_over_t))) {
+    throw InputError("a/t = " + format_g(a_over_t) + " not allowed (need finite and > 0)");
+  }
+  const Segment& s = segment_for(std::log(a_over_t));
+  return s.interpolation_error() + s.noise;
+}
+
+double ReducedTable::interpolation_error_at(double a_over_t) const {
+  const double total = error_estimate_at(a_over_t);  // the input check and the segment
+  return std::min(total, segment_for(std::log(a_over_t)).interpolation_error());
+}
+
 const ReducedTable::Segment& ReducedTable::segment_for(double u) const {
-  const long k = static_cast<long>(std::floor(u / kLn10));
-  if (built_decades_.count(k) == 0) build_decades({k});
-  // Decade k covers [k ln10, (k+1) ln10] without gaps; allow rounding at its ends.
   const double slack = 1e-12 * (1.0 + std::abs(u));
+  if (ranged_) {
+    if (!(u >= range_lo_ - slack && u <= range_hi_ + slack)) {
+      throw InputError("a/t = " + format_g(std::exp(u)) + " outside the table's range [" + format_g(std::exp(range_lo_)) +
+                       ", " + format_g(std::exp(range_hi_)) + "]");
+    }
+  } else {
+    const long k = static_cast<long>(std::floor(u / kLn10));
+    if (built_decades_.count(k) == 0) build_decades({k});
+  }
+  // Segments cover the decades (or the range) without gaps; allow rounding at their ends.
   auto it = segments_.upper_bound(u);
   if (it != segments_.begin()) {
     const Segment& s = *std::prev(it)->second;
@@ -261,6 +375,94 @@ ReducedPoint ReducedTable::at(double a_over_t, Variables which) const {
   p.dlog_e_eq = d[4];
   p.dlog_gamma1 = d[5];
   return p;
+}
+
+TableOptions sweep_table_options(double tolerance) {
+  TableOptions options;
+  // Measured on a/t in [1e-3, 1e4] (E1*/E0* = 10 and 0.1, nu = 0.25; docs/solver.md, Sweeps):
+  // order 14 on two-decade segments needs ~130 solves where order 24 on decades needs ~180.
+  options.order = 14;
+  options.decades_per_segment = 2.0;
+  options.tail_tolerance = 0.4 * tolerance;
+  options.tail_noise_factor = 1.0;
+  options.max_halvings = 5;
+  options.verify = true;
+  return options;
+}
+
+namespace {
+
+// Rows `which` solved directly into `out` (tolerant when status is given).
+void solve_rows(const ReducedSolver& solver, const std::vector<double>& a_over_t, const std::vector<std::size_t>& which,
+                double tolerance, std::vector<ReducedVariables>& out, std::vector<PointStatus>* status) {
+  if (which.empty()) return;
+  std::vector<double> radii;
+  for (std::size_t i : which) radii.push_back(a_over_t[i]);
+  std::vector<PointStatus> part;
+  const std::vector<ReducedVariables> solved =
+      status == nullptr ? solver.sweep(radii, tolerance) : solver.sweep(radii, tolerance, part);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    out[which[k]] = solved[k];
+    if (status != nullptr) (*status)[which[k]] = part[k];
+  }
+}
+
+}  // namespace
+
+InterpolatedSweep interpolated_sweep(const ReducedSolver& solver, const std::vector<double>& a_over_t,
+                                     double tolerance, std::vector<PointStatus>* status) {
+  check_tolerance(tolerance);
+  for (double a : a_over_t) {
+    if (!(std::isfinite(a) && a > 0.0 && a <= kMaximumAOverT)) {
+      throw InputError("a/t " + format_g(a) + " is not allowed; it must be > 0 and <= " + format_g(kMaximumAOverT));
+    }
+  }
+  InterpolatedSweep result;
+  result.rows.resize(a_over_t.size());
+  result.interpolation_error.assign(a_over_t.size(), 0.0);
+  if (status != nullptr) status->assign(a_over_t.size(), PointStatus{});
+  std::vector<std::size_t> direct;
+  const TableOptions options = sweep_table_options(tolerance);
+  double lo = a_over_t.empty() ? 1.0 : *std::min_element(a_over_t.begin(), a_over_t.end());
+  double hi = a_over_t.empty() ? 1.0 : *std::max_element(a_over_t.begin(), a_over_t.end());
+  const double expected_solves =
+      (std::ceil(std::log10(hi / lo) / options.decades_per_segment) + 1.0) * static_cast<double>(options.order + 2);
+  if (hi > lo && static_cast<double>(a_over_t.size()) >= 1.5 * expected_solves) {
+    const SolverSource source(solver, tolerance);
+    ReducedTable table(source, options);
+    try {
+      table.prepare_range(lo, hi);
+      for (std::size_t i = 0; i < a_over_t.size(); ++i) {
+        const double estimate = table.error_estimate_at(a_over_t[i]);
+        if (!(estimate <= tolerance)) {
+          direct.push_back(i);
+          continue;
+        }
+        ReducedVariables& row = result.rows[i];
+        static_cast<ReducedValues&>(row) = table.at(a_over_t[i]);
+        row.a_over_t = a_over_t[i];
+        row.error_estimate = estimate;
+        row.unknowns = 0;
+        result.interpolation_error[i] = table.interpolation_error_at(a_over_t[i]);
+        ++result.interpolated;
+      }
+      result.segments = table.segments();
+    } catch (const NumericalError& e) {  // a node the solver cannot deliver: every row on its own
+      result.direct_reason = e.what();
+      result.interpolated = 0;
+      result.interpolation_error.assign(a_over_t.size(), 0.0);
+      direct.clear();
+    }
+    result.source_solves = table.source_evaluations();
+  } else {
+    result.direct_reason = "too few radii for the table to pay";
+  }
+  if (!result.direct_reason.empty()) {
+    direct.resize(a_over_t.size());
+    for (std::size_t i = 0; i < direct.size(); ++i) direct[i] = i;
+  }
+  solve_rows(solver, a_over_t, direct, tolerance, result.rows, status);
+  return result;
 }
 
 }  // namespace coatcontact

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "coatcontact/reduced.hpp"
@@ -63,6 +64,14 @@ struct TableOptions {
   double tail_tolerance = 1e-10;
   double tail_noise_factor = 10.0;
   int max_halvings = 4;  // then NumericalError
+  // Verified segments (prepare_range): each segment is also solved directly at both its ends,
+  // where the interpolation error of Chebyshev nodes of the first kind peaks (|T_(n+1)| = 1),
+  // and halved while max(tail / 10, the larger relative difference there) exceeds
+  // tail_tolerance + tail_noise_factor x the nodes' estimates (max_halvings reached: the
+  // segment is kept, its estimate says what it is worth).
+  bool verify = false;
+  // Initial width of a segment of prepare_range, in decades of a/t.
+  double decades_per_segment = 1.0;
 };
 
 // Piecewise Chebyshev interpolant (GSL gsl_cheb_*) of ln X versus ln(a/t), one series per
@@ -76,6 +85,17 @@ class ReducedTable {
 
   // Builds every segment covering [a_over_t_min, a_over_t_max] with one batched source call.
   void prepare(double a_over_t_min, double a_over_t_max) const;
+  // Builds segments covering exactly [a_over_t_min, a_over_t_max] (widths of
+  // options().decades_per_segment decades, halved as needed), for a table that serves only
+  // that range: at() outside it is an InputError. Only on a table with no segment yet.
+  void prepare_range(double a_over_t_min, double a_over_t_max) const;
+  // Estimated largest relative error of the six interpolated values at a/t (of the segment
+  // holding it): its interpolation error (the tail; verified: max(tail / 10, differences at the
+  // ends)) + the largest error estimate of
+  // the source at its nodes and ends.
+  double error_estimate_at(double a_over_t) const;
+  // Its first part alone: the estimated difference of the interpolant from the source's values.
+  double interpolation_error_at(double a_over_t) const;
   // Which variables at() evaluates: all six, or only those of one indenter and the flat punch
   // (E_eq, Gamma(1)); the others are left 0. The kinetics asks for one indenter's at every step.
   enum class Variables { kAll, kSphere, kCone };
@@ -93,7 +113,9 @@ class ReducedTable {
 
  private:
   struct Segment;
+  struct Pending;
   void build_decades(const std::vector<long>& decades) const;
+  void build_segments(std::vector<Pending> pending) const;
   const Segment& segment_for(double u) const;
 
   const ReducedSource& source_;
@@ -103,6 +125,35 @@ class ReducedTable {
   mutable std::size_t evaluations_ = 0;
   mutable double interpolation_error_ = 0.0;
   mutable double source_error_ = 0.0;
+  mutable bool ranged_ = false;  // prepare_range: only [range_lo_, range_hi_] in u is served
+  mutable double range_lo_ = 0.0, range_hi_ = 0.0;
 };
+
+// ---- many radii through the verified interpolant --------------------------------------
+
+// The table of interpolated_sweep at `tolerance`: order 14, two decades a segment, verified
+// ends, halved while max(tail, end difference) > 0.4 tolerance + the nodes' own estimate.
+TableOptions sweep_table_options(double tolerance);
+
+struct InterpolatedSweep {
+  // One row per a/t, as ReducedSolver::sweep's; error_estimate is the table's
+  // (error_estimate_at) on interpolated rows (unknowns 0), the solver's on solved ones.
+  std::vector<ReducedVariables> rows;
+  // Per row: the table's estimate of its difference from a direct solve (interpolation_error_at;
+  // 0 on solved rows). error_estimate adds the nodes' own error estimates to it.
+  std::vector<double> interpolation_error;
+  std::size_t interpolated = 0;    // rows read from the table
+  std::size_t source_solves = 0;   // direct solves of the table (nodes and verified ends)
+  std::size_t segments = 0;
+  std::string direct_reason;       // why every row was solved directly (empty if the table served)
+};
+
+// Reduced variables at many a/t from one verified ReducedTable over [min, max] (docs/solver.md,
+// Sweeps): a row whose table estimate exceeds `tolerance` is solved directly, and every row is
+// when the radii are too few for the table to pay (fewer than 1.5 times its expected solves)
+// or a node cannot be solved (the reason is kept). Same InputErrors as ReducedSolver::sweep;
+// `status` as its tolerant overload (null: NumericalError at the first row not delivered).
+InterpolatedSweep interpolated_sweep(const ReducedSolver& solver, const std::vector<double>& a_over_t,
+                                     double tolerance, std::vector<PointStatus>* status = nullptr);
 
 }  // namespace coatcontact
