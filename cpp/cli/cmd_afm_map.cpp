@@ -455,9 +455,10 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   for (const std::string& f : files) register_input(f, "AFM file");
   const unsigned jobs = parse_jobs(arguments);
   const std::string output_path = arguments.get("--output").value_or("");
-  const bool to_stdout = output_path.empty() || output_path == "-" || output_path == "/dev/stdout";
+  // Rows streamed as they come (no FILE.partial) unless the output is a regular file.
+  const bool to_stdout = !cli::output_is_regular_file(output_path);
   const bool resume = arguments.has("--resume");
-  if (resume && to_stdout) throw InputError("--resume: needs --output FILE (the rows of the interrupted run are in FILE.partial)");
+  if (resume && to_stdout) throw InputError("--resume: needs --output FILE, a regular file (the rows of the interrupted run are in FILE.partial)");
   std::optional<std::string> plot_path = arguments.get("--map-plot");
   std::string term;
   if (plot_path) {
@@ -500,12 +501,16 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   std::vector<std::string> kept_rows = std::move(resumed.kept_rows);
 
   std::unique_ptr<PartialFile> partial;
+  // A device or descriptor named by --output (/dev/null, /dev/stderr) gets the streamed rows.
+  std::unique_ptr<Output> stream_output;
+  if (to_stdout && !output_path.empty() && output_path != "-" && output_path != "/dev/stdout") stream_output = std::make_unique<Output>(output_path);
+  std::ostream& rows_out = stream_output ? stream_output->stream() : std::cout;
   if (!to_stdout) {
     const bool append = resume && std::filesystem::exists(partial_path);
     partial = std::make_unique<PartialFile>(partial_path, append);
     if (!append) partial->append(header);
   } else {
-    std::cout << header << std::flush;
+    rows_out << header << std::flush;
   }
   std::vector<std::string> plot_rows;
   if (plot_path) plot_rows = kept_rows;
@@ -522,7 +527,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
       text += line;
     }
     if (partial) partial->append(text);
-    else std::cout << text << std::flush;
+    else rows_out << text << std::flush;
   };
   options.progress = [&](std::size_t done, std::size_t all) {
     progress_step(done, all);
@@ -551,7 +556,8 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
                                   settings.problem.tip.description);
   }
   if (to_stdout) {
-    std::cout << "# flagged curves: " << flag_text << "\n" << std::flush;
+    rows_out << "# flagged curves: " << flag_text << "\n" << std::flush;
+    if (stream_output) stream_output->commit();
   } else {
     // The final table: the header with the count, then the rows of FILE.partial.
     // (Copied as a stream: the table is never held in memory.)
