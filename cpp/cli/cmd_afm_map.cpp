@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "afm_fit_map.hpp"
+#include "afm_partial.hpp"
 #include "afm_map_plot_script.hpp"
 #include "coatcontact/afm_batch.hpp"
 #include "coatcontact/gnuplot_run.hpp"
@@ -76,7 +78,7 @@ std::string text_of(const std::optional<double>& v, const std::string& column) {
 
 // One TSV line of a row; "-" where a curve has no value (its flag says why).
 std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, bool contact_point_column) {
-  std::string line = row.source_file + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
+  std::string line = table_file_name(row.source_file) + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
                      text_of(row.grid_y) + '\t' + text_of(row.position_x, "x") + '\t' + text_of(row.position_y, "y") + '\t' +
                      std::to_string(static_cast<int>(row.flag)) + '\t' + fit::afm_flag_name(row.flag);
   const bool fitted = row.flag == fit::AfmFlag::kFitted;
@@ -493,9 +495,19 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   const std::string header = map_table_header(files, survey, total, calibration, setup, settings, parameters,
                                               contact_point_column, columns);
 
+  // One run at a time on FILE.partial (afm_partial.hpp); a resume checks its rows against the
+  // run's curve list.
+  const bool partial_existed = !to_stdout && std::filesystem::exists(partial_path);
+  std::optional<PartialLock> lock;
+  if (!to_stdout) lock.emplace(partial_path, partial_existed);
   // Resume: the rows already in FILE.partial.
   ResumedRows resumed;
-  if (resume && std::filesystem::exists(partial_path)) resumed = resume_partial(partial_path, header, columns, total, plot_path.has_value());
+  if (resume && partial_existed) {
+    resumed = resume_partial(partial_path, header, columns, total, plot_path.has_value());
+    std::vector<std::pair<std::string, std::size_t>> run_curves;
+    for (std::size_t f = 0; f < files.size(); ++f) run_curves.emplace_back(table_file_name(files[f]), survey[f].curves);
+    check_partial_rows(partial_path, run_curves);
+  }
   const std::size_t skip = resumed.skip;
   const fit::AfmBatchSummary before = resumed.before;
   std::vector<std::string> kept_rows = std::move(resumed.kept_rows);
@@ -506,7 +518,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   if (to_stdout && !output_path.empty() && output_path != "-" && output_path != "/dev/stdout") stream_output = std::make_unique<Output>(output_path);
   std::ostream& rows_out = stream_output ? stream_output->stream() : std::cout;
   if (!to_stdout) {
-    const bool append = resume && std::filesystem::exists(partial_path);
+    const bool append = resume && partial_existed;
     partial = std::make_unique<PartialFile>(partial_path, append);
     if (!append) partial->append(header);
   } else {

@@ -58,5 +58,39 @@ awk -F'\t' '$1 == 1 && $7 == "unreadable"' show.tsv | grep -q . || fail "afm sho
 "$cli" afm export "$work/one_bad.jpk-force-map" --index 1 --output export1.tsv 2> export1.err
 [ $? = 2 ] && grep -q "truncated channel" export1.err || fail "afm export --index 1 (the corrupt curve): $(cat export1.err)"
 
+# ---- item 5: --resume on one FILE.partial ----
+# The partial file of a run is its table without the flagged count; rows are checked against
+# the run's curve list (map2x2 then spot3: 5 rows).
+spot="$data/fmt-jpk-fd_spot3-0192.jpk-force"
+"$cli" afm fit "$map" "$spot" "${model[@]}" --output whole.tsv 2> /dev/null || fail "the reference run"
+body() { grep -v '^#' "$1"; }
+make_partial() {  # NAME, then the rows (sed program on the body)
+  { grep '^#' whole.tsv | grep -v '^# flagged curves'; body whole.tsv | sed -n "$2"; } > "$1.partial"
+}
+# regression: --resume accepted duplicate, missing or foreign rows.
+for case in "duplicate 1p;1p" "missing 1p;3p" "foreign 1p;s/^[^\t]*/other.jpk-force/;2p"; do
+  name=${case%% *} program=${case#* }
+  make_partial "res_$name.tsv" "$program"
+  "$cli" afm fit "$map" "$spot" "${model[@]}" --resume --output "res_$name.tsv" 2> "res_$name.err"
+  rc=$?
+  [ "$rc" = 2 ] && grep -q "row 2 of .*(a duplicate, missing or foreign row" "res_$name.err" \
+    || fail "--resume with a $name row: exit $rc: $(cat "res_$name.err")"
+  [ -e "res_$name.tsv" ] && fail "--resume with a $name row wrote the table"
+done
+make_partial res_good.tsv "1,2p"
+"$cli" afm fit "$map" "$spot" "${model[@]}" --resume --output res_good.tsv 2> res_good.err || fail "--resume of 2 good rows: $(cat res_good.err)"
+cmp -s <(body whole.tsv) <(body res_good.tsv) || fail "--resume of 2 good rows differs from the whole run"
+# regression: two concurrent --resume runs on one .partial (368 rows for 256 curves). The
+# lock is held here by flock(1) as a concurrent run would hold it.
+make_partial res_held.tsv "1,2p"
+flock -x res_held.tsv.partial -c "\"$cli\" afm fit \"$map\" \"$spot\" ${model[*]} --resume --output res_held.tsv 2> held.err; echo \$? > held.rc"
+[ "$(cat held.rc)" = 2 ] && grep -q "in use by another run on the same FILE (locked)" held.err \
+  || fail "--resume while another process holds FILE.partial: exit $(cat held.rc): $(cat held.err)"
+[ "$(body res_held.tsv.partial | wc -l)" = 2 ] || fail "the locked partial file was changed"
+# regression: a file name starting with '#' made rows that read as comments.
+cp "$spot" "#hash.jpk-force"
+"$cli" afm fit "#hash.jpk-force" "$spot" "${model[@]}" --output hash.tsv 2> hash.err || fail "a file named #...: $(cat hash.err)"
+[ "$(body hash.tsv | wc -l)" = 2 ] && body hash.tsv | grep -q '^\./#hash.jpk-force	0	' || fail "the row of #hash.jpk-force: $(body hash.tsv)"
+
 [ "$failures" = 0 ] && echo "all checks passed" || echo "$failures failure(s)"
 [ "$failures" = 0 ]
