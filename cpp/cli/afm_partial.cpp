@@ -67,4 +67,11 @@ void check_partial_rows(const std::string& partial_path, const std::vector<std::
   }
 }
 
+void check_partial_rows(const std::string& partial_path, const std::vector<std::string>& files,
+                        const std::vector<fit::AfmFileSurvey>& survey) {
+  std::vector<std::pair<std::string, std::size_t>> curves;
+  for (std::size_t f = 0; f < files.size() && f < survey.size(); ++f) curves.emplace_back(table_file_name(files[f]), survey[f].curves);
+  check_partial_rows(partial_path, curves);
+}
+
 }  // namespace coatcontact::cli

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "coatcontact/afm_batch.hpp"
+
 namespace coatcontact::cli {
 
 // An exclusive flock(2) on FILE.partial for the life of the object. `existed`: the file was
@@ -31,5 +33,8 @@ std::string table_file_name(const std::string& path);
 // foreign row (two runs on one file, a hand edit) is an InputError naming the row and what
 // was expected. A last line without its line end (a killed run) is not a row.
 void check_partial_rows(const std::string& partial_path, const std::vector<std::pair<std::string, std::size_t>>& curves);
+// The same for the run over `files` whose curve counts `survey` gives.
+void check_partial_rows(const std::string& partial_path, const std::vector<std::string>& files,
+                        const std::vector<fit::AfmFileSurvey>& survey);
 
 }  // namespace coatcontact::cli

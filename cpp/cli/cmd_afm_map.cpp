@@ -495,8 +495,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   const std::string header = map_table_header(files, survey, total, calibration, setup, settings, parameters,
                                               contact_point_column, columns);
 
-  // One run at a time on FILE.partial (afm_partial.hpp); a resume checks its rows against the
-  // run's curve list.
+  // One run at a time on FILE.partial; a resume checks its rows against the run's curves.
   const bool partial_existed = !to_stdout && std::filesystem::exists(partial_path);
   std::optional<PartialLock> lock;
   if (!to_stdout) lock.emplace(partial_path, partial_existed);
@@ -504,9 +503,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   ResumedRows resumed;
   if (resume && partial_existed) {
     resumed = resume_partial(partial_path, header, columns, total, plot_path.has_value());
-    std::vector<std::pair<std::string, std::size_t>> run_curves;
-    for (std::size_t f = 0; f < files.size(); ++f) run_curves.emplace_back(table_file_name(files[f]), survey[f].curves);
-    check_partial_rows(partial_path, run_curves);
+    check_partial_rows(partial_path, files, survey);
   }
   const std::size_t skip = resumed.skip;
   const fit::AfmBatchSummary before = resumed.before;
@@ -514,8 +511,8 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
 
   std::unique_ptr<PartialFile> partial;
   // A device or descriptor named by --output (/dev/null, /dev/stderr) gets the streamed rows.
-  std::unique_ptr<Output> stream_output;
-  if (to_stdout && !output_path.empty() && output_path != "-" && output_path != "/dev/stdout") stream_output = std::make_unique<Output>(output_path);
+  const bool device = to_stdout && !output_path.empty() && output_path != "-" && output_path != "/dev/stdout";
+  const std::unique_ptr<Output> stream_output = device ? std::make_unique<Output>(output_path) : nullptr;
   std::ostream& rows_out = stream_output ? stream_output->stream() : std::cout;
   if (!to_stdout) {
     const bool append = resume && partial_existed;
