@@ -58,6 +58,14 @@ awk -F'\t' '$1 == 1 && $7 == "unreadable"' show.tsv | grep -q . || fail "afm sho
 "$cli" afm export "$work/one_bad.jpk-force-map" --index 1 --output export1.tsv 2> export1.err
 [ $? = 2 ] && grep -q "truncated channel" export1.err || fail "afm export --index 1 (the corrupt curve): $(cat export1.err)"
 
+# regression: a read I/O error was an "internal error" without the file name (/proc/self/mem
+# is a regular file whose read at offset 0 fails with EIO).
+if [ -r /proc/self/mem ]; then
+  "$cli" afm show /proc/self/mem 2> eio.err
+  rc=$?
+  [ "$rc" = 2 ] && grep -q "/proc/self/mem: read error (Input/output error)" eio.err || fail "read I/O error: exit $rc: $(cat eio.err)"
+fi
+
 # ---- item 5: --resume on one FILE.partial ----
 # The partial file of a run is its table without the flagged count; rows are checked against
 # the run's curve list (map2x2 then spot3: 5 rows).
