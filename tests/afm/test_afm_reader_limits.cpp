@@ -413,6 +413,29 @@ void regression_newline_in_file_name_aborts_batch() {
   check::throws<InputError>([&] { afm::afm_files_in_folder(folder); }, {"holds a line break", "rename the file"});
 }
 
+// A zipped AFM Workshop map with one CSV cut mid-row: that curve alone cannot be read.
+void regression_one_corrupt_curve_fails_whole_map() {
+  const char* const name = "fmt-afm-workshop-fd_mapping_16_2018-08-01_13.07.zip";
+  std::string bad_entry;
+  const std::string path = variant(name, "one_bad_csv", [&](Entry& e) {
+    if (bad_entry.empty() && e.name.find(".csv") != std::string::npos) {
+      bad_entry = e.name;
+      e.data = e.data.substr(0, e.data.size() / 2);
+      while (!e.data.empty() && e.data.back() == '\n') e.data.pop_back();
+    }
+    return true;
+  });
+  afm::Calibration calibration = user_calibration();
+  const afm::CurveSource source(path, calibration);
+  check::that(source.size() == 16, "the map keeps its 16 curves");
+  check::throws<InputError>([&] { source.read(0); }, {bad_entry, "truncated"});
+  check::that(source.place(0).entry == bad_entry, "the unreadable curve keeps its entry");
+  bool others = true;
+  for (std::size_t i = 1; i < source.size(); ++i) others = others && source.read(i).point_count() > 0 && source.read(i).metadata.grid_index_x.has_value();
+  check::that(others, "the 15 other curves are read, with grid indices");
+  check::throws<InputError>([&] { afm::read_force_curves(path, calibration); }, {bad_entry});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -439,5 +462,6 @@ int main(int argc, char** argv) {
   regression_jobs_65536_segfaults();
   regression_symlink_loop_in_folder_is_internal_error();
   regression_newline_in_file_name_aborts_batch();
+  regression_one_corrupt_curve_fails_whole_map();
   return check::exit_code();
 }

@@ -173,6 +173,7 @@ struct CurveSource::Impl {
   detail::JpkLayout layout;
   Calibration calibration;
   std::vector<ForceCurve> curves;  // the other formats, read whole
+  std::vector<std::string> errors;  // a zipped Workshop map: why curve i cannot be read ("" if it can)
 };
 
 CurveSource::CurveSource(const std::string& path, const Calibration& calibration) : impl_(std::make_unique<Impl>()) {
@@ -190,7 +191,9 @@ CurveSource::CurveSource(const std::string& path, const Calibration& calibration
   }
   const std::string bytes = detail::read_file(path);
   impl_->format = detail::detect_format_of(bytes, path);
-  impl_->curves = detail::read_bytes(bytes, path, calibration);
+  // One corrupt curve of a zipped map is that curve's error, not the map's.
+  if (impl_->format == FileFormat::kAfmWorkshopZip) impl_->curves = detail::read_afm_workshop_entries(bytes, path, calibration, impl_->errors);
+  else impl_->curves = detail::read_bytes(bytes, path, calibration);
 }
 
 CurveSource::~CurveSource() = default;
@@ -203,6 +206,7 @@ std::size_t CurveSource::size() const {
 ForceCurve CurveSource::read(std::size_t index) const {
   if (index >= size()) throw InputError(impl_->path + ": no curve " + std::to_string(index));
   if (impl_->archive) return detail::read_jpk_curve(*impl_->archive, impl_->layout, index, impl_->path, impl_->calibration);
+  if (index < impl_->errors.size() && !impl_->errors[index].empty()) throw InputError(impl_->errors[index]);
   return impl_->curves[index];
 }
 
@@ -211,6 +215,7 @@ CurveMetadata CurveSource::place(std::size_t index) const {
     if (impl_->archive && index < size()) return detail::jpk_curve_place(*impl_->archive, impl_->layout, index, impl_->path);
   } catch (const std::exception&) {
   }
+  if (!impl_->archive && index < impl_->curves.size()) return impl_->curves[index].metadata;
   CurveMetadata m;
   m.source_file = impl_->path;
   m.curve_index = index;

@@ -238,6 +238,16 @@ std::vector<ForceCurve> read_afm_workshop_csv(const std::string& text, const std
 }
 
 std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const std::string& file, const Calibration& user) {
+  std::vector<std::string> errors;
+  std::vector<ForceCurve> curves = read_afm_workshop_entries(bytes, file, user, errors);
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw InputError(error);
+  }
+  return curves;
+}
+
+std::vector<ForceCurve> read_afm_workshop_entries(const std::string& bytes, const std::string& file, const Calibration& user,
+                                                  std::vector<std::string>& errors) {
   const ZipArchive archive(bytes, file);
   std::vector<std::string> entries;
   for (const auto& name : archive.names()) {
@@ -251,14 +261,27 @@ std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const st
     fail(file, "", "its CSV curves hold more than " + std::to_string(kMaxWholeFileBytes) + " bytes uncompressed (the limit of a zipped map); corrupt or not an instrument's file");
   }
   std::vector<ForceCurve> curves;
-  for (const auto& entry : entries) {
-    auto one = read_afm_workshop_csv(archive.read(entry, kMaxCsvEntryBytes, "an AFM Workshop CSV curve"), file, entry, user);
-    curves.push_back(std::move(one.front()));
+  errors.assign(entries.size(), std::string());
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    // A curve that cannot be read keeps its place (its entry named) and its reason.
+    try {
+      auto one = read_afm_workshop_csv(archive.read(entries[i], kMaxCsvEntryBytes, "an AFM Workshop CSV curve"), file, entries[i], user);
+      curves.push_back(std::move(one.front()));
+    } catch (const MissingCalibration&) {
+      throw;  // the file's calibration, the same for every curve
+    } catch (const InputError& error) {
+      errors[i] = error.what();
+      curves.emplace_back();
+      curves.back().metadata.source_file = file;
+      curves.back().metadata.entry = entries[i];
+    }
   }
   // Grid indices: the rank of each position among the map's distinct x and y.
   std::set<double> xs, ys;
   bool all = true;
-  for (const auto& c : curves) {
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const ForceCurve& c = curves[i];
+    if (!errors[i].empty()) continue;
     if (!c.metadata.position_x || !c.metadata.position_y) all = false;
     else {
       xs.insert(*c.metadata.position_x);
@@ -269,7 +292,7 @@ std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const st
     CurveMetadata& m = curves[i].metadata;
     m.curve_index = i;
     m.curve_count = curves.size();
-    if (all) {
+    if (all && errors[i].empty()) {
       m.grid_shape_x = static_cast<long>(xs.size());
       m.grid_shape_y = static_cast<long>(ys.size());
       m.grid_index_x = static_cast<long>(std::distance(xs.begin(), xs.find(*m.position_x)));
