@@ -66,7 +66,7 @@ fuzz:
 	@for f in parsers data_file afm indent; do \
 	  mkdir -p $(FUZZ_BUILD)/corpus/$$f $(FUZZ_BUILD)/artifacts/$$f || exit 1; \
 	  echo "== fuzz_$$f for $(FUZZ_SECONDS) s"; \
-	  $(FUZZ_BUILD)/fuzz/fuzz_$$f -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	  $(FUZZ_BUILD)/fuzz/fuzz_$$f -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 -malloc_limit_mb=256 \
 	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/$$f/ \
 	    $(FUZZ_BUILD)/corpus/$$f tests/fuzz/corpus_$$f || exit 1; \
 	done

@@ -129,6 +129,54 @@ void add_curve_header(std::vector<std::pair<std::string, std::string>>& items, c
 std::string optional_text(const std::optional<long>& v) { return v ? std::to_string(*v) : "-"; }
 std::string optional_text(const std::optional<double>& v, const char* name) { return v ? format_parameter(*v, name) : "-"; }
 
+// The rows of `afm show`, curve by curve: a curve that cannot be read is one row of kind
+// 'unreadable' (its place from its header where that can be read), not the end of the listing;
+// a file none of whose curves can be read is an InputError (the first curve's).
+struct ShowRows {
+  std::string text;
+  afm::ForceCurve first;  // the first readable curve (its header lines)
+  std::size_t unreadable = 0;
+  std::string first_error;
+};
+
+ShowRows show_rows(const afm::CurveSource& source) {
+  ShowRows rows;
+  bool have_first = false;
+  std::ostringstream out;
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    afm::ForceCurve curve;
+    try {
+      curve = source.read(i);
+    } catch (const InputError& error) {
+      if (source.size() == 1) throw;
+      const afm::CurveMetadata m = source.place(i);
+      out << i << '\t' << optional_text(m.grid_index_x) << '\t' << optional_text(m.grid_index_y) << '\t'
+          << optional_text(m.position_x, "x") << '\t' << optional_text(m.position_y, "y") << "\t-\tunreadable\t-\t-\t-\t-\t-\n";
+      if (rows.unreadable++ == 0) rows.first_error = error.what();
+      continue;
+    }
+    const afm::CurveMetadata& m = curve.metadata;
+    for (std::size_t s = 0; s < curve.segments.size(); ++s) {
+      const afm::Segment& segment = curve.segments[s];
+      out << m.curve_index << '\t' << optional_text(m.grid_index_x) << '\t' << optional_text(m.grid_index_y) << '\t'
+          << optional_text(m.position_x, "x") << '\t' << optional_text(m.position_y, "y") << '\t' << s << '\t'
+          << afm::segment_kind_name(segment.kind) << '\t' << segment.begin << '\t' << segment.size() << '\t'
+          << (segment.duration > 0.0 ? format_parameter(segment.duration, "duration") : "-") << '\t'
+          << (m.spring_constant_source != afm::CalibrationSource::kNone ? format_parameter(m.spring_constant, "k") : "-") << '\t'
+          << (m.sensitivity_source != afm::CalibrationSource::kNone ? format_parameter(m.sensitivity, "sensitivity") : "-")
+          << '\n';
+    }
+    if (!have_first) {
+      curve.force.clear(), curve.height_piezo.clear(), curve.height_measured.clear(), curve.time.clear();
+      rows.first = std::move(curve);
+      have_first = true;
+    }
+  }
+  if (!have_first) throw InputError(rows.first_error);
+  rows.text = out.str();
+  return rows;
+}
+
 int run_show(const Args& args) {
   return run_guarded("afm show", [&]() -> int {
     const Arguments arguments(args, kShowSpec, 1);
@@ -148,29 +196,19 @@ int run_show(const Args& args) {
     register_input(path, "AFM file");
     const auto output_path = arguments.get("--output").value_or("");
     check_output_path(output_path, "--output");
-    const std::vector<afm::ForceCurve> curves = afm::read_force_curves(path, calibration);
+    const afm::CurveSource source(path, calibration);
+    const ShowRows rows = show_rows(source);
 
     std::vector<std::pair<std::string, std::string>> items = {{"coatcontact afm show", "AFM force curves read from an instrument file"}};
-    items.push_back({"curves in the file", std::to_string(curves.size())});
-    add_curve_header(items, curves.front());
+    items.push_back({"curves in the file", std::to_string(source.size())});
+    if (rows.unreadable > 0) items.push_back({"unreadable curves", std::to_string(rows.unreadable) + " (kind 'unreadable'; first: " + rows.first_error + ")"});
+    add_curve_header(items, rows.first);
     const std::vector<std::string> columns = {"curve", "grid_x", "grid_y", "x_m", "y_m", "segment", "kind",
                                               "first_point", "points", "duration_s", "k_N_per_m", "sensitivity_m_per_V"};
     Output output(output_path);
     std::ostream& out = output.stream();
     write_header(out, items, columns);
-    for (const auto& curve : curves) {
-      const afm::CurveMetadata& m = curve.metadata;
-      for (std::size_t s = 0; s < curve.segments.size(); ++s) {
-        const afm::Segment& segment = curve.segments[s];
-        out << m.curve_index << '\t' << optional_text(m.grid_index_x) << '\t' << optional_text(m.grid_index_y) << '\t'
-            << optional_text(m.position_x, "x") << '\t' << optional_text(m.position_y, "y") << '\t' << s << '\t'
-            << afm::segment_kind_name(segment.kind) << '\t' << segment.begin << '\t' << segment.size() << '\t'
-            << (segment.duration > 0.0 ? format_parameter(segment.duration, "duration") : "-") << '\t'
-            << (m.spring_constant_source != afm::CalibrationSource::kNone ? format_parameter(m.spring_constant, "k") : "-") << '\t'
-            << (m.sensitivity_source != afm::CalibrationSource::kNone ? format_parameter(m.sensitivity, "sensitivity") : "-")
-            << '\n';
-      }
-    }
+    out << rows.text;
     output.commit();
     return kExitSuccess;
   });
@@ -215,12 +253,13 @@ int run_export(const Args& args) {
     register_input(path, "AFM file");
     const auto output_path = arguments.get("--output").value_or("");
     check_output_path(output_path, "--output");
-    const std::vector<afm::ForceCurve> curves = afm::read_force_curves(path, calibration);
-    if (index >= curves.size()) {
+    // Only the curve asked for is read (a JPK map is read curve by curve).
+    const afm::CurveSource source(path, calibration);
+    if (index >= source.size()) {
       throw InputError("--index: " + std::to_string(index) + " is not allowed; " + path + " holds " +
-                       std::to_string(curves.size()) + (curves.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(curves.size() - 1) + ")"));
+                       std::to_string(source.size()) + (source.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(source.size() - 1) + ")"));
     }
-    const afm::ForceCurve& curve = curves[index];
+    const afm::ForceCurve curve = source.read(index);
     // The tip position needs k; a file whose force is stored in newtons may lack it.
     const bool has_tip = curve.metadata.spring_constant_source != afm::CalibrationSource::kNone;
     const std::vector<double> tip = has_tip ? curve.tip_position() : std::vector<double>{};

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "afm_fit_map.hpp"
+#include "afm_partial.hpp"
 #include "afm_map_plot_script.hpp"
 #include "coatcontact/afm_batch.hpp"
 #include "coatcontact/gnuplot_run.hpp"
@@ -76,7 +78,7 @@ std::string text_of(const std::optional<double>& v, const std::string& column) {
 
 // One TSV line of a row; "-" where a curve has no value (its flag says why).
 std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, bool contact_point_column) {
-  std::string line = row.source_file + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
+  std::string line = table_file_name(row.source_file) + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
                      text_of(row.grid_y) + '\t' + text_of(row.position_x, "x") + '\t' + text_of(row.position_y, "y") + '\t' +
                      std::to_string(static_cast<int>(row.flag)) + '\t' + fit::afm_flag_name(row.flag);
   const bool fitted = row.flag == fit::AfmFlag::kFitted;
@@ -455,9 +457,10 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   for (const std::string& f : files) register_input(f, "AFM file");
   const unsigned jobs = parse_jobs(arguments);
   const std::string output_path = arguments.get("--output").value_or("");
-  const bool to_stdout = output_path.empty() || output_path == "-" || output_path == "/dev/stdout";
+  // Rows streamed as they come (no FILE.partial) unless the output is a regular file.
+  const bool to_stdout = !cli::output_is_regular_file(output_path);
   const bool resume = arguments.has("--resume");
-  if (resume && to_stdout) throw InputError("--resume: needs --output FILE (the rows of the interrupted run are in FILE.partial)");
+  if (resume && to_stdout) throw InputError("--resume: needs --output FILE, a regular file (the rows of the interrupted run are in FILE.partial)");
   std::optional<std::string> plot_path = arguments.get("--map-plot");
   std::string term;
   if (plot_path) {
@@ -492,20 +495,31 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   const std::string header = map_table_header(files, survey, total, calibration, setup, settings, parameters,
                                               contact_point_column, columns);
 
+  // One run at a time on FILE.partial; a resume checks its rows against the run's curves.
+  const bool partial_existed = !to_stdout && std::filesystem::exists(partial_path);
+  std::optional<PartialLock> lock;
+  if (!to_stdout) lock.emplace(partial_path, partial_existed);
   // Resume: the rows already in FILE.partial.
   ResumedRows resumed;
-  if (resume && std::filesystem::exists(partial_path)) resumed = resume_partial(partial_path, header, columns, total, plot_path.has_value());
+  if (resume && partial_existed) {
+    resumed = resume_partial(partial_path, header, columns, total, plot_path.has_value());
+    check_partial_rows(partial_path, files, survey);
+  }
   const std::size_t skip = resumed.skip;
   const fit::AfmBatchSummary before = resumed.before;
   std::vector<std::string> kept_rows = std::move(resumed.kept_rows);
 
   std::unique_ptr<PartialFile> partial;
+  // A device or descriptor named by --output (/dev/null, /dev/stderr) gets the streamed rows.
+  const bool device = to_stdout && !output_path.empty() && output_path != "-" && output_path != "/dev/stdout";
+  const std::unique_ptr<Output> stream_output = device ? std::make_unique<Output>(output_path) : nullptr;
+  std::ostream& rows_out = stream_output ? stream_output->stream() : std::cout;
   if (!to_stdout) {
-    const bool append = resume && std::filesystem::exists(partial_path);
+    const bool append = resume && partial_existed;
     partial = std::make_unique<PartialFile>(partial_path, append);
     if (!append) partial->append(header);
   } else {
-    std::cout << header << std::flush;
+    rows_out << header << std::flush;
   }
   std::vector<std::string> plot_rows;
   if (plot_path) plot_rows = kept_rows;
@@ -522,7 +536,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
       text += line;
     }
     if (partial) partial->append(text);
-    else std::cout << text << std::flush;
+    else rows_out << text << std::flush;
   };
   options.progress = [&](std::size_t done, std::size_t all) {
     progress_step(done, all);
@@ -551,7 +565,8 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
                                   settings.problem.tip.description);
   }
   if (to_stdout) {
-    std::cout << "# flagged curves: " << flag_text << "\n" << std::flush;
+    rows_out << "# flagged curves: " << flag_text << "\n" << std::flush;
+    if (stream_output) stream_output->commit();
   } else {
     // The final table: the header with the count, then the rows of FILE.partial.
     // (Copied as a stream: the table is never held in memory.)

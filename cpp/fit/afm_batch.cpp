@@ -252,6 +252,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
     if (!s.unreadable.empty() && !options.unreadable_file_rows) throw InputError(s.unreadable);
     summary.curves += s.curves;
   }
+  if (options.jobs > 0) coatcontact::detail::check_thread_count(static_cast<long>(options.jobs), "jobs");
   const unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   const std::size_t chunk = options.chunk_curves > 0 ? options.chunk_curves : 16 * static_cast<std::size_t>(jobs);
   const ScopedThreads threads(jobs);

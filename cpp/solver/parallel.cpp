@@ -3,8 +3,13 @@
 #include "parallel.hpp"
 
 #include <pthread.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
+#include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <exception>
 #include <string>
 #include <thread>
@@ -44,6 +49,34 @@ bool parallel_sweeps_allowed() { return fork_handler_registered != 0 || !forked_
 
 namespace detail {
 
+void check_thread_count(long value, const std::string& name) {
+  if (value < 1 || value > kMaxThreads) {
+    throw InputError(name + ": " + std::to_string(value) + " is not allowed; expected a whole number of threads from 1 to " +
+                     std::to_string(kMaxThreads));
+  }
+}
+
+namespace {
+
+// The threads of a loop of `count` units: OpenMP's count (OMP_NUM_THREADS, omp_set_num_threads)
+// checked against kMaxThreads, and no more than the units.
+int loop_threads(std::size_t count) {
+#ifdef _OPENMP
+  const long wanted = omp_get_max_threads();
+  if (wanted > kMaxThreads) {
+    const char* environment = std::getenv("OMP_NUM_THREADS");
+    const std::string name = environment != nullptr ? "OMP_NUM_THREADS" : "the thread count (omp_set_num_threads, jobs)";
+    check_thread_count(wanted, name);
+  }
+  return static_cast<int>(std::min<long>(wanted, static_cast<long>(std::min<std::size_t>(count, kMaxThreads))));
+#else
+  (void)count;
+  return 1;
+#endif
+}
+
+}  // namespace
+
 void parallel_for(std::size_t count, const std::function<void(std::size_t index)>& body) {
   std::vector<std::exception_ptr> errors(count);
   const ProgressHook hook = current_hook;  // the calling thread's (a copy: the hook may replace it)
@@ -75,7 +108,8 @@ void parallel_for(std::size_t count, const std::function<void(std::size_t index)
   // No parallel region for a single unit: starting it costs more than the work.
   if (count > 1 && parallel_sweeps_allowed()) {
     const long n = static_cast<long>(count);
-#pragma omp parallel for schedule(dynamic, 1)
+    const int threads = loop_threads(count);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (long i = 0; i < n; ++i) unit(static_cast<std::size_t>(i));
   } else {
     for (std::size_t i = 0; i < count; ++i) unit(i);

@@ -6,6 +6,7 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -14,7 +15,15 @@
 
 namespace coatcontact::detail {
 
+// Runs body(0) .. body(count - 1) on at most kMaxThreads threads. InputError naming
+// OMP_NUM_THREADS if the environment asks for more (libgomp would try to start them all and
+// crash).
 void parallel_for(std::size_t count, const std::function<void(std::size_t index)>& body);
+
+// The most threads a parallel loop starts (the CLI's --jobs allows the same).
+constexpr long kMaxThreads = 1024;
+// InputError "<name>: <value> is not allowed; ..." unless 1 <= value <= kMaxThreads.
+void check_thread_count(long value, const std::string& name);
 
 // The points at(0) .. at(count - 1) in the parallel loop, point by point (point_status.hpp): a
 // NumericalError leaves blank(i) in its place and its reason in status[i] instead of failing

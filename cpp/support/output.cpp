@@ -65,6 +65,18 @@ void install_handlers_once() {
   });
 }
 
+// A file-size limit (ulimit -f) raises SIGXFSZ, whose default action kills the process and
+// leaves the temporary file; ignored, the write fails with EFBIG instead, which an output
+// reports (exit 2, naming the file) after removing its temporary file. Set when the CLI
+// support library is loaded; a program that handles or ignores the signal itself is left alone.
+[[maybe_unused]] const bool g_file_size_signal_ignored = [] {
+  struct sigaction previous {};
+  if (sigaction(SIGXFSZ, nullptr, &previous) != 0) return false;
+  if (previous.sa_handler != SIG_DFL || (previous.sa_flags & SA_SIGINFO) != 0) return false;
+  signal(SIGXFSZ, SIG_IGN);
+  return true;
+}();
+
 // Returns the slot index, or -1 if the path is too long or all slots are in use.
 int register_pending(const std::string& path) {
   if (path.size() + 1 > kMaxPathBytes) return -1;
@@ -499,6 +511,13 @@ void check_output_path(const std::string& path, const std::string& option) {
                      "'); each output of a command needs its own file", 0);
     }
   }
+}
+
+bool output_is_regular_file(const std::string& path) {
+  if (path.empty() || descriptor_of(path) >= 0) return false;
+  struct stat info {};
+  if (stat(path.c_str(), &info) != 0) return true;  // a new file
+  return S_ISREG(info.st_mode);
 }
 
 void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs) {

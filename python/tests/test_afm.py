@@ -78,7 +78,8 @@ def test_agrees_with_cli_export(cli):
              "height_measured_m": "height (measured)", "force_N": "force", "tip_position_m": "tip position"}
     for j, column in enumerate(columns):
         assert np.array_equal(table[:, j], curve[names[column]]), column
-    assert curve.metadata["grid index x"] == 0 and curve.metadata["grid index y"] == 9
+    # position-index 90 of a back-and-forth 10 x 10 map: row 9 runs backwards, so column 9
+    assert curve.metadata["grid index x"] == 9 and curve.metadata["grid index y"] == 9
 
 
 def test_calibration_keywords():

@@ -13,11 +13,14 @@
 //   (so the tip axis has its gap), w in {8, 10, 12, 14} mJ/m2 by (i + j) % 4; the approach is the
 //   adhesionless model of the same coating. The truth file gains a column w; the jump-in curves
 //   (n % 16 == 7) expect no flag, since a retract fit does not look at the approach's jump-in.
+//   --back-and-forth: the meander scan of the instrument's maps (every real JPK map in
+//   data/afm/): curve n runs row j = n / NX backwards when j is odd, so its grid x is
+//   NX - 1 - n % NX (header key position-pattern.back-and-forth=true; false without the option).
 //   Bad curves (unless --clean), by curve index n: n % 16 == 3 never reaches the sample
 //   (no_contact), n % 16 == 7 has a jump-in dip of -60 sigma before contact (jump_in),
 //   n % 16 == 11 has an empty retract segment (empty_segment), n % 16 == 13 has no force
 //   calibration slot (calibration).
-// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr]
+// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr] [--back-and-forth]
 #include <zip.h>
 
 #include <algorithm>
@@ -212,7 +215,7 @@ std::string segment_header(std::size_t points, const char* style, int deflection
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr, "usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean]\n");
+    std::fprintf(stderr, "usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr] [--back-and-forth]\n");
     return 2;
   }
   const std::string out = argv[1];
@@ -220,7 +223,7 @@ int main(int argc, char** argv) {
   std::size_t points = 400;
   unsigned long seed = 1;
   std::string truth_path;
-  bool clean = false, jkr = false;
+  bool clean = false, jkr = false, meander = false;
   for (int a = 4; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--points" && a + 1 < argc) points = static_cast<std::size_t>(std::atol(argv[++a]));
@@ -228,6 +231,7 @@ int main(int argc, char** argv) {
     else if (arg == "--truth" && a + 1 < argc) truth_path = argv[++a];
     else if (arg == "--clean") clean = true;
     else if (arg == "--jkr") jkr = true;
+    else if (arg == "--back-and-forth") meander = true;
     else {
       std::fprintf(stderr, "make_afm_map: unknown argument %s\n", arg.c_str());
       return 2;
@@ -270,12 +274,13 @@ int main(int argc, char** argv) {
               "force-scan-map.position-pattern.grid.ilength=" + std::to_string(nx) +
                   "\nforce-scan-map.position-pattern.grid.jlength=" + std::to_string(ny) +
                   "\nforce-scan-map.position-pattern.grid.ulength=" + number(kPitch * nx) +
-                  "\nforce-scan-map.position-pattern.grid.vlength=" + number(kPitch * ny) + "\n");
+                  "\nforce-scan-map.position-pattern.grid.vlength=" + number(kPitch * ny) +
+                  "\nforce-scan-map.position-pattern.back-and-forth=" + (meander ? "true" : "false") + "\n");
   archive.add("shared-data/header.properties", shared_header(spring));
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (long n = 0; n < nx * ny; ++n) {
-    const long i = n % nx, j = n / nx;
+    const long j = n / nx, i = meander && j % 2 == 1 ? nx - 1 - n % nx : n % nx;
     const int kind = clean ? -1 : static_cast<int>(n % 16);
     const double modulus = jkr ? kFilm : modulus_at(i, j, nx, ny);
     double contact = contact_at(i, j);

@@ -42,9 +42,10 @@ grep -q '^# spring constant \[N/m\]: 0.043493666407368466 (file)$' "$work/spot.t
 # A supplied value overrides the file's and is recorded; the force scales with it exactly.
 "$cli" afm export "$spot" --spring-constant 0.1 --output "$work/spot_k.tsv" || fail "export with --spring-constant"
 grep -q '^# spring constant \[N/m\]: 0.1 (user)$' "$work/spot_k.tsv" || fail "user spring constant not recorded"
-# Map: --index picks the curve; its grid index is in the header.
+# Map: --index picks the curve; its grid index is in the header (position-index 99 of a
+# back-and-forth 10 x 10 grid: row 9 runs backwards, so column 0, at the smallest x).
 "$cli" afm export "$data/fmt-jpk-fd_map2x2_extracted.jpk-force-map" --index 3 --output "$work/map3.tsv" || fail "export map index 3"
-grep -q '^# grid index x, y: 9, 9$' "$work/map3.tsv" || fail "map curve 3 grid index"
+grep -q '^# grid index x, y: 0, 9$' "$work/map3.tsv" || fail "map curve 3 grid index"
 grep -q '^# curve index: 3 of 4$' "$work/map3.tsv" || fail "map curve index"
 # Missing calibration supplied on the command line.
 "$cli" afm export "$data/fmt-jpk-fd_single-modified_2023.jpk-force" --spring-constant 0.05 --output "$work/mod.tsv" \

@@ -205,9 +205,11 @@ void test_jpk_map(const std::string& file, const std::string& measured, std::siz
   check::that(curves.size() == count, ("curve count of " + file).c_str());
   const Props general = properties(zip_entry(path, "header.properties"));
   double ilength = 0.0;
+  bool meander = false;  // back-and-forth: odd rows run backwards (issue 36)
   for (const auto& [key, value] : general) {
-    const std::string tail = "position-pattern.grid.ilength";
+    const std::string tail = "position-pattern.grid.ilength", pattern = "position-pattern.back-and-forth";
     if (key.size() > tail.size() && key.compare(key.size() - tail.size(), tail.size(), tail) == 0) ilength = std::strtod(value.c_str(), nullptr);
+    if (key.size() > pattern.size() && key.compare(key.size() - pattern.size(), pattern.size(), pattern) == 0) meander = value == "true";
   }
   if (!check::that(ilength > 0, "grid ilength in the map header")) return;
   for (std::size_t c = 0; c < curves.size(); ++c) {
@@ -224,7 +226,8 @@ void test_jpk_map(const std::string& file, const std::string& measured, std::siz
       if (ends("header.position.y")) y = std::strtod(value.c_str(), nullptr);
     }
     const long i = static_cast<long>(position_index), n = static_cast<long>(ilength);
-    check::that(curves[c].metadata.grid_index_x && *curves[c].metadata.grid_index_x == i % n, ("grid index x " + folder).c_str());
+    const long column = meander && (i / n) % 2 == 1 ? n - 1 - i % n : i % n;
+    check::that(curves[c].metadata.grid_index_x && *curves[c].metadata.grid_index_x == column, ("grid index x " + folder).c_str());
     check::that(curves[c].metadata.grid_index_y && *curves[c].metadata.grid_index_y == i / n, ("grid index y " + folder).c_str());
     check::that(curves[c].metadata.position_x && *curves[c].metadata.position_x == x, ("position x " + folder).c_str());
     check::that(curves[c].metadata.position_y && *curves[c].metadata.position_y == y, ("position y " + folder).c_str());

@@ -21,11 +21,16 @@
 #include <stdexcept>
 
 #include "jpk_reader.hpp"
+#include "read_limits.hpp"
 #include "read_support.hpp"
 
 namespace coatcontact::afm::detail {
 
 namespace {
+
+Properties read_properties(const ZipArchive& archive, const std::string& name) {
+  return parse_properties(archive.read(name, kMaxPropertiesBytes, "a .properties header"));
+}
 
 const char* const kPiezoChannels[] = {"height", "head-height"};
 const char* const kMeasuredChannels[] = {"strainGaugeHeight", "capacitiveSensorHeight", "measuredHeight"};
@@ -37,7 +42,7 @@ struct Context {
 };
 
 // Replaces every "A.M.*=N" by the shared keys "M.N.rest" as "A.rest".
-void expand_references(Properties& properties, const Properties& shared) {
+void expand_references(Properties& properties, const Properties& shared, const std::string& file, const std::string& entry) {
   std::vector<std::pair<std::string, std::string>> references;
   for (const auto& [key, value] : properties) {
     if (key.size() > 2 && key.compare(key.size() - 2, 2, ".*") == 0) references.emplace_back(key, value);
@@ -51,6 +56,10 @@ void expand_references(Properties& properties, const Properties& shared) {
     const std::string prefix = mediator + "." + std::string(trim(value)) + ".";
     for (auto it = shared.lower_bound(prefix); it != shared.end() && it->first.compare(0, prefix.size(), prefix) == 0; ++it) {
       properties.emplace(head + "." + it->first.substr(prefix.size()), it->second);
+      // A header whose references multiply the shared settings (a "properties bomb").
+      if (properties.size() > kMaxSettings) {
+        fail(file, entry, "more than " + std::to_string(kMaxSettings) + " settings once its references to the shared data are expanded; corrupt or not an instrument's file");
+      }
     }
   }
 }
@@ -229,12 +238,16 @@ std::vector<double> read_channel(const ZipArchive& archive, const SegmentPropert
   if (chain.empty()) fail(file, where.entry, "channel " + channel + " has no slot '" + slot + "' above its base");
 
   if (!archive.has(entry)) fail(file, entry, "channel " + channel + " is missing from the archive");
-  const std::string bytes = archive.read(entry);
   const std::size_t size = raw_size(type);
-  if (bytes.size() < expected_points * size) {
-    fail(file, entry, "truncated channel: " + std::to_string(bytes.size() / size) + " points, the header says " +
-                          std::to_string(expected_points));
+  // The channel holds exactly the header's points: fewer is a truncated channel, more a
+  // header whose num-points would read a prefix of the data as the whole segment.
+  const std::uint64_t declared = archive.size_of(entry);
+  if (declared != expected_points * size) {
+    fail(file, entry, std::string(declared < expected_points * size ? "truncated channel: " : "channel longer than its header says: ") +
+                          std::to_string(declared) + " bytes hold " + std::to_string(declared / size) + " points of " +
+                          std::to_string(size) + " bytes, the segment header's num-points says " + std::to_string(expected_points));
   }
+  const std::string bytes = archive.read(entry, expected_points * size, "a channel of the segment's num-points");
   std::vector<double> values(expected_points);
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   for (std::size_t i = 0; i < expected_points; ++i) {
@@ -279,49 +292,91 @@ std::string format_of(const std::string& file, const Properties& general) {
 
 }  // namespace
 
-// Curves of the archive: "" for a single curve, "index/N/" for the curves of a map (numeric
-// order). `single`: the archive has a top-level segments/ folder.
-// The numbers N of the archive's "index/N/" folders, sorted; `single` when it has a top-level
+// The segment number S of "segments/S/..." at `at` in `name`, or -1 (not a segment entry, or
+// a number past kMaxSegments: then -2, refused by the caller).
+int segment_number(const std::string& name, std::size_t at) {
+  if (name.compare(at, 9, "segments/") != 0) return -1;
+  const std::size_t begin = at + 9, slash = name.find('/', begin);
+  if (slash == std::string::npos || slash == begin) return -1;
+  long n = 0;
+  for (std::size_t i = begin; i < slash; ++i) {
+    if (name[i] < '0' || name[i] > '9') return -1;
+    n = n * 10 + (name[i] - '0');
+    if (n >= kMaxSegments) return -2;
+  }
+  return static_cast<int>(n);
+}
+
+// The numbers N of the archive's "index/N/" folders, sorted, and each curve's segment count
+// (largest S + 1 of its "segments/S/" entries); `single` when the archive has a top-level
 // segments/ folder. The entries of one curve are adjacent in the archive, so a number is kept
-// once per run of its entries and the few repeats are removed after sorting (no set node per
+// once per run of its entries and the few repeats are merged after sorting (no set node per
 // curve: a 256 x 256 map's set cost 3 MB).
-std::vector<long> curve_numbers_of(const ZipArchive& archive, const std::string& file, bool& single) {
-  std::vector<long> numbers;
+void list_curves(const ZipArchive& archive, const std::string& file, JpkLayout& layout) {
+  std::vector<std::pair<long, int>> numbers;  // (N, segment count)
   bool segments = false;
+  int single_segments = 0;
+  const auto note_segment = [&](int s, int& count, const std::string& name) {
+    if (s == -2) fail(file, name, "segment number past the limit of " + std::to_string(kMaxSegments) + " segments per curve");
+    if (s >= 0) count = std::max(count, s + 1);
+  };
   archive.for_each_name([&](const std::string& name) {
-    if (name.rfind("segments/", 0) == 0) segments = true;
+    if (name.rfind("segments/", 0) == 0) {
+      segments = true;
+      note_segment(segment_number(name, 0), single_segments, name);
+    }
     if (name.rfind("index/", 0) == 0) {
       const std::size_t slash = name.find('/', 6);
       const std::string digits = name.substr(6, slash == std::string::npos ? std::string::npos : slash - 6);
       if (!digits.empty() && digits.size() < 10 && std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
         const long n = std::stol(digits);
-        if (numbers.empty() || numbers.back() != n) numbers.push_back(n);
+        if (numbers.empty() || numbers.back().first != n) numbers.emplace_back(n, 0);
+        if (slash != std::string::npos) note_segment(segment_number(name, slash + 1), numbers.back().second, name);
       }
     }
   });
   std::sort(numbers.begin(), numbers.end());
-  numbers.erase(std::unique(numbers.begin(), numbers.end()), numbers.end());
-  numbers.shrink_to_fit();
-  single = numbers.empty() && segments;
-  if (numbers.empty() && !segments) fail(file, "", "a zip archive without JPK segments (no segments/ or index/ folders)");
-  return numbers;
+  layout.curve_numbers.clear();
+  layout.segment_counts.clear();
+  for (const auto& [n, count] : numbers) {
+    if (!layout.curve_numbers.empty() && layout.curve_numbers.back() == n) {
+      layout.segment_counts.back() = std::max(layout.segment_counts.back(), count);
+      continue;
+    }
+    layout.curve_numbers.push_back(n);
+    layout.segment_counts.push_back(count);
+  }
+  layout.curve_numbers.shrink_to_fit();
+  layout.segment_counts.shrink_to_fit();
+  layout.single = layout.curve_numbers.empty() && segments;
+  layout.single_segments = single_segments;
+  if (layout.curve_numbers.empty() && !segments) fail(file, "", "a zip archive without JPK segments (no segments/ or index/ folders)");
 }
 
-// Segment folders 0, 1, ... of a curve as long as their headers exist.
-std::vector<SegmentProperties> segment_properties_of(const ZipArchive& archive, const std::string& folder,
+// The headers of segment folders 0 .. count - 1 of a curve: every folder the archive holds
+// must have its header, so a missing or misnumbered header is an error, not the curve's end.
+std::vector<SegmentProperties> segment_properties_of(const ZipArchive& archive, const std::string& folder, int count,
                                                      const Properties& curve_properties, const Properties& shared,
                                                      const std::string& file) {
   std::vector<SegmentProperties> segment_properties;
-  for (std::size_t s = 0;; ++s) {
+  for (int s = 0; s < count; ++s) {
     const std::string header = folder + "segments/" + std::to_string(s) + "/segment-header.properties";
-    if (!archive.has(header)) break;
+    if (!archive.has(header)) {
+      fail(file, header, "segment header missing from the archive (the curve has segment folders 0 to " + std::to_string(count - 1) +
+                             "; a segment without its header would be dropped with every later one)");
+    }
     SegmentProperties p;
-    p.own = parse_properties(archive.read(header));
-    expand_references(p.own, shared);
+    p.own = read_properties(archive, header);
+    expand_references(p.own, shared, file, header);
     p.curve = &curve_properties;
     segment_properties.push_back(std::move(p));
   }
   if (segment_properties.empty()) fail(file, folder + "segments/", "no segment headers in the archive");
+  // The curve's own count of segments, where its header states one, must match.
+  double stated = 0.0;
+  if (optional_number(find_suffix(curve_properties, "force-settings.segments.size"), stated) && stated != count) {
+    fail(file, folder + "segments/", "the archive holds " + std::to_string(count) + " segment folders, the header's force-settings.segments.size says " + number_text(stated));
+  }
   return segment_properties;
 }
 
@@ -388,8 +443,12 @@ void set_position_metadata(CurveMetadata& m, const Properties& general, const Pr
     const long i = static_cast<long>(ilength), index = static_cast<long>(position_index);
     m.grid_shape_x = i;
     m.grid_shape_y = static_cast<long>(jlength);
-    m.grid_index_x = index % i;
-    m.grid_index_y = index / i;
+    const long row = index / i;
+    m.grid_index_y = row;
+    // A back-and-forth (meander) pattern runs every odd row backwards.
+    const std::string* meander = find_suffix(general, "position-pattern.back-and-forth");
+    const bool backwards = meander != nullptr && trim(*meander) == "true" && row % 2 == 1;
+    m.grid_index_x = backwards ? i - 1 - index % i : index % i;
   }
 }
 
@@ -412,10 +471,15 @@ void read_segment(const SegmentReading& r, const SegmentProperties& p, std::size
   const std::string seg_folder = r.folder + "segments/" + std::to_string(s) + "/";
   const Context where{r.file, seg_folder + "segment-header.properties"};
   const double points = number(p, "force-segment-header.num-points", where);
-  if (!(points >= 0 && points <= 1e9) || points != std::floor(points)) {
-    fail(r.file, where.entry, "num-points is not a valid count");
+  if (!(points >= 0) || points != std::floor(points)) fail(r.file, where.entry, "num-points is not a valid count");
+  if (points > static_cast<double>(kMaxSegmentPoints)) {
+    fail(r.file, where.entry, "num-points = " + number_text(points) + " exceeds the limit of " + std::to_string(kMaxSegmentPoints) + " points per segment");
   }
   const auto n = static_cast<std::size_t>(points);
+  const std::size_t before = curve.segments.empty() ? 0 : curve.segments.back().end;
+  if (before + n > kMaxCurvePoints) {
+    fail(r.file, where.entry, "the curve's segments hold more than " + std::to_string(kMaxCurvePoints) + " points (the limit per curve)");
+  }
   if (n == 0) throw EmptySegment(r.file + ": " + where.entry + ": empty segment " + std::to_string(s) + " (num-points = 0)");
   Segment segment;
   segment.begin = curve.segments.empty() ? 0 : curve.segments.back().end;
@@ -482,13 +546,13 @@ std::string JpkLayout::folder(std::size_t index) const {
 
 JpkLayout jpk_layout(const ZipArchive& archive, const std::string& file) {
   JpkLayout layout;
-  layout.curve_numbers = curve_numbers_of(archive, file, layout.single);
+  list_curves(archive, file, layout);
   if (archive.has("header.properties")) {
-    layout.general = parse_properties(archive.read("header.properties"));
+    layout.general = read_properties(archive, "header.properties");
   } else if (layout.single) {
     fail(file, "header.properties", "entry missing from the archive");
   }
-  if (archive.has("shared-data/header.properties")) layout.shared = parse_properties(archive.read("shared-data/header.properties"));
+  if (archive.has("shared-data/header.properties")) layout.shared = read_properties(archive, "shared-data/header.properties");
   layout.format = format_of(file, layout.general);
   return layout;
 }
@@ -501,12 +565,12 @@ ForceCurve read_jpk_curve(const ZipArchive& archive, const JpkLayout& layout, st
   Properties curve_properties = general;
   if (!folder.empty()) {
     if (!archive.has(folder + "header.properties")) fail(file, folder + "header.properties", "entry missing from the archive");
-    Properties own = parse_properties(archive.read(folder + "header.properties"));
+    Properties own = read_properties(archive, folder + "header.properties");
     for (auto& [k, v] : own) curve_properties[k] = v;
   }
-  expand_references(curve_properties, shared);
+  expand_references(curve_properties, shared, file, folder + "header.properties");
   std::vector<SegmentProperties> segment_properties =
-      segment_properties_of(archive, folder, curve_properties, shared, file);
+      segment_properties_of(archive, folder, layout.segment_count(ci), curve_properties, shared, file);
   std::string piezo, measured;
   choose_height_channels(segment_properties, folder, file, piezo, measured);
 
@@ -554,9 +618,9 @@ CurveMetadata jpk_curve_place(const ZipArchive& archive, const JpkLayout& layout
   m.curve_count = layout.size();
   Properties curve_properties = layout.general;
   if (!folder.empty()) {
-    for (auto& [k, v] : parse_properties(archive.read(folder + "header.properties"))) curve_properties[k] = v;
+    for (auto& [k, v] : read_properties(archive, folder + "header.properties")) curve_properties[k] = v;
   }
-  expand_references(curve_properties, layout.shared);
+  expand_references(curve_properties, layout.shared, file, folder + "header.properties");
   set_position_metadata(m, layout.general, curve_properties, folder);
   return m;
 }

@@ -58,6 +58,17 @@ CalibrationChoice choose_calibration(const Calibration& user, const double* file
     choice.sensitivity = *file_sensitivity;
     choice.sensitivity_source = CalibrationSource::kFile;
   }
+  // A file's value is held to the rule of the user's (check_calibration): 0 would give an
+  // all-zero force, a negative one a flipped force.
+  const auto check_file_value = [&](CalibrationSource source, double value, const char* name, const char* option,
+                                    const char* unit) {
+    if (source != CalibrationSource::kFile || (std::isfinite(value) && value > 0.0)) return;
+    throw InputError(file + ": " + (entry.empty() ? std::string() : entry + ": ") + "the file's " + name + " " +
+                     number_text(value) + " " + unit + " (" + where + ") is not allowed; it must be a finite number > 0: give the right value with " +
+                     option);
+  };
+  check_file_value(choice.spring_constant_source, choice.spring_constant, "spring constant", "--spring-constant K[N/m] (Python: spring_constant=)", "N/m");
+  check_file_value(choice.sensitivity_source, choice.sensitivity, "sensitivity", "--sensitivity S[m/V] (Python: sensitivity=)", "m/V");
   const bool missing_k = need_k && choice.spring_constant_source == CalibrationSource::kNone;
   const bool missing_s = need_s && choice.sensitivity_source == CalibrationSource::kNone;
   choice.complete = !(missing_k || missing_s);

@@ -46,6 +46,10 @@ std::vector<ForceCurve> read_afm_workshop_csv(const std::string& text, const std
                                               const std::string& entry, const Calibration& user);
 std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const std::string& file,
                                               const Calibration& user);
+// The same, a curve that cannot be read left in its place (metadata: file and entry) with its
+// InputError's message in errors[i] (empty for a curve read); MissingCalibration is thrown.
+std::vector<ForceCurve> read_afm_workshop_entries(const std::string& bytes, const std::string& file,
+                                                  const Calibration& user, std::vector<std::string>& errors);
 std::vector<ForceCurve> read_ntmdt_text(const std::string& text, const std::string& file,
                                         const Calibration& user);
 

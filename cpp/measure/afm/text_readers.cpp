@@ -15,24 +15,49 @@
 
 #include "../number_text.hpp"
 #include "read_support.hpp"
+#include "read_limits.hpp"
 #include "zip_archive.hpp"
 
 namespace coatcontact::afm::detail {
 
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(pos, end - pos);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back(std::move(line));
-    pos = end + 1;
+// The lines of a text one at a time, as views into it (a text's lines are never copied: one
+// long row must not cost a multiple of the file). `number` counts from 1; '\r' of CRLF dropped.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  bool next(std::string_view& line) {
+    if (pos_ >= text_.size()) return false;
+    std::size_t end = text_.find('\n', pos_);
+    last_ended_ = end != std::string_view::npos;
+    if (!last_ended_) end = text_.size();
+    line = text_.substr(pos_, end - pos_);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    pos_ = end + 1;
+    ++number_;
+    return true;
   }
-  return lines;
+  std::size_t number() const { return number_; }
+  // Whether the line last returned ended with a line break (a file cut mid-row has none).
+  bool last_ended() const { return last_ended_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0, number_ = 0;
+  bool last_ended_ = true;
+};
+
+// Calls visit(index, field) for each `separator`-separated field of `line`, without copies.
+template <class Visit>
+void for_each_field(std::string_view line, char separator, const Visit& visit) {
+  std::size_t start = 0, index = 0;
+  while (true) {
+    const std::size_t end = line.find(separator, start);
+    visit(index++, line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
+    if (end == std::string_view::npos) return;
+    start = end + 1;
+  }
 }
 
 using coatcontact::detail::split;  // the measure floor's: n separators, n + 1 fields
@@ -62,60 +87,97 @@ std::string iso_date(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// The header lines the reader uses (no other line is kept: a file of many "key: value" lines
+// must not grow a map).
+const char* const kWorkshopKeys[] = {"Date", "Time", "Mode", "Point", "X, um", "Y, um", "Force Constant, nN/nm",
+                                     "Light Lever Gain, mV/nm"};
+
+enum Role { kNone, kHeightExtend, kHeightRetract, kForceExtend, kForceRetract, kVoltsExtend, kVoltsRetract };
+
+Role role_of(std::string_view name) {
+  name = trim(name);
+  if (name == "Extend Z-Sense(nm)") return kHeightExtend;
+  if (name == "Retract Z-Sense(nm)") return kHeightRetract;
+  if (name == "Extend Force(nN)") return kForceExtend;
+  if (name == "Retract Force(nN)") return kForceRetract;
+  if (name == "Extend T-B(V)") return kVoltsExtend;
+  if (name == "Retract T-B(V)") return kVoltsRetract;
+  return kNone;
+}
+
+// The data rows after the column line: each column keeps its values up to its first empty
+// field (columns may end at different rows). Refused, naming the line: a row with more fields
+// than the column line (a decimal-comma export), a value after an empty field, a field that is
+// not a number, and a last row without its line end (a file cut mid-row).
+void read_workshop_rows(Lines& lines, const std::vector<Role>& roles, std::vector<std::vector<double>>& values,
+                        const std::string& file, const std::string& entry) {
+  std::vector<bool> ended(roles.size(), false);
+  std::string_view row;
+  while (lines.next(row)) {
+    if (trim(row).empty()) continue;
+    const std::string where = "line " + std::to_string(lines.number());
+    if (!lines.last_ended()) fail(file, entry, where + ": the file ends inside this row (no line end): truncated");
+    const std::size_t fields = static_cast<std::size_t>(std::count(row.begin(), row.end(), ',')) + 1;
+    if (fields > roles.size()) {
+      fail(file, entry, where + ": " + std::to_string(fields) + " fields, the column line has " + std::to_string(roles.size()) +
+                            " (decimal commas? the AFM Workshop export writes decimal points)");
+    }
+    for (std::size_t c = fields; c < roles.size(); ++c) ended[c] = true;
+    for_each_field(row, ',', [&](std::size_t c, std::string_view field) {
+      if (trim(field).empty()) {
+        ended[c] = true;
+        return;
+      }
+      if (ended[c]) fail(file, entry, where + ": a value after an empty field in column " + std::to_string(c + 1));
+      if (roles[c] == kNone) return;
+      double v = 0.0;
+      if (!parse_double(field, v) || !std::isfinite(v)) {
+        fail(file, entry, where + ": '" + std::string(trim(field)) + "' is not a number");
+      }
+      values[c].push_back(v);
+    });
+  }
+}
+
+}  // namespace
+
 std::vector<ForceCurve> read_afm_workshop_csv(const std::string& text, const std::string& file,
                                               const std::string& entry, const Calibration& user) {
-  const auto lines = lines_of(text);
+  Lines lines(text);
   std::map<std::string, std::string> header;
-  std::size_t column_line = lines.size();
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (std::count(lines[i].begin(), lines[i].end(), ',') >= 3 && lines[i].find("Z-Sense") != std::string::npos) {
-      column_line = i;
+  std::string_view line, column_line;
+  bool found = false;
+  while (!found && lines.next(line)) {
+    if (std::count(line.begin(), line.end(), ',') >= 3 && line.find("Z-Sense") != std::string_view::npos) {
+      column_line = line;
+      found = true;
       break;
     }
-    const std::size_t colon = lines[i].find(':');
-    if (colon != std::string::npos) header.emplace(std::string(trim(lines[i].substr(0, colon))), std::string(trim(lines[i].substr(colon + 1))));
+    const std::size_t colon = line.find(':');
+    if (colon == std::string_view::npos) continue;
+    const std::string_view key = trim(line.substr(0, colon));
+    for (const char* known : kWorkshopKeys) {
+      if (key == known) header.emplace(std::string(key), std::string(trim(line.substr(colon + 1))));
+    }
   }
-  if (column_line == lines.size()) fail(file, entry, "no column line (Extend Z-Sense(nm),...) in the AFM Workshop CSV");
-  const auto names = split(lines[column_line], ',');
-  // Column roles.
-  enum Role { kNone, kHeightExtend, kHeightRetract, kForceExtend, kForceRetract, kVoltsExtend, kVoltsRetract };
+  if (!found) fail(file, entry, "no column line (Extend Z-Sense(nm),...) in the AFM Workshop CSV");
+  const std::size_t column_count = static_cast<std::size_t>(std::count(column_line.begin(), column_line.end(), ',')) + 1;
+  if (column_count > kMaxCsvColumns) {
+    fail(file, entry, "line " + std::to_string(lines.number()) + ": " + std::to_string(column_count) + " columns, more than the limit of " +
+                          std::to_string(kMaxCsvColumns) + " (an AFM Workshop curve has 4)");
+  }
   std::vector<Role> roles;
-  for (const auto& raw_name : names) {
-    const std::string name(trim(raw_name));
-    Role role = kNone;
-    if (name == "Extend Z-Sense(nm)") role = kHeightExtend;
-    else if (name == "Retract Z-Sense(nm)") role = kHeightRetract;
-    else if (name == "Extend Force(nN)") role = kForceExtend;
-    else if (name == "Retract Force(nN)") role = kForceRetract;
-    else if (name == "Extend T-B(V)") role = kVoltsExtend;
-    else if (name == "Retract T-B(V)") role = kVoltsRetract;
-    roles.push_back(role);
-  }
+  for_each_field(column_line, ',', [&](std::size_t, std::string_view name) { roles.push_back(role_of(name)); });
   const auto has = [&](Role role) { return std::find(roles.begin(), roles.end(), role) != roles.end(); };
   const bool volts = has(kVoltsExtend) || has(kVoltsRetract);
   if (!has(kHeightExtend) || !has(kHeightRetract)) fail(file, entry, "missing channel: Extend/Retract Z-Sense(nm) columns");
   if (!(has(kForceExtend) || has(kVoltsExtend)) || !(has(kForceRetract) || has(kVoltsRetract))) {
     fail(file, entry, "missing channel: no Extend/Retract Force(nN) or T-B(V) columns");
   }
-  // Columns may end at different rows: each keeps its values up to its first empty field.
-  std::vector<std::vector<double>> values(names.size());
-  std::vector<bool> ended(names.size(), false);
-  for (std::size_t i = column_line + 1; i < lines.size(); ++i) {
-    if (trim(lines[i]).empty()) continue;
-    const auto fields = split(lines[i], ',');
-    for (std::size_t c = 0; c < names.size(); ++c) {
-      if (c >= fields.size() || trim(fields[c]).empty()) {
-        ended[c] = true;
-        continue;
-      }
-      if (ended[c]) fail(file, entry, "line " + std::to_string(i + 1) + ": a value after an empty field in column " + std::to_string(c + 1));
-      double v = 0.0;
-      if (!parse_double(fields[c], v) || !std::isfinite(v)) {
-        fail(file, entry, "line " + std::to_string(i + 1) + ": '" + std::string(trim(fields[c])) + "' is not a number");
-      }
-      values[c].push_back(v);
-    }
-  }
+  std::vector<std::vector<double>> values(roles.size());
+  read_workshop_rows(lines, roles, values, file, entry);
   const auto column = [&](Role a, Role b) -> const std::vector<double>& {
     for (std::size_t c = 0; c < roles.size(); ++c) if (roles[c] == a || roles[c] == b) return values[c];
     return values[0];
@@ -176,6 +238,16 @@ std::vector<ForceCurve> read_afm_workshop_csv(const std::string& text, const std
 }
 
 std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const std::string& file, const Calibration& user) {
+  std::vector<std::string> errors;
+  std::vector<ForceCurve> curves = read_afm_workshop_entries(bytes, file, user, errors);
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw InputError(error);
+  }
+  return curves;
+}
+
+std::vector<ForceCurve> read_afm_workshop_entries(const std::string& bytes, const std::string& file, const Calibration& user,
+                                                  std::vector<std::string>& errors) {
   const ZipArchive archive(bytes, file);
   std::vector<std::string> entries;
   for (const auto& name : archive.names()) {
@@ -183,15 +255,33 @@ std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const st
   }
   std::sort(entries.begin(), entries.end());
   if (entries.empty()) fail(file, "", "a zip archive without CSV curves");
+  std::uint64_t total = 0;
+  for (const auto& entry : entries) total += std::min(archive.size_of(entry), kMaxWholeFileBytes + 1);
+  if (total > kMaxWholeFileBytes) {
+    fail(file, "", "its CSV curves hold more than " + std::to_string(kMaxWholeFileBytes) + " bytes uncompressed (the limit of a zipped map); corrupt or not an instrument's file");
+  }
   std::vector<ForceCurve> curves;
-  for (const auto& entry : entries) {
-    auto one = read_afm_workshop_csv(archive.read(entry), file, entry, user);
-    curves.push_back(std::move(one.front()));
+  errors.assign(entries.size(), std::string());
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    // A curve that cannot be read keeps its place (its entry named) and its reason.
+    try {
+      auto one = read_afm_workshop_csv(archive.read(entries[i], kMaxCsvEntryBytes, "an AFM Workshop CSV curve"), file, entries[i], user);
+      curves.push_back(std::move(one.front()));
+    } catch (const MissingCalibration&) {
+      throw;  // the file's calibration, the same for every curve
+    } catch (const InputError& error) {
+      errors[i] = error.what();
+      curves.emplace_back();
+      curves.back().metadata.source_file = file;
+      curves.back().metadata.entry = entries[i];
+    }
   }
   // Grid indices: the rank of each position among the map's distinct x and y.
   std::set<double> xs, ys;
   bool all = true;
-  for (const auto& c : curves) {
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const ForceCurve& c = curves[i];
+    if (!errors[i].empty()) continue;
     if (!c.metadata.position_x || !c.metadata.position_y) all = false;
     else {
       xs.insert(*c.metadata.position_x);
@@ -202,7 +292,7 @@ std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const st
     CurveMetadata& m = curves[i].metadata;
     m.curve_index = i;
     m.curve_count = curves.size();
-    if (all) {
+    if (all && errors[i].empty()) {
       m.grid_shape_x = static_cast<long>(xs.size());
       m.grid_shape_y = static_cast<long>(ys.size());
       m.grid_index_x = static_cast<long>(std::distance(xs.begin(), xs.find(*m.position_x)));
@@ -213,20 +303,21 @@ std::vector<ForceCurve> read_afm_workshop_zip(const std::string& bytes, const st
 }
 
 std::vector<ForceCurve> read_ntmdt_text(const std::string& text, const std::string& file, const Calibration& user) {
-  const auto lines = lines_of(text);
+  Lines lines(text);
+  std::string_view row;
   std::vector<double> height, extend, retract;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (trim(lines[i]).empty()) continue;
-    const auto fields = split(lines[i], '\t');
-    if (fields.size() != 3) fail(file, "", "line " + std::to_string(i + 1) + ": expected 3 tab-separated columns, found " + std::to_string(fields.size()));
+  while (lines.next(row)) {
+    if (trim(row).empty()) continue;
+    const std::string where = "line " + std::to_string(lines.number());
+    const auto tabs = std::count(row.begin(), row.end(), '\t');
+    if (tabs != 2) fail(file, "", where + ": expected 3 tab-separated columns, found " + std::to_string(tabs + 1));
+    if (!lines.last_ended()) fail(file, "", where + ": the file ends inside this row (no line end): truncated");
     double v[3];
-    for (int c = 0; c < 3; ++c) {
-      std::string field(trim(fields[static_cast<std::size_t>(c)]));
+    for_each_field(row, '\t', [&](std::size_t c, std::string_view text_field) {
+      std::string field(trim(text_field));
       std::replace(field.begin(), field.end(), ',', '.');
-      if (!parse_double(field, v[c]) || !std::isfinite(v[c])) {
-        fail(file, "", "line " + std::to_string(i + 1) + ": '" + field + "' is not a number");
-      }
-    }
+      if (!parse_double(field, v[c]) || !std::isfinite(v[c])) fail(file, "", where + ": '" + field + "' is not a number");
+    });
     height.push_back(v[0]);
     extend.push_back(v[1]);
     retract.push_back(v[2]);

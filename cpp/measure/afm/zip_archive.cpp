@@ -11,11 +11,6 @@
 
 namespace coatcontact::afm::detail {
 
-namespace {
-// No AFM entry comes near this; a corrupt size field must not drive an allocation.
-constexpr zip_uint64_t kMaxEntryBytes = 1ull << 31;
-}  // namespace
-
 ZipArchive::ZipArchive(const std::string& bytes, const std::string& file) : file_(file) {
   zip_error_t error;
   zip_error_init(&error);
@@ -76,14 +71,24 @@ bool ZipArchive::has(const std::string& name) const {
   return zip_name_locate(archive_, name.c_str(), ZIP_FL_ENC_RAW) >= 0;
 }
 
-std::string ZipArchive::read(const std::string& name) const {
+std::uint64_t ZipArchive::size_of(const std::string& name) const {
+  zip_stat_t stat;
+  zip_stat_init(&stat);
+  if (zip_stat(archive_, name.c_str(), ZIP_FL_ENC_RAW, &stat) != 0) fail(file_, name, "entry missing from the archive");
+  if ((stat.valid & ZIP_STAT_SIZE) == 0) fail(file_, name, "entry has no valid size");
+  return stat.size;
+}
+
+std::string ZipArchive::read(const std::string& name, std::uint64_t max_bytes, const char* what) const {
   zip_stat_t stat;
   zip_stat_init(&stat);
   if (zip_stat(archive_, name.c_str(), ZIP_FL_ENC_RAW, &stat) != 0) {
     fail(file_, name, "entry missing from the archive");
   }
-  if ((stat.valid & ZIP_STAT_SIZE) == 0 || stat.size > kMaxEntryBytes) {
-    fail(file_, name, "entry has no valid size");
+  if ((stat.valid & ZIP_STAT_SIZE) == 0) fail(file_, name, "entry has no valid size");
+  if (stat.size > max_bytes) {
+    fail(file_, name, "entry of " + std::to_string(stat.size) + " bytes (uncompressed) exceeds the limit of " +
+                          std::to_string(max_bytes) + " bytes for " + what + "; corrupt or not an instrument's file");
   }
   zip_file_t* entry = zip_fopen_index(archive_, stat.index, 0);
   if (entry == nullptr) {

@@ -1,5 +1,6 @@
 // A zip archive held in memory, read through libzip (internal to the AFM readers).
 #pragma once
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -26,8 +27,12 @@ class ZipArchive {
   // ~10 names per curve).
   void for_each_name(const std::function<void(const std::string& name)>& visit) const;
   bool has(const std::string& name) const;
-  // The whole entry; InputError naming the file and entry if it is missing, truncated or corrupt.
-  std::string read(const std::string& name) const;
+  // The whole entry; InputError naming the file and entry if it is missing, truncated or
+  // corrupt, or if its declared size exceeds `max_bytes` (checked before allocating: a zip
+  // bomb or a lying size field is refused, not read). `what` names the limit in the message.
+  std::string read(const std::string& name, std::uint64_t max_bytes, const char* what) const;
+  // The entry's declared (uncompressed) size; InputError if it is missing.
+  std::uint64_t size_of(const std::string& name) const;
 
  private:
   zip* archive_ = nullptr;

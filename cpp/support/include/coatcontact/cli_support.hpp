@@ -190,6 +190,10 @@ std::string read_input_text(const std::string& path);
 // against each other (empty path: stdout).
 void check_output_path(const std::string& path, const std::string& option);
 void check_output_paths(const std::vector<std::pair<std::string, std::string>>& outputs);
+// Whether an output path is (or will be) a regular file, replaced atomically: false for
+// standard output, descriptors (/dev/stderr, /dev/fd/N) and devices (/dev/null), which take no
+// files beside them (no FILE.partial for a resume).
+bool output_is_regular_file(const std::string& path);
 
 // ---- run context: command line, version, progress ---------------------------------
 
