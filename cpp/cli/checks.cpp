@@ -150,6 +150,12 @@ JkrReference jkr_reference(double modulus, double radius, double work, double a_
   return r;
 }
 
+JkrReference jkr_reference(double modulus, double radius, double work, const std::vector<double>& radii,
+                           std::size_t points) {
+  const auto [lo, hi] = std::minmax_element(radii.begin(), radii.end());
+  return jkr_reference(modulus, radius, work, *lo, *hi, points);
+}
+
 std::pair<std::string, std::string> jkr_reference_header(const JkrReference& jkr) {
   return {"JKR reference pull-off, load and displacement control [N] (homogeneous film: -3/2 and -5/6 pi w R, "
           "THEORY.md section 5)",

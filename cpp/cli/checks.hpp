@@ -60,6 +60,9 @@ struct JkrReference {
 };
 JkrReference jkr_reference(double modulus, double radius, double work, double a_min, double a_max,
                            std::size_t points);
+// The same over the range of `radii` (not empty).
+JkrReference jkr_reference(double modulus, double radius, double work, const std::vector<double>& radii,
+                           std::size_t points);
 // Its header item, printed beside every coated sphere's pull-offs.
 std::pair<std::string, std::string> jkr_reference_header(const JkrReference& jkr);
 

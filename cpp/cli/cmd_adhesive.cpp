@@ -370,11 +370,7 @@ int run_pulloff(const Args& raw) {
     if (lambdas && args.has("--strict")) {
       throw InputError("--strict: not used with --lambda (it selects how the JKR pull-offs are delivered); omit --strict");
     }
-    const auto plot_path = args.get("--plot");
-    if (plot_path) {
-      if (lambdas) throw InputError("--plot: not with --lambda (JKR pull-offs only)");
-      check_plot_path(*plot_path);
-    }
+    const auto plot = plot_path(args, lambdas ? "not with --lambda (JKR pull-offs only)" : "");
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       const std::vector<double> k_bars =
@@ -452,11 +448,7 @@ int run_pulloff(const Args& raw) {
       ++d;
     }
     std::optional<Output> plot_out;
-    if (plot_path) {
-      const std::string picture = pulloff_picture(*plot_path, results, stack);
-      plot_out.emplace(*plot_path, "--plot");
-      plot_out->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-    }
+    if (plot) stage_plot(plot_out, *plot, pulloff_picture(*plot, results, stack));
     out.commit();
     if (plot_out) plot_out->commit();
     return 0;
@@ -495,7 +487,11 @@ std::vector<OptionSpec> sphere_options() {
 // --plot of `sphere`: F against a and against delta, the coated curve beside the homogeneous
 // JKR reference of the film, with both pull-offs of each.
 std::string sphere_picture(const std::string& path, const std::vector<Contact::Point>& points, const JkrReference& jkr,
-                           const Contact& sphere, const Pulloff* pulloff, const std::string& title) {
+                           const Contact& sphere, const Pulloff* pulloff, const Stack& stack, double thickness,
+                           double work) {
+  const std::string title = "sphere R = " + si_text(sphere.scales().radius, "m") + " on " + si_text(thickness, "m") +
+                            " of " + si_text(stack.top().youngs_modulus, "Pa") + ", E1*/E0* = " +
+                            si_text(stack.modulus_ratio(), "") + ", w = " + si_text(work, "J/m^2");
   PlotSeries coated{"coated (this run)", {}, {}, PlotSeries::Style::kLine, kPlotCoated};
   PlotSeries coated_d = coated;
   for (const auto& p : points) {
@@ -570,11 +566,7 @@ int run_sphere(const Args& raw) {
                        "delivered); omit --strict");
     }
     const bool strict = args.has("--strict");
-    const auto plot_path = args.get("--plot");
-    if (plot_path) {
-      if (sigma0) throw InputError("--plot: not with --cohesive-stress/--range (JKR curves only)");
-      check_plot_path(*plot_path);
-    }
+    const auto plot = plot_path(args, sigma0 ? "not with --cohesive-stress/--range (JKR curves only)" : "");
     Output out(args.get("--output").value_or(""));
     if (sigma0) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       // The zone's accuracy is fixed by its discretization (MaugisDugdaleOptions), not by --tol.
@@ -681,14 +673,7 @@ int run_sphere(const Args& raw) {
       write_row(os, {si[i].radius, si[i].penetration, si[i].force}, columns);
     }
     std::optional<Output> plot_out;
-    if (plot_path) {
-      const std::string title = "sphere R = " + si_text(radius, "m") + " on " + si_text(thickness, "m") + " of " +
-                                si_text(stack.top().youngs_modulus, "Pa") + ", E1*/E0* = " +
-                                si_text(stack.modulus_ratio(), "") + ", w = " + si_text(work, "J/m^2");
-      const std::string picture = sphere_picture(*plot_path, delivered, jkr, sphere, pulloff, title);
-      plot_out.emplace(*plot_path, "--plot");
-      plot_out->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-    }
+    if (plot) stage_plot(plot_out, *plot, sphere_picture(*plot, delivered, jkr, sphere, pulloff, stack, thickness, work));
     out.commit();
     if (plot_out) plot_out->commit();
     return 0;

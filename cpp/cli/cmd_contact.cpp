@@ -111,6 +111,37 @@ const std::vector<OptionSpec> kSpec = {
     plot_option("F(a) and F(delta) (JKR)"),
 };
 
+// --tol: the solver's relative tolerance (default 1e-8).
+double solver_tolerance(const Arguments& args) {
+  double tol = kDefaultTolerance;
+  if (const auto text = args.get("--tol")) {
+    tol = parse_number(*text, "--tol");
+    if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
+      throw InputError("--tol: value " + quoted(*text) + " not allowed (need 1e-13 <= T <= 0.1)");
+    }
+  }
+  return tol;
+}
+
+// The pull-off lines of the header (JKR), with the homogeneous JKR reference of a sphere.
+void add_pulloff_header(Header& h, const std::optional<ShapePulloff>& pulloff, const std::string& missing,
+                        double spring, const std::optional<JkrReference>& jkr) {
+  if (!pulloff) {
+    h.emplace_back("pull-off", "not computed: " + missing + " (--strict: exit 3 instead)");
+    return;
+  }
+  h.emplace_back("pull-off force, load control [N]", jump_text(pulloff->load));
+  h.emplace_back("pull-off force, displacement control [N]", jump_text(pulloff->displacement));
+  if (spring > 0.0) {
+    h.emplace_back("spring stiffness k [N/m]", num(spring));
+    h.emplace_back("pull-off force, spring control [N]", jump_text(pulloff->spring));
+  }
+  h.emplace_back("pull-off scan", "contact radii [" + num(pulloff->scan_min) + ", " + num(pulloff->scan_max) +
+                                      "] m, 24 per decade, every local minimum refined (Brent)");
+  for (const auto& w : pulloff->warnings) h.emplace_back("warning", w);
+  if (jkr) h.push_back(jkr_reference_header(*jkr));
+}
+
 // --plot of `contact`: F against a and against delta, adhesive and adhesionless, the pull-offs,
 // and for a sphere the homogeneous JKR reference of the film.
 std::string contact_picture(const std::string& path, const std::vector<ShapePoint>& points,
@@ -371,13 +402,7 @@ int run_contact(const Args& raw) {
     const Header notes = report_plausibility("contact", args);
     double spring = 0.0;
     if (const auto text = args.get("--spring")) spring = parse_spring(*text);
-    double tol = kDefaultTolerance;
-    if (const auto text = args.get("--tol")) {
-      tol = parse_number(*text, "--tol");
-      if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
-        throw InputError("--tol: value " + quoted(*text) + " not allowed (need 1e-13 <= T <= 0.1)");
-      }
-    }
+    const double tol = solver_tolerance(args);
     if (args.has("--contact-radius") && args.has("--points")) {
       throw InputError("--contact-radius and --points exclude each other");
     }
@@ -411,11 +436,7 @@ int run_contact(const Args& raw) {
     const ShapeContact contact(solver, shape, thickness, work, tol);
     const auto [lo, hi] = contact.default_range();
     const bool strict = args.has("--strict");
-    const auto plot_path = args.get("--plot");
-    if (plot_path) {
-      if (sigma0) throw InputError("--plot: not with --cohesive-stress (JKR curves only)");
-      check_plot_path(*plot_path);
-    }
+    const auto plot = plot_path(args, sigma0 ? "not with --cohesive-stress (JKR curves only)" : "");
     // Without --contact-radius the curve stops at the model's validity limits (as `sphere`'s),
     // but always reaches the pull-off it reports; the pull-off is located first for that.
     std::optional<ShapePulloff> pulloff;
@@ -460,11 +481,8 @@ int run_contact(const Args& raw) {
     for (const ShapePoint& p : delivered) worst = std::max(worst, p.error_estimate);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-    std::optional<JkrReference> jkr;
-    if (sphere_radius > 0.0 && !radii.empty()) {
-      jkr = jkr_reference(stack.reference_modulus(), sphere_radius, work, *std::min_element(radii.begin(), radii.end()),
-                          *std::max_element(radii.begin(), radii.end()), kDefaultPoints);
-    }
+    std::optional<JkrReference> jkr;  // for a sphere; radii is not empty here
+    if (sphere_radius > 0.0) jkr = jkr_reference(stack.reference_modulus(), sphere_radius, work, radii, kDefaultPoints);
     Header h{{"command", "contact"}};
     h.emplace_back("shape", shape->description());
     h.emplace_back("film thickness t [m]", num(thickness));
@@ -477,20 +495,7 @@ int run_contact(const Args& raw) {
     }
     h.emplace_back("adhesion", "JKR: delta_fp = -sqrt(2 pi a w/E)/Gamma(1), delta = delta_H + delta_fp, "
                                "F = F_H + S delta_fp (THEORY.md sections 5, 11)");
-    if (pulloff) {
-      h.emplace_back("pull-off force, load control [N]", jump_text(pulloff->load));
-      h.emplace_back("pull-off force, displacement control [N]", jump_text(pulloff->displacement));
-      if (spring > 0.0) {
-        h.emplace_back("spring stiffness k [N/m]", num(spring));
-        h.emplace_back("pull-off force, spring control [N]", jump_text(pulloff->spring));
-      }
-      h.emplace_back("pull-off scan", "contact radii [" + num(pulloff->scan_min) + ", " + num(pulloff->scan_max) +
-                                          "] m, 24 per decade, every local minimum refined (Brent)");
-      for (const auto& w : pulloff->warnings) h.emplace_back("warning", w);
-      if (sphere_radius > 0.0) h.push_back(jkr_reference_header(*jkr));
-    } else {
-      h.emplace_back("pull-off", "not computed: " + pulloff_missing + " (--strict: exit 3 instead)");
-    }
+    add_pulloff_header(h, pulloff, pulloff_missing, spring, jkr);
     progress_pause();
     if (!pulloff) std::cerr << "coatcontact contact: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";
     const auto where = [&](std::size_t i) { return "a_m = " + format_value(radii[i], "a_m"); };
@@ -515,13 +520,11 @@ int run_contact(const Args& raw) {
       write_row(os, {p.radius, p.penetration, p.force, p.penetration_h, p.force_h}, columns);
     }
     std::optional<Output> plot_out;
-    if (plot_path) {
+    if (plot) {
       const std::string title = shape->description() + " on " + si_text(thickness, "m") + " of " +
                                 si_text(stack.top().youngs_modulus, "Pa") + ", E1*/E0* = " +
                                 si_text(stack.modulus_ratio(), "") + ", w = " + si_text(work, "J/m^2");
-      const std::string picture = contact_picture(*plot_path, delivered, jkr, pulloff, title);
-      plot_out.emplace(*plot_path, "--plot");
-      plot_out->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+      stage_plot(plot_out, *plot, contact_picture(*plot, delivered, jkr, pulloff, title));
     }
     out.commit();
     if (plot_out) plot_out->commit();

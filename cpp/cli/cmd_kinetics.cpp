@@ -190,8 +190,12 @@ const std::vector<OptionSpec> kSpec = {
 // pull-off force against the retract speed; for the sphere the quasi-static JKR pull-off of
 // the homogeneous film, -3/2 pi w R, as the reference.
 std::string kinetics_picture(const std::string& path, const std::vector<KineticsResultSI>& runs,
-                             const KineticsSetupSI& setup, bool sweep, const std::string& title) {
+                             const KineticsSetupSI& setup, const Stack& stack, bool sweep) {
   const bool sphere = setup.tip == KineticsTip::kSphere;
+  const std::string title =
+      (sphere ? "sphere R = " + si_text(setup.radius, "m") : "cone β = " + num(setup.half_angle * 180.0 / detail::kPi) + "°") +
+      " on " + si_text(setup.thickness, "m") + " of " + si_text(stack.top().youngs_modulus, "Pa") + ", w = " +
+      si_text(setup.work, "J/m^2") + ", v* = " + si_text(setup.v_star, "m/s") + ", n = " + num(setup.n);
   const double jkr = -1.5 * detail::kPi * setup.work * setup.radius;
   if (sweep) {
     PlotSeries pulloff{"pull-off (this run)", {}, {}, PlotSeries::Style::kLine, kPlotCoated};
@@ -609,6 +613,56 @@ ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time
   return kExitSuccess;
 }
 
+// The header of an SI run up to its results: the setup, the scales (THEORY.md section 14) and
+// the homogeneous JKR reference.
+Header si_header(const Arguments& args, const Stack& stack, const KineticsSetupSI& setup, const KineticsScales& scales,
+                 const Header& notes) {
+  const bool cone = setup.tip == KineticsTip::kCone;
+  const bool load_control = setup.spring == 0.0;
+  Header h{{"command", "kinetics"}};
+  if (cone) {
+    h.emplace_back("cone half included angle beta [deg]", num(setup.half_angle * 180.0 / detail::kPi));
+  } else {
+    h.emplace_back("sphere radius R [m]", num(setup.radius));
+  }
+  h.emplace_back("film thickness t [m]", num(setup.thickness));
+  h.emplace_back("work of adhesion w [J/m2]", num(setup.work));
+  add_material_header(h, stack);
+  h.emplace_back("kinetic law", "receding G - w = w (|v|/v*)^n, advancing w - G = w (v/v_a*)^n_adv "
+                                "(THEORY.md section 14)");
+  h.emplace_back("v* [m/s]", num(setup.v_star));
+  h.emplace_back("n", num(setup.n));
+  h.emplace_back("v_a* [m/s]", num(setup.v_star_adv > 0.0 ? setup.v_star_adv : setup.v_star));
+  h.emplace_back("n_adv", num(setup.n_adv > 0.0 ? setup.n_adv : setup.n));
+  h.emplace_back("drive", load_control ? std::string("load control (force ramp)")
+                          : std::isinf(setup.spring) ? std::string("displacement control")
+                                                     : "spring k = " + num(setup.spring) + " N/m, F = k (z - delta)");
+  h.emplace_back("protocol", args.require("--protocol"));
+  if (cone) {
+    h.emplace_back("length scale L_a = 4 w tan^2(beta)/(pi E1*) [m]", num(scales.length));
+    h.emplace_back("penetration scale L_D = 2 w tan(beta)/E1* [m]", num(scales.penetration));
+    h.emplace_back("force scale F_s = E1* L_a L_D [N]", num(scales.force));
+  } else {
+    h.emplace_back("length scale L_a = (pi w R^2/E1*)^(1/3) [m]", num(scales.length));
+    h.emplace_back("penetration scale L_D = L_a^2/R [m]", num(scales.penetration));
+    h.emplace_back("force scale pi w R [N]", num(scales.force));
+  }
+  h.emplace_back("time scale L_a/v* [s]", num(scales.time));
+  h.insert(h.end(), notes.begin(), notes.end());
+  h.emplace_back("eta = t/L_a", num(scales.eta));
+  if (!load_control) {
+    h.emplace_back(cone ? "k_bar = k L_D/F_s" : "k_bar = k L_D/(pi w R)",
+                   std::isinf(scales.k_bar) ? std::string("inf (displacement control)") : num(scales.k_bar));
+  }
+  h.emplace_back(load_control ? "reduced force rate dP/dtau per N/s" : "reduced base speed dZ/dtau per m/s",
+                 num(scales.drive_rate));
+  if (!cone) {
+    h.emplace_back("JKR reference pull-off (quasi-static, homogeneous film, load control: -3/2 pi w R) [N]",
+                   num(-1.5 * detail::kPi * setup.work * setup.radius));
+  }
+  return h;
+}
+
 }  // namespace
 
 int run_kinetics(const Args& raw) {
@@ -657,8 +711,7 @@ int run_kinetics(const Args& raw) {
     const double tol = solver_tolerance(args);
     const std::string output_path = args.get("--output").value_or("");
     check_output_path(output_path, "--output");
-    const auto plot_path = args.get("--plot");
-    if (plot_path) check_plot_path(*plot_path);
+    const auto plot = plot_path(args);
 
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
@@ -680,62 +733,10 @@ int run_kinetics(const Args& raw) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-    const bool cone = setup.tip == KineticsTip::kCone;
-    Header h{{"command", "kinetics"}};
-    if (cone) {
-      h.emplace_back("cone half included angle beta [deg]", num(setup.half_angle * 180.0 / detail::kPi));
-    } else {
-      h.emplace_back("sphere radius R [m]", num(setup.radius));
-    }
-    h.emplace_back("film thickness t [m]", num(setup.thickness));
-    h.emplace_back("work of adhesion w [J/m2]", num(setup.work));
-    add_material_header(h, stack);
-    h.emplace_back("kinetic law", "receding G - w = w (|v|/v*)^n, advancing w - G = w (v/v_a*)^n_adv "
-                                  "(THEORY.md section 14)");
-    h.emplace_back("v* [m/s]", num(setup.v_star));
-    h.emplace_back("n", num(setup.n));
-    h.emplace_back("v_a* [m/s]", num(setup.v_star_adv > 0.0 ? setup.v_star_adv : setup.v_star));
-    h.emplace_back("n_adv", num(setup.n_adv > 0.0 ? setup.n_adv : setup.n));
-    h.emplace_back("drive", load_control ? std::string("load control (force ramp)")
-                            : std::isinf(setup.spring) ? std::string("displacement control")
-                                                       : "spring k = " + num(setup.spring) + " N/m, F = k (z - delta)");
-    h.emplace_back("protocol", args.require("--protocol"));
-    if (cone) {
-      h.emplace_back("length scale L_a = 4 w tan^2(beta)/(pi E1*) [m]", num(scales.length));
-      h.emplace_back("penetration scale L_D = 2 w tan(beta)/E1* [m]", num(scales.penetration));
-      h.emplace_back("force scale F_s = E1* L_a L_D [N]", num(scales.force));
-    } else {
-      h.emplace_back("length scale L_a = (pi w R^2/E1*)^(1/3) [m]", num(scales.length));
-      h.emplace_back("penetration scale L_D = L_a^2/R [m]", num(scales.penetration));
-      h.emplace_back("force scale pi w R [N]", num(scales.force));
-    }
-    h.emplace_back("time scale L_a/v* [s]", num(scales.time));
-    h.insert(h.end(), notes.begin(), notes.end());
-    h.emplace_back("eta = t/L_a", num(scales.eta));
-    if (!load_control) {
-      h.emplace_back(cone ? "k_bar = k L_D/F_s" : "k_bar = k L_D/(pi w R)",
-                     std::isinf(scales.k_bar) ? std::string("inf (displacement control)") : num(scales.k_bar));
-    }
-    h.emplace_back(load_control ? "reduced force rate dP/dtau per N/s" : "reduced base speed dZ/dtau per m/s",
-                   num(scales.drive_rate));
-    if (!cone) {
-      h.emplace_back("JKR reference pull-off (quasi-static, homogeneous film, load control: -3/2 pi w R) [N]",
-                     num(-1.5 * detail::kPi * setup.work * setup.radius));
-    }
+    Header h = si_header(args, stack, setup, scales, notes);
     h.emplace_back(kRunTime, num(std::round(seconds * 1e3) / 1e3));
-    std::string picture;
-    if (plot_path) {
-      const std::string title =
-          (cone ? "cone β = " + num(setup.half_angle * 180.0 / detail::kPi) + "°" : "sphere R = " + si_text(setup.radius, "m")) +
-          " on " + si_text(setup.thickness, "m") + " of " + si_text(stack.top().youngs_modulus, "Pa") +
-          ", w = " + si_text(setup.work, "J/m^2") + ", v* = " + si_text(setup.v_star, "m/s") + ", n = " + num(setup.n);
-      picture = kinetics_picture(*plot_path, runs, setup, !speeds.empty(), title);
-    }
     std::optional<Output> plot_out;
-    if (plot_path) {
-      plot_out.emplace(*plot_path, "--plot");
-      plot_out->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-    }
+    if (plot) stage_plot(plot_out, *plot, kinetics_picture(*plot, runs, setup, stack, !speeds.empty()));
     Output out(output_path);
     std::ostream& os = out.stream();
     if (speeds.empty()) {

@@ -141,10 +141,16 @@ std::string render_curve_plot(const std::vector<PlotPanel>& panels, const std::s
   return run_gnuplot(files, "plot.gp", script.str(), [](const std::string& dir) { return "dir=" + gnuplot_string(dir); });
 }
 
-void write_plot(const std::string& path, const std::string& picture) {
-  Output out(path, "--plot");
-  out.stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-  out.commit();
+std::optional<std::string> plot_path(const Arguments& args, const std::string& refusal) {
+  const auto path = args.get("--plot");
+  if (path && !refusal.empty()) throw InputError("--plot: " + refusal);
+  if (path) check_plot_path(*path);
+  return path;
+}
+
+void stage_plot(std::optional<Output>& slot, const std::string& path, const std::string& picture) {
+  slot.emplace(path, "--plot");
+  slot->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
 }
 
 }  // namespace coatcontact::cli

@@ -3,6 +3,7 @@
 // the values the command also writes. Axes in SI units with the prefix that suits their range.
 // Private to the program, not installed.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,11 @@ void check_plot_path(const std::string& path);
 // `title`; InputError naming --plot when gnuplot fails.
 std::string render_curve_plot(const std::vector<PlotPanel>& panels, const std::string& title,
                               const std::string& path);
-// Writes the picture of render_curve_plot to `path` atomically (Output, option --plot).
-void write_plot(const std::string& path, const std::string& picture);
+// --plot of `args`, checked (check_plot_path); `refusal` non-empty: --plot is refused with it
+// (e.g. "not with --lambda (JKR pull-offs only)").
+std::optional<std::string> plot_path(const Arguments& args, const std::string& refusal = "");
+// The picture in a pending Output (option --plot) `slot`, published with the command's other
+// outputs (all or none: cli_support.hpp, Output).
+void stage_plot(std::optional<Output>& slot, const std::string& path, const std::string& picture);
 
 }  // namespace coatcontact::cli
