@@ -25,7 +25,7 @@ stack_title(k) = k == 1 ? sprintf('stack %s on %s', layers, base) : \
                  (k == 2 ? 'top layer alone' : sprintf('weighted film E,ν = %s', avg))
 slip_title(k) = k == 1 ? 'bonded' : 'sliding (frictionless interface)'
 
-set multiplot layout 2, 2 title figure_title("Stacks of layers (THEORY.md §12): layers h,E,ν top first, normalized by the top layer's E^* and the total thickness T") font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.08, (paper ? 0.9 : 0.91) spacing 0.08, 0.1
+set multiplot layout 2, 2 title figure_title("Stacks of layers (THEORY.md §12): layers h,E,ν top first, normalized by the top layer's E^* and the total thickness T") font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.08, (paper ? 0.9 : 0.91) spacing 0.08, (paper ? 0.17 : 0.1)
 set logscale x
 set format x '10^{%L}'
 
