@@ -430,6 +430,8 @@ class Contact:
         limits (but past the pull-off under load control): dict of arrays a [m], delta [m],
         F [N]."""
         keys = ("a", "delta", "F")
+        if int(points) < 2:  # the library's own refusal (ValueError) of a point count
+            self._core.curve(int(points))
         scan = self._core.curve(_SCAN_POINTS)
         hi = _last_inside(scan, lambda row: self._core.validity(np.ascontiguousarray(row[None, :3])))
         if hi is None:  # even the first radius is outside: the full range, the warnings say so
