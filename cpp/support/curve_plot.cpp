@@ -89,7 +89,7 @@ std::string render_curve_plot(const std::vector<PlotPanel>& panels, const std::s
   } else {
     script << "set terminal pngcairo size " << (n > 1 ? 1400 : 760) << ",620 enhanced font 'Sans,11'\n";
   }
-  script << "set encoding utf8\nset grid lc rgb '#dddddd'\nset key below samplen 2\n"
+  script << "set encoding utf8\nset grid lc rgb '#dddddd'\nset key below vertical maxcols 1 samplen 2\n"
             "set datafile separator '\\t'\n";
   script << "set multiplot layout 1," << n << " title " << gnuplot_string(title) << "\n";
   for (std::size_t p = 0; p < n; ++p) {
