@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-process wall times of the CLI tasks that the README's Speed section quotes: median,
+# Whole-process wall times of the CLI tasks that docs/speed.md quotes: median,
 # min and max over RUNS runs (after one warm-up), as rows "task median min max runs cli".
 # The two sweep targets of issue 26 (200 radii, pull-off over 100 eta) also get a CPU row
 # (user + sys of the process, kind cli-cpu): the machine is shared, and wall time on a loaded

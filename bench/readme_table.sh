@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's Speed table from a `make bench` results file (bench/run.sh): one row per task
+# The Speed table of docs/speed.md (moved there from the README) from a `make bench` results file (bench/run.sh): one row per task
 # with its median, and the commit and machine the numbers come from.
 # Usage: bench/readme_table.sh [build/bench/results.tsv]
 set -euo pipefail

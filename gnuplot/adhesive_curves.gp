@@ -10,20 +10,21 @@ load gpdir.'/adhesive_data.gp'
 stats adhesive using (column(c_abar)) nooutput
 abar_max = STATS_max
 
-set title sprintf("Fig. %d — adhesive sphere on a %s: %s\n{/*0.85 %s}", fignum, film_word, \
-    materials_label(ratio), effect) font ',14'
-set xlabel 'ā = a / (π w R^2/E_1^*)^{1/3}   (normalized contact radius)'
-set ylabel 'P = F / (π w R)   (normalized force)'
+set title figure_title(sprintf("Fig. %d — adhesive sphere on a %s: %s\n{/*0.85 %s}", fignum, film_word, materials_label(ratio), effect)) font ',14'
+set xlabel axis_label('ā = a / (π w R^2/E_1^*)^{1/3}', 'normalized contact radius')
+set ylabel axis_label('P = F / (π w R)', 'normalized force')
 set xrange [0:abar_max]
 set yrange [(P_low < -1.8 ? 1.15 * P_low : -2.1):3]
 set xzeroaxis ls 32
 # Where the key does not cover a curve: fig5.gp moves it (key_position).
 if (!exists('key_position')) key_position = 'top left'
+# In print the key goes under the plot, so no curve or marker is hidden at column width.
+if (paper) key_position = 'outside below center horizontal maxrows 4 noopaque nobox'
 eval 'set key '.key_position
 
 plot for [i = 1:n_eta] adhesive index (i - 1) using (column(c_abar)):(column(c_P)) \
          with lines ls eta_ls(i) title eta_title(i), \
      [a = 0.0001:abar_max] '+' using 1:(jkr_P($1)) with lines ls 31 title 'JKR, homogeneous (E_1^*)', \
-     pulloff using (column(c_al)):(column(c_pl)) with points ls 41 title 'pull-off, load control (min P)', \
-     pulloff using (column(c_ad)):(column(c_pd)) with points ls 42 title 'pull-off, displacement control (min D)'
+     pulloff using (column(c_al)):(column(c_pl)):(eta_rgb(int($0) + 1)) with points ls 41 lc rgb variable title 'pull-off, load control (min P)', \
+     pulloff using (column(c_ad)):(column(c_pd)):(eta_rgb(int($0) + 1)) with points ls 42 lc rgb variable title 'pull-off, displacement control (min D)'
 unset output

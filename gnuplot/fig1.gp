@@ -29,8 +29,7 @@ sphere(r) = r**2 / (2 * R) - delta
 sig(r) = abs(r) < 1 ? sqrt(1 - r**2) - 2 * s0 / pi * atan(sqrt((c**2 - 1) / (1 - r**2))) : \
          (abs(r) < c ? -s0 : 0)
 
-set multiplot title "Fig. 1 — adhesive contact: contact zone, interaction zone, gap and surface stress" \
-    font ',14'
+set multiplot title figure_title("Fig. 1 — adhesive contact: contact zone, interaction zone, gap and surface stress") font ',14'
 set xrange [-2.2:2.2]
 set lmargin at screen 0.12; set rmargin at screen 0.96
 set samples 801
@@ -75,7 +74,7 @@ set xtics nomirror ('-c' -c, '-a' -1, '0' 0, 'r_1' r1, 'r_2' r2, 'a' 1, 'c' c)
 set ytics nomirror
 set yrange [-1.0:1.2]
 set xlabel 'radial position r'
-set ylabel 'normal surface stress σ_z / p_H   (compression > 0)' offset 0, 0
+set ylabel axis_label('normal surface stress σ_z / p_H', 'compression > 0') offset 0, 0
 set xzeroaxis ls 32
 set object 1 rect from -c, graph 0 to -1, graph 1 fc rgb '#f6c89f' fs transparent solid 0.45 noborder behind
 set object 2 rect from 1, graph 0 to c, graph 1 fc rgb '#f6c89f' fs transparent solid 0.45 noborder behind

@@ -15,7 +15,7 @@ eval need('c_ps', h, 'P_spring', f1)
 eval need('c_pl', h, 'P_load', f1)
 eval need('c_pd', h, 'P_disp', f1)
 
-set title sprintf("Fig. 10 — pull-off through a spring,  η = %g,  %s", eta, nu_label) font ',14'
+set title figure_title(sprintf("Fig. 10 — pull-off through a spring,  η = %g,  %s", eta, nu_label)) font ',14'
 set logscale x
 set format x '10^{%L}'
 set xlabel 'spring stiffness  k̄ = k (π^2 w^2 R/E_1^{*2})^{1/3} / (π w R)'

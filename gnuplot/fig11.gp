@@ -17,19 +17,18 @@ eval need('c_pd', h, 'P_disp', f1)
 indenter_text(s) = s eq 'rigid' ? 'rigid indenter' : sprintf("E_2^*/E_1^* = %s", s)
 indenter_ls(k) = eta_ls(k)
 
-set multiplot layout 1, 2 title sprintf("Fig. 11 — elastic indenters,  %s", materials_label(ratio)) \
-    font ',14' margins 0.07, 0.97, 0.13, 0.86 spacing 0.08, 0
+set multiplot layout 1, 2 title figure_title(sprintf("Fig. 11 — elastic indenters,  %s", materials_label(ratio))) font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.13, (paper ? 0.9 : 0.86) spacing 0.08, 0
 set logscale x
 set format x '10^{%L}'
 set xlabel 'η = t / (π w R^2/E_r)^{1/3},   1/E_r = 1/E_1^* + 1/E_2^*'
 set ylabel 'pull-off force  P = F / (π w R)'
 set key bottom right
 
-set title 'load control'
+set title panel('load control', 1)
 plot -1.5 ls 31 title 'JKR', \
      for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pl)) with lines \
          ls indenter_ls(k) title indenter_text(word(indenters, k))
-set title 'displacement control'
+set title panel('displacement control', 2)
 set key top right
 plot -5.0/6 ls 31 title 'JKR', \
      for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pd)) with lines \

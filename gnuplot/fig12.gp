@@ -30,7 +30,7 @@ shape_text(s) = system("echo '".s."' | sed -e 's/^sphere:/sphere, R = /' \
     -e 's/^power:\\([^,]*\\),/power law z ∝ r^{\\1}, R = /' -e 's/^cone:\\(.*\\)deg$/cone, β = \\1°/' \
     -e 's/^punch:/flat punch, a = /' -e 's/\\([0-9]\\)\\(nm\\|um\\|mm\\)/\\1 \\2/g'")
 
-set title "Fig. 12 — three indenter shapes on one coating\n{/*0.85 ".coating."}" font ',14'
+set title figure_title("Fig. 12 — three indenter shapes on one coating\n{/*0.85 ".coating."}") font ',14'
 set xlabel 'penetration δ (nm)'
 set ylabel 'force F (nN)'
 set xrange [-6:15]

@@ -16,9 +16,9 @@ eval need('j_abar', hj, 'a_bar', jkr)
 eval need('j_P', hj, 'P', jkr)
 n_lambda = words(lambdas)
 
-set title sprintf("Fig. 13 — Maugis-Dugdale zone on a coating, η = %g: %s", eta, materials_label(ratio)) font ',14'
-set xlabel 'ā = a / (π w R^2/E_1^*)^{1/3}   (normalized contact radius)'
-set ylabel 'P = F / (π w R)   (normalized force)'
+set title figure_title(sprintf("Fig. 13 — Maugis-Dugdale zone on a coating, η = %g: %s", eta, materials_label(ratio))) font ',14'
+set xlabel axis_label('ā = a / (π w R^2/E_1^*)^{1/3}', 'normalized contact radius')
+set ylabel axis_label('P = F / (π w R)', 'normalized force')
 set xrange [0:*]
 set yrange [-2.1:3]
 set xzeroaxis ls 32

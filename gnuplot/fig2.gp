@@ -58,10 +58,9 @@ set print
 x_lo = D_end - 0.9; x_hi = DH(2) + 0.9
 y_lo = P2 - 0.6;     y_hi = PH(2) + 1.6
 
-set title sprintf("Fig. 2 — the adhesive point from the adhesionless curve by a flat-punch displacement\n{/*0.85 %s,  η = %g,  contact radius ā = %.3g (a/t = %.3g)}", \
-    materials_label(ratio), eta, ab(1), at[1]) font ',14'
-set xlabel 'D = δ / (π^2 w^2 R/E_1^{*2})^{1/3}   (normalized penetration)'
-set ylabel 'P = F / (π w R)   (normalized force)'
+set title figure_title(sprintf("Fig. 2 — the adhesive point from the adhesionless curve by a flat-punch displacement\n{/*0.85 %s,  η = %g,  contact radius ā = %.3g (a/t = %.3g)}", materials_label(ratio), eta, ab(1), at[1])) font ',14'
+set xlabel axis_label('D = δ / (π^2 w^2 R/E_1^{*2})^{1/3}', 'normalized penetration')
+set ylabel axis_label('P = F / (π w R)', 'normalized force')
 set xrange [x_lo:x_hi]
 set yrange [y_lo:y_hi]
 set xzeroaxis ls 32

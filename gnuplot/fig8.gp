@@ -26,24 +26,23 @@ do for [k = 1:n] {
 }
 P_span = P_high - P_low
 
-set multiplot layout 1, 2 title sprintf("Fig. 8 — pull-off force versus film thickness,  %s", nu_label) \
-    font ',14' margins 0.07, 0.97, 0.13, 0.86 spacing 0.08, 0
+set multiplot layout 1, 2 title figure_title(sprintf("Fig. 8 — pull-off force versus film thickness,  %s", nu_label)) font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.13, (paper ? 0.9 : 0.86) spacing 0.08, 0
 set logscale x
 set xrange [eta_min:eta_max]
 set format x '10^{%L}'
-set xlabel 'η = t / (π w R^2/E_1^*)^{1/3}   (film thickness / adhesive length)'
+set xlabel axis_label('η = t / (π w R^2/E_1^*)^{1/3}', 'film thickness / adhesive length')
 set ylabel 'pull-off force  P = F / (π w R)'
 set yrange [P_low - 0.08 * P_span : P_high + 0.08 * P_span]
 set key top right
 
-set title 'load control (lowest P on the P(ā) curve)'
+set title panel('load control (lowest P on the P(ā) curve)', 1)
 set label 1 'JKR  -3/2' at graph 0.98, first -1.5 offset 0, 0.7 right tc ls 31 front
 plot -1.5 ls 31 notitle, \
      for [k = 1:n] word(files, k) using (column(c_eta)):(column(c_pl)) with lines \
          ls ratio_ls(real(word(ratios, k))) title ratio_text(real(word(ratios, k)))
 unset label 1
 
-set title 'displacement control (lowest D on the P(D) curve)'
+set title panel('displacement control (lowest D on the P(D) curve)', 2)
 # Below the line at the far left, where no curve lies more than 0.012 below -5/6.
 set label 1 'JKR  -5/6' at graph 0.02, first -5.0/6 offset 0, -1.1 left tc ls 31 front
 plot -5.0/6 ls 31 notitle, \

@@ -16,8 +16,7 @@ stats f1 using (column(c_at)) nooutput
 at_min = STATS_min; at_max = STATS_max
 r_of(k) = real(word(ratios, k))
 
-set multiplot title sprintf("Fig. 9 — equivalent modulus E_{eq}: exact versus published approximations,  %s", \
-    nu_label) font ',14'
+set multiplot title figure_title(sprintf("Fig. 9 — equivalent modulus E_{eq}: exact versus published approximations,  %s", nu_label)) font ',14'
 set logscale x
 set xrange [at_min:at_max]
 set format x '10^{%L}'
@@ -27,7 +26,7 @@ set lmargin at screen 0.11; set rmargin at screen 0.97
 set tmargin at screen 0.84; set bmargin at screen 0.40
 set logscale y
 set format y '10^{%L}'
-set ylabel 'E_{eq} = S / (2 a E_1^*)   (log scale)'
+set ylabel axis_label('E_{eq} = S / (2 a E_1^*)', 'log scale')
 set xlabel ''
 set format x ''
 set key at screen 0.54, 0.952 center top horizontal maxrows 2 width 1 samplen 4.5 noopaque nobox
@@ -48,7 +47,7 @@ set format y '%g%%'
 set yrange [-40:40]
 set ytics 10
 set format x '10^{%L}'
-set xlabel 'ã = a/t   (contact radius / film thickness)'
+set xlabel axis_label('ã = a/t', 'contact radius / film thickness')
 set ylabel 'model / exact - 1'
 unset key
 set label 1 'same line types;  clipped at ±40 %' at graph 0.5, graph 0.9 center front

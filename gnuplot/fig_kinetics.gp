@@ -20,8 +20,7 @@ eval need('c_d', hl, 'D', l1)
 eval need('c_load', hl, 'P', l1)
 
 beta = n / (n + 2.0)
-set multiplot layout 1, 2 title sprintf("Crack kinetics at the contact edge: G - w = w (|v|/v^*)^{%g},  η = %g,  k̄ = %g,  %s", n, eta, k_bar, nu_label) \
-    font ',14' margins 0.07, 0.97, 0.13, 0.86 spacing 0.08, 0
+set multiplot layout 1, 2 title figure_title(sprintf("Crack kinetics at the contact edge: G - w = w (|v|/v^*)^{%g},  η = %g,  k̄ = %g,  %s", n, eta, k_bar, nu_label)) font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.13, (paper ? 0.9 : 0.86) spacing 0.08, 0
 
 # ---- left: pull-off against rate ----
 set logscale xy
@@ -33,7 +32,7 @@ stats f1 using (column(c_v)) nooutput
 v_max = STATS_max
 stats f1 using (-column(c_p)) nooutput
 p_top = STATS_max
-set title 'pull-off against retract rate'
+set title panel('pull-off against retract rate', 1)
 name(r) = real(r) == 1 ? 'homogeneous' : ratio_text(real(r))
 plot for [i = 1:words(sweeps)] word(sweeps, i) using (column(c_v)):(-column(c_p)) with linespoints ls (20 + i) \
          title name(word(ratios, i)), \
@@ -45,7 +44,7 @@ set format x '%g'
 set xlabel 'penetration  D = δ / L_D'
 set ylabel 'load  P = F / (π w R)'
 set key bottom left
-set title sprintf('P(D) on the soft film (%s): approach, dwell, retract', ratio_text(real(word(ratios, 1))))
+set title panel(sprintf('P(D) on the soft film (%s): approach, dwell, retract', ratio_text(real(word(ratios, 1)))), 2)
 plot 0 ls 32 notitle, \
      for [i = 1:words(loops)] word(loops, i) using (column(c_d)):(column(c_load)) with lines ls i \
          title sprintf('retract rate %g', real(word(speeds, i)))

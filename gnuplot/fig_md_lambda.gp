@@ -22,8 +22,7 @@ stats homogeneous using (column(c_lambda)) nooutput
 l_min = STATS_min; l_max = STATS_max
 near(a, b) = abs(a - b) <= 1e-9 * abs(b)
 
-set multiplot layout 1, 2 title sprintf("Maugis-Dugdale zone on a coating: pull-off force versus λ (load control),  %s", nu_label) \
-    font ',14' margins 0.07, 0.97, 0.13, 0.86 spacing 0.08, 0
+set multiplot layout 1, 2 title figure_title(sprintf("Maugis-Dugdale zone on a coating: pull-off force versus λ (load control),  %s", nu_label)) font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.13, (paper ? 0.9 : 0.86) spacing 0.08, 0
 # The x axis is log10(lambda) on a linear scale, labelled as a log axis, so that the splines
 # through the computed points are smooth in log(lambda) (gnuplot smooths in linear x).
 lg(x) = log10(x)
@@ -43,7 +42,7 @@ do for [side = 1:2] {
     r = real(word(ratios, side))
     file = word(md, side)
     jfile = word(jkr, side)
-    set title materials_label(r)
+    set title panel(materials_label(r), side)
     set label 1 'DMT  -2' at graph 0.6, first -2 offset 0, -0.9 left tc ls 32 front
     set label 2 'JKR  -3/2' at graph 0.6, first -1.5 offset 0, 0.7 left tc ls 31 front
     # JKR pull-off of each eta on this coating, drawn beyond the largest lambda.

@@ -25,12 +25,11 @@ stack_title(k) = k == 1 ? sprintf('stack %s on %s', layers, base) : \
                  (k == 2 ? 'top layer alone' : sprintf('weighted film E,ν = %s', avg))
 slip_title(k) = k == 1 ? 'bonded' : 'sliding (frictionless interface)'
 
-set multiplot layout 2, 2 title "Stacks of layers (THEORY.md §12): layers h,E,ν top first, normalized by the top layer's E^* and the total thickness T" \
-    font ',14' margins 0.07, 0.97, 0.08, 0.91 spacing 0.08, 0.1
+set multiplot layout 2, 2 title figure_title("Stacks of layers (THEORY.md §12): layers h,E,ν top first, normalized by the top layer's E^* and the total thickness T") font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.08, (paper ? 0.9 : 0.91) spacing 0.08, (paper ? 0.17 : 0.1)
 set logscale x
 set format x '10^{%L}'
 
-set title 'three-layer stack vs one-layer approximations'
+set title panel('three-layer stack vs one-layer approximations', 1)
 set xlabel 'a/T'
 set ylabel 'E_{eq} / E_{top}^*'
 set logscale y
@@ -39,7 +38,7 @@ set key top left
 plot for [k = 1:3] word(reduced, k) using (column(c_a)):(column(c_e) * scale_e(k)) with lines \
          ls eta_ls(k) dt k title stack_title(k)
 
-set title 'pull-off, load control'
+set title panel('pull-off, load control', 2)
 set xlabel 'η = T / (π w R^2/E_{top}^*)^{1/3}'
 set ylabel 'P = F / (π w R)'
 unset logscale y
@@ -50,7 +49,7 @@ plot -1.5 ls 31 title 'JKR, homogeneous', \
      for [k = 1:3] word(pulloff, k) using (column(c_eta) / scale_eta(k)):(column(c_pl)) with linespoints \
          ls eta_ls(k) dt k pt 7 ps 0.6 title stack_title(k)
 
-set title sprintf('film E,ν = %s on %s: bonded vs sliding', film, film_base)
+set title panel(sprintf('film E,ν = %s on %s: bonded vs sliding', film, film_base), 3)
 set xlabel 'a/T'
 set ylabel 'E_{eq} / E_{film}^*'
 set offsets 0, 0, 0, 0
@@ -59,7 +58,7 @@ set key top left
 plot for [k = 1:2] word(slip_reduced, k) using (column(c_a)):(column(c_e)) with lines \
          ls (k == 1 ? 21 : 22) title slip_title(k)
 
-set title 'pull-off, load control'
+set title panel('pull-off, load control', 4)
 set xlabel 'η = T / (π w R^2/E_{film}^*)^{1/3}'
 set ylabel 'P = F / (π w R)'
 unset logscale y

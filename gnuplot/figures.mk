@@ -297,3 +297,27 @@ FORCE:
 # Name every stamp explicitly so make treats none of them as an intermediate file (DATASET_NAMES
 # above).
 $(foreach n,$(DATASET_NAMES) $(FIGURE_NAMES),$(PARAMS_DIR)/$(n).params):
+
+# ---- journal PDFs: make figures-paper -------------------------------------------------
+# The same data and scripts as the screen figures, drawn with fmt='paper' (style.gp): one- or
+# two-column width (8.5 cm, 17.8 cm), 8 pt text, no titles, panels lettered; the symbols and
+# panel contents are in captions.txt beside them. A figure is redrawn only when its data, its
+# scripts or its parameters change (the same prerequisites as the screen figure).
+PAPER_DIR   ?= $(FIG_DIR)/paper
+PAPER_FILES := $(foreach f,$(FIGURE_NAMES),$(PAPER_DIR)/$(f).pdf) $(PAPER_DIR)/captions.txt
+$(foreach f,$(FIGURE_NAMES),$(eval $(PAPER_DIR)/$(f).pdf: $(DATA_$(f)) $(SCRIPTS_$(f))))
+
+.PHONY: figures-paper figures-paper-only
+figures-paper: build-cli
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) figures-paper-only \
+	  SOLVE_CACHE='$(if $(SOLVE_CACHE),$(SOLVE_CACHE),$(BUILD)/cache)'
+figures-paper-only: $(PAPER_FILES)
+	@echo "journal figures: $(PAPER_DIR)/*.pdf (8.5 or 17.8 cm wide), captions: $(PAPER_DIR)/captions.txt"
+
+$(PAPER_DIR):
+	@mkdir -p $@
+$(PAPER_DIR)/%.pdf: $(GNUPLOT_DIR)/%.gp $(GNUPLOT_DIR)/style.gp $(PARAMS_DIR)/%.params | $(PAPER_DIR)
+	@echo "  paper $@"
+	@$(GNUPLOT) -e "fmt='paper'; outfile='$@.tmp'; $(GP_$*)" $< && mv -f $@.tmp $@ || { rm -f $@.tmp; exit 1; }
+$(PAPER_DIR)/captions.txt: $(GNUPLOT_DIR)/captions.txt | $(PAPER_DIR)
+	@cp $< $@.tmp && mv -f $@.tmp $@

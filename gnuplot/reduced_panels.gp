@@ -21,18 +21,17 @@ at_min = STATS_min; at_max = STATS_max
 stats reduced using (column(c_ds)) nooutput
 ds_lo = STATS_min; ds_hi = STATS_max
 
-set multiplot layout 1, 2 title sprintf("Fig. %d — reduced variables of a %s,  %s", \
-    fignum, film_word, materials_label(ratio)) font ',14' margins 0.07, 0.93, 0.13, 0.86 spacing 0.13, 0
+set multiplot layout 1, 2 title figure_title(sprintf("Fig. %d — reduced variables of a %s,  %s", fignum, film_word, materials_label(ratio))) font ',14' margins (paper ? 0.1 : 0.07), 0.93, 0.13, (paper ? 0.9 : 0.86) spacing 0.13, 0
 
 set logscale x
 set xrange [at_min:at_max]
 set format x '10^{%L}'
-set xlabel 'ã = a/t   (contact radius / film thickness)'
+set xlabel axis_label('ã = a/t', 'contact radius / film thickness')
 
 # ---- left: adhesionless sphere ----
-set title 'adhesionless sphere:  F_H = a^3 E_1^* Π_s / (2R),   δ_H = (a^2/R) Δ_s'
+set title panel('adhesionless sphere:  F_H = a^3 E_1^* Π_s / (2R),   δ_H = (a^2/R) Δ_s', 1)
 set logscale y
-set ylabel 'Π_s   (force factor, log scale)' tc ls 21
+set ylabel axis_label('Π_s', 'force factor, log scale') tc ls 21
 set format y '%g'
 eval 'set ytics ('.tics125.')'
 pis_lo = (8.0/3) * (inv < 1 ? inv : 1); pis_hi = (8.0/3) * (inv > 1 ? inv : 1)
@@ -54,8 +53,8 @@ unset label 1; unset label 2
 unset y2tics; unset y2label; set ytics mirror tc default
 
 # ---- right: flat punch ----
-set title 'flat punch:  S = 2a E_1^* E_{eq},   g(a) = δ_{fp} E_1^* Γ(1)/2'
-set ylabel 'E_{eq},  Γ(1)   (log scale)' tc default
+set title panel('flat punch:  S = 2a E_1^* E_{eq},   g(a) = δ_{fp} E_1^* Γ(1)/2', 2)
+set ylabel axis_label('E_{eq},  Γ(1)', 'log scale') tc default
 lo = inv < 1 ? inv : 1; hi = inv > 1 ? inv : 1
 set yrange [lo / 1.6 : hi * 1.6]
 eval 'set ytics ('.tics125.')'

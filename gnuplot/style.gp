@@ -20,13 +20,29 @@ if (!exists("nu1")) nu1 = 0.25
 if (!exists("nu0")) nu0 = 0.25
 
 font_name = 'DejaVu Sans'
-if (fmt eq 'pdf') {
+# fmt = 'paper': a journal PDF (make figures-paper). One column (8.5 cm) for a one-panel figure,
+# two columns (17.8 cm) for a wide one (W >= 1200), the screen layout's aspect ratio, 8 pt text
+# (pdfcairo draws a font at 4/3 of its size: fontscale 0.75 makes 8 the printed size),
+# no figure title (the caption carries it: figure_title), panels lettered (a), (b) (panel).
+paper = (fmt eq 'paper')
+paper_width_cm = (W >= 1200) ? 17.8 : 8.5
+figure_title(s) = paper ? '' : s
+panel(s, k) = paper ? sprintf('(%c)', 96 + k) : s
+# An axis label with its plain-words gloss on screen, the symbol alone in print (the caption
+# defines it).
+axis_label(s, gloss) = paper ? s : s.'   ('.gloss.')'
+if (paper) {
+    # A one-column figure gets the height a key and two axis labels need at 8 pt.
+    paper_height_cm = (W >= 1200) ? paper_width_cm * H / W : 8.0
+    set terminal pdfcairo enhanced color size (paper_width_cm / 2.54), (paper_height_cm / 2.54) \
+        font font_name.',8' fontscale 0.75 linewidth 0.6 rounded dashlength 1.0
+} else { if (fmt eq 'pdf') {
     set terminal pdfcairo enhanced color size (W/72.0), (H/72.0) font font_name.',12' \
         linewidth 1.2 rounded dashlength 1.2
 } else {
     set terminal pngcairo enhanced color size W, H font font_name.',12' \
         linewidth 1.2 rounded dashlength 1.2
-}
+} }
 set output outfile
 set encoding utf8
 
@@ -34,6 +50,7 @@ set border lw 1.2
 set tics out nomirror scale 0.8
 set grid xtics ytics mxtics mytics lc rgb '#e4e4e4' lw 0.8 dt solid, lc rgb '#f2f2f2' lw 0.6
 set key opaque box lc rgb '#c8c8c8' samplen 2.5 spacing 1.15
+if (paper) { set key font ',7' samplen 1.5 spacing 1.1 width -1 }
 set style fill transparent solid 0.35 noborder
 
 # eta series: sequential (viridis-like, the light end kept readable on white)
@@ -43,6 +60,8 @@ set style line 3 lc rgb '#1f9e89' lw 2.4
 set style line 4 lc rgb '#6cc24a' lw 2.4
 set style line 5 lc rgb '#d9a600' lw 2.4
 eta_ls(i) = 1 + (i - 1) % 5
+# The same colours as integers, for markers drawn in their curve's colour (lc rgb variable).
+eta_rgb(i) = word('3870576 4153256 2072201 7127626 14263808', 1 + (i - 1) % 5) + 0
 
 # modulus-ratio series, by decade of E1*/E0*
 set style line 11 lc rgb '#08306b' lw 2.4
@@ -62,9 +81,10 @@ set style line 24 lc rgb '#7d3c98' lw 2.4 pt 11 ps 0.6
 # references
 set style line 31 lc rgb '#000000' lw 1.8 dt (8, 5)
 set style line 32 lc rgb '#808080' lw 1.4 dt (2, 4)
-# pull-off markers
+# pull-off markers (in their curve's colour where one curve has them: lc rgb variable)
 set style line 41 lc rgb '#000000' lw 1.5 pt 6 ps 1.4
 set style line 42 lc rgb '#000000' lw 1.5 pt 8 ps 1.4
+if (paper) { set style line 41 ps 0.9; set style line 42 ps 0.9 }
 
 # ---- text -------------------------------------------------------------------------------
 # E1*/E0* from the Young's modulus ratio E1/E0 and the Poisson ratios.

@@ -7,6 +7,8 @@ packages=(
   gfortran g++ cmake make pkg-config
   libgsl-dev liblapack-dev liblapacke-dev libblas-dev libfftw3-dev
   gnuplot-nox python3
+  # the journal figures' test renders and reads the PDFs (pdftoppm, pdftotext)
+  poppler-utils
   # the AFM readers (JPK archives, zipped AFM Workshop maps)
   libzip-dev
   # the NanoSuite .xls indentation reader (legacy Excel)

@@ -111,6 +111,57 @@ std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Conta
   return v;
 }
 
+std::vector<double> contact_default_radii(const ShapeContact& contact, double lo, double hi, double reach,
+                                          std::size_t points, double sphere_radius) {
+  const ValidityLimits limits = contact.validity_limits(sphere_radius);
+  const std::size_t scan = std::max<std::size_t>(8, static_cast<std::size_t>(16 * std::log10(hi / lo)));
+  double last_inside = 0.0;
+  for (std::size_t k = 0; k < scan; ++k) {
+    const double a = lo * std::pow(hi / lo, static_cast<double>(k) / static_cast<double>(scan - 1));
+    try {
+      const ShapePoint p = contact.at(a);
+      if (!within_validity(a, p.penetration, p.force, limits)) break;
+    } catch (const NumericalError&) {
+      break;  // the run itself reports the points it cannot solve
+    }
+    last_inside = a;
+  }
+  if (last_inside > lo) hi = std::min(hi, std::max(last_inside, reach));
+  std::vector<double> v(points);
+  for (std::size_t k = 0; k < points; ++k) {
+    v[k] = lo * std::pow(hi / lo, static_cast<double>(k) / static_cast<double>(points - 1));
+  }
+  v.back() = hi;
+  return v;
+}
+
+JkrReference jkr_reference(double modulus, double radius, double work, double a_min, double a_max,
+                           std::size_t points) {
+  JkrReference r;
+  const double pi = std::acos(-1.0);
+  for (std::size_t k = 0; k < points; ++k) {
+    const double a = a_min * std::pow(a_max / a_min, static_cast<double>(k) / static_cast<double>(points - 1));
+    r.a.push_back(a);
+    r.delta.push_back(a * a / radius - std::sqrt(2.0 * pi * a * work / modulus));
+    r.force.push_back(4.0 * modulus * a * a * a / (3.0 * radius) - std::sqrt(8.0 * pi * work * modulus * a * a * a));
+  }
+  r.pulloff_load = -1.5 * pi * work * radius;
+  r.pulloff_disp = -5.0 / 6.0 * pi * work * radius;
+  return r;
+}
+
+JkrReference jkr_reference(double modulus, double radius, double work, const std::vector<double>& radii,
+                           std::size_t points) {
+  const auto [lo, hi] = std::minmax_element(radii.begin(), radii.end());
+  return jkr_reference(modulus, radius, work, *lo, *hi, points);
+}
+
+std::pair<std::string, std::string> jkr_reference_header(const JkrReference& jkr) {
+  return {"JKR reference pull-off, load and displacement control [N] (homogeneous film: -3/2 and -5/6 pi w R, "
+          "THEORY.md section 5)",
+          format_parameter(jkr.pulloff_load, "JKR pull-off") + ", " + format_parameter(jkr.pulloff_disp, "JKR pull-off")};
+}
+
 void check_fit_columns(const std::string& columns, const std::vector<std::string>& declared, int declared_line,
                        const std::string& data_path) {
   // --columns against the file's own "# columns:" line (only names this program knows).

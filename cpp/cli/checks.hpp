@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coatcontact/adhesion.hpp"
@@ -12,6 +13,7 @@
 #include "coatcontact/limits.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/reduced.hpp"
+#include "coatcontact/shape_contact.hpp"
 
 namespace coatcontact::cli {
 
@@ -40,6 +42,29 @@ constexpr double kMdPulloffEvaluations = 100.0;
 // below `reach` (the pull-off's a_bar, so the curve reaches the pull-off it reports).
 std::vector<double> sphere_default_a_bar(const AdhesiveModel& model, const Contact& sphere, double lo, double hi,
                                          double reach, std::size_t points);
+
+// Default contact radii of `contact` (log-spaced, `points` of them): [lo, hi] of the shape's
+// default range, with hi lowered, as for `sphere`, to the largest radius at which the curve is
+// still inside every validity limit (scanned at 16 points per decade; kept as given when even lo
+// is outside: the warnings then say so), but never below `reach` (the pull-off's radius).
+std::vector<double> contact_default_radii(const ShapeContact& contact, double lo, double hi, double reach,
+                                          std::size_t points, double sphere_radius);
+
+// The homogeneous JKR reference of a rigid sphere (THEORY.md section 5, the homogeneous
+// solid: the film's half-space, reference modulus E*): a(F), delta(a) at `points` radii
+// log-spaced over [a_min, a_max], and its pull-offs -3/2 pi w R (load control) and
+// -5/6 pi w R (displacement control).
+struct JkrReference {
+  std::vector<double> a, delta, force;
+  double pulloff_load = 0.0, pulloff_disp = 0.0;
+};
+JkrReference jkr_reference(double modulus, double radius, double work, double a_min, double a_max,
+                           std::size_t points);
+// The same over the range of `radii` (not empty).
+JkrReference jkr_reference(double modulus, double radius, double work, const std::vector<double>& radii,
+                           std::size_t points);
+// Its header item, printed beside every coated sphere's pull-offs.
+std::pair<std::string, std::string> jkr_reference_header(const JkrReference& jkr);
 
 // `fit`: --columns against a "# columns:" line of the data file (the start values are checked by
 // the fit library, fit::check_start).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -14,6 +15,8 @@
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
 #include "checks.hpp"
+#include "coatcontact/curve_plot.hpp"
+#include "coatcontact/si_text.hpp"
 #include "commands.hpp"
 #include "lambda_options.hpp"
 #include "pulloff_spring.hpp"
@@ -308,11 +311,38 @@ int run_adhesive(const Args& raw) {
 
 // ---- coatcontact pulloff ----------------------------------------------------------
 
+namespace {
+
+// --plot of `pulloff`: P = F/(pi w R) at pull-off against eta under load and displacement
+// control, with the homogeneous JKR values -3/2 and -5/6 (THEORY.md section 5).
+std::string pulloff_picture(const std::string& path, const std::vector<Pulloff>& results, const Stack& stack) {
+  PlotSeries load{"coated, load control", {}, {}, PlotSeries::Style::kLine, kPlotCoated};
+  PlotSeries disp{"coated, displacement control", {}, {}, PlotSeries::Style::kLine, kPlotSecond};
+  for (const Pulloff& r : results) {
+    load.x.push_back(r.eta);
+    load.y.push_back(r.load_control.load);
+    disp.x.push_back(r.eta);
+    disp.y.push_back(r.displacement_control.load);
+  }
+  if (results.size() == 1) load.style = disp.style = PlotSeries::Style::kPoints;
+  const double lo = load.x.front(), hi = load.x.back();
+  PlotPanel panel{"film thickness η = t/∛(π w R²/E1*)", "", "pull-off P = F/(π w R)", "", true,
+                  {load, disp,
+                   {"JKR, homogeneous film (-3/2, -5/6)", {lo, hi}, {-1.5, -1.5}, PlotSeries::Style::kDashed,
+                    kPlotReference},
+                   {"", {lo, hi}, {-5.0 / 6.0, -5.0 / 6.0}, PlotSeries::Style::kDashed, kPlotReference}},
+                  ""};
+  return render_curve_plot({panel}, "pull-off of a sphere, E1*/E0* = " + si_text(stack.modulus_ratio(), ""), path);
+}
+
+}  // namespace
+
 int run_pulloff(const Args& raw) {
   return run_guarded("pulloff", [&]() {
     auto spec = normalized_options();
     spec.push_back(spring_bar_option());
     spec.push_back(strict_option());
+    spec.push_back(plot_option("P_load and P_disp against eta (JKR)"));
     const Arguments args(raw, spec);
     if (args.help()) {
       std::cout << usage("pulloff", "--film E1,nu1 --substrate E0,nu0|rigid --eta LIST [options]",
@@ -340,6 +370,7 @@ int run_pulloff(const Args& raw) {
     if (lambdas && args.has("--strict")) {
       throw InputError("--strict: not used with --lambda (it selects how the JKR pull-offs are delivered); omit --strict");
     }
+    const auto plot = plot_path(args, lambdas ? "not with --lambda (JKR pull-offs only)" : "");
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       const std::vector<double> k_bars =
@@ -390,6 +421,7 @@ int run_pulloff(const Args& raw) {
                                "on the interpolated curve to relative " +
                                    short_num(model.pulloff_options().location_tolerance));
     describe_table(h, model, tol);
+    h.emplace_back("JKR reference (homogeneous film; THEORY.md section 5) P_load, P_disp", "-1.5, -0.8333333333333334");
     for (const auto& r : results) add_pulloff_warnings(h, r);
     springs.describe(h);
     const auto where = [&](std::size_t i) { return "eta = " + format_value(etas[i], "eta"); };
@@ -415,7 +447,10 @@ int run_pulloff(const Args& raw) {
       }
       ++d;
     }
+    std::optional<Output> plot_out;
+    if (plot) stage_plot(plot_out, *plot, pulloff_picture(*plot, results, stack));
     out.commit();
+    if (plot_out) plot_out->commit();
     return 0;
   });
 }
@@ -423,6 +458,10 @@ int run_pulloff(const Args& raw) {
 // ---- coatcontact sphere -----------------------------------------------------------
 
 namespace {
+
+// Default number of points of a curve in physical units: `sphere`, `contact` and Python's
+// contact() and shape_contact() sample the same count.
+constexpr std::size_t kSiCurvePoints = 200;
 
 // The options of `sphere`: the materials, the sphere, the work, the curve's radii, the
 // cohesive zone and --strict.
@@ -434,14 +473,50 @@ std::vector<OptionSpec> sphere_options() {
   spec.insert(spec.begin() + 6, {"--points", "N",
                                  "number of contact radii, log-spaced over a_bar from 0.01 min(1,r) up to 10 max(1,r), "
                                  "r = (E1*/E0*)^(1/3), ending before a > 0.1 R, delta > t or F/(pi a^2) > 0.1 E1* "
-                                 "(default 400)",
+                                 "(default 200, as contact and Python's contact)",
                                  false});
   spec.insert(spec.begin() + 7, {"--contact-radius", "LIST",
                                  "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
                                  false});
   for (const auto& option : cohesive_options()) spec.push_back(option);
   spec.push_back(strict_option());
+  spec.push_back(plot_option("F(a) and F(delta)"));
   return spec;
+}
+
+// --plot of `sphere`: F against a and against delta, the coated curve beside the homogeneous
+// JKR reference of the film, with both pull-offs of each.
+std::string sphere_picture(const std::string& path, const std::vector<Contact::Point>& points, const JkrReference& jkr,
+                           const Contact& sphere, const Pulloff* pulloff, const Stack& stack, double thickness,
+                           double work) {
+  const std::string title = "sphere R = " + si_text(sphere.scales().radius, "m") + " on " + si_text(thickness, "m") +
+                            " of " + si_text(stack.top().youngs_modulus, "Pa") + ", E1*/E0* = " +
+                            si_text(stack.modulus_ratio(), "") + ", w = " + si_text(work, "J/m^2");
+  PlotSeries coated{"coated (this run)", {}, {}, PlotSeries::Style::kLine, kPlotCoated};
+  PlotSeries coated_d = coated;
+  for (const auto& p : points) {
+    coated.x.push_back(p.radius);
+    coated.y.push_back(p.force);
+    coated_d.x.push_back(p.penetration);
+    coated_d.y.push_back(p.force);
+  }
+  PlotSeries ref{"JKR, homogeneous film", jkr.a, jkr.force, PlotSeries::Style::kDashed, kPlotReference};
+  PlotSeries ref_d{"JKR, homogeneous film", jkr.delta, jkr.force, PlotSeries::Style::kDashed, kPlotReference};
+  PlotPanel by_a{"contact radius a", "m", "force F", "N", true, {coated, ref}, ""};
+  PlotPanel by_delta{"penetration δ", "m", "force F", "N", false, {coated_d, ref_d}, ""};
+  if (pulloff) {
+    const double l = sphere.length_scale(), d = sphere.penetration_scale();
+    PlotSeries marks{"pull-offs (load, displacement control)", {}, {}, PlotSeries::Style::kPoints, kPlotCoated};
+    PlotSeries marks_d = marks;
+    for (const auto* c : {&pulloff->load_control, &pulloff->displacement_control}) {
+      marks.x.push_back(c->a_bar * l);
+      marks_d.x.push_back(c->penetration * d);
+    }
+    marks.y = marks_d.y = {sphere.pulloff_force_load(), sphere.pulloff_force_disp()};
+    by_a.series.push_back(marks);
+    by_delta.series.push_back(marks_d);
+  }
+  return render_curve_plot({by_a, by_delta}, title, path);
 }
 
 void print_sphere_help(const std::vector<OptionSpec>& spec) {
@@ -475,7 +550,8 @@ int run_sphere(const Args& raw) {
     const double thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
     const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
     const double tol = parse_tolerance(args);
-    const std::size_t points = parse_point_count(args, 400);
+    const std::size_t points = parse_point_count(args, kSiCurvePoints);
+    const auto notes = report_plausibility("sphere", args);
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
     const bool md_direct = parse_md_direct(args, sigma0.has_value(), "--cohesive-stress or --range");
     std::vector<double> contact_radii;
@@ -490,6 +566,7 @@ int run_sphere(const Args& raw) {
                        "delivered); omit --strict");
     }
     const bool strict = args.has("--strict");
+    const auto plot = plot_path(args, sigma0 ? "not with --cohesive-stress/--range (JKR curves only)" : "");
     Output out(args.get("--output").value_or(""));
     if (sigma0) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
       // The zone's accuracy is fixed by its discretization (MaugisDugdaleOptions), not by --tol.
@@ -559,8 +636,13 @@ int run_sphere(const Args& raw) {
     h.emplace_back("penetration scale (pi^2 w^2 R/E1*^2)^(1/3) [m]", num(sphere.penetration_scale()));
     h.emplace_back("force scale pi w R [N]", num(sphere.force_scale()));
     h.emplace_back("eta = t/length scale", num(sphere.eta()));
+    h.insert(h.end(), notes.begin(), notes.end());
+    const JkrReference jkr = jkr_reference(stack.reference_modulus(), radius, work,
+                                           a_bar.front() * sphere.length_scale(),
+                                           a_bar.back() * sphere.length_scale(), kSiCurvePoints);
     if (pulloff) {
       add_sphere_pulloff(h, sphere, *pulloff);
+      h.push_back(jkr_reference_header(jkr));
     } else {
       h.emplace_back("pull-off", "not computed: its scan over a_bar [" + num(0.1 * a_bar_min) + ", " +
                                      num(a_bar_max) + "] needs radii the solver cannot serve (" + pulloff_missing +
@@ -590,7 +672,10 @@ int run_sphere(const Args& raw) {
       }
       write_row(os, {si[i].radius, si[i].penetration, si[i].force}, columns);
     }
+    std::optional<Output> plot_out;
+    if (plot) stage_plot(plot_out, *plot, sphere_picture(*plot, delivered, jkr, sphere, pulloff, stack, thickness, work));
     out.commit();
+    if (plot_out) plot_out->commit();
     return 0;
   });
 }

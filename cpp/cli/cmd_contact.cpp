@@ -17,6 +17,9 @@
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/shape_contact.hpp"
 #include "coatcontact/shape_maugis_dugdale.hpp"
+#include "coatcontact/curve_plot.hpp"
+#include "coatcontact/si_text.hpp"
+#include "checks.hpp"
 #include "commands.hpp"
 #include "number_text.hpp"
 
@@ -25,7 +28,7 @@ namespace coatcontact::cli {
 namespace {
 
 using detail::kPi;
-constexpr std::size_t kDefaultPoints = 100;
+constexpr std::size_t kDefaultPoints = 200;  // as `sphere` and Python's contact()
 
 using Header = std::vector<std::pair<std::string, std::string>>;
 
@@ -76,15 +79,8 @@ double sphere_radius_of(const std::string& shape_text) {
   return parse_quantity(shape_text.substr(prefix.size()), Quantity::kLength, "--shape");
 }
 
-// Spring stiffness k [N/m]: a number in the range every SI quantity has ([1e-100, 1e100]).
-double parse_spring(const std::string& text) {
-  const double k = parse_number(text, "--spring");
-  if (!(k >= 1e-100 && k <= 1e100)) {
-    throw InputError("--spring: value " + quoted(text) +
-                     " not allowed (need a stiffness in N/m in [1e-100, 1e100], the range of every SI quantity)");
-  }
-  return k;
-}
+// Spring stiffness k: N/m, or with a unit (500N/m, 0.5mN/um), in the range of every SI quantity.
+double parse_spring(const std::string& text) { return parse_rate(text, Rate::kStiffness, "--spring"); }
 
 std::string jump_text(const ShapeJump& j) {
   return num(j.force) + " (contact radius " + num(j.radius) + " m, penetration " + num(j.penetration) + " m)";
@@ -106,13 +102,87 @@ const std::vector<OptionSpec> kSpec = {
      "Maugis-Dugdale zone instead of JKR: adhesive stress (Pa, or kPa MPa GPa), range h0 = w/sigma0 at most 1e6 "
      "film thicknesses; every shape but punch (THEORY.md section 13); adds the zone edge c_m",
      false},
-    {"--spring", "k", "spring stiffness in N/m, in [1e-100, 1e100] (cantilever, machine frame): adds the spring-controlled pull-off", false},
+    {"--spring", "k", "spring stiffness (N/m, or with a unit: 500N/m, 0.5mN/um), in [1e-100, 1e100] (cantilever, machine frame): adds the spring-controlled pull-off", false},
     {"--contact-radius", "LIST", "contact radii: v1,v2,... or MIN:MAX:N (log-spaced); m, or with a unit (mm um nm)", false},
-    {"--points", "N", "number of contact radii over the default range (default 100; not with --contact-radius)", false},
+    {"--points", "N", "number of contact radii over the default range, which ends at the validity limits (default 200; not with --contact-radius)", false},
     {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
     strict_option(),
+    plot_option("F(a) and F(delta) (JKR)"),
 };
+
+// --tol: the solver's relative tolerance (default 1e-8).
+double solver_tolerance(const Arguments& args) {
+  double tol = kDefaultTolerance;
+  if (const auto text = args.get("--tol")) {
+    tol = parse_number(*text, "--tol");
+    if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
+      throw InputError("--tol: value " + quoted(*text) + " not allowed (need 1e-13 <= T <= 0.1)");
+    }
+  }
+  return tol;
+}
+
+// The pull-off lines of the header (JKR), with the homogeneous JKR reference of a sphere.
+void add_pulloff_header(Header& h, const std::optional<ShapePulloff>& pulloff, const std::string& missing,
+                        double spring, const std::optional<JkrReference>& jkr) {
+  if (!pulloff) {
+    h.emplace_back("pull-off", "not computed: " + missing + " (--strict: exit 3 instead)");
+    return;
+  }
+  h.emplace_back("pull-off force, load control [N]", jump_text(pulloff->load));
+  h.emplace_back("pull-off force, displacement control [N]", jump_text(pulloff->displacement));
+  if (spring > 0.0) {
+    h.emplace_back("spring stiffness k [N/m]", num(spring));
+    h.emplace_back("pull-off force, spring control [N]", jump_text(pulloff->spring));
+  }
+  h.emplace_back("pull-off scan", "contact radii [" + num(pulloff->scan_min) + ", " + num(pulloff->scan_max) +
+                                      "] m, 24 per decade, every local minimum refined (Brent)");
+  for (const auto& w : pulloff->warnings) h.emplace_back("warning", w);
+  if (jkr) h.push_back(jkr_reference_header(*jkr));
+}
+
+// --plot of `contact`: F against a and against delta, adhesive and adhesionless, the pull-offs,
+// and for a sphere the homogeneous JKR reference of the film.
+std::string contact_picture(const std::string& path, const std::vector<ShapePoint>& points,
+                            const std::optional<JkrReference>& jkr, const std::optional<ShapePulloff>& pulloff,
+                            const std::string& title) {
+  PlotSeries adhesive{"coated, JKR (this run)", {}, {}, PlotSeries::Style::kLine, kPlotCoated};
+  PlotSeries adhesionless{"coated, no adhesion", {}, {}, PlotSeries::Style::kLine, kPlotSecond};
+  PlotSeries adhesive_d = adhesive, adhesionless_d = adhesionless;
+  for (const ShapePoint& p : points) {
+    adhesive.x.push_back(p.radius);
+    adhesive.y.push_back(p.force);
+    adhesionless.x.push_back(p.radius);
+    adhesionless.y.push_back(p.force_h);
+    adhesive_d.x.push_back(p.penetration);
+    adhesive_d.y.push_back(p.force);
+    adhesionless_d.x.push_back(p.penetration_h);
+    adhesionless_d.y.push_back(p.force_h);
+  }
+  PlotPanel by_a{"contact radius a", "m", "force F", "N", true, {adhesive, adhesionless}, ""};
+  PlotPanel by_delta{"penetration δ", "m", "force F", "N", false, {adhesive_d, adhesionless_d}, ""};
+  if (jkr) {
+    by_a.series.push_back({"JKR, homogeneous film", jkr->a, jkr->force, PlotSeries::Style::kDashed, kPlotReference});
+    by_delta.series.push_back(
+        {"JKR, homogeneous film", jkr->delta, jkr->force, PlotSeries::Style::kDashed, kPlotReference});
+  } else {
+    by_a.note = "homogeneous JKR reference: drawn for sphere:R only";
+  }
+  if (pulloff) {
+    PlotSeries marks{"pull-offs (load, displacement control)", {}, {}, PlotSeries::Style::kPoints, kPlotCoated};
+    PlotSeries marks_d = marks;
+    for (const ShapeJump* j : {&pulloff->load, &pulloff->displacement}) {
+      marks.x.push_back(j->radius);
+      marks.y.push_back(j->force);
+      marks_d.x.push_back(j->penetration);
+      marks_d.y.push_back(j->force);
+    }
+    by_a.series.push_back(marks);
+    by_delta.series.push_back(marks_d);
+  }
+  return render_curve_plot({by_a, by_delta}, title, path);
+}
 
 }  // namespace
 
@@ -329,15 +399,10 @@ int run_contact(const Args& raw) {
     const Stack stack = parse_stack(args);
     const double thickness = args.has("--layer") ? coating_thickness(args, stack) : film_thickness;
     const double work = parse_quantity(args.require("--work"), Quantity::kEnergy, "--work");
+    const Header notes = report_plausibility("contact", args);
     double spring = 0.0;
     if (const auto text = args.get("--spring")) spring = parse_spring(*text);
-    double tol = kDefaultTolerance;
-    if (const auto text = args.get("--tol")) {
-      tol = parse_number(*text, "--tol");
-      if (!(tol >= kMinimumTolerance && tol <= kMaximumTolerance)) {
-        throw InputError("--tol: value " + quoted(*text) + " not allowed (need 1e-13 <= T <= 0.1)");
-      }
-    }
+    const double tol = solver_tolerance(args);
     if (args.has("--contact-radius") && args.has("--points")) {
       throw InputError("--contact-radius and --points exclude each other");
     }
@@ -370,16 +435,32 @@ int run_contact(const Args& raw) {
     const ShapeSolver solver(stack);
     const ShapeContact contact(solver, shape, thickness, work, tol);
     const auto [lo, hi] = contact.default_range();
+    const bool strict = args.has("--strict");
+    const auto plot = plot_path(args, sigma0 ? "not with --cohesive-stress (JKR curves only)" : "");
+    // Without --contact-radius the curve stops at the model's validity limits (as `sphere`'s),
+    // but always reaches the pull-off it reports; the pull-off is located first for that.
+    std::optional<ShapePulloff> pulloff;
+    std::string pulloff_missing;
+    if (!sigma0) {
+      try {
+        pulloff = contact.pulloff(spring);
+      } catch (const NumericalError& e) {
+        if (strict) throw;
+        pulloff_missing = e.what();
+      }
+    }
     if (radii.empty()) {
       if (shape->flat()) {
         radii = {lo};
-      } else {
+      } else if (sigma0) {
         for (std::size_t k = 0; k < points; ++k) {
           radii.push_back(k + 1 == points ? hi : lo * std::pow(hi / lo, static_cast<double>(k) / (points - 1.0)));
         }
+      } else {
+        radii = contact_default_radii(contact, lo, hi, pulloff ? 1.2 * pulloff->load.radius : lo, points,
+                                      sphere_radius);
       }
     }
-    const bool strict = args.has("--strict");
     if (sigma0) {
       const ShapeMaugisDugdale md(stack, shape, thickness, work, *sigma0);
       Output out(args.get("--output").value_or(""));
@@ -395,43 +476,26 @@ int run_contact(const Args& raw) {
     for (std::size_t i = 0; i < curve.size(); ++i) {
       if (status[i].delivered) delivered.push_back(curve[i]);
     }
-    // Without --strict a pull-off the solver cannot locate leaves the curve standing.
-    std::optional<ShapePulloff> pulloff;
-    std::string pulloff_missing;
-    try {
-      pulloff = contact.pulloff(spring);
-    } catch (const NumericalError& e) {
-      if (strict) throw;
-      pulloff_missing = e.what();
-    }
+    // Without --strict a pull-off the solver cannot locate leaves the curve standing (located above).
     double worst = 0.0;
     for (const ShapePoint& p : delivered) worst = std::max(worst, p.error_estimate);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
+    std::optional<JkrReference> jkr;  // for a sphere; radii is not empty here
+    if (sphere_radius > 0.0) jkr = jkr_reference(stack.reference_modulus(), sphere_radius, work, radii, kDefaultPoints);
     Header h{{"command", "contact"}};
     h.emplace_back("shape", shape->description());
     h.emplace_back("film thickness t [m]", num(thickness));
     h.emplace_back("work of adhesion w [J/m2]", num(work));
     add_material_header(h, stack);
     h.emplace_back("reference modulus [Pa]", num(stack.reference_modulus()));
+    h.insert(h.end(), notes.begin(), notes.end());
     if (shape->interpolation_error() > 0.0) {
       h.emplace_back("profile interpolation error estimate (relative, delta0)", num(shape->interpolation_error()));
     }
     h.emplace_back("adhesion", "JKR: delta_fp = -sqrt(2 pi a w/E)/Gamma(1), delta = delta_H + delta_fp, "
                                "F = F_H + S delta_fp (THEORY.md sections 5, 11)");
-    if (pulloff) {
-      h.emplace_back("pull-off force, load control [N]", jump_text(pulloff->load));
-      h.emplace_back("pull-off force, displacement control [N]", jump_text(pulloff->displacement));
-      if (spring > 0.0) {
-        h.emplace_back("spring stiffness k [N/m]", num(spring));
-        h.emplace_back("pull-off force, spring control [N]", jump_text(pulloff->spring));
-      }
-      h.emplace_back("pull-off scan", "contact radii [" + num(pulloff->scan_min) + ", " + num(pulloff->scan_max) +
-                                          "] m, 24 per decade, every local minimum refined (Brent)");
-      for (const auto& w : pulloff->warnings) h.emplace_back("warning", w);
-    } else {
-      h.emplace_back("pull-off", "not computed: " + pulloff_missing + " (--strict: exit 3 instead)");
-    }
+    add_pulloff_header(h, pulloff, pulloff_missing, spring, jkr);
     progress_pause();
     if (!pulloff) std::cerr << "coatcontact contact: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";
     const auto where = [&](std::size_t i) { return "a_m = " + format_value(radii[i], "a_m"); };
@@ -455,7 +519,15 @@ int run_contact(const Args& raw) {
       }
       write_row(os, {p.radius, p.penetration, p.force, p.penetration_h, p.force_h}, columns);
     }
+    std::optional<Output> plot_out;
+    if (plot) {
+      const std::string title = shape->description() + " on " + si_text(thickness, "m") + " of " +
+                                si_text(stack.top().youngs_modulus, "Pa") + ", E1*/E0* = " +
+                                si_text(stack.modulus_ratio(), "") + ", w = " + si_text(work, "J/m^2");
+      stage_plot(plot_out, *plot, contact_picture(*plot, delivered, jkr, pulloff, title));
+    }
     out.commit();
+    if (plot_out) plot_out->commit();
     return kExitSuccess;
   });
 }

@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <cctype>
+#include <charconv>
 #include <cerrno>
 #include <cstring>
 #include <cstdio>
@@ -66,11 +67,20 @@ const std::vector<OptionSpec>& fit_options() {
   return spec;
 }
 
+// Header values: the shortest text that reads back to the same double (0.49, not
+// 0.48999999999999999), as every other command's header.
 std::string number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
+  char buffer[64];
+  if (!std::isfinite(value)) {
+    std::snprintf(buffer, sizeof buffer, "%g", value);
+    return buffer;
+  }
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
 }
+
+// Above this |r| between two free parameters, `fit` warns (header, stderr).
+constexpr double kMaxCorrelation = 0.99;
 
 std::string short_number(double value) {
   char buffer[40];
@@ -641,6 +651,26 @@ void run_library_fit(FitRun& r) {
   }();
 }
 
+// Pairs of free parameters correlated beyond |r| = kMaxCorrelation: the data hardly tell them
+// apart (the fit converges, but the two move together along a valley of the cost), so their
+// standard errors are large and their values depend on each other. One text per pair.
+std::vector<std::string> correlation_warnings(const FitRun& r) {
+  std::vector<std::string> out;
+  for (std::size_t a = 0; a < r.parameter_count; ++a) {
+    for (std::size_t b = a + 1; b < r.parameter_count; ++b) {
+      if (!r.free[a] || !r.free[b]) continue;
+      const double c = r.result.correlation[a][b];
+      if (std::fabs(c) > kMaxCorrelation) {
+        out.push_back("correlation " + r.parameters[a].name + "-" + r.parameters[b].name + " = " + short_number(c) +
+                      " (|r| > " + short_number(kMaxCorrelation) + "): the data hardly separate " +
+                      r.parameters[a].name + " and " + r.parameters[b].name +
+                      "; fix one of them (its value from another measurement) or add data that tells them apart");
+      }
+    }
+  }
+  return out;
+}
+
 // The header of the table and the curve.
 void make_header(FitRun& r) {
   // ---- output ----
@@ -706,6 +736,7 @@ void make_header(FitRun& r) {
       }
     }
   }
+  for (const std::string& w : correlation_warnings(r)) r.header.emplace_back("warning", w);
   if (r.problem.bootstrap > 0) {
     for (std::size_t which = 0; which < r.parameter_count; ++which) {
       if (!r.free[which]) continue;
@@ -939,57 +970,59 @@ void write_outputs(FitRun& r) {
   output.commit();
 }
 
-// The table went to a file: a short human-readable summary on stdout.
+// A short human-readable summary: on stdout when the table went to a file (--output), on stderr
+// when the table is on stdout (so it stays a clean table).
 void print_summary(FitRun& r) {
-  if (!r.output_path.empty()) {
-    // The table went to a file: a short human-readable summary on stdout.
-    std::cout << "coatcontact fit: " << r.result.points << " points (" << r.x_name << ",F), "
+  {
+    std::ostream& os = r.output_path.empty() ? std::cerr : std::cout;
+    os << "coatcontact fit: " << r.result.points << " points (" << r.x_name << ",F), "
               << r.result.free_count << " free parameter" << (r.result.free_count == 1 ? "" : "s") << ", converged ("
               << r.result.stop_reason << ") after " << r.result.iterations << " iterations\n";
     std::size_t width = 0;
     for (const auto& info : r.parameters) width = std::max(width, info.name.size());
     for (std::size_t which = 0; which < r.parameter_count; ++which) {
-      std::cout << "  " << r.parameters[which].name << std::string(width - r.parameters[which].name.size(), ' ') << " = "
+      os << "  " << r.parameters[which].name << std::string(width - r.parameters[which].name.size(), ' ') << " = "
                 << short_number(r.result.value[which]) << " " << r.parameters[which].unit;
       if (r.free[which]) {
-        std::cout << " +- " << short_number(r.result.standard_error[which]) << " (standard error)";
+        os << " +- " << short_number(r.result.standard_error[which]) << " (standard error)";
         if (r.problem.bootstrap > 0) {
-          std::cout << ", bootstrap 68 % [" << short_number(r.result.interval68_low[which]) << ", "
+          os << ", bootstrap 68 % [" << short_number(r.result.interval68_low[which]) << ", "
                     << short_number(r.result.interval68_high[which]) << "]";
         }
       } else {
-        std::cout << " (fixed)";
+        os << " (fixed)";
       }
-      std::cout << "\n";
+      os << "\n";
     }
-    std::cout << "  residual norm " << short_number(r.result.residual_norm) << " N, sigma "
+    os << "  residual norm " << short_number(r.result.residual_norm) << " N, sigma "
               << short_number(r.result.residual_sigma) << " N, R^2 " << short_number(r.result.r_squared)
               << ", interpolation error " << order_of_magnitude_bound(r.result.interpolation_error / r.result.residual_sigma)
               << " sigma\n";
     if (r.result.weighted) {
-      std::cout << "  weighted by sigma_F^2 + (dF/d" << r.x_name << ")^2 sigma_" << r.x_name
+      os << "  weighted by sigma_F^2 + (dF/d" << r.x_name << ")^2 sigma_" << r.x_name
                 << "^2: chi2/(n-p) = " << short_number(r.result.chi2_per_dof) << "\n";
     } else {
-      std::cout << "  unweighted: the errors assume exact " << r.x_name << " (give --sigma if it is measured)\n";
+      os << "  unweighted: the errors assume exact " << r.x_name << " (give --sigma if it is measured)\n";
     }
     if (r.result.has_load_pulloff) {
-      std::cout << "  predicted pull-off: " << short_number(r.result.load_pulloff_force) << " N under load control";
+      os << "  predicted pull-off: " << short_number(r.result.load_pulloff_force) << " N under load control";
       if (r.result.displacement_pulloff_radius > 0.0) {
-        std::cout << ", " << short_number(r.result.displacement_pulloff_force) << " N under displacement control";
+        os << ", " << short_number(r.result.displacement_pulloff_force) << " N under displacement control";
       }
-      std::cout << "\n";
+      os << "\n";
     }
     if (r.result.has_spring_pulloff) {
-      std::cout << "  predicted pull-off through the spring k = "
+      os << "  predicted pull-off through the spring k = "
                 << short_number(r.base_data ? r.result.value.back() : r.problem.spring_stiffness)
                 << " N/m: " << short_number(r.result.spring_pulloff_force) << " N\n";
     }
+    for (const std::string& w : correlation_warnings(r)) os << "  warning: " << w << "\n";
     if (r.result.second_minimum) {
-      std::cout << "  note: a second minimum at";
+      os << "  note: a second minimum at";
       for (std::size_t which = 0; which < r.parameter_count; ++which) {
-        if (r.free[which]) std::cout << " " << r.parameters[which].name << " = " << short_number(r.result.second_value[which]);
+        if (r.free[which]) os << " " << r.parameters[which].name << " = " << short_number(r.result.second_value[which]);
       }
-      std::cout << " (cost " << short_number(r.result.second_cost_ratio) << " x the best)\n";
+      os << " (cost " << short_number(r.result.second_cost_ratio) << " x the best)\n";
     }
   }
 }
@@ -1037,10 +1070,12 @@ int run_fit_body(const Args& args) {
   r.path = arguments.positionals()[0];
   parse_model(r);
   parse_parameters(r);
+  const auto notes = report_plausibility("fit", arguments);
   read_data(r);
   set_start_values(r);
   run_library_fit(r);
   make_header(r);
+  r.header.insert(r.header.end(), notes.begin(), notes.end());
   add_validity_warnings(r);
   make_curve(r);
   make_table(r);

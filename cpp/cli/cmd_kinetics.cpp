@@ -1,13 +1,19 @@
 // `coatcontact kinetics`: rate-dependent JKR adhesion of a sphere or a cone on a coating, the contact
 // edge obeying a crack-kinetics law, driven through a spring (THEORY.md section 14).
+#include <gsl/gsl_errno.h>
+
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "coatcontact/cli_support.hpp"
+#include "coatcontact/curve_plot.hpp"
+#include "coatcontact/si_text.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/crack_kinetics.hpp"
 #include "coatcontact/detail/constants.hpp"
@@ -15,6 +21,7 @@
 #include "coatcontact/errors.hpp"
 #include "coatcontact/kinetics_fit.hpp"
 #include "coatcontact/reduced.hpp"
+#include "checks.hpp"
 #include "commands.hpp"
 #include "number_text.hpp"
 
@@ -28,6 +35,8 @@ std::string num(double v) { return format_parameter(v, "header value"); }
 
 constexpr auto split_on = detail::split;
 using detail::trim;
+
+const std::vector<std::pair<std::string, double>> kTimeUnits = {{"ms", 1e-3}, {"s", 1.0}, {"min", 60.0}};
 
 // A number with one of `units` (suffix, optionally after one space); bare numbers are SI.
 double with_unit(const std::string& raw, const std::vector<std::pair<std::string, double>>& units,
@@ -51,22 +60,10 @@ double with_unit(const std::string& raw, const std::vector<std::pair<std::string
   }
 }
 
-const std::vector<std::pair<std::string, double>> kSpeedUnits = {
-    {"nm/s", 1e-9}, {"um/s", 1e-6}, {"µm/s", 1e-6}, {"mm/s", 1e-3}, {"m/s", 1.0}};
-const std::vector<std::pair<std::string, double>> kForceRateUnits = {
-    {"nN/s", 1e-9}, {"uN/s", 1e-6}, {"µN/s", 1e-6}, {"mN/s", 1e-3}, {"N/s", 1.0}};
-const std::vector<std::pair<std::string, double>> kTimeUnits = {{"ms", 1e-3}, {"s", 1.0}, {"min", 60.0}};
-const std::vector<std::pair<std::string, double>> kForceUnits = {
-    {"nN", 1e-9}, {"uN", 1e-6}, {"µN", 1e-6}, {"mN", 1e-3}, {"N", 1.0}};
-
+// A speed (m/s, um/s ...) or, under load control, a force rate (N/s, mN/s ...): the CLI's one
+// rate parser (cli_support.hpp), > 0.
 double positive_speed(const std::string& text, bool load_control, const std::string& option) {
-  const double v = with_unit(text, load_control ? kForceRateUnits : kSpeedUnits, option,
-                             load_control ? "force rate" : "speed");
-  if (!(v > 0.0 && std::isfinite(v))) {
-    throw InputError(option + ": " + std::string(load_control ? "force rate" : "speed") + " '" + text +
-                     "' not allowed (need a finite value > 0" + (load_control ? " N/s" : " m/s") + ")");
-  }
-  return v;
+  return parse_rate(text, load_control ? Rate::kForceRate : Rate::kSpeed, option);
 }
 
 // "approach:V:F,dwell:T,retract:V[:F]" (V a speed, or a force rate under load control).
@@ -79,7 +76,15 @@ std::vector<KineticsSegmentSI> parse_protocol(const std::string& text, bool load
     const std::vector<std::string> f = split_on(trim(raw), ':');
     const std::string kind = trim(f[0]);
     KineticsSegmentSI s;
-    auto force = [&](const std::string& t) { return with_unit(t, kForceUnits, option, "force"); };
+    // A target force may be tensile (negative): the sign, then a force with its unit.
+    auto force = [&](const std::string& t) {
+      const std::string v = trim(t);
+      double bare = 0.0;
+      if (detail::parse_decimal(v, bare) == detail::NumberStatus::kOk) return bare;
+      const bool negative = !v.empty() && v[0] == '-';
+      const double magnitude = parse_quantity(negative ? v.substr(1) : v, Quantity::kForce, option);
+      return negative ? -magnitude : magnitude;
+    };
     if (kind == "approach" && f.size() == 3) {
       s.kind = DriveSegment::Kind::kApproach;
       s.speed = positive_speed(f[1], load_control, option);
@@ -178,16 +183,118 @@ const std::vector<OptionSpec> kSpec = {
                        "at the --film value, each value builds its own table)", false},
     {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
+    plot_option("F(t) and a(t), or with --retract-speeds the pull-off against the speed (SI runs)"),
 };
 
-double parse_spring(const std::string& text) {
-  if (trim(text) == "inf") return HUGE_VAL;
-  const double k = parse_number(text, "--spring");
-  if (!(k >= 0.0)) {
-    throw InputError("--spring: value '" + text + "' not allowed (need a stiffness >= 0 in N/m, 0 for load "
-                     "control, or inf for displacement control)");
+// --plot of an SI run: F and a against time (the pull-off marked), or with --retract-speeds the
+// pull-off force against the retract speed; for the sphere the quasi-static JKR pull-off of
+// the homogeneous film, -3/2 pi w R, as the reference.
+std::string kinetics_picture(const std::string& path, const std::vector<KineticsResultSI>& runs,
+                             const KineticsSetupSI& setup, const Stack& stack, bool sweep) {
+  const bool sphere = setup.tip == KineticsTip::kSphere;
+  const std::string title =
+      (sphere ? "sphere R = " + si_text(setup.radius, "m") : "cone β = " + num(setup.half_angle * 180.0 / detail::kPi) + "°") +
+      " on " + si_text(setup.thickness, "m") + " of " + si_text(stack.top().youngs_modulus, "Pa") + ", w = " +
+      si_text(setup.work, "J/m^2") + ", v* = " + si_text(setup.v_star, "m/s") + ", n = " + num(setup.n);
+  const double jkr = -1.5 * detail::kPi * setup.work * setup.radius;
+  if (sweep) {
+    PlotSeries pulloff{"pull-off (this run)", {}, {}, PlotSeries::Style::kLine, kPlotCoated};
+    for (const KineticsResultSI& r : runs) {
+      pulloff.x.push_back(r.retract_speed);
+      pulloff.y.push_back(r.pulloff.force);
+    }
+    if (runs.size() == 1) pulloff.style = PlotSeries::Style::kPoints;
+    const bool load_control = setup.spring == 0.0;
+    PlotPanel panel{load_control ? "retract force rate" : "retract speed V", load_control ? "N/s" : "m/s",
+                    "pull-off force", "N", true, {pulloff}, ""};
+    if (sphere) {
+      panel.series.push_back({"JKR quasi-static, homogeneous film: -3/2 π w R",
+                              {pulloff.x.front(), pulloff.x.back()}, {jkr, jkr}, PlotSeries::Style::kDashed,
+                              kPlotReference});
+    }
+    return render_curve_plot({panel}, title, path);
   }
-  return k;
+  const KineticsResultSI& r = runs.front();
+  PlotPanel force{"time t since first contact", "s", "force F", "N", false,
+                  {{"F (this run)", r.t, r.force, PlotSeries::Style::kLine, kPlotCoated},
+                   {"pull-off", {r.pulloff.time}, {r.pulloff.force}, PlotSeries::Style::kPoints, kPlotCoated}},
+                  ""};
+  if (sphere && !r.t.empty()) {
+    force.series.push_back({"JKR quasi-static, homogeneous film: -3/2 π w R", {r.t.front(), r.t.back()}, {jkr, jkr},
+                            PlotSeries::Style::kDashed, kPlotReference});
+  }
+  PlotPanel radius{"time t since first contact", "s", "contact radius a", "m", false,
+                   {{"a (this run)", r.t, r.a, PlotSeries::Style::kLine, kPlotSecond},
+                    {"pull-off", {r.pulloff.time}, {r.pulloff.radius}, PlotSeries::Style::kPoints, kPlotSecond}},
+                   ""};
+  return render_curve_plot({force, radius}, title, path);
+}
+
+// The header item of the wall-clock time the command took (not a simulated time).
+constexpr const char* kRunTime = "run time (wall clock, this computation) [s]";
+
+// A library InputError in the user's terms: which options set what it refuses.
+std::string kinetics_input_message(const std::string& message, bool si) {
+  if (message.rfind("protocol", 0) == 0) return "--protocol: " + message;
+  if (message.rfind("a/t", 0) == 0) {
+    return std::string(si ? "--protocol, --thickness, --radius/--shape, --work, --film" : "--protocol, --eta") +
+           ": the contact radius this run reaches is outside what the solver serves (" + message +
+           "); allowed: a thicker film relative to the contact (a larger --thickness" +
+           (si ? std::string(" or a smaller --work or --radius") : std::string(" or --eta")) +
+           "), or a gentler protocol (a smaller approach force)";
+  }
+  return message;
+}
+
+// A library NumericalError with GSL's status code spelled out (gsl_strerror) and what to try.
+std::string kinetics_numerical_message(const std::string& message) {
+  const std::size_t at = message.find("(status ");
+  if (at == std::string::npos) return message;
+  const int status = std::atoi(message.c_str() + at + 8);
+  const std::size_t close = message.find(')', at);
+  std::string text = message.substr(0, at) + "(" + gsl_strerror(status) + ")" +
+                     (close == std::string::npos ? std::string() : message.substr(close + 1));
+  return text + "; the contact edge's ODE could not be integrated there: try a larger --tol, or a protocol "
+                "that keeps the contact inside the model's range (a smaller approach force, a slower drive)";
+}
+
+// --retract-speeds with many speeds: the approach and dwell run once, then one retract per
+// speed. After a first run (it builds the table the runs share), a run with one speed and one
+// with nine spread over the list give the cost of the prefix and of a retract; a sweep estimated
+// above kMaxWorkSeconds is refused, otherwise the estimate goes to the progress line.
+constexpr std::size_t kSweepPlanned = 50;  // fewer speeds cost less than the plan
+void plan_sweep(const AdhesiveModel& model, const KineticsSetupSI& setup, const std::vector<double>& speeds) {
+  const auto timed = [&](const std::vector<double>& v) {
+    const auto start = std::chrono::steady_clock::now();
+    simulate_kinetics_si(model, setup, v, false);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::vector<double> sample;
+  for (std::size_t k = 0; k < 9; ++k) sample.push_back(speeds[k * (speeds.size() - 1) / 8]);
+  timed({speeds.front()});
+  const double one = timed({speeds.front()});
+  const double retract = std::max((timed(sample) - one) / 8.0, 0.0);
+  const double estimate = one + retract * static_cast<double>(speeds.size());
+  if (estimate > kMaxWorkSeconds) {
+    throw InputError("--retract-speeds: estimated run time " + num(std::round(estimate)) + " s (" +
+                     std::to_string(speeds.size()) + " retracts at ~" + num(std::round(retract * 1e5) / 1e5) +
+                     " s each) is over the limit of " + num(kMaxWorkSeconds) + " s; allowed: fewer speeds (N of "
+                     "MIN:MAX:N), or several runs");
+  }
+  progress_set_estimate(estimate);
+}
+
+// --spring: 0 (load control), inf (displacement control) or a stiffness (500, 500N/m, 0.5mN/um).
+double parse_spring(const std::string& text) {
+  const std::string k = trim(text);
+  if (k == "inf") return HUGE_VAL;
+  double bare = 0.0;
+  if (detail::parse_decimal(k, bare) == detail::NumberStatus::kOk && bare == 0.0) return 0.0;
+  try {
+    return parse_rate(k, Rate::kStiffness, "--spring");
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + " (or 0 for load control, inf for displacement control)");
+  }
 }
 
 // --tol: the solver's relative tolerance (default 1e-8).
@@ -211,7 +318,7 @@ double parse_exponent(const Arguments& args, const std::string& option) {
 }
 
 ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::time_point started) {
-  for (const char* option : {"--radius", "--thickness", "--work", "--v-star", "--spring"}) {
+  for (const char* option : {"--radius", "--thickness", "--work", "--v-star", "--spring", "--plot"}) {
     if (args.has(option)) {
       throw InputError(std::string(option) + ": not with --eta (a reduced run; see --help)");
     }
@@ -262,8 +369,9 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
     runs = rates.empty() ? std::vector<KineticsResult>{simulate_kinetics(model, tip, eta, law, k_bar, protocol)}
                          : sweep_kinetics(model, tip, eta, law, k_bar, protocol, rates);
   } catch (const InputError& e) {
-    const std::string message = e.what();
-    throw InputError((message.rfind("protocol", 0) == 0 ? "--protocol: " : "") + message);
+    throw InputError(kinetics_input_message(e.what(), false));
+  } catch (const NumericalError& e) {
+    throw NumericalError(kinetics_numerical_message(e.what()));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   Header h{{"command", "kinetics"}};
@@ -283,7 +391,7 @@ ExitCode run_reduced_kinetics(const Arguments& args, std::chrono::steady_clock::
                                             : num(k_bar));
   h.emplace_back("n, n_adv, v_a*/v*", num(law.n) + ", " + num(law.n_adv) + ", " + num(law.speed_ratio_adv));
   h.emplace_back("protocol", args.require("--protocol"));
-  h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+  h.emplace_back(kRunTime, num(std::round(seconds * 1e3) / 1e3));
   Output out(output_path);
   std::ostream& os = out.stream();
   if (rates.empty()) {
@@ -391,7 +499,7 @@ std::vector<fit::KineticsCurve> read_fit_curves(const Arguments& args, const Kin
   std::vector<double> speeds;
   const bool load_control = setup.spring == 0.0;
   if (const auto text = args.get("--retract-speeds")) {
-    for (const std::string& item : split_on(*text, ',')) speeds.push_back(positive_speed(item, load_control, "--retract-speeds"));
+    speeds = parse_rate_list(*text, load_control ? Rate::kForceRate : Rate::kSpeed, "--retract-speeds");
     if (speeds.size() != curves.size()) {
       throw InputError("--retract-speeds: " + std::to_string(speeds.size()) + " speeds for the " +
                        std::to_string(curves.size()) + " curves of --fit (one per curve, in curve order)");
@@ -410,7 +518,9 @@ std::vector<fit::KineticsCurve> read_fit_curves(const Arguments& args, const Kin
 }
 
 ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time_point started) {
+  if (args.has("--plot")) throw InputError("--plot: not with --fit (a simulation's plot; the fit's table has the model)");
   const SiSetup parsed = parse_si_setup(args);
+  const Header notes = report_plausibility("kinetics", args);
   const KineticsSetupSI& setup = parsed.setup;
   if (setup.tip != KineticsTip::kSphere) throw InputError("--shape: with --fit only sphere:R (or --radius)");
   if (setup.protocol.back().kind != DriveSegment::Kind::kRetract || setup.protocol.back().has_target) {
@@ -466,15 +576,27 @@ ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time
     const std::string unit = std::string(info.unit).empty() ? "" : " [" + std::string(info.unit) + "]";
     h.emplace_back(info.name + unit, num(r.value[j]) + (r.free[j] ? " +- " + num(r.standard_error[j]) : " (fixed)"));
   }
-  if (r.free[fit::kKinSpeed] && r.free[fit::kKinExponent]) {
-    h.emplace_back("correlation v_star, n", num(r.correlation[fit::kKinSpeed][fit::kKinExponent]));
+  for (std::size_t a = 0; a < r.parameters.size(); ++a) {
+    for (std::size_t b = a + 1; b < r.parameters.size(); ++b) {
+      if (!r.free[a] || !r.free[b]) continue;
+      const std::string pair = r.parameters[a].name + ", " + r.parameters[b].name;
+      const double c = r.correlation[a][b];
+      h.emplace_back("correlation " + pair, num(c));
+      if (std::fabs(c) > 0.99) {  // as `fit`: the data hardly separate the two
+        const std::string w = "correlation " + pair + " = " + num(std::round(c * 1e4) / 1e4) +
+                              " (|r| > 0.99): the curves hardly separate them; fix one or add curves that do";
+        h.emplace_back("warning", w);
+        std::cerr << "coatcontact kinetics: warning: " << w << "\n";
+      }
+    }
   }
+  h.insert(h.end(), notes.begin(), notes.end());
   h.emplace_back("points fitted (up to each pull-off), rows, curves",
                  std::to_string(r.points) + ", " + std::to_string(r.model_force.size()) + ", " + std::to_string(curves.size()));
   h.emplace_back("R^2", num(r.r_squared));
   h.emplace_back(r.weighted ? "chi2/dof" : "residual sigma [N]", num(r.weighted ? r.chi2_per_dof : r.residual_sigma));
   h.emplace_back("iterations, simulations", std::to_string(r.iterations) + ", " + std::to_string(r.solver_calls));
-  h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+  h.emplace_back(kRunTime, num(std::round(seconds * 1e3) / 1e3));
   Output out(output_path);
   std::ostream& os = out.stream();
   // fitted 0: after the curve's pull-off, outside the residual (THEORY.md section 14, fitting).
@@ -489,6 +611,56 @@ ExitCode run_kinetics_fit(const Arguments& args, std::chrono::steady_clock::time
   }
   out.commit();
   return kExitSuccess;
+}
+
+// The header of an SI run up to its results: the setup, the scales (THEORY.md section 14) and
+// the homogeneous JKR reference.
+Header si_header(const Arguments& args, const Stack& stack, const KineticsSetupSI& setup, const KineticsScales& scales,
+                 const Header& notes) {
+  const bool cone = setup.tip == KineticsTip::kCone;
+  const bool load_control = setup.spring == 0.0;
+  Header h{{"command", "kinetics"}};
+  if (cone) {
+    h.emplace_back("cone half included angle beta [deg]", num(setup.half_angle * 180.0 / detail::kPi));
+  } else {
+    h.emplace_back("sphere radius R [m]", num(setup.radius));
+  }
+  h.emplace_back("film thickness t [m]", num(setup.thickness));
+  h.emplace_back("work of adhesion w [J/m2]", num(setup.work));
+  add_material_header(h, stack);
+  h.emplace_back("kinetic law", "receding G - w = w (|v|/v*)^n, advancing w - G = w (v/v_a*)^n_adv "
+                                "(THEORY.md section 14)");
+  h.emplace_back("v* [m/s]", num(setup.v_star));
+  h.emplace_back("n", num(setup.n));
+  h.emplace_back("v_a* [m/s]", num(setup.v_star_adv > 0.0 ? setup.v_star_adv : setup.v_star));
+  h.emplace_back("n_adv", num(setup.n_adv > 0.0 ? setup.n_adv : setup.n));
+  h.emplace_back("drive", load_control ? std::string("load control (force ramp)")
+                          : std::isinf(setup.spring) ? std::string("displacement control")
+                                                     : "spring k = " + num(setup.spring) + " N/m, F = k (z - delta)");
+  h.emplace_back("protocol", args.require("--protocol"));
+  if (cone) {
+    h.emplace_back("length scale L_a = 4 w tan^2(beta)/(pi E1*) [m]", num(scales.length));
+    h.emplace_back("penetration scale L_D = 2 w tan(beta)/E1* [m]", num(scales.penetration));
+    h.emplace_back("force scale F_s = E1* L_a L_D [N]", num(scales.force));
+  } else {
+    h.emplace_back("length scale L_a = (pi w R^2/E1*)^(1/3) [m]", num(scales.length));
+    h.emplace_back("penetration scale L_D = L_a^2/R [m]", num(scales.penetration));
+    h.emplace_back("force scale pi w R [N]", num(scales.force));
+  }
+  h.emplace_back("time scale L_a/v* [s]", num(scales.time));
+  h.insert(h.end(), notes.begin(), notes.end());
+  h.emplace_back("eta = t/L_a", num(scales.eta));
+  if (!load_control) {
+    h.emplace_back(cone ? "k_bar = k L_D/F_s" : "k_bar = k L_D/(pi w R)",
+                   std::isinf(scales.k_bar) ? std::string("inf (displacement control)") : num(scales.k_bar));
+  }
+  h.emplace_back(load_control ? "reduced force rate dP/dtau per N/s" : "reduced base speed dZ/dtau per m/s",
+                 num(scales.drive_rate));
+  if (!cone) {
+    h.emplace_back("JKR reference pull-off (quasi-static, homogeneous film, load control: -3/2 pi w R) [N]",
+                   num(-1.5 * detail::kPi * setup.work * setup.radius));
+  }
+  return h;
 }
 
 }  // namespace
@@ -528,22 +700,18 @@ int run_kinetics(const Args& raw) {
     if (args.has("--fit")) return run_kinetics_fit(args, started);
     if (args.has("--free")) throw InputError("--free: only with --fit");
     const SiSetup parsed = parse_si_setup(args);
+    const Header notes = report_plausibility("kinetics", args);
     const Stack& stack = parsed.stack;
     const KineticsSetupSI& setup = parsed.setup;
     const bool load_control = setup.spring == 0.0;
     std::vector<double> speeds;
     if (const auto text = args.get("--retract-speeds")) {
-      if (text->find(':') != std::string::npos) {
-        speeds = parse_list(*text, "--retract-speeds");
-      } else {
-        for (const std::string& item : split_on(*text, ',')) {
-          speeds.push_back(positive_speed(item, load_control, "--retract-speeds"));
-        }
-      }
+      speeds = parse_rate_list(*text, load_control ? Rate::kForceRate : Rate::kSpeed, "--retract-speeds");
     }
     const double tol = solver_tolerance(args);
     const std::string output_path = args.get("--output").value_or("");
     check_output_path(output_path, "--output");
+    const auto plot = plot_path(args);
 
     const ReducedSolver solver(stack);
     const AdhesiveModel model(solver, tol);
@@ -556,48 +724,19 @@ int run_kinetics(const Args& raw) {
     }
     std::vector<KineticsResultSI> runs;
     try {
+      if (speeds.size() > kSweepPlanned) plan_sweep(model, setup, speeds);
       runs = simulate_kinetics_si(model, setup, speeds, speeds.empty());
     } catch (const InputError& e) {
-      const std::string message = e.what();
-      throw InputError((message.rfind("protocol", 0) == 0 ? "--protocol: " : "") + message);
+      throw InputError(kinetics_input_message(e.what(), true));
+    } catch (const NumericalError& e) {
+      throw NumericalError(kinetics_numerical_message(e.what()));
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-    const bool cone = setup.tip == KineticsTip::kCone;
-    Header h{{"command", "kinetics"}};
-    if (cone) {
-      h.emplace_back("cone half included angle beta [deg]", num(setup.half_angle * 180.0 / detail::kPi));
-    } else {
-      h.emplace_back("sphere radius R [m]", num(setup.radius));
-    }
-    h.emplace_back("film thickness t [m]", num(setup.thickness));
-    h.emplace_back("work of adhesion w [J/m2]", num(setup.work));
-    add_material_header(h, stack);
-    h.emplace_back("kinetic law", "receding G - w = w (|v|/v*)^n, advancing w - G = w (v/v_a*)^n_adv "
-                                  "(THEORY.md section 14)");
-    h.emplace_back("v* [m/s]", num(setup.v_star));
-    h.emplace_back("n", num(setup.n));
-    h.emplace_back("v_a* [m/s]", num(setup.v_star_adv > 0.0 ? setup.v_star_adv : setup.v_star));
-    h.emplace_back("n_adv", num(setup.n_adv > 0.0 ? setup.n_adv : setup.n));
-    h.emplace_back("drive", load_control ? std::string("load control (force ramp)")
-                            : std::isinf(setup.spring) ? std::string("displacement control")
-                                                       : "spring k = " + num(setup.spring) + " N/m, F = k (z - delta)");
-    h.emplace_back("protocol", args.require("--protocol"));
-    if (cone) {
-      h.emplace_back("length scale L_a = 4 w tan^2(beta)/(pi E1*) [m]", num(scales.length));
-      h.emplace_back("penetration scale L_D = 2 w tan(beta)/E1* [m]", num(scales.penetration));
-      h.emplace_back("force scale F_s = E1* L_a L_D [N]", num(scales.force));
-    } else {
-      h.emplace_back("length scale L_a = (pi w R^2/E1*)^(1/3) [m]", num(scales.length));
-      h.emplace_back("penetration scale L_D = L_a^2/R [m]", num(scales.penetration));
-      h.emplace_back("force scale pi w R [N]", num(scales.force));
-    }
-    h.emplace_back("time scale L_a/v* [s]", num(scales.time));
-    h.emplace_back("eta = t/L_a", num(scales.eta));
-    if (!load_control) h.emplace_back(cone ? "k_bar = k L_D/F_s" : "k_bar = k L_D/(pi w R)", num(scales.k_bar));
-    h.emplace_back(load_control ? "reduced force rate dP/dtau per N/s" : "reduced base speed dZ/dtau per m/s",
-                   num(scales.drive_rate));
-    h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+    Header h = si_header(args, stack, setup, scales, notes);
+    h.emplace_back(kRunTime, num(std::round(seconds * 1e3) / 1e3));
+    std::optional<Output> plot_out;
+    if (plot) stage_plot(plot_out, *plot, kinetics_picture(*plot, runs, setup, stack, !speeds.empty()));
     Output out(output_path);
     std::ostream& os = out.stream();
     if (speeds.empty()) {
@@ -629,6 +768,7 @@ int run_kinetics(const Args& raw) {
       }
     }
     out.commit();
+    if (plot_out) plot_out->commit();
     return kExitSuccess;
   });
 }

@@ -158,6 +158,39 @@ std::string option_text(const std::string& name) {
   return shown;
 }
 
+// Edit distance (insertions, deletions, substitutions, adjacent swaps) of two option names.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[a.size()][b.size()];
+}
+
+// " (did you mean --film?)" for an unknown option within two edits of a known one (or one the
+// typed name starts or is a start of), else "".
+std::string did_you_mean(const std::string& name, const std::vector<OptionSpec>& spec) {
+  if (name.size() > 64) return "";
+  const std::size_t dashes = name.find_first_not_of('-');
+  const std::string typed = "--" + (dashes == std::string::npos ? std::string() : name.substr(dashes));
+  const OptionSpec* best = nullptr;
+  std::size_t best_distance = 3;
+  for (const auto& option : spec) {
+    std::size_t distance = edit_distance(typed, option.name);
+    if (distance > 2 && typed.size() >= 5 && (option.name.rfind(typed, 0) == 0 || typed.rfind(option.name, 0) == 0)) distance = 2;
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = &option;
+    }
+  }
+  return best == nullptr ? "" : " (did you mean " + best->name + "?)";
+}
+
 std::string one_line(const std::string& text) {
   std::string out = text;
   std::replace(out.begin(), out.end(), '\n', ' ');
@@ -285,7 +318,13 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
   return values;
 }
 
-std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, const std::string& option) {
+namespace {
+
+// "v1,v2,..." (each item read by `item`) or "MIN:MAX:N" (MIN and MAX read by `item`, the SI
+// bounds spaced by parse_list: exact text of the doubles, so "1e-9:1e-7:3" and "1nm:100nm:3"
+// give the same points). Every quantity list of the CLI goes through here.
+std::vector<double> parse_si_list(const std::string& text, const std::string& option,
+                                  const std::function<double(std::string_view, const std::string&)>& item) {
   const std::string_view whole = trim_blanks(text);
   if (whole.find(':') == std::string_view::npos) {
     if (whole.empty()) fail(option, std::string("empty value; ") + kListExpected);
@@ -293,23 +332,21 @@ std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, 
     std::size_t start = 0;
     for (;;) {
       const std::size_t comma = whole.find(',', start);
-      const std::string_view item = whole.substr(start, comma == std::string_view::npos ? comma : comma - start);
-      if (trim_blanks(item).empty()) fail(option, quote(whole) + " has an empty item; " + kListExpected);
+      const std::string_view one = whole.substr(start, comma == std::string_view::npos ? comma : comma - start);
+      if (trim_blanks(one).empty()) fail(option, quote(whole) + " has an empty item; " + kListExpected);
       if (values.size() >= kMaxListPoints) fail(option, "more than " + std::to_string(kMaxListPoints) + " items");
-      values.push_back(parse_quantity_impl(item, kind, option, quantity_name(kind)));
+      values.push_back(item(one, "value"));
       if (comma == std::string_view::npos) return values;
       start = comma + 1;
     }
   }
-  // MIN:MAX:N with a unit on MIN and MAX each: the SI bounds go through parse_list's spacing
-  // (exact text of the doubles, so "1e-9:1e-7:3" and "1nm:100nm:3" give the same points).
   const std::size_t first = whole.find(':');
   const std::size_t second = whole.find(':', first + 1);
   if (second == std::string_view::npos || whole.find(':', second + 1) != std::string_view::npos) {
     fail(option, quote(whole) + " is not MIN:MAX:N; " + kListExpected);
   }
-  const double min = parse_quantity_impl(whole.substr(0, first), kind, option, "MIN");
-  const double max = parse_quantity_impl(whole.substr(first + 1, second - first - 1), kind, option, "MAX");
+  const double min = item(whole.substr(0, first), "MIN");
+  const double max = item(whole.substr(first + 1, second - first - 1), "MAX");
   const std::string si = detail::full_precision(min) + ":" + detail::full_precision(max) + ":" +
                          std::string(whole.substr(second + 1));
   try {
@@ -320,6 +357,98 @@ std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, 
     throw InputError(prefix + "in " + quote(whole) + " (SI " + si + "): " +
                      (message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message));
   }
+}
+
+struct TimeUnit {
+  const char* name;
+  double to_si;
+};
+constexpr TimeUnit kTimeUnits[] = {{"s", 1.0}, {"ms", 1e-3}, {"min", 60.0}, {"h", 3600.0}};
+
+const char* rate_name(Rate kind) {
+  switch (kind) {
+    case Rate::kStiffness: return "stiffness";
+    case Rate::kSpeed: return "speed";
+    case Rate::kForceRate: return "force rate";
+  }
+  return "rate";
+}
+
+const char* rate_units(Rate kind) {
+  switch (kind) {
+    case Rate::kStiffness: return "N/m, or a force unit over a length unit: N/mm mN/um nN/nm ...";
+    case Rate::kSpeed: return "m/s, or a length unit over s ms min: um/s nm/s mm/s ...";
+    case Rate::kForceRate: return "N/s, or a force unit over s ms min: mN/s uN/s nN/s ...";
+  }
+  return "";
+}
+
+// Number with an optional "unit/unit" -> SI value > 0.
+double parse_rate_impl(std::string_view raw, Rate kind, const std::string& option, const std::string& what) {
+  const std::string_view text = trim_blanks(raw);
+  const std::string name = std::string(what == "value" ? rate_name(kind) : what.c_str());
+  const std::string expected = std::string("expected a number with an optional unit (") + rate_units(kind) + ")";
+  if (text.empty()) fail(option, "empty " + name + "; " + expected);
+  std::size_t split = 0;
+  while (split < text.size()) {
+    const char c = text[split];
+    if (!((c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-')) break;
+    ++split;
+  }
+  std::string_view unit = text.substr(split);
+  if (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+  double value = 0.0;
+  const NumberStatus status = detail::parse_decimal(text.substr(0, split), value);
+  if (status != NumberStatus::kOk) {
+    fail(option, name + " " + (split == 0 ? quote(text) + " is not a number" : number_problem(status, text)) + "; " +
+                     expected);
+  }
+  double si = value;
+  if (!unit.empty()) {
+    const std::size_t slash = unit.find('/');
+    const std::string top(unit.substr(0, slash == std::string_view::npos ? unit.size() : slash));
+    const std::string bottom(slash == std::string_view::npos ? "" : unit.substr(slash + 1));
+    const auto numerator = find_unit(top);
+    double below = 0.0;
+    if (kind == Rate::kStiffness) {
+      const auto length = find_unit(bottom);
+      if (length && length->kind == Quantity::kLength) below = length->to_si;
+    } else {
+      for (const TimeUnit& t : kTimeUnits) {
+        if (bottom == t.name) below = t.to_si;
+      }
+    }
+    const Quantity top_kind = kind == Rate::kSpeed ? Quantity::kLength : Quantity::kForce;
+    if (!numerator || numerator->kind != top_kind || below == 0.0) {
+      fail(option, "unknown " + std::string(rate_name(kind)) + " unit " + quote(unit) + " in " + quote(text) +
+                       "; " + expected);
+    }
+    si = to_si(value, numerator->to_si);
+    si = below < 1.0 ? si * std::round(1.0 / below) : si / below;
+  }
+  if (!(value > 0.0)) fail(option, name + " " + quote(text) + " must be > 0");
+  if (!std::isfinite(si) || !(si >= kMinQuantity && si <= kMaxQuantity)) {
+    fail(option, name + " " + quote(text) + " is outside the allowed range [1e-100, 1e100] (SI units)");
+  }
+  return si;
+}
+
+}  // namespace
+
+std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, const std::string& option) {
+  return parse_si_list(text, option, [&](std::string_view item, const std::string& what) {
+    return parse_quantity_impl(item, kind, option, what == "value" ? std::string(quantity_name(kind)) : what);
+  });
+}
+
+double parse_rate(const std::string& text, Rate kind, const std::string& option) {
+  return parse_rate_impl(text, kind, option, "value");
+}
+
+std::vector<double> parse_rate_list(const std::string& text, Rate kind, const std::string& option) {
+  return parse_si_list(text, option, [&](std::string_view item, const std::string& what) {
+    return parse_rate_impl(item, kind, option, what);
+  });
 }
 
 double parse_quantity(const std::string& text, Quantity kind, const std::string& option) {
@@ -342,6 +471,106 @@ Substrate parse_substrate(const std::string& text, const std::string& option) {
   }
   substrate.material = parse_material_impl(trimmed, option);
   return substrate;
+}
+
+// ---- plausibility notes ---------------------------------------------------------
+
+namespace {
+
+// The number of a bare item ("20", " 1e6 "), or nullopt when it carries a unit or is no number.
+std::optional<double> bare_number(std::string_view text) {
+  double value = 0.0;
+  if (detail::parse_decimal(trim_blanks(text), value) != NumberStatus::kOk) return std::nullopt;
+  return value;
+}
+
+std::string shortest(double v) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
+
+// Comma-separated items of an option's value.
+std::vector<std::string> items_of(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    items.emplace_back(trim_blanks(std::string_view(text).substr(start, comma == std::string::npos ? comma : comma - start)));
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+void note_modulus(std::vector<std::string>& notes, const std::string& option, const std::string& item) {
+  const auto v = bare_number(item);
+  if (v && *v > 0.0 && *v < 1e3) {
+    notes.push_back(option + " " + item + " is read as " + item + " Pa (a bare number is SI), softer than any solid "
+                    "(below 1 kPa); did you mean " + item + "MPa or " + item + "GPa?");
+  }
+}
+
+void note_length(std::vector<std::string>& notes, const std::string& option, const std::string& item,
+                 const std::string& what) {
+  const auto v = bare_number(item);
+  if (v && *v > 0.1) {
+    notes.push_back(option + " " + item + " is read as a " + what + " of " + item + " m (a bare number is SI), "
+                    "above 0.1 m; did you mean " + item + "mm, " + item + "um or " + item + "nm?");
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> plausibility_notes(const Arguments& args) {
+  std::vector<std::string> notes;
+  for (const char* option : {"--film", "--substrate", "--indenter"}) {
+    if (const auto text = args.get(option)) note_modulus(notes, option, items_of(*text).front());
+  }
+  for (const std::string& layer : args.get_all("--layer")) {
+    const std::vector<std::string> items = items_of(layer);
+    note_length(notes, "--layer", items.front(), "thickness");
+    if (items.size() >= 2) note_modulus(notes, "--layer", items[1]);
+  }
+  if (const auto text = args.get("--thickness")) note_length(notes, "--thickness", *text, "thickness");
+  if (const auto text = args.get("--radius")) note_length(notes, "--radius", *text, "radius");
+  std::optional<std::string> radius_text = args.get("--radius");
+  if (const auto shape = args.get("--shape"); shape && shape->rfind("sphere:", 0) == 0) {
+    radius_text = shape->substr(7);
+    note_length(notes, "--shape", *radius_text, "radius");
+  }
+  if (const auto text = args.get("--work")) {
+    const auto v = bare_number(*text);
+    if (v && *v > 1.0) {
+      notes.push_back("--work " + *text + " is read as " + *text + " J/m2 (a bare number is SI), above 1 J/m2 "
+                      "(far above any adhesion measured between solids); did you mean " + *text + "mJ/m2?");
+    }
+  }
+  // Film thicker than the sphere's radius: valid input, but rarely meant (the thickness and
+  // radius in different units).
+  if (radius_text && args.has("--thickness")) {
+    try {
+      const double t = parse_quantity(*args.get("--thickness"), Quantity::kLength, "--thickness");
+      const double r = parse_quantity(*radius_text, Quantity::kLength, "--radius");
+      if (t > r) {
+        notes.push_back("the film thickness t = " + shortest(t) + " m is larger than the sphere radius R = " +
+                        shortest(r) + " m; check their units");
+      }
+    } catch (const InputError&) {
+      // The command's own parsing reports the bad value.
+    }
+  }
+  return notes;
+}
+
+std::vector<std::pair<std::string, std::string>> report_plausibility(const std::string& command,
+                                                                    const Arguments& args) {
+  std::vector<std::pair<std::string, std::string>> items;
+  for (const std::string& note : plausibility_notes(args)) {
+    items.emplace_back("note", note);
+    progress_pause();
+    std::cerr << "coatcontact " << command << ": note: " << note << "\n";
+  }
+  return items;
 }
 
 // ---- arguments -------------------------------------------------------------------
@@ -376,7 +605,10 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::vector<Opt
     const std::size_t equals = arg.find('=');
     const std::string name = arg.substr(0, equals);
     const OptionSpec* option = arg.rfind("--", 0) == 0 ? find_option(spec, name) : nullptr;
-    if (option == nullptr) throw InputError("unknown option " + option_text(name) + " (see --help)");
+    if (option == nullptr) {
+      const std::string hint = did_you_mean(name, spec);
+      throw InputError("unknown option " + option_text(name) + (hint.empty() ? " (see --help)" : hint));
+    }
     if (values_.count(name) != 0 && !option->repeatable) {
       throw InputError("option " + option_text(name) + " is given more than once");
     }

@@ -9,6 +9,9 @@ namespace coatcontact::cli {
 
 DataTable read_data_file(const std::string& path, std::size_t expected_columns, const std::vector<bool>& nonnegative,
                          const std::vector<std::optional<Quantity>>& kinds) {
+  if (path == "-") {  // "-": standard input, as `fit -`
+    return read_data_text(read_stream_text(std::cin, "stdin"), "stdin", expected_columns, nonnegative, kinds);
+  }
   const std::string text = read_file_text(path);
   register_input(path, "data file");
   return read_data_text(text, short_name(path), expected_columns, nonnegative, kinds);

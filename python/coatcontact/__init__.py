@@ -45,6 +45,7 @@ its tolerance. No function returns NaN.
 """
 import functools
 import math
+import re
 import sys
 import time
 import warnings
@@ -58,7 +59,7 @@ from . import afm  # real AFM force curves: coatcontact.afm.read (afm.py)
 from . import indent  # nanoindentation files: coatcontact.indent.read (indent.py)
 
 __all__ = ["Stack", "ReducedSolver", "AdhesiveModel", "Contact", "NumericalError", "ValidityWarning",
-           "PointsNotDeliveredWarning",
+           "PointsNotDeliveredWarning", "CorrelationWarning",
            "reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack",
            "stack_parameter_names", "pulloff_spring", "read_curve",
            "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "kinetics_fit",
@@ -76,12 +77,44 @@ _PULLOFF_KEYS = ("P_load", "a_bar_load", "D_load", "P_disp", "a_bar_disp", "D_di
 _DEFAULT_TOL = 1e-8
 
 
+# The CLI's unit spellings (coatcontact/units.hpp) for values given as text, e.g. "1MPa".
+_UNITS = {
+    "pressure": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
+    "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "\u00b5m": 1e-6, "\u03bcm": 1e-6, "nm": 1e-9},
+    "energy per area": {"J/m2": 1.0, "mJ/m2": 1e-3, "J/m^2": 1.0, "mJ/m^2": 1e-3, "N/m": 1.0, "mN/m": 1e-3},
+}
+_NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s?(\S*)\s*$")
+
+
+def _si(value, kind, what):
+    """A number (SI) or a text with a unit of `kind` ("1MPa", "50 um") -> float [SI]."""
+    if isinstance(value, str):
+        match = _NUMBER.match(value)
+        units = _UNITS[kind]
+        if not match or (match.group(2) and match.group(2) not in units):
+            raise ValueError("%s: %r is not a %s; give a number in SI units or a text with a unit (%s)"
+                             % (what, value, kind, " ".join(units))) from None
+        number, unit = float(match.group(1)), match.group(2)
+        factor = units[unit] if unit else 1.0
+        # As the library's to_si: sub-units divide by the exact power of ten.
+        return number / round(1.0 / factor) if factor < 1.0 else number * factor
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError("%s: expected a number (SI) or a text with a unit, got %s"
+                         % (what, type(value).__name__)) from None
+
+
 def _material(value, what):
     try:
         e, nu = value
     except (TypeError, ValueError):
-        raise ValueError("%s: expected (E, nu), got %r" % (what, value)) from None
-    return float(e), float(nu)
+        raise ValueError("%s: expected (E, nu), e.g. (1e6, 0.49) or (\"1MPa\", 0.49), got %r" % (what, value)) from None
+    try:
+        nu = float(nu)
+    except (TypeError, ValueError):
+        raise ValueError("%s: Poisson ratio %r is not a number" % (what, nu)) from None
+    return _si(e, "pressure", what + " E"), nu
 
 
 class Stack:
@@ -114,7 +147,8 @@ class Stack:
         def _layer(layer):
             if len(layer) not in (3, 4):
                 raise ValueError("stack: a layer is (t, E, nu) or (t, E, nu, slip), got %r" % (layer,))
-            t, e, nu = (float(v) for v in layer[:3])
+            t = _si(layer[0], "length", "layer thickness")
+            e, nu = _material(layer[1:3], "layer")
             return (t, e, nu, bool(layer[3]) if len(layer) == 4 else False)
         self.layers = tuple(_layer(layer) for layer in layers)
         for t, e, nu, slip in self.layers:
@@ -215,6 +249,23 @@ def _warn_validity(core_contact, out):
     rows = np.column_stack([np.ravel(out["a"]), np.ravel(out["delta"]), np.ravel(out["F"])])
     for message in core_contact.validity(np.ascontiguousarray(rows, dtype=float)).splitlines():
         warnings.warn(message, ValidityWarning, stacklevel=3)
+
+
+class CorrelationWarning(UserWarning):
+    """Two free parameters of a fit correlated beyond |r| = 0.99: the data hardly separate
+    them (their standard errors are large and their values depend on each other); fix one
+    or add data that tells them apart. The CLI's `fit` warns the same."""
+
+
+_MAX_CORRELATION = 0.99
+
+
+def _warn_correlation(by_name):
+    for (a, b), r in by_name.items():
+        if a < b and abs(r) > _MAX_CORRELATION:
+            warnings.warn("correlation %s-%s = %.4g (|r| > %g): the data hardly separate %s and %s; fix one of "
+                          "them or add data that tells them apart" % (a, b, r, _MAX_CORRELATION, a, b),
+                          CorrelationWarning, stacklevel=4)
 
 
 class PointsNotDeliveredWarning(UserWarning):
@@ -334,6 +385,23 @@ class AdhesiveModel:
         return Contact(self, radius, thickness, work)
 
 
+# Radii of the scan that ends a default curve at the validity limits (~16 per decade over the
+# default range, as the CLI's scan).
+_SCAN_POINTS = 64
+
+
+def _last_inside(rows, validity):
+    """The largest first-column value of `rows` before the first row outside the validity
+    limits (validity(row) returns the warnings' text); None when the first row is outside,
+    the last value when none is."""
+    last = None
+    for row in rows:
+        if validity(row).strip():
+            break
+        last = float(row[0])
+    return last
+
+
 class Contact:
     """A sphere of radius R [m] on a coating of total thickness t [m], work of adhesion
     w [J/m^2], in SI units (section 5). eta = t/l must lie in [1e-6, 1e6]."""
@@ -358,10 +426,24 @@ class Contact:
         return _points(out, ("delta", "F"), status, reasons, x.shape, "contact radii")
 
     def curve(self, points=200):
-        """The curve at `points` radii log-spaced over the model's default a_bar range (the
-        last one at its end): dict of arrays a [m], delta [m], F [N]."""
-        table = self._core.curve(int(points))
-        return {k: table[:, i] for i, k in enumerate(("a", "delta", "F"))}
+        """The curve at `points` radii log-spaced over the model's default a_bar range, ended,
+        as `coatcontact sphere` ends it, at the largest radius still inside the validity
+        limits (but past the pull-off under load control): dict of arrays a [m], delta [m],
+        F [N]."""
+        keys = ("a", "delta", "F")
+        if int(points) < 2:  # the library's own refusal (ValueError) of a point count
+            self._core.curve(int(points))
+        scan = self._core.curve(_SCAN_POINTS)
+        hi = _last_inside(scan, lambda row: self._core.validity(np.ascontiguousarray(row[None, :3])))
+        if hi is None:  # even the first radius is outside: the full range, the warnings say so
+            table = self._core.curve(int(points))
+            return {k: table[:, i] for i, k in enumerate(keys)}
+        pull = self.pulloff()
+        hi = max(hi, min(1.2 * pull["a_load"], scan[-1, 0]))
+        radii = np.geomspace(scan[0, 0], hi, int(points))
+        radii[-1] = hi
+        out = self.at(radii, strict=True)
+        return {k: np.asarray(out[k]) for k in keys}
 
     def pulloff(self):
         """Pull-off in SI units: dict F_load [N], a_load [m], delta_load [m], F_disp, a_disp,
@@ -442,7 +524,9 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
 
     radius     sphere radius R [m];  thickness  coating thickness t [m];
     work       work of adhesion w [J/m^2];  film/substrate/indenter moduli in Pa.
-    a          contact radii [m]; default `points` radii over the model's default a_bar range.
+    a          contact radii [m]; default `points` radii over the model's default a_bar range,
+               ended at the validity limits (past the pull-off), as `coatcontact sphere`.
+    Lengths, moduli and w may also be texts with a unit: radius="5mm", film=("1MPa", 0.49).
     A curve beyond the model's validity limits (a > 0.1 R, delta > t, F/(pi a^2) > 0.1 E*)
     raises a ValidityWarning per limit (warnings.warn), as `coatcontact sphere` warns.
     Returns a dict: a [m], delta [m], F [N] (arrays, F compressive positive); scales
@@ -452,6 +536,8 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
     unless strict=True (NumericalError): as reduced(); the validity limits see the delivered
     radii.
     """
+    radius, thickness = _si(radius, "length", "radius"), _si(thickness, "length", "thickness")
+    work = _si(work, "energy per area", "work")
     c = Contact(_model(_stack(stack, film, substrate, indenter), _tolerance(tol)), radius, thickness, work)
     out = c.at(a, strict) if a is not None else c.curve(points)
     if "status" in out and np.any(out["status"] != 0):
@@ -543,8 +629,10 @@ def fit(x, F, *, kind="a", radius=None, shape=None, film=None, substrate, thickn
     bootstrap  residual-bootstrap refits (0: none; seed: of the resampling): interval68/95.
 
     Returns a dict: names (all parameters in order), estimates, errors, start and units (dicts
-    by name; error 0 for fixed ones), correlation and covariance (arrays in the order of
-    names), free (the names), residual_norm [N], residual_sigma [N], r_squared, weighted,
+    by name; error 0 for fixed ones), free (the names of the free parameters), correlation and
+    covariance (arrays of the free parameters only, in the order of free), correlation_by_name
+    (dict (name_a, name_b) -> r of the free pairs; a CorrelationWarning when |r| > 0.99, as the
+    CLI warns), residual_norm [N], residual_sigma [N], r_squared, weighted,
     chi2_per_dof, iterations, converged, points, load_pulloff and displacement_pulloff (dicts
     a [m], delta [m], F [N] of the fitted model; under load control None when the curve has
     no interior minimum), spring_pulloff (with spring=, else None), F_model, a_model and
@@ -613,17 +701,25 @@ def fit(x, F, *, kind="a", radius=None, shape=None, film=None, substrate, thickn
     names = tuple(r["names"].split(","))
     value, error, corr = r["value"], r["standard_error"], r["correlation"]
     free_names = tuple(n for n in names if n in free or (n == "t" and "h1" in free))
+    # The correlation of the free parameters only, in the order of free_names ([0, 1] is the
+    # pair one named first), and by name.
+    index = [names.index(n) for n in free_names]
+    corr_free = np.asarray(corr)[np.ix_(index, index)]
+    error_free = np.asarray(error)[index]
     out = {
         "names": names,
         "estimates": {n: float(value[i]) for i, n in enumerate(names)},
         "errors": {n: float(error[i]) for i, n in enumerate(names)},
         "start": {n: float(r["start"][i]) for i, n in enumerate(names)},
         "units": {n: _fit_unit(n) for n in names},
-        "correlation": corr,
-        "covariance": corr * np.outer(error, error),
+        "correlation": corr_free,
+        "correlation_by_name": {(a, b): float(corr_free[i, j]) for i, a in enumerate(free_names)
+                                for j, b in enumerate(free_names) if i != j},
+        "covariance": corr_free * np.outer(error_free, error_free),
         "free": free_names,
         "converged": True,
     }
+    _warn_correlation(out["correlation_by_name"])
     for k in ("points", "residual_norm", "residual_sigma", "r_squared", "iterations", "weighted", "chi2_per_dof"):
         out[k] = r[k]
     as_point = lambda p: None if p is None else dict(zip(("F", "a", "delta"), map(float, p)))
@@ -855,7 +951,13 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     c = _core.ShapeContact(_stack(stack, film, substrate, indenter)._core, core_shape, float(thickness),
                            float(work), _tolerance(tol))
     if a is None:
+        # As `coatcontact contact`: the default curve ends inside the validity limits.
         lo, hi = c.default_range()
+        if lo < hi:
+            scan = c.curve(np.ascontiguousarray(np.geomspace(lo, hi, _SCAN_POINTS)))
+            last = _last_inside(scan, lambda row: c.validity(np.ascontiguousarray(row[None, :])))
+            if last is not None and last > lo:
+                hi = last
         a = np.geomspace(lo, hi, points)
     keys = ("a", "delta", "F", "delta_H", "F_H")
     radii = np.ascontiguousarray(np.atleast_1d(np.asarray(a, dtype=float)))
@@ -904,3 +1006,35 @@ def read_curve(path, columns="a,F"):
     out.update(values)
     out["units"] = units
     return out
+
+
+# Messages for a Python caller: without the C interface's function names ("cc_fit_run: ") and
+# with the shortest text of each number ("0.6", not the C side's "0.59999999999999998").
+_C_NAME = re.compile(r"\bcc_[a-z0-9_]+(?:\(\))?: ?")
+_LONG_NUMBER = re.compile(r"(?<![\w.])[-+]?\d+\.\d{12,}(?:[eE][-+]?\d+)?")
+
+
+def _plain_message(text):
+    text = _C_NAME.sub("", text)
+    return _LONG_NUMBER.sub(lambda m: repr(float(m.group(0))), text)
+
+
+def _plain_errors(function):
+    @functools.wraps(function)
+    def wrapper(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except (ValueError, NumericalError) as error:
+            text = str(error)
+            plain = _plain_message(text)
+            if plain == text:
+                raise
+            raise type(error)(plain) from None
+    return wrapper
+
+
+for _name in ("reduced", "adhesive_curve", "pulloff", "contact", "fit", "fit_stack", "pulloff_spring", "read_curve",
+              "maugis_dugdale_curve", "maugis_dugdale_pulloff", "shape_contact", "kinetics", "kinetics_fit"):
+    globals()[_name] = _plain_errors(globals()[_name])
+Stack.__init__ = _plain_errors(Stack.__init__)
+del _name

@@ -1,5 +1,7 @@
 """Rate-dependent adhesion: crack kinetics at the JKR contact edge, driven through a spring
 (docs/THEORY.md section 14)."""
+import warnings
+
 import numpy as np
 
 from . import _core
@@ -22,12 +24,13 @@ def _segment(item):
 
 
 def _materials(film, substrate):
-    e1, nu1 = (float(v) for v in film)
+    from . import _material  # the package's (E, nu) reader: numbers or texts with a unit
+    e1, nu1 = _material(film, "film")
     if isinstance(substrate, str):
         if substrate != "rigid":
             raise ValueError("substrate: expected (E0, nu0) or 'rigid', got %r" % substrate)
         return e1, nu1, True, 1.0, 0.0
-    e0, nu0 = (float(v) for v in substrate)
+    e0, nu0 = _material(substrate, "substrate")
     return e1, nu1, False, e0, nu0
 
 
@@ -128,7 +131,24 @@ def kinetics_fit(*, film, substrate, radius, thickness, work, v_star, n, curves,
                                 0.0 if n_adv is None else float(n_adv), packed,
                                 [name in free for name in _FIT_NAMES], float(tol))
     result["values"] = np.asarray(result["values"])
+    _warn_kinetics_correlation(result, free)
     return result
+
+
+def _warn_kinetics_correlation(result, free):
+    """A CorrelationWarning per pair of free parameters with |r| > 0.99, as `fit`."""
+    from . import CorrelationWarning, _MAX_CORRELATION
+    corr = np.asarray(result.get("correlation", []), dtype=float)
+    names = [name for name in _FIT_NAMES if name in free]
+    index = [_FIT_NAMES.index(name) for name in names]
+    if corr.ndim != 2 or corr.shape[0] < len(_FIT_NAMES):
+        return
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            r = corr[index[i], _FIT_NAMES.index(b)]
+            if abs(r) > _MAX_CORRELATION:
+                warnings.warn("correlation %s-%s = %.4g (|r| > %g): the curves hardly separate them; fix one or "
+                              "add curves that do" % (a, b, r, _MAX_CORRELATION), CorrelationWarning, stacklevel=4)
 
 
 __all__ = ["kinetics", "kinetics_fit"]

@@ -67,6 +67,16 @@ using coatcontact::UnitInfo;
 // allowed on MIN and on MAX; N log-spaced points as parse_list). Returns SI.
 std::vector<double> parse_quantity_list(const std::string& text, Quantity kind, const std::string& option);
 
+// A quantity per quantity, with an optional unit "TOP/BOTTOM" (no unit: SI). The value must
+// be finite and > 0.
+//   kStiffness: N/m, a force unit over a length unit (500N/m, 0.5mN/um)
+//   kSpeed:     m/s, a length unit over s, ms, min, h (10um/s)
+//   kForceRate: N/s, a force unit over s, ms, min, h (1mN/s)
+enum class Rate { kStiffness, kSpeed, kForceRate };
+double parse_rate(const std::string& text, Rate kind, const std::string& option);
+// "v1,v2,..." or "MIN:MAX:N" of rates, a unit allowed on every item and on MIN and MAX.
+std::vector<double> parse_rate_list(const std::string& text, Rate kind, const std::string& option);
+
 // "E,nu" with E > 0 (unit suffix allowed, as a pressure) and -1 < nu <= 0.5.
 Material parse_material(const std::string& text, const std::string& option);
 // "E,nu" or "rigid".
@@ -108,6 +118,17 @@ class Arguments {
   std::map<std::string, std::vector<std::string>> repeated_;
   std::vector<std::string> positionals_;
 };
+
+// Plausibility notes of a command in physical units: bare numbers (SI by convention) far from
+// any experiment, with the unit the user likely meant: a modulus below 1 kPa (--film,
+// --substrate, --indenter, --layer), a thickness or radius above 0.1 m (--thickness, --radius,
+// --shape sphere:R, --layer), a work of adhesion above 1 J/m2 (--work), and a film thicker
+// than the sphere's radius. A note never refuses the input: the values are legal, only unlikely.
+std::vector<std::string> plausibility_notes(const Arguments& args);
+// Writes each note once on stderr ("coatcontact <command>: note: ...") at once (before a long
+// run, or its failure) and returns them as "note" header items for the command's output.
+std::vector<std::pair<std::string, std::string>> report_plausibility(const std::string& command,
+                                                                    const Arguments& args);
 
 // --film and --substrate, the same in every command that takes materials.
 OptionSpec film_option();
@@ -179,7 +200,7 @@ class Output {
 // An input file of this command (e.g. "data file"): no Output may write to it.
 void register_input(const std::string& path, const std::string& what);
 // A data table of the measure floor (data_file.hpp) read as an input of this command: the file
-// is registered (register_input), so no output replaces it.
+// is registered (register_input), so no output replaces it. "-" reads standard input.
 DataTable read_data_file(const std::string& path, std::size_t expected_columns, const std::vector<bool>& nonnegative = {},
                          const std::vector<std::optional<Quantity>>& kinds = {});
 // The text of a command's data file (registered as an input), or of stdin for "-" (bounded
