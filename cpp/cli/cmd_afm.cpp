@@ -21,6 +21,7 @@
 #include "afm_fit_map.hpp"
 #include "afm_fit_plot_script.hpp"
 #include "coatcontact/gnuplot_run.hpp"
+#include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
@@ -305,6 +306,9 @@ const std::vector<OptionSpec> kFitSpec = {
                        "jkr and md add w and tilt (default E or E1, w, contact_point, baseline, tilt)", false},
     {"--contact-point", "Z", "the contact point [m, tip position] when it is fixed", false},
     {"--baseline", "B", "the force baseline [N] when it is fixed", false},
+    {"--baseline-model", "tilt|offset", "tilt (default): the preprocessing's baseline slope is subtracted from the forces "
+                                        "(b: the baseline at its contact point); offset: the forces as measured, b constant. "
+                                        "With tilt in --free the model fits the slope (offset)", false},
     {"--segment", "KIND", "approach (default) or retract", false},
     spring_constant_option(),
     sensitivity_option(),
@@ -512,6 +516,15 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   if (segment_name == "retract") kind = afm::SegmentKind::kRetract;
   else if (segment_name != "approach") throw InputError("--segment: '" + segment_name.substr(0, 60) + "' is not allowed; expected approach or retract");
   fit::AfmRange range;
+  fit::AfmBaselineModel baseline = fit::kAfmDefaultBaseline;
+  if (auto text = arguments.get("--baseline-model")) {
+    if (*text == "tilt") baseline = fit::AfmBaselineModel::kTilt;
+    else if (*text == "offset") baseline = fit::AfmBaselineModel::kOffset;
+    else throw InputError("--baseline-model: '" + text->substr(0, 60) + "' is not allowed; expected tilt or offset");
+    if (baseline == fit::AfmBaselineModel::kTilt && problem.free.tilt) {
+      throw InputError("--baseline-model: tilt with tilt in --free would count the slope twice; drop one");
+    }
+  }
   if (auto text = arguments.get("--tip-range")) {
     const auto [lo, hi] = parse_pair(*text, "--tip-range", "tip positions in m");
     range.tip_min = lo;
@@ -527,7 +540,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     range.indentation_max = range.indentation_max ? std::min(*range.indentation_max, d) : d;
   }
   if (auto text = arguments.get("--max-force")) range.max_force = parse_quantity(*text, Quantity::kForce, "--max-force");
-  return {problem, coated, modulus_name, free_text, segment_name, kind, range};
+  return {problem, coated, modulus_name, free_text, segment_name, kind, range, baseline};
 }
 
 // The help text of `afm fit` (one curve, or one row per curve of many).
@@ -732,50 +745,26 @@ int run_fit_curve(const Args& args) {
                        std::to_string(source.size()) + (source.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(source.size() - 1) + ")"));
     }
     const afm::ForceCurve curve = source.read(index);
-    const afm::Segment* segment = curve.find_segment(kind);
-    if (segment == nullptr) throw InputError("--segment: " + path + " has no " + segment_name + " segment");
-    // The preprocessing's estimates: the reference of the relative ranges and the noise of chi2.
-    const afm::PreprocessedCurve steps = afm::preprocess(curve);
-    problem.noise_sigma = steps.baseline_sigma;
-    if (jkr) {
-      problem.spring_constant = curve.metadata.spring_constant;
-      if (!(problem.spring_constant > 0.0)) {
-        throw InputError(path + ": the adhesive model needs the cantilever's spring constant; the file has none (give --spring-constant K)");
-      }
-    }
-    const std::vector<double> tip = curve.tip_position();
-    const std::vector<double> z_segment(tip.begin() + segment->begin, tip.begin() + segment->end);
+    fit::AfmCurveRequest request;
+    request.problem = problem;
+    request.segment = kind;
+    request.range = range;
+    request.baseline = setup.baseline;
+    const fit::AfmCurveFit fitted = fit::afm_fit_curve(curve, request);
+    problem = fitted.problem;
+    const afm::PreprocessedCurve& steps = fitted.preprocessed;
+    const afm::Segment* segment = &fitted.segment;
+    const std::vector<double>& z_segment = fitted.z_segment;
+    const std::vector<std::size_t>& kept = fitted.kept;
+    const double reference_baseline = fitted.reference_baseline;
+    const fit::AfmFitResult& r = fitted.result;
+    const fit::AfmPulloff& pulloff = fitted.pulloff;
+    // The forces as measured; the model with the subtracted tilt added back (the table's
+    // residual is model - data on the measured forces).
     const std::vector<double> f_segment(curve.force.begin() + segment->begin, curve.force.begin() + segment->end);
-    const double reference_baseline = steps.baseline_offset + steps.baseline_slope * steps.contact_point;
-    const std::vector<std::size_t> kept = fit::afm_select(z_segment, f_segment, range, steps.contact_point, reference_baseline);
-    std::vector<double> z, f;
-    for (std::size_t i : kept) {
-      z.push_back(z_segment[i]);
-      f.push_back(f_segment[i]);
-    }
-    if (z.size() < 5) {
-      throw InputError("the range options leave " + std::to_string(z.size()) + " points of the " + segment_name +
-                       " segment (" + std::to_string(z_segment.size()) + "); widen them");
-    }
-    const fit::AfmFitResult r = fit::afm_fit(z, f, problem);
-    // The model over the whole segment (for the table and the plot).
-    fit::AfmFitProblem fitted = problem;
-    fitted.modulus = r.modulus;
-    fitted.contact_point = r.contact_point;
-    fitted.baseline = r.baseline;
-    fitted.work = r.work;
-    fitted.tilt = r.tilt;
-    if (fitted.coating) {
-      fitted.coating->film.youngs_modulus = r.modulus;
-      fitted.coating->thickness = r.thickness;
-    }
-    const std::vector<double> model_segment = fit::afm_model_force(fitted, z_segment);
-    const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract);
-    fit::AfmPulloff pulloff;
-    if (retract != nullptr) {
-      const std::vector<double> zr(tip.begin() + retract->begin, tip.begin() + retract->end);
-      const std::vector<double> fr(curve.force.begin() + retract->begin, curve.force.begin() + retract->end);
-      pulloff = fit::afm_pulloff(zr, fr, r.baseline);
+    std::vector<double> model_segment = fit::afm_model_force(fitted.fitted, z_segment);
+    for (std::size_t i = 0; i < model_segment.size(); ++i) {
+      model_segment[i] += fitted.subtracted_tilt * (z_segment[i] - fitted.reference_contact);
     }
 
     std::vector<std::pair<std::string, std::string>> items = {
@@ -786,12 +775,15 @@ int run_fit_curve(const Args& args) {
     add_fit_model_lines(items, problem);
     items.push_back({"segment", segment_name + " (" + std::to_string(z_segment.size()) + " points)"});
     items.push_back({"free", free_text});
+    for (std::size_t k = 0; k < fitted.steps.size(); ++k) {
+      items.push_back({"step " + std::to_string(k + 1) + ", " + fitted.steps[k].name, fitted.steps[k].parameters});
+    }
     items.push_back({"preprocessing contact point [m]", format_parameter(steps.contact_point, "contact point") +
                                                             " (piecewise-fit; reference of the relative ranges)"});
     items.push_back({"preprocessing baseline [N]", format_parameter(reference_baseline, "baseline") + " at the contact point, sigma " +
                                                        format_parameter(steps.baseline_sigma, "sigma") + " (chi2's noise)"});
     const std::string range_text = fit_range_text(range);
-    items.push_back({"fit range", range_text + " (" + std::to_string(z.size()) + " points fitted, " +
+    items.push_back({"fit range", range_text + " (" + std::to_string(kept.size()) + " points fitted, " +
                                       std::to_string(r.points_in_contact) + " in contact)"});
     add_fit_estimates(items, problem, r, modulus_name, pulloff);
     items.push_back({"fit time [s]", format_parameter(r.seconds, "time") + " (" + std::to_string(r.profile_evaluations) +

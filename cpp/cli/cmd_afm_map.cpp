@@ -395,9 +395,11 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   if (!settings.problem.free.baseline) items.push_back({"baseline [N]", format_parameter(settings.problem.baseline, "b") + " (fixed)"});
   items.push_back({"segment", setup.segment_name});
   items.push_back({"fit range", fit_range_text(settings.range) + " (relative ranges from each curve's preprocessing contact point and baseline)"});
-  items.push_back({"preprocessing", "tip position = height + F/k; baseline offset and tilt on the first half of the approach, "
-                                    "the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
-                                    "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});
+  const bool tilt_step = settings.baseline == fit::AfmBaselineModel::kTilt && !settings.problem.free.tilt;
+  items.push_back({"preprocessing", std::string("tip position = height + F/k; baseline offset and tilt on the first half of the approach; ") +
+                                        (tilt_step ? "baseline model tilt: the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
+                                                   : "baseline model offset: the forces as measured; ") +
+                                        "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});
   items.push_back({"flags", "0 fitted, 1 no_contact, 2 jump_in (approach below its baseline by > " +
                                 format_parameter(fit::kJumpInSigmas, "sigmas") + " sigma and > " +
                                 format_parameter(fit::kJumpInFraction, "fraction") +
@@ -478,6 +480,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   settings.problem = setup.problem;
   settings.segment = setup.kind;
   settings.range = setup.range;
+  settings.baseline = setup.baseline;
   const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
   const bool contact_point_column = !settings.problem.free.contact_point;
   // A file that cannot be read is a flagged row when the run has several files or a folder; a

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "coatcontact/afm_batch.hpp"
+#include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
@@ -280,40 +281,16 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
   return problem;
 }
 
-// One fit of (z, F) arrays; the Python layer chooses the segment and the reference estimates.
-py::dict fit_arrays(const py::object& tip_position, const py::object& force, const py::tuple& shape, double modulus,
-                    double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
-                    double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
-                    const py::object& indentation_max, const py::object& max_force, double reference_contact,
-                    double reference_baseline, const py::object& coating, const py::object& adhesion) {
+// The result dict of one fit (fit_arrays, fit_curve): estimates, errors and units by name,
+// statistics, and the fitted points (index: into the caller's arrays).
+py::dict result_dict(const coatcontact::fit::AfmFitProblem& problem, const coatcontact::fit::AfmFitResult& r,
+                     const std::vector<double>& z, const std::vector<double>& f, const std::vector<long>& index,
+                     bool weighted) {
   namespace fit = coatcontact::fit;
-  const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
-  if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
-  fit::AfmFitProblem problem;
+  const bool coated = problem.coating.has_value();
+  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
+  const std::string modulus_name = coated ? "E1" : "E";
   py::dict out;
-  try {
-    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
-    const bool coated = problem.coating.has_value();
-    const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
-    const std::string modulus_name = coated ? "E1" : "E";
-    problem.noise_sigma = noise;
-    fit::AfmRange range;
-    range.tip_min = optional_number(tip_min);
-    range.tip_max = optional_number(tip_max);
-    range.indentation_min = optional_number(indentation_min);
-    range.indentation_max = optional_number(indentation_max);
-    range.max_force = optional_number(max_force);
-    const std::vector<std::size_t> kept = fit::afm_select(z_all, f_all, range, reference_contact, reference_baseline);
-    std::vector<double> z, f;
-    for (std::size_t i : kept) {
-      z.push_back(z_all[i]);
-      f.push_back(f_all[i]);
-    }
-    fit::AfmFitResult r;
-    {
-      py::gil_scoped_release release;
-      r = fit::afm_fit(z, f, problem);
-    }
     std::vector<std::string> names = {modulus_name, "contact_point", "baseline"};
     std::vector<double> values = {r.modulus, r.contact_point, r.baseline};
     std::vector<double> errors = {r.modulus_error, r.contact_point_error, r.baseline_error};
@@ -361,7 +338,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     out["residual_sigma"] = r.residual_sigma;
     out["r_squared"] = r.r_squared;
     out["weighted"] = false;
-    if (noise > 0.0) {
+    if (weighted) {
       out["chi2"] = r.chi2;
       out["chi2_per_dof"] = r.chi2_per_dof;
     } else {
@@ -369,7 +346,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
       out["chi2_per_dof"] = py::none();
     }
     out["max_indentation"] = r.max_indentation;
-    out["index"] = to_array(std::vector<long>(kept.begin(), kept.end()));
+    out["index"] = to_array(index);
     out["tip_position"] = to_array(z);
     out["F"] = to_array(f);
     out["indentation"] = to_array(r.indentation);
@@ -394,6 +371,41 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     } else {
       out["model"] = "hertz";
     }
+  return out;
+}
+
+// One fit of (z, F) arrays; the Python layer chooses the segment and the reference estimates.
+py::dict fit_arrays(const py::object& tip_position, const py::object& force, const py::tuple& shape, double modulus,
+                    double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
+                    double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
+                    const py::object& indentation_max, const py::object& max_force, double reference_contact,
+                    double reference_baseline, const py::object& coating, const py::object& adhesion) {
+  namespace fit = coatcontact::fit;
+  const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
+  if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
+  fit::AfmFitProblem problem;
+  py::dict out;
+  try {
+    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
+    problem.noise_sigma = noise;
+    fit::AfmRange range;
+    range.tip_min = optional_number(tip_min);
+    range.tip_max = optional_number(tip_max);
+    range.indentation_min = optional_number(indentation_min);
+    range.indentation_max = optional_number(indentation_max);
+    range.max_force = optional_number(max_force);
+    const std::vector<std::size_t> kept = fit::afm_select(z_all, f_all, range, reference_contact, reference_baseline);
+    std::vector<double> z, f;
+    for (std::size_t i : kept) {
+      z.push_back(z_all[i]);
+      f.push_back(f_all[i]);
+    }
+    fit::AfmFitResult r;
+    {
+      py::gil_scoped_release release;
+      r = fit::afm_fit(z, f, problem);
+    }
+    out = result_dict(problem, r, z, f, std::vector<long>(kept.begin(), kept.end()), noise > 0.0);
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   } catch (const coatcontact::NumericalError& e) {
@@ -410,6 +422,16 @@ afm::Calibration calibration_of(const py::object& spring_constant, const py::obj
   if (!spring_constant.is_none()) calibration.spring_constant = spring_constant.cast<double>();
   if (!sensitivity.is_none()) calibration.sensitivity = sensitivity.cast<double>();
   return calibration;
+}
+
+// baseline_model= of fit and fit_map: "tilt" (the default), "offset", or "" for the default.
+coatcontact::fit::AfmBaselineModel baseline_model_of(const std::string& name, const coatcontact::fit::AfmFitProblem& problem) {
+  namespace fit = coatcontact::fit;
+  if (name.empty()) return fit::kAfmDefaultBaseline;
+  if (name == "offset") return fit::AfmBaselineModel::kOffset;
+  if (name != "tilt") throw coatcontact::InputError("baseline_model: '" + name + "' is not allowed; expected 'tilt' or 'offset'");
+  if (problem.free.tilt) throw coatcontact::InputError("baseline_model: 'tilt' with \"tilt\" in free would count the slope twice; drop one");
+  return fit::AfmBaselineModel::kTilt;
 }
 
 coatcontact::fit::AfmBatchSettings settings_of(const py::tuple& shape, double modulus, double poisson,
@@ -565,13 +587,14 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
                        const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
                        const py::object& count, const py::object& survey, bool tolerate,
-                       const py::object& adhesion) {
+                       const py::object& adhesion, const std::string& baseline_model) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::optional<Columns> columns;
   try {
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
                            indentation_min, indentation_max, max_force, adhesion);
+    settings.baseline = baseline_model_of(baseline_model, settings.problem);
     columns.emplace(settings);
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     fit::AfmBatchOptions options;
@@ -599,19 +622,73 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
   return columns->dict();
 }
 
+// One curve given as arrays through the library's one-curve pipeline (afm_fit_curve): the
+// segment, the preprocessing steps, the baseline model, the range, the fit and the pull-off,
+// as `afm fit` and each row of fit_map. noise > 0 replaces the baseline's sigma in chi2.
+py::dict fit_curve(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
+                   const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments, double spring_constant,
+                   const std::string& name, const py::tuple& shape, double modulus, double poisson,
+                   const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
+                   const std::string& segment, const py::object& tip_min, const py::object& tip_max,
+                   const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
+                   const py::object& adhesion, const std::string& baseline_model, double noise) {
+  namespace fit = coatcontact::fit;
+  const afm::ForceCurve curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
+  py::dict out;
+  try {
+    fit::AfmCurveRequest request = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment,
+                                               tip_min, tip_max, indentation_min, indentation_max, max_force, adhesion);
+    request.check_jump_in = false;
+    request.problem.noise_sigma = noise;
+    request.baseline = baseline_model_of(baseline_model, request.problem);
+    fit::AfmCurveFit fitted;
+    {
+      py::gil_scoped_release release;
+      fitted = fit::afm_fit_curve(curve, request);
+    }
+    std::vector<double> z, f;
+    std::vector<long> index;
+    for (std::size_t i : fitted.kept) {
+      z.push_back(fitted.z_segment[i]);
+      f.push_back(fitted.f_segment[i]);
+      index.push_back(static_cast<long>(fitted.segment.begin + i));
+    }
+    out = result_dict(fitted.problem, fitted.result, z, f, index, true);
+    py::list steps;
+    for (const fit::AfmStep& step : fitted.steps) steps.append(py::make_tuple(step.name, step.parameters));
+    out["steps"] = steps;
+    out["baseline_model"] = fit::afm_baseline_model_name(fitted.baseline);
+    out["reference_contact_point"] = fitted.reference_contact;
+    if (fitted.pulloff.found) {
+      py::dict pulloff;
+      pulloff["F"] = fitted.pulloff.force;
+      pulloff["z"] = fitted.pulloff.tip_position;
+      out["pulloff"] = pulloff;
+    } else {
+      out["pulloff"] = py::none();
+    }
+  } catch (const coatcontact::InputError& e) {
+    throw py::value_error(e.what());
+  } catch (const coatcontact::NumericalError& e) {
+    throw std::runtime_error(std::string("numerical failure: ") + e.what());
+  }
+  return out;
+}
+
 // Curves given as arrays: (force, height_piezo, height_measured, segments, spring_constant,
 // name, curve_index, grid_x, grid_y, x, y), each fitted as a curve of a file would be.
 py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double modulus, double poisson,
                         const std::vector<std::string>& free, double contact_point, double baseline,
                         const py::object& coating, const std::string& segment, const py::object& tip_min,
                         const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
-                        const py::object& max_force, const py::object& adhesion) {
+                        const py::object& max_force, const py::object& adhesion, const std::string& baseline_model) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::vector<fit::AfmCurveRow> rows;
   try {
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
                            indentation_min, indentation_max, max_force, adhesion);
+    settings.baseline = baseline_model_of(baseline_model, settings.problem);
     for (const py::handle item : curves) {
       const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
       afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
@@ -645,6 +722,11 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("poisson"), py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("noise"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none(), py::arg("adhesion") = py::none());
+  m.def("fit_curve", &fit_curve, py::arg("force"), py::arg("height_piezo"), py::arg("height_measured"), py::arg("segments"),
+        py::arg("spring_constant"), py::arg("name"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"), py::arg("free"),
+        py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"), py::arg("tip_min"),
+        py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"), py::arg("max_force"),
+        py::arg("adhesion"), py::arg("baseline_model"), py::arg("noise"));
   m.def("expand_paths", &expand_paths, py::arg("paths"));
   m.def("survey_files", &survey_files, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"),
         py::arg("tolerate"));
@@ -653,9 +735,9 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
         py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false,
-        py::arg("adhesion") = py::none());
+        py::arg("adhesion") = py::none(), py::arg("baseline_model") = "");
   m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"), py::arg("adhesion") = py::none());
+        py::arg("max_force"), py::arg("adhesion") = py::none(), py::arg("baseline_model") = "");
 }
