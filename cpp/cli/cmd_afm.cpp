@@ -558,8 +558,11 @@ void print_fit_help() {
                      "optimum), E and b in closed form at each z_c. Range options are combined; the\n"
                      "relative ones refer to the preprocessing's contact point and baseline (`afm export\n"
                      "--preprocess`), fixed before the fit. chi2 uses the noise of the baseline fit\n"
-                     "(its residual sigma). The pull-off is the retract segment's most tensile force\n"
-                     "less the fitted baseline. Output: the segment's points with indentation, model,\n"
+                     "(its residual sigma). The pull-off is measured, the same for every model: the\n"
+                     "retract's most tensile force against its free-cantilever baseline (a line on its\n"
+                     "last half). --baseline-model tilt (default) subtracts the preprocessing's baseline\n"
+                     "slope before the fit (b: the baseline at its contact point); offset fits the\n"
+                     "forces as measured; the one-curve fit, the rows of a map and Python agree. Output: the segment's points with indentation, model,\n"
                      "residual and whether each was fitted; the header holds the estimates.\n"
                      "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
                      "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
@@ -576,9 +579,8 @@ void print_fit_help() {
                      "by extension) give one row per curve instead: file, curve, grid index and position,\n"
                      "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
                      "A curve that cannot be fitted, or a file of several that cannot be read, is flagged\n"
-                     "and the run goes on (exit 0; the count in the header and on stderr). The baseline\n"
-                     "tilt of each curve's preprocessing is subtracted (b: the baseline at its contact\n"
-                     "point). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
+                     "and the run goes on (exit 0; the count in the header and on stderr). Each row is\n"
+                     "the one-curve fit of its curve (same pipeline and defaults). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
                      "go to FILE.partial chunk by chunk and FILE is written at the end; --resume\n"
                      "continues an interrupted FILE.partial.\n"
                      "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
@@ -614,7 +616,7 @@ void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items
 // The estimates, statistics, lambda and pull-off lines of a one-curve fit's header (the JKR
 // warnings also to stderr).
 void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem,
-                       const fit::AfmFitResult& r, const std::string& modulus_name, const fit::AfmPulloff& pulloff) {
+                       const fit::AfmFitResult& r, const std::string& modulus_name, const fit::AfmMeasuredPulloff& pulloff) {
   const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
                                                                 : format_parameter(r.modulus, modulus_name) + " (fixed)"});
@@ -659,8 +661,11 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
   if (pulloff.found) {
     items.push_back({"pull-off (retract, measured) [N]", format_parameter(pulloff.force, "pull-off force") + " at tip position " +
                                                               format_parameter(pulloff.tip_position, "pull-off position") + " m"});
+    items.push_back({"pull-off baseline", "the retract's free cantilever: F = " + format_parameter(pulloff.baseline_offset, "offset") +
+                                              " N + " + format_parameter(pulloff.baseline_slope, "slope") + " N/m * z, least squares on its last " +
+                                              std::to_string(pulloff.baseline_points) + " points (the same for every model)"});
   } else {
-    items.push_back({"pull-off (retract, measured)", "no retract segment"});
+    items.push_back({"pull-off (retract, measured)", "no retract segment (or too short for its baseline)"});
   }
 }
 
@@ -670,7 +675,7 @@ std::string fit_plot_settings(const std::string& term, const std::string& path, 
                               const std::string& segment_name, const std::string& modulus_name,
                               const fit::AfmFitProblem& problem, const fit::AfmFitResult& r,
                               const std::vector<double>& z_segment, const std::vector<double>& f_segment,
-                              const fit::AfmPulloff& pulloff) {
+                              const fit::AfmMeasuredPulloff& pulloff) {
   const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   double z_big = 0.0, f_big = 0.0;
   for (std::size_t i = 0; i < z_segment.size(); ++i) {
@@ -701,7 +706,7 @@ std::string fit_plot_settings(const std::string& term, const std::string& path, 
                                "; funit='" + f_prefix + "N'; zc=" + gp_number(r.contact_point) + "; zlo=" + gp_number(z_low) +
                                "; zhi=" + gp_number(z_high) + "; base=" +
                                gp_number(r.baseline) + "; po_z=" + gp_number(pulloff.found ? pulloff.tip_position : NAN) +
-                               "; po_F=" + gp_number(pulloff.found ? pulloff.force + r.baseline : NAN);
+                               "; po_F=" + gp_number(pulloff.found ? pulloff.force + pulloff.baseline_offset + pulloff.baseline_slope * pulloff.tip_position : NAN);
 }
 
 int run_fit_curve(const Args& args) {
@@ -758,7 +763,7 @@ int run_fit_curve(const Args& args) {
     const std::vector<std::size_t>& kept = fitted.kept;
     const double reference_baseline = fitted.reference_baseline;
     const fit::AfmFitResult& r = fitted.result;
-    const fit::AfmPulloff& pulloff = fitted.pulloff;
+    const fit::AfmMeasuredPulloff& pulloff = fitted.pulloff;
     // The forces as measured; the model with the subtracted tilt added back (the table's
     // residual is model - data on the measured forces).
     const std::vector<double> f_segment(curve.force.begin() + segment->begin, curve.force.begin() + segment->end);

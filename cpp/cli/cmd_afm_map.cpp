@@ -358,7 +358,8 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   for (std::size_t f = 0; f < files.size(); ++f) {
     items.push_back({"file " + std::to_string(f), files[f] + (survey[f].unreadable.empty()
                                                                    ? " (" + std::to_string(survey[f].curves) + " curves)"
-                                                                   : " (unreadable, one flagged row: " + why_unreadable(files[f], survey[f]) + ")")});
+                                                                   : std::string(" (") + fit::afm_flag_name(survey[f].flag) + ", one flagged row: " +
+                                                                         why_unreadable(files[f], survey[f]) + ")")});
   }
   items.push_back({"curves", std::to_string(total)});
   if (calibration.spring_constant) items.push_back({"spring constant [N/m]", format_parameter(*calibration.spring_constant, "k") + " (user, every curve)"});
@@ -405,7 +406,7 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
                                 format_parameter(fit::kJumpInFraction, "fraction") +
                                 " of its largest force), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
                                 "8 unreadable, 9 bad_data; '-' where a flagged curve has no value"});
-  items.push_back({"pull-off", "the retract segment's most tensile force less the fitted baseline, and its tip position"});
+  items.push_back({"pull-off", "measured: the retract's most tensile force against its free-cantilever baseline (a line on its last half), and its tip position"});
   columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
   std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
   for (const auto& p : parameters) {
@@ -439,7 +440,10 @@ void report_run(const std::vector<std::string>& files, const std::vector<fit::Af
   std::cerr << "coatcontact afm fit: " << total << " curves in " << files.size() << (files.size() == 1 ? " file" : " files")
             << "; flagged: " << flag_text << "\n";
   for (std::size_t f = 0; f < files.size(); ++f) {
-    if (!survey[f].unreadable.empty()) std::cerr << "  unreadable file: " << survey[f].unreadable << "\n";
+    if (!survey[f].unreadable.empty()) {
+      std::cerr << "  " << (survey[f].flag == fit::AfmFlag::kCalibration ? "file without calibration: " : "unreadable file: ")
+                << survey[f].unreadable << "\n";
+    }
   }
   for (int f = 1; f < fit::kAfmFlagCount; ++f) {
     if (f == static_cast<int>(fit::AfmFlag::kUnreadable) && summary.first_message[f] == first_unreadable_file) continue;

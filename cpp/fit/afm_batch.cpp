@@ -101,6 +101,10 @@ std::vector<AfmFileSurvey> afm_survey_files(const std::vector<std::string>& file
     if (tolerate && ::stat(file.c_str(), &info) == 0 && S_ISREG(info.st_mode)) {
       try {
         s.curves = afm::CurveSource(file, calibration).size();
+      } catch (const afm::MissingCalibration& error) {
+        s.curves = 1;
+        s.unreadable = error.what();
+        s.flag = AfmFlag::kCalibration;
       } catch (const InputError& error) {
         s.curves = 1;
         s.unreadable = error.what();
@@ -179,7 +183,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
       if (!survey[file].unreadable.empty()) {
         afm::CurveMetadata place;
         place.source_file = files[file];
-        item.row = flagged(row_of(place), AfmFlag::kUnreadable, survey[file].unreadable);
+        item.row = flagged(row_of(place), survey[file].flag, survey[file].unreadable);
         items.push_back(std::move(item));
         ++next;
         continue;

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_fit.h>
+
 namespace coatcontact::fit {
 
 const char* afm_flag_name(AfmFlag flag) {
@@ -150,6 +153,32 @@ AfmFitResult fitted_result(const std::vector<double>& z, const std::vector<doubl
 
 }  // namespace
 
+AfmMeasuredPulloff afm_measured_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force,
+                                        double fraction) {
+  AfmMeasuredPulloff p;
+  const std::size_t n = std::min(tip_position.size(), force.size());
+  const auto points = static_cast<std::size_t>(std::floor(fraction * static_cast<double>(n)));
+  if (points < 3) return p;
+  const std::size_t first = n - points;  // the retract ends with the tip far from the sample
+  double cov00 = 0.0, cov01 = 0.0, cov11 = 0.0, sumsq = 0.0;
+  if (gsl_fit_linear(tip_position.data() + first, 1, force.data() + first, 1, points, &p.baseline_offset,
+                     &p.baseline_slope, &cov00, &cov01, &cov11, &sumsq) != GSL_SUCCESS ||
+      !std::isfinite(p.baseline_offset) || !std::isfinite(p.baseline_slope)) {
+    return p;  // one tip position (no slope): no baseline to measure against
+  }
+  p.baseline_points = points;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double f = force[i] - (p.baseline_offset + p.baseline_slope * tip_position[i]);
+    if (!p.found || f < p.force) {
+      p.found = true;
+      p.force = f;
+      p.tip_position = tip_position[i];
+      p.index = i;
+    }
+  }
+  return p;
+}
+
 AfmCurveFit afm_fit_curve(const afm::ForceCurve& curve, const AfmCurveRequest& request) {
   AfmCurveFit out;
   out.segment = checked_segment(curve, request.segment);
@@ -198,10 +227,8 @@ AfmCurveFit afm_fit_curve(const afm::ForceCurve& curve, const AfmCurveRequest& r
     out.fitted.coating->thickness = r.thickness;
   }
   if (const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract)) {
-    const std::vector<double> zr = slice(tip, *retract);
-    std::vector<double> fr = slice(curve.force, *retract);
-    for (std::size_t i = 0; i < fr.size(); ++i) fr[i] -= out.subtracted_tilt * (zr[i] - out.reference_contact);
-    out.pulloff = afm_pulloff(zr, fr, r.baseline);
+    out.pulloff = afm_measured_pulloff(slice(tip, *retract), slice(curve.force, *retract), request.preprocess.baseline_fraction);
+    if (out.pulloff.found) out.pulloff.index += retract->begin;
   }
   return out;
 }

@@ -211,8 +211,9 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     name: "E" [Pa] (or "E1" [Pa], "t" [m]), "contact_point" [m], "baseline" [N]; error 0 when
     fixed), free,
     residual_norm and residual_sigma [N], r_squared, chi2, chi2_per_dof, points,
-    points_in_contact, contact_point [m], pulloff ({"F" [N] less the baseline, "z" [m]} of the
-    retract segment, or None), and per fitted point index (into the curve), tip_position, F,
+    points_in_contact, contact_point [m], pulloff (measured, the same for every model: {"F" [N], "z"
+    [m]} of the retract's most tensile force against its free-cantilever baseline, a line
+    "baseline_offset" [N] + "baseline_slope" [N/m] z on its last half; or None), and per fitted point index (into the curve), tip_position, F,
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
     if model == "maugis-dugdale":
         model = "md"
@@ -316,10 +317,7 @@ def _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, n
         except ValueError:
             retract = None
     if retract is not None:
-        fr = f_all[retract]
-        if fr.size:
-            i = int(np.argmin(fr))
-            r["pulloff"] = {"F": float(fr[i] - r["estimates"]["baseline"]), "z": float(z_all[retract][i])}
+        r["pulloff"] = _afm.measured_pulloff(z_all[retract], f_all[retract])
     return r
 
 
@@ -415,7 +413,7 @@ def _shares(survey, workers):
     """(first, count) of each task: one run of consecutive curves per worker, so that each
     worker opens each file of its share once (opening a map's archive reads its whole central
     directory: ~20 ms for a 64 x 64 map, ~0.6 s for a 256 x 256 one)."""
-    total = sum(curves for curves, _ in survey)
+    total = sum(entry[0] for entry in survey)
     share = max(1, -(-total // workers))
     return [(first, min(share, total - first)) for first in range(0, total, share)]
 
@@ -507,9 +505,10 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
         # single file named is the run's input (ValueError).
         tolerate = len(paths) > 1 or any(os.path.isdir(p) for p in paths)
         survey = _afm.survey_files(files, k, s, tolerate)
-        for curves, why in survey:
+        for curves, why, flag in survey:
             if why:
-                warnings.warn(f"afm.fit_map: unreadable file, one flagged row: {why}", stacklevel=2)
+                what = "file without calibration" if flag == 6 else "unreadable file"
+                warnings.warn(f"afm.fit_map: {what}, one flagged row: {why}", stacklevel=2)
         if client is None:
             columns = _afm.fit_map_files(files, *args, k, s, jobs=int(jobs or 0), first=0, count=None, survey=survey,
                                          tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model)

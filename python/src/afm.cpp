@@ -564,16 +564,16 @@ std::vector<std::string> expand_paths(const std::vector<std::string>& paths) {
   return files;
 }
 
-// (curves, why unreadable or "") of each file (afm_survey_files): with `tolerate` a file that
+// (curves, why unreadable or "", flag of its row) of each file (afm_survey_files): with `tolerate` a file that
 // cannot be read is one flagged row of the run instead of a ValueError.
-std::vector<std::pair<std::size_t, std::string>> survey_files(const std::vector<std::string>& files,
+std::vector<std::tuple<std::size_t, std::string, int>> survey_files(const std::vector<std::string>& files,
                                                               const py::object& spring_constant,
                                                               const py::object& sensitivity, bool tolerate) {
-  std::vector<std::pair<std::size_t, std::string>> out;
+  std::vector<std::tuple<std::size_t, std::string, int>> out;
   try {
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     py::gil_scoped_release release;
-    for (auto& s : coatcontact::fit::afm_survey_files(files, calibration, tolerate)) out.emplace_back(s.curves, std::move(s.unreadable));
+    for (auto& s : coatcontact::fit::afm_survey_files(files, calibration, tolerate)) out.emplace_back(s.curves, std::move(s.unreadable), static_cast<int>(s.flag));
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   }
@@ -602,8 +602,8 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
     options.skip = first;
     if (!count.is_none()) options.count = count.cast<std::size_t>();
     if (!survey.is_none()) {
-      for (auto& [curves, why] : survey.cast<std::vector<std::pair<std::size_t, std::string>>>()) {
-        options.survey.push_back({curves, std::move(why)});
+      for (auto& [curves, why, flag] : survey.cast<std::vector<std::tuple<std::size_t, std::string, int>>>()) {
+        options.survey.push_back({curves, std::move(why), static_cast<fit::AfmFlag>(flag)});
       }
     }
     options.unreadable_file_rows = tolerate;
@@ -663,6 +663,8 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
       py::dict pulloff;
       pulloff["F"] = fitted.pulloff.force;
       pulloff["z"] = fitted.pulloff.tip_position;
+      pulloff["baseline_offset"] = fitted.pulloff.baseline_offset;
+      pulloff["baseline_slope"] = fitted.pulloff.baseline_slope;
       out["pulloff"] = pulloff;
     } else {
       out["pulloff"] = py::none();
@@ -672,6 +674,18 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
   } catch (const coatcontact::NumericalError& e) {
     throw std::runtime_error(std::string("numerical failure: ") + e.what());
   }
+  return out;
+}
+
+// The measured pull-off of a retract given as arrays (afm_measured_pulloff): a dict, or None.
+py::object measured_pulloff(const py::object& tip_position, const py::object& force, double fraction) {
+  const auto p = coatcontact::fit::afm_measured_pulloff(to_vector(tip_position), to_vector(force), fraction);
+  if (!p.found) return py::none();
+  py::dict out;
+  out["F"] = p.force;
+  out["z"] = p.tip_position;
+  out["baseline_offset"] = p.baseline_offset;
+  out["baseline_slope"] = p.baseline_slope;
   return out;
 }
 
@@ -727,6 +741,7 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"), py::arg("tip_min"),
         py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"), py::arg("max_force"),
         py::arg("adhesion"), py::arg("baseline_model"), py::arg("noise"));
+  m.def("measured_pulloff", &measured_pulloff, py::arg("tip_position"), py::arg("force"), py::arg("fraction") = 0.5);
   m.def("expand_paths", &expand_paths, py::arg("paths"));
   m.def("survey_files", &survey_files, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"),
         py::arg("tolerate"));

@@ -122,3 +122,38 @@ def test_baseline_model_refusals():
                    baseline_model="tilt")
     with pytest.raises(ValueError, match="fitted as given"):
         cc.afm.fit((curve["tip position"], curve["force"]), radius=10e-6, halfspace=(1e3, 0.5), baseline_model="tilt")
+
+
+def test_measured_pulloff_is_the_same_for_every_model():
+    """The pull-off is measured (issue 35): the retract's most tensile force against a line fitted
+    by least squares (numpy here, GSL in the library) on its last half, identical for Hertz and
+    JKR; the JKR fit reports its own jump-off beside it."""
+    curve = cc.afm.read(os.path.join(DATA, "fmt-igor-fd_U3_3_p10004.ibw"))[0]
+    hertz = cc.afm.fit(curve, radius=10e-6, halfspace=(10e3, 0.5))
+    jkr = cc.afm.fit(curve, model="jkr", radius=10e-6, halfspace=(10e3, 0.5))
+    assert hertz["pulloff"] == jkr["pulloff"]
+    part = curve.segment("retract")
+    z, F = curve["tip position"][part], curve["force"][part]
+    half = len(z) // 2
+    slope, offset = np.polyfit(z[-half:], F[-half:], 1)
+    corrected = F - (offset + slope * z)
+    i = int(np.argmin(corrected))
+    # 1e-9 relative: numpy's and GSL's least squares differ by rounding in the line's offset.
+    assert abs(hertz["pulloff"]["F"] - corrected[i]) < 1e-9 * abs(corrected[i])
+    assert hertz["pulloff"]["z"] == z[i]
+    assert jkr["jump_off"]["F"] < 0 and jkr["jump_off"]["F"] != jkr["pulloff"]["F"]
+
+
+def test_missing_calibration_is_one_flag_for_every_reader(cli, tmp_path):
+    """Regression (issue 35): an NT-MDT export (no calibration in the file) was flagged unreadable
+    while a JPK or AFM Workshop curve without its calibration is flagged calibration; now every
+    reader's missing calibration is flag 6, calibration, in the CLI's table and in fit_map."""
+    files = [os.path.join(DATA, n) for n in ("fmt-ntmdt-txt-fd_2015_01_17_gel4-0,1_mQ_adh_6B_Curve_DFL_Height_51.txt",
+                                             "fmt-afm-workshop-fd_single_2021-10-22_14.16.csv",
+                                             "fmt-jpk-fd_spot3-0192.jpk-force")]
+    with pytest.warns(UserWarning):
+        rows = cc.afm.fit_map(files, radius=10e-6, halfspace=(1e3, 0.5), jobs=1)
+    assert list(rows["flag"]) == [6, 6, 0]
+    out = tmp_path / "rows.tsv"
+    cli("afm", "fit", *files, "--radius", "10um", "--halfspace", "1kPa,0.5", "--output", str(out))
+    assert [r["flag"] for r in table_rows(out)] == ["6", "6", "0"]

@@ -68,6 +68,9 @@ AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::excep
 struct AfmFileSurvey {
   std::size_t curves = 0;  // 1 for an unreadable file: its one flagged row
   std::string unreadable;  // empty, or the reader's message (naming the file and why)
+  // The flag of its one row: kCalibration when the file's curves lack a calibration the force
+  // needs (afm::MissingCalibration, as for a curve of a file that opens), else kUnreadable.
+  AfmFlag flag = AfmFlag::kUnreadable;
 };
 
 // Opens each file once to count its curves (the archive is closed again). A file that cannot

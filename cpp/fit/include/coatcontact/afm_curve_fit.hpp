@@ -80,6 +80,22 @@ struct AfmCurveRequest {
   bool check_jump_in = false;  // approach fits only: a jump-in is kJumpIn
 };
 
+// The measured pull-off of a retract (THEORY.md section 15), the same for every model: the
+// free-cantilever baseline is the least-squares line F = offset + slope z on the retract's last
+// `fraction` of points (the tip far from the sample), and the pull-off the retract's most
+// tensile force against it, with its tip position. Not found: fewer than 3 baseline points or
+// one tip position.
+struct AfmMeasuredPulloff {
+  bool found = false;
+  double force = 0.0;         // [N], negative when adhesive
+  double tip_position = 0.0;  // [m]
+  std::size_t index = 0;      // in the arrays given (afm_fit_curve: in the curve)
+  double baseline_offset = 0.0, baseline_slope = 0.0;  // [N], [N/m]
+  std::size_t baseline_points = 0;
+};
+AfmMeasuredPulloff afm_measured_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force,
+                                        double fraction);
+
 // One recorded step: its name and its parameters in words (for headers and Python).
 struct AfmStep {
   std::string name, parameters;
@@ -98,7 +114,7 @@ struct AfmCurveFit {
   std::vector<std::size_t> kept;     // indices into the segment of the fitted points
   AfmFitResult result;
   AfmFitProblem fitted;              // the problem at the estimates (for afm_model_force)
-  AfmPulloff pulloff;                // the retract's most tensile force less the fitted baseline
+  AfmMeasuredPulloff pulloff;        // of the retract (model-independent; the model's jump-off: result)
 };
 
 // Fits one curve. Per-curve failures are AfmCurveInputError / AfmCurveNumericalError with
