@@ -287,7 +287,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default), jkr (adhesive: JKR of a sphere on the half-space or "
                          "the coating through the cantilever's spring k, the stable branch and its jump-off; default segment "
                          "retract) or md (the same with a Maugis-Dugdale zone of range h0 = 0.97 z0, --range: for lambda "
-                         "below ~5)", false},
+                         "below ~5) or dmt (the adhesionless contact less 2 pi w R through the cantilever: lambda below ~0.1)", false},
     {"--work", "W", "jkr, md: the work of adhesion w [J/m2] (the value if fixed; if free, the centre of its search; default "
                     "from the segment's most tensile force)", false},
     {"--range", "Z0", "jkr, md: the surface-force range z0 [m] (default 0.3nm): Tabor's and Maugis's lambda, and md's "
@@ -430,14 +430,14 @@ std::pair<double, std::string> prefix_of(double magnitude) {
 AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const std::string model = arguments.get("--model").value_or("hertz");
   const bool md = model == "md" || model == "maugis-dugdale";
-  if (model != "hertz" && model != "jkr" && !md) {
-    throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr, md");
+  if (model != "hertz" && model != "jkr" && model != "dmt" && !md) {
+    throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr, md, dmt");
   }
-  const bool jkr = model == "jkr" || md;  // the adhesive models share their options
+  const bool jkr = model == "jkr" || model == "dmt" || md;  // the adhesive models share their options
   fit::AfmFitProblem problem;
   problem.tip = parse_tip(arguments);
   if (jkr) {
-    problem.model = md ? fit::AfmModel::kMd : fit::AfmModel::kJkr;
+    problem.model = md ? fit::AfmModel::kMd : model == "dmt" ? fit::AfmModel::kDmt : fit::AfmModel::kJkr;
     if (problem.tip.kind != fit::AfmTip::Kind::kParaboloid) {
       throw InputError("--model: " + model + " takes a sphere tip (--radius R or --shape sphere:R); got " + problem.tip.description);
     }
@@ -546,7 +546,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
 // The help text of `afm fit` (one curve, or one row per curve of many).
 void print_fit_help() {
   std::cout << usage("afm fit",
-                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md|dmt] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                      "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                      "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
                      "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
@@ -575,6 +575,8 @@ void print_fit_help() {
                      "--model md: the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with\n"
                      "sigma0 = w/h0, h0 = 0.97 z0 (--range), so lambda follows w and E; warns when lambda leaves\n"
                      "the table's [1e-3, 1e4] or the spring holds the tip down to the curve's end (a = 0).\n"
+                     "--model dmt: F_DMT, the adhesionless force of the sphere on the sample less 2 pi w R while in\n"
+                     "contact; any spring lets go at the contact point (pull-off -2 pi w R); warns above lambda 0.1.\n"
                      "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
                      "by extension) give one row per curve instead: file, curve, grid index and position,\n"
                      "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
@@ -592,7 +594,10 @@ void print_fit_help() {
 void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem) {
   const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   const bool md = problem.model == fit::AfmModel::kMd;
-  items.push_back({"model", md    ? "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
+  const bool dmt = problem.model == fit::AfmModel::kDmt;
+  items.push_back({"model", dmt ? "F = b + m (z - z_c) + F_DMT(z_c - z), F_DMT: the adhesionless force of the sphere on the sample "
+                                  "less 2 pi w R while in contact (0 past the contact point, where any spring lets go)"
+                            : md    ? "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
                                     "h0 = 0.97 z0) of the sphere on the sample on the branch stable under the spring k (0 past its "
                                     "jump-off)"
                             : jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
@@ -651,6 +656,8 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
                                           (problem.model == fit::AfmModel::kMd
                                                ? "the Maugis-Dugdale table holds lambda in [" + format_parameter(kMinimumLambda, "lambda") + ", " +
                                                      format_parameter(kMaximumLambda, "lambda") + "]"
+                                           : problem.model == fit::AfmModel::kDmt
+                                               ? "DMT needs lambda <= " + format_parameter(fit::kDmtMaximumLambda, "lambda")
                                                : "JKR needs lambda >= " + format_parameter(fit::kJkrMinimumLambda, "lambda")) +
                                           ")"});
     for (const std::string& warning : r.warnings) {
@@ -773,7 +780,8 @@ int run_fit_curve(const Args& args) {
     }
 
     std::vector<std::pair<std::string, std::string>> items = {
-        {"coatcontact afm fit", jkr ? "adhesive JKR fit through the cantilever of one AFM force-curve segment (THEORY.md section 15)"
+        {"coatcontact afm fit", jkr ? std::string("adhesive ") + (problem.model == fit::AfmModel::kDmt ? "DMT" : problem.model == fit::AfmModel::kMd ? "Maugis-Dugdale" : "JKR") +
+                                          " fit through the cantilever of one AFM force-curve segment (THEORY.md section 15)"
                                     : "adhesionless Hertz/Sneddon fit of one AFM force-curve segment (THEORY.md section 15)"}};
     add_curve_header(items, curve);
     items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});

@@ -353,6 +353,8 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
                                   ? "one row per curve: adhesive JKR fit through the cantilever of each curve of the files (THEORY.md section 15)"
                               : settings.problem.model == fit::AfmModel::kMd
                                   ? "one row per curve: adhesive Maugis-Dugdale fit through the cantilever of each curve of the files (THEORY.md section 15)"
+                              : settings.problem.model == fit::AfmModel::kDmt
+                                  ? "one row per curve: adhesive DMT fit through the cantilever of each curve of the files (THEORY.md section 15)"
                                   : "one row per curve: Hertz/Sneddon fit of each curve of the files (THEORY.md section 15)"}};
   items.push_back({"files", std::to_string(files.size())});
   for (std::size_t f = 0; f < files.size(); ++f) {
@@ -367,6 +369,9 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   if (settings.problem.model == fit::AfmModel::kJkr) {
     items.push_back({"model", "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
                               "under the cantilever's spring k (each curve's), 0 past its jump-off"});
+  } else if (settings.problem.model == fit::AfmModel::kDmt) {
+    items.push_back({"model", "F = b + m (z - z_c) + F_DMT(z_c - z), F_DMT: the adhesionless force of the sphere on the sample "
+                              "less 2 pi w R while in contact, 0 past the contact point"});
   } else if (settings.problem.model == fit::AfmModel::kMd) {
     items.push_back({"model", "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
                               "h0 = 0.97 z0 = " + format_parameter(0.97 * settings.problem.surface_force_range, "h0") +

@@ -46,9 +46,7 @@ constexpr int kPolishSteps = 8;
 
 // The four reduced variables at a/t: constant on a half-space, splines of a reduced-solver
 // sweep (per film modulus) on a coating.
-struct Reduced {
-  double pi_s = 8.0 / 3.0, delta_s = 1.0, e_eq = 1.0, gamma1 = 1.0;
-};
+using Reduced = internal::ReducedAt;
 
 class CoatingSweep {
  public:
@@ -138,29 +136,25 @@ std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate
 using Trial = internal::AdhesiveTrial;
 using Branch = internal::SpringBranch;
 
-// The JKR branch F(delta) under spring control for one trial (internal::SpringBranch): the
+// The branch F(delta) of a law under spring control for one trial (internal::SpringBranch): the
 // scan of delta + F/k over a/L_a in [kScanLow, kScanHigh], kBranchNodes radii from a_s.
-std::unique_ptr<Branch> jkr_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
-                                   const Trial& trial, double max_indentation) {
+std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
+                                   const Trial& trial, double max_indentation, const internal::ReducedLaw& law) {
   const double reduced = trial.modulus / (1.0 - problem.poisson * problem.poisson);
   if (!(reduced > 0.0) || !std::isfinite(reduced) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
       (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
-    throw NumericalError("afm fit: a JKR trial left the finite positive parameters");
+    throw NumericalError("afm fit: a " + law.name + " trial left the finite positive parameters");
   }
   const double radius = problem.tip.radius;
   const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
-  // (delta, F) at contact radius a [THEORY.md section 5, steps 3-4].
   const auto point = [&](double a) -> std::pair<double, double> {
     Reduced v;
     if (sweep) v = sweep->at(a / trial.thickness);
-    const double fp = -std::sqrt(2.0 * kPi * a * trial.work / reduced) / v.gamma1;  // delta_fp
-    const double delta = a * a / radius * v.delta_s + fp;
-    const double force = a * a * a * reduced / (2.0 * radius) * v.pi_s + 2.0 * a * reduced * v.e_eq * fp;
-    return {delta, force};
+    return law.point(a, v, reduced, trial.work, radius);
   };
   return std::make_unique<Branch>(point, length, kScanLow, kScanHigh, kScanPerDecade, problem.spring_constant,
                                   max_indentation, std::sqrt(radius * std::max(max_indentation, 0.0)), kBranchNodes,
-                                  std::nullopt, reduced);
+                                  law.end ? law.end(reduced, trial.work, radius) : std::nullopt, reduced);
 }
 
 // Weighted points sorted by tip position (bins of a dense curve carry their counts).
@@ -389,10 +383,27 @@ void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r) {
   }
 }
 
+const internal::ReducedLaw& jkr_law() {
+  static const internal::ReducedLaw law{
+      "JKR",
+      // (delta, F) at contact radius a [THEORY.md section 5, steps 3-4].
+      [](double a, const Reduced& v, double reduced, double work, double radius) -> std::pair<double, double> {
+        const double fp = -std::sqrt(2.0 * kPi * a * work / reduced) / v.gamma1;  // delta_fp
+        return {a * a / radius * v.delta_s + fp, a * a * a * reduced / (2.0 * radius) * v.pi_s + 2.0 * a * reduced * v.e_eq * fp};
+      },
+      nullptr, 1.5, [](const AfmFitProblem& p, AfmFitResult& r) { afm_jkr_lambda(p, r); }};
+  return law;
+}
+
 std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std::vector<double>& z) {
-  if (problem.tip.kind != AfmTip::Kind::kParaboloid) throw InputError("afm fit: the JKR model takes a sphere tip (radius R)");
+  return afm_reduced_model_force(problem, z, jkr_law());
+}
+
+std::vector<double> afm_reduced_model_force(const AfmFitProblem& problem, const std::vector<double>& z,
+                                            const ReducedLaw& law) {
+  if (problem.tip.kind != AfmTip::Kind::kParaboloid) throw InputError("afm fit: the " + law.name + " model takes a sphere tip (radius R)");
   if (!(problem.spring_constant > 0.0) || !std::isfinite(problem.spring_constant)) {
-    throw InputError("afm fit: the JKR model needs the cantilever's spring constant k > 0");
+    throw InputError("afm fit: the " + law.name + " model needs the cantilever's spring constant k > 0");
   }
   double max_delta = 0.0;
   for (double v : z) max_delta = std::max(max_delta, problem.contact_point - v);
@@ -410,7 +421,7 @@ std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std:
     for (int k = 0; k < count; ++k) grid.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
     sweep = std::make_shared<const CoatingSweep>(solver.sweep(grid, c.solver_tolerance));
   }
-  const auto branch = jkr_branch(p, sweep, trial, std::max(max_delta, 1e-12));
+  const auto branch = law_branch(p, sweep, trial, std::max(max_delta, 1e-12), law);
   std::vector<double> f(z.size());
   for (std::size_t i = 0; i < z.size(); ++i) {
     f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch->at(problem.contact_point - z[i]).first;
@@ -424,8 +435,10 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
 }
 
 AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
-                              const AfmFitProblem& problem, int free_count, const SpringModel* model) {
-  const std::string name = model ? model->name : "JKR";
+                              const AfmFitProblem& problem, int free_count, const SpringModel* model,
+                              const ReducedLaw* law_given) {
+  const ReducedLaw& law = law_given ? *law_given : jkr_law();
+  const std::string name = model ? model->name : law.name;
   const auto start = std::chrono::steady_clock::now();
   if (problem.tip.kind != AfmTip::Kind::kParaboloid) {
     throw InputError("afm fit: the " + name + " model takes a sphere tip (radius R); got " + problem.tip.description);
@@ -473,11 +486,11 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   const double t_hint = coated ? problem.coating->thickness : 0.0;
   double w_hint = problem.work;
   if (!(w_hint > 0.0)) {
-    // JKR's load-controlled pull-off of a sphere, F = -(3/2) pi w R, below the median force.
+    // The law's pull-off through a soft lever (JKR: -(3/2) pi w R) below the median force.
     std::vector<double> sorted(all.f);
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(n / 2), sorted.end());
     const double drop = sorted[n / 2] - *std::min_element(all.f.begin(), all.f.end());
-    w_hint = std::max(drop / (1.5 * kPi * problem.tip.radius), 1e-9);
+    w_hint = std::max(drop / (law.soft_pulloff * kPi * problem.tip.radius), 1e-9);
   }
   std::vector<int> axes;  // 0: E, 1: w, 2: t
   if (problem.free.modulus) axes.push_back(0);
@@ -570,7 +583,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   const auto branch_of = [&](const Trial& t) {
     for (;;) {
       ++tables;
-      auto branch = model ? model->branch(t, max_delta) : jkr_branch(p, sweep_of(t.modulus), t, max_delta);
+      auto branch = model ? model->branch(t, max_delta) : law_branch(p, sweep_of(t.modulus), t, max_delta, law);
       // The branch's radii past the swept a/t would take the sweep's end values: widen it.
       if (model || !coated || swept == lattice.size() || branch->top_radius() / t.thickness <= lattice[swept - 1]) {
         return branch;
@@ -740,7 +753,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     // Only the radii the data reach matter: the deepest fitted indentation's.
     double deepest = r.contact_point - z_lo;
     if (deepest > 0.0) {
-      const auto check = model ? model->branch(estimate, deepest) : jkr_branch(p, sweep_of(estimate.modulus), estimate, deepest);
+      const auto check = model ? model->branch(estimate, deepest) : law_branch(p, sweep_of(estimate.modulus), estimate, deepest, law);
       if (check->max_radius() / estimate.thickness > kCoatingAOverT[1]) {
         throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
                              short_text(estimate.thickness) + " m; the coating model is tabulated up to there");
@@ -793,7 +806,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   if (model) {
     model->report(estimate, r);
   } else {
-    afm_jkr_lambda(p, r);
+    law.report(p, r);
   }
   for (std::size_t k = 0; k < axes.size(); ++k) {
     if (std::abs(state.u[k] - u0[k]) > std::log(10.0) * 2.5) {

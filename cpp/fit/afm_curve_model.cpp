@@ -543,6 +543,7 @@ std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vec
   }
   if (problem.model == AfmModel::kJkr) return internal::afm_jkr_model_force(problem, tip_position);
   if (problem.model == AfmModel::kMd) return internal::afm_md_model_force(problem, tip_position);
+  if (problem.model == AfmModel::kDmt) return internal::afm_dmt_model_force(problem, tip_position);
   std::vector<double> f(delta.size(), problem.baseline);
   // The baseline's tilt (0 unless a fit estimated it).
   for (std::size_t i = 0; i < f.size(); ++i) f[i] += problem.tilt * (tip_position[i] - problem.contact_point);
@@ -660,6 +661,7 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
                          int(problem.free.thickness) + int(adhesive && problem.free.work) + int(problem.free.tilt);
   check_fit_input(z, force, problem, free_count);
   if (problem.model == AfmModel::kMd) return internal::afm_fit_md(z, force, problem, free_count);
+  if (problem.model == AfmModel::kDmt) return internal::afm_fit_dmt(z, force, problem, free_count);
   if (adhesive) return internal::afm_fit_jkr(z, force, problem, free_count);
   if (problem.free.work) throw InputError("afm fit: w is a parameter of the adhesive (jkr) model only");
   // The Hertz model's tilt is free or 0 (the batch subtracts the preprocessing's otherwise).

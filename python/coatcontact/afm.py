@@ -178,6 +178,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                Or "md": the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with
                sigma0 = w/h0, h0 = 0.97 surface_force_range (so lambda follows w and E); warns when
                lambda leaves [1e-3, 1e4] or the spring holds the tip down to the curve's end.
+               Or "dmt": F_DMT, the adhesionless force less 2 pi w R while in contact; any spring
+               lets go at the contact point (pull-off -2 pi w R); warns above lambda 0.1.
     radius     tip radius R [m] (a paraboloid); or shape=("sphere", R), ("cone", beta),
                ("pyramid", theta: face half angle; the cone of equal area), ("punch", A),
                ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
@@ -217,7 +219,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
     if model == "maugis-dugdale":
         model = "md"
-    jkr = model in ("jkr", "md")  # the adhesive models share their keywords
+    jkr = model in ("jkr", "md", "dmt")  # the adhesive models share their keywords
     if segment is None:
         segment = "retract" if jkr else "approach"
     if segment not in ("approach", "retract"):
@@ -289,7 +291,7 @@ def _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, n
     part = _segment_slice(mapping, segment, len(f_all))
     z, f = z_all[part], f_all[part]
     adhesion = None
-    if model in ("jkr", "md"):
+    if model in ("jkr", "md", "dmt"):
         k = _spring_constant(mapping, spring_constant) if mapping is not None else spring_constant
         if k is None:
             raise ValueError(f"spring_constant: the {model} model needs the cantilever's spring constant (N/m); "
@@ -332,9 +334,9 @@ def _adhesion(model, work, k, surface_force_range, tilt):
 
 def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
     """The tip, sample and free parameters of fit and fit_map as _afm takes them."""
-    if model not in ("hertz", "jkr", "md"):
-        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr', 'md'")
-    if model in ("jkr", "md") and free == ("E", "contact_point", "baseline"):
+    if model not in ("hertz", "jkr", "md", "dmt"):
+        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr', 'md', 'dmt'")
+    if model in ("jkr", "md", "dmt") and free == ("E", "contact_point", "baseline"):
         free = ("E", "w", "contact_point", "baseline", "tilt")
     coating = None
     if film is not None or substrate is not None or thickness is not None:
@@ -472,7 +474,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
         model = "md"
     tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
                                          free, contact_point)
-    adhesive = model in ("jkr", "md")
+    adhesive = model in ("jkr", "md", "dmt")
     if not adhesive and (work is not None or tilt is not None):
         raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")
     if adhesive and "w" not in free and work is None:

@@ -253,7 +253,8 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
   const bool jkr = !adhesion.is_none();
   if (jkr) {
     const py::tuple a = adhesion.cast<py::tuple>();
-    problem.model = a.size() > 4 && a[4].cast<std::string>() == "md" ? fit::AfmModel::kMd : fit::AfmModel::kJkr;
+    const std::string name = a.size() > 4 ? a[4].cast<std::string>() : "jkr";
+    problem.model = name == "md" ? fit::AfmModel::kMd : name == "dmt" ? fit::AfmModel::kDmt : fit::AfmModel::kJkr;
     problem.work = a[0].cast<double>();
     problem.spring_constant = a[1].cast<double>();
     problem.surface_force_range = a[2].cast<double>();
@@ -357,7 +358,7 @@ py::dict result_dict(const coatcontact::fit::AfmFitProblem& problem, const coatc
     out["seconds"] = r.seconds;
     out["tip"] = problem.tip.description;
     if (jkr) {
-      out["model"] = problem.model == fit::AfmModel::kMd ? "md" : "jkr";
+      out["model"] = problem.model == fit::AfmModel::kMd ? "md" : problem.model == fit::AfmModel::kDmt ? "dmt" : "jkr";
       out["spring_constant"] = problem.spring_constant;
       out["surface_force_range"] = problem.surface_force_range;
       out["tabor_mu"] = r.tabor_mu;

@@ -94,7 +94,9 @@ def test_mapping_with_afm_tool_keys():
 
 def test_refusals():
     z, F = synthetic(1)
-    with pytest.raises(ValueError, match="model: 'dmt' is not a model; allowed: 'hertz', 'jkr', 'md'"):
+    with pytest.raises(ValueError, match="model: 'lj' is not a model; allowed: 'hertz', 'jkr', 'md', 'dmt'"):
+        cc.afm.fit((z, F), model="lj", radius=5e-6, halfspace=(1.0, 0.5))
+    with pytest.raises(ValueError, match="spring_constant: the dmt model"):
         cc.afm.fit((z, F), model="dmt", radius=5e-6, halfspace=(1.0, 0.5))
     with pytest.raises(ValueError, match="spring_constant: the md model"):
         cc.afm.fit((z, F), model="md", radius=5e-6, halfspace=(1.0, 0.5))

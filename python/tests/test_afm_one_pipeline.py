@@ -2,8 +2,8 @@
 estimates (to 1e-12 relative) fitted alone by `afm fit --index N`, as its row of the batch
 (--jobs 1 and 2, with and without --map-plot), from Python as a Curve, as a plain mapping with
 a "segment" column (only the requested segment is fitted), as a row of fit_map, and with
-baseline_model="offset" as plain arrays of the segment; for Hertz on the approach and JKR on
-the retract. A curve without contact raises in Python with the CLI's message."""
+baseline_model="offset" as plain arrays of the segment; for Hertz on the approach, JKR and DMT
+on the retract. A curve without contact raises in Python with the CLI's message."""
 import os
 import subprocess
 
@@ -24,7 +24,9 @@ JKR_FILES = ["fmt-igor-fd_U3_3_p10004.ibw", "fmt-jpk-cc_pr14-polymergel-2021.06.
 MODELS = {"hertz": (["--radius", "10um", "--halfspace", "1kPa,0.5"], dict(radius=10e-6, halfspace=(1e3, 0.5)),
                     ["E", "contact_point", "baseline"]),
           "jkr": (["--model", "jkr", "--radius", "10um", "--halfspace", "10kPa,0.5"],
-                  dict(model="jkr", radius=10e-6, halfspace=(10e3, 0.5)), ["E", "w", "contact_point", "baseline", "tilt"])}
+                  dict(model="jkr", radius=10e-6, halfspace=(10e3, 0.5)), ["E", "w", "contact_point", "baseline", "tilt"]),
+          "dmt": (["--model", "dmt", "--radius", "10um", "--halfspace", "10kPa,0.5"],
+                  dict(model="dmt", radius=10e-6, halfspace=(10e3, 0.5)), ["E", "w", "contact_point", "baseline", "tilt"])}
 HEADER_KEYS = {"E": "E [Pa]", "w": "w [J/m2]", "contact_point": "contact point [m]", "baseline": "baseline [N]",
                "tilt": "tilt [N/m]"}
 
@@ -57,7 +59,8 @@ def segment_mapping(curve):
     return mapping
 
 
-@pytest.mark.parametrize("model,name", [("hertz", f) for f in HERTZ_FILES] + [("jkr", f) for f in JKR_FILES])
+@pytest.mark.parametrize("model,name", [("hertz", f) for f in HERTZ_FILES] + [("jkr", f) for f in JKR_FILES] +
+                         [("dmt", f) for f in JKR_FILES])
 def test_same_estimates_alone_in_a_map_and_from_python(cli, tmp_path, model, name):
     options, keywords, names = MODELS[model]
     path = os.path.join(DATA, name)
@@ -83,10 +86,10 @@ def test_same_estimates_alone_in_a_map_and_from_python(cli, tmp_path, model, nam
             close(float(rows[p][i]), alone[p], (name, i, p, "fit_map"))
             for label, table in tables.items():
                 close(float(table[i][p]), alone[p], (name, i, p, label))
-        kind = "retract" if model == "jkr" else "approach"
+        kind = "approach" if model == "hertz" else "retract"
         part = curve.segment(kind)
         assert python["index"].min() >= part.start and python["index"].max() < part.stop  # one segment only
-        assert python["baseline_model"] == ("offset" if model == "jkr" else "tilt")  # jkr: the tilt is free
+        assert python["baseline_model"] == ("tilt" if model == "hertz" else "offset")  # adhesive: the tilt is free
         if model == "hertz":
             offset = cc.afm.fit(curve, baseline_model="offset", **keywords)
             plain = cc.afm.fit((curve["tip position"][part], curve["force"][part]), **keywords)
