@@ -654,15 +654,25 @@ void afm_residual_statistics(AfmFitResult& r, const std::vector<double>& force, 
 
 }  // namespace internal
 
+namespace {
+
+// The adhesive models through the cantilever, one file each (THEORY.md section 15).
+AfmFitResult adhesive_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                          int free_count) {
+  if (problem.model == AfmModel::kMd) return internal::afm_fit_md(z, force, problem, free_count);
+  if (problem.model == AfmModel::kDmt) return internal::afm_fit_dmt(z, force, problem, free_count);
+  return internal::afm_fit_jkr(z, force, problem, free_count);
+}
+
+}  // namespace
+
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
   const auto start = std::chrono::steady_clock::now();
   const bool adhesive = problem.model != AfmModel::kHertz;
   const int free_count = int(problem.free.modulus) + int(problem.free.contact_point) + int(problem.free.baseline) +
                          int(problem.free.thickness) + int(adhesive && problem.free.work) + int(problem.free.tilt);
   check_fit_input(z, force, problem, free_count);
-  if (problem.model == AfmModel::kMd) return internal::afm_fit_md(z, force, problem, free_count);
-  if (problem.model == AfmModel::kDmt) return internal::afm_fit_dmt(z, force, problem, free_count);
-  if (adhesive) return internal::afm_fit_jkr(z, force, problem, free_count);
+  if (adhesive) return adhesive_fit(z, force, problem, free_count);
   if (problem.free.work) throw InputError("afm fit: w is a parameter of the adhesive (jkr) model only");
   // The Hertz model's tilt is free or 0 (the batch subtracts the preprocessing's otherwise).
   const std::size_t n = z.size();
