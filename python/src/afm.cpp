@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/progress.hpp"
 #include "coatcontact/indenter_shape.hpp"
 
 namespace py = pybind11;
@@ -33,6 +35,27 @@ py::array_t<T> to_array(const std::vector<T>& values) {
   std::copy(values.begin(), values.end(), out.mutable_data());
   return out;
 }
+
+// Ctrl-C during a long library call (issue 40): called between units of work (curves, a
+// chunk's curves, a sweep's radii) on the calling thread, it takes the GIL and runs Python's
+// signal handlers; a KeyboardInterrupt stops the call (the library's Interrupted) and is raised
+// by rethrow() once the call has returned.
+struct SignalCheck {
+  std::exception_ptr error;
+  bool operator()() {
+    py::gil_scoped_acquire gil;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } catch (...) {
+      error = std::current_exception();
+      return false;
+    }
+    return true;
+  }
+  void rethrow() const {
+    if (error) std::rethrow_exception(error);
+  }
+};
 
 py::dict metadata_of(const afm::ForceCurve& curve) {
   const afm::CurveMetadata& m = curve.metadata;
@@ -68,12 +91,20 @@ py::list read_curves(const std::string& path, std::optional<double> spring_const
   std::vector<afm::ForceCurve> curves;
   std::string error;
   {
+    SignalCheck signals;
     py::gil_scoped_release release;
     try {
-      curves = afm::read_force_curves(path, calibration);
+      // Curve by curve, so that Ctrl-C stops the reading of a large map between curves.
+      const afm::CurveSource source(path, calibration);
+      for (std::size_t i = 0; i < source.size(); ++i) {
+        if (!signals()) break;
+        curves.push_back(source.read(i));
+      }
     } catch (const coatcontact::InputError& e) {
       error = e.what();
     }
+    py::gil_scoped_acquire gil;
+    signals.rethrow();
   }
   if (!error.empty()) {
     // The library names the CLI's options; Python callers pass keywords of the same names.
@@ -613,8 +644,15 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
       py::gil_scoped_acquire acquire;
       columns->add(chunk);
     };
-    py::gil_scoped_release release;
-    fit::afm_fit_batch(files, calibration, settings, options);
+    SignalCheck signals;
+    options.progress = [&](std::size_t, std::size_t) { return signals(); };
+    try {
+      py::gil_scoped_release release;
+      fit::afm_fit_batch(files, calibration, settings, options);
+    } catch (const coatcontact::Interrupted&) {
+      signals.rethrow();
+      throw;
+    }
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   } catch (const coatcontact::NumericalError& e) {
@@ -643,9 +681,14 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
     request.problem.noise_sigma = noise;
     request.baseline = baseline_model_of(baseline_model, request.problem);
     fit::AfmCurveFit fitted;
-    {
+    SignalCheck signals;
+    try {
       py::gil_scoped_release release;
+      const coatcontact::ScopedProgressHook hook([&](std::size_t, std::size_t) { return signals(); });
       fitted = fit::afm_fit_curve(curve, request);
+    } catch (const coatcontact::Interrupted&) {
+      signals.rethrow();
+      throw;
     }
     std::vector<double> z, f;
     std::vector<long> index;
@@ -708,6 +751,7 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
       const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
       afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
                                        c[4].cast<double>(), c[5].cast<std::string>());
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between curves
       afm::CurveMetadata& m = curve.metadata;
       m.curve_index = c[6].cast<std::size_t>();
       if (!c[7].is_none()) m.grid_index_x = c[7].cast<long>();
