@@ -674,7 +674,7 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
   check_fit_input(z, force, problem, free_count);
   if (adhesive) return adhesive_fit(z, force, problem, free_count);
   if (problem.free.work) throw InputError("afm fit: w is a parameter of the adhesive (jkr) model only");
-  // The Hertz model's tilt is free or 0 (the batch subtracts the preprocessing's otherwise).
+  // The Hertz model's tilt is free or 0 (afm_fit_curve's baseline model subtracts the preprocessing's).
   const std::size_t n = z.size();
   const auto [z_lo_it, z_hi_it] = std::minmax_element(z.begin(), z.end());
   const double z_lo = *z_lo_it, z_hi = *z_hi_it, span = z_hi - z_lo;
@@ -829,18 +829,6 @@ std::vector<std::size_t> afm_select(const std::vector<double>& z, const std::vec
     kept.push_back(i);
   }
   return kept;
-}
-
-AfmPulloff afm_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force, double baseline) {
-  AfmPulloff out;
-  if (force.empty()) return out;
-  const auto it = std::min_element(force.begin(), force.end());
-  const auto i = static_cast<std::size_t>(it - force.begin());
-  out.found = true;
-  out.force = *it - baseline;
-  out.tip_position = tip_position[i];
-  out.index = i;
-  return out;
 }
 
 }  // namespace coatcontact::fit

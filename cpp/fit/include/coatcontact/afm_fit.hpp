@@ -179,13 +179,7 @@ struct AfmRange {
 std::vector<std::size_t> afm_select(const std::vector<double>& tip_position, const std::vector<double>& force,
                                     const AfmRange& range, double reference_contact, double reference_baseline);
 
-// The measured pull-off of a segment: its most tensile force (minus `baseline`) and where.
-struct AfmPulloff {
-  bool found = false;
-  double force = 0.0;         // [N], negative when adhesive
-  double tip_position = 0.0;  // [m]
-  std::size_t index = 0;      // in the arrays given
-};
-AfmPulloff afm_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force, double baseline);
+// The measured pull-off of a retract is the same for every model: afm_measured_pulloff
+// (coatcontact/afm_curve_fit.hpp), against the retract's free-cantilever baseline.
 
 }  // namespace coatcontact::fit
