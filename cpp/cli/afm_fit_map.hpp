@@ -3,6 +3,7 @@
 #pragma once
 #include <string>
 
+#include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/cli_support.hpp"
@@ -18,6 +19,7 @@ struct AfmFitSetup {
   std::string segment_name;  // "approach" or "retract"
   afm::SegmentKind kind = afm::SegmentKind::kApproach;
   fit::AfmRange range;
+  fit::AfmBaselineModel baseline = fit::kAfmDefaultBaseline;  // --baseline-model
 };
 
 // The fit range options in words for a header ("whole segment" without any).

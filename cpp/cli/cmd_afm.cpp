@@ -21,6 +21,7 @@
 #include "afm_fit_map.hpp"
 #include "afm_fit_plot_script.hpp"
 #include "coatcontact/gnuplot_run.hpp"
+#include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
@@ -325,7 +326,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default), jkr (adhesive: JKR of a sphere on the half-space or "
                          "the coating through the cantilever's spring k, the stable branch and its jump-off; default segment "
                          "retract) or md (the same with a Maugis-Dugdale zone of range h0 = 0.97 z0, --range: for lambda "
-                         "below ~5)", false},
+                         "below ~5) or dmt (the adhesionless contact less 2 pi w R through the cantilever: lambda below ~0.1)", false},
     {"--work", "W", "jkr, md: the work of adhesion w [J/m2] (the value if fixed; if free, the centre of its search; default "
                     "from the segment's most tensile force)", false},
     {"--range", "Z0", "jkr, md: the surface-force range z0 [m] (default 0.3nm): Tabor's and Maugis's lambda, and md's "
@@ -344,6 +345,9 @@ const std::vector<OptionSpec> kFitSpec = {
                        "jkr and md add w and tilt (default E or E1, w, contact_point, baseline, tilt)", false},
     {"--contact-point", "Z", "the contact point [m, tip position] when it is fixed", false},
     {"--baseline", "B", "the force baseline [N] when it is fixed", false},
+    {"--baseline-model", "tilt|offset", "tilt (default): the preprocessing's baseline slope is subtracted from the forces "
+                                        "(b: the baseline at its contact point); offset: the forces as measured, b constant. "
+                                        "With tilt in --free the model fits the slope (offset)", false},
     {"--segment", "KIND", "approach (default) or retract", false},
     spring_constant_option(),
     sensitivity_option(),
@@ -465,14 +469,14 @@ std::pair<double, std::string> prefix_of(double magnitude) {
 AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const std::string model = arguments.get("--model").value_or("hertz");
   const bool md = model == "md" || model == "maugis-dugdale";
-  if (model != "hertz" && model != "jkr" && !md) {
-    throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr, md");
+  if (model != "hertz" && model != "jkr" && model != "dmt" && !md) {
+    throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr, md, dmt");
   }
-  const bool jkr = model == "jkr" || md;  // the adhesive models share their options
+  const bool jkr = model == "jkr" || model == "dmt" || md;  // the adhesive models share their options
   fit::AfmFitProblem problem;
   problem.tip = parse_tip(arguments);
   if (jkr) {
-    problem.model = md ? fit::AfmModel::kMd : fit::AfmModel::kJkr;
+    problem.model = md ? fit::AfmModel::kMd : model == "dmt" ? fit::AfmModel::kDmt : fit::AfmModel::kJkr;
     if (problem.tip.kind != fit::AfmTip::Kind::kParaboloid) {
       throw InputError("--model: " + model + " takes a sphere tip (--radius R or --shape sphere:R); got " + problem.tip.description);
     }
@@ -551,6 +555,15 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   if (segment_name == "retract") kind = afm::SegmentKind::kRetract;
   else if (segment_name != "approach") throw InputError("--segment: '" + segment_name.substr(0, 60) + "' is not allowed; expected approach or retract");
   fit::AfmRange range;
+  fit::AfmBaselineModel baseline = fit::kAfmDefaultBaseline;
+  if (auto text = arguments.get("--baseline-model")) {
+    if (*text == "tilt") baseline = fit::AfmBaselineModel::kTilt;
+    else if (*text == "offset") baseline = fit::AfmBaselineModel::kOffset;
+    else throw InputError("--baseline-model: '" + text->substr(0, 60) + "' is not allowed; expected tilt or offset");
+    if (baseline == fit::AfmBaselineModel::kTilt && problem.free.tilt) {
+      throw InputError("--baseline-model: tilt with tilt in --free would count the slope twice; drop one");
+    }
+  }
   if (auto text = arguments.get("--tip-range")) {
     const auto [lo, hi] = parse_pair(*text, "--tip-range", "tip positions in m");
     range.tip_min = lo;
@@ -566,13 +579,13 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     range.indentation_max = range.indentation_max ? std::min(*range.indentation_max, d) : d;
   }
   if (auto text = arguments.get("--max-force")) range.max_force = parse_quantity(*text, Quantity::kForce, "--max-force");
-  return {problem, coated, modulus_name, free_text, segment_name, kind, range};
+  return {problem, coated, modulus_name, free_text, segment_name, kind, range, baseline};
 }
 
 // The help text of `afm fit` (one curve, or one row per curve of many).
 void print_fit_help() {
   std::cout << usage("afm fit",
-                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md|dmt] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                      "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                      "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
                      "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
@@ -584,8 +597,11 @@ void print_fit_help() {
                      "optimum), E and b in closed form at each z_c. Range options are combined; the\n"
                      "relative ones refer to the preprocessing's contact point and baseline (`afm export\n"
                      "--preprocess`), fixed before the fit. chi2 uses the noise of the baseline fit\n"
-                     "(its residual sigma). The pull-off is the retract segment's most tensile force\n"
-                     "less the fitted baseline. Output: the segment's points with indentation, model,\n"
+                     "(its residual sigma). The pull-off is measured, the same for every model: the\n"
+                     "retract's most tensile force against its free-cantilever baseline (a line on its\n"
+                     "last half). --baseline-model tilt (default) subtracts the preprocessing's baseline\n"
+                     "slope before the fit (b: the baseline at its contact point); offset fits the\n"
+                     "forces as measured; the one-curve fit, the rows of a map and Python agree. Output: the segment's points with indentation, model,\n"
                      "residual and whether each was fitted; the header holds the estimates.\n"
                      "On a coating (--film, --substrate, --thickness; sphere, cone or pyramid tip) the\n"
                      "force is the exact adhesionless one of the film on its substrate; E1 and/or t are\n"
@@ -598,13 +614,14 @@ void print_fit_help() {
                      "--model md: the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with\n"
                      "sigma0 = w/h0, h0 = 0.97 z0 (--range), so lambda follows w and E; warns when lambda leaves\n"
                      "the table's [1e-3, 1e4] or the spring holds the tip down to the curve's end (a = 0).\n"
+                     "--model dmt: F_DMT, the adhesionless force of the sphere on the sample less 2 pi w R while in\n"
+                     "contact; any spring lets go at the contact point (pull-off -2 pi w R); warns above lambda 0.1.\n"
                      "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
                      "by extension) give one row per curve instead: file, curve, grid index and position,\n"
                      "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
                      "A curve that cannot be fitted, or a file of several that cannot be read, is flagged\n"
-                     "and the run goes on (exit 0; the count in the header and on stderr). The baseline\n"
-                     "tilt of each curve's preprocessing is subtracted (b: the baseline at its contact\n"
-                     "point). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
+                     "and the run goes on (exit 0; the count in the header and on stderr). Each row is\n"
+                     "the one-curve fit of its curve (same pipeline and defaults). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
                      "go to FILE.partial chunk by chunk and FILE is written at the end; --resume\n"
                      "continues an interrupted FILE.partial.\n"
                      "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
@@ -616,7 +633,10 @@ void print_fit_help() {
 void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem) {
   const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   const bool md = problem.model == fit::AfmModel::kMd;
-  items.push_back({"model", md    ? "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
+  const bool dmt = problem.model == fit::AfmModel::kDmt;
+  items.push_back({"model", dmt ? "F = b + m (z - z_c) + F_DMT(z_c - z), F_DMT: the adhesionless force of the sphere on the sample "
+                                  "less 2 pi w R while in contact (0 past the contact point, where any spring lets go)"
+                            : md    ? "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
                                     "h0 = 0.97 z0) of the sphere on the sample on the branch stable under the spring k (0 past its "
                                     "jump-off)"
                             : jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
@@ -640,7 +660,7 @@ void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items
 // The estimates, statistics, lambda and pull-off lines of a one-curve fit's header (the JKR
 // warnings also to stderr).
 void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem,
-                       const fit::AfmFitResult& r, const std::string& modulus_name, const fit::AfmPulloff& pulloff) {
+                       const fit::AfmFitResult& r, const std::string& modulus_name, const fit::AfmMeasuredPulloff& pulloff) {
   const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
                                                                 : format_parameter(r.modulus, modulus_name) + " (fixed)"});
@@ -675,6 +695,8 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
                                           (problem.model == fit::AfmModel::kMd
                                                ? "the Maugis-Dugdale table holds lambda in [" + format_parameter(kMinimumLambda, "lambda") + ", " +
                                                      format_parameter(kMaximumLambda, "lambda") + "]"
+                                           : problem.model == fit::AfmModel::kDmt
+                                               ? "DMT needs lambda <= " + format_parameter(fit::kDmtMaximumLambda, "lambda")
                                                : "JKR needs lambda >= " + format_parameter(fit::kJkrMinimumLambda, "lambda")) +
                                           ")"});
     for (const std::string& warning : r.warnings) {
@@ -685,8 +707,11 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
   if (pulloff.found) {
     items.push_back({"pull-off (retract, measured) [N]", format_parameter(pulloff.force, "pull-off force") + " at tip position " +
                                                               format_parameter(pulloff.tip_position, "pull-off position") + " m"});
+    items.push_back({"pull-off baseline", "the retract's free cantilever: F = " + format_parameter(pulloff.baseline_offset, "offset") +
+                                              " N + " + format_parameter(pulloff.baseline_slope, "slope") + " N/m * z, least squares on its last " +
+                                              std::to_string(pulloff.baseline_points) + " points (the same for every model)"});
   } else {
-    items.push_back({"pull-off (retract, measured)", "no retract segment"});
+    items.push_back({"pull-off (retract, measured)", "no retract segment (or too short for its baseline)"});
   }
 }
 
@@ -696,7 +721,7 @@ std::string fit_plot_settings(const std::string& term, const std::string& path, 
                               const std::string& segment_name, const std::string& modulus_name,
                               const fit::AfmFitProblem& problem, const fit::AfmFitResult& r,
                               const std::vector<double>& z_segment, const std::vector<double>& f_segment,
-                              const fit::AfmPulloff& pulloff) {
+                              const fit::AfmMeasuredPulloff& pulloff) {
   const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
   double z_big = 0.0, f_big = 0.0;
   for (std::size_t i = 0; i < z_segment.size(); ++i) {
@@ -727,7 +752,7 @@ std::string fit_plot_settings(const std::string& term, const std::string& path, 
                                "; funit='" + f_prefix + "N'; zc=" + gp_number(r.contact_point) + "; zlo=" + gp_number(z_low) +
                                "; zhi=" + gp_number(z_high) + "; base=" +
                                gp_number(r.baseline) + "; po_z=" + gp_number(pulloff.found ? pulloff.tip_position : NAN) +
-                               "; po_F=" + gp_number(pulloff.found ? pulloff.force + r.baseline : NAN);
+                               "; po_F=" + gp_number(pulloff.found ? pulloff.force + pulloff.baseline_offset + pulloff.baseline_slope * pulloff.tip_position : NAN);
 }
 
 int run_fit_curve(const Args& args) {
@@ -771,66 +796,46 @@ int run_fit_curve(const Args& args) {
                        std::to_string(source.size()) + (source.size() == 1 ? " curve (index 0)" : " curves (indices 0.." + std::to_string(source.size() - 1) + ")"));
     }
     const afm::ForceCurve curve = source.read(index);
-    const afm::Segment* segment = curve.find_segment(kind);
-    if (segment == nullptr) throw InputError("--segment: " + path + " has no " + segment_name + " segment");
-    // The preprocessing's estimates: the reference of the relative ranges and the noise of chi2.
-    const afm::PreprocessedCurve steps = afm::preprocess(curve);
-    problem.noise_sigma = steps.baseline_sigma;
-    if (jkr) {
-      problem.spring_constant = curve.metadata.spring_constant;
-      if (!(problem.spring_constant > 0.0)) {
-        throw InputError(path + ": the adhesive model needs the cantilever's spring constant; the file has none (give --spring-constant K)");
-      }
-    }
-    const std::vector<double> tip = curve.tip_position();
-    const std::vector<double> z_segment(tip.begin() + segment->begin, tip.begin() + segment->end);
+    fit::AfmCurveRequest request;
+    request.problem = problem;
+    request.segment = kind;
+    request.range = range;
+    request.baseline = setup.baseline;
+    const fit::AfmCurveFit fitted = fit::afm_fit_curve(curve, request);
+    problem = fitted.problem;
+    const afm::PreprocessedCurve& steps = fitted.preprocessed;
+    const afm::Segment* segment = &fitted.segment;
+    const std::vector<double>& z_segment = fitted.z_segment;
+    const std::vector<std::size_t>& kept = fitted.kept;
+    const double reference_baseline = fitted.reference_baseline;
+    const fit::AfmFitResult& r = fitted.result;
+    const fit::AfmMeasuredPulloff& pulloff = fitted.pulloff;
+    // The forces as measured; the model with the subtracted tilt added back (the table's
+    // residual is model - data on the measured forces).
     const std::vector<double> f_segment(curve.force.begin() + segment->begin, curve.force.begin() + segment->end);
-    const double reference_baseline = steps.baseline_offset + steps.baseline_slope * steps.contact_point;
-    const std::vector<std::size_t> kept = fit::afm_select(z_segment, f_segment, range, steps.contact_point, reference_baseline);
-    std::vector<double> z, f;
-    for (std::size_t i : kept) {
-      z.push_back(z_segment[i]);
-      f.push_back(f_segment[i]);
-    }
-    if (z.size() < 5) {
-      throw InputError("the range options leave " + std::to_string(z.size()) + " points of the " + segment_name +
-                       " segment (" + std::to_string(z_segment.size()) + "); widen them");
-    }
-    const fit::AfmFitResult r = fit::afm_fit(z, f, problem);
-    // The model over the whole segment (for the table and the plot).
-    fit::AfmFitProblem fitted = problem;
-    fitted.modulus = r.modulus;
-    fitted.contact_point = r.contact_point;
-    fitted.baseline = r.baseline;
-    fitted.work = r.work;
-    fitted.tilt = r.tilt;
-    if (fitted.coating) {
-      fitted.coating->film.youngs_modulus = r.modulus;
-      fitted.coating->thickness = r.thickness;
-    }
-    const std::vector<double> model_segment = fit::afm_model_force(fitted, z_segment);
-    const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract);
-    fit::AfmPulloff pulloff;
-    if (retract != nullptr) {
-      const std::vector<double> zr(tip.begin() + retract->begin, tip.begin() + retract->end);
-      const std::vector<double> fr(curve.force.begin() + retract->begin, curve.force.begin() + retract->end);
-      pulloff = fit::afm_pulloff(zr, fr, r.baseline);
+    std::vector<double> model_segment = fit::afm_model_force(fitted.fitted, z_segment);
+    for (std::size_t i = 0; i < model_segment.size(); ++i) {
+      model_segment[i] += fitted.subtracted_tilt * (z_segment[i] - fitted.reference_contact);
     }
 
     std::vector<std::pair<std::string, std::string>> items = {
-        {"coatcontact afm fit", jkr ? "adhesive JKR fit through the cantilever of one AFM force-curve segment (THEORY.md section 15)"
+        {"coatcontact afm fit", jkr ? std::string("adhesive ") + (problem.model == fit::AfmModel::kDmt ? "DMT" : problem.model == fit::AfmModel::kMd ? "Maugis-Dugdale" : "JKR") +
+                                          " fit through the cantilever of one AFM force-curve segment (THEORY.md section 15)"
                                     : "adhesionless Hertz/Sneddon fit of one AFM force-curve segment (THEORY.md section 15)"}};
     add_curve_header(items, curve);
     items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
     add_fit_model_lines(items, problem);
     items.push_back({"segment", segment_name + " (" + std::to_string(z_segment.size()) + " points)"});
     items.push_back({"free", free_text});
+    for (std::size_t k = 0; k < fitted.steps.size(); ++k) {
+      items.push_back({"step " + std::to_string(k + 1) + ", " + fitted.steps[k].name, fitted.steps[k].parameters});
+    }
     items.push_back({"preprocessing contact point [m]", format_parameter(steps.contact_point, "contact point") +
                                                             " (piecewise-fit; reference of the relative ranges)"});
     items.push_back({"preprocessing baseline [N]", format_parameter(reference_baseline, "baseline") + " at the contact point, sigma " +
                                                        format_parameter(steps.baseline_sigma, "sigma") + " (chi2's noise)"});
     const std::string range_text = fit_range_text(range);
-    items.push_back({"fit range", range_text + " (" + std::to_string(z.size()) + " points fitted, " +
+    items.push_back({"fit range", range_text + " (" + std::to_string(kept.size()) + " points fitted, " +
                                       std::to_string(r.points_in_contact) + " in contact)"});
     add_fit_estimates(items, problem, r, modulus_name, pulloff);
     items.push_back({"fit time [s]", format_parameter(r.seconds, "time") + " (" + std::to_string(r.profile_evaluations) +

@@ -355,12 +355,15 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
                                   ? "one row per curve: adhesive JKR fit through the cantilever of each curve of the files (THEORY.md section 15)"
                               : settings.problem.model == fit::AfmModel::kMd
                                   ? "one row per curve: adhesive Maugis-Dugdale fit through the cantilever of each curve of the files (THEORY.md section 15)"
+                              : settings.problem.model == fit::AfmModel::kDmt
+                                  ? "one row per curve: adhesive DMT fit through the cantilever of each curve of the files (THEORY.md section 15)"
                                   : "one row per curve: Hertz/Sneddon fit of each curve of the files (THEORY.md section 15)"}};
   items.push_back({"files", std::to_string(files.size())});
   for (std::size_t f = 0; f < files.size(); ++f) {
     items.push_back({"file " + std::to_string(f), files[f] + (survey[f].unreadable.empty()
                                                                    ? " (" + std::to_string(survey[f].curves) + " curves)"
-                                                                   : " (unreadable, one flagged row: " + why_unreadable(files[f], survey[f]) + ")")});
+                                                                   : std::string(" (") + fit::afm_flag_name(survey[f].flag) + ", one flagged row: " +
+                                                                         why_unreadable(files[f], survey[f]) + ")")});
   }
   items.push_back({"curves", std::to_string(total)});
   if (calibration.spring_constant) items.push_back({"spring constant [N/m]", format_parameter(*calibration.spring_constant, "k") + " (user, every curve)"});
@@ -368,6 +371,9 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   if (settings.problem.model == fit::AfmModel::kJkr) {
     items.push_back({"model", "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
                               "under the cantilever's spring k (each curve's), 0 past its jump-off"});
+  } else if (settings.problem.model == fit::AfmModel::kDmt) {
+    items.push_back({"model", "F = b + m (z - z_c) + F_DMT(z_c - z), F_DMT: the adhesionless force of the sphere on the sample "
+                              "less 2 pi w R while in contact, 0 past the contact point"});
   } else if (settings.problem.model == fit::AfmModel::kMd) {
     items.push_back({"model", "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
                               "h0 = 0.97 z0 = " + format_parameter(0.97 * settings.problem.surface_force_range, "h0") +
@@ -397,15 +403,17 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   if (!settings.problem.free.baseline) items.push_back({"baseline [N]", format_parameter(settings.problem.baseline, "b") + " (fixed)"});
   items.push_back({"segment", setup.segment_name});
   items.push_back({"fit range", fit_range_text(settings.range) + " (relative ranges from each curve's preprocessing contact point and baseline)"});
-  items.push_back({"preprocessing", "tip position = height + F/k; baseline offset and tilt on the first half of the approach, "
-                                    "the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
-                                    "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});
+  const bool tilt_step = settings.baseline == fit::AfmBaselineModel::kTilt && !settings.problem.free.tilt;
+  items.push_back({"preprocessing", std::string("tip position = height + F/k; baseline offset and tilt on the first half of the approach; ") +
+                                        (tilt_step ? "baseline model tilt: the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
+                                                   : "baseline model offset: the forces as measured; ") +
+                                        "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});
   items.push_back({"flags", "0 fitted, 1 no_contact, 2 jump_in (approach below its baseline by > " +
                                 format_parameter(fit::kJumpInSigmas, "sigmas") + " sigma and > " +
                                 format_parameter(fit::kJumpInFraction, "fraction") +
                                 " of its largest force), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
                                 "8 unreadable, 9 bad_data; '-' where a flagged curve has no value"});
-  items.push_back({"pull-off", "the retract segment's most tensile force less the fitted baseline, and its tip position"});
+  items.push_back({"pull-off", "measured: the retract's most tensile force against its free-cantilever baseline (a line on its last half), and its tip position"});
   columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
   std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
   for (const auto& p : parameters) {
@@ -439,7 +447,10 @@ void report_run(const std::vector<std::string>& files, const std::vector<fit::Af
   std::cerr << "coatcontact afm fit: " << total << " curves in " << files.size() << (files.size() == 1 ? " file" : " files")
             << "; flagged: " << flag_text << "\n";
   for (std::size_t f = 0; f < files.size(); ++f) {
-    if (!survey[f].unreadable.empty()) std::cerr << "  unreadable file: " << survey[f].unreadable << "\n";
+    if (!survey[f].unreadable.empty()) {
+      std::cerr << "  " << (survey[f].flag == fit::AfmFlag::kCalibration ? "file without calibration: " : "unreadable file: ")
+                << survey[f].unreadable << "\n";
+    }
   }
   for (int f = 1; f < fit::kAfmFlagCount; ++f) {
     if (f == static_cast<int>(fit::AfmFlag::kUnreadable) && summary.first_message[f] == first_unreadable_file) continue;
@@ -481,6 +492,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   settings.problem = setup.problem;
   settings.segment = setup.kind;
   settings.range = setup.range;
+  settings.baseline = setup.baseline;
   const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
   const bool contact_point_column = !settings.problem.free.contact_point;
   // A file that cannot be read is a flagged row when the run has several files or a folder; a

@@ -46,9 +46,7 @@ constexpr int kPolishSteps = 8;
 
 // The four reduced variables at a/t: constant on a half-space, splines of a reduced-solver
 // sweep (per film modulus) on a coating.
-struct Reduced {
-  double pi_s = 8.0 / 3.0, delta_s = 1.0, e_eq = 1.0, gamma1 = 1.0;
-};
+using Reduced = internal::ReducedAt;
 
 class CoatingSweep {
  public:
@@ -138,29 +136,25 @@ std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate
 using Trial = internal::AdhesiveTrial;
 using Branch = internal::SpringBranch;
 
-// The JKR branch F(delta) under spring control for one trial (internal::SpringBranch): the
+// The branch F(delta) of a law under spring control for one trial (internal::SpringBranch): the
 // scan of delta + F/k over a/L_a in [kScanLow, kScanHigh], kBranchNodes radii from a_s.
-std::unique_ptr<Branch> jkr_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
-                                   const Trial& trial, double max_indentation) {
+std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
+                                   const Trial& trial, double max_indentation, const internal::ReducedLaw& law) {
   const double reduced = trial.modulus / (1.0 - problem.poisson * problem.poisson);
   if (!(reduced > 0.0) || !std::isfinite(reduced) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
       (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
-    throw NumericalError("afm fit: a JKR trial left the finite positive parameters");
+    throw NumericalError("afm fit: a " + law.name + " trial left the finite positive parameters");
   }
   const double radius = problem.tip.radius;
   const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
-  // (delta, F) at contact radius a [THEORY.md section 5, steps 3-4].
   const auto point = [&](double a) -> std::pair<double, double> {
     Reduced v;
     if (sweep) v = sweep->at(a / trial.thickness);
-    const double fp = -std::sqrt(2.0 * kPi * a * trial.work / reduced) / v.gamma1;  // delta_fp
-    const double delta = a * a / radius * v.delta_s + fp;
-    const double force = a * a * a * reduced / (2.0 * radius) * v.pi_s + 2.0 * a * reduced * v.e_eq * fp;
-    return {delta, force};
+    return law.point(a, v, reduced, trial.work, radius);
   };
   return std::make_unique<Branch>(point, length, kScanLow, kScanHigh, kScanPerDecade, problem.spring_constant,
                                   max_indentation, std::sqrt(radius * std::max(max_indentation, 0.0)), kBranchNodes,
-                                  std::nullopt, reduced);
+                                  law.end ? law.end(reduced, trial.work, radius) : std::nullopt, reduced);
 }
 
 // Weighted points sorted by tip position (bins of a dense curve carry their counts).
@@ -389,10 +383,27 @@ void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r) {
   }
 }
 
+const internal::ReducedLaw& jkr_law() {
+  static const internal::ReducedLaw law{
+      "JKR",
+      // (delta, F) at contact radius a [THEORY.md section 5, steps 3-4].
+      [](double a, const Reduced& v, double reduced, double work, double radius) -> std::pair<double, double> {
+        const double fp = -std::sqrt(2.0 * kPi * a * work / reduced) / v.gamma1;  // delta_fp
+        return {a * a / radius * v.delta_s + fp, a * a * a * reduced / (2.0 * radius) * v.pi_s + 2.0 * a * reduced * v.e_eq * fp};
+      },
+      nullptr, 1.5, [](const AfmFitProblem& p, AfmFitResult& r) { afm_jkr_lambda(p, r); }};
+  return law;
+}
+
 std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std::vector<double>& z) {
-  if (problem.tip.kind != AfmTip::Kind::kParaboloid) throw InputError("afm fit: the JKR model takes a sphere tip (radius R)");
+  return afm_reduced_model_force(problem, z, jkr_law());
+}
+
+std::vector<double> afm_reduced_model_force(const AfmFitProblem& problem, const std::vector<double>& z,
+                                            const ReducedLaw& law) {
+  if (problem.tip.kind != AfmTip::Kind::kParaboloid) throw InputError("afm fit: the " + law.name + " model takes a sphere tip (radius R)");
   if (!(problem.spring_constant > 0.0) || !std::isfinite(problem.spring_constant)) {
-    throw InputError("afm fit: the JKR model needs the cantilever's spring constant k > 0");
+    throw InputError("afm fit: the " + law.name + " model needs the cantilever's spring constant k > 0");
   }
   double max_delta = 0.0;
   for (double v : z) max_delta = std::max(max_delta, problem.contact_point - v);
@@ -410,7 +421,7 @@ std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std:
     for (int k = 0; k < count; ++k) grid.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
     sweep = std::make_shared<const CoatingSweep>(solver.sweep(grid, c.solver_tolerance));
   }
-  const auto branch = jkr_branch(p, sweep, trial, std::max(max_delta, 1e-12));
+  const auto branch = law_branch(p, sweep, trial, std::max(max_delta, 1e-12), law);
   std::vector<double> f(z.size());
   for (std::size_t i = 0; i < z.size(); ++i) {
     f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch->at(problem.contact_point - z[i]).first;
@@ -423,10 +434,10 @@ AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<do
   return afm_fit_adhesive(z_data, f_data, problem, free_count, nullptr);
 }
 
-AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
-                              const AfmFitProblem& problem, int free_count, const SpringModel* model) {
-  const std::string name = model ? model->name : "JKR";
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+// The adhesive fit's input: a sphere, the spring, z0, a fixed w > 0 and a half-space E > 0.
+void check_adhesive_input(const AfmFitProblem& problem, const std::string& name) {
   if (problem.tip.kind != AfmTip::Kind::kParaboloid) {
     throw InputError("afm fit: the " + name + " model takes a sphere tip (radius R); got " + problem.tip.description);
   }
@@ -440,24 +451,19 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   if (!problem.free.work && !(problem.work > 0.0 && std::isfinite(problem.work))) {
     throw InputError("afm fit: a fixed w must be > 0 (got " + short_text(problem.work) + " J/m2)");
   }
-  const bool coated = problem.coating.has_value();
-  AfmFitProblem p = problem;
-  if (coated) p.poisson = problem.coating->film.poisson_ratio;
-  if (!coated && !(problem.modulus > 0.0 && std::isfinite(problem.modulus))) {
+  if (!problem.coating && !(problem.modulus > 0.0 && std::isfinite(problem.modulus))) {
     throw InputError("afm fit: E must be > 0 (the value if fixed, the centre of its search if free; got " +
                      short_text(problem.modulus) + ")");
   }
-  const std::size_t n = z_data.size();
-  const Points all = sorted_points(z_data, f_data);
-  const Points search = binned(all, kAdhesiveSearchPoints);
-  const double z_lo = all.z.front(), z_hi = all.z.back(), span = z_hi - z_lo;
-  if (problem.free.contact_point && !(span > 0.0)) throw InputError("afm fit: the fitted points have one tip position only");
-  const double c_hi = problem.free.contact_point ? z_hi + kContactBeyond * span : problem.contact_point;
-  const double max_delta = std::max(c_hi - z_lo, 1e-12);
+}
 
-  // The search's parameters: ln E (or ln E1), ln w, ln t, those free, in that order. A free
-  // half-space modulus starts from the adhesionless fit of the same points (the given value
-  // may be anything > 0, as in the Hertz fit).
+// The start values: E (the adhesionless fit of the same points for a free half-space modulus:
+// the given value may be anything > 0, as in the Hertz fit) and w (the law's soft-lever
+// pull-off below the median force), unless given.
+std::pair<double, double> adhesive_hints(const std::vector<double>& z_data, const std::vector<double>& f_data,
+                                         const AfmFitProblem& problem, const Points& all, const ReducedLaw& law) {
+  const bool coated = problem.coating.has_value();
+  const std::size_t n = all.f.size();
   double e_hint = coated ? problem.coating->film.youngs_modulus : problem.modulus;
   if (!coated && problem.free.modulus) {
     AfmFitProblem hertz = problem;
@@ -470,71 +476,48 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     } catch (const NumericalError&) {
     }
   }
-  const double t_hint = coated ? problem.coating->thickness : 0.0;
   double w_hint = problem.work;
   if (!(w_hint > 0.0)) {
-    // JKR's load-controlled pull-off of a sphere, F = -(3/2) pi w R, below the median force.
+    // The law's pull-off through a soft lever (JKR: -(3/2) pi w R) below the median force.
     std::vector<double> sorted(all.f);
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(n / 2), sorted.end());
     const double drop = sorted[n / 2] - *std::min_element(all.f.begin(), all.f.end());
-    w_hint = std::max(drop / (1.5 * kPi * problem.tip.radius), 1e-9);
+    w_hint = std::max(drop / (law.soft_pulloff * kPi * problem.tip.radius), 1e-9);
   }
-  std::vector<int> axes;  // 0: E, 1: w, 2: t
-  if (problem.free.modulus) axes.push_back(0);
-  if (problem.free.work) axes.push_back(1);
-  if (coated && problem.free.thickness) axes.push_back(2);
-  const auto trial_of = [&](const std::vector<double>& u) {
-    Trial t{e_hint, problem.free.work ? w_hint : problem.work, t_hint};
-    for (std::size_t k = 0; k < axes.size(); ++k) {
-      const double v = std::exp(u[k]);
-      if (axes[k] == 0) t.modulus = v;
-      else if (axes[k] == 1) t.work = v;
-      else t.thickness = v;
-    }
-    return t;
-  };
-  std::vector<double> u0;
-  for (int a : axes) u0.push_back(std::log(a == 0 ? e_hint : a == 1 ? w_hint : t_hint));
+  return {e_hint, w_hint};
+}
 
-  // Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
-  // (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
-  // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15). The
-  // sweeps cover a prefix of the a/t lattice of kCoatingAOverT, extended (on every node, by the
-  // missing radii only) when a trial's branch reaches past it: the solves at large a/t cost
-  // most, and a curve's indentations rarely reach them.
-  std::map<long, std::vector<ReducedVariables>> nodes;  // this fit's prefix of each node's sweep
-  long solver_calls = 0;
-  std::vector<double> lattice;  // the whole a/t lattice
-  std::size_t swept = 0;        // its prefix the sweeps cover
-  if (coated) {
+// Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
+// (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
+// reduced variables at each a/t from its four nearest nodes (THEORY.md section 15). The
+// sweeps cover a prefix of the a/t lattice of kCoatingAOverT, extended (on every node, by the
+// missing radii only) when a trial's branch reaches past it: the solves at large a/t cost
+// most, and a curve's indentations rarely reach them.
+class CoatingNodes {
+ public:
+  CoatingNodes(const AfmFitProblem& problem, double e_hint) : problem_(problem), e_hint_(e_hint) {
+    if (!problem.coating) return;
     const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
     const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
-    for (int k = 0; k < count; ++k) lattice.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
+    for (int k = 0; k < count; ++k) lattice_.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
   }
-  // The prefix up to the first radius >= a_over_t (at least 8 radii past 1/2 of the lattice's
-  // start, at most the whole lattice).
-  const auto prefix_for = [&](double a_over_t) {
+  // Sweeps up to the first radius >= a_over_t (at least 8 radii past 1/2 of the lattice's
+  // start, at most the whole lattice); the trials' interpolated sweeps are rebuilt.
+  void reach(double a_over_t) {
     std::size_t k = 0;
-    while (k < lattice.size() && lattice[k] < a_over_t) ++k;
-    return std::min(lattice.size(), std::max<std::size_t>(k + 1, 8));
-  };
-  // (solver_calls: the solves the fit's model rests on, whether this fit or an earlier one made them)
-  const auto node = [&](long j) -> const std::vector<ReducedVariables>& {
-    std::vector<ReducedVariables>& v = nodes[j];
-    if (v.size() < swept) {
-      Material film = problem.coating->film;
-      film.youngs_modulus = e_hint * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
-      solver_calls += static_cast<long>(swept - v.size());
-      v = shared_sweep(film, problem.coating->substrate, problem.coating->solver_tolerance, lattice, swept);
-    }
-    return v;
-  };
-  std::map<double, std::shared_ptr<const CoatingSweep>> sweeps;
-  const auto sweep_of = [&](double film_modulus) -> std::shared_ptr<const CoatingSweep> {
-    if (!coated) return nullptr;
-    auto it = sweeps.find(film_modulus);
-    if (it != sweeps.end()) return it->second;
-    const double x = std::log10(film_modulus / e_hint) * kModulusNodesPerDecade;
+    while (k < lattice_.size() && lattice_[k] < a_over_t) ++k;
+    swept_ = std::min(lattice_.size(), std::max<std::size_t>(k + 1, 8));
+    sweeps_.clear();
+  }
+  bool covers(double a_over_t) const { return swept_ == lattice_.size() || a_over_t <= lattice_[swept_ - 1]; }
+  // (the solves the fit's model rests on, whether this fit or an earlier one made them)
+  long solver_calls() const { return solver_calls_; }
+
+  std::shared_ptr<const CoatingSweep> sweep_of(double film_modulus) {
+    if (!problem_.coating) return nullptr;
+    auto it = sweeps_.find(film_modulus);
+    if (it != sweeps_.end()) return it->second;
+    const double x = std::log10(film_modulus / e_hint_) * kModulusNodesPerDecade;
     const double nearest = std::round(x);
     std::shared_ptr<const CoatingSweep> sweep;
     if (std::abs(x - nearest) < 1e-9) {
@@ -542,17 +525,12 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     } else {
       const long j0 = static_cast<long>(std::floor(x)) - 1;
       double weight[4];
-      for (int a = 0; a < 4; ++a) {
-        weight[a] = 1.0;
-        for (int b = 0; b < 4; ++b) {
-          if (b != a) weight[a] *= (x - static_cast<double>(j0 + b)) / static_cast<double>(a - b);
-        }
-      }
-      std::vector<ReducedVariables> mixed(swept);
+      lagrange_weights(x, j0, weight);
+      std::vector<ReducedVariables> mixed(swept_);
       for (int a = 0; a < 4; ++a) {
         const std::vector<ReducedVariables>& v = node(j0 + a);
         for (std::size_t k = 0; k < mixed.size(); ++k) {
-          mixed[k].a_over_t = lattice[k];
+          mixed[k].a_over_t = lattice_[k];
           mixed[k].pi_s += weight[a] * v[k].pi_s;
           mixed[k].delta_s += weight[a] * v[k].delta_s;
           mixed[k].e_eq += weight[a] * v[k].e_eq;
@@ -561,94 +539,72 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
       }
       sweep = std::make_shared<const CoatingSweep>(mixed);
     }
-    if (sweeps.size() > 64) sweeps.clear();
-    sweeps.emplace(film_modulus, sweep);
+    if (sweeps_.size() > 64) sweeps_.clear();
+    sweeps_.emplace(film_modulus, sweep);
     return sweep;
-  };
-  if (coated) swept = prefix_for(2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint);
-  int tables = 0;
-  const auto branch_of = [&](const Trial& t) {
-    for (;;) {
-      ++tables;
-      auto branch = model ? model->branch(t, max_delta) : jkr_branch(p, sweep_of(t.modulus), t, max_delta);
-      // The branch's radii past the swept a/t would take the sweep's end values: widen it.
-      if (model || !coated || swept == lattice.size() || branch->top_radius() / t.thickness <= lattice[swept - 1]) {
-        return branch;
-      }
-      swept = prefix_for(branch->top_radius() / t.thickness);
-      sweeps.clear();
-    }
-  };
+  }
 
-  const Objective coarse(search, problem);
-  // A trial's cost: the contact point on the whole range (global) or within a window around
-  // `centre` (the simplex's trials; the window is widened to the whole range at its edge).
-  const int grid_points = static_cast<int>(std::clamp<std::size_t>(problem.profile_points / 4, 24, 200));
-  const auto trial_cost = [&](const Trial& t, const double* centre) -> ContactFit {
-    std::unique_ptr<Branch> branch;
-    try {
-      branch = branch_of(t);
-    } catch (const NumericalError&) {
-      return {0.0, Linear{}};
+ private:
+  const std::vector<ReducedVariables>& node(long j) {
+    std::vector<ReducedVariables>& v = nodes_[j];
+    if (v.size() < swept_) {
+      Material film = problem_.coating->film;
+      film.youngs_modulus = e_hint_ * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+      solver_calls_ += static_cast<long>(swept_ - v.size());
+      v = shared_sweep(film, problem_.coating->substrate, problem_.coating->solver_tolerance, lattice_, swept_);
     }
-    const double lo = z_lo + std::min(0.0, branch->jump_delta());
-    if (centre == nullptr) return search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
-    const double half = 0.1 * span;
-    const double a = std::max(lo, *centre - half), b = std::min(c_hi, *centre + half);
-    ContactFit local = search_contact(coarse, *branch, problem, a, b, 13);
-    const double edge = 0.02 * (b - a);
-    if (problem.free.contact_point && (local.contact - a < edge || b - local.contact < edge)) {
-      const ContactFit wide = search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
-      if (wide.linear.rss < local.linear.rss) local = wide;
-    }
-    return local;
-  };
+    return v;
+  }
 
-  // 1. Start: a grid around the hints (E 1.5 decades each way, E1 one, w one, t half a decade).
+  const AfmFitProblem& problem_;
+  double e_hint_;
+  std::map<long, std::vector<ReducedVariables>> nodes_;  // this fit's prefix of each node's sweep
+  long solver_calls_ = 0;
+  std::vector<double> lattice_;  // the whole a/t lattice
+  std::size_t swept_ = 0;        // its prefix the sweeps cover
+  std::map<double, std::shared_ptr<const CoatingSweep>> sweeps_;
+};
+
+using TrialCost = std::function<ContactFit(const std::vector<double>& u, const double* centre)>;
+using BranchAt = std::function<std::unique_ptr<Branch>(const std::vector<double>& u)>;
+
+// 1. Start: a grid around the hints (E 1.5 decades each way, E1 one, w one, t half a decade);
+// the best node's ln-parameters, its fit in best_fit.
+std::vector<double> start_grid(const std::vector<int>& axes, const std::vector<double>& u0, bool coated,
+                               const TrialCost& trial_cost, ContactFit& best_fit) {
   std::vector<double> u_best = u0;
-  ContactFit best_fit = trial_cost(trial_of(u0), nullptr);
-  {
-    std::vector<std::vector<double>> offsets(axes.size());
-    for (std::size_t k = 0; k < axes.size(); ++k) {
-      // (a coating's E1 a decade: each new E1 node costs a sweep of the solver)
-      offsets[k] = axes[k] == 0   ? (coated ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
-                                            : std::vector<double>{-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5})
-                   : axes[k] == 1 ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
-                                  : std::vector<double>{-0.5, 0.0, 0.5};
-    }
-    std::vector<std::size_t> index(axes.size(), 0);
-    while (!axes.empty()) {
-      std::vector<double> u(axes.size());
-      for (std::size_t k = 0; k < axes.size(); ++k) u[k] = u0[k] + std::log(10.0) * offsets[k][index[k]];
-      const ContactFit c = trial_cost(trial_of(u), nullptr);
-      if (c.linear.rss < best_fit.linear.rss) best_fit = c, u_best = u;
-      std::size_t k = 0;
-      while (k < axes.size() && ++index[k] == offsets[k].size()) index[k++] = 0;
-      if (k == axes.size()) break;
-    }
+  best_fit = trial_cost(u0, nullptr);
+  std::vector<std::vector<double>> offsets(axes.size());
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    // (a coating's E1 a decade: each new E1 node costs a sweep of the solver)
+    offsets[k] = axes[k] == 0   ? (coated ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
+                                          : std::vector<double>{-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5})
+                 : axes[k] == 1 ? std::vector<double>{-1.0, -0.5, 0.0, 0.5, 1.0}
+                                : std::vector<double>{-0.5, 0.0, 0.5};
   }
-  if (!std::isfinite(best_fit.linear.rss)) {
-    throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
-                         "the spring constant and the segment)");
+  std::vector<std::size_t> index(axes.size(), 0);
+  while (!axes.empty()) {
+    std::vector<double> u(axes.size());
+    for (std::size_t k = 0; k < axes.size(); ++k) u[k] = u0[k] + std::log(10.0) * offsets[k][index[k]];
+    const ContactFit c = trial_cost(u, nullptr);
+    if (c.linear.rss < best_fit.linear.rss) best_fit = c, u_best = u;
+    std::size_t k = 0;
+    while (k < axes.size() && ++index[k] == offsets[k].size()) index[k++] = 0;
+    if (k == axes.size()) break;
   }
-  // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near the start's.
-  int iterations = 0;
-  if (!axes.empty()) {
-    const double centre = best_fit.contact;
-    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
-                     0.15, 1e-6, &iterations);
-  }
-  Trial estimate = trial_of(u_best);
-  ContactFit fit = trial_cost(estimate, nullptr);
-  if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the " + name + " search ended on a trial without a jump-off");
+  return u_best;
+}
 
-  // 3. Every point: the contact point re-profiled, then damped Gauss-Newton steps on all free
-  // parameters (bounded; a step is kept only if it lowers the sum).
-  const Objective fine(all, problem);
-  struct State {
-    std::vector<double> u;
-    ContactFit c;
-  };
+struct State {
+  std::vector<double> u;
+  ContactFit c;
+};
+
+// 3. Every point: damped Gauss-Newton steps on all free parameters from `state` (bounded; a
+// step is kept only if it lowers the sum).
+State polish(State state, const std::vector<int>& axes, const AfmFitProblem& problem, const Points& all,
+             const Objective& fine, const BranchAt& branch_at) {
+  const std::size_t n = all.z.size();
   const auto model_all = [&](const Branch& b, const ContactFit& c, std::vector<double>* slope) {
     std::vector<double> m(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -658,16 +614,10 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     }
     return m;
   };
-  State state{u_best, {}};
-  {
-    const auto branch = branch_of(estimate);
-    const double half = 0.1 * span, lo = z_lo + std::min(0.0, branch->jump_delta());
-    state.c = search_contact(fine, *branch, problem, std::max(lo, fit.contact - half), std::min(c_hi, fit.contact + half), 25);
-  }
   int polish = 0;
   for (; polish < kPolishSteps && !axes.empty(); ++polish) {
     // Columns: each ln-parameter by central differences, then z_c, b, m (linear ones exact).
-    const auto centre_branch = branch_of(trial_of(state.u));
+    const auto centre_branch = branch_at(state.u);
     std::vector<double> dg(n);
     const std::vector<double> m0 = model_all(*centre_branch, state.c, &dg);
     std::vector<std::vector<double>> cols;
@@ -675,7 +625,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
       constexpr double h = 1e-4;
       std::vector<double> up = state.u, down = state.u;
       up[k] += h, down[k] -= h;
-      const auto bu = branch_of(trial_of(up)), bd = branch_of(trial_of(down));
+      const auto bu = branch_at(up), bd = branch_at(down);
       const std::vector<double> mu = model_all(*bu, state.c, nullptr), md = model_all(*bd, state.c, nullptr);
       std::vector<double> col(n);
       for (std::size_t i = 0; i < n; ++i) col[i] = (mu[i] - md[i]) / (2 * h);
@@ -702,7 +652,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
       if (problem.free.contact_point) next.c.contact += scale * step[axes.size()];
       std::unique_ptr<Branch> b;
       try {
-        b = branch_of(trial_of(next.u));
+        b = branch_at(next.u);
       } catch (const NumericalError&) {
         continue;
       }
@@ -716,37 +666,15 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     }
     if (!improved) break;
   }
-  estimate = trial_of(state.u);
-  const auto branch = branch_of(estimate);
+  return state;
+}
 
-  AfmFitResult r;
-  r.points = n;
-  r.free_count = free_count;
-  r.modulus = estimate.modulus;
-  r.work = estimate.work;
-  r.thickness = coated ? estimate.thickness : 0.0;
-  r.reduced_modulus = branch->reduced_modulus();
-  r.contact_point = state.c.contact;
-  r.baseline = state.c.linear.baseline;
-  r.tilt = state.c.linear.tilt;
-  r.tilt_origin = r.contact_point;
-  r.jump_off_indentation = branch->jump_delta();
-  r.jump_off_force = branch->jump_force();
-  r.solver_calls = solver_calls;
-  r.profile_evaluations = coarse.evaluations() + fine.evaluations();
-  r.model_evaluations = tables;
-  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] &&
-      r.contact_point - z_lo > 0.0) {
-    // Only the radii the data reach matter: the deepest fitted indentation's.
-    double deepest = r.contact_point - z_lo;
-    if (deepest > 0.0) {
-      const auto check = model ? model->branch(estimate, deepest) : jkr_branch(p, sweep_of(estimate.modulus), estimate, deepest);
-      if (check->max_radius() / estimate.thickness > kCoatingAOverT[1]) {
-        throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
-                             short_text(estimate.thickness) + " m; the coating model is tabulated up to there");
-      }
-    }
-  }
+// The per-point model and the standard errors at the estimates (central differences in ln p
+// for E, w, t; exact columns for z_c, b, m), with the residual statistics.
+void fill_errors(AfmFitResult& r, const std::vector<double>& z_data, const std::vector<double>& f_data, const Branch& branch,
+                 const State& state, const std::vector<int>& axes, const BranchAt& branch_at, const AfmFitProblem& problem,
+                 int free_count, const std::string& name) {
+  const std::size_t n = z_data.size();
   // Per point, in the caller's order.
   std::vector<double> slope(n);
   r.model_force.resize(n);
@@ -754,7 +682,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   std::vector<double> col_c(n), col_m(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double delta = r.contact_point - z_data[i];
-    const auto [g, dg] = branch->at(delta);
+    const auto [g, dg] = branch.at(delta);
     r.model_force[i] = r.baseline + r.tilt * (z_data[i] - r.contact_point) + g;
     col_c[i] = dg - r.tilt;
     col_m[i] = z_data[i] - r.contact_point;
@@ -766,7 +694,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     constexpr double h = 1e-4;
     std::vector<double> up = state.u, down = state.u;
     up[k] += h, down[k] -= h;
-    const auto bu = branch_of(trial_of(up)), bd = branch_of(trial_of(down));
+    const auto bu = branch_at(up), bd = branch_at(down);
     std::vector<double> col(n);
     const double value = std::exp(state.u[k]);
     for (std::size_t i = 0; i < n; ++i) {
@@ -790,11 +718,147 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   for (double v : errors) {
     if (!std::isfinite(v)) throw NumericalError("afm fit: the " + name + " fit's standard errors are not finite (parameters not identifiable)");
   }
-  if (model) {
-    model->report(estimate, r);
-  } else {
-    afm_jkr_lambda(p, r);
+}
+
+}  // namespace
+
+AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
+                              const AfmFitProblem& problem, int free_count, const SpringModel* model,
+                              const ReducedLaw* law_given) {
+  const ReducedLaw& law = law_given ? *law_given : jkr_law();
+  const std::string name = model ? model->name : law.name;
+  const auto start = std::chrono::steady_clock::now();
+  check_adhesive_input(problem, name);
+  const bool coated = problem.coating.has_value();
+  AfmFitProblem p = problem;
+  if (coated) p.poisson = problem.coating->film.poisson_ratio;
+  const std::size_t n = z_data.size();
+  const Points all = sorted_points(z_data, f_data);
+  const Points search = binned(all, kAdhesiveSearchPoints);
+  const double z_lo = all.z.front(), z_hi = all.z.back(), span = z_hi - z_lo;
+  if (problem.free.contact_point && !(span > 0.0)) throw InputError("afm fit: the fitted points have one tip position only");
+  const double c_hi = problem.free.contact_point ? z_hi + kContactBeyond * span : problem.contact_point;
+  const double max_delta = std::max(c_hi - z_lo, 1e-12);
+
+  // The search's parameters: ln E (or ln E1), ln w, ln t, those free, in that order.
+  const auto [e_hint, w_hint] = adhesive_hints(z_data, f_data, problem, all, law);
+  const double t_hint = coated ? problem.coating->thickness : 0.0;
+  std::vector<int> axes;  // 0: E, 1: w, 2: t
+  if (problem.free.modulus) axes.push_back(0);
+  if (problem.free.work) axes.push_back(1);
+  if (coated && problem.free.thickness) axes.push_back(2);
+  const auto trial_of = [&](const std::vector<double>& u) {
+    Trial t{e_hint, problem.free.work ? w_hint : problem.work, t_hint};
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      const double v = std::exp(u[k]);
+      if (axes[k] == 0) t.modulus = v;
+      else if (axes[k] == 1) t.work = v;
+      else t.thickness = v;
+    }
+    return t;
+  };
+  std::vector<double> u0;
+  for (int a : axes) u0.push_back(std::log(a == 0 ? e_hint : a == 1 ? w_hint : t_hint));
+
+  CoatingNodes nodes(problem, e_hint);
+  if (coated) nodes.reach(2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint);
+  int tables = 0;
+  const auto branch_of = [&](const Trial& t) {
+    for (;;) {
+      ++tables;
+      auto branch = model ? model->branch(t, max_delta) : law_branch(p, nodes.sweep_of(t.modulus), t, max_delta, law);
+      // The branch's radii past the swept a/t would take the sweep's end values: widen it.
+      if (model || !coated || nodes.covers(branch->top_radius() / t.thickness)) return branch;
+      nodes.reach(branch->top_radius() / t.thickness);
+    }
+  };
+  const BranchAt branch_at = [&](const std::vector<double>& u) { return branch_of(trial_of(u)); };
+
+  const Objective coarse(search, problem);
+  // A trial's cost: the contact point on the whole range (global) or within a window around
+  // `centre` (the simplex's trials; the window is widened to the whole range at its edge).
+  const int grid_points = static_cast<int>(std::clamp<std::size_t>(problem.profile_points / 4, 24, 200));
+  const auto trial_cost = [&](const Trial& t, const double* centre) -> ContactFit {
+    std::unique_ptr<Branch> branch;
+    try {
+      branch = branch_of(t);
+    } catch (const NumericalError&) {
+      return {0.0, Linear{}};
+    }
+    const double lo = z_lo + std::min(0.0, branch->jump_delta());
+    if (centre == nullptr) return search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
+    const double half = 0.1 * span;
+    const double a = std::max(lo, *centre - half), b = std::min(c_hi, *centre + half);
+    ContactFit local = search_contact(coarse, *branch, problem, a, b, 13);
+    const double edge = 0.02 * (b - a);
+    if (problem.free.contact_point && (local.contact - a < edge || b - local.contact < edge)) {
+      const ContactFit wide = search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
+      if (wide.linear.rss < local.linear.rss) local = wide;
+    }
+    return local;
+  };
+
+  ContactFit best_fit;
+  std::vector<double> u_best =
+      start_grid(axes, u0, coated, [&](const std::vector<double>& u, const double* c) { return trial_cost(trial_of(u), c); }, best_fit);
+  if (!std::isfinite(best_fit.linear.rss)) {
+    throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
+                         "the spring constant and the segment)");
   }
+  // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near the start's.
+  int iterations = 0;
+  if (!axes.empty()) {
+    const double centre = best_fit.contact;
+    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
+                     0.15, 1e-6, &iterations);
+  }
+  Trial estimate = trial_of(u_best);
+  const ContactFit fit = trial_cost(estimate, nullptr);
+  if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the " + name + " search ended on a trial without a jump-off");
+
+  // 3. Every point: the contact point re-profiled in a window, then polished.
+  const Objective fine(all, problem);
+  State state{u_best, {}};
+  {
+    const auto branch = branch_of(estimate);
+    const double half = 0.1 * span, lo = z_lo + std::min(0.0, branch->jump_delta());
+    state.c = search_contact(fine, *branch, problem, std::max(lo, fit.contact - half), std::min(c_hi, fit.contact + half), 25);
+  }
+  state = polish(state, axes, problem, all, fine, branch_at);
+  estimate = trial_of(state.u);
+  const auto branch = branch_of(estimate);
+
+  AfmFitResult r;
+  r.points = n;
+  r.free_count = free_count;
+  r.modulus = estimate.modulus;
+  r.work = estimate.work;
+  r.thickness = coated ? estimate.thickness : 0.0;
+  r.reduced_modulus = branch->reduced_modulus();
+  r.contact_point = state.c.contact;
+  r.baseline = state.c.linear.baseline;
+  r.tilt = state.c.linear.tilt;
+  r.tilt_origin = r.contact_point;
+  r.jump_off_indentation = branch->jump_delta();
+  r.jump_off_force = branch->jump_force();
+  r.solver_calls = nodes.solver_calls();
+  r.profile_evaluations = coarse.evaluations() + fine.evaluations();
+  r.model_evaluations = tables;
+  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] &&
+      r.contact_point - z_lo > 0.0) {
+    // Only the radii the data reach matter: the deepest fitted indentation's.
+    double deepest = r.contact_point - z_lo;
+    if (deepest > 0.0) {
+      const auto check = model ? model->branch(estimate, deepest) : law_branch(p, nodes.sweep_of(estimate.modulus), estimate, deepest, law);
+      if (check->max_radius() / estimate.thickness > kCoatingAOverT[1]) {
+        throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
+                             short_text(estimate.thickness) + " m; the coating model is tabulated up to there");
+      }
+    }
+  }
+  fill_errors(r, z_data, f_data, *branch, state, axes, branch_at, problem, free_count, name);
+  if (model) model->report(estimate, r);
+  else law.report(p, r);
   for (std::size_t k = 0; k < axes.size(); ++k) {
     if (std::abs(state.u[k] - u0[k]) > std::log(10.0) * 2.5) {
       r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +

@@ -21,22 +21,6 @@
 
 namespace coatcontact::fit {
 
-const char* afm_flag_name(AfmFlag flag) {
-  switch (flag) {
-    case AfmFlag::kFitted: return "fitted";
-    case AfmFlag::kNoContact: return "no_contact";
-    case AfmFlag::kJumpIn: return "jump_in";
-    case AfmFlag::kNoConvergence: return "no_convergence";
-    case AfmFlag::kEmptySegment: return "empty_segment";
-    case AfmFlag::kMissingSegment: return "missing_segment";
-    case AfmFlag::kCalibration: return "calibration";
-    case AfmFlag::kTooFewPoints: return "too_few_points";
-    case AfmFlag::kUnreadable: return "unreadable";
-    case AfmFlag::kBadData: return "bad_data";
-  }
-  return "unknown";
-}
-
 std::vector<AfmBatchParameter> afm_batch_parameters(const AfmFitProblem& problem) {
   std::vector<AfmBatchParameter> parameters;
   if (problem.free.modulus) {
@@ -71,8 +55,6 @@ AfmCurveRow flagged(AfmCurveRow row, AfmFlag flag, const std::string& message) {
   return row;
 }
 
-bool says(const std::string& message, const char* phrase) { return message.find(phrase) != std::string::npos; }
-
 }  // namespace
 
 AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::exception& error) {
@@ -85,82 +67,16 @@ AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::excep
 
 AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettings& settings) {
   AfmCurveRow row = row_of(curve.metadata);
-  const std::string kind_name = afm::segment_kind_name(settings.segment);
-  const afm::Segment* segment = curve.find_segment(settings.segment);
-  if (segment == nullptr) return flagged(std::move(row), AfmFlag::kMissingSegment, "no " + kind_name + " segment");
-  if (curve.find_segment(afm::SegmentKind::kApproach) == nullptr) {
-    return flagged(std::move(row), AfmFlag::kMissingSegment, "no approach segment (the baseline and contact point need it)");
-  }
-  for (const afm::Segment& s : curve.segments) {
-    if (s.size() == 0) return flagged(std::move(row), AfmFlag::kEmptySegment, "an empty segment");
-  }
-  if (curve.force.size() != curve.point_count()) {
-    return flagged(std::move(row), AfmFlag::kCalibration, "no force channel (missing calibration)");
-  }
-  afm::PreprocessedCurve steps;
+  AfmCurveFit fitted;
   try {
-    steps = afm::preprocess(curve, settings.preprocess);
-  } catch (const InputError& error) {
-    const std::string message = error.what();
-    if (says(message, "no contact")) return flagged(std::move(row), AfmFlag::kNoContact, message);
-    if (says(message, "spring constant")) return flagged(std::move(row), AfmFlag::kCalibration, message);
-    return flagged(std::move(row), AfmFlag::kTooFewPoints, message);
-  } catch (const NumericalError& error) {
-    return flagged(std::move(row), AfmFlag::kNoConvergence, error.what());
+    fitted = afm_fit_curve(curve, settings);
+  } catch (const AfmCurveInputError& error) {
+    return flagged(std::move(row), error.flag(), error.what());
+  } catch (const AfmCurveNumericalError& error) {
+    return flagged(std::move(row), error.flag(), error.what());
   }
-  if (settings.check_jump_in && settings.segment == afm::SegmentKind::kApproach && steps.baseline_sigma > 0.0) {
-    const afm::Segment* approach = curve.find_segment(afm::SegmentKind::kApproach);
-    const auto first = steps.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->begin);
-    const auto last = steps.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->end);
-    const auto [low, high] = std::minmax_element(first, last);
-    if (*low < -kJumpInSigmas * steps.baseline_sigma && -*low > kJumpInFraction * *high) {
-      return flagged(std::move(row), AfmFlag::kJumpIn,
-                     "the approach force dips " + std::to_string(-*low / steps.baseline_sigma) +
-                         " baseline sigmas below its baseline, " + std::to_string(-*low / *high) + " of its largest force");
-    }
-  }
-  AfmFitProblem problem = settings.problem;
-  problem.noise_sigma = steps.baseline_sigma;
-  if (problem.model != AfmModel::kHertz && !(problem.spring_constant > 0.0)) {
-    problem.spring_constant = curve.metadata.spring_constant;
-    if (!(problem.spring_constant > 0.0)) {
-      return flagged(std::move(row), AfmFlag::kCalibration, "the adhesive model needs the cantilever's spring constant; the curve has none");
-    }
-  }
-  const std::vector<double> tip = curve.tip_position();
-  const std::vector<double> z_segment(tip.begin() + static_cast<std::ptrdiff_t>(segment->begin),
-                                      tip.begin() + static_cast<std::ptrdiff_t>(segment->end));
-  std::vector<double> f_segment(curve.force.begin() + static_cast<std::ptrdiff_t>(segment->begin),
-                                curve.force.begin() + static_cast<std::ptrdiff_t>(segment->end));
-  // The baseline's tilt about the reference contact point: b is then the offset there.
-  // A Hertz model with its own free tilt fits it with its error instead (THEORY.md section 15).
-  const bool model_tilt = problem.model == AfmModel::kHertz && problem.free.tilt;
-  const double tilt = settings.correct_tilt && !model_tilt ? steps.baseline_slope : 0.0;
-  for (std::size_t i = 0; i < f_segment.size(); ++i) f_segment[i] -= tilt * (z_segment[i] - steps.contact_point);
-  const double reference_baseline = steps.baseline_offset + steps.baseline_slope * steps.contact_point;
-  const std::vector<std::size_t> kept = afm_select(z_segment, f_segment, settings.range, steps.contact_point, reference_baseline);
-  if (kept.size() < settings.min_points) {
-    return flagged(std::move(row), AfmFlag::kTooFewPoints,
-                   std::to_string(kept.size()) + " points of the " + kind_name + " segment in the fit range (need " +
-                       std::to_string(settings.min_points) + ")");
-  }
-  std::vector<double> z, f;
-  z.reserve(kept.size());
-  f.reserve(kept.size());
-  for (std::size_t i : kept) {
-    z.push_back(z_segment[i]);
-    f.push_back(f_segment[i]);
-  }
-  AfmFitResult r;
-  try {
-    r = afm_fit(z, f, problem);
-  } catch (const NumericalError& error) {
-    const std::string message = error.what();
-    return flagged(std::move(row), says(message, "no contact") ? AfmFlag::kNoContact : AfmFlag::kNoConvergence, message);
-  } catch (const InputError& error) {
-    return flagged(std::move(row), AfmFlag::kBadData, error.what());
-  }
-  for (const AfmBatchParameter& p : afm_batch_parameters(problem)) {
+  const AfmFitResult& r = fitted.result;
+  for (const AfmBatchParameter& p : afm_batch_parameters(settings.problem)) {
     row.estimates.push_back(r.*p.value);
     row.errors.push_back(r.*p.error);
   }
@@ -169,24 +85,9 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   row.residual_sigma = r.residual_sigma;
   row.contact_point = r.contact_point;
   row.points = r.points;
-  bool finite = std::isfinite(r.chi2) && std::isfinite(r.contact_point) && std::isfinite(r.residual_sigma);
-  for (std::size_t i = 0; i < row.estimates.size(); ++i) finite = finite && std::isfinite(row.estimates[i]) && std::isfinite(row.errors[i]);
-  if (!finite) {
-    row.estimates.clear();
-    row.errors.clear();
-    return flagged(std::move(row), AfmFlag::kNoConvergence, "the fit gave non-finite estimates or errors");
-  }
-  if (const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract)) {
-    const std::vector<double> zr(tip.begin() + static_cast<std::ptrdiff_t>(retract->begin),
-                                 tip.begin() + static_cast<std::ptrdiff_t>(retract->end));
-    std::vector<double> fr(curve.force.begin() + static_cast<std::ptrdiff_t>(retract->begin),
-                           curve.force.begin() + static_cast<std::ptrdiff_t>(retract->end));
-    for (std::size_t i = 0; i < fr.size(); ++i) fr[i] -= tilt * (zr[i] - steps.contact_point);
-    const AfmPulloff pulloff = afm_pulloff(zr, fr, r.baseline);
-    if (pulloff.found) {
-      row.pulloff_force = pulloff.force;
-      row.pulloff_position = pulloff.tip_position;
-    }
+  if (fitted.pulloff.found) {
+    row.pulloff_force = fitted.pulloff.force;
+    row.pulloff_position = fitted.pulloff.tip_position;
   }
   return row;
 }
@@ -200,6 +101,10 @@ std::vector<AfmFileSurvey> afm_survey_files(const std::vector<std::string>& file
     if (tolerate && ::stat(file.c_str(), &info) == 0 && S_ISREG(info.st_mode)) {
       try {
         s.curves = afm::CurveSource(file, calibration).size();
+      } catch (const afm::MissingCalibration& error) {
+        s.curves = 1;
+        s.unreadable = error.what();
+        s.flag = AfmFlag::kCalibration;
       } catch (const InputError& error) {
         s.curves = 1;
         s.unreadable = error.what();
@@ -279,7 +184,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
       if (!survey[file].unreadable.empty()) {
         afm::CurveMetadata place;
         place.source_file = files[file];
-        item.row = flagged(row_of(place), AfmFlag::kUnreadable, survey[file].unreadable);
+        item.row = flagged(row_of(place), survey[file].flag, survey[file].unreadable);
         items.push_back(std::move(item));
         ++next;
         continue;

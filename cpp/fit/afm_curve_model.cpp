@@ -543,6 +543,7 @@ std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vec
   }
   if (problem.model == AfmModel::kJkr) return internal::afm_jkr_model_force(problem, tip_position);
   if (problem.model == AfmModel::kMd) return internal::afm_md_model_force(problem, tip_position);
+  if (problem.model == AfmModel::kDmt) return internal::afm_dmt_model_force(problem, tip_position);
   std::vector<double> f(delta.size(), problem.baseline);
   // The baseline's tilt (0 unless a fit estimated it).
   for (std::size_t i = 0; i < f.size(); ++i) f[i] += problem.tilt * (tip_position[i] - problem.contact_point);
@@ -653,16 +654,27 @@ void afm_residual_statistics(AfmFitResult& r, const std::vector<double>& force, 
 
 }  // namespace internal
 
+namespace {
+
+// The adhesive models through the cantilever, one file each (THEORY.md section 15).
+AfmFitResult adhesive_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                          int free_count) {
+  if (problem.model == AfmModel::kMd) return internal::afm_fit_md(z, force, problem, free_count);
+  if (problem.model == AfmModel::kDmt) return internal::afm_fit_dmt(z, force, problem, free_count);
+  return internal::afm_fit_jkr(z, force, problem, free_count);
+}
+
+}  // namespace
+
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
   const auto start = std::chrono::steady_clock::now();
   const bool adhesive = problem.model != AfmModel::kHertz;
   const int free_count = int(problem.free.modulus) + int(problem.free.contact_point) + int(problem.free.baseline) +
                          int(problem.free.thickness) + int(adhesive && problem.free.work) + int(problem.free.tilt);
   check_fit_input(z, force, problem, free_count);
-  if (problem.model == AfmModel::kMd) return internal::afm_fit_md(z, force, problem, free_count);
-  if (adhesive) return internal::afm_fit_jkr(z, force, problem, free_count);
+  if (adhesive) return adhesive_fit(z, force, problem, free_count);
   if (problem.free.work) throw InputError("afm fit: w is a parameter of the adhesive (jkr) model only");
-  // The Hertz model's tilt is free or 0 (the batch subtracts the preprocessing's otherwise).
+  // The Hertz model's tilt is free or 0 (afm_fit_curve's baseline model subtracts the preprocessing's).
   const std::size_t n = z.size();
   const auto [z_lo_it, z_hi_it] = std::minmax_element(z.begin(), z.end());
   const double z_lo = *z_lo_it, z_hi = *z_hi_it, span = z_hi - z_lo;
@@ -817,18 +829,6 @@ std::vector<std::size_t> afm_select(const std::vector<double>& z, const std::vec
     kept.push_back(i);
   }
   return kept;
-}
-
-AfmPulloff afm_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force, double baseline) {
-  AfmPulloff out;
-  if (force.empty()) return out;
-  const auto it = std::min_element(force.begin(), force.end());
-  const auto i = static_cast<std::size_t>(it - force.begin());
-  out.found = true;
-  out.force = *it - baseline;
-  out.tip_position = tip_position[i];
-  out.index = i;
-  return out;
 }
 
 }  // namespace coatcontact::fit

@@ -75,9 +75,35 @@ struct SpringModel {
   std::function<void(const AdhesiveTrial&, AfmFitResult&)> report;
 };
 
-// The adhesive fit through the cantilever (THEORY.md section 15): JKR (model null) or `model`.
+// The four reduced variables of THEORY.md section 5 at one a/t (the half-space's values by default).
+struct ReducedAt {
+  double pi_s = 8.0 / 3.0, delta_s = 1.0, e_eq = 1.0, gamma1 = 1.0;
+};
+
+// A contact law on the reduced variables for the adhesive fit through the cantilever: (delta, F)
+// at contact radius a from the reduced variables at a/t (E* the film's reduced modulus), the
+// curve's end a -> 0 when the law has one there, the pull-off through a soft lever in units of
+// pi w R (the start of w's search), and the report of the estimates (lambda, warnings).
+struct ReducedLaw {
+  std::string name;
+  std::function<std::pair<double, double>(double a, const ReducedAt& v, double reduced, double work, double radius)> point;
+  std::function<std::optional<std::pair<double, double>>(double reduced, double work, double radius)> end;
+  double soft_pulloff = 1.5;
+  std::function<void(const AfmFitProblem&, AfmFitResult&)> report;
+};
+const ReducedLaw& jkr_law();  // THEORY.md section 5, steps 3-4
+
+// The adhesive fit through the cantilever (THEORY.md section 15): `model` when given, else the
+// law on the reduced variables (null: JKR).
 AfmFitResult afm_fit_adhesive(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
-                              int free_count, const SpringModel* model);
+                              int free_count, const SpringModel* model, const ReducedLaw* law = nullptr);
+// The model force at z of a law on the reduced variables (problem at its estimates).
+std::vector<double> afm_reduced_model_force(const AfmFitProblem& problem, const std::vector<double>& z, const ReducedLaw& law);
+
+// The DMT fit through the cantilever (problem.model == kDmt) and its model force at z.
+AfmFitResult afm_fit_dmt(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                         int free_count);
+std::vector<double> afm_dmt_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
 
 // Cubic Lagrange weights of the nodes j0..j0+3 at x (node j at x = j).
 void lagrange_weights(double x, long j0, double weight[4]);

@@ -121,6 +121,14 @@ def preprocess(curve, contact_point="piecewise-fit", baseline_fraction=0.5, devi
                            str(metadata.get("path", "curve")))
 
 
+def _has_column(curve, name):
+    """Whether a mapping (or an AFM tool's curve object) has the column `name`."""
+    try:
+        return name in curve
+    except TypeError:
+        return False
+
+
 def _segment_slice(curve, segment, n):
     """Point range of `segment` in a Curve (its segments), a mapping with an afmformats-style
     "segment" array (0 approach, 1 retract), or plain arrays (all points)."""
@@ -132,7 +140,7 @@ def _segment_slice(curve, segment, n):
             if s["kind"] == segment:
                 return slice(s["begin"], s["end"])
         raise ValueError(f"segment: the curve has no {segment} segment")
-    if hasattr(curve, "keys") and "segment" in curve:
+    if curve is not None and _has_column(curve, "segment"):
         index = np.asarray(curve["segment"])
         points = np.flatnonzero(index == (0 if segment == "approach" else 1))
         if points.size == 0:
@@ -144,7 +152,8 @@ def _segment_slice(curve, segment, n):
 def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=None, substrate=None,
         thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
         segment=None, spring_constant=None, tip_range=None, indentation_range=None,
-        max_indentation=None, max_force=None, noise=None, work=None, surface_force_range=0.3e-9, tilt=None):
+        max_indentation=None, max_force=None, noise=None, work=None, surface_force_range=0.3e-9, tilt=None,
+        baseline_model=None):
     """Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):
     F(z) = baseline + E/(1 - nu^2) g(contact_point - z) on the tip-position axis z (decreasing
     toward the sample), g the Hertz/Sneddon force of the tip per reduced modulus, 0 out of
@@ -169,6 +178,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                Or "md": the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with
                sigma0 = w/h0, h0 = 0.97 surface_force_range (so lambda follows w and E); warns when
                lambda leaves [1e-3, 1e4] or the spring holds the tip down to the curve's end.
+               Or "dmt": F_DMT, the adhesionless force less 2 pi w R while in contact; any spring
+               lets go at the contact point (pull-off -2 pi w R); warns above lambda 0.1.
     radius     tip radius R [m] (a paraboloid); or shape=("sphere", R), ("cone", beta),
                ("pyramid", theta: face half angle; the cone of equal area), ("punch", A),
                ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
@@ -186,104 +197,129 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                a range the whole segment is fitted. Ranges combine.
     noise      force noise [N] for chi2 (default: the preprocessing's baseline sigma when the
                curve has heights and a spring constant; else chi2 is None).
+    baseline_model
+               "tilt" (default): the preprocessing's baseline slope is subtracted from the forces
+               (the baseline is then the one at its contact point); "offset": the forces as
+               measured. With "tilt" in free the model fits the slope (offset).
+
+    A Curve, or a mapping with a height, a spring constant and optionally a "segment" column,
+    goes through the library's one-curve pipeline, as `coatcontact afm fit` and each row of
+    fit_map: the requested segment only, the preprocessing steps (recorded in "steps"), the
+    baseline model, the range, the fit and the pull-off; a curve without contact raises the
+    command line's ValueError. (tip_position, force) arrays, or a mapping with a "tip position"
+    only, are fitted as given (baseline model offset, no steps).
 
     Returns a dict in the layout of coatcontact.fit: names, estimates, errors, units (dicts by
     name: "E" [Pa] (or "E1" [Pa], "t" [m]), "contact_point" [m], "baseline" [N]; error 0 when
     fixed), free,
     residual_norm and residual_sigma [N], r_squared, chi2, chi2_per_dof, points,
-    points_in_contact, contact_point [m], pulloff ({"F" [N] less the baseline, "z" [m]} of the
-    retract segment, or None), and per fitted point index (into the curve), tip_position, F,
+    points_in_contact, contact_point [m], pulloff (measured, the same for every model: {"F" [N], "z"
+    [m]} of the retract's most tensile force against its free-cantilever baseline, a line
+    "baseline_offset" [N] + "baseline_slope" [N/m] z on its last half; or None), and per fitted point index (into the curve), tip_position, F,
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
     if model == "maugis-dugdale":
         model = "md"
-    jkr = model in ("jkr", "md")  # the adhesive models share their keywords
+    jkr = model in ("jkr", "md", "dmt")  # the adhesive models share their keywords
     if segment is None:
         segment = "retract" if jkr else "approach"
+    if segment not in ("approach", "retract"):
+        raise ValueError(f"segment: {segment!r} is not allowed; expected 'approach' or 'retract'")
     if not jkr and (work is not None or tilt is not None):
         raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")
     tip, E, nu, free, coating = _problem("afm.fit", model, radius, shape, halfspace, film, substrate, thickness, free,
                                          contact_point)
 
-    if isinstance(curve, (tuple, list)) and len(curve) == 2:
-        z_all, f_all = (np.asarray(a, dtype=float) for a in curve)
-        mapping = None
-    else:
-        mapping = curve
-        f_all = np.asarray(curve["force"], dtype=float)
-        if "tip position" in curve and spring_constant is None:
-            z_all = np.asarray(curve["tip position"], dtype=float)
-        else:
-            meta = getattr(curve, "metadata", None) or {}
-            k = spring_constant if spring_constant is not None else meta.get("spring constant")
-            height = curve["height (measured)"] if "height (measured)" in curve else (
-                curve["height (piezo)"] if "height (piezo)" in curve else None)
-            if k is None or height is None:
-                raise ValueError("curve: needs \"tip position\", or a height and spring_constant=")
-            z_all = np.asarray(height, dtype=float) + f_all / float(k)
-    if z_all.shape != f_all.shape or z_all.ndim != 1:
-        raise ValueError("curve: tip position and force must be one-dimensional arrays of one length")
-    part = _segment_slice(curve if mapping is not None else None, segment, len(f_all))
-
-    # The preprocessing's estimates: reference of the relative ranges and chi2's noise.
-    reference_contact = reference_baseline = 0.0
-    have_reference = False
-    if mapping is not None and ("height (measured)" in mapping or "height (piezo)" in mapping):
-        try:
-            p = preprocess(mapping, spring_constant=spring_constant)
-            reference_contact = p["contact point"]
-            reference_baseline = p["baseline offset"] + p["baseline slope"] * p["contact point"]
-            have_reference = True
-            if noise is None:
-                noise = p["baseline sigma"]
-        except ValueError:
-            if indentation_range is not None or max_indentation is not None or max_force is not None:
-                raise
-    z, f = z_all[part], f_all[part]
-    adhesion = None
+    if baseline_model not in (None, "tilt", "offset"):
+        raise ValueError(f"baseline_model: {baseline_model!r} is not allowed; expected 'tilt' or 'offset'")
     if jkr:
-        meta = getattr(mapping, "metadata", None) or {}
-        k = spring_constant if spring_constant is not None else meta.get("spring constant")
-        if k is None:
-            raise ValueError(f"spring_constant: the {model} model needs the cantilever's spring constant (N/m); "
-                             "the curve has none, pass spring_constant=")
         if "w" not in free and work is None:
             raise ValueError("work: a fixed w needs work= (J/m2)")
         if "tilt" in free and tilt is not None:
             raise ValueError("tilt: the tilt is free; drop it from free to fix it")
-        adhesion = _adhesion(model, work, k, surface_force_range, tilt)
-    relative = indentation_range is not None or max_indentation is not None or max_force is not None
-    if relative and not have_reference:
-        # Plain arrays: the reference is a first fit of the whole segment.
-        first = _afm.fit(z, f, tip, E, nu, ["E1" if coating else "E", "contact_point", "baseline"], 0.0, 0.0, 0.0,
-                         None, None, None, None, None, 0.0, 0.0, coating)
-        reference_contact = first["estimates"]["contact_point"]
-        reference_baseline = first["estimates"]["baseline"]
     lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]), float(indentation_range[1]))
     if max_indentation is not None:
         hi_i = float(max_indentation) if hi_i is None else min(hi_i, float(max_indentation))
     lo_t, hi_t = (None, None) if tip_range is None else (float(tip_range[0]), float(tip_range[1]))
-    try:
-        r = _afm.fit(z, f, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0),
-                     float(noise or 0.0), lo_t, hi_t, lo_i, hi_i, None if max_force is None else float(max_force),
-                     float(reference_contact), float(reference_baseline), coating, adhesion)
-    except RuntimeError as e:
-        raise NumericalError(str(e)) from None
-    r["index"] = r["index"] + (part.start or 0)
+    ranges = (lo_t, hi_t, lo_i, hi_i, None if max_force is None else float(max_force))
+    mapping = None if isinstance(curve, (tuple, list)) and len(curve) == 2 else curve
+    if mapping is not None and _has_heights(mapping) and _spring_constant(mapping, spring_constant) is not None:
+        # The library's one-curve pipeline, as `afm fit` and each row of fit_map.
+        arrays = _curve_arrays(mapping, 0, spring_constant)[:6]
+        adhesion = _adhesion(model, work, float(spring_constant or 0.0), surface_force_range, tilt) if jkr else None
+        try:
+            r = _afm.fit_curve(*arrays, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), coating,
+                               segment, *ranges, adhesion, baseline_model or "", float(noise or 0.0))
+        except RuntimeError as e:
+            raise NumericalError(str(e)) from None
+    else:
+        r = _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, nu, free, contact_point,
+                              baseline, coating, ranges, noise, work, surface_force_range, tilt, baseline_model)
     for message in r.get("warnings", []):
         warnings.warn(message, RuntimeWarning, stacklevel=2)
     r["contact_point"] = r["estimates"]["contact_point"]
+    return r
+
+
+def _has_heights(mapping):
+    return _has_column(mapping, "height (measured)") or _has_column(mapping, "height (piezo)")
+
+
+def _spring_constant(mapping, spring_constant):
+    if spring_constant is not None:
+        return spring_constant
+    meta = getattr(mapping, "metadata", None) or (mapping.get("metadata", {}) if hasattr(mapping, "get") else {})
+    return meta.get("spring constant")
+
+
+def _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, nu, free, contact_point, baseline,
+                      coating, ranges, noise, work, surface_force_range, tilt, baseline_model):
+    """fit() of (tip_position, force) arrays, or of a mapping with a "tip position" but no heights
+    and spring constant: the requested segment as given, without the preprocessing (no baseline
+    tilt to subtract: the offset model; the relative ranges refer to a first fit of the segment)."""
+    if baseline_model == "tilt":
+        raise ValueError("baseline_model: 'tilt' needs the preprocessing's baseline, so a curve with heights and a "
+                         "spring constant; (tip_position, force) arrays are fitted as given (offset)")
+    if mapping is None:
+        z_all, f_all = (np.asarray(a, dtype=float) for a in curve)
+    else:
+        f_all = np.asarray(mapping["force"], dtype=float)
+        if "tip position" not in mapping:
+            raise ValueError("curve: needs \"tip position\", or a height and spring_constant=")
+        z_all = np.asarray(mapping["tip position"], dtype=float)
+    if z_all.shape != f_all.shape or z_all.ndim != 1:
+        raise ValueError("curve: tip position and force must be one-dimensional arrays of one length")
+    part = _segment_slice(mapping, segment, len(f_all))
+    z, f = z_all[part], f_all[part]
+    adhesion = None
+    if model in ("jkr", "md", "dmt"):
+        k = _spring_constant(mapping, spring_constant) if mapping is not None else spring_constant
+        if k is None:
+            raise ValueError(f"spring_constant: the {model} model needs the cantilever's spring constant (N/m); "
+                             "the curve has none, pass spring_constant=")
+        adhesion = _adhesion(model, work, k, surface_force_range, tilt)
+    reference_contact = reference_baseline = 0.0
+    if any(v is not None for v in ranges[2:]):
+        first = _afm.fit(z, f, tip, E, nu, ["E1" if coating else "E", "contact_point", "baseline"], 0.0, 0.0, 0.0,
+                         None, None, None, None, None, 0.0, 0.0, coating)
+        reference_contact = first["estimates"]["contact_point"]
+        reference_baseline = first["estimates"]["baseline"]
+    try:
+        r = _afm.fit(z, f, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), float(noise or 0.0),
+                     *ranges, float(reference_contact), float(reference_baseline), coating, adhesion)
+    except RuntimeError as e:
+        raise NumericalError(str(e)) from None
+    r["index"] = r["index"] + (part.start or 0)
+    r["baseline_model"] = "offset"
+    r["steps"] = []
     r["pulloff"] = None
     retract = None
-    if mapping is not None and (getattr(mapping, "segments", None) is not None or "segment" in mapping):
+    if mapping is not None and (getattr(mapping, "segments", None) is not None or _has_column(mapping, "segment")):
         try:
             retract = _segment_slice(mapping, "retract", len(f_all))
         except ValueError:
             retract = None
     if retract is not None:
-        fr = f_all[retract]
-        if fr.size:
-            i = int(np.argmin(fr))
-            r["pulloff"] = {"F": float(fr[i] - r["estimates"]["baseline"]), "z": float(z_all[retract][i])}
+        r["pulloff"] = _afm.measured_pulloff(z_all[retract], f_all[retract])
     return r
 
 
@@ -298,9 +334,9 @@ def _adhesion(model, work, k, surface_force_range, tilt):
 
 def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
     """The tip, sample and free parameters of fit and fit_map as _afm takes them."""
-    if model not in ("hertz", "jkr", "md"):
-        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr', 'md'")
-    if model in ("jkr", "md") and free == ("E", "contact_point", "baseline"):
+    if model not in ("hertz", "jkr", "md", "dmt"):
+        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr', 'md', 'dmt'")
+    if model in ("jkr", "md", "dmt") and free == ("E", "contact_point", "baseline"):
         free = ("E", "w", "contact_point", "baseline", "tilt")
     coating = None
     if film is not None or substrate is not None or thickness is not None:
@@ -358,12 +394,12 @@ def _curve_arrays(curve, number, spring_constant):
             meta.get("grid index x"), meta.get("grid index y"), meta.get("position x"), meta.get("position y"))
 
 
-def _fit_part(files, survey, tolerate, first, count, args, adhesion=None):
+def _fit_part(files, survey, tolerate, first, count, args, adhesion=None, baseline_model=""):
     """One share of a fit_map run (a task of a Dask worker): curves first..first+count-1 of the
     files, read by the worker itself (the survey spares it counting the curves: it opens only
     the files of its share, once)."""
     return _afm.fit_map_files(files, *args, jobs=1, first=first, count=count, survey=survey, tolerate=tolerate,
-                               adhesion=adhesion)
+                               adhesion=adhesion, baseline_model=baseline_model)
 
 
 def _concatenated(parts):
@@ -379,7 +415,7 @@ def _shares(survey, workers):
     """(first, count) of each task: one run of consecutive curves per worker, so that each
     worker opens each file of its share once (opening a map's archive reads its whole central
     directory: ~20 ms for a 64 x 64 map, ~0.6 s for a 256 x 256 one)."""
-    total = sum(curves for curves, _ in survey)
+    total = sum(entry[0] for entry in survey)
     share = max(1, -(-total // workers))
     return [(first, min(share, total - first)) for first in range(0, total, share)]
 
@@ -404,12 +440,12 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
             thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
             segment=None, spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
             max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False, work=None,
-            surface_force_range=0.3e-9, tilt=None):
+            surface_force_range=0.3e-9, tilt=None, baseline_model=None):
     """Fits every curve of maps, QI data, files or folders (or of the curves given) and returns
     one row per curve, as `coatcontact afm fit FILES...` does (THEORY.md section 15, "Many
-    curves"): each curve preprocessed (baseline offset and tilt, contact point), its tilt
-    subtracted, the segment fitted by the model of fit() with the same keywords; a curve that
-    cannot be fitted is flagged and the others go on.
+    curves"): each curve through fit()'s pipeline with the same keywords (preprocessed: baseline
+    offset and tilt, contact point; baseline_model "tilt" by default), so a row holds the
+    estimates fit() gives that curve; a curve that cannot be fitted is flagged and the others go on.
 
     paths_or_curves  a path, a folder (its AFM files by extension) or a list of them; or a list
                      of curves (read()'s, or mappings with "force", a height and "segment").
@@ -438,7 +474,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
         model = "md"
     tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
                                          free, contact_point)
-    adhesive = model in ("jkr", "md")
+    adhesive = model in ("jkr", "md", "dmt")
     if not adhesive and (work is not None or tilt is not None):
         raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")
     if adhesive and "w" not in free and work is None:
@@ -456,6 +492,9 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     lo_t, hi_t = (None, None) if tip_range is None else (float(tip_range[0]), float(tip_range[1]))
     args = (tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), coating, segment, lo_t, hi_t,
             lo_i, hi_i, None if max_force is None else float(max_force))
+    if baseline_model not in (None, "tilt", "offset"):
+        raise ValueError(f"baseline_model: {baseline_model!r} is not allowed; expected 'tilt' or 'offset'")
+    baseline_model = baseline_model or ""
     if jobs is not None and (int(jobs) != jobs or jobs < 1):
         raise ValueError(f"jobs: {jobs!r} is not allowed; expected a whole number of threads >= 1 (or None: the cores)")
     k = None if spring_constant is None else _calibration(spring_constant, "spring_constant")
@@ -468,26 +507,29 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
         # single file named is the run's input (ValueError).
         tolerate = len(paths) > 1 or any(os.path.isdir(p) for p in paths)
         survey = _afm.survey_files(files, k, s, tolerate)
-        for curves, why in survey:
+        for curves, why, flag in survey:
             if why:
-                warnings.warn(f"afm.fit_map: unreadable file, one flagged row: {why}", stacklevel=2)
+                what = "file without calibration" if flag == 6 else "unreadable file"
+                warnings.warn(f"afm.fit_map: {what}, one flagged row: {why}", stacklevel=2)
         if client is None:
             columns = _afm.fit_map_files(files, *args, k, s, jobs=int(jobs or 0), first=0, count=None, survey=survey,
-                                         tolerate=tolerate, adhesion=adhesion)
+                                         tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model)
         else:
             workers = max(1, len(client.scheduler_info().get("workers", {})))
             shares = _shares(survey, workers)
-            futures = [client.submit(_fit_part, files, survey, tolerate, first, count, args + (k, s), adhesion, pure=False)
+            futures = [client.submit(_fit_part, files, survey, tolerate, first, count, args + (k, s), adhesion,
+                                     baseline_model, pure=False)
                        for first, count in shares]
             parts = client.gather(futures)
             columns = _concatenated(parts) if parts else _afm.fit_map_files(files, *args, k, s, jobs=1, first=0,
                                                                              count=0, survey=survey, tolerate=tolerate,
-                                                                             adhesion=adhesion)
+                                                                             adhesion=adhesion,
+                                                                             baseline_model=baseline_model)
     elif items and not any(_is_path(i) for i in items):
         if client is not None:
             raise ValueError("client: spreads the curves of files; give paths, or fit given curves without client=")
         curves = [_curve_arrays(c, n, spring_constant) for n, c in enumerate(items)]
-        columns = _afm.fit_map_curves(curves, *args, adhesion=adhesion)
+        columns = _afm.fit_map_curves(curves, *args, adhesion=adhesion, baseline_model=baseline_model)
     else:
         raise ValueError("paths_or_curves: expected a path, a folder, a list of them, or a list of curves (not mixed)")
     rows = _structured(columns)

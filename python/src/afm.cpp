@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <string>
@@ -15,10 +16,12 @@
 #include <vector>
 
 #include "coatcontact/afm_batch.hpp"
+#include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/errors.hpp"
+#include "coatcontact/progress.hpp"
 #include "coatcontact/indenter_shape.hpp"
 
 namespace py = pybind11;
@@ -32,6 +35,27 @@ py::array_t<T> to_array(const std::vector<T>& values) {
   std::copy(values.begin(), values.end(), out.mutable_data());
   return out;
 }
+
+// Ctrl-C during a long library call (issue 40): called between units of work (curves, a
+// chunk's curves, a sweep's radii) on the calling thread, it takes the GIL and runs Python's
+// signal handlers; a KeyboardInterrupt stops the call (the library's Interrupted) and is raised
+// by rethrow() once the call has returned.
+struct SignalCheck {
+  std::exception_ptr error;
+  bool operator()() {
+    py::gil_scoped_acquire gil;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } catch (...) {
+      error = std::current_exception();
+      return false;
+    }
+    return true;
+  }
+  void rethrow() const {
+    if (error) std::rethrow_exception(error);
+  }
+};
 
 py::dict metadata_of(const afm::ForceCurve& curve) {
   const afm::CurveMetadata& m = curve.metadata;
@@ -67,12 +91,20 @@ py::list read_curves(const std::string& path, std::optional<double> spring_const
   std::vector<afm::ForceCurve> curves;
   std::string error;
   {
+    SignalCheck signals;
     py::gil_scoped_release release;
     try {
-      curves = afm::read_force_curves(path, calibration);
+      // Curve by curve, so that Ctrl-C stops the reading of a large map between curves.
+      const afm::CurveSource source(path, calibration);
+      for (std::size_t i = 0; i < source.size(); ++i) {
+        if (!signals()) break;
+        curves.push_back(source.read(i));
+      }
     } catch (const coatcontact::InputError& e) {
       error = e.what();
     }
+    py::gil_scoped_acquire gil;
+    signals.rethrow();
   }
   if (!error.empty()) {
     // The library names the CLI's options; Python callers pass keywords of the same names.
@@ -252,7 +284,8 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
   const bool jkr = !adhesion.is_none();
   if (jkr) {
     const py::tuple a = adhesion.cast<py::tuple>();
-    problem.model = a.size() > 4 && a[4].cast<std::string>() == "md" ? fit::AfmModel::kMd : fit::AfmModel::kJkr;
+    const std::string name = a.size() > 4 ? a[4].cast<std::string>() : "jkr";
+    problem.model = name == "md" ? fit::AfmModel::kMd : name == "dmt" ? fit::AfmModel::kDmt : fit::AfmModel::kJkr;
     problem.work = a[0].cast<double>();
     problem.spring_constant = a[1].cast<double>();
     problem.surface_force_range = a[2].cast<double>();
@@ -280,40 +313,16 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
   return problem;
 }
 
-// One fit of (z, F) arrays; the Python layer chooses the segment and the reference estimates.
-py::dict fit_arrays(const py::object& tip_position, const py::object& force, const py::tuple& shape, double modulus,
-                    double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
-                    double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
-                    const py::object& indentation_max, const py::object& max_force, double reference_contact,
-                    double reference_baseline, const py::object& coating, const py::object& adhesion) {
+// The result dict of one fit (fit_arrays, fit_curve): estimates, errors and units by name,
+// statistics, and the fitted points (index: into the caller's arrays).
+py::dict result_dict(const coatcontact::fit::AfmFitProblem& problem, const coatcontact::fit::AfmFitResult& r,
+                     const std::vector<double>& z, const std::vector<double>& f, const std::vector<long>& index,
+                     bool weighted) {
   namespace fit = coatcontact::fit;
-  const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
-  if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
-  fit::AfmFitProblem problem;
+  const bool coated = problem.coating.has_value();
+  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
+  const std::string modulus_name = coated ? "E1" : "E";
   py::dict out;
-  try {
-    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
-    const bool coated = problem.coating.has_value();
-    const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
-    const std::string modulus_name = coated ? "E1" : "E";
-    problem.noise_sigma = noise;
-    fit::AfmRange range;
-    range.tip_min = optional_number(tip_min);
-    range.tip_max = optional_number(tip_max);
-    range.indentation_min = optional_number(indentation_min);
-    range.indentation_max = optional_number(indentation_max);
-    range.max_force = optional_number(max_force);
-    const std::vector<std::size_t> kept = fit::afm_select(z_all, f_all, range, reference_contact, reference_baseline);
-    std::vector<double> z, f;
-    for (std::size_t i : kept) {
-      z.push_back(z_all[i]);
-      f.push_back(f_all[i]);
-    }
-    fit::AfmFitResult r;
-    {
-      py::gil_scoped_release release;
-      r = fit::afm_fit(z, f, problem);
-    }
     std::vector<std::string> names = {modulus_name, "contact_point", "baseline"};
     std::vector<double> values = {r.modulus, r.contact_point, r.baseline};
     std::vector<double> errors = {r.modulus_error, r.contact_point_error, r.baseline_error};
@@ -361,7 +370,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     out["residual_sigma"] = r.residual_sigma;
     out["r_squared"] = r.r_squared;
     out["weighted"] = false;
-    if (noise > 0.0) {
+    if (weighted) {
       out["chi2"] = r.chi2;
       out["chi2_per_dof"] = r.chi2_per_dof;
     } else {
@@ -369,7 +378,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
       out["chi2_per_dof"] = py::none();
     }
     out["max_indentation"] = r.max_indentation;
-    out["index"] = to_array(std::vector<long>(kept.begin(), kept.end()));
+    out["index"] = to_array(index);
     out["tip_position"] = to_array(z);
     out["F"] = to_array(f);
     out["indentation"] = to_array(r.indentation);
@@ -380,7 +389,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     out["seconds"] = r.seconds;
     out["tip"] = problem.tip.description;
     if (jkr) {
-      out["model"] = problem.model == fit::AfmModel::kMd ? "md" : "jkr";
+      out["model"] = problem.model == fit::AfmModel::kMd ? "md" : problem.model == fit::AfmModel::kDmt ? "dmt" : "jkr";
       out["spring_constant"] = problem.spring_constant;
       out["surface_force_range"] = problem.surface_force_range;
       out["tabor_mu"] = r.tabor_mu;
@@ -394,6 +403,41 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
     } else {
       out["model"] = "hertz";
     }
+  return out;
+}
+
+// One fit of (z, F) arrays; the Python layer chooses the segment and the reference estimates.
+py::dict fit_arrays(const py::object& tip_position, const py::object& force, const py::tuple& shape, double modulus,
+                    double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
+                    double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
+                    const py::object& indentation_max, const py::object& max_force, double reference_contact,
+                    double reference_baseline, const py::object& coating, const py::object& adhesion) {
+  namespace fit = coatcontact::fit;
+  const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
+  if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
+  fit::AfmFitProblem problem;
+  py::dict out;
+  try {
+    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
+    problem.noise_sigma = noise;
+    fit::AfmRange range;
+    range.tip_min = optional_number(tip_min);
+    range.tip_max = optional_number(tip_max);
+    range.indentation_min = optional_number(indentation_min);
+    range.indentation_max = optional_number(indentation_max);
+    range.max_force = optional_number(max_force);
+    const std::vector<std::size_t> kept = fit::afm_select(z_all, f_all, range, reference_contact, reference_baseline);
+    std::vector<double> z, f;
+    for (std::size_t i : kept) {
+      z.push_back(z_all[i]);
+      f.push_back(f_all[i]);
+    }
+    fit::AfmFitResult r;
+    {
+      py::gil_scoped_release release;
+      r = fit::afm_fit(z, f, problem);
+    }
+    out = result_dict(problem, r, z, f, std::vector<long>(kept.begin(), kept.end()), noise > 0.0);
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   } catch (const coatcontact::NumericalError& e) {
@@ -410,6 +454,16 @@ afm::Calibration calibration_of(const py::object& spring_constant, const py::obj
   if (!spring_constant.is_none()) calibration.spring_constant = spring_constant.cast<double>();
   if (!sensitivity.is_none()) calibration.sensitivity = sensitivity.cast<double>();
   return calibration;
+}
+
+// baseline_model= of fit and fit_map: "tilt" (the default), "offset", or "" for the default.
+coatcontact::fit::AfmBaselineModel baseline_model_of(const std::string& name, const coatcontact::fit::AfmFitProblem& problem) {
+  namespace fit = coatcontact::fit;
+  if (name.empty()) return fit::kAfmDefaultBaseline;
+  if (name == "offset") return fit::AfmBaselineModel::kOffset;
+  if (name != "tilt") throw coatcontact::InputError("baseline_model: '" + name + "' is not allowed; expected 'tilt' or 'offset'");
+  if (problem.free.tilt) throw coatcontact::InputError("baseline_model: 'tilt' with \"tilt\" in free would count the slope twice; drop one");
+  return fit::AfmBaselineModel::kTilt;
 }
 
 coatcontact::fit::AfmBatchSettings settings_of(const py::tuple& shape, double modulus, double poisson,
@@ -542,16 +596,16 @@ std::vector<std::string> expand_paths(const std::vector<std::string>& paths) {
   return files;
 }
 
-// (curves, why unreadable or "") of each file (afm_survey_files): with `tolerate` a file that
+// (curves, why unreadable or "", flag of its row) of each file (afm_survey_files): with `tolerate` a file that
 // cannot be read is one flagged row of the run instead of a ValueError.
-std::vector<std::pair<std::size_t, std::string>> survey_files(const std::vector<std::string>& files,
+std::vector<std::tuple<std::size_t, std::string, int>> survey_files(const std::vector<std::string>& files,
                                                               const py::object& spring_constant,
                                                               const py::object& sensitivity, bool tolerate) {
-  std::vector<std::pair<std::size_t, std::string>> out;
+  std::vector<std::tuple<std::size_t, std::string, int>> out;
   try {
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     py::gil_scoped_release release;
-    for (auto& s : coatcontact::fit::afm_survey_files(files, calibration, tolerate)) out.emplace_back(s.curves, std::move(s.unreadable));
+    for (auto& s : coatcontact::fit::afm_survey_files(files, calibration, tolerate)) out.emplace_back(s.curves, std::move(s.unreadable), static_cast<int>(s.flag));
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   }
@@ -565,13 +619,14 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
                        const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
                        const py::object& count, const py::object& survey, bool tolerate,
-                       const py::object& adhesion) {
+                       const py::object& adhesion, const std::string& baseline_model) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::optional<Columns> columns;
   try {
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
                            indentation_min, indentation_max, max_force, adhesion);
+    settings.baseline = baseline_model_of(baseline_model, settings.problem);
     columns.emplace(settings);
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     fit::AfmBatchOptions options;
@@ -579,8 +634,8 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
     options.skip = first;
     if (!count.is_none()) options.count = count.cast<std::size_t>();
     if (!survey.is_none()) {
-      for (auto& [curves, why] : survey.cast<std::vector<std::pair<std::size_t, std::string>>>()) {
-        options.survey.push_back({curves, std::move(why)});
+      for (auto& [curves, why, flag] : survey.cast<std::vector<std::tuple<std::size_t, std::string, int>>>()) {
+        options.survey.push_back({curves, std::move(why), static_cast<fit::AfmFlag>(flag)});
       }
     }
     options.unreadable_file_rows = tolerate;
@@ -589,8 +644,15 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
       py::gil_scoped_acquire acquire;
       columns->add(chunk);
     };
-    py::gil_scoped_release release;
-    fit::afm_fit_batch(files, calibration, settings, options);
+    SignalCheck signals;
+    options.progress = [&](std::size_t, std::size_t) { return signals(); };
+    try {
+      py::gil_scoped_release release;
+      fit::afm_fit_batch(files, calibration, settings, options);
+    } catch (const coatcontact::Interrupted&) {
+      signals.rethrow();
+      throw;
+    }
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   } catch (const coatcontact::NumericalError& e) {
@@ -599,23 +661,97 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
   return columns->dict();
 }
 
+// One curve given as arrays through the library's one-curve pipeline (afm_fit_curve): the
+// segment, the preprocessing steps, the baseline model, the range, the fit and the pull-off,
+// as `afm fit` and each row of fit_map. noise > 0 replaces the baseline's sigma in chi2.
+py::dict fit_curve(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
+                   const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments, double spring_constant,
+                   const std::string& name, const py::tuple& shape, double modulus, double poisson,
+                   const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
+                   const std::string& segment, const py::object& tip_min, const py::object& tip_max,
+                   const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
+                   const py::object& adhesion, const std::string& baseline_model, double noise) {
+  namespace fit = coatcontact::fit;
+  const afm::ForceCurve curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
+  py::dict out;
+  try {
+    fit::AfmCurveRequest request = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment,
+                                               tip_min, tip_max, indentation_min, indentation_max, max_force, adhesion);
+    request.check_jump_in = false;
+    request.problem.noise_sigma = noise;
+    request.baseline = baseline_model_of(baseline_model, request.problem);
+    fit::AfmCurveFit fitted;
+    SignalCheck signals;
+    try {
+      py::gil_scoped_release release;
+      const coatcontact::ScopedProgressHook hook([&](std::size_t, std::size_t) { return signals(); });
+      fitted = fit::afm_fit_curve(curve, request);
+    } catch (const coatcontact::Interrupted&) {
+      signals.rethrow();
+      throw;
+    }
+    std::vector<double> z, f;
+    std::vector<long> index;
+    for (std::size_t i : fitted.kept) {
+      z.push_back(fitted.z_segment[i]);
+      f.push_back(fitted.f_segment[i]);
+      index.push_back(static_cast<long>(fitted.segment.begin + i));
+    }
+    out = result_dict(fitted.problem, fitted.result, z, f, index, true);
+    py::list steps;
+    for (const fit::AfmStep& step : fitted.steps) steps.append(py::make_tuple(step.name, step.parameters));
+    out["steps"] = steps;
+    out["baseline_model"] = fit::afm_baseline_model_name(fitted.baseline);
+    out["reference_contact_point"] = fitted.reference_contact;
+    if (fitted.pulloff.found) {
+      py::dict pulloff;
+      pulloff["F"] = fitted.pulloff.force;
+      pulloff["z"] = fitted.pulloff.tip_position;
+      pulloff["baseline_offset"] = fitted.pulloff.baseline_offset;
+      pulloff["baseline_slope"] = fitted.pulloff.baseline_slope;
+      out["pulloff"] = pulloff;
+    } else {
+      out["pulloff"] = py::none();
+    }
+  } catch (const coatcontact::InputError& e) {
+    throw py::value_error(e.what());
+  } catch (const coatcontact::NumericalError& e) {
+    throw std::runtime_error(std::string("numerical failure: ") + e.what());
+  }
+  return out;
+}
+
+// The measured pull-off of a retract given as arrays (afm_measured_pulloff): a dict, or None.
+py::object measured_pulloff(const py::object& tip_position, const py::object& force, double fraction) {
+  const auto p = coatcontact::fit::afm_measured_pulloff(to_vector(tip_position), to_vector(force), fraction);
+  if (!p.found) return py::none();
+  py::dict out;
+  out["F"] = p.force;
+  out["z"] = p.tip_position;
+  out["baseline_offset"] = p.baseline_offset;
+  out["baseline_slope"] = p.baseline_slope;
+  return out;
+}
+
 // Curves given as arrays: (force, height_piezo, height_measured, segments, spring_constant,
 // name, curve_index, grid_x, grid_y, x, y), each fitted as a curve of a file would be.
 py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double modulus, double poisson,
                         const std::vector<std::string>& free, double contact_point, double baseline,
                         const py::object& coating, const std::string& segment, const py::object& tip_min,
                         const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
-                        const py::object& max_force, const py::object& adhesion) {
+                        const py::object& max_force, const py::object& adhesion, const std::string& baseline_model) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::vector<fit::AfmCurveRow> rows;
   try {
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
                            indentation_min, indentation_max, max_force, adhesion);
+    settings.baseline = baseline_model_of(baseline_model, settings.problem);
     for (const py::handle item : curves) {
       const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
       afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
                                        c[4].cast<double>(), c[5].cast<std::string>());
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between curves
       afm::CurveMetadata& m = curve.metadata;
       m.curve_index = c[6].cast<std::size_t>();
       if (!c[7].is_none()) m.grid_index_x = c[7].cast<long>();
@@ -645,6 +781,12 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("poisson"), py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("noise"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none(), py::arg("adhesion") = py::none());
+  m.def("fit_curve", &fit_curve, py::arg("force"), py::arg("height_piezo"), py::arg("height_measured"), py::arg("segments"),
+        py::arg("spring_constant"), py::arg("name"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"), py::arg("free"),
+        py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"), py::arg("tip_min"),
+        py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"), py::arg("max_force"),
+        py::arg("adhesion"), py::arg("baseline_model"), py::arg("noise"));
+  m.def("measured_pulloff", &measured_pulloff, py::arg("tip_position"), py::arg("force"), py::arg("fraction") = 0.5);
   m.def("expand_paths", &expand_paths, py::arg("paths"));
   m.def("survey_files", &survey_files, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"),
         py::arg("tolerate"));
@@ -653,9 +795,9 @@ PYBIND11_MODULE(_afm, m) {
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
         py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false,
-        py::arg("adhesion") = py::none());
+        py::arg("adhesion") = py::none(), py::arg("baseline_model") = "");
   m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"), py::arg("adhesion") = py::none());
+        py::arg("max_force"), py::arg("adhesion") = py::none(), py::arg("baseline_model") = "");
 }

@@ -113,7 +113,8 @@ grep -q "^# warning: Maugis's lambda = .*the spring holds the tip down to the cu
   || fail "md spot3: no curve's-end warning in the header"
 
 # ---- refusals ----------------------------------------------------------------------------------
-expect_error 2 "--model" "'dmt'" "allowed: hertz, jkr, md" -- afm fit "$spot" --model dmt --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "'lj'" "allowed: hertz, jkr, md, dmt" -- afm fit "$spot" --model lj --radius 10um --halfspace 1kPa,0.5
+expect_error 2 "--model" "dmt takes a sphere" -- afm fit "$spot" --model dmt --shape cone:70deg --halfspace 1kPa,0.5
 expect_error 2 "--model" "md takes a sphere" -- afm fit "$spot" --model md --shape cone:70deg --halfspace 1kPa,0.5
 expect_error 2 "--work" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --work 1mJ/m2
 expect_error 2 "--range" "needs --model jkr" -- afm fit "$spot" --radius 10um --halfspace 1kPa,0.5 --range 1nm

@@ -7,8 +7,9 @@
 // over in curve order, so the memory of a run is two chunks of curves plus the rows the caller
 // keeps (and libzip's central directory of the archive being read: THEORY.md section 15,
 // "Memory of a run"). The per-curve fit
-// is afm_fit (coatcontact/afm_fit.hpp) on the problem given, unchanged: every model and free
-// parameter it supports runs in the batch; each free estimate has its column (afm_batch_parameters).
+// is afm_fit_curve (coatcontact/afm_curve_fit.hpp), the one-curve fit's pipeline, unchanged:
+// every model and free parameter it supports runs in the batch; each free estimate has its
+// column (afm_batch_parameters).
 #pragma once
 #include <cstddef>
 #include <functional>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
@@ -23,41 +25,10 @@
 
 namespace coatcontact::fit {
 
-// Why a curve has no estimates (0: fitted). The numbers are part of the output format.
-enum class AfmFlag : int {
-  kFitted = 0,
-  kNoContact = 1,       // the approach never leaves its baseline, or the fit finds no contact
-  kJumpIn = 2,          // the approach dips below its baseline (kJumpInSigmas, kJumpInFraction)
-  kNoConvergence = 3,   // the fit did not give finite, identifiable estimates
-  kEmptySegment = 4,    // a segment of the curve holds no points
-  kMissingSegment = 5,  // the curve has no segment of the kind fitted (or no approach)
-  kCalibration = 6,     // the curve lacks a spring constant or sensitivity its force needs
-  kTooFewPoints = 7,    // the range options leave fewer than AfmBatchSettings::min_points
-  kUnreadable = 8,      // the curve's entries are missing, truncated or corrupt
-  kBadData = 9,         // the curve's values are not usable (not finite, one tip position)
-};
-constexpr int kAfmFlagCount = 10;
-const char* afm_flag_name(AfmFlag flag);  // "fitted", "no_contact", "jump_in", ...
-
-// A jump-in: the baseline-corrected approach force below -kJumpInSigmas x the baseline's
-// residual sigma and deeper than kJumpInFraction of the approach's largest force. Gaussian
-// noise of n <= 1e6 points stays above -5.3 sigma (two-sided tail 1e-7); the fraction keeps a
-// shallow attractive dip before contact, significant only against a very quiet baseline, from
-// costing the curve (real AFM Workshop curves: 15 sigma but 4 % of the force).
-constexpr double kJumpInSigmas = 8.0;
-constexpr double kJumpInFraction = 0.1;
-
-struct AfmBatchSettings {
-  AfmFitProblem problem;  // as for afm_fit; noise_sigma is set per curve (its baseline's sigma)
-  afm::SegmentKind segment = afm::SegmentKind::kApproach;
-  AfmRange range;         // relative to each curve's preprocessing contact point and baseline
-  afm::PreprocessOptions preprocess;
-  std::size_t min_points = 5;
-  bool check_jump_in = true;  // approach fits only
-  // Subtract the preprocessing's baseline tilt s (z - z_ref) from the forces fitted (and from
-  // the retract's, for the pull-off), so that the constant baseline b of the model is the
-  // baseline at the reference contact point z_ref (THEORY.md section 15, "Many curves").
-  bool correct_tilt = true;
+// The settings of a batch are the request of the one-curve fit (afm_curve_fit.hpp); a batch
+// checks jump-ins by default.
+struct AfmBatchSettings : AfmCurveRequest {
+  AfmBatchSettings() { check_jump_in = true; }
 };
 
 // One free estimate's column: its name, unit and where afm_fit puts it.
@@ -97,6 +68,9 @@ AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::excep
 struct AfmFileSurvey {
   std::size_t curves = 0;  // 1 for an unreadable file: its one flagged row
   std::string unreadable;  // empty, or the reader's message (naming the file and why)
+  // The flag of its one row: kCalibration when the file's curves lack a calibration the force
+  // needs (afm::MissingCalibration, as for a curve of a file that opens), else kUnreadable.
+  AfmFlag flag = AfmFlag::kUnreadable;
 };
 
 // Opens each file once to count its curves (the archive is closed again). A file that cannot

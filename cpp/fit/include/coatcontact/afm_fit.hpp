@@ -54,8 +54,10 @@ struct AfmFree {
 // for a >= a_s, the minimum of delta + F/k; below delta(a_s) the tip is off the sample. Or
 // Maugis-Dugdale (kMd): the same through the cohesive-zone table, sigma0 = w/h0 with
 // h0 = kDugdaleRangeOverZ0 z0 (surface_force_range), so lambda follows w and E1; the jump-off
-// may be the curve's end a -> 0 (THEORY.md section 15).
-enum class AfmModel { kHertz, kJkr, kMd };
+// may be the curve's end a -> 0 (THEORY.md section 15). Or DMT (kDmt): the adhesionless
+// contact less 2 pi w R while in contact, delta = delta_H(a), F = F_H(a) - 2 pi w R; through
+// any spring the jump-off is the curve's end (delta, F) = (0, -2 pi w R).
+enum class AfmModel { kHertz, kJkr, kMd, kDmt };
 
 // A coating instead of the half-space: film (E1 the value if fixed, else the centre of its
 // search; nu1 fixed) of thickness t on a fixed substrate, adhesionless (THEORY.md sections 5
@@ -107,6 +109,8 @@ constexpr std::size_t kAdhesiveSearchPoints = 300;
 // Maugis's lambda below which JKR is outside its range (Johnson & Greenwood's map: the
 // Maugis-Dugdale model is needed below ~5; a warning).
 constexpr double kJkrMinimumLambda = 5.0;
+// DMT's range: Maugis's lambda below this (Johnson and Greenwood's adhesion map); above, a warning.
+constexpr double kDmtMaximumLambda = 0.1;
 // The Dugdale range h0 = w/sigma0 of a surface-force range z0 (Lennard-Jones law matched by
 // Johnson & Greenwood 1997): h0 = 0.97 z0. Maugis's lambda of every adhesive fit uses it.
 constexpr double kDugdaleRangeOverZ0 = 0.97;
@@ -175,13 +179,7 @@ struct AfmRange {
 std::vector<std::size_t> afm_select(const std::vector<double>& tip_position, const std::vector<double>& force,
                                     const AfmRange& range, double reference_contact, double reference_baseline);
 
-// The measured pull-off of a segment: its most tensile force (minus `baseline`) and where.
-struct AfmPulloff {
-  bool found = false;
-  double force = 0.0;         // [N], negative when adhesive
-  double tip_position = 0.0;  // [m]
-  std::size_t index = 0;      // in the arrays given
-};
-AfmPulloff afm_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force, double baseline);
+// The measured pull-off of a retract is the same for every model: afm_measured_pulloff
+// (coatcontact/afm_curve_fit.hpp), against the retract's free-cantilever baseline.
 
 }  // namespace coatcontact::fit
