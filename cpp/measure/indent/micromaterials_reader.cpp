@@ -55,7 +55,7 @@ std::vector<IndentTest> read_micromaterials_zip(const std::string& bytes, const 
     if (name.empty() || name.back() == '/') continue;  // folders
     if (!ends_with(name, ".txt")) continue;
     if (tests.size() >= kMaxTests) fail(file, "", 0, "more than " + std::to_string(kMaxTests) + " tests");
-    tests.push_back(read_micromaterials_text(archive.read(name), file, name));
+    tests.push_back(read_micromaterials_text(archive.read(name, kMaxFileBytes, "a Micromaterials test"), file, name));
   }
   if (tests.empty()) fail(file, "", 0, "a zip archive without .txt entries: not a Micromaterials export");
   return tests;
