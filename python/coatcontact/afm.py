@@ -517,14 +517,20 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
         else:
             workers = max(1, len(client.scheduler_info().get("workers", {})))
             shares = _shares(survey, workers)
-            futures = [client.submit(_fit_part, files, survey, tolerate, first, count, args + (k, s), adhesion,
+            # A worker reads the files in its own working folder: it gets absolute paths, and the
+            # rows keep the names the caller gave, as the serial run's do.
+            absolute = [os.path.abspath(f) for f in files]
+            futures = [client.submit(_fit_part, absolute, survey, tolerate, first, count, args + (k, s), adhesion,
                                      baseline_model, pure=False)
                        for first, count in shares]
             parts = client.gather(futures)
-            columns = _concatenated(parts) if parts else _afm.fit_map_files(files, *args, k, s, jobs=1, first=0,
-                                                                             count=0, survey=survey, tolerate=tolerate,
-                                                                             adhesion=adhesion,
-                                                                             baseline_model=baseline_model)
+            if parts:
+                columns = _concatenated(parts)
+                given = dict(zip(absolute, files))
+                columns["file"] = [given.get(f, f) for f in columns["file"]]
+            else:
+                columns = _afm.fit_map_files(files, *args, k, s, jobs=1, first=0, count=0, survey=survey,
+                                             tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model)
     elif items and not any(_is_path(i) for i in items):
         if client is not None:
             raise ValueError("client: spreads the curves of files; give paths, or fit given curves without client=")
