@@ -379,6 +379,12 @@ def _curve_arrays(curve, number, spring_constant):
     force = np.asarray(curve["force"], dtype=float)
     piezo = np.asarray(curve["height (piezo)"], dtype=float) if "height (piezo)" in curve else None
     measured = np.asarray(curve["height (measured)"], dtype=float) if "height (measured)" in curve else None
+    for key, values in (("height (piezo)", piezo), ("height (measured)", measured)):
+        if values is not None and values.shape != force.shape:
+            raise ValueError(f"curve: {key!r} has {values.size} values for {force.size} forces; expected one per force")
+    if "segment" in curve and np.shape(curve["segment"]) != force.shape:
+        raise ValueError(f"curve: 'segment' has {np.size(curve['segment'])} values for {force.size} forces; "
+                         "expected one segment number per force (0 approach, 1 retract)")
     segments = getattr(curve, "segments", None)
     if segments is not None:
         parts = [(s["kind"], int(s["begin"]), int(s["end"])) for s in segments]
