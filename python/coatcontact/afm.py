@@ -34,7 +34,7 @@ import warnings
 
 import numpy as np
 
-from . import _afm
+from ._core import _afm
 from ._core import NumericalError
 
 __all__ = ["read", "preprocess", "fit", "fit_map", "Curve"]

@@ -771,8 +771,8 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
 
 }  // namespace
 
-PYBIND11_MODULE(_afm, m) {
-  m.doc() = "Compiled AFM readers of coatcontact; use coatcontact.afm.";
+void register_afm(py::module_& root) {
+  py::module_ m = root.def_submodule("_afm", "Compiled AFM readers and fits of coatcontact; use coatcontact.afm.");
   m.def("read", &read_curves, py::arg("path"), py::arg("spring_constant") = py::none(), py::arg("sensitivity") = py::none());
   m.def("preprocess", &preprocess_arrays, py::arg("force"), py::arg("height_piezo"), py::arg("height_measured"),
         py::arg("segments"), py::arg("spring_constant"), py::arg("contact_point"), py::arg("baseline_fraction"),

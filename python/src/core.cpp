@@ -21,6 +21,7 @@ namespace py = pybind11;
 void register_kinetics(py::module_& m);  // kinetics.cpp
 void register_indent(py::module_& m);    // indent.cpp
 void register_indent_analysis(py::module_& m);  // indent_analysis.cpp
+void register_afm(py::module_& m);      // afm.cpp (submodule _afm)
 
 namespace {
 
@@ -685,4 +686,5 @@ PYBIND11_MODULE(_core, m) {
   register_kinetics(m);
   register_indent(m);
   register_indent_analysis(m);
+  register_afm(m);
 }
