@@ -10,7 +10,9 @@
 #  - the records on disk are at most the distinct radii asked so far plus 9 extra copies of
 #    the shared ones (the first round's writers all solve them before any file exists), and
 #    the folder holds at most 8 + 10 + 1 files;
-# and at the end a warm run asking every radius solves nothing (writes no file).
+# and at the end a warm run asking every radius solves nothing (writes no file). The runs take
+# `--direct`: a row is then a function of its radius alone, the cache's unit (a sweep of many
+# radii otherwise reads an interpolant whose nodes depend on the sweep's range).
 # usage: test_cache_concurrent_writers_bounded.sh <coatcontact binary> [ROUNDS, default 4]
 set -uo pipefail
 cli=$1
@@ -43,11 +45,11 @@ for r in $(seq 1 "$rounds"); do
   # its radius alone).
   round_radii=$shared
   for w in $(seq 0 $((writers - 1))); do round_radii="$round_radii,$(own "$r" "$w")"; done
-  env -u COATCONTACT_CACHE "$cli" reduced "${stack[@]}" --a-over-t "$round_radii" | grep -v '^#' \
+  env -u COATCONTACT_CACHE "$cli" reduced --direct "${stack[@]}" --a-over-t "$round_radii" | grep -v '^#' \
     > "$tmp/reference.$r" || fail "reference run of round $r"
   pids=()
   for w in $(seq 0 $((writers - 1))); do
-    env -u COATCONTACT_CACHE "$cli" --cache "$cache" reduced "${stack[@]}" --a-over-t "$shared,$(own "$r" "$w")" \
+    env -u COATCONTACT_CACHE "$cli" --cache "$cache" reduced --direct "${stack[@]}" --a-over-t "$shared,$(own "$r" "$w")" \
       > "$tmp/out.$r.$w" 2> "$tmp/err.$r.$w" &
     pids+=($!)
   done
@@ -79,8 +81,8 @@ for r in $(seq 1 "$rounds"); do
   for w in $(seq 0 $((writers - 1))); do all="$all,$(own "$r" "$w")"; done
 done
 before=$(find "$cache" -name '*.bin' | sort)
-env -u COATCONTACT_CACHE "$cli" --cache "$cache" reduced "${stack[@]}" --a-over-t "$all" > "$tmp/warm" || fail "warm run"
-env -u COATCONTACT_CACHE "$cli" reduced "${stack[@]}" --a-over-t "$all" > "$tmp/cold" || fail "no-cache run"
+env -u COATCONTACT_CACHE "$cli" --cache "$cache" reduced --direct "${stack[@]}" --a-over-t "$all" > "$tmp/warm" || fail "warm run"
+env -u COATCONTACT_CACHE "$cli" reduced --direct "${stack[@]}" --a-over-t "$all" > "$tmp/cold" || fail "no-cache run"
 cmp -s "$tmp/warm" "$tmp/cold" || fail "warm run: output differs from no cache"
 [ "$before" = "$(find "$cache" -name '*.bin' | sort)" ] || fail "the warm run wrote entries: a radius was lost"
 echo "the cache stayed bounded"
