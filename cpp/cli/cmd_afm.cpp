@@ -318,6 +318,8 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--jobs", "N", "batch: curves fitted in parallel (default: the machine's cores); the table is the same for any N", false},
     {"--resume", "", "batch: continue the interrupted run whose rows are in OUTPUT.partial (needs --output)", false},
     {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf)", false},
+    {"--color-range", "MIN,MAX", "--map-plot: colour range of the moduli [Pa; units as 1kPa,10kPa] (default: their min and max)", false},
+    {"--color-log", "", "--map-plot: moduli on a log colour scale", false},
 };
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
