@@ -34,7 +34,9 @@ viridis = "set palette defined (0 '#440154', 1 '#482878', 2 '#3e4989', 3 '#31688
 pname(e) = e == -15 ? 'f' : e == -12 ? 'p' : e == -9 ? 'n' : e == -6 ? 'µ' : e == -3 ? 'm' : e == 0 ? '' : e == 3 ? 'k' : e == 6 ? 'M' : e == 9 ? 'G' : sprintf('1e%d ', e)
 cell(c, s) = column(c) * s
 # Enough decimals that neighbouring tick labels differ (ticks at least a tenth of the span apart).
-decimals(lo, hi) = (hi > lo) ? max(0, -floor(log10((hi - lo) / 10.0))) : 2
+decimals(lo, hi) = (hi > lo) ? min(12, max(0, -floor(log10((hi - lo) / 10.0)))) : 2
+min(a, b) = a < b ? a : b
+fixed(lo, hi) = sprintf('%%.%df', decimals(lo, hi))
 max(a, b) = a > b ? a : b
 set format x sprintf('%%.%df', decimals(xlo * ps, xhi * ps))
 set format y sprintf('%%.%df', decimals(ylo * ps, yhi * ps))
@@ -81,7 +83,7 @@ do for [i = 1:words(names) + 2] {
     set title name noenhanced
     set colorbox
     if (uselog) { set logscale cb; set format cb '%.3g'; set cbtics autofreq; do for [d = -18:12] { set cbtics add (2 * 10.0**d, 3 * 10.0**d, 5 * 10.0**d) } } \
-    else { unset logscale cb; set format cb '%.5g'; set cbtics autofreq }
+    else { unset logscale cb; set format cb fixed(lo, hi); set cbtics autofreq }
     set cbrange [lo : hi]
     # a cell without a value is left out (drawn, it would be painted white)
     plot mapfile using (valid(3 + i) ? $1 * ps : NaN):($2 * ps):(dx * ps / 2):(dy * ps / 2):(cell(3 + i, s)) \
@@ -91,7 +93,7 @@ do for [i = 1:words(names) + 2] {
   if (word(present, i) eq '1' && profile != 0) {
     set title name noenhanced
     set ylabel name noenhanced
-    if (uselog) { set logscale y; set format y '%.3g' } else { unset logscale y; set format y '%.5g' }
+    if (uselog) { set logscale y; set format y '%.3g' } else { unset logscale y; set format y fixed(lo, hi) }
     set yrange [lo : hi]
     plot mapfile using (pos(0)):(cell(3 + i, s)) with linespoints pt 7 ps 0.8 lc rgb '#31688e' notitle
     if (rangefile ne '') { set print rangefile append; print sprintf("%s\t%.10g\t%.10g", id, GPVAL_Y_MIN / s, GPVAL_Y_MAX / s); unset print }
