@@ -59,7 +59,7 @@ if (profile == 0) {
 } else {
   set xlabel (profile == 1 ? xname : yname)
   if (profile == 1) { set xrange [xlo * ps : xhi * ps] } else { set xrange [ylo * ps : yhi * ps]; set format x sprintf('%%.%df', decimals(ylo * ps, yhi * ps)) }
-  set grid
+  set grid lc rgb '#dddddd' lw 0.5 dt solid
 }
 # the position along a profile
 pos(dummy) = column(profile == 2 ? 2 : 1) * ps

@@ -270,7 +270,7 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
   const int profile = (ny == 1 && nx > 1) ? 1 : (nx == 1 && ny > 1) ? 2 : 0;
   // Tests read back each panel's range (the script appends it to this file).
   const char* range_file = std::getenv("COATCONTACT_MAP_PLOT_RANGES");
-  if (!(x_min <= x_max)) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
+  if (!(x_min <= x_max)) throw InputError("--map-plot: no curve of the file has a grid position (is it a map?)");
   const double dx = nx > 1 ? (x_max - x_min) / static_cast<double>(nx - 1) : (positions ? 1e-6 : 1.0);
   const double dy = ny > 1 ? (y_max - y_min) / static_cast<double>(ny - 1) : dx;
   std::string names, units;
@@ -291,6 +291,37 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
   return run_gnuplot({{"map.tsv", data.str()}}, "afm_map_plot.gp", kAfmMapPlotScript,
                      [&](const std::string& dir) { return "mapfile=" + gp_path(dir + "/map.tsv") + settings; },
                      "--map-plot", true);
+}
+
+// --map-plot over the run: one image per file with grid positions (several images would draw
+// over each other on one grid). One such file: FILE as given; several: NAME-K.EXT, K the file's
+// place among the run's files (1-based). Returns (path, picture) pairs.
+std::vector<std::pair<std::string, std::string>> render_map_plots(const std::vector<std::string>& rows,
+                                                                  const std::vector<fit::AfmBatchParameter>& parameters,
+                                                                  bool contact_point_column, const std::string& term,
+                                                                  const std::string& plot_path, const std::vector<std::string>& files,
+                                                                  const std::string& tip, const MapColor& color) {
+  std::vector<std::vector<std::string>> groups(files.size());
+  std::vector<bool> on_grid(files.size(), false);
+  std::size_t next = 0;  // rows come file by file, in the order of `files`
+  for (const std::string& line : rows) {
+    const std::vector<std::string> cells = cells_of(line);
+    while (next < files.size() && files[next] != cells[0]) ++next;
+    if (next == files.size()) throw NumericalError("--map-plot: a row of the table names a file outside the run: " + cells[0]);
+    groups[next].push_back(line);
+    if (cells[2] != "-" && cells[3] != "-") on_grid[next] = true;
+  }
+  const auto maps = static_cast<std::size_t>(std::count(on_grid.begin(), on_grid.end(), true));
+  if (maps == 0) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
+  const std::size_t dot = plot_path.rfind('.');
+  std::vector<std::pair<std::string, std::string>> pictures;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    if (!on_grid[f]) continue;
+    const std::string path = maps == 1 ? plot_path : plot_path.substr(0, dot) + "-" + std::to_string(f + 1) + plot_path.substr(dot);
+    const std::string title = std::filesystem::path(files[f]).filename().string() + ": " + tip;
+    pictures.emplace_back(path, render_map_plot(groups[f], parameters, contact_point_column, term, title, color));
+  }
+  return pictures;
 }
 
 }  // namespace
@@ -595,13 +626,10 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   if (!reasons.empty()) flag_text += " (" + reasons + ")";
   progress_pause();
 
-  std::string picture;
+  std::vector<std::pair<std::string, std::string>> pictures;
   if (plot_path) {
-    picture = render_map_plot(plot_rows, parameters, contact_point_column, term,
-                              std::filesystem::path(files.front()).filename().string() +
-                                  (files.size() > 1 ? " and " + std::to_string(files.size() - 1) + " more" : "") + ": " +
-                                  settings.problem.tip.description,
-                              color);
+    pictures = render_map_plots(plot_rows, parameters, contact_point_column, term, *plot_path, files,
+                                settings.problem.tip.description, color);
   }
   if (to_stdout) {
     std::cout << "# flagged curves: " << flag_text << "\n" << std::flush;
@@ -620,20 +648,24 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     Output output(output_path);
     output.stream() << final_header;
     if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
-    std::unique_ptr<Output> plot_output;
-    if (plot_path) {
-      plot_output = std::make_unique<Output>(*plot_path, "--map-plot");
-      plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-      plot_output->commit();
+    std::vector<std::unique_ptr<Output>> plot_outputs;  // alive until the table's commit: all or none
+    for (const auto& [path, picture] : pictures) {
+      plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
+      plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+      plot_outputs.back()->commit();
     }
     output.commit();
     std::remove(partial_path.c_str());
   }
-  if (to_stdout && plot_path) {
-    Output plot_output(*plot_path, "--map-plot");
-    plot_output.stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-    plot_output.commit();
+  // All made before any commit, so that they are published together (all or none).
+  std::vector<std::unique_ptr<Output>> plot_outputs;
+  for (const auto& [path, picture] : pictures) {
+    if (!to_stdout) break;  // written with the table above
+    plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
+    plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
   }
+  for (const auto& plot_output : plot_outputs) plot_output->commit();
+  if (pictures.size() > 1) std::cerr << "coatcontact afm fit: " << pictures.size() << " map images, " << pictures.front().first << " ...\n";
   report_run(files, survey, total, flag_text, summary);
   return kExitSuccess;
 }

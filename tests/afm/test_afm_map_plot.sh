@@ -10,6 +10,7 @@
 #  - a profile's y range covers [min, max] and is at most 20 % wider than their span;
 #  - --color-range 1kPa,10kPa sets E's colour range to [1000, 10000] Pa, the other panels keep
 #    theirs; --color-log keeps E's range covering its values;
+#  - several files: one image per map file, each with its own file's ranges;
 #  - a bad --color-range or --color-log exits 2 naming the option, with no output.
 # Usage: test_afm_map_plot.sh COATCONTACT MAKE_AFM_MAP DATA_DIR WORK_DIR
 set -u
@@ -73,6 +74,18 @@ awk -F'\t' '$1 == "E"' "$work/logscale.ranges" >"$work/logscale.E"
 awk -F'\t' '$1 == "E"' "$work/syn.ranges" >"$work/syn.E"
 paste "$work/logscale.E" "$work/syn.E" | awk -F'\t' '{ exit !($2 <= $5 && $3 >= $6 && $2 > 0) }' \
   || fail "--color-log: E range $(cat "$work/logscale.E") does not cover $(cat "$work/syn.E")"
+
+# Several files: one image per map file (NAME-K.png, K its place in the run), none for a single
+# curve; each image's ranges are its own file's.
+rm -f "$work/multi"*
+COATCONTACT_MAP_PLOT_RANGES="$work/multi.ranges" "$cli" afm fit "$work/syn.jpk-force-map" "$data/fmt-jpk-fd_spot3-0192.jpk-force" \
+  "$work/line.jpk-force-map" --radius 10um --halfspace 5kPa,0.5 --output "$work/multi.tsv" --map-plot "$work/multi.png" \
+  2>"$work/multi.err" || fail "several files: $(cat "$work/multi.err")"
+[ -s "$work/multi-1.png" ] && [ -s "$work/multi-3.png" ] && [ ! -e "$work/multi-2.png" ] && [ ! -e "$work/multi.png" ] \
+  || fail "several files: images $(ls "$work"/multi*.png)"
+head -5 "$work/multi.ranges" | cmp -s - "$work/syn.ranges" || fail "several files: the first image's ranges are not the map's own"
+[ "$(tail -n +6 "$work/multi.ranges" | cut -f1 | tr '\n' ' ')" = "E contact_point baseline chi2_per_dof pulloff " ] \
+  || fail "several files: second image's panels $(cat "$work/multi.ranges")"
 
 expect_error() {  # FRAGMENT... -- ARGS
   local fragments=()
