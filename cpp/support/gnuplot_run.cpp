@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -70,7 +71,9 @@ std::string run_gnuplot(const std::vector<std::pair<std::string, std::string>>& 
   if (warnings_fail) {
     std::ifstream err(dir + "/err");
     for (std::string line; std::getline(err, line);) {
-      if (line.find("warning:") != std::string::npos) throw NumericalError(option + ": gnuplot warned: " + line);
+      std::string lower = line;  // gnuplot writes both "warning:" and "Warning:"
+      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (lower.find("warning:") != std::string::npos) throw NumericalError(option + ": gnuplot warned: " + line);
     }
   }
   return picture;
