@@ -82,7 +82,9 @@ do for [i = 1:words(names) + 2] {
   if (word(present, i) eq '1' && profile == 0) {
     set title name noenhanced
     set colorbox
-    if (uselog) { set logscale cb; set format cb '%.3g'; set cbtics autofreq; do for [d = -18:12] { set cbtics add (2 * 10.0**d, 3 * 10.0**d, 5 * 10.0**d) } } \
+    # log scale: five labelled ticks evenly spaced in log (a narrow range holds no 1-2-5 value)
+    if (uselog) { set logscale cb; set cbtics (); sig = max(3, ceil(-log10((hi / lo)**0.25 - 1)) + 1); \
+                  do for [k = 0:4] { v = lo * (hi / lo)**(k / 4.0); set cbtics add (sprintf(sprintf('%%.%dg', sig), v) v) } } \
     else { unset logscale cb; set format cb fixed(lo, hi); set cbtics autofreq }
     set cbrange [lo : hi]
     # a cell without a value is left out (drawn, it would be painted white)
