@@ -360,7 +360,9 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--plot", "FILE", "draw data, fit, residuals, contact point and pull-off with gnuplot (.png or .pdf)", false},
     {"--jobs", "N", "batch: curves fitted in parallel (default: the machine's cores); the table is the same for any N", false},
     {"--resume", "", "batch: continue the interrupted run whose rows are in OUTPUT.partial (needs --output)", false},
-    {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf)", false},
+    {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf; several map files: FILE-K.png, one per file)", false},
+    {"--color-range", "MIN,MAX", "--map-plot: colour range of the moduli [Pa; units as 1kPa,10kPa] (default: their min and max)", false},
+    {"--color-log", "", "--map-plot: moduli on a log colour scale", false},
 };
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -588,7 +590,7 @@ void print_fit_help() {
                      "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md|dmt] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                      "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                      "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
-                     "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf]",
+                     "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf] [--color-range MIN,MAX] [--color-log]",
                      "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):\n"
                      "F(z) = b + E/(1 - nu^2) g(z_c - z) on the tip-position axis z (decreasing toward\n"
                      "the sample), g the Hertz/Sneddon force of the tip per reduced modulus, zero out of\n"

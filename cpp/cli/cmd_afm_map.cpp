@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -159,16 +160,48 @@ std::vector<std::string> cells_of(const std::string& line) {
   }
 }
 
+// A file name as a gnuplot single-quoted string (gnuplot_string's escapes are for shown text).
+std::string gp_path(const std::string& path) {
+  std::string out = "'";
+  for (char c : path) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
 std::string gp_number(double v) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", v);
   return text;
 }
 
+// The colour scale of the moduli panels: --color-range MIN,MAX (pressures) and --color-log.
+struct MapColor {
+  bool fixed = false, log = false;
+  double low = 0.0, high = 0.0;
+};
+
+MapColor parse_map_color(const Arguments& arguments, bool plot) {
+  MapColor color;
+  color.log = arguments.has("--color-log");
+  const auto range = arguments.get("--color-range");
+  for (const char* option : {"--color-range", "--color-log"}) {
+    if (arguments.has(option) && !plot) throw InputError(std::string(option) + ": sets the colours of --map-plot; add --map-plot FILE.png|pdf");
+  }
+  if (!range) return color;
+  const std::size_t comma = range->find(',');
+  if (comma == std::string::npos) throw InputError("--color-range: " + cli::quoted(*range) + " is not allowed; expected MIN,MAX (moduli, units as 1kPa,10kPa)");
+  color.low = parse_quantity(range->substr(0, comma), Quantity::kPressure, "--color-range");
+  color.high = parse_quantity(range->substr(comma + 1), Quantity::kPressure, "--color-range");
+  if (!(color.low < color.high)) throw InputError("--color-range: " + cli::quoted(*range) + " is not allowed; MIN must be below MAX");
+  color.fixed = true;
+  return color;
+}
+
 // The picture of --map-plot: one heat map per free estimate, chi2/dof, the pull-off and the
-// flags, on the grid's positions (or grid indices when the files give no positions).
+// flags, on the grid's positions (or grid indices when the files give no positions); the
+// colour range of each panel spans all its values (every cell counted) unless --color-range.
 std::string render_map_plot(const std::vector<std::string>& rows, const std::vector<fit::AfmBatchParameter>& parameters,
-                            bool contact_point_column, const std::string& term, const std::string& title) {
+                            bool contact_point_column, const std::string& term, const std::string& title,
+                            const MapColor& color) {
   // Columns of the table (0-based): 4, 5 positions; 2, 3 grid indices; 6 flag; estimates from 8.
   const std::size_t first_estimate = 8;
   const std::size_t after = first_estimate + 2 * parameters.size() + (contact_point_column ? 1 : 0);
@@ -185,7 +218,9 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
   }
   positions = positions && any_position;
   std::vector<double> largest(parameters.size() + 2, 0.0);
+  std::vector<double> smallest_value(parameters.size() + 2, INFINITY), largest_value(parameters.size() + 2, -INFINITY);
   std::vector<bool> present(parameters.size() + 2, false);
+  std::set<int> flags;
   for (const std::string& line : rows) {
     const std::vector<std::string> cells = cells_of(line);
     const std::string& xs = positions ? cells[4] : cells[2];
@@ -197,6 +232,7 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
     y_min = std::min(y_min, y);
     y_max = std::max(y_max, y);
     data << xs << '\t' << ys << '\t' << cells[6];
+    flags.insert(std::stoi(cells[6]));
     std::vector<std::string> values;
     for (std::size_t p = 0; p < parameters.size(); ++p) values.push_back(cells[first_estimate + 2 * p]);
     values.push_back(cells[after + 1]);  // chi2/dof
@@ -205,13 +241,16 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
       data << '\t' << values[v];
       if (values[v] != "-") {
         present[v] = true;
-        largest[v] = std::max(largest[v], std::abs(std::stod(values[v])));
+        const double value = std::stod(values[v]);
+        largest[v] = std::max(largest[v], std::abs(value));
+        smallest_value[v] = std::min(smallest_value[v], value);
+        largest_value[v] = std::max(largest_value[v], value);
       }
     }
     data << '\n';
   }
   // The unit prefix of each column (none for chi2/dof).
-  std::string expos, present_text;
+  std::string expos, present_text, vmin, vmax;
   for (std::size_t v = 0; v < largest.size(); ++v) {
     int e = 0;
     if (largest[v] > 0.0 && v != parameters.size()) {
@@ -219,8 +258,21 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
     }
     expos += (v ? " " : "") + std::to_string(e);
     present_text += (v ? " " : "") + std::string(present[v] ? "1" : "0");
+    vmin += (v ? " " : "") + (present[v] ? gp_number(smallest_value[v]) : std::string("0"));
+    vmax += (v ? " " : "") + (present[v] ? gp_number(largest_value[v]) : std::string("1"));
+    if (color.log && v < parameters.size() && parameters[v].unit == "Pa" && present[v] && !(smallest_value[v] > 0.0)) {
+      throw InputError("--color-log: " + parameters[v].name + " has the value " + gp_number(smallest_value[v]) +
+                       " Pa; a log colour scale needs moduli > 0 (drop --color-log)");
+    }
   }
-  if (!(x_min <= x_max)) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
+  std::string flags_in, flag_names;
+  for (int f : flags) flags_in += (flags_in.empty() ? "" : " ") + std::to_string(f);
+  for (int f = 0; f < fit::kAfmFlagCount; ++f) flag_names += (f ? " " : "") + std::string(fit::afm_flag_name(static_cast<fit::AfmFlag>(f)));
+  // One row (or one column) of cells is drawn as profiles against the position.
+  const int profile = (ny == 1 && nx > 1) ? 1 : (nx == 1 && ny > 1) ? 2 : 0;
+  // Tests read back each panel's range (the script appends it to this file).
+  const char* range_file = std::getenv("COATCONTACT_MAP_PLOT_RANGES");
+  if (!(x_min <= x_max)) throw InputError("--map-plot: no curve of the file has a grid position (is it a map?)");
   const double dx = nx > 1 ? (x_max - x_min) / static_cast<double>(nx - 1) : (positions ? 1e-6 : 1.0);
   const double dy = ny > 1 ? (y_max - y_min) / static_cast<double>(ny - 1) : dx;
   std::string names, units;
@@ -232,16 +284,46 @@ std::string render_map_plot(const std::vector<std::string>& rows, const std::vec
                                "'; units='" + units + "'; expos='" + expos + "'; present='" + present_text +
                                "'; positions=" + (positions ? "1" : "0") + "; dx=" + gp_number(dx) + "; dy=" + gp_number(dy) +
                                "; xlo=" + gp_number(x_min - dx / 2) + "; xhi=" + gp_number(x_max + dx / 2) +
-                               "; ylo=" + gp_number(y_min - dy / 2) + "; yhi=" + gp_number(y_max + dy / 2);
-  try {
-    return run_gnuplot({{"map.tsv", data.str()}}, "afm_map_plot.gp", kAfmMapPlotScript,
-                       [&](const std::string& dir) { return "mapfile=" + gnuplot_string(dir + "/map.tsv") + settings; });
-  } catch (const InputError& error) {
-    // run_gnuplot names --plot; this picture is --map-plot's.
-    std::string message = error.what();
-    if (starts_with(message, "--plot:")) message = "--map-plot:" + message.substr(7);
-    throw InputError(message);
+                               "; ylo=" + gp_number(y_min - dy / 2) + "; yhi=" + gp_number(y_max + dy / 2) +
+                               "; vmin='" + vmin + "'; vmax='" + vmax + "'; cbfix=" + (color.fixed ? "1" : "0") +
+                               "; cblo=" + gp_number(color.low) + "; cbhi=" + gp_number(color.high) +
+                               "; cblog=" + (color.log ? "1" : "0") + "; flagsin='" + flags_in + "'; flagnames='" + flag_names +
+                               "'; profile=" + std::to_string(profile) +
+                               "; rangefile=" + gp_path(range_file != nullptr ? range_file : "");
+  return run_gnuplot({{"map.tsv", data.str()}}, "afm_map_plot.gp", kAfmMapPlotScript,
+                     [&](const std::string& dir) { return "mapfile=" + gp_path(dir + "/map.tsv") + settings; },
+                     "--map-plot", true);
+}
+
+// --map-plot over the run: one image per file with grid positions (several images would draw
+// over each other on one grid). One such file: FILE as given; several: NAME-K.EXT, K the file's
+// place among the run's files (1-based). Returns (path, picture) pairs.
+std::vector<std::pair<std::string, std::string>> render_map_plots(const std::vector<std::string>& rows,
+                                                                  const std::vector<fit::AfmBatchParameter>& parameters,
+                                                                  bool contact_point_column, const std::string& term,
+                                                                  const std::string& plot_path, const std::vector<std::string>& files,
+                                                                  const std::string& tip, const MapColor& color) {
+  std::vector<std::vector<std::string>> groups(files.size());
+  std::vector<bool> on_grid(files.size(), false);
+  std::size_t next = 0;  // rows come file by file, in the order of `files`
+  for (const std::string& line : rows) {
+    const std::vector<std::string> cells = cells_of(line);
+    while (next < files.size() && files[next] != cells[0]) ++next;
+    if (next == files.size()) throw NumericalError("--map-plot: a row of the table names a file outside the run: " + cells[0]);
+    groups[next].push_back(line);
+    if (cells[2] != "-" && cells[3] != "-") on_grid[next] = true;
   }
+  const auto maps = static_cast<std::size_t>(std::count(on_grid.begin(), on_grid.end(), true));
+  if (maps == 0) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
+  const std::size_t dot = plot_path.rfind('.');
+  std::vector<std::pair<std::string, std::string>> pictures;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    if (!on_grid[f]) continue;
+    const std::string path = maps == 1 ? plot_path : plot_path.substr(0, dot) + "-" + std::to_string(f + 1) + plot_path.substr(dot);
+    const std::string title = std::filesystem::path(files[f]).filename().string() + ": " + tip;
+    pictures.emplace_back(path, render_map_plot(groups[f], parameters, contact_point_column, term, title, color));
+  }
+  return pictures;
 }
 
 }  // namespace
@@ -481,6 +563,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
       throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
     }
   }
+  const MapColor color = parse_map_color(arguments, plot_path.has_value());
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
   check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
   if (!to_stdout) check_output_path(partial_path, "--output");
@@ -569,12 +652,10 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   if (!reasons.empty()) flag_text += " (" + reasons + ")";
   progress_pause();
 
-  std::string picture;
+  std::vector<std::pair<std::string, std::string>> pictures;
   if (plot_path) {
-    picture = render_map_plot(plot_rows, parameters, contact_point_column, term,
-                              std::filesystem::path(files.front()).filename().string() +
-                                  (files.size() > 1 ? " and " + std::to_string(files.size() - 1) + " more" : "") + ": " +
-                                  settings.problem.tip.description);
+    pictures = render_map_plots(plot_rows, parameters, contact_point_column, term, *plot_path, files,
+                                settings.problem.tip.description, color);
   }
   if (to_stdout) {
     rows_out << "# flagged curves: " << flag_text << "\n" << std::flush;
@@ -594,20 +675,24 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     Output output(output_path);
     output.stream() << final_header;
     if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
-    std::unique_ptr<Output> plot_output;
-    if (plot_path) {
-      plot_output = std::make_unique<Output>(*plot_path, "--map-plot");
-      plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-      plot_output->commit();
+    std::vector<std::unique_ptr<Output>> plot_outputs;  // alive until the table's commit: all or none
+    for (const auto& [path, picture] : pictures) {
+      plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
+      plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+      plot_outputs.back()->commit();
     }
     output.commit();
     std::remove(partial_path.c_str());
   }
-  if (to_stdout && plot_path) {
-    Output plot_output(*plot_path, "--map-plot");
-    plot_output.stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-    plot_output.commit();
+  // All made before any commit, so that they are published together (all or none).
+  std::vector<std::unique_ptr<Output>> plot_outputs;
+  for (const auto& [path, picture] : pictures) {
+    if (!to_stdout) break;  // written with the table above
+    plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
+    plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
   }
+  for (const auto& plot_output : plot_outputs) plot_output->commit();
+  if (pictures.size() > 1) std::cerr << "coatcontact afm fit: " << pictures.size() << " map images, " << pictures.front().first << " ...\n";
   report_run(files, survey, total, flag_text, summary);
   return kExitSuccess;
 }
