@@ -334,6 +334,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--tilt", "M", "jkr, md: the baseline slope [N/m] when it is fixed (default 0; free by default)", false},
     {"--radius", "R", "tip radius of a spherical (paraboloidal) tip [m], e.g. 10um", false},
     {"--shape", "SPEC", "the tip instead: sphere:R, cone:BETA, pyramid:THETA (face half angle; the cone of equal area), "
+                        "pyramid3:THETA (three-sided, face angle; nanite's hertz_pyr3s), sneddon-sphere:R (the exact sphere), "
                         "punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (as `contact --shape`)", false},
     {"--halfspace", "E,nu", "the sample: a homogeneous half-space; E is the value if fixed (any > 0 if free), nu fixed", false},
     {"--film", "E1,nu1", "the sample: a coating (with --substrate, --thickness); E1 the value if fixed, else the centre of its search", false},
@@ -348,6 +349,8 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--baseline-model", "tilt|offset", "tilt (default): the preprocessing's baseline slope is subtracted from the forces "
                                         "(b: the baseline at its contact point); offset: the forces as measured, b constant. "
                                         "With tilt in --free the model fits the slope (offset)", false},
+    {"--weight-cp", "D", "hertz on a half-space: nanite's contact-point weighting, each residual times min(|z - z_c|/D, 1), "
+                         "e.g. 500nm (default: none)", false},
     {"--segment", "KIND", "approach (default) or retract", false},
     spring_constant_option(),
     sensitivity_option(),
@@ -401,6 +404,12 @@ fit::AfmTip parse_tip(const Arguments& arguments) {
     return fit::afm_paraboloid(parse_quantity(rest, Quantity::kLength, "--shape"));
   }
   if (kind == "cone" && rest.find(',') == std::string::npos) return fit::afm_cone(parse_half_angle(rest, "half included angle"));
+  if (kind == "pyramid3" && !rest.empty() && rest.find(',') == std::string::npos) {
+    return fit::afm_pyramid3(parse_half_angle(rest, "face angle"));
+  }
+  if (kind == "sneddon-sphere" && rest.find(',') == std::string::npos) {
+    return fit::afm_sneddon_sphere(parse_quantity(rest, Quantity::kLength, "--shape"));
+  }
   if (kind == "pyramid") {
     if (rest.empty() || rest.find(',') != std::string::npos) {
       throw InputError("--shape: '" + text + "' needs 1 parameter: pyramid:THETA (face half angle, e.g. 35deg)");
@@ -477,6 +486,10 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const bool jkr = model == "jkr" || model == "dmt" || md;  // the adhesive models share their options
   fit::AfmFitProblem problem;
   problem.tip = parse_tip(arguments);
+  if (auto text = arguments.get("--weight-cp")) {
+    problem.weight_cp = parse_quantity(*text, Quantity::kLength, "--weight-cp");
+    if (!(problem.weight_cp > 0.0)) throw InputError("--weight-cp: '" + *text + "' is not allowed; expected a length > 0, e.g. 500nm");
+  }
   if (jkr) {
     problem.model = md ? fit::AfmModel::kMd : model == "dmt" ? fit::AfmModel::kDmt : fit::AfmModel::kJkr;
     if (problem.tip.kind != fit::AfmTip::Kind::kParaboloid) {

@@ -107,6 +107,10 @@ std::vector<AfmStep> step_records(const afm::ForceCurve& curve, const afm::Prepr
                              " m) subtracted from the forces; b is the baseline at the contact point"
                        : std::string("offset: the forces as measured, b constant") +
                              (f.problem.free.tilt ? " (the model's tilt is free)" : "")});
+  if (f.problem.weight_cp > 0.0) {
+    steps.push_back({"weighting", "nanite's contact-point weights: residuals times min(|z - z_c|/D, 1), D = " +
+                                      number(f.problem.weight_cp) + " m"});
+  }
   return steps;
 }
 

@@ -107,6 +107,26 @@ class LogLogTable final : public PenetrationForce {
   gsl_interp_accel* accel_ = nullptr;
 };
 
+// Sneddon's exact sphere (afm_fit.hpp): g = F/E* and dg/d delta = 2a at delta > 0. With
+// x = a/R: delta = a atanh(x), g = R^2 [(1 + x^2) atanh(x) - x]; below x = 0.1 the series
+// sum_k 4k/(4k^2 - 1) x^(2k+1) (the closed form loses (R/a)^2 of its digits there).
+std::pair<double, double> sneddon_sphere_force(double radius, double delta) {
+  constexpr double kMaxX = 1.0 - 1e-8;
+  const auto g_of = [radius](double a) {
+    const double x = a / radius;
+    if (x >= 0.1) return radius * radius * ((1.0 + x * x) * std::atanh(x) - x);
+    double sum = 0.0, power = x * x * x;
+    for (int k = 1; k <= 12; ++k, power *= x * x) sum += 4.0 * k / (4.0 * k * k - 1.0) * power;
+    return radius * radius * sum;
+  };
+  const double a_max = kMaxX * radius, delta_max = a_max * std::atanh(kMaxX);
+  if (delta >= delta_max) return {g_of(a_max) + 2.0 * a_max * (delta - delta_max), 2.0 * a_max};
+  const auto found = coatcontact::detail::brent_root([&](double a) { return a * std::atanh(a / radius) - delta; }, 0.0,
+                                                     a_max, {0.0, 1e-15, 200});
+  if (!found) throw NumericalError("afm fit: Sneddon's sphere: no contact radius at delta = " + short_text(delta));
+  return {g_of(found->x), 2.0 * found->x};
+}
+
 // g(delta) = F/E* of a tip on a half-space and dg/d delta: closed forms, or Sneddon's table.
 class TipForce final : public PenetrationForce {
  public:
@@ -124,6 +144,8 @@ class TipForce final : public PenetrationForce {
         const double c = (2.0 / kPi) * std::tan(tip_.angle);  // F = (2/pi) E* tan(beta) delta^2
         return {c * delta * delta, 2.0 * c * delta};
       }
+      case AfmTip::Kind::kSneddonSphere:
+        return sneddon_sphere_force(tip_.radius, delta);
       case AfmTip::Kind::kShape:
         break;
     }
@@ -189,7 +211,7 @@ class TipForce final : public PenetrationForce {
 class CoatingForces {
  public:
   explicit CoatingForces(const AfmFitProblem& problem) : problem_(problem), coating_(*problem.coating) {
-    if (problem.tip.kind == AfmTip::Kind::kShape) {
+    if (problem.tip.kind == AfmTip::Kind::kShape || problem.tip.kind == AfmTip::Kind::kSneddonSphere) {
       throw InputError("afm fit: a coating takes a sphere (--radius), a cone or a pyramid tip (got " + problem.tip.description + ")");
     }
     const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
@@ -277,9 +299,13 @@ class Profile {
     }
   }
 
+  // nanite's contact-point weights (AfmFitProblem::weight_cp), D > 0.
+  void weight_cp(double distance) { weight_cp_ = distance; }
+
   LinearFit at(double contact_point) const {
     ++evaluations_;
     if (free_tilt_) return at_with_tilt(contact_point);
+    if (weight_cp_ > 0.0) return at_weighted(contact_point);
     double sg = 0.0, sgg = 0.0, sgf = 0.0;
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
@@ -307,6 +333,32 @@ class Profile {
   int evaluations() const { return evaluations_; }
 
  private:
+  // The least squares of w F' = w (b + e g), w = min(|z - z_c|/D, 1), at this z_c.
+  LinearFit at_weighted(double contact_point) const {
+    double sw = 0.0, sf = 0.0, sff = 0.0, sg = 0.0, sgg = 0.0, sgf = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i) {
+      const double w = std::min(std::abs(z_[i] - contact_point) / weight_cp_, 1.0), ww = w * w;
+      const double f = centred_[i], delta = contact_point - z_[i];
+      sw += ww, sf += ww * f, sff += ww * f * f;
+      if (delta <= 0.0) continue;
+      const double g = force_.at(delta).first;
+      sg += ww * g, sgg += ww * g * g, sgf += ww * g * f;
+    }
+    double e = fixed_scale_, b = fixed_baseline_;
+    if (free_scale_ && free_baseline_ && sw > 0.0) {
+      const double var = sgg - sg * sg / sw;
+      e = var > 0.0 ? std::max(0.0, (sgf - sg * sf / sw) / var) : 0.0;
+      b = (sf - e * sg) / sw;
+    } else if (free_scale_) {
+      if (free_baseline_) b = 0.0;
+      e = sgg > 0.0 ? std::max(0.0, (sgf - b * sg) / sgg) : 0.0;
+    } else if (free_baseline_ && sw > 0.0) {
+      b = (sf - e * sg) / sw;
+    }
+    const double rss = sff + sw * b * b + e * e * sgg - 2.0 * e * sgf - 2.0 * b * sf + 2.0 * b * e * sg;
+    return {e, b + mean_, std::max(0.0, rss)};
+  }
+
   // The least squares of F' = b + m u + e g (u = z - z_c) over the free ones of (e, b, m), the
   // others at their fixed values (m free here), e >= 0: the normal equations of the free
   // columns; a negative e is clamped at 0 and (b, m) solved again.
@@ -376,6 +428,7 @@ class Profile {
   std::vector<double> z_, centred_;
   double mean_ = 0.0, sff_ = 0.0;
   bool free_tilt_ = false;
+  double weight_cp_ = 0.0;
   double origin_ = 0.0, sx_ = 0.0, sxx_ = 0.0, sxf_ = 0.0;
   mutable int evaluations_ = 0;
 };
@@ -471,6 +524,7 @@ double minimize_log(const std::function<double(double)>& cost, double hint, cons
 void check_tip(const AfmTip& tip) {
   switch (tip.kind) {
     case AfmTip::Kind::kParaboloid:
+    case AfmTip::Kind::kSneddonSphere:
       if (!(tip.radius > 0.0) || !std::isfinite(tip.radius)) throw InputError("afm fit: the tip radius must be > 0 (got " + short_text(tip.radius) + ")");
       return;
     case AfmTip::Kind::kCone:
@@ -509,6 +563,25 @@ AfmTip afm_pyramid(double face_half_angle) {
   AfmTip tip = afm_cone(std::atan(2.0 * std::tan(face_half_angle) / std::sqrt(kPi)));
   tip.description = "four-sided pyramid, face half angle " + short_text(face_half_angle * 180.0 / kPi) +
                     " deg, as the cone of equal area (half angle " + short_text(tip.angle * 180.0 / kPi) + " deg)";
+  return tip;
+}
+
+AfmTip afm_pyramid3(double face_angle) {
+  if (!(face_angle > 0.0 && face_angle < kPi / 2)) {
+    throw InputError("afm fit: the three-sided pyramid's face angle must be in (0, 90) degrees");
+  }
+  AfmTip tip = afm_cone(std::atan(0.5 * kPi * 0.8887 * std::tan(face_angle)));
+  tip.description = "three-sided pyramid, face angle " + short_text(face_angle * 180.0 / kPi) +
+                    " deg (nanite hertz_pyr3s, F = 0.8887 tan(theta) E* delta^2)";
+  return tip;
+}
+
+AfmTip afm_sneddon_sphere(double radius) {
+  AfmTip tip;
+  tip.kind = AfmTip::Kind::kSneddonSphere;
+  tip.radius = radius;
+  tip.description = "sphere (Sneddon, exact), R = " + short_text(radius) + " m";
+  check_tip(tip);
   return tip;
 }
 
@@ -571,6 +644,12 @@ void check_fit_input(const std::vector<double>& z, const std::vector<double>& fo
     if (!std::isfinite(z[i]) || !std::isfinite(force[i])) {
       throw InputError("afm fit: point " + std::to_string(i) + " is not finite");
     }
+  }
+  if (!(problem.weight_cp >= 0.0 && std::isfinite(problem.weight_cp))) {
+    throw InputError("afm fit: the contact-point weighting distance must be >= 0 m (got " + short_text(problem.weight_cp) + ")");
+  }
+  if (problem.weight_cp > 0.0 && (problem.coating || problem.free.tilt || problem.model != AfmModel::kHertz)) {
+    throw InputError("afm fit: contact-point weighting takes the adhesionless half-space fit without a free tilt");
   }
   if (problem.coating) {
     const AfmCoating& c = *problem.coating;
@@ -693,6 +772,7 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
                     problem.baseline);
     if (problem.free.tilt) profile.free_tilt();
+    if (problem.weight_cp > 0.0) profile.weight_cp(problem.weight_cp);
     const ContactSearch found = search_contact(profile, problem, z_lo, c_hi, problem.profile_points);
     if (!(found.linear.reduced_modulus > 0.0)) {
       throw NumericalError("afm fit: the data show no contact in the fitted range (the best modulus is 0); "
@@ -810,7 +890,17 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
   for (std::size_t i = 0; i < n; ++i) r.indentation[i] = r.contact_point - z[i];
   internal::afm_residual_statistics(r, force, problem.noise_sigma, free_count, 0.0,
                                     "the data show no contact in the fitted range; widen the range or check the segment");
-  const std::vector<double> errors = internal::afm_standard_errors(columns, r.residual_sigma);
+  double sigma = r.residual_sigma;
+  if (problem.weight_cp > 0.0) {  // the weighted problem's Jacobian and residual sigma
+    double rss = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double w = std::min(std::abs(z[i] - r.contact_point) / problem.weight_cp, 1.0);
+      for (std::vector<double>& column : columns) column[i] *= w;
+      rss += w * w * r.residual[i] * r.residual[i];
+    }
+    sigma = std::sqrt(rss / (static_cast<double>(n) - free_count));
+  }
+  const std::vector<double> errors = internal::afm_standard_errors(columns, sigma);
   for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

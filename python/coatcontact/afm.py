@@ -153,7 +153,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
         segment=None, spring_constant=None, tip_range=None, indentation_range=None,
         max_indentation=None, max_force=None, noise=None, work=None, surface_force_range=0.3e-9, tilt=None,
-        baseline_model=None):
+        baseline_model=None, weight_cp=None):
     """Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):
     F(z) = baseline + E/(1 - nu^2) g(contact_point - z) on the tip-position axis z (decreasing
     toward the sample), g the Hertz/Sneddon force of the tip per reduced modulus, 0 out of
@@ -181,7 +181,9 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                Or "dmt": F_DMT, the adhesionless force less 2 pi w R while in contact; any spring
                lets go at the contact point (pull-off -2 pi w R); warns above lambda 0.1.
     radius     tip radius R [m] (a paraboloid); or shape=("sphere", R), ("cone", beta),
-               ("pyramid", theta: face half angle; the cone of equal area), ("punch", A),
+               ("pyramid", theta: face half angle; the cone of equal area), ("pyramid3", theta:
+               three-sided, face angle, nanite's hertz_pyr3s), ("sneddon-sphere", R: the exact
+               sphere), ("punch", A),
                ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
     halfspace  (E [Pa], nu): the sample; E is the value if fixed (any > 0 if free), nu fixed.
     film, substrate, thickness
@@ -197,6 +199,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                a range the whole segment is fitted. Ranges combine.
     noise      force noise [N] for chi2 (default: the preprocessing's baseline sigma when the
                curve has heights and a spring constant; else chi2 is None).
+    weight_cp  D [m]: nanite's contact-point weighting, each residual times min(|z - z_c|/D, 1)
+               (hertz on a half-space, no free tilt; default None: unweighted).
     baseline_model
                "tilt" (default): the preprocessing's baseline slope is subtracted from the forces
                (the baseline is then the one at its contact point); "offset": the forces as
@@ -248,12 +252,14 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         adhesion = _adhesion(model, work, float(spring_constant or 0.0), surface_force_range, tilt) if jkr else None
         try:
             r = _afm.fit_curve(*arrays, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), coating,
-                               segment, *ranges, adhesion, baseline_model or "", float(noise or 0.0))
+                               segment, *ranges, adhesion, baseline_model or "", float(noise or 0.0),
+                               weight_cp=float(weight_cp or 0.0))
         except RuntimeError as e:
             raise NumericalError(str(e)) from None
     else:
         r = _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, nu, free, contact_point,
-                              baseline, coating, ranges, noise, work, surface_force_range, tilt, baseline_model)
+                              baseline, coating, ranges, noise, work, surface_force_range, tilt, baseline_model,
+                              float(weight_cp or 0.0))
     for message in r.get("warnings", []):
         warnings.warn(message, RuntimeWarning, stacklevel=2)
     r["contact_point"] = r["estimates"]["contact_point"]
@@ -272,7 +278,7 @@ def _spring_constant(mapping, spring_constant):
 
 
 def _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, nu, free, contact_point, baseline,
-                      coating, ranges, noise, work, surface_force_range, tilt, baseline_model):
+                      coating, ranges, noise, work, surface_force_range, tilt, baseline_model, weight_cp=0.0):
     """fit() of (tip_position, force) arrays, or of a mapping with a "tip position" but no heights
     and spring constant: the requested segment as given, without the preprocessing (no baseline
     tilt to subtract: the offset model; the relative ranges refer to a first fit of the segment)."""
@@ -305,7 +311,8 @@ def _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, n
         reference_baseline = first["estimates"]["baseline"]
     try:
         r = _afm.fit(z, f, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), float(noise or 0.0),
-                     *ranges, float(reference_contact), float(reference_baseline), coating, adhesion)
+                     *ranges, float(reference_contact), float(reference_baseline), coating, adhesion,
+                     weight_cp=weight_cp)
     except RuntimeError as e:
         raise NumericalError(str(e)) from None
     r["index"] = r["index"] + (part.start or 0)

@@ -223,7 +223,8 @@ py::dict preprocess_arrays(const py::object& force, const py::object& height_pie
   return out;
 }
 
-// The tip of coatcontact.afm.fit: ("sphere", R), ("cone", beta), ("pyramid", theta),
+// The tip of coatcontact.afm.fit: ("sphere", R), ("cone", beta), ("pyramid", theta), ("pyramid3", theta),
+// ("sneddon-sphere", R),
 // ("punch", A), ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
 coatcontact::fit::AfmTip tip_of(const py::tuple& spec) {
   namespace cc = coatcontact;
@@ -236,6 +237,8 @@ coatcontact::fit::AfmTip tip_of(const py::tuple& spec) {
   if (kind == "sphere") return count(1), cc::fit::afm_paraboloid(number(1));
   if (kind == "cone") return count(1), cc::fit::afm_cone(number(1));
   if (kind == "pyramid") return count(1), cc::fit::afm_pyramid(number(1));
+  if (kind == "pyramid3") return count(1), cc::fit::afm_pyramid3(number(1));
+  if (kind == "sneddon-sphere") return count(1), cc::fit::afm_sneddon_sphere(number(1));
   if (kind == "punch") return count(1), cc::fit::afm_shape(cc::make_flat_punch(number(1)));
   if (kind == "power") return count(2), cc::fit::afm_shape(cc::make_power_law(number(1), number(2)));
   if (kind == "blunted-cone") return count(2), cc::fit::afm_shape(cc::make_blunted_cone(number(1), number(2)));
@@ -243,7 +246,7 @@ coatcontact::fit::AfmTip tip_of(const py::tuple& spec) {
     count(2);
     return cc::fit::afm_shape(cc::make_measured_profile(to_vector(spec[1]), to_vector(spec[2]), "shape profile"));
   }
-  throw py::value_error("shape: '" + kind + "' is not a tip; allowed: sphere, cone, pyramid, punch, power, blunted-cone, profile");
+  throw py::value_error("shape: '" + kind + "' is not a tip; allowed: sphere, cone, pyramid, pyramid3, sneddon-sphere, punch, power, blunted-cone, profile");
 }
 
 std::optional<double> optional_number(const py::object& v) {
@@ -411,7 +414,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
                     double poisson, const std::vector<std::string>& free, double contact_point, double baseline,
                     double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
                     const py::object& indentation_max, const py::object& max_force, double reference_contact,
-                    double reference_baseline, const py::object& coating, const py::object& adhesion) {
+                    double reference_baseline, const py::object& coating, const py::object& adhesion, double weight_cp) {
   namespace fit = coatcontact::fit;
   const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
   if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
@@ -420,6 +423,7 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
   try {
     problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
     problem.noise_sigma = noise;
+    problem.weight_cp = weight_cp;
     fit::AfmRange range;
     range.tip_min = optional_number(tip_min);
     range.tip_max = optional_number(tip_max);
@@ -670,7 +674,7 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
                    const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
                    const std::string& segment, const py::object& tip_min, const py::object& tip_max,
                    const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
-                   const py::object& adhesion, const std::string& baseline_model, double noise) {
+                   const py::object& adhesion, const std::string& baseline_model, double noise, double weight_cp) {
   namespace fit = coatcontact::fit;
   const afm::ForceCurve curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
   py::dict out;
@@ -679,6 +683,7 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
                                                tip_min, tip_max, indentation_min, indentation_max, max_force, adhesion);
     request.check_jump_in = false;
     request.problem.noise_sigma = noise;
+    request.problem.weight_cp = weight_cp;
     request.baseline = baseline_model_of(baseline_model, request.problem);
     fit::AfmCurveFit fitted;
     SignalCheck signals;
@@ -780,12 +785,13 @@ void register_afm(py::module_& root) {
   m.def("fit", &fit_arrays, py::arg("tip_position"), py::arg("force"), py::arg("shape"), py::arg("modulus"),
         py::arg("poisson"), py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("noise"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none(), py::arg("adhesion") = py::none());
+        py::arg("max_force"), py::arg("reference_contact"), py::arg("reference_baseline"), py::arg("coating") = py::none(), py::arg("adhesion") = py::none(),
+        py::arg("weight_cp") = 0.0);
   m.def("fit_curve", &fit_curve, py::arg("force"), py::arg("height_piezo"), py::arg("height_measured"), py::arg("segments"),
         py::arg("spring_constant"), py::arg("name"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"), py::arg("free"),
         py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"), py::arg("tip_min"),
         py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"), py::arg("max_force"),
-        py::arg("adhesion"), py::arg("baseline_model"), py::arg("noise"));
+        py::arg("adhesion"), py::arg("baseline_model"), py::arg("noise"), py::arg("weight_cp") = 0.0);
   m.def("measured_pulloff", &measured_pulloff, py::arg("tip_position"), py::arg("force"), py::arg("fraction") = 0.5);
   m.def("expand_paths", &expand_paths, py::arg("paths"));
   m.def("survey_files", &survey_files, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"),

@@ -24,9 +24,9 @@ namespace coatcontact::fit {
 // The tip: closed forms for the paraboloid (radius R) and the cone (half angle beta), and any
 // IndenterShape through a table of g(delta) (Sneddon's integral, monotone interpolation).
 struct AfmTip {
-  enum class Kind { kParaboloid, kCone, kShape };
+  enum class Kind { kParaboloid, kCone, kShape, kSneddonSphere };
   Kind kind = Kind::kParaboloid;
-  double radius = 0.0;  // R [m] (paraboloid)
+  double radius = 0.0;  // R [m] (paraboloid, Sneddon's sphere)
   double angle = 0.0;   // beta [rad], half included angle (cone)
   std::shared_ptr<const IndenterShape> shape;  // kShape
   std::string description;                     // one line for headers
@@ -36,6 +36,13 @@ AfmTip afm_cone(double half_angle);
 // Four-sided pyramid of face half angle theta (between face and axis) as the cone of equal
 // cross-section area: pi (delta tan beta)^2 = 4 (delta tan theta)^2, tan beta = 2 tan theta/sqrt(pi).
 AfmTip afm_pyramid(double face_half_angle);
+// Three-sided pyramid of face angle theta with nanite's hertz_pyr3s law (Bilodeau 1992),
+// F = 0.8887 tan(theta) E* delta^2: the cone with tan beta = (pi/2) 0.8887 tan theta.
+AfmTip afm_pyramid3(double face_angle);
+// The exact sphere of radius R (Sneddon 1965; nanite's sneddon_spher), through the contact
+// radius a < R: delta = (a/2) ln((R+a)/(R-a)), F = E* [(R^2+a^2)/2 ln((R+a)/(R-a)) - a R];
+// dF/d delta = 2 a E*. Past a = (1 - 1e-8) R (delta ~ 9.5 R) the sphere's equator: a punch of radius R.
+AfmTip afm_sneddon_sphere(double radius);
 AfmTip afm_shape(std::shared_ptr<const IndenterShape> shape);
 
 // Which of E (the half-space's, or the film's E1), t (a coating's thickness), z_c and b are free
@@ -101,6 +108,10 @@ struct AfmFitProblem {
   // Noise of one force value [N] (e.g. the baseline's residual sigma): chi2 = rss/noise^2.
   // 0: no chi2 (the fit is unweighted either way).
   double noise_sigma = 0.0;
+  // Contact-point weighting with nanite's definition (weight.weight_cp): every residual times
+  // w = min(|z - z_c|/D, 1) at the trial z_c, D = weight_cp [m] (0: none). Adhesionless
+  // half-space fits without a free tilt only; the errors use the weighted Jacobian and residuals.
+  double weight_cp = 0.0;
 };
 constexpr double kContactBeyond = 0.25;
 // JKR fits search on at most this many points (equal-count bins of a denser curve), then
