@@ -361,6 +361,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--jobs", "N", "batch: curves fitted in parallel (default: the machine's cores); the table is the same for any N", false},
     {"--resume", "", "batch: continue the interrupted run whose rows are in OUTPUT.partial (needs --output)", false},
     {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf)", false},
+    {"--sort-by", "KEY", "batch: rating sorts the rows by their curve rating, highest first (stable; docs/afm.md)", false},
 };
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -838,6 +839,13 @@ int run_fit_curve(const Args& args) {
     items.push_back({"fit range", range_text + " (" + std::to_string(kept.size()) + " points fitted, " +
                                       std::to_string(r.points_in_contact) + " in contact)"});
     add_fit_estimates(items, problem, r, modulus_name, pulloff);
+    items.push_back({"flag", std::to_string(static_cast<int>(fitted.flag)) + " " + fit::afm_flag_name(fitted.flag) +
+                                 (fitted.flag == fit::AfmFlag::kFitted ? "" : " (the estimates are kept; see the warning)")});
+    for (const std::string& warning : fitted.flag_warnings) {
+      items.push_back({"warning", warning});
+      std::cerr << "coatcontact afm fit: warning: " << warning << "\n";
+    }
+    items.push_back({"rating", format_parameter(fitted.rating, "rating") + " of 10 (docs/afm.md, \"Curve rating\")"});
     items.push_back({"fit time [s]", format_parameter(r.seconds, "time") + " (" + std::to_string(r.profile_evaluations) +
                                          " contact-point profile evaluations" +
                                          (problem.coating ? ", " + std::to_string(r.solver_calls) + " reduced-variable solves" : "") + ")"});

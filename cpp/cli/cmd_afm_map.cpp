@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -76,12 +77,20 @@ unsigned parse_jobs(const Arguments& arguments) {
 std::string text_of(const std::optional<long>& v) { return v ? std::to_string(*v) : "-"; }
 std::string text_of(const std::optional<double>& v, const std::string& column) { return v ? format_value(*v, column) : "-"; }
 
+// A warning as one cell: tabs and line ends would split the row.
+std::string cell_text(std::string text) {
+  for (char& c : text) {
+    if (c == '\t' || c == '\n' || c == '\r') c = ' ';
+  }
+  return text.empty() ? "-" : text;
+}
+
 // One TSV line of a row; "-" where a curve has no value (its flag says why).
 std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, bool contact_point_column) {
   std::string line = table_file_name(row.source_file) + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
                      text_of(row.grid_y) + '\t' + text_of(row.position_x, "x") + '\t' + text_of(row.position_y, "y") + '\t' +
                      std::to_string(static_cast<int>(row.flag)) + '\t' + fit::afm_flag_name(row.flag);
-  const bool fitted = row.flag == fit::AfmFlag::kFitted;
+  const bool fitted = fit::afm_flag_keeps_estimates(row.flag);
   for (std::size_t i = 0; i < parameter_count; ++i) {
     line += '\t' + (fitted ? format_value(row.estimates[i], "estimate") : "-");
     line += '\t' + (fitted ? format_value(row.errors[i], "error") : "-");
@@ -93,8 +102,30 @@ std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, b
   line += '\t' + (fitted ? text_of(row.pulloff_force, "pulloff") : "-");
   line += '\t' + (fitted ? text_of(row.pulloff_position, "pulloff_position") : "-");
   line += '\t' + (fitted ? std::to_string(row.points) : "-");
+  line += '\t' + format_value(row.rating, "rating");
+  line += '\t' + text_of(row.tabor_mu, "tabor_mu");
+  line += '\t' + text_of(row.maugis_lambda, "maugis_lambda");
+  line += '\t' + cell_text(row.warnings);
   line += '\n';
   return line;
+}
+
+// --sort-by rating: the rows (each ending in a line end) by their rating cell, highest first;
+// equal ratings keep their order (stable).
+void sort_rows_by_rating(std::vector<std::string>& rows, std::size_t rating_column) {
+  std::vector<std::pair<double, std::string>> keyed;
+  keyed.reserve(rows.size());
+  for (std::string& row : rows) {
+    std::size_t start = 0;
+    for (std::size_t k = 0; k < rating_column && start != std::string::npos; ++k) {
+      start = row.find('\t', start);
+      if (start != std::string::npos) ++start;
+    }
+    const double rating = start == std::string::npos ? 0.0 : std::strtod(row.c_str() + start, nullptr);
+    keyed.emplace_back(rating, std::move(row));
+  }
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = std::move(keyed[i].second);
 }
 
 // Appends whole chunks to FILE.partial with one write(2) each, so that the file ends on a line
@@ -258,7 +289,8 @@ std::string fit_range_text(const fit::AfmRange& range) {
 
 bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration) {
   const auto& positionals = arguments.positionals();
-  const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot");
+  const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot") ||
+                            arguments.has("--sort-by");
   if (arguments.has("--index")) {
     if (positionals.size() > 1 || is_folder(positionals.front()) || batch_option) {
       throw InputError("--index: selects one curve of one FILE; without it every curve of the FILEs and FOLDERs is fitted "
@@ -412,7 +444,11 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
                                 format_parameter(fit::kJumpInSigmas, "sigmas") + " sigma and > " +
                                 format_parameter(fit::kJumpInFraction, "fraction") +
                                 " of its largest force), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
-                                "8 unreadable, 9 bad_data; '-' where a flagged curve has no value"});
+                                "8 unreadable, 9 bad_data, 10 undetermined (a free E, E1, t or w with a standard error above its value), "
+                                "11 no_detachment (the retract ends off the free-cantilever level); 10 and 11 keep their "
+                                "estimates; '-' where a flagged curve has no value"});
+  items.push_back({"rating", "0..10 from the residuals against the baseline noise, the signal over the noise, the points in "
+                             "contact and the flags (docs/afm.md, \"Curve rating\"); 0 without estimates"});
   items.push_back({"pull-off", "measured: the retract's most tensile force against its free-cantilever baseline (a line on its last half), and its tip position"});
   columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
   std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
@@ -425,8 +461,11 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
     columns.push_back("contact_point");
     units += "\tm";
   }
-  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "points"}) columns.push_back(c);
-  units += "\t-\t-\tN\tN\tm\t-";
+  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "points", "rating", "tabor_mu",
+                        "maugis_lambda", "warnings"}) {
+    columns.push_back(c);
+  }
+  units += "\t-\t-\tN\tN\tm\t-\t-\t-\t-\t-";
   items.push_back({"units", units});
   std::ostringstream header_stream;
   write_header(header_stream, items, columns);
@@ -480,6 +519,10 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     if (term != "png" && term != "pdf") {
       throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
     }
+  }
+  const std::optional<std::string> sort_by = arguments.get("--sort-by");
+  if (sort_by && *sort_by != "rating") {
+    throw InputError("--sort-by: " + cli::quoted(*sort_by) + " is not allowed; expected rating (rows by their rating, highest first)");
   }
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
   check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
@@ -535,6 +578,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   }
   std::vector<std::string> plot_rows;
   if (plot_path) plot_rows = kept_rows;
+  std::string sorted_rows;  // --sort-by on stdout: the rows until the end
   fit::AfmBatchOptions options;
   options.jobs = jobs;
   options.skip = skip;
@@ -548,6 +592,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
       text += line;
     }
     if (partial) partial->append(text);
+    else if (sort_by) sorted_rows += text;  // printed sorted at the end
     else rows_out << text << std::flush;
   };
   options.progress = [&](std::size_t done, std::size_t all) {
@@ -576,7 +621,15 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
                                   (files.size() > 1 ? " and " + std::to_string(files.size() - 1) + " more" : "") + ": " +
                                   settings.problem.tip.description);
   }
+  const std::size_t rating_column = columns.size() - 4;
   if (to_stdout) {
+    if (sort_by) {
+      std::vector<std::string> rows;
+      std::istringstream in(sorted_rows);
+      for (std::string line; std::getline(in, line);) rows.push_back(line + '\n');
+      sort_rows_by_rating(rows, rating_column);
+      for (const std::string& row : rows) rows_out << row;
+    }
     rows_out << "# flagged curves: " << flag_text << "\n" << std::flush;
     if (stream_output) stream_output->commit();
   } else {
@@ -593,7 +646,14 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     final_header.insert(columns_at, "# flagged curves: " + flag_text + "\n");
     Output output(output_path);
     output.stream() << final_header;
-    if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
+    if (sort_by) {  // the rows in memory, to sort them
+      std::vector<std::string> rows;
+      while (std::getline(rows_in, line)) rows.push_back(line + '\n');
+      sort_rows_by_rating(rows, rating_column);
+      for (const std::string& row : rows) output.stream() << row;
+    } else if (rows_in.peek() != std::char_traits<char>::eof()) {
+      output.stream() << rows_in.rdbuf();
+    }
     std::unique_ptr<Output> plot_output;
     if (plot_path) {
       plot_output = std::make_unique<Output>(*plot_path, "--map-plot");

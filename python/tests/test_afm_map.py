@@ -135,8 +135,9 @@ def same_as_cli(rows, columns, table):
     """Every column of the rows equals the CLI's printed value (NaN where both have none)."""
     assert list(rows.dtype.names) == columns
     for name in columns:
-        if name in ("file", "reason"):
-            assert [str(v) for v in rows[name]] == table[name], name
+        if name in ("file", "reason", "warnings"):
+            # The CLI's "-" is the rows' "" (no warnings).
+            assert [str(v) or "-" for v in rows[name]] == table[name], name
         else:
             # "-" where the CLI has no value: NaN, or -1 (grid index) and 0 (points) in the rows.
             missing = {"grid_x": -1.0, "grid_y": -1.0, "points": 0.0}.get(name, np.nan)
