@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <set>
@@ -472,6 +473,41 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   return header_stream.str();
 }
 
+// "N of M (no_contact 2, ...)": the flagged curves of the run, those of a resumed part included.
+std::string flagged_text(const fit::AfmBatchSummary& summary, const fit::AfmBatchSummary& before, std::size_t total) {
+  std::size_t by_flag[fit::kAfmFlagCount];
+  std::size_t flagged = 0;
+  for (int f = 0; f < fit::kAfmFlagCount; ++f) {
+    by_flag[f] = summary.by_flag[f] + before.by_flag[f];
+    if (f != 0) flagged += by_flag[f];
+  }
+  std::string flag_text = std::to_string(flagged) + " of " + std::to_string(total);
+  std::string reasons;
+  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
+    if (by_flag[f] > 0) reasons += (reasons.empty() ? "" : ", ") + std::string(fit::afm_flag_name(static_cast<fit::AfmFlag>(f))) + " " + std::to_string(by_flag[f]);
+  }
+  if (!reasons.empty()) flag_text += " (" + reasons + ")";
+  return flag_text;
+}
+
+// --sort-by: "rating" or none (InputError for another key).
+bool sort_by_rating(const Arguments& arguments) {
+  const std::optional<std::string> sort_by = arguments.get("--sort-by");
+  if (sort_by && *sort_by != "rating") {
+    throw InputError("--sort-by: " + cli::quoted(*sort_by) + " is not allowed; expected rating (rows by their rating, highest first)");
+  }
+  return sort_by.has_value();
+}
+
+// The rows of `text` (whole lines) sorted by rating to `out`.
+void write_sorted(const std::string& text, std::ostream& out, std::size_t rating_column) {
+  std::vector<std::string> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) rows.push_back(line + '\n');
+  sort_rows_by_rating(rows, rating_column);
+  for (const std::string& row : rows) out << row;
+}
+
 // The run's summary on stderr: curves, flagged count, each unreadable file and why, the first
 // reason of each other flag.
 void report_run(const std::vector<std::string>& files, const std::vector<fit::AfmFileSurvey>& survey, std::size_t total,
@@ -520,10 +556,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
       throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
     }
   }
-  const std::optional<std::string> sort_by = arguments.get("--sort-by");
-  if (sort_by && *sort_by != "rating") {
-    throw InputError("--sort-by: " + cli::quoted(*sort_by) + " is not allowed; expected rating (rows by their rating, highest first)");
-  }
+  const bool sort_by = sort_by_rating(arguments);
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
   check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
   if (!to_stdout) check_output_path(partial_path, "--output");
@@ -600,18 +633,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     return true;
   };
   const fit::AfmBatchSummary summary = fit::afm_fit_batch(files, calibration, settings, options);
-  std::size_t by_flag[fit::kAfmFlagCount];
-  std::size_t flagged = 0;
-  for (int f = 0; f < fit::kAfmFlagCount; ++f) {
-    by_flag[f] = summary.by_flag[f] + before.by_flag[f];
-    if (f != 0) flagged += by_flag[f];
-  }
-  std::string flag_text = std::to_string(flagged) + " of " + std::to_string(total);
-  std::string reasons;
-  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
-    if (by_flag[f] > 0) reasons += (reasons.empty() ? "" : ", ") + std::string(fit::afm_flag_name(static_cast<fit::AfmFlag>(f))) + " " + std::to_string(by_flag[f]);
-  }
-  if (!reasons.empty()) flag_text += " (" + reasons + ")";
+  const std::string flag_text = flagged_text(summary, before, total);
   progress_pause();
 
   std::string picture;
@@ -623,13 +645,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   }
   const std::size_t rating_column = columns.size() - 4;
   if (to_stdout) {
-    if (sort_by) {
-      std::vector<std::string> rows;
-      std::istringstream in(sorted_rows);
-      for (std::string line; std::getline(in, line);) rows.push_back(line + '\n');
-      sort_rows_by_rating(rows, rating_column);
-      for (const std::string& row : rows) rows_out << row;
-    }
+    if (sort_by) write_sorted(sorted_rows, rows_out, rating_column);
     rows_out << "# flagged curves: " << flag_text << "\n" << std::flush;
     if (stream_output) stream_output->commit();
   } else {
@@ -646,14 +662,8 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     final_header.insert(columns_at, "# flagged curves: " + flag_text + "\n");
     Output output(output_path);
     output.stream() << final_header;
-    if (sort_by) {  // the rows in memory, to sort them
-      std::vector<std::string> rows;
-      while (std::getline(rows_in, line)) rows.push_back(line + '\n');
-      sort_rows_by_rating(rows, rating_column);
-      for (const std::string& row : rows) output.stream() << row;
-    } else if (rows_in.peek() != std::char_traits<char>::eof()) {
-      output.stream() << rows_in.rdbuf();
-    }
+    if (sort_by) write_sorted(std::string(std::istreambuf_iterator<char>(rows_in), {}), output.stream(), rating_column);
+    else if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
     std::unique_ptr<Output> plot_output;
     if (plot_path) {
       plot_output = std::make_unique<Output>(*plot_path, "--map-plot");
