@@ -175,6 +175,9 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                reported Tabor mu and Maugis lambda (default 0.3 nm). The result adds "w", "tilt"
                (estimates, errors), "tabor_mu", "maugis_lambda", "jump_off" ({"F" [N] above the
                baseline, "indentation" [m]}) and "warnings" (lambda outside JKR's range, ...).
+               Every model's result from a curve (not plain arrays) adds "flag" ("fitted", or
+               "undetermined" / "no_detachment" with the estimates kept and a RuntimeWarning),
+               "rating" (0-10, docs/afm.md "Curve rating") and "warnings".
                Or "md": the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with
                sigma0 = w/h0, h0 = 0.97 surface_force_range (so lambda follows w and E); warns when
                lambda leaves [1e-3, 1e4] or the spring holds the tip down to the curve's end.
