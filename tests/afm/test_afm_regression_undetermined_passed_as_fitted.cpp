@@ -75,7 +75,7 @@ bool mentions(const std::vector<std::string>& lines, const std::string& word) {
 }  // namespace
 
 int main() {
-  const double f_max = hertz(kContact - 0.5e-6);  // ~5 nN at the deepest point
+  const double f_max = hertz(kContact - 0.5e-6);  // ~20 nN at the deepest point
   const double sigma = 1e-11;
 
   // A retract that ends 0.3 F_max below the free level (the tip held by the sample): no_detachment.
