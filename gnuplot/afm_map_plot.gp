@@ -115,8 +115,8 @@ do for [i = 1:words(names) + 2] {
   }
 }
 # Flags: one colour per flag present, named in the key (Okabe-Ito colours, colour-blind safe).
-flagcolors = "#009e73 #0072b2 #e69f00 #d55e00 #cc79a7 #56b4e9 #f0e442 #999999 #000000 #7f3c8d"
-fcol(f) = word(flagcolors, (f % 10) + 1)
+flagcolors = "#009e73 #0072b2 #e69f00 #d55e00 #cc79a7 #56b4e9 #f0e442 #999999 #000000 #7f3c8d #882255 #44aa99"
+fcol(f) = word(flagcolors, (f % 12) + 1)
 set title 'flag'
 unset colorbox
 unset logscale cb

@@ -366,6 +366,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf; several map files: FILE-K.png, one per file)", false},
     {"--color-range", "MIN,MAX", "--map-plot: colour range of the moduli [Pa; units as 1kPa,10kPa] (default: their min and max)", false},
     {"--color-log", "", "--map-plot: moduli on a log colour scale", false},
+    {"--sort-by", "KEY", "batch: rating sorts the rows by their curve rating, highest first (stable; docs/afm.md)", false},
 };
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -633,7 +634,10 @@ void print_fit_help() {
                      "contact; any spring lets go at the contact point (pull-off -2 pi w R); warns above lambda 0.1.\n"
                      "Many curves: a map (without --index), several FILEs or a FOLDER (its AFM files\n"
                      "by extension) give one row per curve instead: file, curve, grid index and position,\n"
-                     "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off.\n"
+                     "flag and reason (0 fitted), each free estimate and its _error, chi2, pull-off, rating (0-10),\n"
+                     "tabor_mu, maugis_lambda and warnings; --sort-by rating puts the best curves first.\n"
+                     "Flags 10 undetermined (a free E, E1, t or w whose error exceeds it) and 11 no_detachment\n"
+                     "(a fitted retract that ends off the free level) keep the estimates, with a warning.\n"
                      "A curve that cannot be fitted, or a file of several that cannot be read, is flagged\n"
                      "and the run goes on (exit 0; the count in the header and on stderr). Each row is\n"
                      "the one-curve fit of its curve (same pipeline and defaults). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
@@ -853,6 +857,13 @@ int run_fit_curve(const Args& args) {
     items.push_back({"fit range", range_text + " (" + std::to_string(kept.size()) + " points fitted, " +
                                       std::to_string(r.points_in_contact) + " in contact)"});
     add_fit_estimates(items, problem, r, modulus_name, pulloff);
+    items.push_back({"flag", std::to_string(static_cast<int>(fitted.flag)) + " " + fit::afm_flag_name(fitted.flag) +
+                                 (fitted.flag == fit::AfmFlag::kFitted ? "" : " (the estimates are kept; see the warning)")});
+    for (const std::string& warning : fitted.flag_warnings) {
+      items.push_back({"warning", warning});
+      std::cerr << "coatcontact afm fit: warning: " << warning << "\n";
+    }
+    items.push_back({"rating", format_parameter(fitted.rating, "rating") + " of 10 (docs/afm.md, \"Curve rating\")"});
     items.push_back({"fit time [s]", format_parameter(r.seconds, "time") + " (" + std::to_string(r.profile_evaluations) +
                                          " contact-point profile evaluations" +
                                          (problem.coating ? ", " + std::to_string(r.solver_calls) + " reduced-variable solves" : "") + ")"});

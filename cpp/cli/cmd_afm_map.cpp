@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <set>
@@ -77,12 +78,20 @@ unsigned parse_jobs(const Arguments& arguments) {
 std::string text_of(const std::optional<long>& v) { return v ? std::to_string(*v) : "-"; }
 std::string text_of(const std::optional<double>& v, const std::string& column) { return v ? format_value(*v, column) : "-"; }
 
+// A warning as one cell: tabs and line ends would split the row.
+std::string cell_text(std::string text) {
+  for (char& c : text) {
+    if (c == '\t' || c == '\n' || c == '\r') c = ' ';
+  }
+  return text.empty() ? "-" : text;
+}
+
 // One TSV line of a row; "-" where a curve has no value (its flag says why).
 std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, bool contact_point_column) {
   std::string line = table_file_name(row.source_file) + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
                      text_of(row.grid_y) + '\t' + text_of(row.position_x, "x") + '\t' + text_of(row.position_y, "y") + '\t' +
                      std::to_string(static_cast<int>(row.flag)) + '\t' + fit::afm_flag_name(row.flag);
-  const bool fitted = row.flag == fit::AfmFlag::kFitted;
+  const bool fitted = fit::afm_flag_keeps_estimates(row.flag);
   for (std::size_t i = 0; i < parameter_count; ++i) {
     line += '\t' + (fitted ? format_value(row.estimates[i], "estimate") : "-");
     line += '\t' + (fitted ? format_value(row.errors[i], "error") : "-");
@@ -94,8 +103,30 @@ std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, b
   line += '\t' + (fitted ? text_of(row.pulloff_force, "pulloff") : "-");
   line += '\t' + (fitted ? text_of(row.pulloff_position, "pulloff_position") : "-");
   line += '\t' + (fitted ? std::to_string(row.points) : "-");
+  line += '\t' + format_value(row.rating, "rating");
+  line += '\t' + text_of(row.tabor_mu, "tabor_mu");
+  line += '\t' + text_of(row.maugis_lambda, "maugis_lambda");
+  line += '\t' + cell_text(row.warnings);
   line += '\n';
   return line;
+}
+
+// --sort-by rating: the rows (each ending in a line end) by their rating cell, highest first;
+// equal ratings keep their order (stable).
+void sort_rows_by_rating(std::vector<std::string>& rows, std::size_t rating_column) {
+  std::vector<std::pair<double, std::string>> keyed;
+  keyed.reserve(rows.size());
+  for (std::string& row : rows) {
+    std::size_t start = 0;
+    for (std::size_t k = 0; k < rating_column && start != std::string::npos; ++k) {
+      start = row.find('\t', start);
+      if (start != std::string::npos) ++start;
+    }
+    const double rating = start == std::string::npos ? 0.0 : std::strtod(row.c_str() + start, nullptr);
+    keyed.emplace_back(rating, std::move(row));
+  }
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = std::move(keyed[i].second);
 }
 
 // Appends whole chunks to FILE.partial with one write(2) each, so that the file ends on a line
@@ -340,7 +371,8 @@ std::string fit_range_text(const fit::AfmRange& range) {
 
 bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration) {
   const auto& positionals = arguments.positionals();
-  const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot");
+  const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot") ||
+                            arguments.has("--sort-by");
   if (arguments.has("--index")) {
     if (positionals.size() > 1 || is_folder(positionals.front()) || batch_option) {
       throw InputError("--index: selects one curve of one FILE; without it every curve of the FILEs and FOLDERs is fitted "
@@ -494,7 +526,11 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
                                 format_parameter(fit::kJumpInSigmas, "sigmas") + " sigma and > " +
                                 format_parameter(fit::kJumpInFraction, "fraction") +
                                 " of its largest force), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
-                                "8 unreadable, 9 bad_data; '-' where a flagged curve has no value"});
+                                "8 unreadable, 9 bad_data, 10 undetermined (a free E, E1, t or w with a standard error above its value), "
+                                "11 no_detachment (the retract ends off the free-cantilever level); 10 and 11 keep their "
+                                "estimates; '-' where a flagged curve has no value"});
+  items.push_back({"rating", "0..10 from the residuals against the baseline noise, the signal over the noise, the points in "
+                             "contact and the flags (docs/afm.md, \"Curve rating\"); 0 without estimates"});
   items.push_back({"pull-off", "measured: the retract's most tensile force against its free-cantilever baseline (a line on its last half), and its tip position"});
   columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
   std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
@@ -507,12 +543,50 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
     columns.push_back("contact_point");
     units += "\tm";
   }
-  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "points"}) columns.push_back(c);
-  units += "\t-\t-\tN\tN\tm\t-";
+  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "points", "rating", "tabor_mu",
+                        "maugis_lambda", "warnings"}) {
+    columns.push_back(c);
+  }
+  units += "\t-\t-\tN\tN\tm\t-\t-\t-\t-\t-";
   items.push_back({"units", units});
   std::ostringstream header_stream;
   write_header(header_stream, items, columns);
   return header_stream.str();
+}
+
+// "N of M (no_contact 2, ...)": the flagged curves of the run, those of a resumed part included.
+std::string flagged_text(const fit::AfmBatchSummary& summary, const fit::AfmBatchSummary& before, std::size_t total) {
+  std::size_t by_flag[fit::kAfmFlagCount];
+  std::size_t flagged = 0;
+  for (int f = 0; f < fit::kAfmFlagCount; ++f) {
+    by_flag[f] = summary.by_flag[f] + before.by_flag[f];
+    if (f != 0) flagged += by_flag[f];
+  }
+  std::string flag_text = std::to_string(flagged) + " of " + std::to_string(total);
+  std::string reasons;
+  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
+    if (by_flag[f] > 0) reasons += (reasons.empty() ? "" : ", ") + std::string(fit::afm_flag_name(static_cast<fit::AfmFlag>(f))) + " " + std::to_string(by_flag[f]);
+  }
+  if (!reasons.empty()) flag_text += " (" + reasons + ")";
+  return flag_text;
+}
+
+// --sort-by: "rating" or none (InputError for another key).
+bool sort_by_rating(const Arguments& arguments) {
+  const std::optional<std::string> sort_by = arguments.get("--sort-by");
+  if (sort_by && *sort_by != "rating") {
+    throw InputError("--sort-by: " + cli::quoted(*sort_by) + " is not allowed; expected rating (rows by their rating, highest first)");
+  }
+  return sort_by.has_value();
+}
+
+// The rows of `text` (whole lines) sorted by rating to `out`.
+void write_sorted(const std::string& text, std::ostream& out, std::size_t rating_column) {
+  std::vector<std::string> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) rows.push_back(line + '\n');
+  sort_rows_by_rating(rows, rating_column);
+  for (const std::string& row : rows) out << row;
 }
 
 // The run's summary on stderr: curves, flagged count, each unreadable file and why, the first
@@ -564,6 +638,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     }
   }
   const MapColor color = parse_map_color(arguments, plot_path.has_value());
+  const bool sort_by = sort_by_rating(arguments);
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
   check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
   if (!to_stdout) check_output_path(partial_path, "--output");
@@ -618,6 +693,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   }
   std::vector<std::string> plot_rows;
   if (plot_path) plot_rows = kept_rows;
+  std::string sorted_rows;  // --sort-by on stdout: the rows until the end
   fit::AfmBatchOptions options;
   options.jobs = jobs;
   options.skip = skip;
@@ -631,6 +707,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
       text += line;
     }
     if (partial) partial->append(text);
+    else if (sort_by) sorted_rows += text;  // printed sorted at the end
     else rows_out << text << std::flush;
   };
   options.progress = [&](std::size_t done, std::size_t all) {
@@ -638,18 +715,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     return true;
   };
   const fit::AfmBatchSummary summary = fit::afm_fit_batch(files, calibration, settings, options);
-  std::size_t by_flag[fit::kAfmFlagCount];
-  std::size_t flagged = 0;
-  for (int f = 0; f < fit::kAfmFlagCount; ++f) {
-    by_flag[f] = summary.by_flag[f] + before.by_flag[f];
-    if (f != 0) flagged += by_flag[f];
-  }
-  std::string flag_text = std::to_string(flagged) + " of " + std::to_string(total);
-  std::string reasons;
-  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
-    if (by_flag[f] > 0) reasons += (reasons.empty() ? "" : ", ") + std::string(fit::afm_flag_name(static_cast<fit::AfmFlag>(f))) + " " + std::to_string(by_flag[f]);
-  }
-  if (!reasons.empty()) flag_text += " (" + reasons + ")";
+  const std::string flag_text = flagged_text(summary, before, total);
   progress_pause();
 
   std::vector<std::pair<std::string, std::string>> pictures;
@@ -657,7 +723,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     pictures = render_map_plots(plot_rows, parameters, contact_point_column, term, *plot_path, files,
                                 settings.problem.tip.description, color);
   }
+  const std::size_t rating_column = columns.size() - 4;
   if (to_stdout) {
+    if (sort_by) write_sorted(sorted_rows, rows_out, rating_column);
     rows_out << "# flagged curves: " << flag_text << "\n" << std::flush;
     if (stream_output) stream_output->commit();
   } else {
@@ -674,7 +742,8 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     final_header.insert(columns_at, "# flagged curves: " + flag_text + "\n");
     Output output(output_path);
     output.stream() << final_header;
-    if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
+    if (sort_by) write_sorted(std::string(std::istreambuf_iterator<char>(rows_in), {}), output.stream(), rating_column);
+    else if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
     std::vector<std::unique_ptr<Output>> plot_outputs;  // alive until the table's commit: all or none
     for (const auto& [path, picture] : pictures) {
       plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));

@@ -10,6 +10,7 @@
 #include <memory>
 #include <new>
 #include <thread>
+#include <utility>
 
 #include "coatcontact/errors.hpp"
 #include "coatcontact/progress.hpp"
@@ -85,6 +86,16 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   row.residual_sigma = r.residual_sigma;
   row.contact_point = r.contact_point;
   row.points = r.points;
+  row.flag = fitted.flag;
+  row.rating = fitted.rating;
+  if (!fitted.flag_warnings.empty()) row.message = fitted.flag_warnings.front();
+  if (settings.problem.model != AfmModel::kHertz) {
+    row.tabor_mu = r.tabor_mu;
+    row.maugis_lambda = r.maugis_lambda;
+  }
+  for (const std::vector<std::string>* list : {&std::as_const(fitted.flag_warnings), &r.warnings}) {
+    for (const std::string& warning : *list) row.warnings += (row.warnings.empty() ? "" : "; ") + warning;
+  }
   if (fitted.pulloff.found) {
     row.pulloff_force = fitted.pulloff.force;
     row.pulloff_position = fitted.pulloff.tip_position;

@@ -22,8 +22,27 @@ const char* afm_flag_name(AfmFlag flag) {
     case AfmFlag::kTooFewPoints: return "too_few_points";
     case AfmFlag::kUnreadable: return "unreadable";
     case AfmFlag::kBadData: return "bad_data";
+    case AfmFlag::kUndetermined: return "undetermined";
+    case AfmFlag::kNoDetachment: return "no_detachment";
   }
   return "unknown";
+}
+
+bool afm_flag_keeps_estimates(AfmFlag flag) {
+  return flag == AfmFlag::kFitted || flag == AfmFlag::kUndetermined || flag == AfmFlag::kNoDetachment;
+}
+
+double afm_rating(AfmFlag flag, double residual_sigma, double noise_sigma, double model_span, std::size_t points_in_contact,
+                  bool warnings) {
+  if (!afm_flag_keeps_estimates(flag)) return 0.0;
+  if (!(residual_sigma > 0.0) || !std::isfinite(residual_sigma)) return 0.0;
+  const double noise = noise_sigma > 0.0 ? noise_sigma : residual_sigma;
+  const double s_fit = std::min(1.0, noise / residual_sigma);
+  const double s_signal = model_span > noise ? std::min(1.0, std::log10(model_span / noise) / kRatingSignalDecades) : 0.0;
+  const double s_contact = std::min(1.0, static_cast<double>(points_in_contact) / kRatingContactPoints);
+  double s_flag = flag == AfmFlag::kFitted ? 1.0 : kRatingKeptFlag;
+  if (warnings) s_flag *= kRatingWarning;
+  return 10.0 * s_fit * s_signal * s_contact * s_flag;
 }
 
 const char* afm_baseline_model_name(AfmBaselineModel model) {
@@ -155,6 +174,58 @@ AfmFitResult fitted_result(const std::vector<double>& z, const std::vector<doubl
   return r;
 }
 
+// The honest flags of a fit (afm_curve_fit.hpp): a free scale parameter (E, E1, t, w) whose
+// standard error exceeds its value is undetermined; a retract fit whose retract does not end
+// at the approach's free-cantilever level never detached. The estimates stay.
+void check_determined(AfmCurveFit& out) {
+  const AfmFitResult& r = out.result;
+  const AfmFree& free = out.problem.free;
+  const bool jkr = out.problem.model != AfmModel::kHertz;
+  const std::string modulus_name = out.problem.coating ? "E1" : "E";
+  const struct {
+    bool free;
+    const char* name;
+    double value, error;
+  } scales[] = {{free.modulus, modulus_name.c_str(), r.modulus, r.modulus_error},
+                {free.thickness && out.problem.coating.has_value(), "t", r.thickness, r.thickness_error},
+                {free.work && jkr, "w", r.work, r.work_error}};
+  for (const auto& p : scales) {
+    if (p.free && !(p.error <= std::abs(p.value))) {
+      if (out.flag == AfmFlag::kFitted) out.flag = AfmFlag::kUndetermined;
+      out.flag_warnings.push_back(std::string("undetermined: ") + p.name + " = " + number(p.value) + " has a standard error " +
+                                  number(p.error) + " larger than its value (the estimate is kept)");
+    }
+  }
+}
+
+void check_detachment(const afm::ForceCurve& curve, AfmCurveFit& out) {
+  const afm::PreprocessedCurve& p = out.preprocessed;
+  const afm::Segment* retract = curve.find_segment(afm::SegmentKind::kRetract);
+  const afm::Segment* approach = curve.find_segment(afm::SegmentKind::kApproach);
+  if (retract == nullptr || approach == nullptr || !(p.baseline_sigma > 0.0)) return;
+  const std::size_t n = retract->size();
+  const std::size_t tail = std::max<std::size_t>(3, static_cast<std::size_t>(kDetachmentTailFraction * static_cast<double>(n)));
+  if (n < tail) return;
+  double mean = 0.0;
+  for (std::size_t i = retract->end - tail; i < retract->end; ++i) mean += p.force_corrected[i];
+  mean /= static_cast<double>(tail);
+  const auto first = p.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->begin);
+  const auto last = p.force_corrected.begin() + static_cast<std::ptrdiff_t>(approach->end);
+  const double largest = *std::max_element(first, last);
+  if (std::abs(mean) > kDetachmentSigmas * p.baseline_sigma && std::abs(mean) > kDetachmentFraction * largest) {
+    out.flag = AfmFlag::kNoDetachment;
+    out.flag_warnings.insert(out.flag_warnings.begin(),
+                             "no_detachment: the retract ends " + number(mean) + " N off the free-cantilever baseline (" +
+                                 number(std::abs(mean) / p.baseline_sigma) + " baseline sigmas): the tip never detached");
+  }
+}
+
+double model_span(const AfmFitResult& r) {
+  if (r.model_force.empty()) return 0.0;
+  const auto [low, high] = std::minmax_element(r.model_force.begin(), r.model_force.end());
+  return *high - *low;
+}
+
 }  // namespace
 
 AfmMeasuredPulloff afm_measured_pulloff(const std::vector<double>& tip_position, const std::vector<double>& force,
@@ -234,6 +305,10 @@ AfmCurveFit afm_fit_curve(const afm::ForceCurve& curve, const AfmCurveRequest& r
     out.pulloff = afm_measured_pulloff(slice(tip, *retract), slice(curve.force, *retract), request.preprocess.baseline_fraction);
     if (out.pulloff.found) out.pulloff.index += retract->begin;
   }
+  check_determined(out);
+  if (request.segment == afm::SegmentKind::kRetract) check_detachment(curve, out);
+  out.rating = afm_rating(out.flag, r.residual_sigma, out.problem.noise_sigma, model_span(r), r.points_in_contact,
+                          !r.warnings.empty());
   return out;
 }
 

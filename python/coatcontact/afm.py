@@ -175,6 +175,9 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                reported Tabor mu and Maugis lambda (default 0.3 nm). The result adds "w", "tilt"
                (estimates, errors), "tabor_mu", "maugis_lambda", "jump_off" ({"F" [N] above the
                baseline, "indentation" [m]}) and "warnings" (lambda outside JKR's range, ...).
+               Every model's result from a curve (not plain arrays) adds "flag" ("fitted", or
+               "undetermined" / "no_detachment" with the estimates kept and a RuntimeWarning),
+               "rating" (0-10, docs/afm.md "Curve rating") and "warnings".
                Or "md": the same with F_MD, the Maugis-Dugdale force of the cohesive-zone table with
                sigma0 = w/h0, h0 = 0.97 surface_force_range (so lambda follows w and E); warns when
                lambda leaves [1e-3, 1e4] or the spring holds the tip down to the curve's end.
@@ -438,7 +441,7 @@ def _structured(columns):
     fields = []
     for name in names:
         column = columns[name]
-        if name in ("file", "reason"):
+        if name in ("file", "reason", "warnings"):
             width = max([len(v) for v in column] + [1])
             fields.append((name, f"U{width}"))
         else:
@@ -453,7 +456,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
             thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
             segment=None, spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
             max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False, work=None,
-            surface_force_range=0.3e-9, tilt=None, baseline_model=None):
+            surface_force_range=0.3e-9, tilt=None, baseline_model=None, sort_by=None):
     """Fits every curve of maps, QI data, files or folders (or of the curves given) and returns
     one row per curve, as `coatcontact afm fit FILES...` does (THEORY.md section 15, "Many
     curves"): each curve through fit()'s pipeline with the same keywords (preprocessed: baseline
@@ -478,11 +481,18 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
 
     Columns: file, curve, grid_x, grid_y (-1 when unknown), x, y [m], flag (0 fitted; 1
     no_contact, 2 jump_in, 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration,
-    7 too_few_points, 8 unreadable, 9 bad_data), reason, each free estimate ("E" [Pa], "E1" [Pa],
+    7 too_few_points, 8 unreadable, 9 bad_data; 10 undetermined: a free E, E1, t or w whose standard
+    error exceeds its value, 11 no_detachment: the retract ends off the free-cantilever level; 10
+    and 11 keep their estimates), reason, each free estimate ("E" [Pa], "E1" [Pa],
     "t" [m], "w" [J/m2] and "tilt" [N/m] of jkr and md, "contact_point" [m], "baseline" [N]) and its
     "_error", contact_point [m] when
-    fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m], points;
-    NaN where a flagged curve has no value."""
+    fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m], points,
+    rating (0..10, docs/afm.md "Curve rating"; 0 without estimates), tabor_mu and maugis_lambda
+    (adhesive models; NaN for hertz), warnings ("; "-separated, "" for none);
+    NaN where a flagged curve has no value.
+    sort_by          "rating": the rows by their rating, highest first (stable)."""
+    if sort_by not in (None, "rating"):
+        raise ValueError(f"sort_by: {sort_by!r} is not allowed; expected 'rating' (or None: curve order)")
     if model == "maugis-dugdale":
         model = "md"
     tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
@@ -552,6 +562,8 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     else:
         raise ValueError("paths_or_curves: expected a path, a folder, a list of them, or a list of curves (not mixed)")
     rows = _structured(columns)
+    if sort_by == "rating":
+        rows = rows[np.argsort(-rows["rating"], kind="stable")]
     if as_frame:
         try:
             import pandas

@@ -506,7 +506,7 @@ class Columns {
     namespace fit = coatcontact::fit;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (const fit::AfmCurveRow& r : rows) {
-      const bool fitted = r.flag == fit::AfmFlag::kFitted;
+      const bool fitted = fit::afm_flag_keeps_estimates(r.flag);
       if (!last_file_ || r.source_file != last_file_text_) {
         last_file_text_ = r.source_file;
         last_file_ = py::str(r.source_file);
@@ -530,6 +530,10 @@ class Columns {
       pulloff_.push_back(fitted ? r.pulloff_force.value_or(nan) : nan);
       pulloff_position_.push_back(fitted ? r.pulloff_position.value_or(nan) : nan);
       points_.push_back(fitted ? static_cast<long>(r.points) : 0);
+      rating_.push_back(r.rating);
+      tabor_mu_.push_back(r.tabor_mu.value_or(nan));
+      maugis_lambda_.push_back(r.maugis_lambda.value_or(nan));
+      warnings_.append(py::str(r.warnings));
     }
   }
 
@@ -559,6 +563,10 @@ class Columns {
     put("pulloff", to_array(pulloff_));
     put("pulloff_position", to_array(pulloff_position_));
     put("points", to_array(points_));
+    put("rating", to_array(rating_));
+    put("tabor_mu", to_array(tabor_mu_));
+    put("maugis_lambda", to_array(maugis_lambda_));
+    put("warnings", warnings_);
     out["names"] = names;
     return out;
   }
@@ -572,13 +580,14 @@ class Columns {
 
   std::vector<coatcontact::fit::AfmBatchParameter> parameters_;
   bool contact_column_;
-  py::list file_, reason_;
+  py::list file_, reason_, warnings_;
   std::optional<py::str> last_file_;
   std::string last_file_text_;
   std::optional<py::str> reasons_[coatcontact::fit::kAfmFlagCount];
   std::vector<long> curve_, grid_x_, grid_y_, points_;
   std::vector<int> flag_;
   std::vector<double> x_, y_, chi2_, chi2_per_dof_, sigma_, pulloff_, pulloff_position_, contact_;
+  std::vector<double> rating_, tabor_mu_, maugis_lambda_;
   std::vector<std::vector<double>> value_, error_;
 };
 
@@ -708,6 +717,14 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
     out["steps"] = steps;
     out["baseline_model"] = fit::afm_baseline_model_name(fitted.baseline);
     out["reference_contact_point"] = fitted.reference_contact;
+    // The flag (fitted, or undetermined / no_detachment with the estimates kept), its reasons
+    // and the model's warnings, and the curve rating (afm_curve_fit.hpp).
+    out["flag"] = fit::afm_flag_name(fitted.flag);
+    out["rating"] = fitted.rating;
+    py::list warnings;
+    for (const std::string& w : fitted.flag_warnings) warnings.append(w);
+    for (const std::string& w : fitted.result.warnings) warnings.append(w);
+    out["warnings"] = warnings;
     if (fitted.pulloff.found) {
       py::dict pulloff;
       pulloff["F"] = fitted.pulloff.force;

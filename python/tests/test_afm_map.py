@@ -135,8 +135,9 @@ def same_as_cli(rows, columns, table):
     """Every column of the rows equals the CLI's printed value (NaN where both have none)."""
     assert list(rows.dtype.names) == columns
     for name in columns:
-        if name in ("file", "reason"):
-            assert [str(v) for v in rows[name]] == table[name], name
+        if name in ("file", "reason", "warnings"):
+            # The CLI's "-" is the rows' "" (no warnings).
+            assert [str(v) or "-" for v in rows[name]] == table[name], name
         else:
             # "-" where the CLI has no value: NaN, or -1 (grid index) and 0 (points) in the rows.
             missing = {"grid_x": -1.0, "grid_y": -1.0, "points": 0.0}.get(name, np.nan)
@@ -154,8 +155,13 @@ def test_jkr_real_map_same_as_cli(cli):
         assert name in rows.dtype.names
     assert len(rows) == 4
     same_as_cli(rows, columns, table)
-    fitted = rows["flag"] == 0
-    assert np.any(fitted) and np.all(rows["w_error"][fitted] > 0) and np.all(np.isnan(rows["w"][~fitted]))
+    # Rows with estimates: fitted (0), or undetermined (10) / no_detachment (11) with the estimates
+    # kept (issue 36: on this map w's standard error exceeds w, which used to pass as fitted).
+    kept = np.isin(rows["flag"], (0, 10, 11))
+    assert np.any(kept) and np.all(rows["w_error"][kept] > 0) and np.all(np.isnan(rows["w"][~kept]))
+    undetermined = rows["flag"] == 10
+    assert np.all(rows["w_error"][undetermined] > np.abs(rows["w"][undetermined]))
+    assert np.all(np.isfinite(rows["maugis_lambda"][kept])) and np.all(rows["rating"][~kept] == 0)
 
 
 def test_jkr_synthetic_map_same_as_cli(cli, synthetic):

@@ -191,5 +191,22 @@ awk 'BEGIN { FS = "\t" }
   END { if (rows != 16 || fitted != 13) { print rows " rows, " fitted " fitted (16, 13 expected)"; bad = 1 }; exit bad }' \
   "$work/jkr_truth.tsv" "$work/jkr.tsv" || fail "the jkr map against its truth"
 
+# ---- issue 36: the rating, tabor_mu, maugis_lambda and warnings columns; --sort-by rating ------
+grep -q $'\tpoints\trating\ttabor_mu\tmaugis_lambda\twarnings$' "$work/j1.tsv" \
+  || fail "the rating, mu, lambda, warnings columns: $(grep '^# columns' "$work/j1.tsv")"
+"$cli" afm fit "$work/syn.jpk-force-map" "${model[@]}" --jobs 1 --sort-by rating --output "$work/sorted.tsv" 2>/dev/null \
+  || fail "--sort-by rating"
+# The same rows, by rating highest first, equal ratings in curve order; flagged-unfit rows rate 0.
+awk -F'\t' '/^# columns:/ { sub(/^# columns: /, ""); for (k = 1; k <= NF; ++k) col[$k] = k; next } /^#/ { next }
+  { r = $col["rating"]; c = $col["curve"] + 0
+    if (NR > 1 && seen && (r > last || (r == last && c < lastc))) bad = 1
+    if ($col["flag"] != 0 && $col["flag"] != 10 && $col["flag"] != 11 && r != 0) bad = 1
+    if ($col["tabor_mu"] != "-" || $col["maugis_lambda"] != "-") bad = 1
+    last = r; lastc = c; seen = 1; ++n }
+  END { exit bad || n != 64 }' "$work/sorted.tsv" || fail "--sort-by rating: rows not sorted, or a Hertz row with mu/lambda"
+[ "$(grep -v '^#' "$work/sorted.tsv" | sort)" = "$(grep -v '^#' "$work/j1.tsv" | sort)" ] || fail "--sort-by changed the rows"
+out=$("$cli" afm fit "$work/syn.jpk-force-map" "${model[@]}" --sort-by chi2 2>&1 >/dev/null); rc=$?
+[ "$rc" -eq 2 ] && [[ "$out" == *"--sort-by: 'chi2' is not allowed; expected rating"* ]] || fail "--sort-by chi2: rc $rc, $out"
+
 [ "$failures" -eq 0 ] && echo "afm fit over maps: all checks passed"
 [ "$failures" -eq 0 ]

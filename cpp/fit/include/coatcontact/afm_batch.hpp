@@ -47,7 +47,10 @@ struct AfmCurveRow {
   std::optional<double> position_x, position_y;  // [m]
   AfmFlag flag = AfmFlag::kFitted;
   std::string message;  // the reason in words (empty for a fitted curve)
-  // Fitted curves only (flag kFitted):
+  double rating = 0.0;  // afm_rating (0 for a curve without estimates)
+  // The curves with estimates only (afm_flag_keeps_estimates: fitted, undetermined, no_detachment):
+  std::optional<double> tabor_mu, maugis_lambda;  // adhesive models only
+  std::string warnings;  // the fit's warnings and the flag's reasons, "; "-separated (empty: none)
   std::vector<double> estimates, errors;  // in the order of afm_batch_parameters
   double chi2 = 0.0, chi2_per_dof = 0.0, residual_sigma = 0.0;
   double contact_point = 0.0;  // [m] fitted (or fixed) contact point on the tip-position axis

@@ -29,9 +29,37 @@ enum class AfmFlag : int {
   kTooFewPoints = 7,    // the range options leave fewer than min_points
   kUnreadable = 8,      // the curve's entries are missing, truncated or corrupt
   kBadData = 9,         // the curve's values are not usable (not finite, one tip position)
+  // Fitted, estimates kept, but not to be trusted (afm_fit_curve's checks after the fit):
+  kUndetermined = 10,   // a free E, E1, t or w whose standard error exceeds its value
+  kNoDetachment = 11,   // a retract fit whose retract ends off the free-cantilever level
 };
-constexpr int kAfmFlagCount = 10;
+constexpr int kAfmFlagCount = 12;
 const char* afm_flag_name(AfmFlag flag);  // "fitted", "no_contact", "jump_in", ...
+// True for the flags whose curve has estimates (fitted, undetermined, no_detachment).
+bool afm_flag_keeps_estimates(AfmFlag flag);
+
+// no_detachment: the mean force of the retract's last kDetachmentTailFraction of points (at
+// least 3) differs from the approach's free-cantilever baseline (the preprocessing's line) by
+// more than kDetachmentSigmas baseline sigmas and more than kDetachmentFraction of the
+// approach's largest force above it (the second bound keeps the viscous-drag offset between
+// approach and retract of a detached tip from flagging it, as kJumpInFraction does for jump-ins).
+constexpr double kDetachmentTailFraction = 0.05;
+constexpr double kDetachmentSigmas = 5.0;
+constexpr double kDetachmentFraction = 0.05;
+
+// The curve rating 0..10 (docs/afm.md, "Curve rating"): 10 s_fit s_signal s_contact s_flag,
+// s_fit = min(1, noise / residual sigma), s_signal = log10(span / noise) / kRatingSignalDecades
+// in [0, 1] (span: the range of the model force over the fitted points), s_contact =
+// min(1, points in contact / kRatingContactPoints), s_flag = 1 (fitted), kRatingKeptFlag
+// (undetermined, no_detachment), times kRatingWarning if the fit has warnings; 0 for a curve
+// without estimates. Monotone: more noise, a worse fit, fewer contact points or a flag never
+// raise it.
+constexpr double kRatingSignalDecades = 3.0;
+constexpr double kRatingContactPoints = 50.0;
+constexpr double kRatingKeptFlag = 0.5;
+constexpr double kRatingWarning = 0.8;
+double afm_rating(AfmFlag flag, double residual_sigma, double noise_sigma, double model_span, std::size_t points_in_contact,
+                  bool warnings);
 
 // A per-curve failure of afm_fit_curve with its flag: bad input of the curve (exit 2 for a
 // single fit) or a numerical failure (exit 3); the batch turns either into a flagged row.
@@ -115,6 +143,11 @@ struct AfmCurveFit {
   AfmFitResult result;
   AfmFitProblem fitted;              // the problem at the estimates (for afm_model_force)
   AfmMeasuredPulloff pulloff;        // of the retract (model-independent; the model's jump-off: result)
+  // kFitted, or kUndetermined / kNoDetachment with the estimates kept; flag_warnings say why
+  // (one line each; result.warnings are the model's own, e.g. lambda out of its range).
+  AfmFlag flag = AfmFlag::kFitted;
+  std::vector<std::string> flag_warnings;
+  double rating = 0.0;               // afm_rating of the fit
 };
 
 // Fits one curve. Per-curve failures are AfmCurveInputError / AfmCurveNumericalError with
