@@ -89,22 +89,36 @@ py::list read_curves(const std::string& path, std::optional<double> spring_const
   calibration.spring_constant = spring_constant;
   calibration.sensitivity = sensitivity;
   std::vector<afm::ForceCurve> curves;
+  std::vector<std::string> unreadable;  // curves of a map that cannot be read, with why
   std::string error;
   {
     SignalCheck signals;
     py::gil_scoped_release release;
     try {
-      // Curve by curve, so that Ctrl-C stops the reading of a large map between curves.
+      // Curve by curve, so that Ctrl-C stops the reading of a large map between curves, and a
+      // corrupt curve of a map costs that curve only (as in `afm show`).
       const afm::CurveSource source(path, calibration);
       for (std::size_t i = 0; i < source.size(); ++i) {
         if (!signals()) break;
-        curves.push_back(source.read(i));
+        try {
+          curves.push_back(source.read(i));
+        } catch (const coatcontact::InputError& e) {
+          if (source.size() == 1) throw;
+          unreadable.push_back("curve " + std::to_string(i) + ": " + e.what());
+        }
       }
+      if (curves.empty() && !unreadable.empty()) error = "no curve of the file can be read; " + unreadable.front();
     } catch (const coatcontact::InputError& e) {
       error = e.what();
     }
     py::gil_scoped_acquire gil;
     signals.rethrow();
+  }
+  if (error.empty()) {
+    for (const auto& why : unreadable) {
+      const std::string text = path + ": " + why + " (left out; the others keep their \"curve index\")";
+      if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 2) != 0) throw py::error_already_set();
+    }
   }
   if (!error.empty()) {
     // The library names the CLI's options; Python callers pass keywords of the same names.

@@ -66,8 +66,14 @@ def test_same_estimates_alone_in_a_map_and_from_python(cli, tmp_path, model, nam
     path = os.path.join(DATA, name)
     curves = cc.afm.read(path)
     tables = {}
-    for label, extra in (("jobs1", ["--jobs", "1"]), ("jobs2", ["--jobs", "2"]),
-                         ("plot", ["--jobs", "1", "--map-plot", str(tmp_path / "map.png")])):
+    runs = [("jobs1", ["--jobs", "1"]), ("jobs2", ["--jobs", "2"])]
+    plot = ["--jobs", "1", "--map-plot", str(tmp_path / "map.png")]
+    if any(c.metadata.get("grid index x") is not None for c in curves):
+        runs.append(("plot", plot))
+    else:  # no grid, no map image: refused, and no table written
+        _, _, err = cli("afm", "fit", path, *options, *plot, "--output", str(tmp_path / "plot.tsv"), expect=2)
+        assert "no curve of the run has a grid position" in err and not (tmp_path / "plot.tsv").exists()
+    for label, extra in runs:
         out = tmp_path / f"{label}.tsv"
         cli("afm", "fit", path, *options, *extra, "--output", str(out))
         tables[label] = table_rows(out)

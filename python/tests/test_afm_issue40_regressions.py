@@ -1,4 +1,4 @@
-"""Regressions of issue 40. Item 7: a Dask worker resolved relative paths in its own working folder,
+"""Regressions of issue 40. Item 7: one corrupt curve failed the read of its whole map; a Dask worker resolved relative paths in its own working folder,
 so `fit_map(["data/afm/map"], client=...)` read nothing (or another file) on a worker started
 elsewhere. The workers now get absolute paths and the rows keep the names the caller gave. A
 stand-in client runs each task in another folder, as a worker process would; the rows must equal
@@ -72,3 +72,34 @@ def test_column_of_wrong_length_named_not_no_contact(key):
                  lambda: cc.afm.fit_map([curve], radius=10e-6, halfspace=(1e3, 0.5))):
         with pytest.raises(ValueError, match=re.escape(f"'{key}' has 150 values for 200 forces")):
             call()
+
+
+def test_one_corrupt_curve_does_not_fail_read_of_map(tmp_path):
+    """Regression (issue 40, item 7): one corrupt curve of a map (curve 1's deflection channel cut
+    to 3 bytes) made cc.afm.read of the whole map fail. The others are read, the corrupt one is
+    left out with a warning naming it, and each keeps its curve index; a map whose every curve
+    is corrupt, or a single corrupt curve, is still a ValueError."""
+    import zipfile
+    source = os.path.join(SOURCE_DIR, "data", "afm", "fmt-jpk-fd_map2x2_extracted.jpk-force-map")
+
+    def corrupt(target, curves):
+        with zipfile.ZipFile(source) as src, zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as dst:
+            for info in src.infolist():
+                data = src.read(info.filename)
+                if any(info.filename == f"index/{c}/segments/0/channels/vDeflection.dat" for c in curves):
+                    data = data[:3]
+                dst.writestr(info.filename, data)
+
+    one_bad = tmp_path / "one_bad.jpk-force-map"
+    corrupt(one_bad, [1])
+    with pytest.warns(UserWarning, match=r"curve 1: .*truncated channel"):
+        curves = cc.afm.read(one_bad)
+    whole = cc.afm.read(source)
+    assert [c.metadata["curve index"] for c in curves] == [0, 2, 3]
+    for c in curves:
+        original = whole[c.metadata["curve index"]]
+        assert c["force"].tobytes() == original["force"].tobytes()
+    all_bad = tmp_path / "all_bad.jpk-force-map"
+    corrupt(all_bad, [0, 1, 2, 3])
+    with pytest.raises(ValueError, match="no curve of the file can be read"):
+        cc.afm.read(all_bad)
