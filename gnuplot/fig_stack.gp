@@ -25,17 +25,17 @@ scale_eta(k) = k == 3 ? avg_scale**(1.0/3) : 1.0
 pair(s, i) = word(system(sprintf("echo '%s' | tr ',' ' '", s)), i)
 stack_words = system(sprintf("echo '%s' | awk '{ for (i = 1; i <= NF; i++) { split($i, a, \",\"); \
     e = e (i > 1 ? \", \" : \"\") a[2]; h = h (i > 1 ? \":\" : \"\") a[1] } \
-    printf \"%%d layers, E = %%s (top first), thicknesses %%s\", NF, e, h }'", layers))
-stack_title(k) = k == 1 ? sprintf('%s, on E_0 = %s', stack_words, pair(base, 1)) : \
+    printf \"%%d layers E = %%s (top first), thicknesses %%s\", NF, e, h }'", layers))
+stack_title(k) = k == 1 ? 'the stack' : \
                  (k == 2 ? sprintf('top layer alone (E = %s)', pair(word(layers, 1), 2)) : \
-                  sprintf('one film of thickness-weighted E = %.3g, ν = %.3g', real(pair(avg, 1)), real(pair(avg, 2))))
+                  sprintf('weighted film (E = %.3g, ν = %.3g)', real(pair(avg, 1)), real(pair(avg, 2))))
 slip_title(k) = k == 1 ? 'bonded' : 'sliding (frictionless interface)'
 
 set multiplot layout 2, 2 title figure_title("Stacks of layers (moduli relative), normalized by the top layer's E^* and the total thickness T") font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.08, (paper ? 0.9 : 0.91) spacing 0.08, (paper ? 0.17 : 0.1)
 set logscale x
 set format x '10^{%L}'
 
-set title panel('three-layer stack vs one-layer approximations', 1)
+set title panel(sprintf('%s on E_0 = %s, and one-layer approximations', stack_words, pair(base, 1)), 1)
 set xlabel 'a/T'
 set ylabel 'E_{eq} / E_{top}^*'
 set logscale y
