@@ -23,11 +23,12 @@ eval need('c_tau', hl, 'tau', l1)
 eval need('c_seg', hl, 'segment', l1)
 
 beta = n / (n + 2.0)
-set multiplot layout 1, 3 title figure_title(sprintf("Crack kinetics at the contact edge: G - w = w (|v|/v^*)^{%g},  η = %g,  k̄ = %g,  %s", n, eta, k_bar, nu_label)) font ',14' margins (paper ? 0.075 : 0.06), 0.98, 0.13, (paper ? 0.9 : 0.86) spacing 0.065, 0
+set multiplot layout 1, 3 title figure_title(sprintf("Crack kinetics at the contact edge: G - w = w (|v|/v^*)^{%g},  η = %g,  k̄ = %g,  %s", n, eta, k_bar, nu_label)) font ',14' margins (paper ? 0.085 : 0.06), 0.98, (paper ? 0.19 : 0.13), (paper ? 0.9 : 0.86) spacing 0.07, 0
 
 # ---- left: pull-off against rate ----
 set logscale xy
 set format x '10^{%L}'
+if (paper) { set xtics 100 }
 set xlabel 'retract rate  V = (dz/dt) L_a / (v^* L_D)'
 set ylabel '|pull-off load|  |P| = |F| / (π w R)'
 set key top left
@@ -46,9 +47,10 @@ plot for [i = 1:words(sweeps)] word(sweeps, i) using (column(c_v)):(-column(c_p)
 # ---- right: hysteresis loops ----
 unset logscale
 set format x '%g'
+set xtics autofreq
 set xlabel 'penetration  D = δ / L_D'
 set ylabel 'load  P = F / (π w R)'
-set key bottom left
+unset key   # the same three runs as panel 3, keyed there
 set title panel(sprintf('P(D) on the soft film (%s)', ratio_text(real(word(ratios, 1)))), 2)
 plot 0 ls 32 notitle, \
      for [i = 1:words(loops)] word(loops, i) using (column(c_d)):(column(c_load)) with lines ls i \
@@ -59,8 +61,9 @@ plot 0 ls 32 notitle, \
 set title panel('the same runs against time', 3)
 set logscale x
 set format x '10^{%L}'
+set xtics autofreq
 set xlabel 'time  τ = t v^* / L_a'
-set key bottom left
+set key right center title 'retract rate' # clear of the fast run's drop at the start of retract
 stats l1 using (column(c_seg) == 1 ? column(c_tau) : NaN) nooutput
 tau_approach = STATS_max
 stats l1 using (column(c_seg) == 2 ? column(c_tau) : NaN) nooutput
@@ -70,10 +73,10 @@ tau_min = STATS_min
 set xrange [tau_approach / 100 > tau_min ? tau_approach / 100 : tau_min:*]
 set arrow 1 from tau_approach, graph 0 to tau_approach, graph 1 nohead ls 32
 set arrow 2 from tau_dwell, graph 0 to tau_dwell, graph 1 nohead ls 32
-set label 1 'approach' at tau_approach, graph 0.55 right offset -0.5, 0
-set label 2 'dwell' at sqrt(tau_approach * tau_dwell), graph 0.3 center rotate by 90 front
-set label 3 'retract' at tau_dwell, graph 0.55 left offset 0.5, 0
+set label 1 'approach' at tau_approach, graph 0.15 right offset -0.5, 0
+set label 2 'dwell' at sqrt(tau_approach * tau_dwell), graph 0.45 center rotate by 90 front
+set label 3 'retract' at tau_dwell, graph 0.15 left offset 0.5, 0
 plot 0 ls 32 notitle, \
      for [i = 1:words(loops)] word(loops, i) using (column(c_tau)):(column(c_load)) with lines ls i \
-         title sprintf('retract rate %g', real(word(speeds, i)))
+         title sprintf('V = %g', real(word(speeds, i)))
 unset multiplot
