@@ -22,7 +22,7 @@ n_elastic_before(k) = k <= 1 ? 0 : n_elastic_before(k - 1) + (rigid(k - 1) ? 0 :
 indenter_rgb(k) = rigid(k) ? 0x404040 : eta_rgb(1 + 2 * n_elastic_before(k))
 indenter_lw(k) = rigid(k) ? 3.2 : 2.4
 
-set multiplot layout 1, 2 title figure_title(sprintf("Fig. 11 — elastic indenters,  %s", materials_label(ratio))) font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.13, (paper ? 0.9 : 0.86) spacing 0.08, 0
+set multiplot layout 1, 2 title figure_title(sprintf("Fig. 11 — elastic indenters,  %s", materials_label(ratio))) font ',14' margins (paper ? 0.1 : 0.07), 0.97, (paper ? 0.16 : 0.13), (paper ? 0.9 : 0.86) spacing (paper ? 0.1 : 0.08), 0
 set logscale x
 set format x '10^{%L}'
 set xlabel 'η = t / (π w R^2/E_r)^{1/3},   1/E_r = 1/E_1^* + 1/E_2^*'
