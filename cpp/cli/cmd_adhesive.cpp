@@ -39,6 +39,8 @@ std::string short_num(double v) {
   return s.str();
 }
 
+static_assert(kDefaultAdhesiveTolerance == 1e-8, "--help prints the default tolerance as 1e-8");
+
 // The options every subcommand shares.
 std::vector<OptionSpec> material_options(bool si = false) {
   return {
@@ -46,10 +48,7 @@ std::vector<OptionSpec> material_options(bool si = false) {
       layer_option(si),
       substrate_option(),
       indenter_option(),
-      {"--tol", "T",
-       "relative tolerance of the reduced variables from the solver (default " +
-           short_num(kDefaultAdhesiveTolerance) + ", allowed 1e-13..1e-1)",
-       false},
+      tol_option("1e-8"),
       {"--output", "FILE", "write to FILE atomically instead of stdout", false},
   };
 }

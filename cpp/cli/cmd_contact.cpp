@@ -105,7 +105,7 @@ const std::vector<OptionSpec> kSpec = {
     {"--spring", "k", "spring stiffness (N/m, or with a unit: 500N/m, 0.5mN/um), in [1e-100, 1e100] (cantilever, machine frame): adds the spring-controlled pull-off", false},
     {"--contact-radius", "LIST", "contact radii: v1,v2,... or MIN:MAX:N (log-spaced); m, or with a unit (mm um nm)", false},
     {"--points", "N", "number of contact radii over the default range, which ends at the validity limits (default 200; not with --contact-radius)", false},
-    {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
+    tol_option("1e-8"),
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
     strict_option(),
     plot_option("F(a) and F(delta) (JKR)"),
