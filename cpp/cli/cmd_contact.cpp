@@ -88,7 +88,8 @@ std::string jump_text(const ShapeJump& j) {
 
 const std::vector<OptionSpec> kSpec = {
     {"--shape", "SHAPE",
-     "indenter: sphere:R (paraboloid), cone:BETA (half included angle, e.g. 70deg), punch:A, "
+     "indenter: sphere:R (paraboloid), cone:BETA (half included angle, e.g. 70deg), pyramid:THETA "
+     "(four-sided, face half angle, e.g. 68deg for a Vickers tip; the cone of equal area), punch:A, "
      "power:N,R (z = r^N/(N R^(N-1))), blunted-cone:R,BETA (spherical cap tangent to the cone), "
      "profile:FILE (columns r z, '# units:' line allowed)",
      true},
@@ -191,7 +192,7 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   const std::string option = "--shape";
   const std::size_t colon = text.find(':');
   const std::string expected =
-      "expected sphere:R, cone:BETA, punch:A, power:N,R, blunted-cone:R,BETA or profile:FILE";
+      "expected sphere:R, cone:BETA, pyramid:THETA, punch:A, power:N,R, blunted-cone:R,BETA or profile:FILE";
   if (colon == std::string::npos) throw InputError(option + ": " + quoted(text) + " has no parameters; " + expected);
   const std::string kind = text.substr(0, colon);
   const std::string rest = text.substr(colon + 1);
@@ -209,6 +210,10 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   if (kind == "cone") {
     count(1);
     return named(text, [&] { return make_cone(parse_angle(items[0], option)); });
+  }
+  if (kind == "pyramid") {
+    count(1);
+    return named(text, [&] { return make_pyramid(parse_angle(items[0], option)); });
   }
   if (kind == "punch") {
     count(1);
