@@ -30,7 +30,8 @@ do for [i = 1:n_eta] {
     stats adhesive index (i - 1) using (column(c_P) <= 3 ? abs(column(c_P) - jkr_P(column(c_abar))) / 1.5 : NaN) nooutput
     dev_jkr[i] = STATS_max
 }
-curve_title(i) = eta_title(i) . (dev_jkr[i] < 0.03 ? sprintf(', under the JKR line (within %.1g %%)', 100 * dev_jkr[i]) : '')
+# In print the caption says it (captions.txt): the key under the plot has no room.
+curve_title(i) = eta_title(i) . (!paper && dev_jkr[i] < 0.03 ? sprintf(', under the JKR line (within %.1g %%)', 100 * dev_jkr[i]) : '')
 
 plot for [i = 1:n_eta] adhesive index (i - 1) using (column(c_abar)):(column(c_P)) \
          with lines ls eta_ls(i) title curve_title(i), \
