@@ -182,6 +182,17 @@ void add_sphere_pulloff(Header& h, const Contact& sphere, const Pulloff& pulloff
                  num(pulloff.load_control.load) + ", " + num(pulloff.displacement_control.load));
 }
 
+// --spring k [N/m] of `sphere`, 0 without it; not with the cohesive zone.
+double parse_sphere_spring(const Arguments& args, bool cohesive_zone) {
+  const auto text = args.get("--spring");
+  if (!text) return 0.0;
+  if (cohesive_zone) {
+    throw InputError("--spring: not used with --cohesive-stress/--range (the cohesive zone's pull-offs are under "
+                     "load and displacement control only); omit --spring");
+  }
+  return parse_rate(*text, Rate::kStiffness, "--spring");
+}
+
 // `sphere --spring k` (THEORY.md section 10, as `contact --spring`): the pull-off through a spring
 // of stiffness k [N/m], k_bar = k L_D/(pi w R), the jump where dF/d(delta) = -k, in SI units.
 void add_sphere_spring(Header& h, const AdhesiveModel& model, const Contact& sphere, double spring) {
@@ -571,14 +582,7 @@ int run_sphere(const Args& raw) {
     const auto notes = report_plausibility("sphere", args);
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
     const bool md_direct = parse_md_direct(args, sigma0.has_value(), "--cohesive-stress or --range");
-    double spring = 0.0;  // N/m; 0: no spring control
-    if (const auto text = args.get("--spring")) {
-      if (sigma0) {
-        throw InputError("--spring: not used with --cohesive-stress/--range (the cohesive zone's pull-offs are under "
-                         "load and displacement control only); omit --spring");
-      }
-      spring = parse_rate(*text, Rate::kStiffness, "--spring");
-    }
+    const double spring = parse_sphere_spring(args, sigma0.has_value());
     std::vector<double> contact_radii;
     if (const auto text = args.get("--contact-radius")) {
       if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
