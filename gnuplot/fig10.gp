@@ -20,10 +20,10 @@ set logscale x
 set format x '10^{%L}'
 set xlabel 'spring stiffness  k̄ = k (π^2 w^2 R/E_1^{*2})^{1/3} / (π w R)'
 set ylabel 'pull-off force  P = F / (π w R)'
-set key bottom right
-set label 1 'dotted: the limits k̄ → 0 (load control) and k̄ → ∞ (displacement control)' at graph 0.02, graph 0.04 left tc ls 32
+set key at graph 0.97, graph 0.38 right center   # the free band between the two curves' limits
 plot for [k = 1:n] word(files, k) using (column(c_k)):(column(c_pl)) with lines ls 32 notitle, \
      for [k = 1:n] word(files, k) using (column(c_k)):(column(c_pd)) with lines ls 32 notitle, \
      for [k = 1:n] word(files, k) using (column(c_k)):(column(c_ps)) with lines \
-         ls ratio_ls(real(word(ratios, k))) title ratio_text(real(word(ratios, k)))
+         ls ratio_ls(real(word(ratios, k))) title ratio_text(real(word(ratios, k))), \
+     NaN ls 32 title (paper ? 'limits k̄ → 0, ∞' : 'limits k̄ → 0 (load control), k̄ → ∞ (displacement)')
 unset output

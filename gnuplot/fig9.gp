@@ -30,12 +30,14 @@ set ylabel axis_label('E_{eq} = S / (2 a E_1^*)', 'log scale')
 set xlabel ''
 set format x ''
 set key at screen 0.54, 0.952 center top horizontal maxrows 2 width 1 samplen 4.5 noopaque nobox
-plot for [k = 1:n] word(files, k) using (column(c_at)):(column(c_eeq)) with lines \
-         ls ratio_ls(r_of(k)) title ratio_text(r_of(k)), \
-     for [k = 1:n] word(files, k) using (column(c_at)):(pb_eeq(column(c_at), r_of(k))) with lines \
-         ls ratio_ls(r_of(k)) dt 2 lw 1.6 notitle, \
-     for [k = 1:n] word(files, k) using (column(c_at)):(gao_eeq(column(c_at), r_of(k))) with lines \
-         ls ratio_ls(r_of(k)) dt 4 lw 1.6 notitle, \
+# Markers by E1*/E0* (every 8th point) keep the
+# eight model curves apart in greyscale print; dash types tell the models apart.
+plot for [k = 1:n] word(files, k) using (column(c_at)):(column(c_eeq)) with linespoints \
+         ls ratio_ls(r_of(k)) pt ratio_pt(r_of(k)) ps (paper ? 0.5 : 0.9) pi 8 title ratio_text(r_of(k)), \
+     for [k = 1:n] word(files, k) using (column(c_at)):(pb_eeq(column(c_at), r_of(k))) with linespoints \
+         ls ratio_ls(r_of(k)) dt 2 lw 1.6 pt ratio_pt(r_of(k)) ps (paper ? 0.5 : 0.9) pi 8 notitle, \
+     for [k = 1:n] word(files, k) using (column(c_at)):(gao_eeq(column(c_at), r_of(k))) with linespoints \
+         ls ratio_ls(r_of(k)) dt 4 lw 1.6 pt ratio_pt(r_of(k)) ps (paper ? 0.5 : 0.9) pi 8 notitle, \
      NaN with lines lc rgb '#555555' lw 2.4 title 'exact (coatcontact reduced)', \
      NaN with lines lc rgb '#555555' lw 1.6 dt 2 title 'Perriot–Barthel 2004 fit', \
      NaN with lines lc rgb '#555555' lw 1.6 dt 4 title 'Gao–Chiu–Lee 1992 model'
@@ -53,8 +55,8 @@ unset key
 set label 1 'same line types;  clipped at ±40 %' at graph 0.5, graph 0.9 center front
 plot 0 ls 32, \
      for [k = 1:n] word(files, k) using (column(c_at)):(100 * (pb_eeq(column(c_at), r_of(k)) / column(c_eeq) - 1)) \
-         with lines ls ratio_ls(r_of(k)) dt 2 lw 1.8, \
+         with linespoints ls ratio_ls(r_of(k)) dt 2 lw 1.8 pt ratio_pt(r_of(k)) ps (paper ? 0.5 : 0.9) pi 8, \
      for [k = 1:n] word(files, k) using (column(c_at)):(100 * (gao_eeq(column(c_at), r_of(k)) / column(c_eeq) - 1)) \
-         with lines ls ratio_ls(r_of(k)) dt 4 lw 1.8
+         with linespoints ls ratio_ls(r_of(k)) dt 4 lw 1.8 pt ratio_pt(r_of(k)) ps (paper ? 0.5 : 0.9) pi 8
 unset multiplot
 unset output

@@ -21,15 +21,21 @@ eval need('c_pl', hp, 'P_load', p1)
 
 scale_e(k) = k == 3 ? avg_scale : 1.0
 scale_eta(k) = k == 3 ? avg_scale**(1.0/3) : 1.0
-stack_title(k) = k == 1 ? sprintf('stack %s on %s', layers, base) : \
-                 (k == 2 ? 'top layer alone' : sprintf('weighted film E,ν = %s', avg))
+# Legends in words: the layers' moduli top first, their relative thicknesses, the substrate.
+pair(s, i) = word(system(sprintf("echo '%s' | tr ',' ' '", s)), i)
+stack_words = system(sprintf("echo '%s' | awk '{ for (i = 1; i <= NF; i++) { split($i, a, \",\"); \
+    e = e (i > 1 ? \", \" : \"\") a[2]; h = h (i > 1 ? \":\" : \"\") a[1] } \
+    printf \"%%d layers E = %%s (top first), thicknesses %%s\", NF, e, h }'", layers))
+stack_title(k) = k == 1 ? 'the stack' : \
+                 (k == 2 ? sprintf('top layer alone (E = %s)', pair(word(layers, 1), 2)) : \
+                  sprintf('weighted film (E = %.3g, ν = %.3g)', real(pair(avg, 1)), real(pair(avg, 2))))
 slip_title(k) = k == 1 ? 'bonded' : 'sliding (frictionless interface)'
 
-set multiplot layout 2, 2 title figure_title("Stacks of layers (THEORY.md §12): layers h,E,ν top first, normalized by the top layer's E^* and the total thickness T") font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.08, (paper ? 0.9 : 0.91) spacing 0.08, (paper ? 0.17 : 0.1)
+set multiplot layout 2, 2 title figure_title("Stacks of layers (moduli relative), normalized by the top layer's E^* and the total thickness T") font ',14' margins (paper ? 0.1 : 0.07), 0.97, 0.08, (paper ? 0.9 : 0.91) spacing 0.08, (paper ? 0.17 : 0.1)
 set logscale x
 set format x '10^{%L}'
 
-set title panel('three-layer stack vs one-layer approximations', 1)
+set title panel(sprintf('%s on E_0 = %s, and one-layer approximations', stack_words, pair(base, 1)), 1)
 set xlabel 'a/T'
 set ylabel 'E_{eq} / E_{top}^*'
 set logscale y
@@ -49,7 +55,8 @@ plot -1.5 ls 31 title 'JKR, homogeneous', \
      for [k = 1:3] word(pulloff, k) using (column(c_eta) / scale_eta(k)):(column(c_pl)) with linespoints \
          ls eta_ls(k) dt k pt 7 ps 0.6 title stack_title(k)
 
-set title panel(sprintf('film E,ν = %s on %s: bonded vs sliding', film, film_base), 3)
+set title panel(sprintf('film E = %s, ν = %s on a substrate E = %s, ν = %s: bonded vs sliding', \
+                    pair(film, 1), pair(film, 2), pair(film_base, 1), pair(film_base, 2)), 3)
 set xlabel 'a/T'
 set ylabel 'E_{eq} / E_{film}^*'
 set offsets 0, 0, 0, 0

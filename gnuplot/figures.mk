@@ -57,7 +57,7 @@ CMD_fig2_points := reduced $(call materials,$(FIG2_RATIO)) \
 $(foreach r,$(SPRING_RATIOS),$(eval \
   CMD_spring_E$(r) := pulloff $(call materials,$(r)) --eta $(SPRING_ETA) --spring-bar $(SPRING_K_BAR)))
 # E2 = ratio x E1 with the film's Poisson ratio, so E2*/E1* = ratio.
-INDENTER_NAMES := rigid $(INDENTER_RATIOS)
+INDENTER_NAMES := $(INDENTER_RATIOS) rigid
 indenter_arg = $(if $(filter rigid,$(1)),rigid,$(shell awk 'BEGIN { print $(1) * $(INDENTER_FILM_RATIO) }'),$(NU_FILM))
 $(foreach i,$(INDENTER_NAMES),$(eval \
   CMD_indenter_I$(i) := pulloff $(call materials,$(INDENTER_FILM_RATIO)) --indenter $(call indenter_arg,$(i)) \

@@ -11,7 +11,8 @@
 #   ls 21-24  reduced variables (figs 3, 4): Pi_s, Delta_s, E_eq, Gamma(1)
 #   ls 31     JKR / homogeneous reference (black, dashed)
 #   ls 32     asymptotes and limits (grey, dotted)
-#   dash types of models (fig 9): exact solid, Perriot-Barthel fit dt 2, Gao model dt 4
+#   dash types of models (fig 9): exact solid, Perriot-Barthel fit dt 2, Gao model dt 4;
+#             markers by E1*/E0*: ratio_pt(r)
 
 if (!exists("W")) W = 1000
 if (!exists("H")) H = 700
@@ -71,6 +72,9 @@ set style line 14 lc rgb '#f08030' lw 2.4
 set style line 15 lc rgb '#a50f15' lw 2.4
 clamp(x, lo, hi) = x < lo ? lo : (x > hi ? hi : x)
 ratio_ls(r) = 11 + clamp(floor(log10(r) + 2.5), 0, 4)
+# A marker per E1*/E0* decade (open circle, square, filled circle, triangle, diamond), for
+# figures whose curves must stay apart in greyscale print (fig 9): with linespoints pi N.
+ratio_pt(r) = word('6 4 7 8 12', 1 + clamp(floor(log10(r) + 2.5), 0, 4)) + 0
 
 # reduced variables
 set style line 21 lc rgb '#c0392b' lw 2.4 pt 7 ps 0.5

@@ -39,6 +39,8 @@ std::string short_num(double v) {
   return s.str();
 }
 
+static_assert(kDefaultAdhesiveTolerance == 1e-8, "--help prints the default tolerance as 1e-8");
+
 // The options every subcommand shares.
 std::vector<OptionSpec> material_options(bool si = false) {
   return {
@@ -46,10 +48,7 @@ std::vector<OptionSpec> material_options(bool si = false) {
       layer_option(si),
       substrate_option(),
       indenter_option(),
-      {"--tol", "T",
-       "relative tolerance of the reduced variables from the solver (default " +
-           short_num(kDefaultAdhesiveTolerance) + ", allowed 1e-13..1e-1)",
-       false},
+      tol_option("1e-8"),
       {"--output", "FILE", "write to FILE atomically instead of stdout", false},
   };
 }
@@ -181,6 +180,31 @@ void add_sphere_pulloff(Header& h, const Contact& sphere, const Pulloff& pulloff
                  num(pulloff.displacement_control.penetration * sphere.penetration_scale()));
   h.emplace_back("normalized pull-off P (load, displacement)",
                  num(pulloff.load_control.load) + ", " + num(pulloff.displacement_control.load));
+}
+
+// --spring k [N/m] of `sphere`, 0 without it; not with the cohesive zone.
+double parse_sphere_spring(const Arguments& args, bool cohesive_zone) {
+  const auto text = args.get("--spring");
+  if (!text) return 0.0;
+  if (cohesive_zone) {
+    throw InputError("--spring: not used with --cohesive-stress/--range (the cohesive zone's pull-offs are under "
+                     "load and displacement control only); omit --spring");
+  }
+  return parse_rate(*text, Rate::kStiffness, "--spring");
+}
+
+// `sphere --spring k` (THEORY.md section 10, as `contact --spring`): the pull-off through a spring
+// of stiffness k [N/m], k_bar = k L_D/(pi w R), the jump where dF/d(delta) = -k, in SI units.
+void add_sphere_spring(Header& h, const AdhesiveModel& model, const Contact& sphere, double spring) {
+  const double k_bar = spring * sphere.penetration_scale() / sphere.force_scale();
+  const SpringPulloff p = model.pulloff_spring(sphere.eta(), k_bar);
+  h.emplace_back("spring stiffness k [N/m]", num(spring));
+  h.emplace_back("k_bar = k (pi^2 w^2 R/E1*^2)^(1/3)/(pi w R)", num(k_bar));
+  h.emplace_back("pull-off force, spring control [N]",
+                 num(p.point.load * sphere.force_scale()) + " (contact radius " +
+                     num(p.point.a_bar * sphere.length_scale()) + " m, penetration " +
+                     num(p.point.penetration * sphere.penetration_scale()) + " m)");
+  for (const auto& w : p.warnings) h.emplace_back("warning", w);
 }
 
 // Options and inputs shared by `adhesive` and `pulloff`: the material pair, the eta list and
@@ -478,6 +502,10 @@ std::vector<OptionSpec> sphere_options() {
   spec.insert(spec.begin() + 7, {"--contact-radius", "LIST",
                                  "contact radii a in m instead: v1,v2,... or MIN:MAX:N (log-spaced); not with --points",
                                  false});
+  spec.push_back({"--spring", "k",
+                  "spring stiffness (N/m, or with a unit: 500N/m, 0.5mN/um) of the cantilever or frame: adds the "
+                  "spring-controlled pull-off to the header (THEORY.md section 10), as contact --spring",
+                  false});
   for (const auto& option : cohesive_options()) spec.push_back(option);
   spec.push_back(strict_option());
   spec.push_back(plot_option("F(a) and F(delta)"));
@@ -554,6 +582,7 @@ int run_sphere(const Args& raw) {
     const auto notes = report_plausibility("sphere", args);
     const auto sigma0 = parse_cohesive_stress(args, stack, radius, thickness, work);
     const bool md_direct = parse_md_direct(args, sigma0.has_value(), "--cohesive-stress or --range");
+    const double spring = parse_sphere_spring(args, sigma0.has_value());
     std::vector<double> contact_radii;
     if (const auto text = args.get("--contact-radius")) {
       if (args.has("--points")) throw InputError("--points: not allowed with --contact-radius (which gives the points)");
@@ -654,6 +683,7 @@ int run_sphere(const Args& raw) {
       h.emplace_back("reduced variables", solved_note);
     }
     if (pulloff) add_pulloff_warnings(h, *pulloff);
+    if (pulloff && spring > 0.0) add_sphere_spring(h, model, sphere, spring);
     progress_pause();
     if (!pulloff) std::cerr << "coatcontact sphere: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";
     for (const auto& w : warnings) {

@@ -88,7 +88,8 @@ std::string jump_text(const ShapeJump& j) {
 
 const std::vector<OptionSpec> kSpec = {
     {"--shape", "SHAPE",
-     "indenter: sphere:R (paraboloid), cone:BETA (half included angle, e.g. 70deg), punch:A, "
+     "indenter: sphere:R (paraboloid), cone:BETA (half included angle, e.g. 70deg), pyramid:THETA "
+     "(four-sided, face half angle, e.g. 68deg for a Vickers tip; the cone of equal area), punch:A, "
      "power:N,R (z = r^N/(N R^(N-1))), blunted-cone:R,BETA (spherical cap tangent to the cone), "
      "profile:FILE (columns r z, '# units:' line allowed)",
      true},
@@ -105,7 +106,7 @@ const std::vector<OptionSpec> kSpec = {
     {"--spring", "k", "spring stiffness (N/m, or with a unit: 500N/m, 0.5mN/um), in [1e-100, 1e100] (cantilever, machine frame): adds the spring-controlled pull-off", false},
     {"--contact-radius", "LIST", "contact radii: v1,v2,... or MIN:MAX:N (log-spaced); m, or with a unit (mm um nm)", false},
     {"--points", "N", "number of contact radii over the default range, which ends at the validity limits (default 200; not with --contact-radius)", false},
-    {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
+    tol_option("1e-8"),
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
     strict_option(),
     plot_option("F(a) and F(delta) (JKR)"),
@@ -191,7 +192,7 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   const std::string option = "--shape";
   const std::size_t colon = text.find(':');
   const std::string expected =
-      "expected sphere:R, cone:BETA, punch:A, power:N,R, blunted-cone:R,BETA or profile:FILE";
+      "expected sphere:R, cone:BETA, pyramid:THETA, punch:A, power:N,R, blunted-cone:R,BETA or profile:FILE";
   if (colon == std::string::npos) throw InputError(option + ": " + quoted(text) + " has no parameters; " + expected);
   const std::string kind = text.substr(0, colon);
   const std::string rest = text.substr(colon + 1);
@@ -209,6 +210,10 @@ std::shared_ptr<const IndenterShape> parse_shape(const std::string& text, std::s
   if (kind == "cone") {
     count(1);
     return named(text, [&] { return make_cone(parse_angle(items[0], option)); });
+  }
+  if (kind == "pyramid") {
+    count(1);
+    return named(text, [&] { return make_pyramid(parse_angle(items[0], option)); });
   }
   if (kind == "punch") {
     count(1);

@@ -181,7 +181,7 @@ const std::vector<OptionSpec> kSpec = {
                       "are start values (THEORY.md section 14, fitting)", false},
     {"--free", "LIST", "with --fit: the fitted parameters among w, v_star, n, t, E1 (default w,v_star,n; E1 starts "
                        "at the --film value, each value builds its own table)", false},
-    {"--tol", "T", "relative tolerance of the solver's values, in [1e-13, 1e-1] (default 1e-8)", false},
+    tol_option("1e-8"),
     {"--output", "FILE", "write to FILE atomically instead of stdout", false},
     plot_option("F(t) and a(t), or with --retract-speeds the pull-off against the speed (SI runs)"),
 };

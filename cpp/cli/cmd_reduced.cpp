@@ -20,7 +20,7 @@ const std::vector<OptionSpec> kSpec = {
     substrate_option(),
     indenter_option(),
     {"--a-over-t", "LIST", "contact radius over film thickness: v1,v2,... or MIN:MAX:N (log-spaced)", true},
-    {"--tol", "T", "relative tolerance of every value, in [1e-13, 1e-1] (default 1e-8)", false},
+    tol_option("1e-8"),
     {"--direct", "", "solve every radius on its own instead of reading many from the verified interpolant", false},
     {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},
     strict_option(),

@@ -55,6 +55,23 @@ class Cone final : public IndenterShape {
   double beta_;
 };
 
+// A four-sided pyramid as the cone of equal cross-section area (the usual axisymmetric stand-in,
+// as `afm fit` takes it): tan(beta) = 2 tan(theta)/sqrt(pi), theta the face half angle.
+class Pyramid final : public IndenterShape {
+ public:
+  Pyramid(double theta, double beta) : theta_(theta), cone_(beta) {}
+  double delta0(double r) const override { return cone_.delta0(r); }
+  bool smooth_at_apex() const override { return false; }
+  std::string description() const override {
+    return "four-sided pyramid, face half angle " + text(theta_ * 180 / kPi) + " deg, as the " + cone_.description() +
+           " of equal area";
+  }
+
+ private:
+  double theta_;
+  Cone cone_;
+};
+
 class FlatPunch final : public IndenterShape {
  public:
   explicit FlatPunch(double radius) : radius_(radius) {}
@@ -125,6 +142,13 @@ std::shared_ptr<const IndenterShape> make_paraboloid(double radius) {
 std::shared_ptr<const IndenterShape> make_cone(double beta) {
   check_angle(beta);
   return std::make_shared<Cone>(beta);
+}
+
+std::shared_ptr<const IndenterShape> make_pyramid(double face_half_angle) {
+  check_angle(face_half_angle);
+  const double beta = std::atan(2.0 * std::tan(face_half_angle) / std::sqrt(kPi));
+  check_angle(beta);
+  return std::make_shared<Pyramid>(face_half_angle, beta);
 }
 
 std::shared_ptr<const IndenterShape> make_flat_punch(double radius) {

@@ -842,6 +842,11 @@ OptionSpec strict_option() {
           false};
 }
 
+OptionSpec tol_option(const std::string& default_text) {
+  return {"--tol", "T", "relative tolerance of the solver's values, allowed 1e-13..1e-1 (default " + default_text + ")",
+          false};
+}
+
 void require_some_delivered(const std::vector<PointStatus>& status, const std::string& what) {
   if (status.empty() || failed_points(status) < status.size()) return;
   // One point: its own message, as the strict run gives it.

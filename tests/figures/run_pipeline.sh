@@ -30,7 +30,7 @@ cat "$tmp/run1.log"
 declare -A size=([fig1]=1000x900 [fig2]=1000x760 [fig3]=1400x620 [fig4]=1400x620
                  [fig5]=1000x720 [fig6]=1000x720 [fig7]=1000x720 [fig8]=1400x640 [fig9]=1000x960
                  [fig10]=1000x700 [fig11]=1400x640 [fig12]=1000x720 [fig13]=1000x720
-                 [fig_md_lambda]=1400x640 [fig_stack]=1400x1100 [fig_kinetics]=1400x640)
+                 [fig_md_lambda]=1400x640 [fig_stack]=1400x1100 [fig_kinetics]=1500x600)
 specs=()
 for f in fig1 fig2 fig3 fig4 fig5 fig6 fig7 fig8 fig9 fig10 fig11 fig12 fig13 fig_md_lambda fig_stack fig_kinetics; do
   specs+=("$tmp/figures/$f.png:${size[$f]}")

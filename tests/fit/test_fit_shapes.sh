@@ -27,8 +27,8 @@ within3 "cone w [J/m2]" "$(sed -n 's/^# w_J_per_m2: //p' "$work/out")" \
 within3 "cone t [m]" "$(sed -n 's/^# t_m: //p' "$work/out")" "$(sed -n 's/^# t_stderr_m: //p' "$work/out")" 5e-6
 
 # --- bad input: exit 2 naming --shape, nothing written ---
-expect "unknown shape" 2 "--shape: unknown shape 'pyramid'" -- "$cli" fit "$work/cone.tsv" --columns a,F \
-  --shape pyramid:3 "${material[@]}" --thickness 5um --output "$work/never.tsv"
+expect "unknown shape" 2 "--shape: unknown shape 'wedge'" -- "$cli" fit "$work/cone.tsv" --columns a,F \
+  --shape wedge:3 "${material[@]}" --thickness 5um --output "$work/never.tsv"
 expect "cone angle out of range" 2 "--shape: 'cone:95deg': half included angle" -- "$cli" fit "$work/cone.tsv" --columns a,F \
   --shape cone:95deg "${material[@]}" --thickness 5um --output "$work/never.tsv"
 expect "shape without parameters" 2 "--shape: 'cone' has no parameters" -- "$cli" fit "$work/cone.tsv" --columns a,F \

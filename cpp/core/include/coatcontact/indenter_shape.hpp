@@ -36,6 +36,9 @@ class IndenterShape {
 std::shared_ptr<const IndenterShape> make_paraboloid(double radius);
 // Cone of half included angle beta (radians, in (0, π/2)): δ0 = (π/2) r cot(beta).
 std::shared_ptr<const IndenterShape> make_cone(double beta);
+// Four-sided pyramid of face half angle theta (radians, in (0, π/2)) as the cone of equal area,
+// tan(beta) = 2 tan(theta)/√π.
+std::shared_ptr<const IndenterShape> make_pyramid(double face_half_angle);
 // Flat punch of radius `radius`.
 std::shared_ptr<const IndenterShape> make_flat_punch(double radius);
 // Power law z = r^n/(n R^(n-1)), n > 0: δ0 = c_n r^n/R^(n-1), c_n = (√π/2) Γ(n/2)/Γ((n+1)/2).

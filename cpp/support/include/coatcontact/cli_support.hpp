@@ -271,6 +271,8 @@ void write_row(std::ostream& out, const std::vector<double>& values,
 // status is 0 as long as one point was delivered (3 when none was). `--strict` instead stops
 // at the first such point with exit 3 and no output.
 OptionSpec strict_option();
+// `--tol T`, worded the same in every command's --help; default_text: the default as printed.
+OptionSpec tol_option(const std::string& default_text);
 // NumericalError when every point failed (nothing to deliver): the first reason.
 void require_some_delivered(const std::vector<PointStatus>& status, const std::string& what);
 // The header item counting the points not delivered (nothing when every point was), and the
