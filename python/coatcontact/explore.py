@@ -459,8 +459,9 @@ class Explorer:
         self.params = check_parameters(params)
         bottom = 0.36 if sliders else 0.12
         width = 0.40 if sliders else 0.31   # the widget keeps the right for the legend
-        self.ax_a = figure.add_axes([0.07, bottom, width, 0.80 - bottom + 0.08])
-        self.ax_d = figure.add_axes([0.07 + width + 0.09, bottom, width, 0.80 - bottom + 0.08])
+        top = 0.88 if sliders else 0.80   # below the two-line title and the panels' own titles
+        self.ax_a = figure.add_axes([0.07, bottom, width, top - bottom])
+        self.ax_d = figure.add_axes([0.07 + width + 0.09, bottom, width, top - bottom])
         styles = {
             "coated": dict(color="#1f77b4", lw=2.2, label="JKR on the coating"),
             "jkr": dict(color="0.35", lw=1.2, ls="--", label="JKR, solid of film material"),
@@ -490,12 +491,19 @@ class Explorer:
         self.ax_d.set_title("force against penetration")
         # The legend copies the lines' styles now, before they are made animated (a legend
         # entry copied from an animated line would be animated too, and left out of a draw).
-        handles = [self.lines[n + "_a"] for n in ("coated", "jkr", "md", "load", "displacement", "spring", "md_load")]
-        handles.append(self.lines["spring_line_D"])
-        if sliders:   # beside the sliders, off the curves
-            figure.legend(handles=handles, loc="lower right", bbox_to_anchor=(0.995, 0.01), fontsize=8)
-        else:         # the widget has no room below: to the right of the two panels
-            figure.legend(handles=handles, loc="center right", fontsize=8)
+        # Two legends, with and without the Maugis-Dugdale entries: the one shown names only the
+        # curves drawn (lambda = inf draws none of them).
+        self.legends = {}
+        for md_drawn in (False, True):
+            names = ("coated", "jkr", "md", "load", "displacement", "spring", "md_load") if md_drawn else \
+                ("coated", "jkr", "load", "displacement", "spring")
+            handles = [self.lines[n + "_a"] for n in names] + [self.lines["spring_line_D"]]
+            if sliders:   # beside the sliders, off the curves
+                legend = figure.legend(handles=handles, loc="lower right", bbox_to_anchor=(0.995, 0.01), fontsize=8)
+            else:         # the widget has no room below: to the right of the two panels
+                legend = figure.legend(handles=handles, loc="center right", fontsize=8)
+            legend.set_visible(md_drawn == math.isfinite(self.params["lam"]))
+            self.legends[md_drawn] = legend
         # The title belongs to an Axes, not the Figure: a Figure leaves its animated artists
         # out of savefig, an Axes draws them when saving.
         self.title = self.ax_a.text(0.5, 0.98, "", transform=figure.transFigure, ha="center", va="top",
@@ -505,7 +513,7 @@ class Explorer:
             from matplotlib.widgets import Slider
             for i, (name, (label, lo, hi, _, step, log)) in enumerate(SLIDERS.items()):
                 ax = figure.add_axes([0.14, 0.25 - 0.04 * i, 0.50, 0.025])
-                s = Slider(ax, ("log10 " if log else "") + label, _slider_position(name, lo),
+                s = Slider(ax, label + (" (log scale)" if log else ""), _slider_position(name, lo),
                            _slider_position(name, hi), valinit=_slider_position(name, self.params[name]),
                            valstep=step)
                 s.valtext.set_text(_format(name, self.params[name]))
@@ -581,6 +589,10 @@ class Explorer:
         span = np.array([-0.6, 0.6])
         L["spring_line_D"].set_data(D_s + span, P_s - p["k_bar"] * span)
         md = d["md"]
+        if self.legends[md is not None].get_visible() is False:
+            self.legends[md is None].set_visible(False)
+            self.legends[md is not None].set_visible(True)
+            self._background = None   # the legend is part of the background: a full draw
         if md is None:
             for name in ("md_a", "md_D", "md_load_a", "md_load_D"):
                 L[name].set_data([], [])

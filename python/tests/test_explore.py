@@ -255,3 +255,23 @@ def test_jupyter_widget_in_a_kernel(tmp_path):
         client.execute()
     outputs = nb.cells[0].outputs
     assert any("widget ok" in o.get("text", "") for o in outputs), outputs
+
+
+def test_legend_names_only_the_curves_drawn_and_sliders_say_log_scale(window):
+    """Regression (issue 39): the legend listed the Maugis-Dugdale curve and pull-off while
+    lambda = inf draws neither, and a logarithmic slider read "log10 E1/E0" beside the value
+    itself (0.1, not -1)."""
+    def legend_texts():
+        shown = [legend for legend in window.figure.legends if legend.get_visible()]
+        assert len(shown) == 1
+        return [t.get_text() for t in shown[0].get_texts()]
+
+    assert math.isinf(window.params["lam"])
+    assert not any("Maugis" in t for t in legend_texts())
+    window.set(lam=1.0)
+    assert sum("Maugis" in t for t in legend_texts()) == 2
+    window.set(lam=math.inf)
+    assert not any("Maugis" in t for t in legend_texts())
+    labels = {name: s.label.get_text() for name, s in window.sliders.items()}
+    assert labels["ratio"] == "E1/E0 (log scale)" and not any("log10" in t for t in labels.values())
+    assert window.sliders["ratio"].valtext.get_text() == "0.1"
