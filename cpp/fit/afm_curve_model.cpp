@@ -743,6 +743,32 @@ AfmFitResult adhesive_fit(const std::vector<double>& z, const std::vector<double
   return internal::afm_fit_jkr(z, force, problem, free_count);
 }
 
+// The statistics of a fit found: indentations, residuals, and the free parameters' standard
+// errors from their Jacobian `columns` (in the order of `error_slots`), under nanite's
+// contact-point weights when the problem has them.
+void finish_fit(AfmFitResult& r, const std::vector<double>& z, const std::vector<double>& force,
+                const AfmFitProblem& problem, int free_count, std::vector<std::vector<double>>& columns,
+                const std::vector<double*>& error_slots) {
+  const std::size_t n = z.size();
+  if (problem.free.tilt) r.tilt_origin = r.contact_point;
+  r.indentation.resize(n);
+  for (std::size_t i = 0; i < n; ++i) r.indentation[i] = r.contact_point - z[i];
+  internal::afm_residual_statistics(r, force, problem.noise_sigma, free_count, 0.0,
+                                    "the data show no contact in the fitted range; widen the range or check the segment");
+  double sigma = r.residual_sigma;
+  if (problem.weight_cp > 0.0) {  // the weighted problem's Jacobian and residual sigma
+    double rss = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double w = std::min(std::abs(z[i] - r.contact_point) / problem.weight_cp, 1.0);
+      for (std::vector<double>& column : columns) column[i] *= w;
+      rss += w * w * r.residual[i] * r.residual[i];
+    }
+    sigma = std::sqrt(rss / (static_cast<double>(n) - free_count));
+  }
+  const std::vector<double> errors = internal::afm_standard_errors(columns, sigma);
+  for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
+}
+
 }  // namespace
 
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
@@ -885,23 +911,7 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     r.solver_calls = forces.solver_calls();
   }
 
-  if (problem.free.tilt) r.tilt_origin = r.contact_point;
-  r.indentation.resize(n);
-  for (std::size_t i = 0; i < n; ++i) r.indentation[i] = r.contact_point - z[i];
-  internal::afm_residual_statistics(r, force, problem.noise_sigma, free_count, 0.0,
-                                    "the data show no contact in the fitted range; widen the range or check the segment");
-  double sigma = r.residual_sigma;
-  if (problem.weight_cp > 0.0) {  // the weighted problem's Jacobian and residual sigma
-    double rss = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double w = std::min(std::abs(z[i] - r.contact_point) / problem.weight_cp, 1.0);
-      for (std::vector<double>& column : columns) column[i] *= w;
-      rss += w * w * r.residual[i] * r.residual[i];
-    }
-    sigma = std::sqrt(rss / (static_cast<double>(n) - free_count));
-  }
-  const std::vector<double> errors = internal::afm_standard_errors(columns, sigma);
-  for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
+  finish_fit(r, z, force, problem, free_count, columns, error_slots);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
