@@ -142,6 +142,25 @@ std::string analyse_table(const indent::OliverPharrResult& r, Items items) {
   return out.str();
 }
 
+// The one input file and the two outputs of `analyse` and `film`, checked before any work.
+struct FileAndOutputs {
+  std::string path, output_path;
+  std::optional<std::string> plot_path;
+  std::string term;
+};
+
+FileAndOutputs file_and_outputs(const Arguments& arguments) {
+  if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
+  FileAndOutputs run;
+  run.path = arguments.positionals().front();
+  register_input(run.path, "indentation file");
+  run.output_path = arguments.get("--output").value_or("");
+  run.plot_path = arguments.get("--plot");
+  run.term = plot_term(run.plot_path);
+  check_output_paths({{"--output", run.output_path}, {"--plot", run.plot_path.value_or("")}});
+  return run;
+}
+
 int analyse(const Args& args) {
   std::vector<OptionSpec> spec = oliver_pharr_spec();
   spec.push_back({"--all", "", "every test of the file: one summary row per test", false});
@@ -155,13 +174,11 @@ int analyse(const Args& args) {
                        spec);
     return kExitSuccess;
   }
-  if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
-  const std::string path = arguments.positionals().front();
-  register_input(path, "indentation file");
-  const std::string output_path = arguments.get("--output").value_or("");
-  const auto plot_path = arguments.get("--plot");
-  const std::string term = plot_term(plot_path);
-  check_output_paths({{"--output", output_path}, {"--plot", plot_path.value_or("")}});
+  const FileAndOutputs run = file_and_outputs(arguments);
+  const std::string& path = run.path;
+  const std::string& output_path = run.output_path;
+  const auto& plot_path = run.plot_path;
+  const std::string& term = run.term;
   const indent::OliverPharrOptions o = oliver_pharr_options(arguments);
   const auto tests = indent::read_indentation(path);
   Items items = {{"coatcontact indent analyse", "Oliver-Pharr (THEORY.md section 16), SI units"}};
@@ -414,13 +431,11 @@ int film(const Args& args) {
                        spec);
     return kExitSuccess;
   }
-  if (arguments.positionals().size() != 1) throw InputError("expected one FILE (see --help)");
-  const std::string path = arguments.positionals().front();
-  register_input(path, "indentation file");
-  const std::string output_path = arguments.get("--output").value_or("");
-  const auto plot_path = arguments.get("--plot");
-  const std::string term = plot_term(plot_path);
-  check_output_paths({{"--output", output_path}, {"--plot", plot_path.value_or("")}});
+  const FileAndOutputs run = file_and_outputs(arguments);
+  const std::string& path = run.path;
+  const std::string& output_path = run.output_path;
+  const auto& plot_path = run.plot_path;
+  const std::string& term = run.term;
   const indent::OliverPharrOptions op = oliver_pharr_options(arguments);
   indent::FilmOptions o = film_options(arguments);
   const auto models = chosen_models(arguments);
