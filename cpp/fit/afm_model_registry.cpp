@@ -9,12 +9,14 @@
 #include "afm_internal.hpp"
 #include "coatcontact/errors.hpp"
 
-// The models, one line each: the model's file defines internal::afm_model_<name>().
+// The models, one line each (a new model: its line above the last): the model's file defines
+// internal::afm_model_<name>(); the list's order is the order of help texts and error messages.
 #define COATCONTACT_AFM_MODELS(X) \
   X(hertz)                        \
   X(jkr)                          \
   X(md)                           \
-  X(dmt)
+  X(dmt)                          \
+  /* end of the list */
 
 namespace coatcontact::fit {
 
