@@ -16,6 +16,7 @@
   X(jkr)                          \
   X(md)                           \
   X(dmt)                          \
+  X(toy)                          \
   /* end of the list */
 
 namespace coatcontact::fit {
