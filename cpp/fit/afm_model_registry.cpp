@@ -16,7 +16,6 @@
   X(jkr)                          \
   X(md)                           \
   X(dmt)                          \
-  X(toy)                          \
   /* end of the list */
 
 namespace coatcontact::fit {
