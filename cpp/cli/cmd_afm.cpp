@@ -23,6 +23,7 @@
 #include "coatcontact/gnuplot_run.hpp"
 #include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
+#include "coatcontact/afm_models.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/cli_support.hpp"
@@ -321,12 +322,19 @@ int run_export(const Args& args) {
 
 // ---- afm fit ----------------------------------------------------------------------------------
 
+// --model's help from the registry: "hertz (...), jkr (...) or dmt (...)".
+std::string model_help() {
+  const auto& models = fit::afm_models();
+  std::string text;
+  for (std::size_t k = 0; k < models.size(); ++k) {
+    text += (k == 0 ? "" : k + 1 == models.size() ? " or " : ", ") + models[k]->name + " (" + models[k]->help + ")";
+  }
+  return text;
+}
+
 const std::vector<OptionSpec> kFitSpec = {
     {"--index", "N", "fit only curve N of a map (0-based; `afm show` lists them); without it every curve, one row each", false},
-    {"--model", "MODEL", "hertz (adhesionless Hertz/Sneddon, default), jkr (adhesive: JKR of a sphere on the half-space or "
-                         "the coating through the cantilever's spring k, the stable branch and its jump-off; default segment "
-                         "retract) or md (the same with a Maugis-Dugdale zone of range h0 = 0.97 z0, --range: for lambda "
-                         "below ~5) or dmt (the adhesionless contact less 2 pi w R through the cantilever: lambda below ~0.1)", false},
+    {"--model", "MODEL", model_help(), false},
     {"--work", "W", "jkr, md: the work of adhesion w [J/m2] (the value if fixed; if free, the centre of its search; default "
                     "from the segment's most tensile force)", false},
     {"--range", "Z0", "jkr, md: the surface-force range z0 [m] (default 0.3nm): Tabor's and Maugis's lambda, and md's "
@@ -480,19 +488,16 @@ std::pair<double, std::string> prefix_of(double magnitude) {
 // The model, tip, sample, free parameters, segment and fit range of `afm fit` (one curve or a batch).
 AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const std::string model = arguments.get("--model").value_or("hertz");
-  const bool md = model == "md" || model == "maugis-dugdale";
-  if (model != "hertz" && model != "jkr" && model != "dmt" && !md) {
-    throw InputError("--model: '" + model.substr(0, 60) + "' is not a model; allowed: hertz, jkr, md, dmt");
-  }
-  const bool jkr = model == "jkr" || model == "dmt" || md;  // the adhesive models share their options
+  const fit::AfmModelInfo& info = fit::afm_model_by_name(model, "--model");
+  const bool jkr = info.needs_spring;  // the adhesive models share their options
   fit::AfmFitProblem problem;
+  problem.model = info.model();
   problem.tip = parse_tip(arguments);
   if (auto text = arguments.get("--weight-cp")) {
     problem.weight_cp = parse_quantity(*text, Quantity::kLength, "--weight-cp");
     if (!(problem.weight_cp > 0.0)) throw InputError("--weight-cp: '" + *text + "' is not allowed; expected a length > 0, e.g. 500nm");
   }
   if (jkr) {
-    problem.model = md ? fit::AfmModel::kMd : model == "dmt" ? fit::AfmModel::kDmt : fit::AfmModel::kJkr;
     if (problem.tip.kind != fit::AfmTip::Kind::kParaboloid) {
       throw InputError("--model: " + model + " takes a sphere tip (--radius R or --shape sphere:R); got " + problem.tip.description);
     }
@@ -504,7 +509,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     if (auto text = arguments.get("--tilt")) problem.tilt = parse_number(*text, "--tilt");
   } else {
     for (const char* option : {"--work", "--range", "--tilt"}) {
-      if (arguments.has(option)) throw InputError(std::string(option) + ": needs --model jkr or md");
+      if (arguments.has(option)) throw InputError(std::string(option) + ": needs --model " + fit::afm_spring_model_names());
     }
   }
   const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
@@ -529,23 +534,17 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   }
   problem.free = {false, false, false, false};
   const std::string modulus_name = coated ? "E1" : "E";
-  const std::string allowed = std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") +
-                              (jkr ? ", w, tilt" : ", tilt");
-  const std::string free_text =
-      arguments.get("--free").value_or(modulus_name + (jkr ? ",w,contact_point,baseline,tilt" : ",contact_point,baseline"));
+  const std::string allowed = fit::afm_free_allowed(info, coated);
+  const std::string free_text = arguments.get("--free").value_or(fit::afm_free_default(info, coated));
   std::size_t start = 0;
   while (start <= free_text.size()) {
     const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
     std::string item = free_text.substr(start, comma - start);
     item.erase(0, item.find_first_not_of(" \t"));
     item.erase(item.find_last_not_of(" \t") + 1);
-    if (item == modulus_name) problem.free.modulus = true;
-    else if (item == "t" && coated) problem.free.thickness = true;
-    else if (item == "w" && jkr) problem.free.work = true;
-    else if (item == "tilt") problem.free.tilt = true;
-    else if (item == "contact_point") problem.free.contact_point = true;
-    else if (item == "baseline") problem.free.baseline = true;
-    else throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
+    const fit::AfmParameterInfo* parameter = fit::afm_parameter(info, item, coated);
+    if (!parameter) throw InputError("--free: '" + item.substr(0, 60) + "' is not a parameter of this fit; allowed: " + allowed);
+    problem.free.*parameter->free = true;
     start = comma + 1;
   }
   if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness &&
@@ -566,7 +565,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     if (problem.free.baseline) throw InputError("--baseline: the baseline is free; drop it from --free to fix it");
     problem.baseline = parse_number(*text, "--baseline");
   }
-  const std::string segment_name = arguments.get("--segment").value_or(jkr ? "retract" : "approach");
+  const std::string segment_name = arguments.get("--segment").value_or(afm::segment_kind_name(info.segment));
   afm::SegmentKind kind = afm::SegmentKind::kApproach;
   if (segment_name == "retract") kind = afm::SegmentKind::kRetract;
   else if (segment_name != "approach") throw InputError("--segment: '" + segment_name.substr(0, 60) + "' is not allowed; expected approach or retract");
@@ -601,7 +600,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
 // The help text of `afm fit` (one curve, or one row per curve of many).
 void print_fit_help() {
   std::cout << usage("afm fit",
-                     "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md|dmt] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
+                     "FILE|FILE...|FOLDER [--index N] [--model " + fit::afm_model_names("|") + "] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                      "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                      "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
                      "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf] [--color-range MIN,MAX] [--color-log]",
@@ -650,19 +649,7 @@ void print_fit_help() {
 
 // The model, tip and sample lines of a one-curve fit's header.
 void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem) {
-  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
-  const bool md = problem.model == fit::AfmModel::kMd;
-  const bool dmt = problem.model == fit::AfmModel::kDmt;
-  items.push_back({"model", dmt ? "F = b + m (z - z_c) + F_DMT(z_c - z), F_DMT: the adhesionless force of the sphere on the sample "
-                                  "less 2 pi w R while in contact (0 past the contact point, where any spring lets go)"
-                            : md    ? "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
-                                    "h0 = 0.97 z0) of the sphere on the sample on the branch stable under the spring k (0 past its "
-                                    "jump-off)"
-                            : jkr ? "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
-                                    "under the spring k (0 past its jump-off)"
-                            : problem.free.tilt
-                                ? "F = b + m (z - z_c) + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"
-                                : "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
+  items.push_back({"model", problem.model.info().formula(problem, false)});
   items.push_back({"tip", problem.tip.description});
   if (problem.coating) {
     const fit::AfmCoating& c = *problem.coating;
@@ -680,7 +667,7 @@ void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items
 // warnings also to stderr).
 void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem,
                        const fit::AfmFitResult& r, const std::string& modulus_name, const fit::AfmMeasuredPulloff& pulloff) {
-  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
+  const bool jkr = problem.model.info().needs_spring;  // the adhesive models
   items.push_back({modulus_name + " [Pa]", problem.free.modulus ? with_error(r.modulus, r.modulus_error, modulus_name)
                                                                 : format_parameter(r.modulus, modulus_name) + " (fixed)"});
   if (problem.coating) {
@@ -711,12 +698,7 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
     items.push_back({"Tabor mu", format_parameter(r.tabor_mu, "mu") + " (surface-force range z0 = " +
                                      format_parameter(problem.surface_force_range, "z0") + " m, --range)"});
     items.push_back({"Maugis lambda", format_parameter(r.maugis_lambda, "lambda") + " (Dugdale stress w/(0.97 z0); " +
-                                          (problem.model == fit::AfmModel::kMd
-                                               ? "the Maugis-Dugdale table holds lambda in [" + format_parameter(kMinimumLambda, "lambda") + ", " +
-                                                     format_parameter(kMaximumLambda, "lambda") + "]"
-                                           : problem.model == fit::AfmModel::kDmt
-                                               ? "DMT needs lambda <= " + format_parameter(fit::kDmtMaximumLambda, "lambda")
-                                               : "JKR needs lambda >= " + format_parameter(fit::kJkrMinimumLambda, "lambda")) +
+                                          problem.model.info().lambda_note +
                                           ")"});
     for (const std::string& warning : r.warnings) {
       items.push_back({"warning", warning});
@@ -741,7 +723,7 @@ std::string fit_plot_settings(const std::string& term, const std::string& path, 
                               const fit::AfmFitProblem& problem, const fit::AfmFitResult& r,
                               const std::vector<double>& z_segment, const std::vector<double>& f_segment,
                               const fit::AfmMeasuredPulloff& pulloff) {
-  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
+  const bool jkr = problem.model.info().needs_spring;  // the adhesive models
   double z_big = 0.0, f_big = 0.0;
   for (std::size_t i = 0; i < z_segment.size(); ++i) {
     z_big = std::max(z_big, std::abs(z_segment[i]));
@@ -793,7 +775,6 @@ int run_fit_curve(const Args& args) {
     const std::string& segment_name = setup.segment_name;
     const afm::SegmentKind kind = setup.kind;
     const fit::AfmRange& range = setup.range;
-    const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
     std::optional<std::string> plot_path = arguments.get("--plot");
     std::string term;
     if (plot_path) {
@@ -838,9 +819,7 @@ int run_fit_curve(const Args& args) {
     }
 
     std::vector<std::pair<std::string, std::string>> items = {
-        {"coatcontact afm fit", jkr ? std::string("adhesive ") + (problem.model == fit::AfmModel::kDmt ? "DMT" : problem.model == fit::AfmModel::kMd ? "Maugis-Dugdale" : "JKR") +
-                                          " fit through the cantilever of one AFM force-curve segment (THEORY.md section 15)"
-                                    : "adhesionless Hertz/Sneddon fit of one AFM force-curve segment (THEORY.md section 15)"}};
+        {"coatcontact afm fit", problem.model.info().summary + " of one AFM force-curve segment (THEORY.md section 15)"}};
     add_curve_header(items, curve);
     items.push_back({"tip position", std::string(curve.tip_position_height_name()) + " + force / spring constant"});
     add_fit_model_lines(items, problem);

@@ -33,6 +33,7 @@
 #include "afm_partial.hpp"
 #include "afm_map_plot_script.hpp"
 #include "coatcontact/afm_batch.hpp"
+#include "coatcontact/afm_models.hpp"
 #include "coatcontact/gnuplot_run.hpp"
 
 namespace coatcontact::cli {
@@ -102,6 +103,8 @@ std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, b
   line += '\t' + (fitted ? format_value(row.residual_sigma, "residual_sigma") : "-");
   line += '\t' + (fitted ? text_of(row.pulloff_force, "pulloff") : "-");
   line += '\t' + (fitted ? text_of(row.pulloff_position, "pulloff_position") : "-");
+  line += '\t' + (fitted ? text_of(row.model_jump_off_force, "model_jump_off_force") : "-");
+  line += '\t' + (fitted ? text_of(row.model_jump_off_indentation, "model_jump_off_indentation") : "-");
   line += '\t' + (fitted ? std::to_string(row.points) : "-");
   line += '\t' + format_value(row.rating, "rating");
   line += '\t' + text_of(row.tabor_mu, "tabor_mu");
@@ -464,14 +467,9 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
                              const afm::Calibration& calibration, const AfmFitSetup& setup,
                              const fit::AfmBatchSettings& settings, const std::vector<fit::AfmBatchParameter>& parameters,
                              bool contact_point_column, std::vector<std::string>& columns) {
+  const fit::AfmModelInfo& model = settings.problem.model.info();
   std::vector<std::pair<std::string, std::string>> items = {
-      {"coatcontact afm fit", settings.problem.model == fit::AfmModel::kJkr
-                                  ? "one row per curve: adhesive JKR fit through the cantilever of each curve of the files (THEORY.md section 15)"
-                              : settings.problem.model == fit::AfmModel::kMd
-                                  ? "one row per curve: adhesive Maugis-Dugdale fit through the cantilever of each curve of the files (THEORY.md section 15)"
-                              : settings.problem.model == fit::AfmModel::kDmt
-                                  ? "one row per curve: adhesive DMT fit through the cantilever of each curve of the files (THEORY.md section 15)"
-                                  : "one row per curve: Hertz/Sneddon fit of each curve of the files (THEORY.md section 15)"}};
+      {"coatcontact afm fit", "one row per curve: " + model.summary + " of each curve of the files (THEORY.md section 15)"}};
   items.push_back({"files", std::to_string(files.size())});
   for (std::size_t f = 0; f < files.size(); ++f) {
     items.push_back({"file " + std::to_string(f), files[f] + (survey[f].unreadable.empty()
@@ -482,23 +480,7 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   items.push_back({"curves", std::to_string(total)});
   if (calibration.spring_constant) items.push_back({"spring constant [N/m]", format_parameter(*calibration.spring_constant, "k") + " (user, every curve)"});
   if (calibration.sensitivity) items.push_back({"sensitivity [m/V]", format_parameter(*calibration.sensitivity, "sensitivity") + " (user, every curve)"});
-  if (settings.problem.model == fit::AfmModel::kJkr) {
-    items.push_back({"model", "F = b + m (z - z_c) + F_JKR(z_c - z), F_JKR: JKR of the sphere on the sample on the branch stable "
-                              "under the cantilever's spring k (each curve's), 0 past its jump-off"});
-  } else if (settings.problem.model == fit::AfmModel::kDmt) {
-    items.push_back({"model", "F = b + m (z - z_c) + F_DMT(z_c - z), F_DMT: the adhesionless force of the sphere on the sample "
-                              "less 2 pi w R while in contact, 0 past the contact point"});
-  } else if (settings.problem.model == fit::AfmModel::kMd) {
-    items.push_back({"model", "F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, "
-                              "h0 = 0.97 z0 = " + format_parameter(0.97 * settings.problem.surface_force_range, "h0") +
-                              " m) of the sphere on the sample on the branch stable under the cantilever's spring k (each "
-                              "curve's), 0 past its jump-off"});
-  } else if (settings.problem.free.tilt) {
-    items.push_back({"model", "F = b + m (z - z_c) + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out "
-                              "of contact); the tilt m fitted, not subtracted"});
-  } else {
-    items.push_back({"model", "F = b + E/(1 - nu^2) g(z_c - z), g: Hertz/Sneddon force per reduced modulus (0 out of contact)"});
-  }
+  items.push_back({"model", model.formula(settings.problem, true)});
   items.push_back({"tip", settings.problem.tip.description});
   if (settings.problem.coating) {
     const fit::AfmCoating& c = *settings.problem.coating;
@@ -532,6 +514,9 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   items.push_back({"rating", "0..10 from the residuals against the baseline noise, the signal over the noise, the points in "
                              "contact and the flags (docs/afm.md, \"Curve rating\"); 0 without estimates"});
   items.push_back({"pull-off", "measured: the retract's most tensile force against its free-cantilever baseline (a line on its last half), and its tip position"});
+  if (model.needs_spring) {
+    items.push_back({"model jump-off", "the fitted model's own jump-off through the spring: its force above the baseline and its indentation"});
+  }
   columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
   std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
   for (const auto& p : parameters) {
@@ -543,11 +528,11 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
     columns.push_back("contact_point");
     units += "\tm";
   }
-  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "points", "rating", "tabor_mu",
-                        "maugis_lambda", "warnings"}) {
+  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "model_jump_off_force",
+                        "model_jump_off_indentation", "points", "rating", "tabor_mu", "maugis_lambda", "warnings"}) {
     columns.push_back(c);
   }
-  units += "\t-\t-\tN\tN\tm\t-\t-\t-\t-\t-";
+  units += "\t-\t-\tN\tN\tm\tN\tm\t-\t-\t-\t-\t-";
   items.push_back({"units", units});
   std::ostringstream header_stream;
   write_header(header_stream, items, columns);

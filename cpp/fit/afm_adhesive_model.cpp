@@ -373,32 +373,6 @@ void afm_tabor_maugis(const AfmFitProblem& problem, AfmFitResult& r) {
   r.maugis_lambda = maugis_lambda(scales, w / (kDugdaleRangeOverZ0 * z0));
 }
 
-void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r) {
-  afm_tabor_maugis(problem, r);
-  const double z0 = problem.surface_force_range;
-  if (r.maugis_lambda < kJkrMinimumLambda) {
-    r.warnings.push_back("Maugis's lambda = " + short_text(r.maugis_lambda) + " (Tabor's mu = " + short_text(r.tabor_mu) +
-                         ", surface-force range z0 = " + short_text(z0) + " m) is below " + short_text(kJkrMinimumLambda) +
-                         ": outside JKR's range; fit the Maugis-Dugdale model (--model md)");
-  }
-}
-
-const internal::ReducedLaw& jkr_law() {
-  static const internal::ReducedLaw law{
-      "JKR",
-      // (delta, F) at contact radius a [THEORY.md section 5, steps 3-4].
-      [](double a, const Reduced& v, double reduced, double work, double radius) -> std::pair<double, double> {
-        const double fp = -std::sqrt(2.0 * kPi * a * work / reduced) / v.gamma1;  // delta_fp
-        return {a * a / radius * v.delta_s + fp, a * a * a * reduced / (2.0 * radius) * v.pi_s + 2.0 * a * reduced * v.e_eq * fp};
-      },
-      nullptr, 1.5, [](const AfmFitProblem& p, AfmFitResult& r) { afm_jkr_lambda(p, r); }};
-  return law;
-}
-
-std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std::vector<double>& z) {
-  return afm_reduced_model_force(problem, z, jkr_law());
-}
-
 std::vector<double> afm_reduced_model_force(const AfmFitProblem& problem, const std::vector<double>& z,
                                             const ReducedLaw& law) {
   if (problem.tip.kind != AfmTip::Kind::kParaboloid) throw InputError("afm fit: the " + law.name + " model takes a sphere tip (radius R)");
@@ -427,11 +401,6 @@ std::vector<double> afm_reduced_model_force(const AfmFitProblem& problem, const 
     f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch->at(problem.contact_point - z[i]).first;
   }
   return f;
-}
-
-AfmFitResult afm_fit_jkr(const std::vector<double>& z_data, const std::vector<double>& f_data, const AfmFitProblem& problem,
-                         int free_count) {
-  return afm_fit_adhesive(z_data, f_data, problem, free_count, nullptr);
 }
 
 namespace {

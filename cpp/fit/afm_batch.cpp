@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "coatcontact/afm_models.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/progress.hpp"
 #include "parallel.hpp"
@@ -24,16 +25,10 @@ namespace coatcontact::fit {
 
 std::vector<AfmBatchParameter> afm_batch_parameters(const AfmFitProblem& problem) {
   std::vector<AfmBatchParameter> parameters;
-  if (problem.free.modulus) {
-    parameters.push_back({problem.coating ? "E1" : "E", "Pa", &AfmFitResult::modulus, &AfmFitResult::modulus_error});
+  const bool coated = problem.coating.has_value();
+  for (const AfmParameterInfo& p : problem.model.info().parameters) {
+    if (problem.free.*p.free) parameters.push_back({afm_parameter_name(p, coated), p.unit, p.value, p.error});
   }
-  if (problem.free.thickness) parameters.push_back({"t", "m", &AfmFitResult::thickness, &AfmFitResult::thickness_error});
-  if (problem.free.contact_point) {
-    parameters.push_back({"contact_point", "m", &AfmFitResult::contact_point, &AfmFitResult::contact_point_error});
-  }
-  if (problem.free.baseline) parameters.push_back({"baseline", "N", &AfmFitResult::baseline, &AfmFitResult::baseline_error});
-  if (problem.free.work) parameters.push_back({"w", "J/m2", &AfmFitResult::work, &AfmFitResult::work_error});
-  if (problem.free.tilt) parameters.push_back({"tilt", "N/m", &AfmFitResult::tilt, &AfmFitResult::tilt_error});
   return parameters;
 }
 
@@ -89,9 +84,11 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   row.flag = fitted.flag;
   row.rating = fitted.rating;
   if (!fitted.flag_warnings.empty()) row.message = fitted.flag_warnings.front();
-  if (settings.problem.model != AfmModel::kHertz) {
+  if (settings.problem.model.info().needs_spring) {
     row.tabor_mu = r.tabor_mu;
     row.maugis_lambda = r.maugis_lambda;
+    row.model_jump_off_force = r.jump_off_force;
+    row.model_jump_off_indentation = r.jump_off_indentation;
   }
   for (const std::vector<std::string>* list : {&std::as_const(fitted.flag_warnings), &r.warnings}) {
     for (const std::string& warning : *list) row.warnings += (row.warnings.empty() ? "" : "; ") + warning;

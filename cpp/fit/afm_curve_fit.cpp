@@ -8,6 +8,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 
+#include "coatcontact/afm_models.hpp"
+
 namespace coatcontact::fit {
 
 const char* afm_flag_name(AfmFlag flag) {
@@ -179,21 +181,15 @@ AfmFitResult fitted_result(const std::vector<double>& z, const std::vector<doubl
 // at the approach's free-cantilever level never detached. The estimates stay.
 void check_determined(AfmCurveFit& out) {
   const AfmFitResult& r = out.result;
-  const AfmFree& free = out.problem.free;
-  const bool jkr = out.problem.model != AfmModel::kHertz;
-  const std::string modulus_name = out.problem.coating ? "E1" : "E";
-  const struct {
-    bool free;
-    const char* name;
-    double value, error;
-  } scales[] = {{free.modulus, modulus_name.c_str(), r.modulus, r.modulus_error},
-                {free.thickness && out.problem.coating.has_value(), "t", r.thickness, r.thickness_error},
-                {free.work && jkr, "w", r.work, r.work_error}};
-  for (const auto& p : scales) {
-    if (p.free && !(p.error <= std::abs(p.value))) {
+  const bool coated = out.problem.coating.has_value();
+  for (const AfmParameterInfo& p : out.problem.model.info().parameters) {
+    // The scale parameters (bounded below by 0: E, E1, t, w), as the model's table lists them.
+    if (!(p.lower >= 0.0) || !(out.problem.free.*p.free) || (p.coating_only && !coated)) continue;
+    const double value = r.*p.value, error = r.*p.error;
+    if (!(error <= std::abs(value))) {
       if (out.flag == AfmFlag::kFitted) out.flag = AfmFlag::kUndetermined;
-      out.flag_warnings.push_back(std::string("undetermined: ") + p.name + " = " + number(p.value) + " has a standard error " +
-                                  number(p.error) + " larger than its value (the estimate is kept)");
+      out.flag_warnings.push_back("undetermined: " + afm_parameter_name(p, coated) + " = " + number(value) +
+                                  " has a standard error " + number(error) + " larger than its value (the estimate is kept)");
     }
   }
 }
@@ -262,7 +258,7 @@ AfmCurveFit afm_fit_curve(const afm::ForceCurve& curve, const AfmCurveRequest& r
   if (request.check_jump_in && request.segment == afm::SegmentKind::kApproach) check_jump_in(curve, steps);
   out.problem = request.problem;
   if (!(out.problem.noise_sigma > 0.0)) out.problem.noise_sigma = steps.baseline_sigma;
-  if (out.problem.model != AfmModel::kHertz) out.problem.spring_constant = spring_constant(curve, request.problem);
+  if (out.problem.model.info().needs_spring) out.problem.spring_constant = spring_constant(curve, request.problem);
   // A free tilt is the model's: the baseline step is then the offset (never counted twice).
   out.baseline = out.problem.free.tilt ? AfmBaselineModel::kOffset : request.baseline;
   out.subtracted_tilt = out.baseline == AfmBaselineModel::kTilt ? steps.baseline_slope : 0.0;

@@ -608,15 +608,12 @@ std::vector<double> afm_force_per_modulus(const AfmTip& tip, const std::vector<d
 
 std::vector<double> afm_model_force(const AfmFitProblem& problem, const std::vector<double>& tip_position) {
   check_tip(problem.tip);
+  return problem.model.info().model_force(problem, tip_position);
+}
+
+std::vector<double> internal::afm_hertz_model_force(const AfmFitProblem& problem, const std::vector<double>& tip_position) {
   std::vector<double> delta(tip_position.size());
-  double max_delta = 0.0;
-  for (std::size_t i = 0; i < delta.size(); ++i) {
-    delta[i] = std::max(0.0, problem.contact_point - tip_position[i]);
-    max_delta = std::max(max_delta, delta[i]);
-  }
-  if (problem.model == AfmModel::kJkr) return internal::afm_jkr_model_force(problem, tip_position);
-  if (problem.model == AfmModel::kMd) return internal::afm_md_model_force(problem, tip_position);
-  if (problem.model == AfmModel::kDmt) return internal::afm_dmt_model_force(problem, tip_position);
+  for (std::size_t i = 0; i < delta.size(); ++i) delta[i] = std::max(0.0, problem.contact_point - tip_position[i]);
   std::vector<double> f(delta.size(), problem.baseline);
   // The baseline's tilt (0 unless a fit estimated it).
   for (std::size_t i = 0; i < f.size(); ++i) f[i] += problem.tilt * (tip_position[i] - problem.contact_point);
@@ -735,14 +732,6 @@ void afm_residual_statistics(AfmFitResult& r, const std::vector<double>& force, 
 
 namespace {
 
-// The adhesive models through the cantilever, one file each (THEORY.md section 15).
-AfmFitResult adhesive_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
-                          int free_count) {
-  if (problem.model == AfmModel::kMd) return internal::afm_fit_md(z, force, problem, free_count);
-  if (problem.model == AfmModel::kDmt) return internal::afm_fit_dmt(z, force, problem, free_count);
-  return internal::afm_fit_jkr(z, force, problem, free_count);
-}
-
 // The statistics of a fit found: indentations, residuals, and the free parameters' standard
 // errors from their Jacobian `columns` (in the order of `error_slots`), under nanite's
 // contact-point weights when the problem has them.
@@ -772,13 +761,18 @@ void finish_fit(AfmFitResult& r, const std::vector<double>& z, const std::vector
 }  // namespace
 
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
-  const auto start = std::chrono::steady_clock::now();
-  const bool adhesive = problem.model != AfmModel::kHertz;
-  const int free_count = int(problem.free.modulus) + int(problem.free.contact_point) + int(problem.free.baseline) +
-                         int(problem.free.thickness) + int(adhesive && problem.free.work) + int(problem.free.tilt);
+  const AfmModelInfo& model = problem.model.info();
+  const int free_count = afm_free_count(model, problem.free);
   check_fit_input(z, force, problem, free_count);
-  if (adhesive) return adhesive_fit(z, force, problem, free_count);
-  if (problem.free.work) throw InputError("afm fit: w is a parameter of the adhesive (jkr) model only");
+  if (problem.free.work && afm_free_count(model, AfmFree{false, false, false, false, true, false}) == 0) {
+    throw InputError("afm fit: w is a parameter of the adhesive (" + afm_spring_model_names() + ") models only");
+  }
+  return model.fit(z, force, problem, free_count);
+}
+
+AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force,
+                                     const AfmFitProblem& problem, int free_count) {
+  const auto start = std::chrono::steady_clock::now();
   // The Hertz model's tilt is free or 0 (afm_fit_curve's baseline model subtracts the preprocessing's).
   const std::size_t n = z.size();
   const auto [z_lo_it, z_hi_it] = std::minmax_element(z.begin(), z.end());

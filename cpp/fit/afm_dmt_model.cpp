@@ -4,6 +4,7 @@
 // (afm_adhesive_model.cpp), with the law's end a -> 0 as the jump-off for every spring.
 #include <cmath>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "afm_internal.hpp"
@@ -38,8 +39,6 @@ const ReducedLaw& dmt_law() {
   return law;
 }
 
-}  // namespace
-
 AfmFitResult afm_fit_dmt(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                          int free_count) {
   return afm_fit_adhesive(z, force, problem, free_count, nullptr, &dmt_law());
@@ -47,6 +46,29 @@ AfmFitResult afm_fit_dmt(const std::vector<double>& z, const std::vector<double>
 
 std::vector<double> afm_dmt_model_force(const AfmFitProblem& problem, const std::vector<double>& z) {
   return afm_reduced_model_force(problem, z, dmt_law());
+}
+
+}  // namespace
+
+const AfmModelInfo& afm_model_dmt() {
+  static const AfmModelInfo model{
+      "dmt",
+      {},
+      "DMT",
+      "adhesive DMT fit through the cantilever",
+      true,
+      afm::SegmentKind::kRetract,
+      afm_parameter_table({afm_work_parameter()}, true),
+      afm_fit_dmt,
+      afm_dmt_model_force,
+      [](const AfmFitProblem&, bool batch) -> std::string {
+        return std::string("F = b + m (z - z_c) + F_DMT(z_c - z), F_DMT: the adhesionless force of the sphere on the sample "
+                           "less 2 pi w R while in contact") +
+               (batch ? ", 0 past the contact point" : " (0 past the contact point, where any spring lets go)");
+      },
+      "DMT needs lambda <= " + coatcontact::detail::short_text(kDmtMaximumLambda),
+      "the adhesionless contact less 2 pi w R through the cantilever: lambda below ~0.1"};
+  return model;
 }
 
 }  // namespace coatcontact::fit::internal

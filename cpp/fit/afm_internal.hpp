@@ -1,5 +1,6 @@
 // Library-private pieces shared by the AFM curve fits (afm_curve_model.cpp: Hertz/Sneddon;
-// afm_adhesive_model.cpp: JKR through the cantilever). Not installed.
+// afm_adhesive_model.cpp: the adhesive search through the cantilever) and the model files that
+// register them (afm_<name>_model.cpp, coatcontact/afm_models.hpp). Not installed.
 #pragma once
 #include <functional>
 #include <memory>
@@ -9,8 +10,20 @@
 #include <vector>
 
 #include "coatcontact/afm_fit.hpp"
+#include "coatcontact/afm_models.hpp"
 
 namespace coatcontact::fit::internal {
+
+// A model's parameter table: E, t, contact_point, baseline, the model's `own`, tilt (free by
+// default when tilt_free).
+std::vector<AfmParameterInfo> afm_parameter_table(const std::vector<AfmParameterInfo>& own, bool tilt_free);
+// w [J/m2] of the adhesive models: free by default, > 0.
+AfmParameterInfo afm_work_parameter();
+
+// The Hertz/Sneddon fit (afm_curve_model.cpp) and its model force at z.
+AfmFitResult afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                           int free_count);
+std::vector<double> afm_hertz_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
 
 // s^2 (J^T J)^-1 on the column-scaled normal matrix: the standard errors of the columns'
 // parameters; NumericalError if a column is zero or the matrix singular.
@@ -100,20 +113,15 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z, const std::vector<do
 // The model force at z of a law on the reduced variables (problem at its estimates).
 std::vector<double> afm_reduced_model_force(const AfmFitProblem& problem, const std::vector<double>& z, const ReducedLaw& law);
 
-// The DMT fit through the cantilever (problem.model == kDmt) and its model force at z.
-AfmFitResult afm_fit_dmt(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
-                         int free_count);
-std::vector<double> afm_dmt_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
-
 // Cubic Lagrange weights of the nodes j0..j0+3 at x (node j at x = j).
 void lagrange_weights(double x, long j0, double weight[4]);
 
-// The Maugis-Dugdale fit through the cantilever (problem.model == kMd) and its model force at z.
+// The Maugis-Dugdale fit through the cantilever (afm_md_model.cpp) and its model force at z.
 AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                         int free_count);
 std::vector<double> afm_md_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
 
-// The JKR fit through the cantilever (problem.model == kJkr) and its model force at z.
+// The JKR fit through the cantilever (afm_jkr_model.cpp) and its model force at z.
 AfmFitResult afm_fit_jkr(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                          int free_count);
 std::vector<double> afm_jkr_model_force(const AfmFitProblem& problem, const std::vector<double>& z);

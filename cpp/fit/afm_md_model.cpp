@@ -3,6 +3,7 @@
 // the branch the cantilever holds, searched by the adhesive fit it shares with JKR
 // (internal::afm_fit_adhesive). See coatcontact/afm_fit.hpp.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -235,6 +236,22 @@ std::vector<double> afm_md_model_force(const AfmFitProblem& problem, const std::
     f[i] = problem.baseline + problem.tilt * (z[i] - problem.contact_point) + branch->at(problem.contact_point - z[i]).first;
   }
   return f;
+}
+
+const AfmModelInfo& afm_model_md() {
+  static const AfmModelInfo model{
+      "md", {"maugis-dugdale"}, "Maugis-Dugdale", "adhesive Maugis-Dugdale fit through the cantilever", true,
+      afm::SegmentKind::kRetract, afm_parameter_table({afm_work_parameter()}, true), afm_fit_md, afm_md_model_force,
+      [](const AfmFitProblem& problem, bool batch) -> std::string {
+        char h0[32];  // shortest round trip, as the CLI writes numbers
+        *std::to_chars(h0, h0 + sizeof h0 - 1, kDugdaleRangeOverZ0 * problem.surface_force_range).ptr = '\0';
+        return std::string("F = b + m (z - z_c) + F_MD(z_c - z), F_MD: Maugis-Dugdale (cohesive-zone table, sigma0 = w/h0, h0 = 0.97 z0") +
+               (batch ? std::string(" = ") + h0 + " m) of the sphere on the sample on the branch stable under the cantilever's spring k (each curve's), 0 past its jump-off"
+                      : ") of the sphere on the sample on the branch stable under the spring k (0 past its jump-off)");
+      },
+      "the Maugis-Dugdale table holds lambda in [" + short_text(kMinimumLambda) + ", " + short_text(kMaximumLambda) + "]",
+      "the same with a Maugis-Dugdale zone of range h0 = 0.97 z0, --range: for lambda below ~5"};
+  return model;
 }
 
 }  // namespace coatcontact::fit::internal

@@ -224,11 +224,10 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     [m]} of the retract's most tensile force against its free-cantilever baseline, a line
     "baseline_offset" [N] + "baseline_slope" [N/m] z on its last half; or None), and per fitted point index (into the curve), tip_position, F,
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
-    if model == "maugis-dugdale":
-        model = "md"
-    jkr = model in ("jkr", "md", "dmt")  # the adhesive models share their keywords
+    model = _model_name(model)
+    jkr = _MODELS[model]["spring"]  # the adhesive models share their keywords
     if segment is None:
-        segment = "retract" if jkr else "approach"
+        segment = _MODELS[model]["segment"]
     if segment not in ("approach", "retract"):
         raise ValueError(f"segment: {segment!r} is not allowed; expected 'approach' or 'retract'")
     if not jkr and (work is not None or tilt is not None):
@@ -300,7 +299,7 @@ def _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, n
     part = _segment_slice(mapping, segment, len(f_all))
     z, f = z_all[part], f_all[part]
     adhesion = None
-    if model in ("jkr", "md", "dmt"):
+    if _MODELS[model]["spring"]:
         k = _spring_constant(mapping, spring_constant) if mapping is not None else spring_constant
         if k is None:
             raise ValueError(f"spring_constant: the {model} model needs the cantilever's spring constant (N/m); "
@@ -342,12 +341,27 @@ def _adhesion(model, work, k, surface_force_range, tilt):
     return (float(work or 0.0), float(k), z0, float(tilt or 0.0), model)
 
 
+# The library's force models (its registry): name -> name, aliases, "spring" (the adhesive models
+# through the cantilever), default "segment", parameters and default free parameters.
+_MODELS = {m["name"]: m for m in _afm.models()}
+_ALIASES = {alias: m["name"] for m in _MODELS.values() for alias in m["aliases"]}
+
+
+def _model_name(model):
+    """The registry's name of `model` (an alias resolved); ValueError naming the allowed ones."""
+    if isinstance(model, str) and model in _ALIASES:
+        return _ALIASES[model]
+    if not isinstance(model, str) or model not in _MODELS:
+        raise ValueError(f"model: {model!r} is not a model; allowed: " + ", ".join(repr(n) for n in _MODELS))
+    return model
+
+
 def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
     """The tip, sample and free parameters of fit and fit_map as _afm takes them."""
-    if model not in ("hertz", "jkr", "md", "dmt"):
-        raise ValueError(f"model: {model!r} is not a model; allowed: 'hertz', 'jkr', 'md', 'dmt'")
-    if model in ("jkr", "md", "dmt") and free == ("E", "contact_point", "baseline"):
-        free = ("E", "w", "contact_point", "baseline", "tilt")
+    model = _model_name(model)
+    default_free = free == ("E", "contact_point", "baseline")  # the keyword's default: the model's
+    if default_free:
+        free = tuple(_MODELS[model]["default_free"].split(","))
     coating = None
     if film is not None or substrate is not None or thickness is not None:
         if halfspace is not None:
@@ -357,10 +371,8 @@ def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness
         sub = None if (isinstance(substrate, str) and substrate == "rigid") else tuple(float(v) for v in substrate)
         coating = (float(film[0]), float(film[1]), sub, float(thickness))
         E, nu = coating[0], coating[1]
-        if free == ("E", "contact_point", "baseline"):
-            free = ("E1", "contact_point", "baseline")
-        elif free == ("E", "w", "contact_point", "baseline", "tilt"):
-            free = ("E1", "w", "contact_point", "baseline", "tilt")
+        if default_free:
+            free = tuple(_MODELS[model]["coating_default_free"].split(","))
     elif halfspace is None:
         raise ValueError("halfspace: give the sample as halfspace=(E, nu), or a coating film=, substrate=, thickness=")
     else:
@@ -486,18 +498,18 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     and 11 keep their estimates), reason, each free estimate ("E" [Pa], "E1" [Pa],
     "t" [m], "w" [J/m2] and "tilt" [N/m] of jkr and md, "contact_point" [m], "baseline" [N]) and its
     "_error", contact_point [m] when
-    fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m], points,
-    rating (0..10, docs/afm.md "Curve rating"; 0 without estimates), tabor_mu and maugis_lambda
-    (adhesive models; NaN for hertz), warnings ("; "-separated, "" for none);
+    fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m],
+    model_jump_off_force [N] and model_jump_off_indentation [m] (the fitted model's own jump-off
+    through the spring), points, rating (0..10, docs/afm.md "Curve rating"; 0 without estimates),
+    tabor_mu and maugis_lambda (these four: adhesive models; NaN for hertz), warnings ("; "-separated, "" for none);
     NaN where a flagged curve has no value.
     sort_by          "rating": the rows by their rating, highest first (stable)."""
     if sort_by not in (None, "rating"):
         raise ValueError(f"sort_by: {sort_by!r} is not allowed; expected 'rating' (or None: curve order)")
-    if model == "maugis-dugdale":
-        model = "md"
+    model = _model_name(model)
     tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
                                          free, contact_point)
-    adhesive = model in ("jkr", "md", "dmt")
+    adhesive = _MODELS[model]["spring"]
     if not adhesive and (work is not None or tilt is not None):
         raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")
     if adhesive and "w" not in free and work is None:
@@ -507,7 +519,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     # k 0: each curve's spring constant (spring_constant= sets every curve's through the calibration).
     adhesion = _adhesion(model, work, 0.0, surface_force_range, tilt) if adhesive else None
     if segment is None:
-        segment = "retract" if adhesive else "approach"
+        segment = _MODELS[model]["segment"]
     lo_i, hi_i = (None, None) if indentation_range is None else (float(indentation_range[0]),
                                                                   float(indentation_range[1]))
     if max_indentation is not None:

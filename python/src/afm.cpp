@@ -18,6 +18,7 @@
 #include "coatcontact/afm_batch.hpp"
 #include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
+#include "coatcontact/afm_models.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/errors.hpp"
@@ -263,6 +264,36 @@ coatcontact::fit::AfmTip tip_of(const py::tuple& spec) {
   throw py::value_error("shape: '" + kind + "' is not a tip; allowed: sphere, cone, pyramid, pyramid3, sneddon-sphere, punch, power, blunted-cone, profile");
 }
 
+// The registry's models for the Python layer: name, aliases, whether it needs the spring
+// constant, its default segment, and its parameters (name, unit, free by default) per sample.
+py::list model_list() {
+  namespace fit = coatcontact::fit;
+  py::list models;
+  for (const fit::AfmModelInfo* m : fit::afm_models()) {
+    py::dict d;
+    d["name"] = m->name;
+    d["aliases"] = m->aliases;
+    d["title"] = m->title;
+    d["spring"] = m->needs_spring;
+    d["segment"] = coatcontact::afm::segment_kind_name(m->segment);
+    for (const bool coated : {false, true}) {
+      py::list parameters;
+      for (const fit::AfmParameterInfo& p : m->parameters) {
+        if (p.coating_only && !coated) continue;
+        py::dict q;
+        q["name"] = fit::afm_parameter_name(p, coated);
+        q["unit"] = p.unit;
+        q["free"] = p.free_by_default;
+        parameters.append(q);
+      }
+      d[coated ? "coating_parameters" : "parameters"] = parameters;
+      d[coated ? "coating_default_free" : "default_free"] = fit::afm_free_default(*m, coated);
+    }
+    models.append(d);
+  }
+  return models;
+}
+
 std::optional<double> optional_number(const py::object& v) {
   if (v.is_none()) return std::nullopt;
   return v.cast<double>();
@@ -301,30 +332,21 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
   const bool jkr = !adhesion.is_none();
   if (jkr) {
     const py::tuple a = adhesion.cast<py::tuple>();
-    const std::string name = a.size() > 4 ? a[4].cast<std::string>() : "jkr";
-    problem.model = name == "md" ? fit::AfmModel::kMd : name == "dmt" ? fit::AfmModel::kDmt : fit::AfmModel::kJkr;
+    problem.model = fit::afm_model_by_name(a.size() > 4 ? a[4].cast<std::string>() : "jkr").model();
     problem.work = a[0].cast<double>();
     problem.spring_constant = a[1].cast<double>();
     problem.surface_force_range = a[2].cast<double>();
     problem.tilt = a[3].cast<double>();
   }
-  const std::string modulus_name = coated ? "E1" : "E";
-  const std::string allowed = std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") +
-                              (jkr ? ", w, tilt" : ", tilt");
+  const fit::AfmModelInfo& info = problem.model.info();
+  const std::string allowed = fit::afm_free_allowed(info, coated);
   problem.free = {false, false, false, false};
   for (const auto& name : free) {
-    if (name == modulus_name) problem.free.modulus = true;
-    else if (name == "t" && coated) problem.free.thickness = true;
-    else if (name == "w" && jkr) problem.free.work = true;
-    else if (name == "tilt") problem.free.tilt = true;
-    else if (name == "contact_point") problem.free.contact_point = true;
-    else if (name == "baseline") problem.free.baseline = true;
-    else throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
+    const fit::AfmParameterInfo* parameter = fit::afm_parameter(info, name, coated);
+    if (!parameter) throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
+    problem.free.*parameter->free = true;
   }
-  if (!problem.free.modulus && !problem.free.contact_point && !problem.free.baseline && !problem.free.thickness &&
-      !problem.free.work && !problem.free.tilt) {
-    throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
-  }
+  if (fit::afm_free_count(info, problem.free) == 0) throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
   problem.contact_point = contact_point;
   problem.baseline = baseline;
   return problem;
@@ -337,7 +359,7 @@ py::dict result_dict(const coatcontact::fit::AfmFitProblem& problem, const coatc
                      bool weighted) {
   namespace fit = coatcontact::fit;
   const bool coated = problem.coating.has_value();
-  const bool jkr = problem.model != fit::AfmModel::kHertz;  // JKR or Maugis-Dugdale
+  const bool jkr = problem.model.info().needs_spring;  // the adhesive models
   const std::string modulus_name = coated ? "E1" : "E";
   py::dict out;
     std::vector<std::string> names = {modulus_name, "contact_point", "baseline"};
@@ -406,7 +428,7 @@ py::dict result_dict(const coatcontact::fit::AfmFitProblem& problem, const coatc
     out["seconds"] = r.seconds;
     out["tip"] = problem.tip.description;
     if (jkr) {
-      out["model"] = problem.model == fit::AfmModel::kMd ? "md" : problem.model == fit::AfmModel::kDmt ? "dmt" : "jkr";
+      out["model"] = problem.model.name();
       out["spring_constant"] = problem.spring_constant;
       out["surface_force_range"] = problem.surface_force_range;
       out["tabor_mu"] = r.tabor_mu;
@@ -418,7 +440,7 @@ py::dict result_dict(const coatcontact::fit::AfmFitProblem& problem, const coatc
       out["warnings"] = r.warnings;
       out["model_evaluations"] = r.model_evaluations;
     } else {
-      out["model"] = "hertz";
+      out["model"] = problem.model.name();
     }
   return out;
 }
@@ -543,6 +565,8 @@ class Columns {
       sigma_.push_back(fitted ? r.residual_sigma : nan);
       pulloff_.push_back(fitted ? r.pulloff_force.value_or(nan) : nan);
       pulloff_position_.push_back(fitted ? r.pulloff_position.value_or(nan) : nan);
+      jump_force_.push_back(fitted ? r.model_jump_off_force.value_or(nan) : nan);
+      jump_indentation_.push_back(fitted ? r.model_jump_off_indentation.value_or(nan) : nan);
       points_.push_back(fitted ? static_cast<long>(r.points) : 0);
       rating_.push_back(r.rating);
       tabor_mu_.push_back(r.tabor_mu.value_or(nan));
@@ -576,6 +600,8 @@ class Columns {
     put("residual_sigma", to_array(sigma_));
     put("pulloff", to_array(pulloff_));
     put("pulloff_position", to_array(pulloff_position_));
+    put("model_jump_off_force", to_array(jump_force_));
+    put("model_jump_off_indentation", to_array(jump_indentation_));
     put("points", to_array(points_));
     put("rating", to_array(rating_));
     put("tabor_mu", to_array(tabor_mu_));
@@ -601,7 +627,7 @@ class Columns {
   std::vector<long> curve_, grid_x_, grid_y_, points_;
   std::vector<int> flag_;
   std::vector<double> x_, y_, chi2_, chi2_per_dof_, sigma_, pulloff_, pulloff_position_, contact_;
-  std::vector<double> rating_, tabor_mu_, maugis_lambda_;
+  std::vector<double> rating_, tabor_mu_, maugis_lambda_, jump_force_, jump_indentation_;
   std::vector<std::vector<double>> value_, error_;
 };
 
@@ -809,6 +835,7 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
 
 void register_afm(py::module_& root) {
   py::module_ m = root.def_submodule("_afm", "Compiled AFM readers and fits of coatcontact; use coatcontact.afm.");
+  m.def("models", &model_list);
   m.def("read", &read_curves, py::arg("path"), py::arg("spring_constant") = py::none(), py::arg("sensitivity") = py::none());
   m.def("preprocess", &preprocess_arrays, py::arg("force"), py::arg("height_piezo"), py::arg("height_measured"),
         py::arg("segments"), py::arg("spring_constant"), py::arg("contact_point"), py::arg("baseline_fraction"),

@@ -50,6 +50,9 @@ struct AfmCurveRow {
   double rating = 0.0;  // afm_rating (0 for a curve without estimates)
   // The curves with estimates only (afm_flag_keeps_estimates: fitted, undetermined, no_detachment):
   std::optional<double> tabor_mu, maugis_lambda;  // adhesive models only
+  // The model's own jump-off through the spring (AfmFitResult): force above the baseline [N],
+  // indentation [m]; adhesive models only.
+  std::optional<double> model_jump_off_force, model_jump_off_indentation;
   std::string warnings;  // the fit's warnings and the flag's reasons, "; "-separated (empty: none)
   std::vector<double> estimates, errors;  // in the order of afm_batch_parameters
   double chi2 = 0.0, chi2_per_dof = 0.0, residual_sigma = 0.0;

@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "coatcontact/indenter_shape.hpp"
@@ -64,7 +65,28 @@ struct AfmFree {
 // may be the curve's end a -> 0 (THEORY.md section 15). Or DMT (kDmt): the adhesionless
 // contact less 2 pi w R while in contact, delta = delta_H(a), F = F_H(a) - 2 pi w R; through
 // any spring the jump-off is the curve's end (delta, F) = (0, -2 pi w R).
-enum class AfmModel { kHertz, kJkr, kMd, kDmt };
+// The model is named (coatcontact/afm_models.hpp: its parameter table, fit and force, one file
+// each, listed in the registry); AfmModel is that name. kHertz ... kDmt name the built-in ones.
+struct AfmModelInfo;
+class AfmModel {
+ public:
+  constexpr AfmModel() = default;  // Hertz/Sneddon
+  // `name`: a string that outlives the AfmModel (a literal, or AfmModelInfo::name).
+  constexpr explicit AfmModel(const char* name) : name_(name) {}
+  static const AfmModel kHertz, kJkr, kMd, kDmt;
+  const char* name() const { return name_; }
+  // The registry's entry (afm_model_by_name); InputError for a name it does not hold.
+  const AfmModelInfo& info() const;
+  friend bool operator==(AfmModel a, AfmModel b) { return std::string_view(a.name_) == std::string_view(b.name_); }
+  friend bool operator!=(AfmModel a, AfmModel b) { return !(a == b); }
+
+ private:
+  const char* name_ = "hertz";
+};
+inline constexpr AfmModel AfmModel::kHertz{"hertz"};
+inline constexpr AfmModel AfmModel::kJkr{"jkr"};
+inline constexpr AfmModel AfmModel::kMd{"md"};
+inline constexpr AfmModel AfmModel::kDmt{"dmt"};
 
 // A coating instead of the half-space: film (E1 the value if fixed, else the centre of its
 // search; nu1 fixed) of thickness t on a fixed substrate, adhesionless (THEORY.md sections 5
