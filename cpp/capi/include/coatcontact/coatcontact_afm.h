@@ -152,10 +152,13 @@ int cc_afm_request_set_segment(cc_afm_request *request, const char *segment);
 int cc_afm_request_set_baseline_model(cc_afm_request *request, const char *model);
 int cc_afm_request_set_preprocess(cc_afm_request *request, const cc_afm_preprocess_options *options);
 /* The other settings by name (the CLI's options):
- *   contact_point [m], baseline [N], w [J/m2], tilt [N/m]: values if fixed, else start values
+ *   contact_point [m], baseline [N], tilt [N/m]: the values of fixed parameters (one set for a
+ *   free parameter is CC_INPUT_ERROR at the fit); w [J/m2]: the value if fixed, else the centre
+ *   of its search (adhesive models; 0: from the data),
  *   spring_constant [N/m] (> 0; else the curve's), surface_force_range z0 [m] (> 0),
  *   weight_cp [m] (>= 0, hertz on a half-space), noise_sigma [N] (>= 0; 0: the baseline's),
- *   min_points (>= 1), check_jump_in (0 or 1; approach fits),
+ *   min_points (>= 1, default 5), check_jump_in (0 or 1; approach fits; default 0 for one
+ *   curve, 1 in a batch, as the CLI),
  *   tip_min, tip_max [m], indentation_min, indentation_max [m], max_force [N] (the fit range;
  *   NaN removes a bound). */
 int cc_afm_request_set(cc_afm_request *request, const char *name, double value);
@@ -171,7 +174,7 @@ void cc_afm_fit_destroy(cc_afm_fit *fit);
  * too_few_points, unreadable, bad_data. */
 const char *cc_afm_last_flag(void);
 
-/* The free parameters, in the batch's column order (E or E1, t, w, tilt, contact_point, baseline). */
+/* The free parameters, in the batch's column order (E or E1, t, contact_point, baseline, w, tilt). */
 int cc_afm_fit_parameter_count(const cc_afm_fit *fit, long *count);
 int cc_afm_fit_parameter_name(const cc_afm_fit *fit, long parameter, const char **name, const char **unit);
 /* Any parameter by name, free (its standard error) or fixed (error 0): E/E1, t, w, tilt,
