@@ -7,6 +7,7 @@
 
 #include "capi_afm.hpp"
 #include "capi_guard.hpp"
+#include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/errors.hpp"
 
@@ -106,6 +107,60 @@ void fill_metadata(cc_afm_curve& c) {
   for (const auto& detail : m.details) c.metadata.push_back(detail);
 }
 
+// cc_afm_curve_create's curve, checked: lengths, segments contiguous over 0..n, a height.
+afm::ForceCurve curve_of_arrays(long n, const double* force, const double* height_piezo, const double* height_measured,
+                                const double* time, long segment_count, const cc_afm_segment* segments,
+                                double spring_constant, const std::string& source) {
+  const std::string f = "cc_afm_curve_create: ";
+  if (n < 1) throw InputError(f + "n " + std::to_string(n) + " is not allowed; expected >= 1 points");
+  require(force, "cc_afm_curve_create", "force");
+  if (!height_piezo && !height_measured) throw InputError(f + "height_piezo and height_measured are NULL; give at least one");
+  if (segment_count < 1) throw InputError(f + "segment_count " + std::to_string(segment_count) + " is not allowed; expected >= 1");
+  require(segments, "cc_afm_curve_create", "segments");
+  if (!(spring_constant >= 0.0) || !std::isfinite(spring_constant)) {
+    throw InputError(f + "spring_constant " + text_of(spring_constant) + " is not allowed; expected > 0 [N/m], or 0 for none");
+  }
+  afm::ForceCurve c;
+  const auto copy = [n](const double* p) { return p ? std::vector<double>(p, p + n) : std::vector<double>(); };
+  c.force = copy(force);
+  c.height_piezo = copy(height_piezo);
+  c.height_measured = copy(height_measured);
+  c.time = copy(time);
+  long expected_begin = 0;
+  for (long k = 0; k < segment_count; ++k) {
+    const cc_afm_segment& s = segments[k];
+    const std::string which = "segments[" + std::to_string(k) + "]";
+    if (s.kind != CC_AFM_APPROACH && s.kind != CC_AFM_PAUSE && s.kind != CC_AFM_RETRACT) {
+      throw InputError(f + which + ".kind " + std::to_string(s.kind) + " is not allowed; expected CC_AFM_APPROACH (0), CC_AFM_PAUSE (1) or CC_AFM_RETRACT (2)");
+    }
+    if (s.begin != expected_begin || s.end < s.begin || s.end > n) {
+      throw InputError(f + which + " [" + std::to_string(s.begin) + ", " + std::to_string(s.end) + ") is not allowed; expected begin " +
+                       std::to_string(expected_begin) + " (contiguous from 0) and begin <= end <= n = " + std::to_string(n));
+    }
+    afm::Segment segment;
+    segment.kind = s.kind == CC_AFM_APPROACH ? afm::SegmentKind::kApproach
+                   : s.kind == CC_AFM_PAUSE  ? afm::SegmentKind::kPause
+                                             : afm::SegmentKind::kRetract;
+    segment.begin = static_cast<std::size_t>(s.begin);
+    segment.end = static_cast<std::size_t>(s.end);
+    segment.name = s.name ? s.name : "";
+    segment.duration = s.duration;
+    c.segments.push_back(segment);
+    c.segment.insert(c.segment.end(), segment.size(), static_cast<int>(k));
+    expected_begin = s.end;
+  }
+  if (expected_begin != n) {
+    throw InputError(f + "the segments end at point " + std::to_string(expected_begin) + "; they must cover all n = " + std::to_string(n));
+  }
+  c.metadata.source_file = source;
+  c.metadata.format = "arrays";
+  if (spring_constant > 0.0) {
+    c.metadata.spring_constant = spring_constant;
+    c.metadata.spring_constant_source = afm::CalibrationSource::kUser;
+  }
+  return c;
+}
+
 const cc_afm_curve& curve_of(const cc_afm_curve* curve, const char* function) {
   require(curve, function, "curve");
   return *curve;
@@ -191,6 +246,44 @@ int cc_afm_curve_read(const cc_afm_file* file, long index, cc_afm_curve** curve)
 }
 
 void cc_afm_curve_destroy(cc_afm_curve* curve) { delete curve; }
+
+int cc_afm_curve_create(long n, const double* force, const double* height_piezo, const double* height_measured,
+                        const double* time, long segment_count, const cc_afm_segment* segments, double spring_constant,
+                        const char* source, cc_afm_curve** curve) {
+  return guard([&] {
+    require(curve, "cc_afm_curve_create", "curve");
+    auto made = std::make_unique<cc_afm_curve>();
+    made->curve = curve_of_arrays(n, force, height_piezo, height_measured, time, segment_count, segments, spring_constant,
+                                  source ? source : "arrays");
+    fill_channels(*made);
+    fill_metadata(*made);
+    *curve = made.release();
+  });
+}
+
+int cc_afm_measured_pulloff(long n, const double* tip_position, const double* force, double fraction, cc_afm_pulloff* out) {
+  return guard([&] {
+    const char* f = "cc_afm_measured_pulloff";
+    require(tip_position, f, "tip_position");
+    require(force, f, "force");
+    require(out, f, "out");
+    if (n < 1) throw InputError(std::string(f) + ": n " + std::to_string(n) + " is not allowed; expected >= 1");
+    if (!(fraction > 0.0 && fraction < 1.0)) {
+      throw InputError(std::string(f) + ": fraction " + text_of(fraction) + " is not allowed; expected a number in (0, 1)");
+    }
+    const auto p = coatcontact::fit::afm_measured_pulloff(std::vector<double>(tip_position, tip_position + n),
+                                                          std::vector<double>(force, force + n), fraction);
+    cc_afm_pulloff result{};
+    result.found = p.found;
+    result.force = p.force;
+    result.tip_position = p.tip_position;
+    result.index = static_cast<long>(p.index);
+    result.baseline_offset = p.baseline_offset;
+    result.baseline_slope = p.baseline_slope;
+    result.baseline_points = static_cast<long>(p.baseline_points);
+    *out = result;
+  });
+}
 
 int cc_afm_curve_points(const cc_afm_curve* curve, long* points) {
   return guard([&] {

@@ -60,6 +60,12 @@ int cc_afm_fit_batch(const char* const* files, long file_count, const cc_afm_cal
     if (options) {
       batch.jobs = options->jobs;
       batch.unreadable_file_rows = options->unreadable_file_rows != 0;
+      if (options->skip < 0 || options->count < 0) {
+        throw InputError(std::string(f) + ": options skip " + std::to_string(options->skip) + ", count " +
+                         std::to_string(options->count) + " are not allowed; expected skip >= 0 and count >= 0 (0: all)");
+      }
+      batch.skip = static_cast<std::size_t>(options->skip);
+      if (options->count > 0) batch.count = static_cast<std::size_t>(options->count);
     }
     batch.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) {
       made->rows.insert(made->rows.end(), chunk.begin(), chunk.end());

@@ -243,6 +243,71 @@ static void bad_requests(const char *folder) {
   cc_afm_curve_destroy(curve);
 }
 
+/* Fetches channel `name` of `curve` into a new array (NULL when the curve has none). */
+static double *channel_copy(const cc_afm_curve *curve, const char *name, long points) {
+  long length = 0;
+  if (cc_afm_curve_channel(curve, name, NULL, 0, &length) != CC_OK || length != points) return NULL;
+  double *values = malloc((size_t)points * sizeof(double));
+  cc_afm_curve_channel(curve, name, values, points, &length);
+  return values;
+}
+
+/* The spot3 curve rebuilt from its arrays (a binding's plain arrays) fits as the file's; the
+ * measured pull-off on the retract's arrays is the fit's. */
+static void arrays(const char *folder) {
+  char path[4096];
+  cc_afm_curve *file_curve = read_curve(folder, "fmt-jpk-fd_spot3-0192.jpk-force", 0, path, sizeof path);
+  long points = 0, count = 0;
+  cc_afm_curve_points(file_curve, &points);
+  cc_afm_curve_segment_count(file_curve, &count);
+  cc_afm_segment segments[8];
+  for (long k = 0; k < count && k < 8; ++k) cc_afm_curve_segment(file_curve, k, &segments[k]);
+  double *force = channel_copy(file_curve, "force", points), *piezo = channel_copy(file_curve, "height_piezo", points),
+         *measured = channel_copy(file_curve, "height_measured", points), *time = channel_copy(file_curve, "time", points),
+         *tip = channel_copy(file_curve, "tip_position", points);
+  const double k = atof(metadata(file_curve, "spring_constant")); /* 17 digits: the same double */
+  cc_afm_curve *curve = NULL;
+  check("cc_afm_curve_create", cc_afm_curve_create(points, force, piezo, measured, time, count, segments, k, "spot3 arrays",
+                                                   &curve) == CC_OK);
+  cc_afm_request *request = sphere_request("hertz");
+  cc_afm_fit *from_file = NULL, *from_arrays = NULL;
+  check("fit file", cc_afm_fit_curve(file_curve, request, &from_file) == CC_OK);
+  check("fit arrays", cc_afm_fit_curve(curve, request, &from_arrays) == CC_OK);
+  const char *names[] = {"E", "contact_point", "baseline"};
+  for (int i = 0; i < 3; ++i) {
+    double a = 0.0, b = 0.0;
+    cc_afm_fit_estimate(from_file, names[i], &a, NULL);
+    cc_afm_fit_estimate(from_arrays, names[i], &b, NULL);
+    close_to(names[i], b, a);
+  }
+  cc_afm_fit_summary s;
+  cc_afm_pulloff pulloff;
+  cc_afm_fit_get_summary(from_file, &s);
+  const cc_afm_segment *retract = &segments[count - 1];
+  check("measured pull-off", cc_afm_measured_pulloff(retract->end - retract->begin, tip + retract->begin,
+                                                     force + retract->begin, 0.5, &pulloff) == CC_OK && pulloff.found);
+  close_to("pull-off force as the fit's", pulloff.force, s.pulloff_force);
+  close_to("pull-off position as the fit's", pulloff.tip_position, s.pulloff_position);
+  check("pull-off fraction", cc_afm_measured_pulloff(10, tip, force, 1.0, &pulloff) == CC_INPUT_ERROR && message_has("fraction 1"));
+  /* Segments that leave a gap are refused, naming the segment. */
+  cc_afm_curve *bad = NULL;
+  segments[1].begin += 1;
+  check("gap between segments", cc_afm_curve_create(points, force, piezo, measured, time, count, segments, k, NULL, &bad) ==
+                                    CC_INPUT_ERROR && message_has("segments[1]") && bad == NULL);
+  check("no height", cc_afm_curve_create(points, force, NULL, NULL, NULL, count, segments, k, NULL, &bad) == CC_INPUT_ERROR &&
+                         message_has("height"));
+  cc_afm_fit_destroy(from_file);
+  cc_afm_fit_destroy(from_arrays);
+  cc_afm_request_destroy(request);
+  cc_afm_curve_destroy(curve);
+  cc_afm_curve_destroy(file_curve);
+  free(force);
+  free(piezo);
+  free(measured);
+  free(time);
+  free(tip);
+}
+
 /* The batch of the 2x2 map: one row per curve, each equal to the one-curve fit of its curve
  * (the same pipeline), on 1 and 2 threads. */
 static void batch(const char *folder) {
@@ -252,7 +317,7 @@ static void batch(const char *folder) {
   cc_afm_request *request = sphere_request("hertz");
   for (unsigned jobs = 1; jobs <= 2; ++jobs) {
     cc_afm_rows *rows = NULL;
-    cc_afm_batch_options options = {jobs, 0};
+    cc_afm_batch_options options = {jobs, 0, 0, 0};
     long count = 0, parameters = 0;
     check("batch", cc_afm_fit_batch(files, 1, NULL, request, &options, &rows) == CC_OK);
     check("4 rows", cc_afm_rows_count(rows, &count) == CC_OK && count == 4);
@@ -278,7 +343,17 @@ static void batch(const char *folder) {
     cc_afm_file_destroy(map);
     cc_afm_rows_destroy(rows);
   }
+  /* A share of the run: curves 1 and 2 only, the rows of the whole run's. */
   cc_afm_rows *rows = NULL;
+  cc_afm_batch_options share = {1, 0, 1, 2};
+  long count = 0;
+  check("share", cc_afm_fit_batch(files, 1, NULL, request, &share, &rows) == CC_OK && cc_afm_rows_count(rows, &count) == CC_OK &&
+                     count == 2);
+  cc_afm_row row;
+  check("share starts at curve 1", cc_afm_rows_get(rows, 0, &row) == CC_OK && row.curve == 1);
+  check("row out of range", cc_afm_rows_get(rows, 2, &row) == CC_INPUT_ERROR && message_has("row 2"));
+  cc_afm_rows_destroy(rows);
+  rows = NULL;
   check("batch of no file", cc_afm_fit_batch(files, 0, NULL, request, NULL, &rows) == CC_INPUT_ERROR &&
                                 message_has("file_count 0"));
   const char *missing[] = {"/nonexistent.jpk-force"};
@@ -296,6 +371,7 @@ int main(int argc, char **argv) {
   compare_fit(argv[1], "hertz");
   compare_fit(argv[1], "jkr");
   bad_requests(argv[1]);
+  arrays(argv[1]);
   batch(argv[1]);
   if (failures) {
     printf("%d failures\n", failures);

@@ -57,8 +57,6 @@ int cc_afm_file_format(const cc_afm_file *file, const char **name);
 int cc_afm_curve_read(const cc_afm_file *file, long index, cc_afm_curve **curve);
 void cc_afm_curve_destroy(cc_afm_curve *curve);
 
-int cc_afm_curve_points(const cc_afm_curve *curve, long *points);
-
 enum cc_afm_segment_kind { CC_AFM_APPROACH = 0, CC_AFM_PAUSE = 1, CC_AFM_RETRACT = 2 };
 typedef struct cc_afm_segment {
   int kind;         /* cc_afm_segment_kind */
@@ -66,6 +64,17 @@ typedef struct cc_afm_segment {
   const char *name; /* the file's own name ("extend-spm"), may be "" */
   double duration;  /* [s]; 0 when the file does not say */
 } cc_afm_segment;
+
+/* A curve from arrays (a binding's mappings and plain arrays), fitted as a file's: n points;
+ * force [N]; height_piezo, height_measured [m] (at least one) and time [s] may be NULL; the
+ * segments cover 0..n in order, contiguous (names may be NULL); spring_constant [N/m] > 0
+ * (marked "user"), or 0 for none (the curve then has no tip position, and a fit fails with
+ * flag calibration). source names the curve in messages (NULL: "arrays"). Arrays are copied. */
+int cc_afm_curve_create(long n, const double *force, const double *height_piezo, const double *height_measured,
+                        const double *time, long segment_count, const cc_afm_segment *segments, double spring_constant,
+                        const char *source, cc_afm_curve **curve);
+
+int cc_afm_curve_points(const cc_afm_curve *curve, long *points);
 int cc_afm_curve_segment_count(const cc_afm_curve *curve, long *count);
 int cc_afm_curve_segment(const cc_afm_curve *curve, long segment, cc_afm_segment *out);
 
@@ -120,6 +129,18 @@ typedef struct cc_afm_preprocessed {
  * curve's points. */
 int cc_afm_preprocess(const cc_afm_curve *curve, const cc_afm_preprocess_options *options, cc_afm_preprocessed *out,
                       double *tip_position, double *force_corrected, long capacity);
+
+/* The measured pull-off of a retract, the same for every model (afm_measured_pulloff): the
+ * most tensile force against the free-cantilever line fitted on the last `fraction` (0, 1) of
+ * the n points; found 0 with fewer than 3 baseline points or one tip position. */
+typedef struct cc_afm_pulloff {
+  int found;
+  double force, tip_position; /* [N] (negative when adhesive), [m] */
+  long index;                 /* in the arrays */
+  double baseline_offset, baseline_slope; /* [N], [N/m] */
+  long baseline_points;
+} cc_afm_pulloff;
+int cc_afm_measured_pulloff(long n, const double *tip_position, const double *force, double fraction, cc_afm_pulloff *out);
 
 /* ---- one fit (coatcontact/afm_curve_fit.hpp: afm_fit_curve) --------------------------------
  * A request is built by setters; each checks its value at once (CC_INPUT_ERROR, the request
@@ -217,11 +238,13 @@ int cc_afm_fit_array(const cc_afm_fit *fit, const char *name, double *values, lo
  * Every curve of the files, fitted by the request's pipeline on `jobs` threads (0: the
  * machine's cores; the rows do not depend on it). A curve that cannot be fitted is a row with
  * its flag and reason; a file that cannot be opened is CC_INPUT_ERROR, or with
- * unreadable_file_rows != 0 one flagged row. The thread's progress hook (coatcontact.h) sees
+ * unreadable_file_rows != 0 one flagged row. options may be NULL (every curve, all cores). The thread's progress hook (coatcontact.h) sees
  * the curves done and may interrupt (CC_INTERRUPTED). */
 typedef struct cc_afm_batch_options {
   unsigned jobs;
   int unreadable_file_rows;
+  long skip;  /* the first `skip` curves of the run (over all files) are not fitted (a share of a run) */
+  long count; /* at most this many curves after them; 0: all */
 } cc_afm_batch_options;
 typedef struct cc_afm_rows cc_afm_rows;
 int cc_afm_fit_batch(const char *const *files, long file_count, const cc_afm_calibration *calibration,
