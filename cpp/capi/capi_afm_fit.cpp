@@ -8,6 +8,7 @@
 #include "capi_afm.hpp"
 #include "capi_guard.hpp"
 #include "capi_handles.hpp"
+#include "coatcontact/detail/constants.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/stack.hpp"
 
@@ -163,7 +164,7 @@ fit::AfmTip tip_of(const std::string& kind, double value) {
   if (length && !(value > 0.0 && std::isfinite(value))) {
     throw InputError(f + ": " + kind + " radius " + text_of(value) + " is not allowed; expected a length > 0 [m]");
   }
-  if (angle && !(value > 0.0 && value < M_PI / 2)) {
+  if (angle && !(value > 0.0 && value < coatcontact::detail::kPi / 2)) {
     throw InputError(f + ": " + kind + " angle " + text_of(value) + " is not allowed; expected an angle in (0, pi/2) [rad]");
   }
   if (kind == "sphere") return fit::afm_paraboloid(value);
