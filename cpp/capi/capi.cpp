@@ -3,6 +3,7 @@
 // before anything is written to the caller's memory.
 #include "coatcontact/coatcontact.h"
 #include "capi_guard.hpp"
+#include "capi_handles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,13 +34,6 @@
 
 using coatcontact::InputError;
 
-// A stack under construction: checked piecewise by the setters, as a whole by build().
-struct cc_stack {
-  std::vector<coatcontact::Layer> layers;
-  bool has_substrate = false;
-  coatcontact::Substrate substrate;
-  coatcontact::Indenter indenter;  // rigid
-};
 
 // Handles share ownership of what they reference (the C++ objects keep plain references),
 // so a binding's garbage collector may destroy them in any order. Members are declared in
@@ -61,11 +55,6 @@ struct cc_contact {
 
 struct cc_md_model {
   std::shared_ptr<const coatcontact::MaugisDugdaleModel> model;
-};
-
-struct cc_shape {
-  std::shared_ptr<const coatcontact::IndenterShape> shape;
-  double sphere_radius = 0.0;  // R of a paraboloid (its validity limits are a sphere's), else 0
 };
 
 struct cc_shape_contact {

@@ -68,7 +68,7 @@ config_file=$(find "$prefix" -name coatcontactConfig.cmake)
 [ -n "$pc_file" ] || fail "no coatcontact.pc under $prefix"
 [ -n "$config_file" ] || fail "no coatcontactConfig.cmake under $prefix"
 for f in bin/coatcontact include/coatcontact/coatcontact.h include/coatcontact/reduced.hpp \
-         include/coatcontact/cc_kernel.h include/coatcontact/cc_status.h \
+         include/coatcontact/cc_kernel.h include/coatcontact/cc_status.h include/coatcontact/coatcontact_afm.h \
          share/coatcontact/gnuplot/style.gp; do
   [ -e "$prefix/$f" ] || fail "not installed: $f"
 done

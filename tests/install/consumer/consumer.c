@@ -2,6 +2,7 @@
 #include <stdio.h>
 
 #include "coatcontact/coatcontact.h"
+#include "coatcontact/coatcontact_afm.h" /* installed beside it (also included by coatcontact.h) */
 
 /* ---- the only calls into the library's C API ---- */
 /* Film E1 = 0.1, nu1 = 0.25 on substrate E0 = 1, nu0 = 0.25, a/t = 1, default tolerance. */
@@ -20,8 +21,19 @@ static int solve_e_eq(double *e_eq) {
   return status;
 }
 
+/* The AFM part of the C API links and answers: the preprocessing defaults (baseline on the
+ * approach's first half). */
+static int afm_defaults_ok(void) {
+  cc_afm_preprocess_options options;
+  return cc_afm_preprocess_defaults(&options) == CC_OK && options.baseline_fraction == 0.5;
+}
+
 int main(void) {
   double e_eq = 0.0;
+  if (!afm_defaults_ok()) {
+    fprintf(stderr, "consumer_c: cc_afm_preprocess_defaults: %s\n", cc_last_error_message());
+    return 1;
+  }
   if (solve_e_eq(&e_eq) != CC_OK) {
     fprintf(stderr, "consumer_c: %s\n", cc_last_error_message());
     return 1;

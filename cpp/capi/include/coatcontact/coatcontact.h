@@ -32,6 +32,7 @@
 #include "coatcontact/cc_status.h"
 #include "coatcontact/coatcontact_indent.h" /* nanoindentation files: cc_indent_* */
 #include "coatcontact/coatcontact_indent_analysis.h" /* Oliver-Pharr and the film: cc_indent_analyse, cc_indent_film */
+#include "coatcontact/coatcontact_afm.h" /* AFM force curves: reading, preprocessing, fit, batch (cc_afm_*) */
 
 #ifdef __cplusplus
 extern "C" {

@@ -1,0 +1,558 @@
+// The C interface of the one AFM fit (coatcontact_afm.h): a request built by setters, resolved
+// into the library's AfmCurveRequest with the CLI's rules (defaults of the free parameters and
+// the segment follow the model and the sample), afm_fit_curve, and the result's accessors.
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "capi_afm.hpp"
+#include "capi_guard.hpp"
+#include "capi_handles.hpp"
+#include "coatcontact/detail/constants.hpp"
+#include "coatcontact/errors.hpp"
+#include "coatcontact/stack.hpp"
+
+using coatcontact::InputError;
+namespace afm = coatcontact::afm;
+namespace fit = coatcontact::fit;
+using coatcontact::capi::checked_index;
+using coatcontact::capi::copy_out;
+using coatcontact::capi::guard;
+using coatcontact::capi::require;
+
+struct cc_afm_fit {
+  fit::AfmCurveFit fit;
+  std::vector<fit::AfmBatchParameter> parameters;
+  std::vector<std::string> warnings;  // the model's, then the flag's
+  std::vector<std::pair<std::string, std::vector<double>>> arrays;
+};
+
+namespace {
+
+thread_local std::string last_flag;
+
+// The model of a name, the CLI's --model vocabulary. The one place the C API reads model names:
+// the fit floor's registry lookup replaces this function when it lands.
+constexpr const char* kModelNames = "hertz, jkr, md (maugis-dugdale), dmt";
+std::optional<fit::AfmModel> model_of_name(const std::string& name) {
+  if (name == "hertz") return fit::AfmModel::kHertz;
+  if (name == "jkr") return fit::AfmModel::kJkr;
+  if (name == "md" || name == "maugis-dugdale") return fit::AfmModel::kMd;
+  if (name == "dmt") return fit::AfmModel::kDmt;
+  return std::nullopt;
+}
+
+std::string text_of(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+std::string quoted(const char* text) { return "'" + std::string(text).substr(0, 60) + "'"; }
+
+cc_afm_request& request_of(cc_afm_request* request, const char* function) {
+  require(request, function, "request");
+  return *request;
+}
+
+// Splits a comma-separated list, items trimmed.
+std::vector<std::string> items_of(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    std::string item = text.substr(start, comma - start);
+    item.erase(0, item.find_first_not_of(" \t"));
+    item.erase(item.find_last_not_of(" \t") + 1);
+    items.push_back(item);
+    start = comma + 1;
+  }
+  return items;
+}
+
+// The free flags of `text` for the model and sample (the CLI's --free rules).
+fit::AfmFree free_of(const std::string& text, bool coated, bool adhesive) {
+  const std::string modulus = coated ? "E1" : "E";
+  const std::string allowed =
+      std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") + (adhesive ? ", w, tilt" : ", tilt");
+  fit::AfmFree free{false, false, false, false, false, false};
+  for (const std::string& item : items_of(text)) {
+    if (item == modulus) free.modulus = true;
+    else if (item == "t" && coated) free.thickness = true;
+    else if (item == "w" && adhesive) free.work = true;
+    else if (item == "tilt") free.tilt = true;
+    else if (item == "contact_point") free.contact_point = true;
+    else if (item == "baseline") free.baseline = true;
+    else {
+      throw InputError("cc_afm_request_set_free: '" + item.substr(0, 60) + "' is not a parameter of this fit (" +
+                       (coated ? "coating" : "half-space") + (adhesive ? ", adhesive model" : ", hertz") + "); allowed: " + allowed);
+    }
+  }
+  return free;
+}
+
+// The request's checks that need the whole of it (the CLI's parse_fit_setup rules).
+void check_values(const cc_afm_request& r, const fit::AfmFitProblem& p, bool adhesive, const std::string& f) {
+  if (adhesive && !p.free.work && !r.has_work) throw InputError(f + ": a fixed w needs cc_afm_request_set(request, \"w\", W)");
+  if (!adhesive && r.has_work) throw InputError(f + ": w is set but the model '" + r.model + "' has no adhesion; use jkr, md or dmt");
+  if (!adhesive && r.has_tilt) throw InputError(f + ": a fixed tilt needs an adhesive model (jkr, md, dmt); hertz fits it free or subtracts it");
+  if (p.free.tilt && r.has_tilt) throw InputError(f + ": tilt is free; drop it from the free list to fix it");
+  if (p.free.contact_point && r.has_contact_point) {
+    throw InputError(f + ": contact_point is free; drop it from the free list to fix it");
+  }
+  if (!p.free.contact_point && !r.has_contact_point) {
+    throw InputError(f + ": a fixed contact point needs cc_afm_request_set(request, \"contact_point\", Z)");
+  }
+  if (p.free.baseline && r.has_baseline) {
+    throw InputError(f + ": baseline is free; drop it from the free list to fix it");
+  }
+  if (r.baseline == fit::AfmBaselineModel::kTilt && p.free.tilt) {
+    throw InputError(f + ": baseline model tilt with tilt free would count the slope twice; drop one");
+  }
+  const fit::AfmRange& range = r.request.range;
+  if (range.tip_min && range.tip_max && !(*range.tip_min < *range.tip_max)) {
+    throw InputError(f + ": tip_min " + text_of(*range.tip_min) + " must be below tip_max " + text_of(*range.tip_max));
+  }
+  if (range.indentation_min && range.indentation_max && !(*range.indentation_min < *range.indentation_max)) {
+    throw InputError(f + ": indentation_min " + text_of(*range.indentation_min) + " must be below indentation_max " +
+                     text_of(*range.indentation_max));
+  }
+}
+
+}  // namespace
+
+namespace coatcontact::capi {
+
+fit::AfmCurveRequest resolve_request(const cc_afm_request& r, const char* function) {
+  const std::string f(function);
+  const std::optional<fit::AfmModel> model = model_of_name(r.model);
+  if (!model) throw InputError(f + ": model '" + r.model + "' is not a model; allowed: " + kModelNames);
+  if (!r.has_tip) throw InputError(f + ": the request has no tip; call cc_afm_request_set_tip or cc_afm_request_set_tip_shape");
+  if (!r.has_sample) throw InputError(f + ": the request has no sample; call cc_afm_request_set_sample");
+  fit::AfmCurveRequest out = r.request;
+  fit::AfmFitProblem& p = out.problem;
+  p.model = *model;
+  const bool adhesive = p.model != fit::AfmModel::kHertz;
+  if (adhesive && p.tip.kind != fit::AfmTip::Kind::kParaboloid) {
+    throw InputError(f + ": model " + r.model + " takes a sphere tip (cc_afm_request_set_tip(request, \"sphere\", R)); got " +
+                     p.tip.description);
+  }
+  const std::string modulus = r.coated ? "E1" : "E";
+  p.free = free_of(r.free.empty() ? modulus + (adhesive ? ",w,contact_point,baseline,tilt" : ",contact_point,baseline") : r.free,
+                   r.coated, adhesive);
+  if (!p.free.modulus && !p.free.contact_point && !p.free.baseline && !p.free.thickness && !p.free.work && !p.free.tilt) {
+    throw InputError(f + ": the free list '" + r.free + "' names no parameter");
+  }
+  check_values(r, p, adhesive, f);
+  out.segment = r.segment.value_or(adhesive ? afm::SegmentKind::kRetract : afm::SegmentKind::kApproach);
+  out.baseline = r.baseline.value_or(fit::kAfmDefaultBaseline);
+  out.check_jump_in = r.check_jump_in.value_or(fit::AfmCurveRequest{}.check_jump_in);
+  return out;
+}
+
+}  // namespace coatcontact::capi
+
+namespace {
+
+fit::AfmTip tip_of(const std::string& kind, double value) {
+  const std::string f = "cc_afm_request_set_tip";
+  const bool length = kind == "sphere" || kind == "sneddon-sphere";
+  const bool angle = kind == "cone" || kind == "pyramid" || kind == "pyramid3";
+  if (!length && !angle) {
+    throw InputError(f + ": kind '" + kind.substr(0, 60) + "' is not a tip; allowed: sphere, sneddon-sphere, cone, pyramid, pyramid3");
+  }
+  if (length && !(value > 0.0 && std::isfinite(value))) {
+    throw InputError(f + ": " + kind + " radius " + text_of(value) + " is not allowed; expected a length > 0 [m]");
+  }
+  if (angle && !(value > 0.0 && value < coatcontact::detail::kPi / 2)) {
+    throw InputError(f + ": " + kind + " angle " + text_of(value) + " is not allowed; expected an angle in (0, pi/2) [rad]");
+  }
+  if (kind == "sphere") return fit::afm_paraboloid(value);
+  if (kind == "sneddon-sphere") return fit::afm_sneddon_sphere(value);
+  if (kind == "cone") return fit::afm_cone(value);
+  if (kind == "pyramid") return fit::afm_pyramid(value);
+  return fit::afm_pyramid3(value);
+}
+
+// cc_afm_request_set's values: a finite number, a positive one, or a range bound (NaN: none).
+void set_value(cc_afm_request& r, const std::string& name, double v) {
+  const std::string f = "cc_afm_request_set: " + name + " " + text_of(v) + " is not allowed; expected ";
+  fit::AfmFitProblem& p = r.request.problem;
+  fit::AfmRange& range = r.request.range;
+  const auto finite = [&] {
+    if (!std::isfinite(v)) throw InputError(f + "a finite number");
+  };
+  const auto positive = [&] {
+    if (!(v > 0.0 && std::isfinite(v))) throw InputError(f + "a number > 0");
+  };
+  const auto non_negative = [&] {
+    if (!(v >= 0.0 && std::isfinite(v))) throw InputError(f + "a number >= 0");
+  };
+  const auto bound = [&](std::optional<double>& slot) {
+    if (std::isinf(v)) throw InputError(f + "a finite number, or NaN for no bound");
+    slot = std::isnan(v) ? std::nullopt : std::optional<double>(v);
+  };
+  if (name == "contact_point") {
+    finite();
+    p.contact_point = v;
+    r.has_contact_point = true;
+  } else if (name == "baseline") {
+    finite();
+    p.baseline = v;
+    r.has_baseline = true;
+  } else if (name == "w") {
+    positive();
+    p.work = v;
+    r.has_work = true;
+  } else if (name == "tilt") {
+    finite();
+    p.tilt = v;
+    r.has_tilt = true;
+  } else if (name == "spring_constant") {
+    positive();
+    p.spring_constant = v;
+  } else if (name == "surface_force_range") {
+    positive();
+    p.surface_force_range = v;
+  } else if (name == "weight_cp") {
+    non_negative();
+    p.weight_cp = v;
+  } else if (name == "noise_sigma") {
+    non_negative();
+    p.noise_sigma = v;
+  } else if (name == "min_points") {
+    if (!(v >= 1.0 && v <= 1e9 && v == std::floor(v))) throw InputError(f + "a whole number >= 1");
+    r.request.min_points = static_cast<std::size_t>(v);
+  } else if (name == "check_jump_in") {
+    if (v != 0.0 && v != 1.0) throw InputError(f + "0 or 1");
+    r.check_jump_in = v == 1.0;
+  } else if (name == "tip_min") bound(range.tip_min);
+  else if (name == "tip_max") bound(range.tip_max);
+  else if (name == "indentation_min") bound(range.indentation_min);
+  else if (name == "indentation_max") bound(range.indentation_max);
+  else if (name == "max_force") bound(range.max_force);
+  else {
+    throw InputError("cc_afm_request_set: name '" + name.substr(0, 60) +
+                     "' is not a setting; allowed: contact_point, baseline, w, tilt, spring_constant, surface_force_range, "
+                     "weight_cp, noise_sigma, min_points, check_jump_in, tip_min, tip_max, indentation_min, indentation_max, max_force");
+  }
+}
+
+const cc_afm_fit& fit_of(const cc_afm_fit* fit, const char* function) {
+  require(fit, function, "fit");
+  return *fit;
+}
+
+// A parameter's estimate and error by name (fixed: its value, error 0).
+std::pair<double, double> estimate_of(const cc_afm_fit& f, const std::string& name) {
+  const fit::AfmFitResult& r = f.fit.result;
+  const bool coated = f.fit.problem.coating.has_value();
+  const bool adhesive = f.fit.problem.model != fit::AfmModel::kHertz;
+  if (name == (coated ? "E1" : "E")) return {r.modulus, r.modulus_error};
+  if (name == "t" && coated) return {r.thickness, r.thickness_error};
+  if (name == "w" && adhesive) return {r.work, r.work_error};
+  if (name == "tilt") return {r.tilt, r.tilt_error};
+  if (name == "contact_point") return {r.contact_point, r.contact_point_error};
+  if (name == "baseline") return {r.baseline, r.baseline_error};
+  throw InputError("cc_afm_fit_estimate: name '" + name.substr(0, 60) + "' is not a parameter of this fit; allowed: " +
+                   (coated ? "E1, t" : "E") + (adhesive ? ", w" : "") + ", tilt, contact_point, baseline");
+}
+
+void fill_fit(cc_afm_fit& out) {
+  const fit::AfmCurveFit& f = out.fit;
+  out.parameters = fit::afm_batch_parameters(f.problem);
+  out.warnings = f.result.warnings;
+  out.warnings.insert(out.warnings.end(), f.flag_warnings.begin(), f.flag_warnings.end());
+  std::vector<double> z, force, index;
+  for (std::size_t i : f.kept) {
+    z.push_back(f.z_segment[i]);
+    force.push_back(f.f_segment[i]);
+    index.push_back(static_cast<double>(f.segment.begin + i));
+  }
+  out.arrays = {{"tip_position", z},
+                {"force", force},
+                {"model_force", f.result.model_force},
+                {"residual", f.result.residual},
+                {"indentation", f.result.indentation},
+                {"index", index}};
+}
+
+}  // namespace
+
+extern "C" {
+
+int cc_afm_request_create(cc_afm_request** request) {
+  return guard([&] {
+    require(request, "cc_afm_request_create", "request");
+    *request = new cc_afm_request();
+  });
+}
+
+void cc_afm_request_destroy(cc_afm_request* request) { delete request; }
+
+int cc_afm_request_set_model(cc_afm_request* request, const char* model) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set_model");
+    require(model, "cc_afm_request_set_model", "model");
+    if (!model_of_name(model)) {
+      throw InputError("cc_afm_request_set_model: model " + quoted(model) + " is not a model; allowed: " + kModelNames);
+    }
+    r.model = model;
+  });
+}
+
+int cc_afm_request_set_tip(cc_afm_request* request, const char* kind, double value) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set_tip");
+    require(kind, "cc_afm_request_set_tip", "kind");
+    r.request.problem.tip = tip_of(kind, value);
+    r.has_tip = true;
+  });
+}
+
+int cc_afm_request_set_tip_shape(cc_afm_request* request, const cc_shape* shape) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set_tip_shape");
+    require(shape, "cc_afm_request_set_tip_shape", "shape");
+    // A paraboloid is the closed-form sphere tip (as the CLI's --shape sphere:R).
+    r.request.problem.tip = shape->sphere_radius > 0.0 ? fit::afm_paraboloid(shape->sphere_radius) : fit::afm_shape(shape->shape);
+    r.has_tip = true;
+  });
+}
+
+int cc_afm_request_set_sample(cc_afm_request* request, const cc_stack* stack) {
+  return guard([&] {
+    const std::string f = "cc_afm_request_set_sample";
+    cc_afm_request& r = request_of(request, f.c_str());
+    require(stack, f.c_str(), "stack");
+    if (!stack->has_substrate) throw InputError(f + ": the stack has no substrate (the half-space, or the coating's substrate)");
+    if (!stack->indenter.rigid) throw InputError(f + ": the AFM tip is rigid; the stack has an elastic indenter");
+    if (stack->layers.size() > 1) {
+      throw InputError(f + ": the stack has " + std::to_string(stack->layers.size()) +
+                       " layers; the AFM fit takes a half-space (no layer) or one film");
+    }
+    fit::AfmFitProblem& p = r.request.problem;
+    if (stack->layers.empty()) {
+      if (stack->substrate.rigid) throw InputError(f + ": a half-space sample (no layer) needs an elastic substrate, not a rigid one");
+      coatcontact::Stack({coatcontact::Layer{1.0, stack->substrate.material, false}}, stack->substrate);  // checks E, nu
+      p.coating.reset();
+      p.modulus = stack->substrate.material.youngs_modulus;
+      p.poisson = stack->substrate.material.poisson_ratio;
+      r.coated = false;
+    } else {
+      const coatcontact::Layer& film = stack->layers.front();
+      if (film.slip_below) throw InputError(f + ": the film slides on its substrate (slip_below); the AFM fit takes a bonded film");
+      coatcontact::Stack({film}, stack->substrate);  // checks the constants
+      fit::AfmCoating coating;
+      coating.film = film.material;
+      coating.substrate = stack->substrate;
+      coating.thickness = film.thickness;
+      p.coating = coating;
+      p.poisson = film.material.poisson_ratio;
+      r.coated = true;
+    }
+    r.has_sample = true;
+  });
+}
+
+int cc_afm_request_set_free(cc_afm_request* request, const char* names) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set_free");
+    require(names, "cc_afm_request_set_free", "names");
+    for (const std::string& item : items_of(names)) {
+      if (item != "E" && item != "E1" && item != "t" && item != "w" && item != "tilt" && item != "contact_point" && item != "baseline") {
+        throw InputError("cc_afm_request_set_free: '" + item.substr(0, 60) +
+                         "' is not a parameter; allowed: E (half-space), E1, t (coating), w (adhesive models), tilt, "
+                         "contact_point, baseline");
+      }
+    }
+    r.free = names;
+  });
+}
+
+int cc_afm_request_set_segment(cc_afm_request* request, const char* segment) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set_segment");
+    require(segment, "cc_afm_request_set_segment", "segment");
+    const std::string s(segment);
+    if (s == "approach") r.segment = afm::SegmentKind::kApproach;
+    else if (s == "retract") r.segment = afm::SegmentKind::kRetract;
+    else throw InputError("cc_afm_request_set_segment: segment " + quoted(segment) + " is not allowed; expected approach or retract");
+  });
+}
+
+int cc_afm_request_set_baseline_model(cc_afm_request* request, const char* model) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set_baseline_model");
+    require(model, "cc_afm_request_set_baseline_model", "model");
+    const std::string s(model);
+    if (s == "tilt") r.baseline = fit::AfmBaselineModel::kTilt;
+    else if (s == "offset") r.baseline = fit::AfmBaselineModel::kOffset;
+    else throw InputError("cc_afm_request_set_baseline_model: model " + quoted(model) + " is not allowed; expected tilt or offset");
+  });
+}
+
+int cc_afm_request_set_preprocess(cc_afm_request* request, const cc_afm_preprocess_options* options) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set_preprocess");
+    require(options, "cc_afm_request_set_preprocess", "options");
+    r.request.preprocess = coatcontact::capi::afm_preprocess_options(*options, "cc_afm_request_set_preprocess");
+  });
+}
+
+int cc_afm_request_set(cc_afm_request* request, const char* name, double value) {
+  return guard([&] {
+    cc_afm_request& r = request_of(request, "cc_afm_request_set");
+    require(name, "cc_afm_request_set", "name");
+    cc_afm_request changed = r;  // unchanged on failure
+    set_value(changed, name, value);
+    r = std::move(changed);
+  });
+}
+
+const char* cc_afm_last_flag(void) { return last_flag.c_str(); }
+
+int cc_afm_fit_curve(const cc_afm_curve* curve, const cc_afm_request* request, cc_afm_fit** fit) {
+  last_flag.clear();
+  return guard([&] {
+    require(curve, "cc_afm_fit_curve", "curve");
+    require(request, "cc_afm_fit_curve", "request");
+    require(fit, "cc_afm_fit_curve", "fit");
+    const fit::AfmCurveRequest resolved = coatcontact::capi::resolve_request(*request, "cc_afm_fit_curve");
+    auto made = std::make_unique<cc_afm_fit>();
+    try {
+      made->fit = fit::afm_fit_curve(curve->curve, resolved);
+    } catch (const fit::AfmCurveInputError& e) {
+      last_flag = fit::afm_flag_name(e.flag());
+      throw;
+    } catch (const fit::AfmCurveNumericalError& e) {
+      last_flag = fit::afm_flag_name(e.flag());
+      throw;
+    }
+    fill_fit(*made);
+    *fit = made.release();
+  });
+}
+
+void cc_afm_fit_destroy(cc_afm_fit* fit) { delete fit; }
+
+int cc_afm_fit_parameter_count(const cc_afm_fit* fit, long* count) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_parameter_count");
+    require(count, "cc_afm_fit_parameter_count", "count");
+    *count = static_cast<long>(f.parameters.size());
+  });
+}
+
+int cc_afm_fit_parameter_name(const cc_afm_fit* fit, long parameter, const char** name, const char** unit) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_parameter_name");
+    require(name, "cc_afm_fit_parameter_name", "name");
+    const auto& p = f.parameters[checked_index(parameter, f.parameters.size(), "cc_afm_fit_parameter_name", "parameter")];
+    *name = p.name.c_str();
+    if (unit) *unit = p.unit.c_str();
+  });
+}
+
+int cc_afm_fit_estimate(const cc_afm_fit* fit, const char* name, double* value, double* error) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_estimate");
+    require(name, "cc_afm_fit_estimate", "name");
+    require(value, "cc_afm_fit_estimate", "value");
+    const auto [v, e] = estimate_of(f, name);
+    *value = v;
+    if (error) *error = e;
+  });
+}
+
+int cc_afm_fit_flag(const cc_afm_fit* fit, const char** flag) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_flag");
+    require(flag, "cc_afm_fit_flag", "flag");
+    *flag = fit::afm_flag_name(f.fit.flag);
+  });
+}
+
+int cc_afm_fit_warning_count(const cc_afm_fit* fit, long* count) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_warning_count");
+    require(count, "cc_afm_fit_warning_count", "count");
+    *count = static_cast<long>(f.warnings.size());
+  });
+}
+
+int cc_afm_fit_warning(const cc_afm_fit* fit, long warning, const char** text) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_warning");
+    require(text, "cc_afm_fit_warning", "text");
+    *text = f.warnings[checked_index(warning, f.warnings.size(), "cc_afm_fit_warning", "warning")].c_str();
+  });
+}
+
+int cc_afm_fit_step_count(const cc_afm_fit* fit, long* count) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_step_count");
+    require(count, "cc_afm_fit_step_count", "count");
+    *count = static_cast<long>(f.fit.steps.size());
+  });
+}
+
+int cc_afm_fit_step(const cc_afm_fit* fit, long step, const char** name, const char** parameters) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_step");
+    require(name, "cc_afm_fit_step", "name");
+    require(parameters, "cc_afm_fit_step", "parameters");
+    const auto& s = f.fit.steps[checked_index(step, f.fit.steps.size(), "cc_afm_fit_step", "step")];
+    *name = s.name.c_str();
+    *parameters = s.parameters.c_str();
+  });
+}
+
+int cc_afm_fit_get_summary(const cc_afm_fit* fit, cc_afm_fit_summary* summary) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_get_summary");
+    require(summary, "cc_afm_fit_get_summary", "summary");
+    const fit::AfmFitResult& r = f.fit.result;
+    cc_afm_fit_summary s{};
+    s.points = static_cast<long>(r.points);
+    s.points_in_contact = static_cast<long>(r.points_in_contact);
+    s.free_count = r.free_count;
+    s.rss = r.rss;
+    s.residual_sigma = r.residual_sigma;
+    s.chi2 = r.chi2;
+    s.chi2_per_dof = r.chi2_per_dof;
+    s.r_squared = r.r_squared;
+    s.reduced_modulus = r.reduced_modulus;
+    s.max_indentation = r.max_indentation;
+    s.rating = f.fit.rating;
+    s.spring_constant = f.fit.problem.spring_constant;
+    s.noise_sigma = f.fit.problem.noise_sigma;
+    s.tabor_mu = r.tabor_mu;
+    s.maugis_lambda = r.maugis_lambda;
+    s.jump_off_indentation = r.jump_off_indentation;
+    s.jump_off_force = r.jump_off_force;
+    s.has_pulloff = f.fit.pulloff.found;
+    s.pulloff_force = f.fit.pulloff.force;
+    s.pulloff_position = f.fit.pulloff.tip_position;
+    s.subtracted_tilt = f.fit.subtracted_tilt;
+    s.reference_contact = f.fit.reference_contact;
+    s.reference_baseline = f.fit.reference_baseline;
+    s.segment_begin = static_cast<long>(f.fit.segment.begin);
+    s.segment_end = static_cast<long>(f.fit.segment.end);
+    *summary = s;
+  });
+}
+
+int cc_afm_fit_array(const cc_afm_fit* fit, const char* name, double* values, long capacity, long* length) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_array");
+    require(name, "cc_afm_fit_array", "name");
+    for (const auto& [array, data] : f.arrays) {
+      if (array == name) return copy_out(data, values, capacity, length, "cc_afm_fit_array", array);
+    }
+    throw InputError("cc_afm_fit_array: name " + quoted(name) +
+                     " is not an array of the fit; allowed: tip_position, force, model_force, residual, indentation, index");
+  });
+}
+
+}  // extern "C"
