@@ -9,6 +9,7 @@
 #include "capi_guard.hpp"
 #include "capi_handles.hpp"
 #include "coatcontact/detail/constants.hpp"
+#include "coatcontact/afm_models.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/stack.hpp"
 
@@ -30,17 +31,6 @@ struct cc_afm_fit {
 namespace {
 
 thread_local std::string last_flag;
-
-// The model of a name, the CLI's --model vocabulary. The one place the C API reads model names:
-// the fit floor's registry lookup replaces this function when it lands.
-constexpr const char* kModelNames = "hertz, jkr, md (maugis-dugdale), dmt";
-std::optional<fit::AfmModel> model_of_name(const std::string& name) {
-  if (name == "hertz") return fit::AfmModel::kHertz;
-  if (name == "jkr") return fit::AfmModel::kJkr;
-  if (name == "md" || name == "maugis-dugdale") return fit::AfmModel::kMd;
-  if (name == "dmt") return fit::AfmModel::kDmt;
-  return std::nullopt;
-}
 
 std::string text_of(double v) {
   char text[40];
@@ -70,23 +60,17 @@ std::vector<std::string> items_of(const std::string& text) {
   return items;
 }
 
-// The free flags of `text` for the model and sample (the CLI's --free rules).
-fit::AfmFree free_of(const std::string& text, bool coated, bool adhesive) {
-  const std::string modulus = coated ? "E1" : "E";
-  const std::string allowed =
-      std::string(coated ? "E1, t, contact_point, baseline" : "E, contact_point, baseline") + (adhesive ? ", w, tilt" : ", tilt");
+// The free flags of `text` for the model and sample (the CLI's --free rules, from the registry's
+// parameter table).
+fit::AfmFree free_of(const std::string& text, const fit::AfmModelInfo& info, bool coated) {
   fit::AfmFree free{false, false, false, false, false, false};
   for (const std::string& item : items_of(text)) {
-    if (item == modulus) free.modulus = true;
-    else if (item == "t" && coated) free.thickness = true;
-    else if (item == "w" && adhesive) free.work = true;
-    else if (item == "tilt") free.tilt = true;
-    else if (item == "contact_point") free.contact_point = true;
-    else if (item == "baseline") free.baseline = true;
-    else {
+    const fit::AfmParameterInfo* parameter = fit::afm_parameter(info, item, coated);
+    if (!parameter) {
       throw InputError("cc_afm_request_set_free: '" + item.substr(0, 60) + "' is not a parameter of this fit (" +
-                       (coated ? "coating" : "half-space") + (adhesive ? ", adhesive model" : ", hertz") + "); allowed: " + allowed);
+                       (coated ? "coating, " : "half-space, ") + info.name + "); allowed: " + fit::afm_free_allowed(info, coated));
     }
+    free.*parameter->free = true;
   }
   return free;
 }
@@ -125,26 +109,24 @@ namespace coatcontact::capi {
 
 fit::AfmCurveRequest resolve_request(const cc_afm_request& r, const char* function) {
   const std::string f(function);
-  const std::optional<fit::AfmModel> model = model_of_name(r.model);
-  if (!model) throw InputError(f + ": model '" + r.model + "' is not a model; allowed: " + kModelNames);
+  const fit::AfmModelInfo& info = fit::afm_model_by_name(r.model, "cc_afm_request_set_model");
   if (!r.has_tip) throw InputError(f + ": the request has no tip; call cc_afm_request_set_tip or cc_afm_request_set_tip_shape");
   if (!r.has_sample) throw InputError(f + ": the request has no sample; call cc_afm_request_set_sample");
   fit::AfmCurveRequest out = r.request;
   fit::AfmFitProblem& p = out.problem;
-  p.model = *model;
-  const bool adhesive = p.model != fit::AfmModel::kHertz;
+  p.model = info.model();
+  const bool adhesive = info.needs_spring;
   if (adhesive && p.tip.kind != fit::AfmTip::Kind::kParaboloid) {
     throw InputError(f + ": model " + r.model + " takes a sphere tip (cc_afm_request_set_tip(request, \"sphere\", R)); got " +
                      p.tip.description);
   }
   const std::string modulus = r.coated ? "E1" : "E";
-  p.free = free_of(r.free.empty() ? modulus + (adhesive ? ",w,contact_point,baseline,tilt" : ",contact_point,baseline") : r.free,
-                   r.coated, adhesive);
+  p.free = free_of(r.free.empty() ? fit::afm_free_default(info, r.coated) : r.free, info, r.coated);
   if (!p.free.modulus && !p.free.contact_point && !p.free.baseline && !p.free.thickness && !p.free.work && !p.free.tilt) {
     throw InputError(f + ": the free list '" + r.free + "' names no parameter");
   }
   check_values(r, p, adhesive, f);
-  out.segment = r.segment.value_or(adhesive ? afm::SegmentKind::kRetract : afm::SegmentKind::kApproach);
+  out.segment = r.segment.value_or(info.segment);
   out.baseline = r.baseline.value_or(fit::kAfmDefaultBaseline);
   out.check_jump_in = r.check_jump_in.value_or(fit::AfmCurveRequest{}.check_jump_in);
   return out;
@@ -247,15 +229,12 @@ const cc_afm_fit& fit_of(const cc_afm_fit* fit, const char* function) {
 std::pair<double, double> estimate_of(const cc_afm_fit& f, const std::string& name) {
   const fit::AfmFitResult& r = f.fit.result;
   const bool coated = f.fit.problem.coating.has_value();
-  const bool adhesive = f.fit.problem.model != fit::AfmModel::kHertz;
-  if (name == (coated ? "E1" : "E")) return {r.modulus, r.modulus_error};
-  if (name == "t" && coated) return {r.thickness, r.thickness_error};
-  if (name == "w" && adhesive) return {r.work, r.work_error};
-  if (name == "tilt") return {r.tilt, r.tilt_error};
-  if (name == "contact_point") return {r.contact_point, r.contact_point_error};
-  if (name == "baseline") return {r.baseline, r.baseline_error};
+  const fit::AfmModelInfo& info = f.fit.problem.model.info();
+  if (const fit::AfmParameterInfo* parameter = fit::afm_parameter(info, name, coated)) {
+    return {r.*parameter->value, r.*parameter->error};
+  }
   throw InputError("cc_afm_fit_estimate: name '" + name.substr(0, 60) + "' is not a parameter of this fit; allowed: " +
-                   (coated ? "E1, t" : "E") + (adhesive ? ", w" : "") + ", tilt, contact_point, baseline");
+                   fit::afm_free_allowed(info, coated));
 }
 
 void fill_fit(cc_afm_fit& out) {
@@ -294,10 +273,7 @@ int cc_afm_request_set_model(cc_afm_request* request, const char* model) {
   return guard([&] {
     cc_afm_request& r = request_of(request, "cc_afm_request_set_model");
     require(model, "cc_afm_request_set_model", "model");
-    if (!model_of_name(model)) {
-      throw InputError("cc_afm_request_set_model: model " + quoted(model) + " is not a model; allowed: " + kModelNames);
-    }
-    r.model = model;
+    r.model = fit::afm_model_by_name(model, "cc_afm_request_set_model").name;
   });
 }
 
