@@ -348,7 +348,8 @@ class ReducedSolver:
         Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS: a_over_t;
         Pi_s, Delta_s (adhesionless sphere); Pi_c, Delta_c (cone); E_eq (flat-punch
         stiffness over E*); Gamma1 (edge stress intensity); error_estimate (bound on the
-        largest relative error of the six, <= tol). tol in [1e-13, 1e-1].
+        largest relative error of the six, <= tol).
+        tol: relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
         progress: see reduced(). Ctrl-C stops the call between radii (KeyboardInterrupt).
         strict: see reduced() (status, reason and masked values unless strict).
         """
@@ -368,6 +369,7 @@ class AdhesiveModel:
     The reduced variables are solved at `tol` on Chebyshev nodes and interpolated; a model
     is built once and reused by every curve, pull-off and contact made from it. Calls on one
     model are serialized (its cache is filled lazily).
+    tol: relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     """
 
     def __init__(self, stack, tol=_DEFAULT_TOL):
@@ -502,8 +504,9 @@ class Contact:
         k = _stiffness(k)
         k_bar = k * self.scales["delta_scale"] / self.scales["F_scale"]
         row = _core.pulloff_spring(self.model._core, self.scales["eta"], np.array([k_bar]))[0]
-        return {"k": k, "k_bar": float(k_bar), "F_spring": float(row[0]) * self.scales["F_scale"],
-                "a_spring": float(row[1]) * self.scales["l"], "delta_spring": float(row[2]) * self.scales["delta_scale"]}
+        scales = self.scales
+        return {"k": k, "k_bar": float(k_bar), "F_spring": float(row[0]) * scales["F_scale"],
+                "a_spring": float(row[1]) * scales["l"], "delta_spring": float(row[2]) * scales["delta_scale"]}
 
 
 # Solvers are read-only and models serialize their own calls: both are cached per stack so
@@ -526,7 +529,7 @@ def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, t
     indenter=None | (E2, nu2), a_over_t=...).
 
     a_over_t  contact radius over coating thickness, each in (0, 1e8] (array or scalar).
-    tol       relative tolerance in [1e-13, 1e-1] (default 1e-8).
+    tol       relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
 
     Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS, the columns
     of `coatcontact reduced`: a_over_t, Pi_s, Delta_s (adhesionless sphere), Pi_c, Delta_c
@@ -554,6 +557,7 @@ def adhesive_curve(stack=None, *, film=None, substrate=None, indenter=None, eta,
     Returns a dict of arrays: a_bar, a_over_t = a_bar/eta, P = F/(pi w R), D = delta R/l^2.
     Homogeneous limit (a film like its substrate): the JKR curve
     P = (4/3) a_bar^3 - 2 sqrt(2) a_bar^(3/2), D = a_bar^2 - sqrt(2 a_bar).
+    tol    relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     status, reason per point and masked P, D where the table's decade cannot be built at tol,
     unless strict=True (NumericalError): as reduced().
     """
@@ -565,7 +569,8 @@ def pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, tol=_D
     """Normalized pull-off at each eta (section 5): dict of arrays eta, P_load, a_bar_load,
     D_load (minimum of P, load control), P_disp, a_bar_disp, D_disp (minimum of D,
     displacement control), flags (see AdhesiveModel.pulloff). JKR: -3/2 and -5/6.
-    progress as in AdhesiveModel.pulloff (per eta); Ctrl-C raises KeyboardInterrupt."""
+    progress as in AdhesiveModel.pulloff (per eta); Ctrl-C raises KeyboardInterrupt.
+    tol: relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8)."""
     return _model(_stack(stack, film, substrate, indenter), float(tol)).pulloff(eta, progress)
 
 
@@ -939,6 +944,7 @@ def pulloff_spring(stack=None, *, film=None, substrate=None, indenter=None, eta,
     eta    one coating thickness over l = (pi w R^2/E*)^(1/3);
     k_bar  normalized stiffness k (pi^2 w^2 R/E*^2)^(1/3)/(pi w R), array; 0 gives load
            control, inf displacement control.
+    tol    relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     Returns a dict of arrays k_bar, P, a_bar, D at the jump. JKR at k_bar = 1: P = -1.41024.
     """
     k = np.atleast_1d(np.asarray(k_bar, dtype=float))
