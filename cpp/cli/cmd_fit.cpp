@@ -653,7 +653,7 @@ std::vector<std::string> correlation_warnings(const FitRun& r) {
       if (!r.free[a] || !r.free[b]) continue;
       const double c = r.result.correlation[a][b];
       if (std::fabs(c) > kMaxCorrelation) {
-        out.push_back("correlation " + r.parameters[a].name + "-" + r.parameters[b].name + " = " + short_number(c) +
+        out.push_back("correlation " + r.parameters[a].name + ", " + r.parameters[b].name + " = " + short_number(c) +
                       " (|r| > " + short_number(kMaxCorrelation) + "): the data hardly separate " +
                       r.parameters[a].name + " and " + r.parameters[b].name +
                       "; fix one of them (its value from another measurement) or add data that tells them apart");

@@ -304,7 +304,7 @@ _MAX_CORRELATION = 0.99
 def _warn_correlation(by_name):
     for (a, b), r in by_name.items():
         if a < b and abs(r) > _MAX_CORRELATION:
-            warnings.warn("correlation %s-%s = %.4g (|r| > %g): the data hardly separate %s and %s; fix one of "
+            warnings.warn("correlation %s, %s = %.4g (|r| > %g): the data hardly separate %s and %s; fix one of "
                           "them or add data that tells them apart" % (a, b, r, _MAX_CORRELATION, a, b),
                           CorrelationWarning, stacklevel=4)
 
