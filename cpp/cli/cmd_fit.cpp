@@ -43,7 +43,7 @@ const std::vector<OptionSpec>& fit_options() {
   static const std::vector<OptionSpec> spec = {
       {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F / z,F (F,a, F,delta, F,z reversed) for a two-column file, or name=position|header-name for any file (names a|delta|z, F, sigma_a|sigma_delta|sigma_z, sigma_F, branch: 1 loading, 0 unloading). z is the base (piezo) displacement z = delta + F/k through the spring k of --spring (k may be free: --free w,k)", true},
       {"--radius", "R", "sphere radius (length, e.g. 5mm); or --shape"},
-      {"--shape", "SPEC", "any axisymmetric indenter instead of the sphere, as in 'contact --shape': sphere:R, cone:BETA (half included angle, e.g. 70deg), punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (columns r z). The shape's own parameters are fixed; w, t/h_i, E_i are fitted as for the sphere (no --curve, --plot)"},
+      {"--shape", "SPEC", "any axisymmetric indenter instead of the sphere, as in 'contact --shape': sphere:R, cone:BETA (half included angle, e.g. 70deg), pyramid:THETA (face half angle; the cone of equal area), punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (columns r z). The shape's own parameters are fixed; w, t/h_i, E_i are fitted as for the sphere (no --curve, --plot)"},
       {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted); or --layer", false},
       layer_option(true),
       substrate_option(),
@@ -1066,9 +1066,10 @@ int run_fit_body(const Args& args) {
         "model is taken on the stable branch under displacement control. DATA: TSV/CSV or '-'\n"
         "(stdin), '#' comments, units from a '# units: um mN' line or column names like 'a (um)'; SI\n"
         "otherwise. F is compressive positive.\n"
-        "--shape SPEC replaces the sphere by any indenter of 'contact --shape' (cone, flat punch, power\n"
-        "law, blunted cone, measured profile; THEORY.md section 11): the model is then solved directly\n"
-        "at each data point (slower: seconds to minutes), the shape's own parameters stay fixed.\n"
+        "--shape SPEC replaces the sphere by any indenter of 'contact --shape' (cone, pyramid, flat\n"
+        "punch, power law, blunted cone, measured profile; THEORY.md section 11): the model is then\n"
+        "solved directly at each data point (slower: seconds to minutes), the shape's own parameters\n"
+        "stay fixed.\n"
         "--columns z,F: the abscissa is the base (piezo) displacement z = delta + F/k of a sphere on a\n"
         "spring k (cantilever, machine frame; --spring k): the model is taken on the branch stable under\n"
         "spring control, and k itself can be fitted (--free w,k): F and z together carry it.\n"
