@@ -104,3 +104,18 @@ def test_sphere_spring_refused_as_the_cli_refuses(cli):
             cc.contact(**SPHERE, spring=number)
     with pytest.raises(ValueError, match="outside the allowed range"):
         cc.contact(**SPHERE, spring=math.inf)
+
+
+def test_fit_with_a_pyramid_equals_cli(cli, source_dir):
+    # The cone data of data/ (beta = 80 deg) fitted through the pyramid of equal area.
+    theta = "78.7464deg"
+    header, _, _ = cli("fit", "data/example_cone_a_F.tsv", "--columns", "a,F", "--shape", "pyramid:" + theta,
+                       "--film", "1MPa,0.49", "--substrate", "70GPa,0.22", "--thickness", "5um")
+    estimate, error = values_of(header)["w [J/m2]"].split(" +- ")
+    a, F = np.loadtxt(source_dir + "/data/example_cone_a_F.tsv", unpack=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", cc.ValidityWarning)
+        r = cc.fit(a, F, shape=("pyramid", math.radians(78.7464)), film=(1e6, 0.49), substrate=(70e9, 0.22),
+                   thickness=5e-6)
+    assert close(estimate, r["estimates"]["w"]) and close(error, r["errors"]["w"])
+    assert abs(r["estimates"]["w"] - 0.05) < 3 * r["errors"]["w"]  # the data's truth
