@@ -1,8 +1,9 @@
 # Figure 12 (beyond the paper): adhesive force-penetration curves of three indenters on the
 # same coating (THEORY.md §11): F(δ) (solid) and the adhesionless F_H(δ_H) (dashed), with
-# the load-controlled pull-off (circle) read from each file's header. The sphere is a
+# the load-controlled pull-off (circle, in its curve's colour) read from each file's header. The sphere is a
 # paraboloid z = r²/(2R): beyond a = R (cross) it no longer approximates a sphere, and its
 # curve goes on dotted.
+# In print the key is short (a key wider than the plot is drawn empty); captions.txt says the rest.
 # Inputs: files (one `coatcontact contact` output per shape), shapes (the --shape values).
 
 W = 1000; H = 720
@@ -70,16 +71,17 @@ do for [k = 1:n] {
     }
 }
 plot for [k = 1:n] word(files, k) using (column(c_a) <= R[k] ? column(c_d) * 1e9 : NaN):(column(c_f) * 1e9) \
-         with lines ls eta_ls(2 * k - 1) title 'adhesive (JKR), '.shape_text(word(shapes, k)), \
+         with lines ls eta_ls(2 * k - 1) title (paper ? '' : 'adhesive (JKR), ').shape_text(word(shapes, k)), \
      for [k = 1:n] word(files, k) using (column(c_a) >= R[k] ? column(c_d) * 1e9 : NaN):(column(c_f) * 1e9) \
          with lines ls eta_ls(2 * k - 1) dt 3 lw 1.4 notitle, \
      for [k = 1:n] word(files, k) using (column(c_dh) * 1e9):(column(c_fh) * 1e9) with lines \
          ls eta_ls(2 * k - 1) dt (6, 4) lw 1.4 notitle, \
-     NaN with lines lc rgb '#555555' dt (6, 4) lw 1.4 title 'adhesionless (w = 0), same shape and colour', \
-     for [k = 1:n] '+' using (D[k] * 1e9):(F[k] * 1e9) every ::0::0 with points ls 41 \
-         title (k == 1 ? 'pull-off, load control' : ''), \
-     for [k = 1:n] '+' using (RD[k] * 1e9):(RF[k] * 1e9) every ::0::0 with points lc rgb 'black' pt 2 ps 1.6 lw 1.5 \
-         title (R[k] < 1e300 ? 'a = R: paraboloid ≠ sphere beyond (dotted)' : ''), \
-     for [k = 1:n] '+' using (RDH[k] * 1e9):(RFH[k] * 1e9) every ::0::0 with points lc rgb 'black' pt 2 ps 1.6 lw 1.5 \
+     NaN with lines lc rgb '#555555' dt (6, 4) lw 1.4 title (paper ? 'w = 0' : 'adhesionless (w = 0), same shape and colour'), \
+     for [k = 1:n] '+' using (D[k] * 1e9):(F[k] * 1e9):(eta_rgb(2 * k - 1)) every ::0::0 with points ls 41 \
+         lc rgb variable notitle, \
+     NaN with points ls 41 lc rgb '#555555' title (paper ? 'pull-off' : 'pull-off, load control (circle, curve colour)'), \
+     for [k = 1:n] '+' using (RD[k] * 1e9):(RF[k] * 1e9) every ::0::0 with points lc rgb 'black' pt 2 ps (paper ? 0.9 : 1.6) lw 1.5 \
+         title (R[k] < 1e300 ? (paper ? 'a = R' : 'a = R: paraboloid ≠ sphere beyond (dotted)') : ''), \
+     for [k = 1:n] '+' using (RDH[k] * 1e9):(RFH[k] * 1e9) every ::0::0 with points lc rgb 'black' pt 2 ps (paper ? 0.9 : 1.6) lw 1.5 \
          notitle
 unset output

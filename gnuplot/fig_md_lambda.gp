@@ -35,6 +35,9 @@ do for [d = floor(lg(l_min)) : ceil(lg(l_max * 3))] {
 set xlabel 'λ = 2σ_0 (R / (π w K^2))^{1/3},   K = 4E_1^*/3'
 set ylabel 'pull-off force  P = F / (π w R)'
 set key top left
+# In print: short titles in two columns (the long key ran past the panel into the next one and
+# over the JKR label); captions.txt says the rest.
+if (paper) { set key maxrows 3 }
 set yrange [-2.1 : *]
 set offsets 0, 0, graph 0.45, 0   # headroom for the key above the curves
 
@@ -44,7 +47,8 @@ do for [side = 1:2] {
     jfile = word(jkr, side)
     set title panel(materials_label(r), side)
     set label 1 'DMT  -2' at graph 0.6, first -2 offset 0, -0.9 left tc ls 32 front
-    set label 2 'JKR  -3/2' at graph 0.6, first -1.5 offset 0, 0.7 left tc ls 31 front
+    # Above the line on the soft film; below it on the stiff one, whose thin films' curves pass above.
+    set label 2 'JKR  -3/2' at graph 0.6, first -1.5 offset 0, (side == 1 ? 0.7 : -0.9) left tc ls 31 front
     # JKR pull-off of each eta on this coating, drawn beyond the largest lambda.
     jkr_values = ''
     do for [k = 1:words(etas)] {
@@ -54,15 +58,15 @@ do for [side = 1:2] {
     }
     plot -2 ls 32 notitle, -1.5 ls 31 notitle, \
          homogeneous using (lg(column(c_lambda))):(column(c_pl)) smooth mcsplines with lines ls 31 lw 2.4 \
-             title 'homogeneous (Maugis 1992)', \
+             title (paper ? 'homogeneous' : 'homogeneous (Maugis 1992)'), \
          for [k = 1:words(etas)] file \
              using (near(column(c_eta), real(word(etas, k))) ? lg(column(c_lambda)) : NaN):(column(c_pl)) \
              smooth mcsplines with lines ls eta_ls(k) title sprintf('η = %s', word(etas, k)), \
          for [k = 1:words(etas)] file \
              using (near(column(c_eta), real(word(etas, k))) ? lg(column(c_lambda)) : NaN):(column(c_pl)) \
              with points ls eta_ls(k) pt 7 ps 0.6 notitle, \
-         NaN with points lc rgb '#555555' pt 7 ps 0.6 title 'computed λ (lines: monotone splines in log λ)', \
-         NaN with lines ls 31 lw 1.4 dt 2 title 'JKR on the coating (λ → ∞)', \
+         NaN with points lc rgb '#555555' pt 7 ps 0.6 title (paper ? 'computed λ' : 'computed λ (lines: monotone splines in log λ)'), \
+         NaN with lines ls 31 lw 1.4 dt 2 title (paper ? 'λ → ∞ (JKR)' : 'JKR on the coating (λ → ∞)'), \
          for [k = 1:words(etas)] '+' using (x = l_max * (1.3 + 0.35 * $0 / 10.0), lg(x)):(real(word(jkr_values, k))) \
              every ::0::10 with lines ls eta_ls(k) dt 2 notitle
     unset label 1

@@ -9,16 +9,18 @@ if (!exists("outfile")) outfile = dir.'/fit_example.png'
 W = 1300; H = 900
 load gpdir.'/style.gp'
 
-# "# key: value" header lines of the fit tables.
-header(file, key) = system(sprintf("sed -n 's|^# %s: ||p' '%s' | head -n 1", key, file))
-num(file, key) = real(header(file, key))
+# "# key: value" header lines of the fit tables (keys as written: "w [J/m2]"); a free
+# parameter's value is "estimate +- standard error".
+header(file, key) = system(sprintf("awk -v k='# %s: ' 'index($0, k) == 1 { print substr($0, length(k) + 1); exit }' '%s'", key, file))
+num(file, key) = real(word(header(file, key), 1))
+err(file, key) = real(word(header(file, key), 3))
 fa = dir.'/fit_a_F.tsv'; ca = dir.'/curve_a_F.tsv'
 fd = dir.'/fit_delta_F.tsv'; cd = dir.'/curve_delta_F.tsv'
 
 label(file) = sprintf("fit: w = %.2f ± %.2f mJ/m^2,  t = %.2f ± %.2f µm   (n = %s, s = %.1f µN)", \
-    1e3*num(file, 'w_J_per_m2'), 1e3*num(file, 'w_stderr_J_per_m2'), \
-    1e6*num(file, 't_m'), 1e6*num(file, 't_stderr_m'), \
-    word(header(file, 'points'), 1), 1e6*num(file, 'residual_sigma_N'))
+    1e3*num(file, 'w [J/m2]'), 1e3*err(file, 'w [J/m2]'), \
+    1e6*num(file, 't [m]'), 1e6*err(file, 't [m]'), \
+    word(header(file, 'points'), 1), 1e6*num(file, 'residual sigma [N]'))
 
 set style line 41 lc rgb '#1f77b4' pt 6 ps 0.9 lw 1.2   # data
 set style line 42 lc rgb '#d62728' lw 2.2               # fitted model
@@ -56,8 +58,8 @@ set xlabel ''
 set ylabel 'force F (mN)'
 set key top left
 set title label(fd) font ',11'
-xc = 1e6*num(fd, 'displacement_pulloff_delta_m'); yc = 1e3*num(fd, 'displacement_pulloff_F_N')
-ac = num(fd, 'displacement_pulloff_a_m')
+xc = 1e6*num(fd, 'pull-off penetration, displacement control [m]'); yc = 1e3*num(fd, 'pull-off force, displacement control [N]')
+ac = num(fd, 'pull-off contact radius, displacement control [m]')
 plot cd u ($1 >= ac ? $2*1e6 : NaN):($3*1e3) w l ls 42 t 'model F(δ), stable branch a ≥ a_c', \
      cd u ($1 <= ac ? $2*1e6 : NaN):($3*1e3) w l ls 42 dt 2 t 'a < a_c (unstable)', \
      fd u ($2*1e6):($3*1e3) w p ls 41 t 'data (loading + unloading)', \

@@ -1045,6 +1045,9 @@ int cc_shape_paraboloid(double radius, cc_shape** shape) {
 int cc_shape_cone(double beta, cc_shape** shape) {
   return make_shape("cc_shape_cone", shape, [&] { return coatcontact::make_cone(beta); });
 }
+int cc_shape_pyramid(double theta, cc_shape** shape) {
+  return make_shape("cc_shape_pyramid", shape, [&] { return coatcontact::make_pyramid(theta); });
+}
 int cc_shape_flat_punch(double radius, cc_shape** shape) {
   return make_shape("cc_shape_flat_punch", shape, [&] { return coatcontact::make_flat_punch(radius); });
 }

@@ -320,7 +320,7 @@ void write_md_shape_contact(std::ostream& os, const Stack& stack, const ShapeMau
     h.emplace_back("warning", w);
     std::cerr << "coatcontact contact: warning: " << w << "\n";
   }
-  h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+  h.emplace_back("run time (wall clock, this computation) [s]", num(std::round(seconds * 1e3) / 1e3));
   const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "delta_H_m", "F_H_N", "c_m"};
   write_header(os, h, columns);
   for (std::size_t i = 0; i < curve.size(); ++i) {
@@ -511,7 +511,7 @@ int run_contact(const Args& raw) {
     }
     h.emplace_back("solver tolerance", num(tol));
     h.emplace_back("solver error estimate (relative, max over rows)", num(worst));
-    h.emplace_back("time [s]", num(std::round(seconds * 1e3) / 1e3));
+    h.emplace_back("run time (wall clock, this computation) [s]", num(std::round(seconds * 1e3) / 1e3));
     const std::vector<std::string> columns = {"a_m", "delta_m", "F_N", "delta_H_m", "F_H_N"};
     Output out(args.get("--output").value_or(""));
     std::ostream& os = out.stream();

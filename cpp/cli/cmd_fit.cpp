@@ -43,7 +43,7 @@ const std::vector<OptionSpec>& fit_options() {
   static const std::vector<OptionSpec> spec = {
       {"--columns", "a,F|delta,F|a=N,F=N,..", "the data columns: a,F / delta,F / z,F (F,a, F,delta, F,z reversed) for a two-column file, or name=position|header-name for any file (names a|delta|z, F, sigma_a|sigma_delta|sigma_z, sigma_F, branch: 1 loading, 0 unloading). z is the base (piezo) displacement z = delta + F/k through the spring k of --spring (k may be free: --free w,k)", true},
       {"--radius", "R", "sphere radius (length, e.g. 5mm); or --shape"},
-      {"--shape", "SPEC", "any axisymmetric indenter instead of the sphere, as in 'contact --shape': sphere:R, cone:BETA (half included angle, e.g. 70deg), punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (columns r z). The shape's own parameters are fixed; w, t/h_i, E_i are fitted as for the sphere (no --curve, --plot)"},
+      {"--shape", "SPEC", "any axisymmetric indenter instead of the sphere, as in 'contact --shape': sphere:R, cone:BETA (half included angle, e.g. 70deg), pyramid:THETA (face half angle; the cone of equal area), punch:A, power:N,R, blunted-cone:R,BETA, profile:FILE (columns r z). The shape's own parameters are fixed; w, t/h_i, E_i are fitted as for the sphere (no --curve, --plot)"},
       {"--film", "E1,nu1", "film Young's modulus and Poisson ratio (E1 is the start value if fitted); or --layer", false},
       layer_option(true),
       substrate_option(),
@@ -152,14 +152,6 @@ Quantity parameter_kind(const fit::ParameterInfo& info) {
   return info.kind == fit::ParameterKind::kWork        ? Quantity::kEnergy
          : info.kind == fit::ParameterKind::kThickness ? Quantity::kLength
                                                        : Quantity::kPressure;
-}
-
-// The unit as spelled in header keys ("w_stderr_J_per_m2").
-const char* key_unit(const fit::ParameterInfo& info) {
-  return info.kind == fit::ParameterKind::kWork     ? "J_per_m2"
-         : info.kind == fit::ParameterKind::kSpring ? "N_per_m"
-         : info.kind == fit::ParameterKind::kLambda ? "1"
-                                                    : info.unit;
 }
 
 
@@ -661,7 +653,7 @@ std::vector<std::string> correlation_warnings(const FitRun& r) {
       if (!r.free[a] || !r.free[b]) continue;
       const double c = r.result.correlation[a][b];
       if (std::fabs(c) > kMaxCorrelation) {
-        out.push_back("correlation " + r.parameters[a].name + "-" + r.parameters[b].name + " = " + short_number(c) +
+        out.push_back("correlation " + r.parameters[a].name + ", " + r.parameters[b].name + " = " + short_number(c) +
                       " (|r| > " + short_number(kMaxCorrelation) + "): the data hardly separate " +
                       r.parameters[a].name + " and " + r.parameters[b].name +
                       "; fix one of them (its value from another measurement) or add data that tells them apart");
@@ -671,27 +663,89 @@ std::vector<std::string> correlation_warnings(const FitRun& r) {
   return out;
 }
 
-// The header of the table and the curve.
+// The header's key of a parameter with its unit, as every command writes them: "w [J/m2]",
+// "lambda" (dimensionless), "w, start of the search [J/m2]" with a `what`.
+std::string parameter_key(const fit::ParameterInfo& info, const std::string& what = "") {
+  const std::string unit = info.unit;
+  return info.name + what + (unit.empty() ? std::string() : " [" + unit + "]");
+}
+
+// One line per parameter ("w [J/m2]: 0.0401 +- 0.0002", "E1 [Pa]: 1e+06 (fixed)", as `afm fit`
+// and `kinetics --fit`), the start of the search of the free ones, their correlations and,
+// with --bootstrap, their percentile intervals.
+void add_parameter_lines(FitRun& r) {
+  auto& h = r.header;
+  for (std::size_t which = 0; which < r.parameter_count; ++which) {
+    const fit::ParameterInfo& info = r.parameters[which];
+    h.emplace_back(parameter_key(info), number(r.result.value[which]) +
+                                            (r.free[which] ? " +- " + number(r.result.standard_error[which])
+                                                           : std::string(" (fixed)")));
+  }
+  for (std::size_t which = 0; which < r.parameter_count; ++which) {
+    if (r.free[which]) h.emplace_back(parameter_key(r.parameters[which], ", start of the search"), number(r.start_values[which]));
+  }
+  for (std::size_t a = 0; a < r.parameter_count; ++a) {
+    for (std::size_t b = a + 1; b < r.parameter_count; ++b) {
+      if (r.free[a] && r.free[b]) {
+        h.emplace_back("correlation " + r.parameters[a].name + ", " + r.parameters[b].name,
+                       number(r.result.correlation[a][b]));
+      }
+    }
+  }
+  for (const std::string& w : correlation_warnings(r)) h.emplace_back("warning", w);
+  if (r.problem.bootstrap <= 0) return;
+  for (std::size_t which = 0; which < r.parameter_count; ++which) {
+    if (!r.free[which]) continue;
+    h.emplace_back(parameter_key(r.parameters[which], ", bootstrap 68% interval"),
+                   number(r.result.interval68_low[which]) + ", " + number(r.result.interval68_high[which]));
+    h.emplace_back(parameter_key(r.parameters[which], ", bootstrap 95% interval"),
+                   number(r.result.interval95_low[which]) + ", " + number(r.result.interval95_high[which]));
+  }
+  h.emplace_back("bootstrap", std::to_string(r.result.bootstrap_samples) + " of " + std::to_string(r.problem.bootstrap) +
+                                  " residual resamples refitted (seed " + std::to_string(r.problem.bootstrap_seed) +
+                                  "), percentile intervals");
+}
+
+// The pull-off of the fitted model under one control, keyed as `contact` keys it.
+void add_pulloff_lines(FitRun& r, const std::string& control, double force, double radius, double penetration) {
+  r.header.emplace_back("pull-off force, " + control + " control [N]", number(force));
+  r.header.emplace_back("pull-off contact radius, " + control + " control [m]", number(radius));
+  r.header.emplace_back("pull-off penetration, " + control + " control [m]", number(penetration));
+}
+
+// An elastic body as the material header of every command: "substrate: rigid", or
+// "substrate E0 [Pa]" and "substrate nu0".
+void add_body_lines(FitRun& r, const std::string& body, const std::string& index, bool rigid, const Material& m) {
+  if (rigid) {
+    r.header.emplace_back(body, "rigid");
+    return;
+  }
+  r.header.emplace_back(body + " E" + index + " [Pa]", number(m.youngs_modulus));
+  r.header.emplace_back(body + " nu" + index, number(m.poisson_ratio));
+}
+
+// The header of the table and the curve: keys in words with their units in brackets and values
+// in the shortest text that reads back to the same double, as every command writes them.
 void make_header(FitRun& r) {
-  // ---- output ----
+  auto& h = r.header;
   std::string command = "coatcontact fit";
   for (const auto& a : r.args) command += " " + a;
-  r.header.emplace_back("command", command);
-  r.header.emplace_back("data", r.path);
-  r.header.emplace_back("columns_in_file", r.columns);
-  r.header.emplace_back("data_units", r.loaded.units);
-  r.header.emplace_back("branch", r.branch == fit::Branch::kAll ? "both" : r.branch == fit::Branch::kLoading ? "load" : "unload");
+  h.emplace_back("command", command);
+  h.emplace_back("data file", r.path);
+  h.emplace_back("columns in the file", r.columns);
+  h.emplace_back("data units", r.loaded.units);
+  h.emplace_back("branch", r.branch == fit::Branch::kAll ? "both" : r.branch == fit::Branch::kLoading ? "load" : "unload");
   if (r.hysteresis) {
     const auto unloading_rows = std::count(r.data.unloading.begin(), r.data.unloading.end(), true);
-    r.header.emplace_back("branches", std::to_string(r.data.size() - static_cast<std::size_t>(unloading_rows)) + " loading rows (w_load), " +
-                                        std::to_string(unloading_rows) + " unloading rows (w_unload), from " + r.branch_source +
-                                        "; pull-offs predicted with w_unload");
+    h.emplace_back("branches", std::to_string(r.data.size() - static_cast<std::size_t>(unloading_rows)) + " loading rows (w_load), " +
+                                   std::to_string(unloading_rows) + " unloading rows (w_unload), from " + r.branch_source +
+                                   "; pull-offs predicted with w_unload");
   }
-  r.header.emplace_back("points", std::to_string(r.result.points) + " (of " + std::to_string(r.all.size()) + " in the file)");
+  h.emplace_back("points", std::to_string(r.result.points) + " (of " + std::to_string(r.all.size()) + " in the file)");
   if (r.problem.shape) {
-    r.header.emplace_back("indenter_shape", r.problem.shape->description());
+    h.emplace_back("indenter shape", r.problem.shape->description());
   } else {
-    r.header.emplace_back("sphere_radius_m", number(r.problem.sphere_radius));
+    h.emplace_back("sphere radius R [m]", number(r.problem.sphere_radius));
   }
   if (r.stack_given) {
     std::string layers_text;
@@ -704,71 +758,35 @@ void make_header(FitRun& r) {
                      (r.free[fit::modulus_index(i, r.layer_count)] ? " (free)" : "") + ", nu" + k + " = " +
                      number(layer.material.poisson_ratio) + (layer.slip_below ? ", slip below" : "");
     }
-    r.header.emplace_back("layers", std::to_string(r.layer_count) + " (top first; given values, hints of the free ones): " +
-                                      layers_text);
+    h.emplace_back("layers", std::to_string(r.layer_count) + " (top first; given values, hints of the free ones): " +
+                                 layers_text);
   } else {
-    r.header.emplace_back("film_nu1", number(r.problem.film.poisson_ratio));
+    h.emplace_back("film nu1", number(r.problem.film.poisson_ratio));
   }
-  r.header.emplace_back("substrate", r.problem.substrate.rigid ? std::string("rigid")
-                                                           : "E0 = " + number(r.problem.substrate.material.youngs_modulus) +
-                                                                 " Pa, nu0 = " + number(r.problem.substrate.material.poisson_ratio));
+  add_body_lines(r, "substrate", "0", r.problem.substrate.rigid, r.problem.substrate.material);
   std::string free_names;
   for (std::size_t which = 0; which < r.parameter_count; ++which) {
-    if (!r.free[which]) continue;
-    free_names += (free_names.empty() ? "" : ",") + r.parameters[which].name;
+    if (r.free[which]) free_names += (free_names.empty() ? "" : ",") + r.parameters[which].name;
   }
-  r.header.emplace_back("free", free_names);
-  for (std::size_t which = 0; which < r.parameter_count; ++which) {
-    const std::string& name = r.parameters[which].name;
-    r.header.emplace_back(name + "_" + key_unit(r.parameters[which]), number(r.result.value[which]));
-    if (r.free[which]) {
-      r.header.emplace_back(name + "_stderr_" + key_unit(r.parameters[which]), number(r.result.standard_error[which]));
-      r.header.emplace_back(name + "_hint_" + key_unit(r.parameters[which]), number(r.start_values[which]));
-    } else {
-      r.header.emplace_back(name + "_status", "fixed");
-    }
-  }
-  for (std::size_t a = 0; a < r.parameter_count; ++a) {
-    for (std::size_t b = a + 1; b < r.parameter_count; ++b) {
-      if (r.free[a] && r.free[b]) {
-        r.header.emplace_back("correlation_" + r.parameters[a].name + "_" + r.parameters[b].name,
-                            number(r.result.correlation[a][b]));
-      }
-    }
-  }
-  for (const std::string& w : correlation_warnings(r)) r.header.emplace_back("warning", w);
-  if (r.problem.bootstrap > 0) {
-    for (std::size_t which = 0; which < r.parameter_count; ++which) {
-      if (!r.free[which]) continue;
-      const std::string name = r.parameters[which].name + "_";
-      r.header.emplace_back(name + "interval68_" + key_unit(r.parameters[which]),
-                          number(r.result.interval68_low[which]) + " " + number(r.result.interval68_high[which]));
-      r.header.emplace_back(name + "interval95_" + key_unit(r.parameters[which]),
-                          number(r.result.interval95_low[which]) + " " + number(r.result.interval95_high[which]));
-    }
-    r.header.emplace_back("bootstrap", std::to_string(r.result.bootstrap_samples) + " of " + std::to_string(r.problem.bootstrap) +
-                                         " residual resamples refitted (seed " + std::to_string(r.problem.bootstrap_seed) +
-                                         "), percentile intervals");
-  }
-  r.header.emplace_back("indenter", r.problem.indenter.rigid ? std::string("rigid")
-                                                         : "E2 = " + number(r.problem.indenter.material.youngs_modulus) +
-                                                               " Pa, nu2 = " + number(r.problem.indenter.material.poisson_ratio));
+  h.emplace_back("free", free_names);
+  add_parameter_lines(r);
+  add_body_lines(r, "indenter", "2", r.problem.indenter.rigid, r.problem.indenter.material);
   if (r.result.weighted) {
-    r.header.emplace_back("weights", "effective variance sigma_F^2 + (dF/d" + r.x_name + ")^2 sigma_" + r.x_name +
-                                       "^2 (dF/d" + r.x_name + " along the fitted curve)");
-    r.header.emplace_back("chi2", number(r.result.chi2));
-    r.header.emplace_back("chi2_per_dof", number(r.result.chi2_per_dof));
+    h.emplace_back("weights", "effective variance sigma_F^2 + (dF/d" + r.x_name + ")^2 sigma_" + r.x_name +
+                                  "^2 (dF/d" + r.x_name + " along the fitted curve)");
+    h.emplace_back("chi2", number(r.result.chi2));
+    h.emplace_back("chi2/dof", number(r.result.chi2_per_dof));
     if (r.result.chi2_per_dof > 2.0 || r.result.chi2_per_dof < 0.5) {
-      r.header.emplace_back("warning", "chi2/(n-p) = " + short_number(r.result.chi2_per_dof) +
-                                         " is far from 1: the stated uncertainties do not match the scatter, and "
-                                         "the standard errors (which trust them) are off by sqrt(chi2/(n-p))");
+      h.emplace_back("warning", "chi2/(n-p) = " + short_number(r.result.chi2_per_dof) +
+                                    " is far from 1: the stated uncertainties do not match the scatter, and "
+                                    "the standard errors (which trust them) are off by sqrt(chi2/(n-p))");
     }
   } else {
-    r.header.emplace_back("weights", "none: residuals in F, noise level from the scatter; the errors assume exact " +
-                                       r.x_name + " (give --sigma " + r.x_name + "=..,F=.. if " + r.x_name + " is measured)");
+    h.emplace_back("weights", "none: residuals in F, noise level from the scatter; the errors assume exact " +
+                                  r.x_name + " (give --sigma " + r.x_name + "=..,F=.. if " + r.x_name + " is measured)");
   }
-  r.header.emplace_back("global_search", std::to_string(r.result.search_evaluations) + " model evaluations over log-parameters, " +
-                                          short_number(r.result.search_seconds) + " s");
+  h.emplace_back("global search", std::to_string(r.result.search_evaluations) + " model evaluations over log-parameters, " +
+                                      short_number(r.result.search_seconds) + " s");
   if (r.result.second_minimum) {
     std::string text;
     for (std::size_t which = 0; which < r.parameter_count; ++which) {
@@ -776,42 +794,39 @@ void make_header(FitRun& r) {
       text += std::string(text.empty() ? "" : ", ") + r.parameters[which].name + " = " +
               short_number(r.result.second_value[which]) + " " + r.parameters[which].unit;
     }
-    r.header.emplace_back("second_minimum", text + " (cost " + short_number(r.result.second_cost_ratio) + " x the best)");
+    h.emplace_back("second minimum", text + " (cost " + short_number(r.result.second_cost_ratio) + " x the best)");
   }
   if (r.problem.spring_stiffness > 0.0) {
     if (r.result.has_spring_pulloff) {
-      r.header.emplace_back("spring_pulloff_F_N", number(r.result.spring_pulloff_force));
-      r.header.emplace_back("spring_pulloff_a_m", number(r.result.spring_pulloff_radius));
-      r.header.emplace_back("spring_pulloff_delta_m", number(r.result.spring_pulloff_penetration));
+      add_pulloff_lines(r, "spring", r.result.spring_pulloff_force, r.result.spring_pulloff_radius,
+                        r.result.spring_pulloff_penetration);
     } else {
-      r.header.emplace_back("spring_pulloff", "not found inside the scanned range of the fitted model");
+      h.emplace_back("pull-off, spring control", "not found inside the scanned range of the fitted model");
     }
   }
   if (r.result.has_load_pulloff) {
-    r.header.emplace_back("load_pulloff_F_N", number(r.result.load_pulloff_force));
-    r.header.emplace_back("load_pulloff_a_m", number(r.result.load_pulloff_radius));
-    r.header.emplace_back("load_pulloff_delta_m", number(r.result.load_pulloff_penetration));
+    add_pulloff_lines(r, "load", r.result.load_pulloff_force, r.result.load_pulloff_radius,
+                      r.result.load_pulloff_penetration);
   }
-  r.header.emplace_back("residual_norm_N", number(r.result.residual_norm));
-  r.header.emplace_back("residual_sigma_N", number(r.result.residual_sigma));
-  r.header.emplace_back("r_squared", number(r.result.r_squared));
-  r.header.emplace_back("iterations", std::to_string(r.result.iterations));
-  r.header.emplace_back("converged", r.result.converged ? "yes (" + r.result.stop_reason + ")" : "no");
-  r.header.emplace_back("interpolation_error_N", number(r.result.interpolation_error));
-  r.header.emplace_back("interpolation_error_over_sigma", number(r.result.interpolation_error / r.result.residual_sigma));
-  r.header.emplace_back("solver_tolerance", number(r.result.solver_tolerance));
-  r.header.emplace_back("solver_calls", std::to_string(r.result.solver_calls));
-  r.header.emplace_back("fit_seconds", short_number(r.result.seconds));
+  h.emplace_back("residual norm [N]", number(r.result.residual_norm));
+  h.emplace_back("residual sigma [N]", number(r.result.residual_sigma));
+  h.emplace_back("R^2", number(r.result.r_squared));
+  h.emplace_back("iterations", std::to_string(r.result.iterations));
+  h.emplace_back("converged", r.result.converged ? "yes (" + r.result.stop_reason + ")" : "no");
+  h.emplace_back("interpolation error [N]", number(r.result.interpolation_error));
+  h.emplace_back("interpolation error / residual sigma", number(r.result.interpolation_error / r.result.residual_sigma));
+  h.emplace_back("solver tolerance", number(r.result.solver_tolerance));
+  h.emplace_back("solver calls", std::to_string(r.result.solver_calls));
+  h.emplace_back("run time (wall clock, this computation) [s]", short_number(r.result.seconds));
   if (r.result.displacement_pulloff_radius > 0.0) {
-    r.header.emplace_back("displacement_pulloff_a_m", number(r.result.displacement_pulloff_radius));
-    r.header.emplace_back("displacement_pulloff_delta_m", number(r.result.displacement_pulloff_penetration));
-    r.header.emplace_back("displacement_pulloff_F_N", number(r.result.displacement_pulloff_force));
+    add_pulloff_lines(r, "displacement", r.result.displacement_pulloff_force, r.result.displacement_pulloff_radius,
+                      r.result.displacement_pulloff_penetration);
   }
   std::size_t clamped = 0;
   for (bool c : r.result.clamped) clamped += c ? 1 : 0;
   if (!r.radius_data) {
-    r.header.emplace_back("model_branch", "a >= a_c (first minimum of delta(a)); points with delta < delta(a_c): "
-                                        + std::to_string(clamped) + " (taken at a_c)");
+    h.emplace_back("model branch", "a >= a_c (first minimum of delta(a)); points with delta < delta(a_c): " +
+                                       std::to_string(clamped) + " (taken at a_c)");
   }
   r.out_columns = 
       r.radius_data ? std::vector<std::string>{"line", "a_m", "F_data_N", "F_model_N", "residual_N", "sigma_eff_N"}
@@ -1051,9 +1066,10 @@ int run_fit_body(const Args& args) {
         "model is taken on the stable branch under displacement control. DATA: TSV/CSV or '-'\n"
         "(stdin), '#' comments, units from a '# units: um mN' line or column names like 'a (um)'; SI\n"
         "otherwise. F is compressive positive.\n"
-        "--shape SPEC replaces the sphere by any indenter of 'contact --shape' (cone, flat punch, power\n"
-        "law, blunted cone, measured profile; THEORY.md section 11): the model is then solved directly\n"
-        "at each data point (slower: seconds to minutes), the shape's own parameters stay fixed.\n"
+        "--shape SPEC replaces the sphere by any indenter of 'contact --shape' (cone, pyramid, flat\n"
+        "punch, power law, blunted cone, measured profile; THEORY.md section 11): the model is then\n"
+        "solved directly at each data point (slower: seconds to minutes), the shape's own parameters\n"
+        "stay fixed.\n"
         "--columns z,F: the abscissa is the base (piezo) displacement z = delta + F/k of a sphere on a\n"
         "spring k (cantilever, machine frame; --spring k): the model is taken on the branch stable under\n"
         "spring control, and k itself can be fitted (--free w,k): F and z together carry it.\n"

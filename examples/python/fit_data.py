@@ -29,7 +29,7 @@ def main():
     r = cc.fit(a, F, kind="a", radius=5e-3, film=(1e6, 0.49), substrate=(70e9, 0.22),
                thickness=40e-6, free=("w", "t"))
     est, err = r["estimates"], r["errors"]
-    print("w = %.6g J/m2 +- %.2g, t = %.6g m +- %.2g, R^2 = %.6f, correlation w-t %.3f"
+    print("w = %.6g J/m2 +- %.2g, t = %.6g m +- %.2g, R^2 = %.6f, correlation w, t %.3f"
           % (est["w"], err["w"], est["t"], err["t"], r["r_squared"], r["correlation"][0, 1]))
 
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 7), dpi=100, sharex=True,

@@ -105,6 +105,47 @@ def _si(value, kind, what):
                          % (what, type(value).__name__)) from None
 
 
+_FORCE_UNITS = {"N": 1.0, "mN": 1e-3, "uN": 1e-6, "\u00b5N": 1e-6, "\u03bcN": 1e-6, "nN": 1e-9}
+_STIFFNESS_EXPECTED = ("expected a number with an optional unit (N/m, or a force unit over a length unit: "
+                       "N/mm mN/um nN/nm ...)")
+
+
+def _to_si(value, factor):
+    # The library's to_si: sub-units divide by the exact power of ten.
+    return value / round(1.0 / factor) if factor < 1.0 else value * factor
+
+
+def _stiffness(value, what="spring"):
+    """A spring stiffness k [N/m]: a number (SI) or a text with a unit ("500N/m", "0.5mN/um"),
+    > 0 and finite, read and refused as the CLI's --spring reads it."""
+    if isinstance(value, str):
+        match = _NUMBER.match(value)
+        if not match:
+            raise ValueError("%s: stiffness %r is not a number; %s" % (what, value.strip(), _STIFFNESS_EXPECTED))
+        number, unit = float(match.group(1)), match.group(2)
+        si = number
+        if unit:
+            top, _, bottom = unit.partition("/")
+            below = _UNITS["length"].get(bottom, 0.0)
+            if top not in _FORCE_UNITS or below == 0.0:
+                raise ValueError("%s: unknown stiffness unit %r in %r; %s" % (what, unit, value, _STIFFNESS_EXPECTED))
+            si = _to_si(number, _FORCE_UNITS[top])
+            si = si * round(1.0 / below) if below < 1.0 else si / below
+        shown = repr(value)
+    else:
+        try:
+            number = si = float(value)
+        except (TypeError, ValueError):
+            raise ValueError("%s: expected a stiffness [N/m] (a number or a text with a unit), got %s"
+                             % (what, type(value).__name__)) from None
+        shown = repr(number)
+    if not number > 0.0:
+        raise ValueError("%s: stiffness %s must be > 0" % (what, shown))
+    if not (math.isfinite(si) and 1e-100 <= si <= 1e100):
+        raise ValueError("%s: stiffness %s is outside the allowed range [1e-100, 1e100] (SI units)" % (what, shown))
+    return si
+
+
 def _material(value, what):
     try:
         e, nu = value
@@ -263,7 +304,7 @@ _MAX_CORRELATION = 0.99
 def _warn_correlation(by_name):
     for (a, b), r in by_name.items():
         if a < b and abs(r) > _MAX_CORRELATION:
-            warnings.warn("correlation %s-%s = %.4g (|r| > %g): the data hardly separate %s and %s; fix one of "
+            warnings.warn("correlation %s, %s = %.4g (|r| > %g): the data hardly separate %s and %s; fix one of "
                           "them or add data that tells them apart" % (a, b, r, _MAX_CORRELATION, a, b),
                           CorrelationWarning, stacklevel=4)
 
@@ -307,7 +348,8 @@ class ReducedSolver:
         Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS: a_over_t;
         Pi_s, Delta_s (adhesionless sphere); Pi_c, Delta_c (cone); E_eq (flat-punch
         stiffness over E*); Gamma1 (edge stress intensity); error_estimate (bound on the
-        largest relative error of the six, <= tol). tol in [1e-13, 1e-1].
+        largest relative error of the six, <= tol).
+        tol: relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
         progress: see reduced(). Ctrl-C stops the call between radii (KeyboardInterrupt).
         strict: see reduced() (status, reason and masked values unless strict).
         """
@@ -327,6 +369,7 @@ class AdhesiveModel:
     The reduced variables are solved at `tol` on Chebyshev nodes and interpolated; a model
     is built once and reused by every curve, pull-off and contact made from it. Calls on one
     model are serialized (its cache is filled lazily).
+    tol: relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     """
 
     def __init__(self, stack, tol=_DEFAULT_TOL):
@@ -454,6 +497,17 @@ class Contact:
         out["flags"] = int(flags)
         return out
 
+    def pulloff_spring(self, k):
+        """Pull-off through a spring of stiffness k [N/m] (section 10, `coatcontact sphere
+        --spring k`): the jump where dF/d(delta) = -k, at k_bar = k (l^2/R)/(pi w R). Returns a
+        dict k [N/m], k_bar, F_spring [N], a_spring [m], delta_spring [m]."""
+        k = _stiffness(k)
+        k_bar = k * self.scales["delta_scale"] / self.scales["F_scale"]
+        row = _core.pulloff_spring(self.model._core, self.scales["eta"], np.array([k_bar]))[0]
+        scales = self.scales
+        return {"k": k, "k_bar": float(k_bar), "F_spring": float(row[0]) * scales["F_scale"],
+                "a_spring": float(row[1]) * scales["l"], "delta_spring": float(row[2]) * scales["delta_scale"]}
+
 
 # Solvers are read-only and models serialize their own calls: both are cached per stack so
 # that repeated calls do not rebuild the kernel table or the interpolant.
@@ -475,7 +529,7 @@ def reduced(stack=None, *, film=None, substrate=None, indenter=None, a_over_t, t
     indenter=None | (E2, nu2), a_over_t=...).
 
     a_over_t  contact radius over coating thickness, each in (0, 1e8] (array or scalar).
-    tol       relative tolerance in [1e-13, 1e-1] (default 1e-8).
+    tol       relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
 
     Returns a dict of arrays of the shape of a_over_t with the keys REDUCED_KEYS, the columns
     of `coatcontact reduced`: a_over_t, Pi_s, Delta_s (adhesionless sphere), Pi_c, Delta_c
@@ -503,6 +557,7 @@ def adhesive_curve(stack=None, *, film=None, substrate=None, indenter=None, eta,
     Returns a dict of arrays: a_bar, a_over_t = a_bar/eta, P = F/(pi w R), D = delta R/l^2.
     Homogeneous limit (a film like its substrate): the JKR curve
     P = (4/3) a_bar^3 - 2 sqrt(2) a_bar^(3/2), D = a_bar^2 - sqrt(2 a_bar).
+    tol    relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     status, reason per point and masked P, D where the table's decade cannot be built at tol,
     unless strict=True (NumericalError): as reduced().
     """
@@ -514,12 +569,13 @@ def pulloff(stack=None, *, film=None, substrate=None, indenter=None, eta, tol=_D
     """Normalized pull-off at each eta (section 5): dict of arrays eta, P_load, a_bar_load,
     D_load (minimum of P, load control), P_disp, a_bar_disp, D_disp (minimum of D,
     displacement control), flags (see AdhesiveModel.pulloff). JKR: -3/2 and -5/6.
-    progress as in AdhesiveModel.pulloff (per eta); Ctrl-C raises KeyboardInterrupt."""
+    progress as in AdhesiveModel.pulloff (per eta); Ctrl-C raises KeyboardInterrupt.
+    tol: relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8)."""
     return _model(_stack(stack, film, substrate, indenter), float(tol)).pulloff(eta, progress)
 
 
 def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thickness, work,
-            a=None, points=200, tol=_DEFAULT_TOL, strict=False):
+            a=None, points=200, spring=None, tol=_DEFAULT_TOL, strict=False):
     """Sphere on a coated substrate in SI units (section 5).
 
     radius     sphere radius R [m];  thickness  coating thickness t [m];
@@ -531,13 +587,19 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
     raises a ValidityWarning per limit (warnings.warn), as `coatcontact sphere` warns.
     Returns a dict: a [m], delta [m], F [N] (arrays, F compressive positive); scales
     (l [m], delta_scale = l^2/R [m], F_scale = pi w R [N], eta = t/l); pulloff (F_load [N],
-    a_load [m], delta_load [m], F_disp, a_disp, delta_disp, flags).
+    a_load [m], delta_load [m], F_disp, a_disp, delta_disp, flags; with spring, also k [N/m],
+    k_bar, F_spring [N], a_spring [m], delta_spring [m]).
+    spring     stiffness k [N/m] of the cantilever or frame (a number, or a text: "500N/m",
+               "0.5mN/um"; > 0): adds the pull-off through that spring (section 10), as
+               `coatcontact sphere --spring k`.
+    tol        relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     With a: status, reason per radius and masked delta, F where a radius cannot be delivered,
     unless strict=True (NumericalError): as reduced(); the validity limits see the delivered
     radii.
     """
     radius, thickness = _si(radius, "length", "radius"), _si(thickness, "length", "thickness")
     work = _si(work, "energy per area", "work")
+    k = None if spring is None else _stiffness(spring)
     c = Contact(_model(_stack(stack, film, substrate, indenter), _tolerance(tol)), radius, thickness, work)
     out = c.at(a, strict) if a is not None else c.curve(points)
     if "status" in out and np.any(out["status"] != 0):
@@ -547,6 +609,8 @@ def contact(stack=None, *, film=None, substrate=None, indenter=None, radius, thi
         _warn_validity(c._core, out)
     out["scales"] = c.scales
     out["pulloff"] = c.pulloff()
+    if k is not None:
+        out["pulloff"].update(c.pulloff_spring(k))
     return out
 
 
@@ -587,6 +651,8 @@ def _fit_shape(shape):
         return None
     if shape[0] == "profile":
         return _core.make_profile(np.asarray(shape[1], dtype=float), np.asarray(shape[2], dtype=float))
+    if shape[0] == "pyramid":
+        _check_pyramid(shape)
     params = [float(v) for v in shape[1:]] + [0.0]
     return _core.make_shape(shape[0], params[0], params[1])
 
@@ -601,7 +667,7 @@ def fit(x, F, *, kind="a", radius=None, shape=None, film=None, substrate, thickn
                (kind="delta") or base displacement z = delta + F/k [m] of a sphere on the
                spring k (kind="z", spring= required), and force F [N], compressive positive.
     radius     sphere radius R [m]; or shape= any indenter as in shape_contact: ("sphere", R),
-               ("cone", beta), ("punch", A), ("power", n, R), ("blunted-cone", R, beta),
+               ("cone", beta), ("pyramid", theta), ("punch", A), ("power", n, R), ("blunted-cone", R, beta),
                ("profile", r, z) (its own parameters fixed; the model is solved at every point).
     film       (E1 [Pa], nu1): E1 is the start value if fitted.  substrate (E0, nu0) or "rigid".
     thickness  t [m] of the film: fixed value or start value.
@@ -878,6 +944,7 @@ def pulloff_spring(stack=None, *, film=None, substrate=None, indenter=None, eta,
     eta    one coating thickness over l = (pi w R^2/E*)^(1/3);
     k_bar  normalized stiffness k (pi^2 w^2 R/E*^2)^(1/3)/(pi w R), array; 0 gives load
            control, inf displacement control.
+    tol    relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     Returns a dict of arrays k_bar, P, a_bar, D at the jump. JKR at k_bar = 1: P = -1.41024.
     """
     k = np.atleast_1d(np.asarray(k_bar, dtype=float))
@@ -926,14 +993,29 @@ def maugis_dugdale_pulloff(stack=None, *, film=None, substrate=None, indenter=No
     return out
 
 
+def _check_pyramid(shape):
+    # As the CLI's pyramid:THETA: one parameter, the face half angle (here in radians).
+    if len(shape) != 2:
+        raise ValueError("shape: %r needs 1 parameter: (\"pyramid\", theta), theta the face half angle in "
+                         "radians (e.g. math.radians(70))" % (tuple(shape),))
+    theta = float(shape[1])
+    if not 0.0 < theta < math.pi / 2:
+        raise ValueError("shape: pyramid face half angle %r rad not allowed (need 0 < theta < pi/2, e.g. "
+                         "math.radians(70))" % theta)
+
+
 def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape, thickness, work,
                   a=None, points=200, spring=0.0, tol=_DEFAULT_TOL, strict=False):
     """Adhesive (JKR) contact of any axisymmetric indenter in SI units (section 11).
 
-    shape      ("sphere", R), ("cone", beta), ("punch", A), ("power", n, R),
+    shape      ("sphere", R), ("cone", beta), ("pyramid", theta), ("punch", A), ("power", n, R),
                ("blunted-cone", R, beta) or ("profile", r, z) with arrays r, z [m]; lengths
-               in m, beta the half included angle in radians.
-    thickness  coating thickness t [m]; work  w [J/m^2]; spring  k [N/m] (0: none).
+               in m, beta the half included angle and theta a four-sided pyramid's face half
+               angle in radians (the pyramid as the cone of equal area, as the CLI's
+               pyramid:THETA).
+    thickness  coating thickness t [m]; work  w [J/m^2].
+    spring     stiffness k [N/m] (a number or a text, "500N/m"; 0: none): adds its pull-off.
+    tol        relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
     a          contact radii [m] (default `points` log-spaced over the default range).
     Returns a dict: a, delta, F, delta_H, F_H (arrays, adhesive then adhesionless at the same
     a) and pulloff: F, a, delta under load, displacement (and spring) control; status and
@@ -942,10 +1024,13 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     A curve beyond the validity limits (delta > t, F/(pi a^2) > 0.1 E*, and for a sphere
     a > 0.1 R) raises a ValidityWarning per limit, as `coatcontact contact` warns.
     """
+    k = 0.0 if isinstance(spring, (int, float)) and spring == 0 else _stiffness(spring)
     kind = shape[0]
     if kind == "profile":
         core_shape = _core.make_profile(np.asarray(shape[1], dtype=float), np.asarray(shape[2], dtype=float))
     else:
+        if kind == "pyramid":
+            _check_pyramid(shape)
         params = [float(v) for v in shape[1:]] + [0.0]
         core_shape = _core.make_shape(kind, params[0], params[1])
     c = _core.ShapeContact(_stack(stack, film, substrate, indenter)._core, core_shape, float(thickness),
@@ -973,7 +1058,7 @@ def shape_contact(stack=None, *, film=None, substrate=None, indenter=None, shape
     if not strict:
         _points(out, keys[1:], status, reasons, radii.shape, "contact radii")
     try:
-        p = c.pulloff(float(spring))
+        p = c.pulloff(k)
     except NumericalError as error:
         if strict:
             raise

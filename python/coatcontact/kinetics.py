@@ -71,6 +71,7 @@ def kinetics(*, film, substrate, thickness, work, v_star, n, spring, protocol, r
     retract_speeds
                 optional array: run once per speed of the last retract (the part before it is
                 simulated once) and return only the pull-offs, under "sweep".
+    tol         relative tolerance of the solver's values, allowed 1e-13..1e-1 (default 1e-8).
 
     Returns a dict: t [s], z [m], delta [m], a [m], F [N], G [J/m^2] (arrays, F compressive
     positive); pulloff (F, t, a: the most tensile force of the last retract); loss (F, t, a

@@ -434,10 +434,11 @@ Shape make_shape(const std::string& kind, double p1, double p2) {
   call_held([&] {
     if (kind == "sphere") return cc_shape_paraboloid(p1, &s);
     if (kind == "cone") return cc_shape_cone(p1, &s);
+    if (kind == "pyramid") return cc_shape_pyramid(p1, &s);
     if (kind == "punch") return cc_shape_flat_punch(p1, &s);
     if (kind == "power") return cc_shape_power_law(p1, p2, &s);
     if (kind == "blunted-cone") return cc_shape_blunted_cone(p1, p2, &s);
-    throw py::value_error("shape: '" + kind + "' is not one of sphere, cone, punch, power, blunted-cone, profile");
+    throw py::value_error("shape: '" + kind + "' is not one of sphere, cone, pyramid, punch, power, blunted-cone, profile");
   });
   return Shape{std::shared_ptr<cc_shape>(s, cc_shape_destroy)};
 }

@@ -109,10 +109,11 @@ def test_fit_equals_cli(cli, source_dir):
                thickness=50e-6)
     # The start of w is only a hint now (the fit searches log w globally, issue 15); the
     # estimates are what must agree.
-    assert same(values["w_J_per_m2"], r["estimates"]["w"])
-    assert same(values["w_stderr_J_per_m2"], r["errors"]["w"])
-    assert same(values["residual_norm_N"], r["residual_norm"])
-    assert same(values["r_squared"], r["r_squared"])
+    estimate, error = values["w [J/m2]"].split(" +- ")
+    assert same(estimate, r["estimates"]["w"])
+    assert same(error, r["errors"]["w"])
+    assert same(values["residual norm [N]"], r["residual_norm"])
+    assert same(values["R^2"], r["r_squared"])
     assert r["iterations"] == int(values["iterations"])
     assert r["converged"] and r["free"] == ("w",)
     assert r["covariance"][0, 0] == pytest.approx(r["errors"]["w"] ** 2)

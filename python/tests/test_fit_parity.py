@@ -33,11 +33,18 @@ def write_si(path, x, F):
             f.write("%.17g\t%.17g\n" % (xi, fi))
 
 
+def parameter_key(r, name, what=""):
+    """The CLI's header key of a parameter: "w [J/m2]", "lambda" (no unit), with `what` after the name."""
+    unit = {"J/m^2": "J/m2"}.get(r["units"][name], r["units"][name])
+    return name + what + (" [%s]" % unit if unit else "")
+
+
 def assert_estimates_equal(values, r):
     for name in r["free"]:
-        unit = {"J/m^2": "J_per_m2", "N/m": "N_per_m", "": "1"}.get(r["units"][name], r["units"][name])
-        assert same(values["%s_%s" % (name, unit)], r["estimates"][name]), name
-        assert same(values["%s_stderr_%s" % (name, unit)], r["errors"][name]), name
+        # "w [J/m2]: 0.0400 +- 0.0003", as every fit of the CLI writes a free parameter.
+        estimate, error = values[parameter_key(r, name)].split(" +- ")
+        assert same(estimate, r["estimates"][name]), name
+        assert same(error, r["errors"][name]), name
 
 
 def test_fit_sigma_and_both_pulloffs_equal_cli(cli, source_dir):
@@ -47,13 +54,13 @@ def test_fit_sigma_and_both_pulloffs_equal_cli(cli, source_dir):
     a, F = example(source_dir, "example_a_F.tsv")
     r = cc.fit(a, F, radius=5e-3, **MATERIAL, sigma={"a": "0.3%", "F": 10e-6})
     assert_estimates_equal(values, r)
-    assert r["weighted"] and same(values["chi2_per_dof"], r["chi2_per_dof"])
-    assert same(values["load_pulloff_F_N"], r["load_pulloff"]["F"])
-    assert same(values["load_pulloff_a_m"], r["load_pulloff"]["a"])
-    assert same(values["displacement_pulloff_F_N"], r["displacement_pulloff"]["F"])
-    assert same(values["displacement_pulloff_a_m"], r["displacement_pulloff"]["a"])
+    assert r["weighted"] and same(values["chi2/dof"], r["chi2_per_dof"])
+    assert same(values["pull-off force, load control [N]"], r["load_pulloff"]["F"])
+    assert same(values["pull-off contact radius, load control [m]"], r["load_pulloff"]["a"])
+    assert same(values["pull-off force, displacement control [N]"], r["displacement_pulloff"]["F"])
+    assert same(values["pull-off contact radius, displacement control [m]"], r["displacement_pulloff"]["a"])
     # The start value of w is the library's (one JKR estimate for the CLI and Python).
-    assert same(values["w_hint_J_per_m2"], r["start"]["w"])
+    assert same(values["w, start of the search [J/m2]"], r["start"]["w"])
 
 
 def test_fit_branches_equal_cli(cli, source_dir):
@@ -83,7 +90,7 @@ def test_fit_spring_equals_cli(cli, source_dir, tmp_path):
     assert r["names"][-1] == "k"
     assert_estimates_equal(values, r)
     assert r["estimates"]["k"] == pytest.approx(1e3, rel=0.05)
-    assert same(values["spring_pulloff_F_N"], r["spring_pulloff"]["F"])
+    assert same(values["pull-off force, spring control [N]"], r["spring_pulloff"]["F"])
 
 
 def test_fit_shape_equals_cli(cli, source_dir, tmp_path):
@@ -144,8 +151,8 @@ def test_fit_stack_equals_cli(cli, source_dir):
     r = cc.fit(a, F, radius=5e-3, layers=layers, substrate=(70e9, 0.22), free="w,h2")
     assert r["names"] == ("w", "h1", "h2", "E1", "E2") and r["free"] == ("w", "h2")
     assert_estimates_equal(values, r)
-    assert same(values["load_pulloff_F_N"], r["load_pulloff"]["F"])
-    assert same(values["displacement_pulloff_F_N"], r["displacement_pulloff"]["F"])
+    assert same(values["pull-off force, load control [N]"], r["load_pulloff"]["F"])
+    assert same(values["pull-off force, displacement control [N]"], r["displacement_pulloff"]["F"])
     assert r["correlation"].shape == (2, 2)  # the free parameters only
     # fit_stack (cc_fit_stack) gives the same estimates.
     s = cc.fit_stack(a, F, layers=layers, substrate=(70e9, 0.22), radius=5e-3, free="w,h2")
@@ -164,8 +171,8 @@ def test_fit_branch_select_equals_cli(cli, source_dir):
         assert values["branch"] == which
         assert int(values["points"].split()[0]) == r["points"], which
         assert_estimates_equal(values, r)
-        assert same(values["chi2_per_dof"], r["chi2_per_dof"])
-        assert same(values["load_pulloff_F_N"], r["load_pulloff"]["F"])
+        assert same(values["chi2/dof"], r["chi2_per_dof"])
+        assert same(values["pull-off force, load control [N]"], r["load_pulloff"]["F"])
 
 
 def test_fit_stack_and_branch_select_bad_options(source_dir):

@@ -85,11 +85,15 @@ fit_correlation_warning)
   # w, E1 and t free on one a(F) curve: t and E1 are ~0.9996 correlated (the data fix mainly
   # E1/t); the fit must say so, in the header and in the summary.
   run 0 fit "$data/example_a_F.tsv" "${FIT[@]}" --free w,E1,t || exit 1
-  r=$(header out 'correlation_t_E1')
+  r=$(header out 'correlation t, E1:')
   awk -v r="$r" 'BEGIN { exit !(r > 0.99 || r < -0.99) }' && ok "correlation t-E1 = $r" || fail "t-E1 correlation $r"
-  grep -q '^# warning: correlation t-E1' out && ok "header warns" || fail "no header warning"
-  grep -q 'warning: correlation t-E1' err && ok "the summary (stderr without --output) warns" || fail "no summary warning"
-  grep -q '^# film_nu1: 0.49$' out && ok "film_nu1: 0.49 (shortest round trip)" || fail "$(grep film_nu1 out)"
+  grep -q '^# warning: correlation t, E1 = ' out && ok "header warns" || fail "no header warning"
+  grep -q 'warning: correlation t, E1 = ' err && ok "the summary (stderr without --output) warns" || fail "no summary warning"
+  grep -q '^# film nu1: 0.49$' out && ok "film nu1: 0.49 (shortest round trip, the key as every command writes it)" ||
+    fail "$(grep 'nu1' out)"
+  # One header style: no machine keys (name_unit) left in fit's header.
+  bad=$(grep -E '^# [A-Za-z0-9]+_[A-Za-z0-9_]*: ' out) &&
+    fail "machine-style keys in fit's header: $bad" || ok "fit's keys in words, units in brackets"
   # w alone: no warning; with --output the summary goes to stdout.
   run 0 fit "$data/example_a_F.tsv" "${FIT[@]}" --output fit.tsv &&
     { grep -q 'correlation' out err && fail "a correlation warning with one free parameter" || ok "one free: quiet"; }

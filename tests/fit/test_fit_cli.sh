@@ -14,7 +14,7 @@ model=(--radius 5mm --film 1MPa,0.49 --substrate 70GPa,0.22)
 
 # --- success: header with estimates and standard errors, a columns line, finite numbers ---
 expect "fit a,F" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um
-for key in "w_J_per_m2" "w_stderr_J_per_m2" "residual_norm_N" "iterations" "converged: yes" "columns: line"; do
+for key in "w \[J/m2\]: [0-9.e+-]* +- [0-9.e+-]*$" "residual norm \[N\]" "iterations" "converged: yes" "columns: line"; do
   grep -q "^# $key" "$work/out" || fail "fit a,F: no '# $key' header line"
 done
 rows=$(grep -vc '^#' "$work/out")
@@ -22,7 +22,7 @@ rows=$(grep -vc '^#' "$work/out")
 if grep -v '^#' "$work/out" | grep -Eiq 'nan|inf'; then fail "fit a,F: NaN/inf in the output"; fi
 expect "fit delta,F w,t to --output" 0 "" -- "$cli" fit "$data/example_delta_F.tsv" --columns delta,F \
   "${model[@]}" --free w,t --start t=45um --output "$work/fit.tsv" --curve "$work/curve.tsv"
-grep -q "^# t_stderr_m" "$work/fit.tsv" || fail "fit delta,F: no t_stderr_m in the output file"
+[[ -n $(stderr_of "$work/fit.tsv" "t [m]") ]] || fail "fit delta,F: no standard error of t in the output file"
 grep -q "^# columns: a_m	delta_m	F_N" "$work/curve.tsv" || fail "fit delta,F: curve file has no columns line"
 grep -q "standard error" "$work/out" || fail "fit delta,F: no summary on stdout with --output"
 expect "--help" 0 "" -- "$cli" fit --help
@@ -61,29 +61,29 @@ glass=(--radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22)
 "$generator" --kind a,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 50mJ/m2 \
   --noise 10uN --noise-x 0.3% --a-range 60um,400um --points 30 --seed 5 --output "$work/both.tsv" || fail "generator (both)"
 expect "both variables, no start" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN
-for key in "chi2_per_dof" "load_pulloff_F_N" "global_search" "weights: effective variance"; do
+for key in "chi2/dof" "pull-off force, load control \[N\]" "global search" "weights: effective variance"; do
   grep -q "^# $key" "$work/out" || fail "both variables: no '# $key' header line"
 done
-w=$(sed -n 's/^# w_J_per_m2: //p' "$work/out"); t=$(sed -n 's/^# t_m: //p' "$work/out")
+w=$(estimate "$work/out" "w [J/m2]"); t=$(estimate "$work/out" "t [m]")
 awk -v w="$w" -v t="$t" 'BEGIN { exit !(w > 0.048 && w < 0.052 && t > 19.8e-6 && t < 20.2e-6) }' \
   || fail "both variables: w = $w, t = $t (truth 0.05, 2e-05)"
 expect "both variables, --start hint" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --start w=0.01,t=50um --sigma a=0.3%,F=10uN
 "$generator" --kind delta,F --radius 2mm --film 1MPa,0.5 --substrate 70GPa,0.22 --thickness 20um --work 50mJ/m2 \
   --noise 10uN --noise-x 0.3% --a-range 60um,400um --points 30 --seed 4 --output "$work/both_delta.tsv" || fail "generator (delta both)"
 expect "delta,F both variables, no start" 0 "" -- "$cli" fit "$work/both_delta.tsv" --columns delta,F "${glass[@]}" --free w,t --sigma delta=0.3%,F=10uN
-w=$(sed -n 's/^# w_J_per_m2: //p' "$work/out"); t=$(sed -n 's/^# t_m: //p' "$work/out")
+w=$(estimate "$work/out" "w [J/m2]"); t=$(estimate "$work/out" "t [m]")
 awk -v w="$w" -v t="$t" 'BEGIN { exit !(w > 0.048 && w < 0.052 && t > 19.8e-6 && t < 20.2e-6) }' \
   || fail "delta,F both variables: w = $w, t = $t (truth 0.05, 2e-05)"
 # the spring pull-off lies between the load- and displacement-controlled ones
 expect "spring pull-off" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --spring 500N/m
-fs=$(sed -n 's/^# spring_pulloff_F_N: //p' "$work/out"); fl=$(sed -n 's/^# load_pulloff_F_N: //p' "$work/out")
-fd=$(sed -n 's/^# displacement_pulloff_F_N: //p' "$work/out")
+fs=$(header_value "$work/out" "pull-off force, spring control [N]"); fl=$(header_value "$work/out" "pull-off force, load control [N]")
+fd=$(header_value "$work/out" "pull-off force, displacement control [N]")
 awk -v s="$fs" -v l="$fl" -v d="$fd" 'BEGIN { exit !(s != "" && s > l && s < d) }' || fail "spring pull-off $fs not between $fl and $fd"
 expect "bad --spring" 2 "--spring" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --spring abc
 expect "unweighted says exact a" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um
 grep -q "^# weights: none.*assume exact a" "$work/out" || fail "unweighted fit does not say the errors assume exact a"
 expect "bootstrap" 0 "" -- "$cli" fit "$data/example_a_F.tsv" --columns a,F "${model[@]}" --thickness 50um --bootstrap 20 --seed 3
-grep -q "^# w_interval68_J_per_m2" "$work/out" || fail "bootstrap: no interval in the header"
+grep -q "^# w, bootstrap 68% interval \[J/m2\]: " "$work/out" || fail "bootstrap: no interval in the header"
 # multi-column export with units in the column names, columns by name and position, stdin
 { echo "time (s),a (um),load (mN),sF (mN)"; grep -v '^#' "$work/both.tsv" | awk '{ print NR "," $1 "," $2 ",0.01" }'; } >"$work/export.csv"
 expect "columns by name, units from names" 0 "" -- "$cli" fit "$work/export.csv" --columns a=a,F=load,sigma_F=sF "${glass[@]}" --free w,t --sigma a=0.3%
@@ -98,7 +98,7 @@ expect "bad --plot extension" 2 "--plot" -- "$cli" fit "$work/both.tsv" --column
 expect "bad --columns position" 2 "--columns: a=9" -- "$cli" fit "$work/export.csv" --columns a=9,F=3 "${glass[@]}" --thickness 20um
 expect "bad --columns name" 2 "no column named 'radius'" -- "$cli" fit "$work/export.csv" --columns a=radius,F=3 "${glass[@]}" --thickness 20um
 expect "elastic indenter" 0 "" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --free w,t --sigma a=0.3%,F=10uN --indenter 70GPa,0.2
-grep -q "^# indenter: E2 = 7" "$work/out" || fail "elastic indenter: not in the header"
+grep -q "^# indenter E2 \[Pa\]: 7e+10$" "$work/out" && grep -q "^# indenter nu2: 0.2$" "$work/out" || fail "elastic indenter: not in the header"
 expect "bad --indenter" 2 "--indenter" -- "$cli" fit "$work/both.tsv" --columns a,F "${glass[@]}" --thickness 20um --indenter 1GPa
 grep -v '^# units' "$work/both.tsv" >"$work/nounits.tsv"
 expect "forgotten units" 2 "nounits.tsv:[0-9]+: contact radius .* not below the sphere radius.*# units: um mN" -- \

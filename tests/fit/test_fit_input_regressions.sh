@@ -30,9 +30,9 @@ numbers() { grep -v '^#' "$data/example_a_F.tsv"; }
 reference_w() {
   "$cli" fit "$data/example_a_F.tsv" --columns a,F "${common[@]}" --output "$work/ref.tsv" >/dev/null 2>&1 ||
     fail "the example fit fails"
-  sed -n 's/^# w_J_per_m2: //p' "$work/ref.tsv"
+  sed -n 's|^# w \[J/m2\]: \([^ ]*\).*|\1|p' "$work/ref.tsv"
 }
-fitted_w() { sed -n 's/^# w_J_per_m2: //p' "$1"; }
+fitted_w() { sed -n 's|^# w \[J/m2\]: \([^ ]*\).*|\1|p' "$1"; }
 
 case "$case_name" in
   stdin_unbounded)
@@ -73,12 +73,12 @@ case "$case_name" in
     "$cli" fit "$data/example_a_F.tsv" --columns a,F "${common[@]}" --output "$work/fit.tsv" >/dev/null 2>"$work/err"
     status=$?
     expect 0
-    grep -qF "# data_units: a um, F mN (from the '# units:' line)" "$work/fit.tsv" || fail "no data_units line"
+    grep -qF "# data units: a um, F mN (from the '# units:' line)" "$work/fit.tsv" || fail "no data units line"
     numbers | awk '{ printf "%.10g\t%.10g\n", $1 * 1e-6, $2 * 1e-3 }' >"$work/si.tsv"
     "$cli" fit "$work/si.tsv" --columns a,F "${common[@]}" --output "$work/fit.tsv" >/dev/null 2>"$work/err"
     status=$?
     expect 0
-    grep -qF "# data_units: none declared: read as SI (m, N)" "$work/fit.tsv" || fail "no SI data_units line"
+    grep -qF "# data units: none declared: read as SI (m, N)" "$work/fit.tsv" || fail "no SI data units line"
     ;;
   unit_mixup_explained)
     # a in m, F still in mN: the pull-off of -1.3 N needs w ~ 55 J/m2 on R = 5 mm.

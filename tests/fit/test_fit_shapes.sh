@@ -20,11 +20,10 @@ start=$(date +%s)
 expect "cone: w,t free" 0 "" -- "$cli" fit "$work/cone.tsv" --columns a,F --shape cone:80deg "${material[@]}" \
   --free w,t --sigma F=0.2uN
 echo "     ($(( $(date +%s) - start )) s)"
-grep -q "^# indenter_shape: cone" "$work/out" || fail "cone: no indenter_shape header line"
+grep -q "^# indenter shape: cone" "$work/out" || fail "cone: no indenter shape header line"
 if grep -v '^#' "$work/out" | grep -Eiq 'nan|inf'; then fail "cone: NaN/inf in the output"; fi
-within3 "cone w [J/m2]" "$(sed -n 's/^# w_J_per_m2: //p' "$work/out")" \
-  "$(sed -n 's/^# w_stderr_J_per_m2: //p' "$work/out")" 0.05
-within3 "cone t [m]" "$(sed -n 's/^# t_m: //p' "$work/out")" "$(sed -n 's/^# t_stderr_m: //p' "$work/out")" 5e-6
+within3 "cone w [J/m2]" "$(estimate "$work/out" "w [J/m2]")" "$(stderr_of "$work/out" "w [J/m2]")" 0.05
+within3 "cone t [m]" "$(estimate "$work/out" "t [m]")" "$(stderr_of "$work/out" "t [m]")" 5e-6
 
 # --- bad input: exit 2 naming --shape, nothing written ---
 expect "unknown shape" 2 "--shape: unknown shape 'wedge'" -- "$cli" fit "$work/cone.tsv" --columns a,F \

@@ -26,16 +26,16 @@ expect "z,F: w,k free" 0 "" -- "$cli" fit "$work/z.tsv" --columns z,F "${glass[@
   --spring 1e5 --free w,k --sigma F=10uN
 echo "     ($(( $(date +%s) - start )) s)"
 if grep -v '^#' "$work/out" | grep -Eiq 'nan|inf'; then fail "z,F: NaN/inf in the output"; fi
-within3 "w [J/m2]" "$(sed -n 's/^# w_J_per_m2: //p' "$work/out")" "$(sed -n 's/^# w_stderr_J_per_m2: //p' "$work/out")" 0.05
-within3 "k [N/m]" "$(sed -n 's/^# k_N_per_m: //p' "$work/out")" "$(sed -n 's/^# k_stderr_N_per_m: //p' "$work/out")" 2e5
-hint=$(sed -n 's/^# k_hint_N_per_m: //p' "$work/out")
+within3 "w [J/m2]" "$(estimate "$work/out" "w [J/m2]")" "$(stderr_of "$work/out" "w [J/m2]")" 0.05
+within3 "k [N/m]" "$(estimate "$work/out" "k [N/m]")" "$(stderr_of "$work/out" "k [N/m]")" 2e5
+hint=$(header_value "$work/out" "k, start of the search [N/m]")
 # The header's shortest round-trip text of 1e5 (as every header's numbers): the value, not its spelling.
 awk -v h="$hint" 'BEGIN { exit !(h != "" && h + 0 == 100000) }' ||
   fail "z,F: k hint is '$hint', expected the --spring value 100000"
-grep -q '^# spring_pulloff_F_N: -' "$work/out" || fail "z,F: no spring pull-off of the fitted k"
+grep -q '^# pull-off force, spring control \[N\]: -' "$work/out" || fail "z,F: no spring pull-off of the fitted k"
 # k fixed at its true value: w alone
 expect "z,F: k fixed" 0 "" -- "$cli" fit "$work/z.tsv" --columns z,F "${glass[@]}" --thickness 20um --spring 2e5 --sigma F=10uN
-within3 "w (k fixed) [J/m2]" "$(sed -n 's/^# w_J_per_m2: //p' "$work/out")" "$(sed -n 's/^# w_stderr_J_per_m2: //p' "$work/out")" 0.05
+within3 "w (k fixed) [J/m2]" "$(estimate "$work/out" "w [J/m2]")" "$(stderr_of "$work/out" "w [J/m2]")" 0.05
 
 # --- bad input: exit 2 ---
 expect "z,F without --spring" 2 "--columns z,F: give the spring stiffness with --spring k" -- "$cli" fit "$work/z.tsv" \

@@ -70,10 +70,18 @@ double value(const std::map<std::string, std::string>& h, const std::string& key
   return it == h.end() ? std::nan("") : std::strtod(it->second.c_str(), nullptr);
 }
 
+// The standard error of a free parameter's line "name [unit]: value +- error".
+double standard_error(const std::map<std::string, std::string>& h, const std::string& key) {
+  const auto it = h.find(key);
+  const std::size_t at = it == h.end() ? std::string::npos : it->second.find(" +- ");
+  check::that(at != std::string::npos, "output header has '" + key + ": value +- error'");
+  return at == std::string::npos ? std::nan("") : std::strtod(it->second.c_str() + at + 4, nullptr);
+}
+
 void check_within(const std::map<std::string, std::string>& h, const std::string& name, const std::string& unit,
                   double truth, const std::string& what) {
-  const double estimate = value(h, name + "_" + unit);
-  const double error = value(h, name + "_stderr_" + unit);
+  const double estimate = value(h, name + " [" + unit + "]");
+  const double error = standard_error(h, name + " [" + unit + "]");
   std::printf("%s: %s = %.6g +- %.2g (true %.6g, %.2f standard errors)\n", what.c_str(), name.c_str(), estimate,
               error, truth, (estimate - truth) / error);
   check::that(error > 0.0, what + ": " + name + " has a standard error");
@@ -96,9 +104,10 @@ void test_two_layer_recovery() {
   check::that(fit_h2.status == 0, "fit w,h2: exit 0 (" + fit_h2.err + ")");
   std::printf("fit w,h2: %.2f s\n", fit_h2.seconds);
   const auto h = header(out);
-  check_within(h, "w", "J_per_m2", 0.04, "two layers, w,h2 free");
+  check_within(h, "w", "J/m2", 0.04, "two layers, w,h2 free");
   check_within(h, "h2", "m", 30e-6, "two layers, w,h2 free");
-  check::that(h.count("h1_status") == 1 && h.at("h1_status") == "fixed", "two layers: h1 reported fixed");
+  check::that(h.count("h1 [m]") == 1 && h.at("h1 [m]").find(" (fixed)") != std::string::npos,
+              "two layers: h1 reported fixed");
 
   const std::string out_e = folder + "/fit_e2.tsv";
   const Run fit_e2 = run("'" + cli + "' fit '" + data + "' --columns a,F --radius 5mm --layer 20um,1MPa,0.49 "
@@ -106,7 +115,7 @@ void test_two_layer_recovery() {
   check::that(fit_e2.status == 0, "fit w,E2: exit 0 (" + fit_e2.err + ")");
   std::printf("fit w,E2: %.2f s\n", fit_e2.seconds);
   const auto he = header(out_e);
-  check_within(he, "w", "J_per_m2", 0.04, "two layers, w,E2 free");
+  check_within(he, "w", "J/m2", 0.04, "two layers, w,E2 free");
   check_within(he, "E2", "Pa", 5e6, "two layers, w,E2 free");
 }
 
@@ -126,9 +135,13 @@ void test_one_layer_equals_film() {
                       .status == 0,
               "fit --layer (one layer): exit 0");
   const auto film = header(film_out), layer = header(layer_out);
-  for (const char* key : {"w_J_per_m2", "w_stderr_J_per_m2", "t_m", "t_stderr_m", "E1_Pa", "residual_norm_N"}) {
+  for (const char* key : {"w [J/m2]", "t [m]", "E1 [Pa]", "residual norm [N]"}) {
     check::close(value(layer, key), value(film, key), check::tier::kRounding,
                  std::string("one layer: --layer against --film/--thickness, ") + key);
+  }
+  for (const char* key : {"w [J/m2]", "t [m]"}) {
+    check::close(standard_error(layer, key), standard_error(film, key), check::tier::kRounding,
+                 std::string("one layer: --layer against --film/--thickness, standard error of ") + key);
   }
 }
 
@@ -166,8 +179,8 @@ void test_branch_recovery() {
   check::that(column.status == 0, "fit w_load,w_unload (branch column): exit 0 (" + column.err + ")");
   std::printf("fit w_load,w_unload, a,F with a branch column: %.2f s\n", column.seconds);
   const auto h = header(out);
-  check_within(h, "w_load", "J_per_m2", 0.02, "a,F, branch column");
-  check_within(h, "w_unload", "J_per_m2", 0.06, "a,F, branch column");
+  check_within(h, "w_load", "J/m2", 0.02, "a,F, branch column");
+  check_within(h, "w_unload", "J/m2", 0.06, "a,F, branch column");
   check::that(h.count("branches") == 1 && h.at("branches").find("branch column") != std::string::npos,
               "header says where the branches came from");
 
@@ -178,7 +191,7 @@ void test_branch_recovery() {
                       .status == 0,
               "fit w_load,w_unload (row order): exit 0");
   const auto ho = header(by_order);
-  for (const char* key : {"w_load_J_per_m2", "w_unload_J_per_m2"}) {
+  for (const char* key : {"w_load [J/m2]", "w_unload [J/m2]"}) {
     check::close(value(ho, key), value(h, key), check::tier::kRounding,
                  std::string("branches by row order equal the branch column's, ") + key);
   }
@@ -194,8 +207,8 @@ void test_branch_recovery() {
   check::that(delta_run.status == 0, "fit w_load,w_unload (delta,F): exit 0 (" + delta_run.err + ")");
   std::printf("fit w_load,w_unload, delta,F by row order: %.2f s\n", delta_run.seconds);
   const auto hd = header(out_delta);
-  check_within(hd, "w_load", "J_per_m2", 0.02, "delta,F, row order");
-  check_within(hd, "w_unload", "J_per_m2", 0.06, "delta,F, row order");
+  check_within(hd, "w_load", "J/m2", 0.02, "delta,F, row order");
+  check_within(hd, "w_unload", "J/m2", 0.06, "delta,F, row order");
 }
 
 void test_bad_branches() {

@@ -19,7 +19,7 @@ for free in w w,t; do
     failures=$((failures + 1))
     continue
   fi
-  w=$(sed -n 's/^# w_J_per_m2: //p' "$work/fit.tsv")
+  w=$(sed -n 's|^# w \[J/m2\]: \([^ ]*\).*|\1|p' "$work/fit.tsv")
   if ! awk -v w="$w" 'BEGIN { d = (w - 0.04) / 0.04; exit !(d < 1e-6 && d > -1e-6) }'; then
     echo "FAIL: --free $free: w = $w, want 0.04 within 1e-6 relative"
     failures=$((failures + 1))

@@ -239,6 +239,9 @@ int cc_md_pulloff_errors(const cc_md_model *model, double eta, double lambda,
 typedef struct cc_shape cc_shape;
 int cc_shape_paraboloid(double radius, cc_shape **shape);
 int cc_shape_cone(double beta, cc_shape **shape);
+/* Four-sided pyramid of face half angle theta (the CLI's pyramid:THETA), as the cone of equal
+ * area, tan(beta) = 2 tan(theta)/sqrt(pi) (THEORY.md section 11). */
+int cc_shape_pyramid(double theta, cc_shape **shape);
 int cc_shape_flat_punch(double radius, cc_shape **shape);
 /* z = r^n / (n R^(n-1)), n > 0. */
 int cc_shape_power_law(double n, double radius, cc_shape **shape);
