@@ -113,6 +113,15 @@ double minimise(const std::function<double(double)>& f, double lo, double mid, d
   return minimum ? minimum->x : mid;
 }
 
+// A film on a substrate of its own material is one half-space: C = 1 and H = 0 (an elastic
+// indenter keeps C' = 1), so the zone's functions are Maugis's closed forms.
+bool is_half_space(const Stack& s) {
+  const Material& top = s.top();
+  const Material& base = s.substrate().material;
+  return !s.is_multilayer() && !s.substrate().rigid && base.youngs_modulus == top.youngs_modulus &&
+         base.poisson_ratio == top.poisson_ratio;
+}
+
 }  // namespace
 
 struct MaugisDugdaleModel::Impl {
@@ -124,7 +133,8 @@ struct MaugisDugdaleModel::Impl {
       detail::MdTableOptions range;
       range.a_over_t_min = o.table_a_over_t_min;
       range.a_over_t_max = o.table_a_over_t_max;
-      const bool cached = !solve_cache_directory().empty();
+      range.closed_form = is_half_space(s);
+      const bool cached = !range.closed_form && !solve_cache_directory().empty();
       table = std::make_unique<detail::MaugisDugdaleTable>(kernel, disc, quadrature, range,
                                                            cached ? detail::SolveCache::key_of(s) : "");
     }

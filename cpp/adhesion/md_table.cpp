@@ -605,6 +605,7 @@ const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::tile_2d(std::size_t ti, st
 }
 
 void MaugisDugdaleTable::build() const {
+  if (options_.closed_form) return;
   const Grids& g = *grids_;
   // Every node first (one parallel pass), then the tiles' splines.
   std::vector<std::pair<std::size_t, std::size_t>> nodes;
@@ -637,8 +638,22 @@ bool MaugisDugdaleTable::covers(double a, double excess) const {
   const MdTableOptions& o = options_;
   // The ends with a margin of rounding: ln and exp of an end need not return it exactly.
   constexpr double kRounding = 1e-12;
-  return covers_radius(a) && excess >= o.excess_min * (1.0 - kRounding) &&
+  return covers_radius(a) && excess >= std::min(o.excess_floor, o.excess_min) * (1.0 - kRounding) &&
          excess <= excess_max(a) * (1.0 + kRounding);
+}
+
+MdTableValue MaugisDugdaleTable::closed_form_value(double a, double excess) const {
+  MdTableValue out;
+  out.value = homogeneous_functions(a, excess);
+  const CohesiveFunctions& v = out.value;
+  const double noise = options_.source_noise;
+  out.error.d = noise * std::abs(v.d);
+  out.error.f = noise * std::abs(v.f);
+  out.error.g_r = noise * std::abs(v.g_r);
+  out.error.g_s = noise * std::abs(v.g_s);
+  out.error.delta_h = noise * std::abs(v.delta_h);
+  out.error.force_h = noise * std::abs(v.force_h);
+  return out;
 }
 
 MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
@@ -646,6 +661,7 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
                      ") outside the table");
   }
+  if (options_.closed_form) return closed_form_value(a, excess);
   const Grids& g = *grids_;
   const double s_min = std::log(options_.excess_min), s_max = std::log(excess_max(a));
   // Clamped: the logarithms of end values may round just outside the grid.
@@ -659,10 +675,19 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   double hom2[kTwoD], value[kTwoD], error[kTwoD];
   to_array_2d(hom, hom2);
   const std::size_t cell = (cell_s - tile.cell_s0) * tile.own_x + (cell_x - tile.cell_x0);
+  // Below excess_min: r(e) = r(e_min) + O(e), the slope in e from the first fine node e_1.
+  double flat_weight = 0.0, tau_1 = 0.0;
+  if (excess < options_.excess_min) {
+    tau_1 = g.tau[1];
+    const double e_1 = std::exp(s_min + tau_1 * (s_max - s_min));
+    flat_weight = (options_.excess_min - excess) / (e_1 - options_.excess_min);
+  }
   for (int k = 0; k < kTwoD; ++k) {
     const double r = gsl_spline2d_eval(tile.fine[k].spline, x, tau, nullptr, nullptr);
+    double flat = 0.0;
+    if (flat_weight > 0.0) flat = flat_weight * std::abs(gsl_spline2d_eval(tile.fine[k].spline, x, tau_1, nullptr, nullptr) - r);
     value[k] = r * hom2[k];
-    error[k] = (options_.error_factor * tile.cell_error[k][cell] + options_.source_noise * std::abs(r)) *
+    error[k] = (options_.error_factor * tile.cell_error[k][cell] + flat + options_.source_noise * std::abs(r)) *
                std::abs(hom2[k]);
   }
   MdTableValue out;
@@ -729,7 +754,7 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
     const MdTableValue v = at(a, std::exp(s));
     return v.value.g_r + sigma_hat * v.value.g_s - h0;
   };
-  const double lo = std::log(o.excess_min), hi = std::log(excess_max(a));
+  const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_from(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;
   double s = bracket->first;
@@ -762,6 +787,11 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
 void MaugisDugdaleTable::end_values(double u, double* value, double* error) const {
   const Grids& g = *grids_;
   u = std::clamp(u, g.xe.front(), g.xe.back());
+  if (options_.closed_form) {
+    to_array_2d(homogeneous_end_functions(std::exp(u)), value);
+    for (int k = 0; k < kTwoD; ++k) error[k] = options_.source_noise * std::abs(value[k]);
+    return;
+  }
   const std::size_t cell = cell_of(g.xe_coarse, u);
   const Tile1d& tile = tile_end(cell / static_cast<std::size_t>(options_.tile_cells));
   double hom[kTwoD];

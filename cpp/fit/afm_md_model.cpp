@@ -67,7 +67,9 @@ class MdCurves {
     // The nodes and weights of the trial's modulus (one node unless E1 is free on a coating).
     std::vector<std::pair<const MaugisDugdaleModel*, double>> mix;
     std::vector<double> node_reduced;
-    if (coated_ && problem_.free.modulus) {
+    // On a rigid base the modulus is a pure scale (the table's units are t and E1*): one table
+    // serves every E1, and the trial's own E1 sets L and lambda.
+    if (coated_ && problem_.free.modulus && !problem_.coating->substrate.rigid) {
       const double x = std::log10(trial.modulus / hint_) * kModulusNodesPerDecade;
       const double nearest = std::round(x);
       if (std::abs(x - nearest) < 1e-9) {
