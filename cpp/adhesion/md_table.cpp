@@ -630,6 +630,7 @@ int MaugisDugdaleTable::nodes_s() const { return static_cast<int>(grids_->tau.si
 // The table's radii, with a margin of rounding at the ends: a_bar/eta at a_bar = eta a_over_t_max
 // may round just beyond it (at() clamps ln a to the grid).
 bool MaugisDugdaleTable::covers_radius(double a) const {
+  if (options_.closed_form) return a > 0.0 && std::isfinite(a);
   constexpr double kRounding = 1e-12;
   return a >= options_.a_over_t_min * (1.0 - kRounding) && a <= options_.a_over_t_max * (1.0 + kRounding);
 }
@@ -786,29 +787,51 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
 // Values and error estimates of d, f, g_r, g_s at the curve's end, u = ln(c/t).
 void MaugisDugdaleTable::end_values(double u, double* value, double* error) const {
   const Grids& g = *grids_;
-  u = std::clamp(u, g.xe.front(), g.xe.back());
-  if (options_.closed_form) {
-    to_array_2d(homogeneous_end_functions(std::exp(u)), value);
-    for (int k = 0; k < kTwoD; ++k) error[k] = options_.source_noise * std::abs(value[k]);
-    return;
-  }
-  const std::size_t cell = cell_of(g.xe_coarse, u);
-  const Tile1d& tile = tile_end(cell / static_cast<std::size_t>(options_.tile_cells));
+  u = std::clamp(u, std::log(std::min(options_.end_c_over_t_floor, options_.end_c_over_t_min)), g.xe.back());
+  const double below = u < g.xe.front() ? std::exp(u) : 0.0;  // c under the grid
   double hom[kTwoD];
   to_array_2d(homogeneous_end_functions(std::exp(u)), hom);
+  if (options_.closed_form) {
+    for (int k = 0; k < kTwoD; ++k) {
+      value[k] = hom[k];
+      error[k] = options_.source_noise * std::abs(value[k]);
+    }
+    return;
+  }
+  const double ug = std::max(u, g.xe.front());
+  const std::size_t cell = cell_of(g.xe_coarse, ug);
+  const Tile1d& tile = tile_end(cell / static_cast<std::size_t>(options_.tile_cells));
+  // Under the grid: r(c) = r(c_min) + O(c), the slope from the next node c_1.
+  const double c_min = std::exp(g.xe.front()), c_1 = std::exp(g.xe[1]);
+  const double flat_weight = below > 0.0 ? (c_min - below) / (c_1 - c_min) : 0.0;
   for (int k = 0; k < kTwoD; ++k) {
     const auto kk = static_cast<std::size_t>(k);
-    const double r = gsl_spline_eval(tile.fine[kk].spline, u, nullptr);
+    const double r = gsl_spline_eval(tile.fine[kk].spline, ug, nullptr);
+    const double flat =
+        flat_weight > 0.0 ? flat_weight * std::abs(gsl_spline_eval(tile.fine[kk].spline, g.xe[1], nullptr) - r) : 0.0;
     value[k] = r * hom[k];
-    error[k] = (options_.error_factor * tile.interval_error[kk][cell - tile.interval0] +
+    error[k] = (options_.error_factor * tile.interval_error[kk][cell - tile.interval0] + flat +
                 options_.source_noise * std::abs(r)) *
                std::abs(hom[k]);
   }
 }
 
 std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, double h0) const {
+  if (options_.closed_form) {
+    // c²/2 + σ̂ (1 - 2/π) c = h0 (THEORY.md section 13, the end's homogeneous forms).
+    const double b = sigma_hat * (1.0 - 2.0 / kPi);
+    MdTableState st;
+    st.excess = 2.0 * h0 / (b + std::sqrt(b * b + 2.0 * h0));
+    const CohesiveFunctions h = homogeneous_end_functions(st.excess);
+    st.delta = sigma_hat * h.d;
+    st.force = sigma_hat * h.f;
+    st.excess_error = options_.source_noise * st.excess;
+    st.delta_error = options_.source_noise * std::abs(st.delta);
+    st.force_error = options_.source_noise * std::abs(st.force);
+    return st;
+  }
   const Grids& g = *grids_;
-  const double lo = g.xe.front(), hi = g.xe.back();
+  const double lo = std::log(std::min(options_.end_c_over_t_floor, options_.end_c_over_t_min)), hi = g.xe.back();
   std::function<double(double)> residual = [&](double u) {
     double v[kTwoD], e[kTwoD];
     end_values(u, v, e);

@@ -46,6 +46,10 @@ struct MdTableOptions {
   double excess_floor = 1e-16;
   // The end of the curve (a = 0) is tabulated in ln(c/t) from end_c_over_t_min to c_over_t_max.
   double end_c_over_t_min = 1e-5;
+  // Below it (the end's zone at lambda ~ 1e4 is c/t ~ 1e-6) the zone sees the top layer as a
+  // half-space: the ratios change by O(c/t); their values at end_c_over_t_min serve down to
+  // end_c_over_t_floor, the error widened by their linear change in c.
+  double end_c_over_t_floor = 1e-12;
   double step = 0.3;  // node spacing in x = ln(a/t) and (at most) in s = ln(c/a - 1), fine grid
   // The error estimate of a value is error_factor times the largest |fine - coarse| in its
   // coarse cell (coarse: every other node), plus the direct solve's own relative noise.
