@@ -747,13 +747,32 @@ constexpr double kBracketStep = 0.5;  // first step in s (or ln c) from the homo
 
 }  // namespace
 
+// g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
+std::pair<double, double> MaugisDugdaleTable::gap_functions(double a, double excess) const {
+  const CohesiveFunctions hom = homogeneous_functions(a, excess);
+  if (options_.closed_form) return {hom.g_r, hom.g_s};
+  if (!covers(a, excess)) {
+    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
+                     ") outside the table");
+  }
+  const Grids& g = *grids_;
+  const double s_min = std::log(options_.excess_min), s_max = std::log(excess_max(a));
+  const double x = std::clamp(std::log(a), g.x.front(), g.x.back());
+  const double tau = std::clamp((std::log(excess) - s_min) / (s_max - s_min), 0.0, 1.0);
+  const std::size_t cell_x = cell_of(g.x_coarse, x), cell_s = cell_of(g.tau_coarse, tau);
+  const auto b = static_cast<std::size_t>(options_.tile_cells);
+  const Tile2d& tile = tile_2d(cell_x / b, cell_s / b);
+  return {gsl_spline2d_eval(tile.fine[2].spline, x, tau, nullptr, nullptr) * hom.g_r,
+          gsl_spline2d_eval(tile.fine[3].spline, x, tau, nullptr, nullptr) * hom.g_s};
+}
+
 std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a) const {
   const MdTableOptions& o = options_;
   if (!covers_radius(a)) return std::nullopt;
   // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
   std::function<double(double)> residual = [&](double s) {
-    const MdTableValue v = at(a, std::exp(s));
-    return v.value.g_r + sigma_hat * v.value.g_s - h0;
+    const auto [g_r, g_s] = gap_functions(a, std::exp(s));
+    return g_r + sigma_hat * g_s - h0;
   };
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_from(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);

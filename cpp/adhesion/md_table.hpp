@@ -21,6 +21,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "cohesive_zone.hpp"
 #include "factored_system.hpp"
@@ -139,6 +140,7 @@ class MaugisDugdaleTable {
   void solve_radius_nodes(std::size_t first, std::size_t last) const;
   void end_values(double u, double* value, double* error) const;
   MdTableValue closed_form_value(double a, double excess) const;
+  std::pair<double, double> gap_functions(double a, double excess) const;
   void load_cached_nodes() const;
   std::vector<std::size_t> use_nodes(std::vector<char>& used, const std::vector<char>& solved, std::size_t first,
                                      std::size_t last) const;
