@@ -187,7 +187,7 @@ struct MaugisDugdaleModel::Impl {
     p.a_bar = a_bar;
     p.a_over_t = a;
     if (table) {
-      if (const auto st = a > 0.0 ? table->solve(sigma_hat, h0, a) : table->solve_end(sigma_hat, h0)) {
+      if (const auto st = a > 0.0 ? table->solve(sigma_hat, h0, a, options.table_errors) : table->solve_end(sigma_hat, h0)) {
         if (excess != nullptr) *excess = st->excess;
         p.m = a > 0.0 ? 1.0 + st->excess : std::numeric_limits<double>::infinity();
         p.c_bar = eta * (a > 0.0 ? a * (1.0 + st->excess) : st->excess);
@@ -230,6 +230,7 @@ const MaugisDugdaleOptions& MaugisDugdaleModel::options() const { return impl_->
 void MaugisDugdaleModel::build_table() const {
   if (impl_->table) impl_->table->build();
 }
+bool MaugisDugdaleModel::table_in_closed_form() const { return impl_->table && impl_->table->options().closed_form; }
 long MaugisDugdaleModel::table_nodes() const { return impl_->table ? impl_->table->nodes_used() : 0; }
 double MaugisDugdaleModel::table_seconds() const { return impl_->table ? impl_->table->build_seconds() : 0.0; }
 

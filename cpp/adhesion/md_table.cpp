@@ -766,7 +766,7 @@ std::pair<double, double> MaugisDugdaleTable::gap_functions(double a, double exc
           gsl_spline2d_eval(tile.fine[3].spline, x, tau, nullptr, nullptr) * hom.g_s};
 }
 
-std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a) const {
+std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a, bool with_errors) const {
   const MdTableOptions& o = options_;
   if (!covers_radius(a)) return std::nullopt;
   // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
@@ -785,6 +785,13 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   }
   const double e = std::exp(s);
   const MdTableValue v = at(a, e);
+  if (!with_errors) {
+    MdTableState st;
+    st.excess = e;
+    st.delta = v.value.delta_h + sigma_hat * v.value.d;
+    st.force = v.value.force_h + sigma_hat * v.value.f;
+    return st;
+  }
   // Slopes in s by central differences of the interpolant (only for the error estimate).
   const double step = 1e-5;
   const double sp = std::min(s + step, hi), sm = std::max(s - step, lo);

@@ -113,7 +113,9 @@ class MaugisDugdaleTable {
   // nullopt if a is outside the table or the root lies outside its excess range. The root is
   // bracketed from the homogeneous solid's root outward, so that only the tiles near it are
   // built.
-  std::optional<MdTableState> solve(double sigma_hat, double h0, double a) const;
+  // with_errors = false: the values alone, every *_error 0 (saves three of the root's ~15
+  // interpolations; for callers that use no estimate, as the AFM fit's trials).
+  std::optional<MdTableState> solve(double sigma_hat, double h0, double a, bool with_errors = true) const;
 
   void build() const;            // builds every tile now (otherwise each on first use)
   double build_seconds() const;  // wall time spent building tiles so far

@@ -57,6 +57,7 @@ std::shared_ptr<const MaugisDugdaleModel> shared_model(const Material& film, con
   options.use_table = true;
   options.table_a_over_t_min = kTableAOverT[0];
   options.table_a_over_t_max = kTableAOverT[1];
+  options.table_errors = false;  // the fit's trials use values only
   auto made = std::make_shared<const MaugisDugdaleModel>(Stack::film_on(film, substrate), options);
   return models.emplace(key, std::move(made)).first->second;
 }
