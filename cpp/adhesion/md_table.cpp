@@ -686,7 +686,9 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   for (int k = 0; k < kTwoD; ++k) {
     const double r = gsl_spline2d_eval(tile.fine[k].spline, x, tau, nullptr, nullptr);
     double flat = 0.0;
-    if (flat_weight > 0.0) flat = flat_weight * std::abs(gsl_spline2d_eval(tile.fine[k].spline, x, tau_1, nullptr, nullptr) - r);
+    if (flat_weight > 0.0) {
+      flat = flat_weight * std::abs(gsl_spline2d_eval(tile.fine[k].spline, x, tau_1, nullptr, nullptr) - r);
+    }
     value[k] = r * hom2[k];
     error[k] = (options_.error_factor * tile.cell_error[k][cell] + flat + options_.source_noise * std::abs(r)) *
                std::abs(hom2[k]);

@@ -40,7 +40,8 @@ std::string where(const char* stack, double eta, double lambda, double a_bar) {
 // direct solve's noise.
 void within_estimate(const MaugisDugdalePoint& t, const MaugisDugdalePoint& d, const std::string& what) {
   check::that(t.from_table, what + ": from the table");
-  check::below(std::abs(t.load - d.load), t.load_error + kDirectNoise * std::abs(d.load), what + ": P within its estimate");
+  check::below(std::abs(t.load - d.load), t.load_error + kDirectNoise * std::abs(d.load),
+               what + ": P within its estimate");
   check::below(std::abs(t.penetration - d.penetration), t.penetration_error + kDirectNoise * std::abs(d.penetration),
                what + ": D within its estimate");
   if (t.a_bar > 0.0) {
