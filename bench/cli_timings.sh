@@ -78,6 +78,20 @@ grep -v '^#' "$scratch/md.tsv" | awk '$1 >= 1e-5 && $1 <= 1.5e-4' |
   > "$scratch/md_a_F.tsv"
 time_task "fit --model md, w,lambda free (12 points, MD table included)" \
   "$cli" fit "$scratch/md_a_F.tsv" --columns a,F "${md_glass[@]}" --model md --free w,lambda --sigma F=2uN
+# The Maugis-Dugdale AFM retract fit on a real curve (issue 37 item 2: no direct work per trial),
+# beside the JKR fit of the same curve: a half-space, and a film on a rigid base with E1 free.
+afm_data="$root/../shared/data/afm"
+[ -d "$afm_data" ] || afm_data=/work/shared/data/afm
+gel="$afm_data/fmt-jpk-cc_pr14-polymergel-2021.06.30.jpk-force"
+if [ -f "$gel" ]; then
+  for model in md jkr; do
+    time_task_cpu "afm fit --model $model, half-space (pr14 polymer gel, real curve)" \
+      "$cli" afm fit "$gel" --model "$model" --radius 10um --halfspace 1kPa,0.5 --output "$scratch/afm.tsv"
+  done
+  time_task_cpu "afm fit --model md, film on a rigid base, E1 free (pr14 polymer gel)" \
+    "$cli" afm fit "$gel" --model md --radius 10um --film 10kPa,0.5 --substrate rigid --thickness 2um \
+    --output "$scratch/afm.tsv"
+fi
 # make figures from a built tree, 2 jobs as the default runs: without the solve cache, with a
 # cold one (emptied before each run) and a warm one (filled by the warm-up run); the CPU rows
 # (all processes) say more than wall time on a shared machine.

@@ -113,6 +113,15 @@ double minimise(const std::function<double(double)>& f, double lo, double mid, d
   return minimum ? minimum->x : mid;
 }
 
+// A film on a substrate of its own material is one half-space: C = 1 and H = 0 (an elastic
+// indenter keeps C' = 1), so the zone's functions are Maugis's closed forms.
+bool is_half_space(const Stack& s) {
+  const Material& top = s.top();
+  const Material& base = s.substrate().material;
+  return !s.is_multilayer() && !s.substrate().rigid && base.youngs_modulus == top.youngs_modulus &&
+         base.poisson_ratio == top.poisson_ratio;
+}
+
 }  // namespace
 
 struct MaugisDugdaleModel::Impl {
@@ -124,7 +133,8 @@ struct MaugisDugdaleModel::Impl {
       detail::MdTableOptions range;
       range.a_over_t_min = o.table_a_over_t_min;
       range.a_over_t_max = o.table_a_over_t_max;
-      const bool cached = !solve_cache_directory().empty();
+      range.closed_form = is_half_space(s);
+      const bool cached = !range.closed_form && !solve_cache_directory().empty();
       table = std::make_unique<detail::MaugisDugdaleTable>(kernel, disc, quadrature, range,
                                                            cached ? detail::SolveCache::key_of(s) : "");
     }
@@ -177,7 +187,7 @@ struct MaugisDugdaleModel::Impl {
     p.a_bar = a_bar;
     p.a_over_t = a;
     if (table) {
-      if (const auto st = a > 0.0 ? table->solve(sigma_hat, h0, a) : table->solve_end(sigma_hat, h0)) {
+      if (const auto st = a > 0.0 ? table->solve(sigma_hat, h0, a, options.table_errors) : table->solve_end(sigma_hat, h0)) {
         if (excess != nullptr) *excess = st->excess;
         p.m = a > 0.0 ? 1.0 + st->excess : std::numeric_limits<double>::infinity();
         p.c_bar = eta * (a > 0.0 ? a * (1.0 + st->excess) : st->excess);
@@ -220,6 +230,7 @@ const MaugisDugdaleOptions& MaugisDugdaleModel::options() const { return impl_->
 void MaugisDugdaleModel::build_table() const {
   if (impl_->table) impl_->table->build();
 }
+bool MaugisDugdaleModel::table_in_closed_form() const { return impl_->table && impl_->table->options().closed_form; }
 long MaugisDugdaleModel::table_nodes() const { return impl_->table ? impl_->table->nodes_used() : 0; }
 double MaugisDugdaleModel::table_seconds() const { return impl_->table ? impl_->table->build_seconds() : 0.0; }
 

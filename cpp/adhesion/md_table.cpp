@@ -605,6 +605,7 @@ const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::tile_2d(std::size_t ti, st
 }
 
 void MaugisDugdaleTable::build() const {
+  if (options_.closed_form) return;
   const Grids& g = *grids_;
   // Every node first (one parallel pass), then the tiles' splines.
   std::vector<std::pair<std::size_t, std::size_t>> nodes;
@@ -629,6 +630,7 @@ int MaugisDugdaleTable::nodes_s() const { return static_cast<int>(grids_->tau.si
 // The table's radii, with a margin of rounding at the ends: a_bar/eta at a_bar = eta a_over_t_max
 // may round just beyond it (at() clamps ln a to the grid).
 bool MaugisDugdaleTable::covers_radius(double a) const {
+  if (options_.closed_form) return a > 0.0 && std::isfinite(a);
   constexpr double kRounding = 1e-12;
   return a >= options_.a_over_t_min * (1.0 - kRounding) && a <= options_.a_over_t_max * (1.0 + kRounding);
 }
@@ -637,8 +639,22 @@ bool MaugisDugdaleTable::covers(double a, double excess) const {
   const MdTableOptions& o = options_;
   // The ends with a margin of rounding: ln and exp of an end need not return it exactly.
   constexpr double kRounding = 1e-12;
-  return covers_radius(a) && excess >= o.excess_min * (1.0 - kRounding) &&
+  return covers_radius(a) && excess >= std::min(o.excess_floor, o.excess_min) * (1.0 - kRounding) &&
          excess <= excess_max(a) * (1.0 + kRounding);
+}
+
+MdTableValue MaugisDugdaleTable::closed_form_value(double a, double excess) const {
+  MdTableValue out;
+  out.value = homogeneous_functions(a, excess);
+  const CohesiveFunctions& v = out.value;
+  const double noise = options_.source_noise;
+  out.error.d = noise * std::abs(v.d);
+  out.error.f = noise * std::abs(v.f);
+  out.error.g_r = noise * std::abs(v.g_r);
+  out.error.g_s = noise * std::abs(v.g_s);
+  out.error.delta_h = noise * std::abs(v.delta_h);
+  out.error.force_h = noise * std::abs(v.force_h);
+  return out;
 }
 
 MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
@@ -646,6 +662,7 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
                      ") outside the table");
   }
+  if (options_.closed_form) return closed_form_value(a, excess);
   const Grids& g = *grids_;
   const double s_min = std::log(options_.excess_min), s_max = std::log(excess_max(a));
   // Clamped: the logarithms of end values may round just outside the grid.
@@ -659,10 +676,21 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   double hom2[kTwoD], value[kTwoD], error[kTwoD];
   to_array_2d(hom, hom2);
   const std::size_t cell = (cell_s - tile.cell_s0) * tile.own_x + (cell_x - tile.cell_x0);
+  // Below excess_min: r(e) = r(e_min) + O(e), the slope in e from the first fine node e_1.
+  double flat_weight = 0.0, tau_1 = 0.0;
+  if (excess < options_.excess_min) {
+    tau_1 = g.tau[1];
+    const double e_1 = std::exp(s_min + tau_1 * (s_max - s_min));
+    flat_weight = (options_.excess_min - excess) / (e_1 - options_.excess_min);
+  }
   for (int k = 0; k < kTwoD; ++k) {
     const double r = gsl_spline2d_eval(tile.fine[k].spline, x, tau, nullptr, nullptr);
+    double flat = 0.0;
+    if (flat_weight > 0.0) {
+      flat = flat_weight * std::abs(gsl_spline2d_eval(tile.fine[k].spline, x, tau_1, nullptr, nullptr) - r);
+    }
     value[k] = r * hom2[k];
-    error[k] = (options_.error_factor * tile.cell_error[k][cell] + options_.source_noise * std::abs(r)) *
+    error[k] = (options_.error_factor * tile.cell_error[k][cell] + flat + options_.source_noise * std::abs(r)) *
                std::abs(hom2[k]);
   }
   MdTableValue out;
@@ -721,15 +749,34 @@ constexpr double kBracketStep = 0.5;  // first step in s (or ln c) from the homo
 
 }  // namespace
 
-std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a) const {
+// g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
+std::pair<double, double> MaugisDugdaleTable::gap_functions(double a, double excess) const {
+  const CohesiveFunctions hom = homogeneous_functions(a, excess);
+  if (options_.closed_form) return {hom.g_r, hom.g_s};
+  if (!covers(a, excess)) {
+    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
+                     ") outside the table");
+  }
+  const Grids& g = *grids_;
+  const double s_min = std::log(options_.excess_min), s_max = std::log(excess_max(a));
+  const double x = std::clamp(std::log(a), g.x.front(), g.x.back());
+  const double tau = std::clamp((std::log(excess) - s_min) / (s_max - s_min), 0.0, 1.0);
+  const std::size_t cell_x = cell_of(g.x_coarse, x), cell_s = cell_of(g.tau_coarse, tau);
+  const auto b = static_cast<std::size_t>(options_.tile_cells);
+  const Tile2d& tile = tile_2d(cell_x / b, cell_s / b);
+  return {gsl_spline2d_eval(tile.fine[2].spline, x, tau, nullptr, nullptr) * hom.g_r,
+          gsl_spline2d_eval(tile.fine[3].spline, x, tau, nullptr, nullptr) * hom.g_s};
+}
+
+std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a, bool with_errors) const {
   const MdTableOptions& o = options_;
   if (!covers_radius(a)) return std::nullopt;
   // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
   std::function<double(double)> residual = [&](double s) {
-    const MdTableValue v = at(a, std::exp(s));
-    return v.value.g_r + sigma_hat * v.value.g_s - h0;
+    const auto [g_r, g_s] = gap_functions(a, std::exp(s));
+    return g_r + sigma_hat * g_s - h0;
   };
-  const double lo = std::log(o.excess_min), hi = std::log(excess_max(a));
+  const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_from(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;
   double s = bracket->first;
@@ -740,6 +787,13 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   }
   const double e = std::exp(s);
   const MdTableValue v = at(a, e);
+  if (!with_errors) {
+    MdTableState st;
+    st.excess = e;
+    st.delta = v.value.delta_h + sigma_hat * v.value.d;
+    st.force = v.value.force_h + sigma_hat * v.value.f;
+    return st;
+  }
   // Slopes in s by central differences of the interpolant (only for the error estimate).
   const double step = 1e-5;
   const double sp = std::min(s + step, hi), sm = std::max(s - step, lo);
@@ -761,24 +815,51 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
 // Values and error estimates of d, f, g_r, g_s at the curve's end, u = ln(c/t).
 void MaugisDugdaleTable::end_values(double u, double* value, double* error) const {
   const Grids& g = *grids_;
-  u = std::clamp(u, g.xe.front(), g.xe.back());
-  const std::size_t cell = cell_of(g.xe_coarse, u);
-  const Tile1d& tile = tile_end(cell / static_cast<std::size_t>(options_.tile_cells));
+  u = std::clamp(u, std::log(std::min(options_.end_c_over_t_floor, options_.end_c_over_t_min)), g.xe.back());
+  const double below = u < g.xe.front() ? std::exp(u) : 0.0;  // c under the grid
   double hom[kTwoD];
   to_array_2d(homogeneous_end_functions(std::exp(u)), hom);
+  if (options_.closed_form) {
+    for (int k = 0; k < kTwoD; ++k) {
+      value[k] = hom[k];
+      error[k] = options_.source_noise * std::abs(value[k]);
+    }
+    return;
+  }
+  const double ug = std::max(u, g.xe.front());
+  const std::size_t cell = cell_of(g.xe_coarse, ug);
+  const Tile1d& tile = tile_end(cell / static_cast<std::size_t>(options_.tile_cells));
+  // Under the grid: r(c) = r(c_min) + O(c), the slope from the next node c_1.
+  const double c_min = std::exp(g.xe.front()), c_1 = std::exp(g.xe[1]);
+  const double flat_weight = below > 0.0 ? (c_min - below) / (c_1 - c_min) : 0.0;
   for (int k = 0; k < kTwoD; ++k) {
     const auto kk = static_cast<std::size_t>(k);
-    const double r = gsl_spline_eval(tile.fine[kk].spline, u, nullptr);
+    const double r = gsl_spline_eval(tile.fine[kk].spline, ug, nullptr);
+    const double flat =
+        flat_weight > 0.0 ? flat_weight * std::abs(gsl_spline_eval(tile.fine[kk].spline, g.xe[1], nullptr) - r) : 0.0;
     value[k] = r * hom[k];
-    error[k] = (options_.error_factor * tile.interval_error[kk][cell - tile.interval0] +
+    error[k] = (options_.error_factor * tile.interval_error[kk][cell - tile.interval0] + flat +
                 options_.source_noise * std::abs(r)) *
                std::abs(hom[k]);
   }
 }
 
 std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, double h0) const {
+  if (options_.closed_form) {
+    // c²/2 + σ̂ (1 - 2/π) c = h0 (THEORY.md section 13, the end's homogeneous forms).
+    const double b = sigma_hat * (1.0 - 2.0 / kPi);
+    MdTableState st;
+    st.excess = 2.0 * h0 / (b + std::sqrt(b * b + 2.0 * h0));
+    const CohesiveFunctions h = homogeneous_end_functions(st.excess);
+    st.delta = sigma_hat * h.d;
+    st.force = sigma_hat * h.f;
+    st.excess_error = options_.source_noise * st.excess;
+    st.delta_error = options_.source_noise * std::abs(st.delta);
+    st.force_error = options_.source_noise * std::abs(st.force);
+    return st;
+  }
   const Grids& g = *grids_;
-  const double lo = g.xe.front(), hi = g.xe.back();
+  const double lo = std::log(std::min(options_.end_c_over_t_floor, options_.end_c_over_t_min)), hi = g.xe.back();
   std::function<double(double)> residual = [&](double u) {
     double v[kTwoD], e[kTwoD];
     end_values(u, v, e);

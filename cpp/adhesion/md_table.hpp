@@ -21,6 +21,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "cohesive_zone.hpp"
 #include "factored_system.hpp"
@@ -40,8 +41,16 @@ struct MdTableOptions {
   // c/a - 1 from excess_min; c/t up to c_over_t_max (at least 10 a_over_t_max). The zone of the
   // curve's end is c/t ~ 1.5 lambda^-1/2 / eta: 1e4 covers lambda >= 1e-3 with eta >= 0.01.
   double excess_min = 1e-9, c_over_t_max = 1e4;
+  // Below excess_min (the JKR end, lambda ~ 1e4 at large a_bar) the ratios are flat to
+  // O(c/a - 1) (THEORY.md section 13): their values at excess_min serve down to excess_floor,
+  // the error estimate widened by their linear change in c/a - 1 over that step.
+  double excess_floor = 1e-16;
   // The end of the curve (a = 0) is tabulated in ln(c/t) from end_c_over_t_min to c_over_t_max.
   double end_c_over_t_min = 1e-5;
+  // Below it (the end's zone at lambda ~ 1e4 is c/t ~ 1e-6) the zone sees the top layer as a
+  // half-space: the ratios change by O(c/t); their values at end_c_over_t_min serve down to
+  // end_c_over_t_floor, the error widened by their linear change in c.
+  double end_c_over_t_floor = 1e-12;
   double step = 0.3;  // node spacing in x = ln(a/t) and (at most) in s = ln(c/a - 1), fine grid
   // The error estimate of a value is error_factor times the largest |fine - coarse| in its
   // coarse cell (coarse: every other node), plus the direct solve's own relative noise.
@@ -62,6 +71,10 @@ struct MdTableOptions {
   // measured, pull-offs move by <= 2.4e-13 from the 10-point nodes, at 0.7 of their cost (6
   // points put one value on a rigid base outside its estimate).
   int node_points_per_piece = 8;
+  // The stack is one homogeneous half-space (its kernel H is zero): every function is its
+  // closed form (THEORY.md section 13, "Homogeneous closed forms"), returned with the source
+  // noise as its error and no node solved.
+  bool closed_form = false;
 };
 
 // The table's answer at (a, excess): values and absolute error estimates.
@@ -100,7 +113,9 @@ class MaugisDugdaleTable {
   // nullopt if a is outside the table or the root lies outside its excess range. The root is
   // bracketed from the homogeneous solid's root outward, so that only the tiles near it are
   // built.
-  std::optional<MdTableState> solve(double sigma_hat, double h0, double a) const;
+  // with_errors = false: the values alone, every *_error 0 (saves three of the root's ~15
+  // interpolations; for callers that use no estimate, as the AFM fit's trials).
+  std::optional<MdTableState> solve(double sigma_hat, double h0, double a, bool with_errors = true) const;
 
   void build() const;            // builds every tile now (otherwise each on first use)
   double build_seconds() const;  // wall time spent building tiles so far
@@ -126,6 +141,8 @@ class MaugisDugdaleTable {
   void solve_end_nodes(std::size_t first, std::size_t last) const;
   void solve_radius_nodes(std::size_t first, std::size_t last) const;
   void end_values(double u, double* value, double* error) const;
+  MdTableValue closed_form_value(double a, double excess) const;
+  std::pair<double, double> gap_functions(double a, double excess) const;
   void load_cached_nodes() const;
   std::vector<std::size_t> use_nodes(std::vector<char>& used, const std::vector<char>& solved, std::size_t first,
                                      std::size_t last) const;

@@ -71,6 +71,10 @@ std::string md_solver_text(const MaugisDugdaleModel& md) {
   const std::string direct = "per contact radius: factored system (p = " + std::to_string(md.options().nodes_per_panel) +
                              "), Brent root of h(c) = h0 in ln(c/a - 1)";
   if (!md.options().use_table) return direct + " (--md-direct)";
+  if (md.table_in_closed_form()) {
+    return "a homogeneous half-space: Maugis's closed forms stand for the reduced table of the cohesive zone (THEORY.md "
+           "section 13), no direct solve; error estimates ~1e-11 relative (--md-direct: the direct solve throughout)";
+  }
   return "reduced table of the cohesive zone (THEORY.md section 13, 'The cohesive zone as a table'), a/t in [" +
          num(md.options().table_a_over_t_min) + ", " + num(md.options().table_a_over_t_max) +
          "], c/t <= 1e4, tiles built on demand (resting on " + std::to_string(md.table_nodes()) +

@@ -7,8 +7,11 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include "afm_internal.hpp"
 #include "coatcontact/afm_fit.hpp"
@@ -33,6 +36,32 @@ constexpr int kBranchNodes = 128;
 // The table's a/t range (MaugisDugdaleOptions' default), kept inside by the scan and by eta.
 constexpr double kTableAOverT[2] = {1e-4, 1e2};
 constexpr double kForceLimit = 1e3;
+
+// The Maugis-Dugdale models (each with its cohesive-zone table) shared by every fit of the
+// process: the curves of a map share the sample's stack (and E1's node grid), so a tile built
+// for one curve serves the next. A tile's values are a pure function of the stack and its grid
+// index (md_table.hpp), so a fit's result does not depend on what other fits built before.
+using ModelKey = std::tuple<double, double, bool, double, double>;
+constexpr std::size_t kSharedModels = 96;
+std::mutex shared_models_mutex;
+
+std::shared_ptr<const MaugisDugdaleModel> shared_model(const Material& film, const Substrate& substrate) {
+  static std::map<ModelKey, std::shared_ptr<const MaugisDugdaleModel>> models;
+  const ModelKey key{film.youngs_modulus, film.poisson_ratio, substrate.rigid,
+                     substrate.rigid ? 0.0 : substrate.material.youngs_modulus,
+                     substrate.rigid ? 0.0 : substrate.material.poisson_ratio};
+  const std::lock_guard<std::mutex> lock(shared_models_mutex);
+  auto it = models.find(key);
+  if (it != models.end()) return it->second;
+  if (models.size() >= kSharedModels) models.clear();  // the fits holding one keep it
+  MaugisDugdaleOptions options;
+  options.use_table = true;
+  options.table_a_over_t_min = kTableAOverT[0];
+  options.table_a_over_t_max = kTableAOverT[1];
+  options.table_errors = false;  // the fit's trials use values only
+  auto made = std::make_shared<const MaugisDugdaleModel>(Stack::film_on(film, substrate), options);
+  return models.emplace(key, std::move(made)).first->second;
+}
 
 // The Maugis-Dugdale curves of one fit: one stack's model (half-space; a coating with E1 fixed)
 // or one per node E1_j = E1 10^(j/kModulusNodesPerDecade) (a coating with E1 free), each with its
@@ -68,7 +97,9 @@ class MdCurves {
     // The nodes and weights of the trial's modulus (one node unless E1 is free on a coating).
     std::vector<std::pair<const MaugisDugdaleModel*, double>> mix;
     std::vector<double> node_reduced;
-    if (coated_ && problem_.free.modulus) {
+    // On a rigid base the modulus is a pure scale (the table's units are t and E1*): one table
+    // serves every E1, and the trial's own E1 sets L and lambda.
+    if (coated_ && problem_.free.modulus && !problem_.coating->substrate.rigid) {
       const double x = std::log10(trial.modulus / hint_) * kModulusNodesPerDecade;
       const double nearest = std::round(x);
       if (std::abs(x - nearest) < 1e-9) {
@@ -80,7 +111,10 @@ class MdCurves {
         for (int a = 0; a < 4; ++a) add_node(j0 + a, weight[a], mix, node_reduced);
       }
     } else {
-      mix.push_back({&model(trial.modulus, 0), 1.0});
+      // A half-space or a rigid base: the given modulus's table serves every E (shared by the
+      // curves of a map); an elastic base with E1 fixed: trial.modulus is E1.
+      const bool scale_free = !coated_ || problem_.coating->substrate.rigid;
+      mix.push_back({&model(scale_free ? hint_ : trial.modulus, 0), 1.0});
       node_reduced.push_back(reduced);
     }
     // (delta, F) at radius a (a = 0: the curve's end): the weighted nodes' SI values.
@@ -127,6 +161,8 @@ class MdCurves {
   // normal equations) lose every digit to cancellation for model forces ~1e8 times the data's.
   void limit_force(double range) { force_limit_ = kForceLimit * range; }
 
+  // The direct solves the tables of this fit rest on (tables shared with earlier fits count
+  // what those built too).
   long solves() const {
     long n = 0;
     for (const auto& m : models_) n += m.second->table_nodes();
@@ -148,18 +184,13 @@ class MdCurves {
     Substrate substrate;
     substrate.material = film;
     if (coated_) substrate = problem_.coating->substrate;
-    MaugisDugdaleOptions options;
-    options.use_table = true;
-    options.table_a_over_t_min = kTableAOverT[0];
-    options.table_a_over_t_max = kTableAOverT[1];
-    auto made = std::make_unique<MaugisDugdaleModel>(Stack::film_on(film, substrate), options);
-    return *models_.emplace(j, std::move(made)).first->second;
+    return *models_.emplace(j, shared_model(film, substrate)).first->second;
   }
 
   const AfmFitProblem& problem_;
   bool coated_;
   double poisson_, hint_, h0_, force_limit_ = 0.0;
-  std::map<long, std::unique_ptr<MaugisDugdaleModel>> models_;
+  std::map<long, std::shared_ptr<const MaugisDugdaleModel>> models_;
 };
 
 void check_md_problem(const AfmFitProblem& problem) {

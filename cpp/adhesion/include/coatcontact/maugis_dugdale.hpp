@@ -42,6 +42,10 @@ struct MaugisDugdaleOptions {
   bool use_table = false;
   double table_a_over_t_min = 1e-4;
   double table_a_over_t_max = 1e2;
+  // false: points from the table carry no error estimate (m_error, load_error and
+  // penetration_error 0), saving ~20 % of a point; for callers that use values only (the AFM
+  // fit's trials). Pull-offs need the estimates: keep true for them.
+  bool table_errors = true;
 };
 
 // One point of the curve; a_bar = 0 is the end of the curve (contact shrunk to a point at
@@ -114,6 +118,9 @@ class MaugisDugdaleModel {
   // Without: nothing, zeros.
   void build_table() const;
   long table_nodes() const;
+  // With use_table on a homogeneous half-space (film and substrate of one material): Maugis's
+  // closed forms stand for the table (its kernel is zero), no node is solved.
+  bool table_in_closed_form() const;
   double table_seconds() const;
 
  private:
