@@ -63,6 +63,7 @@ AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::excep
   AfmFlag flag = AfmFlag::kUnreadable;
   if (dynamic_cast<const afm::MissingCalibration*>(&error) != nullptr) flag = AfmFlag::kCalibration;
   else if (dynamic_cast<const afm::EmptySegment*>(&error) != nullptr) flag = AfmFlag::kEmptySegment;
+  else if (dynamic_cast<const afm::NonFiniteValue*>(&error) != nullptr) flag = AfmFlag::kBadData;
   return flagged(std::move(row), flag, error.what());
 }
 
