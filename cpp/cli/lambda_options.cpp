@@ -360,7 +360,7 @@ std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& 
   } catch (const InputError& e) {
     const std::string message = e.what();
     // eta out of range is reported by the sphere itself, naming the options behind eta.
-    if (message.rfind("eta", 0) != 0) throw InputError(option + ": " + message);
+    if (message.find("(eta = ") == std::string::npos) throw InputError(option + ": " + message);
   }
   return sigma0;
 }

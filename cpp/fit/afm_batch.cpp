@@ -4,6 +4,9 @@
 #include "coatcontact/afm_batch.hpp"
 
 #include <sys/stat.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -276,6 +279,12 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
     if (options.sink) options.sink(rows);
     done += items.size();
     current = std::move(following);
+#ifdef __GLIBC__
+    // The curves were read on whichever thread ran unit 0, so the freed ones sit in up to
+    // `jobs` malloc arenas, each kept at its own peak: give that memory back once per chunk, or
+    // the RSS grows with the threads all the same (glibc; ~1 ms against a chunk's fits).
+    malloc_trim(0);
+#endif
   }
   return summary;
 }
