@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -11,6 +12,7 @@
 
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
+#include "coatcontact/detail/format.hpp"
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
@@ -123,6 +125,34 @@ void add_pulloff_warnings(Header& h, const Pulloff& p) {
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
 }
 
+// A pull-off scan's warning (in a_bar, for the normalized commands) in the units of an SI run:
+// `eta=..: ` dropped (the header gives eta), "a_bar [lo, hi]" and "a_bar=v" as contact radii
+// in m with the reduced value in parentheses (issue 40 item 8).
+std::string si_pulloff_warning(const std::string& warning, double length) {
+  static const std::regex prefix("^eta=[^:,]*(, k_bar=[^:]*)?: ");
+  static const std::regex range("a_bar \\[([^,\\]]+), ([^\\]]+)\\]");
+  static const std::regex value("a_bar=([-+0-9.eE]+)");
+  const auto si = [&](const std::string& reduced) { return detail::short_text(std::stod(reduced) * length); };
+  std::string text = std::regex_replace(warning, prefix, "");
+  std::string out;
+  std::smatch m;
+  while (std::regex_search(text, m, range)) {
+    out += m.prefix().str() + "contact radii [" + si(m[1]) + ", " + si(m[2]) + "] m (" + m[0].str() + ")";
+    text = m.suffix();
+  }
+  text = out + text;
+  out.clear();
+  while (std::regex_search(text, m, value)) {
+    out += m.prefix().str() + "a = " + si(m[1]) + " m (" + m[0].str() + ")";
+    text = m.suffix();
+  }
+  return out + text;
+}
+
+void add_si_pulloff_warnings(Header& h, const Pulloff& p, double length) {
+  for (const auto& w : p.warnings) h.emplace_back("warning", si_pulloff_warning(w, length));
+}
+
 // The curve of `sphere` through the table. The table is built a decade of a/t at a time: when
 // the decade holding the requested radii reaches beyond what the solver can deliver at `tol`
 // (`solve_alone`: the probe found the request's own radii servable), each radius is solved on
@@ -204,7 +234,7 @@ void add_sphere_spring(Header& h, const AdhesiveModel& model, const Contact& sph
                  num(p.point.load * sphere.force_scale()) + " (contact radius " +
                      num(p.point.a_bar * sphere.length_scale()) + " m, penetration " +
                      num(p.point.penetration * sphere.penetration_scale()) + " m)");
-  for (const auto& w : p.warnings) h.emplace_back("warning", w);
+  for (const auto& w : p.warnings) h.emplace_back("warning", si_pulloff_warning(w, sphere.length_scale()));
 }
 
 // Options and inputs shared by `adhesive` and `pulloff`: the material pair, the eta list and
@@ -673,8 +703,10 @@ int run_sphere(const Args& raw) {
       add_sphere_pulloff(h, sphere, *pulloff);
       h.push_back(jkr_reference_header(jkr));
     } else {
-      h.emplace_back("pull-off", "not computed: its scan over a_bar [" + num(0.1 * a_bar_min) + ", " +
-                                     num(a_bar_max) + "] needs radii the solver cannot serve (" + pulloff_missing +
+      h.emplace_back("pull-off", "not computed: its scan over contact radii [" +
+                                     num(0.1 * a_bar_min * sphere.length_scale()) + ", " +
+                                     num(a_bar_max * sphere.length_scale()) + "] m (a_bar [" + num(0.1 * a_bar_min) + ", " +
+                                     num(a_bar_max) + "]) needs radii the solver cannot serve (" + pulloff_missing +
                                      "); the curve at the requested radii is complete");
     }
     if (solved_note.empty()) {
@@ -682,7 +714,7 @@ int run_sphere(const Args& raw) {
     } else {
       h.emplace_back("reduced variables", solved_note);
     }
-    if (pulloff) add_pulloff_warnings(h, *pulloff);
+    if (pulloff) add_si_pulloff_warnings(h, *pulloff, sphere.length_scale());
     if (pulloff && spring > 0.0) add_sphere_spring(h, model, sphere, spring);
     progress_pause();
     if (!pulloff) std::cerr << "coatcontact sphere: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";

@@ -55,6 +55,22 @@ kinetics_radii_quoted_in_metres)
     ok "allowed t [$lo, $hi] m keeps a/t in [1e-6, 1e6]" || fail "allowed t [$lo, $hi] m"
   grep -q "kinetics: eta = " err && fail "reduced eta message" || ok "no reduced eta message"
   ;;
+pulloff_warnings_quoted_in_metres)
+  # A stiff film on a soft substrate (eta = 0.01): two local minima of P and D. The sphere's
+  # warnings gave a_bar ranges and values and "eta=0.01: "; now contact radii in m, a_bar in
+  # parentheses, each radius = a_bar x the header's length scale.
+  run 0 sphere --radius 1mm --thickness 13nm --film 70GPa,0.2 --substrate 1MPa,0.49 --work 0.05 || true
+  L=$(sed -n 's|^# length scale (pi w R^2/E1\*)^(1/3) \[m\]: ||p' out)
+  grep -q '^# warning: eta=' out && fail "a warning starts with eta=" || ok "no eta= prefix"
+  line=$(grep -m 1 '^# warning: load control (minimum of P): 2 local minima in contact radii' out)
+  [ -n "$line" ] && ok "load control warning in contact radii" || fail "no SI warning: $(grep '^# warning' out | head -2)"
+  read -r lo hi blo bhi a ba <<<"$(echo "$line" | sed -n 's|.*radii \[\([^,]*\), \([^]]*\)\] m (a_bar \[\([^,]*\), \([^]]*\)\]).*(a = \([^ ]*\) m (a_bar=\([^)]*\))).*|\1 \2 \3 \4 \5 \6|p')"
+  close "$lo" "$(awk -v b="$blo" -v l="$L" 'BEGIN { print b * l }')" && close "$hi" "$(awk -v b="$bhi" -v l="$L" 'BEGIN { print b * l }')" &&
+    close "$a" "$(awk -v b="$ba" -v l="$L" 'BEGIN { print b * l }')" && ok "radii = a_bar x L ($lo, $hi, $a m; L = $L m)" ||
+    fail "radii '$lo' '$hi' '$a' against a_bar '$blo' '$bhi' '$ba' x L = $L"
+  pull=$(sed -n 's|^# pull-off contact radius, load control \[m\]: ||p' out)
+  close "$a" "$pull" && ok "the reported minimum is the header's pull-off radius" || fail "a = $a, header $pull"
+  ;;
 *) unknown_case ;;
 esac
 finish_cases
