@@ -4,7 +4,6 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -12,7 +11,6 @@
 
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
-#include "coatcontact/detail/format.hpp"
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
@@ -123,30 +121,6 @@ void refuse_unused_tol(const Arguments& args, const std::vector<double>& lambdas
 
 void add_pulloff_warnings(Header& h, const Pulloff& p) {
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
-}
-
-// A pull-off scan's warning (in a_bar, for the normalized commands) in the units of an SI run:
-// `eta=..: ` dropped (the header gives eta), "a_bar [lo, hi]" and "a_bar=v" as contact radii
-// in m with the reduced value in parentheses (issue 40 item 8).
-std::string si_pulloff_warning(const std::string& warning, double length) {
-  static const std::regex prefix("^eta=[^:,]*(, k_bar=[^:]*)?: ");
-  static const std::regex range("a_bar \\[([^,\\]]+), ([^\\]]+)\\]");
-  static const std::regex value("a_bar=([-+0-9.eE]+)");
-  const auto si = [&](const std::string& reduced) { return detail::short_text(std::stod(reduced) * length); };
-  std::string text = std::regex_replace(warning, prefix, "");
-  std::string out;
-  std::smatch m;
-  while (std::regex_search(text, m, range)) {
-    out += m.prefix().str() + "contact radii [" + si(m[1]) + ", " + si(m[2]) + "] m (" + m[0].str() + ")";
-    text = m.suffix();
-  }
-  text = out + text;
-  out.clear();
-  while (std::regex_search(text, m, value)) {
-    out += m.prefix().str() + "a = " + si(m[1]) + " m (" + m[0].str() + ")";
-    text = m.suffix();
-  }
-  return out + text;
 }
 
 void add_si_pulloff_warnings(Header& h, const Pulloff& p, double length) {
