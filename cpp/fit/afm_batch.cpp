@@ -196,7 +196,6 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
   struct Item {
     std::optional<afm::ForceCurve> curve;
     AfmCurveRow row;
-    std::size_t bytes = 0;  // afm_curve_bytes of the curve as read
   };
   struct Chunk {
     std::vector<Item> items;
@@ -228,8 +227,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
       const std::size_t i = next - first_of_file;
       try {
         item.curve = source->read(i);
-        item.bytes = afm_curve_bytes(*item.curve);
-        read.bytes += item.bytes;
+        read.bytes += afm_curve_bytes(*item.curve);
       } catch (const InputError& error) {
         item.row = afm_unreadable_row(source->place(i), error);
       } catch (const NumericalError& error) {
@@ -282,7 +280,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
 #ifdef __GLIBC__
     // The curves were read on whichever thread ran unit 0, so the freed ones sit in up to
     // `jobs` malloc arenas, each kept at its own peak: give that memory back once per chunk, or
-    // the RSS grows with the threads all the same (glibc; ~1 ms against a chunk's fits).
+    // the RSS grows with the threads all the same (glibc; cheap against a chunk's fits).
     malloc_trim(0);
 #endif
   }
