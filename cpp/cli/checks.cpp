@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -182,7 +183,11 @@ std::string si_pulloff_warning(const std::string& warning, double length) {
   static const std::regex prefix("^eta=[^:,]*(, k_bar=[^:]*)?: ");
   static const std::regex range("a_bar \\[([^,\\]]+), ([^\\]]+)\\]");
   static const std::regex value("a_bar=([-+0-9.eE]+)");
-  const auto si = [&](const std::string& reduced) { return detail::short_text(std::stod(reduced) * length); };
+  const auto si = [&](const std::string& reduced) {
+    char* end = nullptr;
+    const double v = std::strtod(reduced.c_str(), &end);
+    return end != reduced.c_str() && *end == '\0' ? detail::short_text(v * length) : "(" + reduced + ") x " + detail::short_text(length);
+  };
   std::string text = std::regex_replace(warning, prefix, "");
   std::string out;
   std::smatch m;
