@@ -31,6 +31,7 @@ namespace coatcontact {
 namespace {
 
 using detail::full_precision;
+using detail::short_text;
 
 // Reduced variables of the tip at one a_bar and their a_bar derivatives (section 5; the cone in
 // its own units, section 14): P_H = a^3 Pi_s/2, D_H = a^2 Delta_s (sphere), a^2 Pi_c/2, a Delta_c
@@ -507,7 +508,7 @@ class Engine {
     double tt = t0;
     const int status = gsl_odeiv2_driver_apply(d, &tt, t, y);
     if (status != GSL_SUCCESS) {
-      throw NumericalError("kinetics: ODE driver failed (status " + std::to_string(status) + ") at tau = " +
+      throw NumericalError("kinetics: ODE driver failed (" + std::string(gsl_strerror(status)) + ") at tau = " +
                            full_precision(tt));
     }
   }
@@ -550,7 +551,7 @@ class Engine {
                                                  : t + std::max(1e6 * std::fabs(h), 1e3 * (std::fabs(t) + 1.0));
       const int status = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys_, &t, t1, &h, y);
       if (status != GSL_SUCCESS) {
-        throw NumericalError("kinetics: ODE step failed (status " + std::to_string(status) + ") at tau = " +
+        throw NumericalError("kinetics: ODE step failed (" + std::string(gsl_strerror(status)) + ") at tau = " +
                              full_precision(t) + ", a_bar = " + full_precision(std::exp(y[0])));
       }
       const auto after = events(t, y);
@@ -845,10 +846,32 @@ KineticsScales kinetics_scales(const AdhesiveModel& model, const KineticsSetupSI
   return s;
 }
 
+namespace {
+
+// The Engine's check that the contact radii of a run stay in the table's a/t (the message in
+// reduced units, for a run in them), made first in the units of an SI run: the radii in m and
+// the thicknesses that keep them in range (issue 40 item 8).
+void check_radii_in_table_si(const AdhesiveModel& model, const KineticsSetupSI& setup, const KineticsScales& sc,
+                             const KineticsOptions& options) {
+  const double a_end = options.a_bar_end > 0.0 ? options.a_bar_end : default_a_end(model, setup.tip, sc.eta);
+  const double a_max = options.a_bar_max > 0.0 ? options.a_bar_max : default_a_max(model, setup.tip, sc.eta);
+  if (a_end / sc.eta >= kMinimumScaled && a_max / sc.eta <= kMaximumScaled) return;
+  const double lo = a_end * sc.length, hi = a_max * sc.length;
+  throw InputError("thickness t = " + short_text(setup.thickness) + " m puts the contact radii of the run (" +
+                   short_text(lo) + " to " + short_text(hi) + " m) at a/t = " + short_text(lo / setup.thickness) +
+                   " to " + short_text(hi / setup.thickness) + ", outside the solver's [" + short_text(kMinimumScaled) +
+                   ", " + short_text(kMaximumScaled) + "]; allowed: t in [" + short_text(hi / kMaximumScaled) + ", " +
+                   short_text(lo / kMinimumScaled) + "] m for this radius, work and film (eta = t/L_a = " +
+                   short_text(sc.eta) + ", L_a = " + short_text(sc.length) + " m)");
+}
+
+}  // namespace
+
 std::vector<KineticsResultSI> simulate_kinetics_si(const AdhesiveModel& model, const KineticsSetupSI& setup,
                                                    const std::vector<double>& retract_speeds,
                                                    bool keep_samples, const KineticsOptions& options) {
   const KineticsScales sc = kinetics_scales(model, setup);
+  check_radii_in_table_si(model, setup, sc, options);
   KineticLaw law;
   law.n = setup.n;
   law.n_adv = setup.n_adv > 0.0 ? setup.n_adv : setup.n;

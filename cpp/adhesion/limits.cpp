@@ -48,8 +48,10 @@ MaugisScales maugis_scales(double radius, double thickness, double work, double 
   s.force = kPi * work * radius;
   s.eta = thickness / s.length;
   if (!(s.eta >= kMinimumScaled && s.eta <= kMaximumScaled)) {
-    throw InputError("eta = t/(pi w R^2/E1*)^(1/3) = " + show(s.eta) + " is outside the allowed range [" +
-                     show(kMinimumScaled) + ", " + show(kMaximumScaled) + "]");
+    // In the units given: the thickness and its allowed range; eta in parentheses.
+    throw InputError("film thickness t = " + show(thickness) + " m not allowed for this radius, work and modulus; allowed: t in [" +
+                     show(kMinimumScaled * s.length) + ", " + show(kMaximumScaled * s.length) + "] m (eta = t/(pi w R^2/E1*)^(1/3) = " +
+                     show(s.eta) + ", allowed [" + show(kMinimumScaled) + ", " + show(kMaximumScaled) + "])");
   }
   return s;
 }
@@ -58,7 +60,14 @@ MaugisScales maugis_scales(double radius, double thickness, double work, double 
   MaugisScales s = maugis_scales(radius, thickness, work, modulus);
   const double lambda = maugis_lambda(s, cohesive_stress);
   check_cohesive_range(work / cohesive_stress, thickness);
-  check_lambda(lambda, "from sigma0 = " + show(cohesive_stress) + " Pa");
+  if (!(lambda >= kMinimumLambda && lambda <= kMaximumLambda)) {
+    // In the units given: sigma0 (and h0 = w/sigma0) and their allowed ranges; lambda in parentheses.
+    const double lo = maugis_cohesive_stress(s, kMinimumLambda), hi = maugis_cohesive_stress(s, kMaximumLambda);
+    throw InputError("sigma0 = " + show(cohesive_stress) + " Pa (range h0 = w/sigma0 = " + show(work / cohesive_stress) +
+                     " m) not allowed for this radius, work and modulus; allowed: sigma0 in [" + show(lo) + ", " +
+                     show(hi) + "] Pa, h0 in [" + show(work / hi) + ", " + show(work / lo) + "] m (Maugis's lambda = " +
+                     show(lambda) + ", allowed [" + show(kMinimumLambda) + ", " + show(kMaximumLambda) + "])");
+  }
   s.cohesive_stress = cohesive_stress;
   s.lambda = lambda;
   return s;

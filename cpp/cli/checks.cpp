@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <regex>
 #include <sstream>
 #include <thread>
 
 #include "coatcontact/cli_support.hpp"
+#include "coatcontact/detail/format.hpp"
 #include "coatcontact/errors.hpp"
 
 namespace coatcontact::cli {
@@ -174,6 +177,31 @@ void check_fit_columns(const std::string& columns, const std::vector<std::string
                      declared[0] + " " + declared[1] + "' (" + short_name(data_path) + ":" + std::to_string(declared_line) +
                      "); allowed: --columns " + pair);
   }
+}
+
+std::string si_pulloff_warning(const std::string& warning, double length) {
+  static const std::regex prefix("^eta=[^:,]*(, k_bar=[^:]*)?: ");
+  static const std::regex range("a_bar \\[([^,\\]]+), ([^\\]]+)\\]");
+  static const std::regex value("a_bar=([-+0-9.eE]+)");
+  const auto si = [&](const std::string& reduced) {
+    char* end = nullptr;
+    const double v = std::strtod(reduced.c_str(), &end);
+    return end != reduced.c_str() && *end == '\0' ? detail::short_text(v * length) : "(" + reduced + ") x " + detail::short_text(length);
+  };
+  std::string text = std::regex_replace(warning, prefix, "");
+  std::string out;
+  std::smatch m;
+  while (std::regex_search(text, m, range)) {
+    out += m.prefix().str() + "contact radii [" + si(m[1]) + ", " + si(m[2]) + "] m (" + m[0].str() + ")";
+    text = m.suffix();
+  }
+  text = out + text;
+  out.clear();
+  while (std::regex_search(text, m, value)) {
+    out += m.prefix().str() + "a = " + si(m[1]) + " m (" + m[0].str() + ")";
+    text = m.suffix();
+  }
+  return out + text;
 }
 
 }  // namespace coatcontact::cli

@@ -71,4 +71,9 @@ std::pair<std::string, std::string> jkr_reference_header(const JkrReference& jkr
 void check_fit_columns(const std::string& columns, const std::vector<std::string>& declared, int declared_line,
                        const std::string& data_path);
 
+// A pull-off scan's warning (in a_bar, as the normalized commands print it) in the units of an
+// SI run: `eta=..: ` dropped (the header gives eta), "a_bar [lo, hi]" and "a_bar=v" as contact
+// radii in m (a_bar = a/length) with the reduced value in parentheses (issue 40 item 8).
+std::string si_pulloff_warning(const std::string& warning, double length);
+
 }  // namespace coatcontact::cli

@@ -123,6 +123,10 @@ void add_pulloff_warnings(Header& h, const Pulloff& p) {
   for (const auto& w : p.warnings) h.emplace_back("warning", w);
 }
 
+void add_si_pulloff_warnings(Header& h, const Pulloff& p, double length) {
+  for (const auto& w : p.warnings) h.emplace_back("warning", si_pulloff_warning(w, length));
+}
+
 // The curve of `sphere` through the table. The table is built a decade of a/t at a time: when
 // the decade holding the requested radii reaches beyond what the solver can deliver at `tol`
 // (`solve_alone`: the probe found the request's own radii servable), each radius is solved on
@@ -204,7 +208,7 @@ void add_sphere_spring(Header& h, const AdhesiveModel& model, const Contact& sph
                  num(p.point.load * sphere.force_scale()) + " (contact radius " +
                      num(p.point.a_bar * sphere.length_scale()) + " m, penetration " +
                      num(p.point.penetration * sphere.penetration_scale()) + " m)");
-  for (const auto& w : p.warnings) h.emplace_back("warning", w);
+  for (const auto& w : p.warnings) h.emplace_back("warning", si_pulloff_warning(w, sphere.length_scale()));
 }
 
 // Options and inputs shared by `adhesive` and `pulloff`: the material pair, the eta list and
@@ -673,8 +677,10 @@ int run_sphere(const Args& raw) {
       add_sphere_pulloff(h, sphere, *pulloff);
       h.push_back(jkr_reference_header(jkr));
     } else {
-      h.emplace_back("pull-off", "not computed: its scan over a_bar [" + num(0.1 * a_bar_min) + ", " +
-                                     num(a_bar_max) + "] needs radii the solver cannot serve (" + pulloff_missing +
+      h.emplace_back("pull-off", "not computed: its scan over contact radii [" +
+                                     num(0.1 * a_bar_min * sphere.length_scale()) + ", " +
+                                     num(a_bar_max * sphere.length_scale()) + "] m (a_bar [" + num(0.1 * a_bar_min) + ", " +
+                                     num(a_bar_max) + "]) needs radii the solver cannot serve (" + pulloff_missing +
                                      "); the curve at the requested radii is complete");
     }
     if (solved_note.empty()) {
@@ -682,7 +688,7 @@ int run_sphere(const Args& raw) {
     } else {
       h.emplace_back("reduced variables", solved_note);
     }
-    if (pulloff) add_pulloff_warnings(h, *pulloff);
+    if (pulloff) add_si_pulloff_warnings(h, *pulloff, sphere.length_scale());
     if (pulloff && spring > 0.0) add_sphere_spring(h, model, sphere, spring);
     progress_pause();
     if (!pulloff) std::cerr << "coatcontact sphere: warning: pull-off not computed (the curve is): " << pulloff_missing << "\n";

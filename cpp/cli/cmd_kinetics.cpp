@@ -236,6 +236,7 @@ constexpr const char* kRunTime = "run time (wall clock, this computation) [s]";
 // A library InputError in the user's terms: which options set what it refuses.
 std::string kinetics_input_message(const std::string& message, bool si) {
   if (message.rfind("protocol", 0) == 0) return "--protocol: " + message;
+  if (si && message.rfind("thickness t =", 0) == 0) return "--thickness: " + message;
   if (message.rfind("a/t", 0) == 0) {
     return std::string(si ? "--protocol, --thickness, --radius/--shape, --work, --film" : "--protocol, --eta") +
            ": the contact radius this run reaches is outside what the solver serves (" + message +
@@ -249,7 +250,11 @@ std::string kinetics_input_message(const std::string& message, bool si) {
 // A library NumericalError with GSL's status code spelled out (gsl_strerror) and what to try.
 std::string kinetics_numerical_message(const std::string& message) {
   const std::size_t at = message.find("(status ");
-  if (at == std::string::npos) return message;
+  if (at == std::string::npos) {
+    if (message.find("kinetics: ODE") == std::string::npos) return message;
+    return message + "; the contact edge's ODE could not be integrated there: try a larger --tol, or a protocol "
+                     "that keeps the contact inside the model's range (a smaller approach force, a slower drive)";
+  }
   const int status = std::atoi(message.c_str() + at + 8);
   const std::size_t close = message.find(')', at);
   std::string text = message.substr(0, at) + "(" + gsl_strerror(status) + ")" +

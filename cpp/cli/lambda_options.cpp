@@ -364,7 +364,7 @@ std::optional<double> parse_cohesive_stress(const Arguments& args, const Stack& 
   } catch (const InputError& e) {
     const std::string message = e.what();
     // eta out of range is reported by the sphere itself, naming the options behind eta.
-    if (message.rfind("eta", 0) != 0) throw InputError(option + ": " + message);
+    if (message.find("(eta = ") == std::string::npos) throw InputError(option + ": " + message);
   }
   return sigma0;
 }
@@ -423,7 +423,7 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
   h.emplace_back("end of the curve a -> 0", "F = " + num(p.curve_end.load * force) + " N, delta = " +
                                                 num(p.curve_end.penetration * penetration) + " m, c = " +
                                                 num(p.curve_end.c_bar * length) + " m");
-  for (const auto& w : p.warnings) h.emplace_back("warning", w);
+  for (const auto& w : p.warnings) h.emplace_back("warning", si_pulloff_warning(w, length));
   h.emplace_back("solver", md_solver_text(md));
   std::vector<double> a_si, delta_si, force_si;
   for (const MaugisDugdalePoint& q : curve) {

@@ -820,8 +820,10 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     if (deepest > 0.0) {
       const auto check = model ? model->branch(estimate, deepest) : law_branch(p, nodes.sweep_of(estimate.modulus), estimate, deepest, law);
       if (check->max_radius() / estimate.thickness > kCoatingAOverT[1]) {
-        throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
-                             short_text(estimate.thickness) + " m; the coating model is tabulated up to there");
+        throw NumericalError("afm fit: the indentations reach " + short_text(deepest) + " m, where the contact radius " +
+                             short_text(check->max_radius()) + " m exceeds " + short_text(kCoatingAOverT[1]) +
+                             " film thicknesses (t = " + short_text(estimate.thickness) +
+                             " m), as far as the coating model is tabulated; a thicker film or a shallower --indentation-range");
       }
     }
   }

@@ -4,6 +4,9 @@
 #include "coatcontact/afm_batch.hpp"
 
 #include <sys/stat.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -58,6 +61,7 @@ AfmCurveRow afm_unreadable_row(const afm::CurveMetadata& place, const std::excep
   AfmFlag flag = AfmFlag::kUnreadable;
   if (dynamic_cast<const afm::MissingCalibration*>(&error) != nullptr) flag = AfmFlag::kCalibration;
   else if (dynamic_cast<const afm::EmptySegment*>(&error) != nullptr) flag = AfmFlag::kEmptySegment;
+  else if (dynamic_cast<const afm::NonFiniteValue*>(&error) != nullptr) flag = AfmFlag::kBadData;
   return flagged(std::move(row), flag, error.what());
 }
 
@@ -128,6 +132,17 @@ std::vector<AfmFileSurvey> afm_survey_files(const std::vector<std::string>& file
   return survey;
 }
 
+std::size_t afm_curve_bytes(const afm::ForceCurve& curve) {
+  std::size_t bytes = sizeof curve;
+  for (const std::vector<double>* v : {&curve.force, &curve.height_piezo, &curve.height_measured, &curve.time}) {
+    bytes += v->capacity() * sizeof(double);
+  }
+  bytes += curve.segment.capacity() * sizeof(int) + curve.segments.capacity() * sizeof(afm::Segment);
+  for (const afm::Segment& s : curve.segments) bytes += s.name.capacity();
+  for (const auto& [key, value] : curve.metadata.details) bytes += key.capacity() + value.capacity();
+  return bytes;
+}
+
 namespace {
 
 // Sets the OpenMP thread count of the calling thread for the lifetime of the object.
@@ -168,6 +183,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
   if (options.jobs > 0) coatcontact::detail::check_thread_count(static_cast<long>(options.jobs), "jobs");
   const unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   const std::size_t chunk = options.chunk_curves > 0 ? options.chunk_curves : 16 * static_cast<std::size_t>(jobs);
+  const std::size_t chunk_bytes = options.chunk_bytes > 0 ? options.chunk_bytes : kAfmBatchChunkBytes;
   const ScopedThreads threads(jobs);
   std::size_t done = std::min(options.skip, summary.curves);
   const std::size_t stop = done + std::min(options.count, summary.curves - done);  // one past the last curve fitted
@@ -178,12 +194,19 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
     std::optional<afm::ForceCurve> curve;
     AfmCurveRow row;
   };
+  struct Chunk {
+    std::vector<Item> items;
+    std::size_t bytes = 0;  // of its curves as read
+  };
   // The curves from `next` on (over all files, in order), one chunk at a time.
   std::size_t next = done, file = 0, first_of_file = 0;
   std::unique_ptr<afm::CurveSource> source;
+  // A chunk ends at `chunk` curves or at the curve that brings its bytes to chunk_bytes, so
+  // the curves held do not grow with the threads (issue 40: 1.7 GB at --jobs 16).
   const auto read_chunk = [&]() {
-    std::vector<Item> items;
-    while (items.size() < chunk && next < stop) {
+    Chunk read;
+    std::vector<Item>& items = read.items;
+    while (items.size() < chunk && read.bytes < chunk_bytes && next < stop) {
       while (next >= first_of_file + survey[file].curves) {
         first_of_file += survey[file++].curves;
         source.reset();
@@ -201,6 +224,7 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
       const std::size_t i = next - first_of_file;
       try {
         item.curve = source->read(i);
+        read.bytes += afm_curve_bytes(*item.curve);
       } catch (const InputError& error) {
         item.row = afm_unreadable_row(source->place(i), error);
       } catch (const NumericalError& error) {
@@ -209,13 +233,14 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
       items.push_back(std::move(item));
       ++next;
     }
-    return items;
+    return read;
   };
   // Unit 0 of each parallel loop reads the next chunk while the others fit this one (the
   // source is used by one unit at a time), so reading overlaps fitting.
-  std::vector<Item> items = read_chunk();
+  Chunk current = read_chunk();
+  std::vector<Item>& items = current.items;
   while (!items.empty()) {
-    std::vector<Item> following;
+    Chunk following;
     const std::size_t chunk_done = done;
     const ScopedProgressHook hook([&](std::size_t finished, std::size_t) {
       return !options.progress || options.progress(chunk_done + std::min(finished, items.size()), summary.curves);
@@ -231,6 +256,9 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
         item.curve.reset();
       }
     });
+    // Both chunks whole: an upper bound of what the loop held at once.
+    summary.peak_curves_held = std::max(summary.peak_curves_held, items.size() + following.items.size());
+    summary.peak_curve_bytes = std::max(summary.peak_curve_bytes, current.bytes + following.bytes);
     std::vector<AfmCurveRow> rows;
     rows.reserve(items.size());
     for (Item& item : items) {
@@ -245,7 +273,13 @@ AfmBatchSummary afm_fit_batch(const std::vector<std::string>& files, const afm::
     }
     if (options.sink) options.sink(rows);
     done += items.size();
-    items = std::move(following);
+    current = std::move(following);
+#ifdef __GLIBC__
+    // The curves were read on whichever thread ran unit 0, so the freed ones sit in up to
+    // `jobs` malloc arenas, each kept at its own peak: give that memory back once per chunk, or
+    // the RSS grows with the threads all the same (glibc; cheap against a chunk's fits).
+    malloc_trim(0);
+#endif
   }
   return summary;
 }

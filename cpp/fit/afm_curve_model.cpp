@@ -841,8 +841,10 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
       ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid);
       evaluations += found.evaluations;
       if (final && found.contact_point - z_lo > table->max_penetration()) {
-        throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +
-                             short_text(t) + " m; the coating model is tabulated up to there");
+        throw NumericalError("afm fit: the indentations reach " + short_text(found.contact_point - z_lo) +
+                             " m, past the " + short_text(table->max_penetration()) + " m at which the contact radius reaches " +
+                             short_text(kCoatingAOverT[1]) + " film thicknesses (t = " + short_text(t) +
+                             " m), as far as the coating model is tabulated; a thicker film or a shallower --indentation-range");
       }
       return found;
     };

@@ -121,9 +121,10 @@ class MdCurves {
     const auto point = [&](double a) -> std::pair<double, double> {
       if (a > 0.0 && !(a / t >= kTableAOverT[0] && a / t <= kTableAOverT[1])) {
         // (the direct solve would take ~0.03 s a point)
-        throw NumericalError("afm fit: the Maugis-Dugdale branch needs a/t = " + short_text(a / t) +
-                             ", outside the cohesive-zone table's [" + short_text(kTableAOverT[0]) + ", " +
-                             short_text(kTableAOverT[1]) + "]");
+        throw NumericalError("afm fit: the Maugis-Dugdale branch needs a contact radius " + short_text(a) +
+                             " m, outside the cohesive-zone table's [" + short_text(kTableAOverT[0] * t) + ", " +
+                             short_text(kTableAOverT[1] * t) + "] m at t = " + short_text(t) + " m (a/t = " +
+                             short_text(a / t) + ")");
       }
       double delta = 0.0, force = 0.0;
       for (std::size_t k = 0; k < mix.size(); ++k) {
@@ -146,7 +147,11 @@ class MdCurves {
     const double eta = t / length;
     const double lo = std::max(kScanLow, 1.0001 * kTableAOverT[0] * eta);
     const double hi = std::min(std::max(kScanHigh, 3.0 * lo), 0.9999 * kTableAOverT[1] * eta);
-    if (!(lo < hi)) throw NumericalError("afm fit: the Maugis-Dugdale scan leaves the table (a/t range)");
+    if (!(lo < hi)) {
+      throw NumericalError("afm fit: the Maugis-Dugdale branch's contact radii leave the cohesive-zone table's [" +
+                           short_text(kTableAOverT[0] * t) + ", " + short_text(kTableAOverT[1] * t) + "] m at t = " +
+                           short_text(t) + " m");
+    }
     auto made = std::make_unique<SpringBranch>(point, length, lo, hi, kScanPerDecade, problem_.spring_constant,
                                                max_indentation, a_top, kBranchNodes, point(0.0), reduced);
     if (force_limit_ > 0.0 && !(std::abs(made->jump_force()) <= force_limit_)) {

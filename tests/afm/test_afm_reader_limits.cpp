@@ -393,6 +393,43 @@ void synthetic_back_and_forth_map_round_trips() {
   }
 }
 
+// ---- item 8: a NaN or inf in a curve ----
+
+// Item 8: a NaN or inf in a curve's channel was flagged no_contact or no_convergence; the curve
+// is readable and its data are bad: bad_data (9), with the reader's reason, the other curves
+// fitted. The synthetic map's vDeflection channels (big-endian float) get a NaN (curve 0) and
+// an inf (curve 1) written here.
+void regression_nan_inf_curve_not_flagged_bad_data() {
+  const std::string map = work + "/finite.jpk-force-map";
+  const std::string command = make_map + " " + map + " 2 2 --points 100 --clean";
+  check::that(std::system(command.c_str()) == 0, "make_afm_map 2 x 2");
+  std::vector<Entry> entries = entries_of(map);
+  for (Entry& e : entries) {
+    for (int curve = 0; curve < 2; ++curve) {
+      if (e.name != "index/" + std::to_string(curve) + "/segments/0/channels/vDeflection.dat") continue;
+      const unsigned char bytes[2][4] = {{0x7f, 0xc0, 0, 0}, {0x7f, 0x80, 0, 0}};  // NaN, +inf
+      for (int k = 0; k < 4; ++k) e.data[40 + k] = static_cast<char>(bytes[curve][k]);
+    }
+  }
+  const std::string bad = work + "/nonfinite.jpk-force-map";
+  write_zip(bad, entries);
+  coatcontact::fit::AfmBatchSettings settings;
+  settings.problem.tip = coatcontact::fit::afm_paraboloid(10e-6);
+  coatcontact::fit::AfmBatchOptions options;
+  std::vector<coatcontact::fit::AfmCurveRow> rows;
+  options.sink = [&](const std::vector<coatcontact::fit::AfmCurveRow>& chunk) { rows.insert(rows.end(), chunk.begin(), chunk.end()); };
+  coatcontact::fit::afm_fit_batch({bad}, {}, settings, options);
+  check::that(rows.size() == 4, "four rows");
+  if (rows.size() != 4) return;
+  for (int curve = 0; curve < 2; ++curve) {
+    check::that(rows[curve].flag == coatcontact::fit::AfmFlag::kBadData,
+                "curve " + std::to_string(curve) + " (" + (curve == 0 ? "NaN" : "inf") + ") flagged bad_data: " + rows[curve].message);
+    check::that(rows[curve].message.find("not finite") != std::string::npos, "its reason says the value is not finite");
+  }
+  check::that(rows[2].flag == coatcontact::fit::AfmFlag::kFitted && rows[3].flag == coatcontact::fit::AfmFlag::kFitted,
+              "the other curves fitted");
+}
+
 // ---- items 4 (library) and 7 ----
 
 void regression_jobs_65536_segfaults() {
@@ -466,6 +503,7 @@ int main(int argc, char** argv) {
   regression_workshop_csv_rows_times_columns();
   regression_grid_mirrored_on_odd_rows_of_back_and_forth_maps();
   synthetic_back_and_forth_map_round_trips();
+  regression_nan_inf_curve_not_flagged_bad_data();
   regression_jobs_65536_segfaults();
   regression_symlink_loop_in_folder_is_internal_error();
   regression_newline_in_file_name_aborts_batch();

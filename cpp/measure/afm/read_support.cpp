@@ -121,7 +121,10 @@ void finish_curve(ForceCurve& curve, const std::string& file, const std::string&
                             " points, the segments " + std::to_string(n));
     }
     for (double v : channel) {
-      if (!std::isfinite(v)) fail(file, entry, std::string("channel ") + name + " holds a value that is not finite");
+      if (!std::isfinite(v)) {
+        throw NonFiniteValue(file + ": " + (entry.empty() ? std::string() : entry + ": ") + "channel " + name +
+                             " holds a value that is not finite");
+      }
     }
   };
   check_length(curve.force, "force");

@@ -4,7 +4,9 @@
 // it as a flagged row (AfmBatchOptions::unreadable_file_rows). The curves are read
 // one at a time from each file (afm::CurveSource) in chunks: a chunk is fitted in parallel (the
 // library's one parallel loop, one of whose units reads the next chunk meanwhile) and handed
-// over in curve order, so the memory of a run is two chunks of curves plus the rows the caller
+// over in curve order. A chunk holds at most 16 curves per thread and at most
+// AfmBatchOptions::chunk_bytes of curves (at least one curve), so the memory of a run is two
+// chunks of curves, whatever --jobs, plus each busy thread's working set, the rows the caller
 // keeps (and libzip's central directory of the archive being read: THEORY.md section 15,
 // "Memory of a run"). The per-curve fit
 // is afm_fit_curve (coatcontact/afm_curve_fit.hpp), the one-curve fit's pipeline, unchanged:
@@ -88,6 +90,9 @@ std::vector<AfmFileSurvey> afm_survey_files(const std::vector<std::string>& file
 struct AfmBatchOptions {
   unsigned jobs = 0;             // threads; 0: the machine's cores
   std::size_t chunk_curves = 0;  // curves per chunk; 0: 16 x jobs
+  // The curves' bytes (afm_curve_bytes) a chunk holds at most; a chunk always takes one curve,
+  // and stops at the curve that reaches this. 0: kAfmBatchChunkBytes.
+  std::size_t chunk_bytes = 0;
   std::size_t skip = 0;          // the first `skip` curves of the run (over all files) are not fitted (resume)
   std::size_t count = static_cast<std::size_t>(-1);  // curves fitted after them at most (a share of the run)
   // The files' afm_survey_files, when the caller has it (a share of a run on a cluster: no file
@@ -103,8 +108,18 @@ struct AfmBatchOptions {
   std::function<bool(std::size_t done, std::size_t total)> progress;
 };
 
+// The default AfmBatchOptions::chunk_bytes: 32 curves of a real JPK map (12 030 points per
+// segment, ~0.9 MB as read), so up to 16 threads share each chunk two curves apiece.
+constexpr std::size_t kAfmBatchChunkBytes = std::size_t{32} << 20;
+
+// The bytes of a curve as read (its per-point arrays and segments): what a chunk counts.
+std::size_t afm_curve_bytes(const afm::ForceCurve& curve);
+
 struct AfmBatchSummary {
   std::size_t curves = 0;   // in all files
+  // The most curves, and curve bytes (afm_curve_bytes), held at once: the chunk being fitted
+  // and the one being read, each counted whole (a curve is released once fitted).
+  std::size_t peak_curves_held = 0, peak_curve_bytes = 0;
   std::size_t fitted = 0, flagged = 0;  // of the curves fitted in this call (not the skipped)
   std::size_t by_flag[kAfmFlagCount] = {};
   std::string first_message[kAfmFlagCount];  // the first reason of each flag, for a summary

@@ -43,12 +43,17 @@ std::vector<ForceCurve> read_force_curves_from_bytes(const std::string& bytes, c
                                                      const Calibration& calibration = {});
 
 // The InputErrors of one curve that a batch tells apart (coatcontact/afm_batch.hpp flags them):
-// a calibration value the force needs is missing; a segment holds no points.
+// a calibration value the force needs is missing; a segment holds no points; a channel holds
+// a value that is not finite (NaN, inf: the curve's data are bad, the file is readable).
 class MissingCalibration : public InputError {
  public:
   using InputError::InputError;
 };
 class EmptySegment : public InputError {
+ public:
+  using InputError::InputError;
+};
+class NonFiniteValue : public InputError {
  public:
   using InputError::InputError;
 };
