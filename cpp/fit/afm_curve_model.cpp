@@ -219,8 +219,14 @@ class CoatingForces {
     for (int k = 0; k < count; ++k) {
       a_over_t_.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
     }
+    if (!coating_.direct) {
+      a_over_t_.back() = kCoatingAOverT[1];  // inside the table's range despite rounding
+      table_ = internal::afm_coated_table(coating_);
+    }
   }
-  long solver_calls() const { return solver_calls_; }
+  long solver_calls() const { return table_ ? static_cast<long>(table_->source_solves()) : solver_calls_; }
+  // E1 only scales the force (a film on a rigid base, tabled): F(E1) = (E1*/E1_ref*) F(E1_ref).
+  bool scale_free() const { return table_ && table_->scale_free(); }
 
   std::unique_ptr<LogLogTable> force(double film_modulus, double thickness) {
     const std::vector<ReducedVariables>& sweep = sweep_of(film_modulus);
@@ -247,6 +253,17 @@ class CoatingForces {
   const std::vector<ReducedVariables>& sweep_of(double film_modulus) {
     auto it = sweeps_.find(film_modulus);
     if (it != sweeps_.end()) return it->second;
+    if (table_) {  // the tabled force law: lookups, no solve
+      const std::vector<CoatedValues> values = table_->at(film_modulus, a_over_t_);
+      std::vector<ReducedVariables> sweep(values.size());
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        static_cast<ReducedValues&>(sweep[k]) = values[k].point;
+        sweep[k].a_over_t = a_over_t_[k];
+        sweep[k].error_estimate = values[k].error_estimate;
+      }
+      if (sweeps_.size() > 64) sweeps_.clear();
+      return sweeps_.emplace(film_modulus, std::move(sweep)).first->second;
+    }
     Material film = coating_.film;
     film.youngs_modulus = film_modulus;
     const ReducedSolver solver(Stack::film_on(film, coating_.substrate));
@@ -261,6 +278,7 @@ class CoatingForces {
   std::vector<double> a_over_t_;
   std::map<double, std::vector<ReducedVariables>> sweeps_;
   long solver_calls_ = 0;
+  std::shared_ptr<const CoatedTable> table_;  // null: the direct path
 };
 
 // At one z_c: the closed-form (E*, b) (E* >= 0) and the residual sum of squares. Forces are
@@ -837,9 +855,13 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
     int evaluations = 0;
     // A trial whose indentations leave the table (a/t too large: t small) costs +infinity in
     // the search; at the optimum it is an error.
+    // Film on a rigid base, tabled: E1 is a pure scale, F = (E1*/E1_ref*) F(E1_ref), so it is
+    // profiled in closed form with b (the half-space's search) instead of searched.
+    const bool linear_e1 = forces.scale_free() && problem.free.modulus;
+    const double e_ref = coating.film.youngs_modulus;
     const auto fit_at = [&](double e1, double t, bool final) {
-      const auto table = forces.force(e1, t);
-      Profile profile(z, force, *table, false, 1.0, problem.free.baseline, problem.baseline);
+      const auto table = forces.force(linear_e1 ? e_ref : e1, t);
+      Profile profile(z, force, *table, linear_e1, 1.0, problem.free.baseline, problem.baseline);
       if (problem.free.tilt) profile.free_tilt();
       // Trials of the E1/t search localize z_c on a quarter of the grid (Brent polishes it);
       // the final fit on the full grid.
@@ -857,11 +879,18 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
       return minimize_log([&](double t) { return fit_at(e1, t, false).linear.rss; }, coating.thickness, "t", strict);
     };
     double e1 = coating.film.youngs_modulus;
-    if (problem.free.modulus) {
+    if (problem.free.modulus && !linear_e1) {
       e1 = minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
     }
     const double t = best_t(e1, true);
     const ContactSearch found = fit_at(e1, t, true);
+    if (linear_e1) {
+      if (!(found.linear.reduced_modulus > 0.0)) {
+        throw NumericalError("afm fit: the data show no contact in the fitted range (the best E1 is 0); "
+                             "widen the range or check the segment");
+      }
+      e1 = e_ref * found.linear.reduced_modulus;
+    }
     r.modulus = e1;
     r.thickness = t;
     Material film = coating.film;
