@@ -128,8 +128,9 @@ std::vector<CoatedValues> CoatedTable::at(double modulus, const std::vector<doub
       const auto lv = logs_of(p), dv = dlogs_of(p);
       if (k < cubic.size()) {
         const double total = used[k]->table.error_estimate_at(a_over_t[i]);
-        inner += std::abs(w3[k]) * total;
-        node_error += std::abs(w3[k]) * (total - used[k]->table.interpolation_error_at(a_over_t[i]));
+        const double interpolation = used[k]->table.interpolation_error_at(a_over_t[i]);
+        inner += std::abs(w3[k]) * (total + (options_.a_over_t_safety - 1.0) * interpolation);
+        node_error += std::abs(w3[k]) * (total - interpolation);
         for (int j = 0; j < kVariables; ++j) v3[j] += w3[k] * lv[j], d3[j] += w3[k] * dv[j];
       }
       if (!w4.empty()) {

@@ -44,6 +44,7 @@ class PenetrationForce {
  public:
   virtual ~PenetrationForce() = default;
   virtual std::pair<double, double> at(double delta) const = 0;
+  virtual double value(double delta) const { return at(delta).first; }
 };
 
 // ln F against ln delta through Steffen's monotone spline; below the first node the power law
@@ -78,6 +79,13 @@ class LogLogTable final : public PenetrationForce {
   LogLogTable(const LogLogTable&) = delete;
   LogLogTable& operator=(const LogLogTable&) = delete;
   double max_penetration() const { return std::exp(log_delta_.back()); }
+
+  // F alone (the profile's sums need no slope).
+  double value(double delta) const override {
+    const double x = std::log(delta);
+    if (x < log_delta_.front() || x > log_delta_.back()) return at(delta).first;
+    return std::exp(gsl_interp_eval(interp_, log_delta_.data(), log_force_.data(), x, accel_));
+  }
 
   std::pair<double, double> at(double delta) const override {
     const double x = std::log(delta);
@@ -328,7 +336,7 @@ class Profile {
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
       if (delta <= 0.0) break;
-      const double g = force_.at(delta).first;
+      const double g = force_.value(delta);
       sg += g;
       sgg += g * g;
       sgf += g * centred_[i];
@@ -359,7 +367,7 @@ class Profile {
       const double f = centred_[i], delta = contact_point - z_[i];
       sw += ww, sf += ww * f, sff += ww * f * f;
       if (delta <= 0.0) continue;
-      const double g = force_.at(delta).first;
+      const double g = force_.value(delta);
       sg += ww * g, sgg += ww * g * g, sgf += ww * g * f;
     }
     double e = fixed_scale_, b = fixed_baseline_;
@@ -385,7 +393,7 @@ class Profile {
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
       if (delta <= 0.0) break;
-      const double g = force_.at(delta).first;
+      const double g = force_.value(delta);
       sg += g, sgg += g * g, sgf += g * centred_[i], sxg += (z_[i] - origin_) * g;
     }
     const double n = static_cast<double>(z_.size()), c = contact_point - origin_;
@@ -461,7 +469,7 @@ struct ContactSearch {
 // grid minima (the profile has a kink where a point enters contact and may have several
 // minima; the grid keeps the global one, Brent polishes it). Fixed: the problem's value.
 ContactSearch search_contact(const Profile& profile, const AfmFitProblem& problem, double z_lo, double c_hi,
-                             std::size_t grid_points) {
+                             std::size_t grid_points, double relative_tolerance = 1e-12) {
   ContactSearch out;
   double contact = problem.contact_point;
   if (problem.free.contact_point) {
@@ -486,7 +494,7 @@ ContactSearch search_contact(const Profile& profile, const AfmFitProblem& proble
     for (std::size_t k : minima) {
       if (k == 0 || k + 1 == m) continue;
       const auto found = coatcontact::detail::brent_minimum(rss, grid[k - 1], cost[k - 1], grid[k], cost[k], grid[k + 1],
-                                                            cost[k + 1], {span * 1e-12, 0.0, 200});
+                                                            cost[k + 1], {span * relative_tolerance, 0.0, 200});
       if (!found) continue;
       const double value = rss(found->x);
       if (value < best) {
@@ -866,7 +874,9 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
       // Trials of the E1/t search localize z_c on a quarter of the grid (Brent polishes it);
       // the final fit on the full grid.
       const std::size_t grid = final ? problem.profile_points : std::max<std::size_t>(problem.profile_points / 4, 16);
-      ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid);
+      // (a trial's z_c to 1e-9 of the range: its RSS is then exact to ~1e-18 relative, the
+      // minimum being quadratic, far below what the E1/t search resolves)
+      ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid, final ? 1e-12 : 1e-9);
       evaluations += found.evaluations;
       if (final && found.contact_point - z_lo > table->max_penetration()) {
         throw NumericalError("afm fit: the indentations reach a/t > " + short_text(kCoatingAOverT[1]) + " at t = " +

@@ -22,22 +22,26 @@ struct CoatedTableOptions {
   double a_over_t_min = 1e-2, a_over_t_max = 1e2;  // the range served (InputError outside)
   double solver_tolerance = 1e-8;                  // of the direct solves at the nodes
   // Tolerance of each node's verified interpolant in ln(a/t) (sweep_table_options).
-  double a_over_t_tolerance = 1e-7;
+  double a_over_t_tolerance = 1e-6;
   // Nodes per decade of the free layer's modulus and of the Lagrange interpolant across them
-  // (even, 2..12: the nearest ones). Measured (tests/afm/test_afm_coated_table.cpp, 240 points,
-  // a/t 1e-3..1e3): cubic at 4 per decade 2.3e-4, at 8 per decade 1.7e-5; quintic at 4 3.3e-5,
-  // at 6 4.1e-6 but its estimate then falls short of the actual error by up to 1.9x.
+  // (even, 2..12: the nearest ones). Largest error measured (tests/afm/test_afm_coated_table.cpp,
+  // 240 points, a/t 1e-3..1e3): cubic at 4 per decade 2.3e-4, at 8 2.0e-5; quintic at 4 3.3e-5,
+  // at 6 4.1e-6, at 8 6.5e-7.
   double nodes_per_decade = 8.0;
-  int stencil = 4;
+  int stencil = 6;
   // Cross-node estimate: this factor x |P(stencil) - P(stencil + 1)| (the next node's term
-  // estimates the interpolant's error; measured to fall short of it by up to ~1.3x).
-  double cross_safety = 2.0;
+  // estimates the interpolant's error; for the quintic at 8 per decade measured to fall short of
+  // it by up to 2.4x).
+  double cross_safety = 3.0;
+  // The nodes' interpolation estimate in ln(a/t) (ReducedTable::interpolation_error_at) times
+  // this factor (measured to fall short of the actual error by up to 1.2x at 1e-6).
+  double a_over_t_safety = 1.5;
 };
 
 // Values at one (a/t, E_L) with the estimate of their largest relative error.
 struct CoatedValues {
   ReducedPoint point;
-  double error_estimate = 0.0;  // cross_error + the nodes' in-a/t estimates (interpolation + node_error)
+  double error_estimate = 0.0;  // cross_error + the nodes' in-a/t estimates (a_over_t_safety x interpolation + node_error)
   double cross_error = 0.0;     // cross-node estimate, largest over the variables
   double node_error = 0.0;      // the nodes' own (solver) error estimates, interpolated
 };
