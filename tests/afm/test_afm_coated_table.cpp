@@ -11,12 +11,14 @@
 //  - the Hertz fit on a coating from the table equals the direct-solve fit (AfmCoating::direct)
 //    within 1/100 of its standard errors: synthetic curves whose truth is known (film on an
 //    elastic substrate, E1 free and t free; film on a rigid base, nu1 = 0.5, E1 free), and the
-//    real spot3 approach as a film on a substrate.
+//    real spot3 approach as a film on a substrate; two threads fitting on one empty shared table
+//    get the single fit's result bit for bit.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "check.hpp"
@@ -207,6 +209,20 @@ void check_spot3(const std::string& dir) {
   Substrate rigid;
   rigid.rigid = true;
   check_same_fit(c, coated(1e4, elastic, 0.5, 2e-6), "spot3, film on 1 MPa, E1 free");
+  // One table shared by two threads that build its nodes concurrently from empty: both fits
+  // equal the one of a table built by a single fit, bit for bit (a value does not depend on
+  // which nodes exist or who built them).
+  {
+    const fit::AfmFitProblem p = coated(1e4, elastic, 0.5, 2e-6);
+    const double alone = fit::afm_fit(c.z, c.f, p).modulus;
+    fit::afm_clear_shared_sweeps();
+    double both[2] = {0.0, 0.0};
+    std::thread other([&] { both[1] = fit::afm_fit(c.z, c.f, p).modulus; });
+    both[0] = fit::afm_fit(c.z, c.f, p).modulus;
+    other.join();
+    std::printf("spot3 on 1 MPa, two threads on one empty table: E1 %.17g, %.17g (alone %.17g)\n", both[0], both[1], alone);
+    check::that(both[0] == alone && both[1] == alone, "a table shared by two threads gives the single fit's E1 bit for bit");
+  }
   check_same_fit(c, coated(1e4, rigid, 0.5, 2e-6), "spot3, film on a rigid base, nu1 = 0.5, E1 free");
 }
 
