@@ -148,8 +148,52 @@ void BM_afm_fit_jkr_coating_E1_w_free(benchmark::State& state) { run_coating(sta
 void BM_afm_fit_jkr_coating_w_free(benchmark::State& state) { run_coating(state, false); }
 void BM_afm_fit_jkr_coating_E1_w_free_further_curve(benchmark::State& state) { run_coating(state, true, false); }
 
+// Hertz on a coating (THEORY.md section 15, "Tabled coated force laws"): spot3's approach as a
+// film (nu1 = 0.5, t = 2 um, E1 started at 10 kPa, free) on E0 = 1 MPa (nu0 0.3) or on a rigid
+// base. cold: the shared table dropped before every fit (a sample's first curve: the fit builds
+// the nodes it needs); warm: kept (a further curve); direct: a solver sweep per trial E1.
+enum class Path { kCold, kWarm, kDirect };
+void run_hertz_coating(benchmark::State& state, bool rigid, Path path) {
+  const Approach& a = spot3_approach();
+  coatcontact::fit::AfmFitProblem problem;
+  problem.tip = coatcontact::fit::afm_paraboloid(10e-6);
+  coatcontact::fit::AfmCoating c;
+  c.film = {1e4, 0.5};
+  if (rigid) c.substrate.rigid = true;
+  else c.substrate.material = {1e6, 0.3};
+  c.thickness = 2e-6;
+  c.direct = path == Path::kDirect;
+  problem.coating = c;
+  double cpu = 0.0, modulus = 0.0;
+  long solves = 0;
+  if (path == Path::kWarm) coatcontact::fit::afm_fit(a.z, a.f, problem);  // the table exists
+  for (auto _ : state) {
+    if (path == Path::kCold) coatcontact::fit::afm_clear_shared_sweeps();
+    const double before = process_cpu_seconds();
+    const auto r = coatcontact::fit::afm_fit(a.z, a.f, problem);
+    cpu += process_cpu_seconds() - before;
+    modulus = r.modulus;
+    solves = r.solver_calls;
+  }
+  state.counters["E1_Pa"] = modulus;
+  state.counters["solves"] = static_cast<double>(solves);
+  state.counters["process_cpu_ms"] = 1e3 * cpu / static_cast<double>(state.iterations());
+}
+void BM_afm_fit_hertz_coating_elastic_E1_free_first_curve(benchmark::State& s) { run_hertz_coating(s, false, Path::kCold); }
+void BM_afm_fit_hertz_coating_elastic_E1_free_further_curve(benchmark::State& s) { run_hertz_coating(s, false, Path::kWarm); }
+void BM_afm_fit_hertz_coating_elastic_E1_free_direct(benchmark::State& s) { run_hertz_coating(s, false, Path::kDirect); }
+void BM_afm_fit_hertz_coating_rigid_E1_free_first_curve(benchmark::State& s) { run_hertz_coating(s, true, Path::kCold); }
+void BM_afm_fit_hertz_coating_rigid_E1_free_further_curve(benchmark::State& s) { run_hertz_coating(s, true, Path::kWarm); }
+void BM_afm_fit_hertz_coating_rigid_E1_free_direct(benchmark::State& s) { run_hertz_coating(s, true, Path::kDirect); }
+
 }  // namespace
 
+BENCHMARK(BM_afm_fit_hertz_coating_elastic_E1_free_first_curve)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_afm_fit_hertz_coating_elastic_E1_free_further_curve)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_afm_fit_hertz_coating_elastic_E1_free_direct)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_afm_fit_hertz_coating_rigid_E1_free_first_curve)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_afm_fit_hertz_coating_rigid_E1_free_further_curve)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_afm_fit_hertz_coating_rigid_E1_free_direct)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_afm_fit_jkr_hydrogel_3000_point_retract)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_afm_fit_jkr_coating_E1_w_free)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_afm_fit_jkr_coating_w_free)->Unit(benchmark::kMillisecond);

@@ -337,8 +337,11 @@ std::vector<double> simplex(const std::function<double(const std::vector<double>
 }  // namespace
 
 void afm_clear_shared_sweeps() {
-  const std::lock_guard<std::mutex> lock(shared_nodes_mutex);
-  shared_nodes().clear();
+  {
+    const std::lock_guard<std::mutex> lock(shared_nodes_mutex);
+    shared_nodes().clear();
+  }
+  internal::afm_clear_coated_tables();
 }
 
 namespace internal {

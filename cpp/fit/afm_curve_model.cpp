@@ -44,6 +44,7 @@ class PenetrationForce {
  public:
   virtual ~PenetrationForce() = default;
   virtual std::pair<double, double> at(double delta) const = 0;
+  virtual double value(double delta) const { return at(delta).first; }
 };
 
 // ln F against ln delta through Steffen's monotone spline; below the first node the power law
@@ -78,6 +79,13 @@ class LogLogTable final : public PenetrationForce {
   LogLogTable(const LogLogTable&) = delete;
   LogLogTable& operator=(const LogLogTable&) = delete;
   double max_penetration() const { return std::exp(log_delta_.back()); }
+
+  // F alone (the profile's sums need no slope).
+  double value(double delta) const override {
+    const double x = std::log(delta);
+    if (x < log_delta_.front() || x > log_delta_.back()) return at(delta).first;
+    return std::exp(gsl_interp_eval(interp_, log_delta_.data(), log_force_.data(), x, accel_));
+  }
 
   std::pair<double, double> at(double delta) const override {
     const double x = std::log(delta);
@@ -219,8 +227,14 @@ class CoatingForces {
     for (int k = 0; k < count; ++k) {
       a_over_t_.push_back(kCoatingAOverT[0] * std::pow(10.0, decades * k / (count - 1)));
     }
+    if (!coating_.direct) {
+      a_over_t_.back() = kCoatingAOverT[1];  // inside the table's range despite rounding
+      table_ = internal::afm_coated_table(coating_);
+    }
   }
-  long solver_calls() const { return solver_calls_; }
+  long solver_calls() const { return table_ ? static_cast<long>(table_->source_solves()) : solver_calls_; }
+  // E1 only scales the force (a film on a rigid base, tabled): F(E1) = (E1*/E1_ref*) F(E1_ref).
+  bool scale_free() const { return table_ && table_->scale_free(); }
 
   std::unique_ptr<LogLogTable> force(double film_modulus, double thickness) {
     const std::vector<ReducedVariables>& sweep = sweep_of(film_modulus);
@@ -247,6 +261,17 @@ class CoatingForces {
   const std::vector<ReducedVariables>& sweep_of(double film_modulus) {
     auto it = sweeps_.find(film_modulus);
     if (it != sweeps_.end()) return it->second;
+    if (table_) {  // the tabled force law: lookups, no solve
+      const std::vector<CoatedValues> values = table_->at(film_modulus, a_over_t_);
+      std::vector<ReducedVariables> sweep(values.size());
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        static_cast<ReducedValues&>(sweep[k]) = values[k].point;
+        sweep[k].a_over_t = a_over_t_[k];
+        sweep[k].error_estimate = values[k].error_estimate;
+      }
+      if (sweeps_.size() > 64) sweeps_.clear();
+      return sweeps_.emplace(film_modulus, std::move(sweep)).first->second;
+    }
     Material film = coating_.film;
     film.youngs_modulus = film_modulus;
     const ReducedSolver solver(Stack::film_on(film, coating_.substrate));
@@ -261,6 +286,7 @@ class CoatingForces {
   std::vector<double> a_over_t_;
   std::map<double, std::vector<ReducedVariables>> sweeps_;
   long solver_calls_ = 0;
+  std::shared_ptr<const CoatedTable> table_;  // null: the direct path
 };
 
 // At one z_c: the closed-form (E*, b) (E* >= 0) and the residual sum of squares. Forces are
@@ -310,7 +336,7 @@ class Profile {
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
       if (delta <= 0.0) break;
-      const double g = force_.at(delta).first;
+      const double g = force_.value(delta);
       sg += g;
       sgg += g * g;
       sgf += g * centred_[i];
@@ -341,7 +367,7 @@ class Profile {
       const double f = centred_[i], delta = contact_point - z_[i];
       sw += ww, sf += ww * f, sff += ww * f * f;
       if (delta <= 0.0) continue;
-      const double g = force_.at(delta).first;
+      const double g = force_.value(delta);
       sg += ww * g, sgg += ww * g * g, sgf += ww * g * f;
     }
     double e = fixed_scale_, b = fixed_baseline_;
@@ -367,7 +393,7 @@ class Profile {
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
       if (delta <= 0.0) break;
-      const double g = force_.at(delta).first;
+      const double g = force_.value(delta);
       sg += g, sgg += g * g, sgf += g * centred_[i], sxg += (z_[i] - origin_) * g;
     }
     const double n = static_cast<double>(z_.size()), c = contact_point - origin_;
@@ -443,7 +469,7 @@ struct ContactSearch {
 // grid minima (the profile has a kink where a point enters contact and may have several
 // minima; the grid keeps the global one, Brent polishes it). Fixed: the problem's value.
 ContactSearch search_contact(const Profile& profile, const AfmFitProblem& problem, double z_lo, double c_hi,
-                             std::size_t grid_points) {
+                             std::size_t grid_points, double relative_tolerance = 1e-12) {
   ContactSearch out;
   double contact = problem.contact_point;
   if (problem.free.contact_point) {
@@ -468,7 +494,7 @@ ContactSearch search_contact(const Profile& profile, const AfmFitProblem& proble
     for (std::size_t k : minima) {
       if (k == 0 || k + 1 == m) continue;
       const auto found = coatcontact::detail::brent_minimum(rss, grid[k - 1], cost[k - 1], grid[k], cost[k], grid[k + 1],
-                                                            cost[k + 1], {span * 1e-12, 0.0, 200});
+                                                            cost[k + 1], {span * relative_tolerance, 0.0, 200});
       if (!found) continue;
       const double value = rss(found->x);
       if (value < best) {
@@ -831,14 +857,20 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
     int evaluations = 0;
     // A trial whose indentations leave the table (a/t too large: t small) costs +infinity in
     // the search; at the optimum it is an error.
+    // Film on a rigid base, tabled: E1 is a pure scale, F = (E1*/E1_ref*) F(E1_ref), so it is
+    // profiled in closed form with b (the half-space's search) instead of searched.
+    const bool linear_e1 = forces.scale_free() && problem.free.modulus;
+    const double e_ref = coating.film.youngs_modulus;
     const auto fit_at = [&](double e1, double t, bool final) {
-      const auto table = forces.force(e1, t);
-      Profile profile(z, force, *table, false, 1.0, problem.free.baseline, problem.baseline);
+      const auto table = forces.force(linear_e1 ? e_ref : e1, t);
+      Profile profile(z, force, *table, linear_e1, 1.0, problem.free.baseline, problem.baseline);
       if (problem.free.tilt) profile.free_tilt();
       // Trials of the E1/t search localize z_c on a quarter of the grid (Brent polishes it);
       // the final fit on the full grid.
       const std::size_t grid = final ? problem.profile_points : std::max<std::size_t>(problem.profile_points / 4, 16);
-      ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid);
+      // (a trial's z_c to 1e-9 of the range: its RSS is then exact to ~1e-18 relative, the
+      // minimum being quadratic, far below what the E1/t search resolves)
+      ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid, final ? 1e-12 : 1e-9);
       evaluations += found.evaluations;
       if (final && found.contact_point - z_lo > table->max_penetration()) {
         throw NumericalError("afm fit: the indentations reach " + short_text(found.contact_point - z_lo) +
@@ -853,11 +885,18 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
       return minimize_log([&](double t) { return fit_at(e1, t, false).linear.rss; }, coating.thickness, "t", strict);
     };
     double e1 = coating.film.youngs_modulus;
-    if (problem.free.modulus) {
+    if (problem.free.modulus && !linear_e1) {
       e1 = minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
     }
     const double t = best_t(e1, true);
     const ContactSearch found = fit_at(e1, t, true);
+    if (linear_e1) {
+      if (!(found.linear.reduced_modulus > 0.0)) {
+        throw NumericalError("afm fit: the data show no contact in the fitted range (the best E1 is 0); "
+                             "widen the range or check the segment");
+      }
+      e1 = e_ref * found.linear.reduced_modulus;
+    }
     r.modulus = e1;
     r.thickness = t;
     Material film = coating.film;

@@ -131,3 +131,16 @@ void afm_tabor_maugis(const AfmFitProblem& problem, AfmFitResult& r);
 void afm_jkr_lambda(const AfmFitProblem& problem, AfmFitResult& r);
 
 }  // namespace coatcontact::fit::internal
+
+#include "coatcontact/coated_table.hpp"
+
+namespace coatcontact::fit::internal {
+
+// The process's tabled coated force law of a coating (THEORY.md section 15, "Tabled coated
+// force laws"): one CoatedTable per (nu1, substrate, solver tolerance), E1 free, a/t over
+// kCoatingAOverT, shared by every fit, curve and thread (built node by node on demand).
+std::shared_ptr<const CoatedTable> afm_coated_table(const AfmCoating& coating);
+// Drops them (afm_clear_shared_sweeps: a benchmark's first curve of a sample).
+void afm_clear_coated_tables();
+
+}  // namespace coatcontact::fit::internal

@@ -100,6 +100,10 @@ struct AfmCoating {
   Substrate substrate;
   double thickness = 0.0;  // t [m] (value if fixed, else the centre of its search)
   double solver_tolerance = 1e-8;
+  // false: the Hertz model reads every trial E1 from the process's shared tabled force law
+  // (THEORY.md section 15, "Tabled coated force laws"); true: a reduced-solver sweep per trial
+  // E1 (the direct path, kept for comparison).
+  bool direct = false;
 };
 constexpr double kCoatingAOverT[2] = {1e-2, 1e2};
 constexpr double kCoatingPerDecade = 16.0;
