@@ -17,6 +17,10 @@
 
 namespace coatcontact::cli {
 
+// CPU seconds of the calling thread. The plans time their sample solves with it, not with the
+// wall clock, so a loaded machine (make -j, CI) does not inflate an estimate into a refusal.
+double thread_cpu_seconds();
+
 // Work estimate of a table of reduced variables over [a_over_t_min, a_over_t_max]: solves once
 // at each end at `tolerance`. A tolerance the solver cannot reach there, or a run estimated
 // above kMaxWorkSeconds, is refused naming `options` (e.g. "--tol 1e-13 with --eta 1e-06");

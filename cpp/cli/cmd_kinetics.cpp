@@ -270,9 +270,9 @@ std::string kinetics_numerical_message(const std::string& message) {
 constexpr std::size_t kSweepPlanned = 50;  // fewer speeds cost less than the plan
 void plan_sweep(const AdhesiveModel& model, const KineticsSetupSI& setup, const std::vector<double>& speeds) {
   const auto timed = [&](const std::vector<double>& v) {
-    const auto start = std::chrono::steady_clock::now();
+    const double start = thread_cpu_seconds();
     simulate_kinetics_si(model, setup, v, false);
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return thread_cpu_seconds() - start;
   };
   std::vector<double> sample;
   for (std::size_t k = 0; k < 9; ++k) sample.push_back(speeds[k * (speeds.size() - 1) / 8]);
