@@ -345,7 +345,8 @@ std::vector<std::pair<std::string, std::string>> render_map_plots(const std::vec
     if (cells[2] != "-" && cells[3] != "-") on_grid[next] = true;
   }
   const auto maps = static_cast<std::size_t>(std::count(on_grid.begin(), on_grid.end(), true));
-  if (maps == 0) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
+  if (maps == 0) throw InputError("--map-plot (--plot of a batch): no curve of the run has a grid position (is it a map?); "
+                                  "each curve's own picture: --curve-plots FILE.pdf");
   const std::size_t dot = plot_path.rfind('.');
   std::vector<std::pair<std::string, std::string>> pictures;
   for (std::size_t f = 0; f < files.size(); ++f) {
@@ -617,9 +618,14 @@ void report_run(const std::vector<std::string>& files, const std::vector<fit::Af
 }
 
 int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
-  if (arguments.has("--plot")) {
-    throw InputError("--plot: draws one curve (FILE --index N); for a map, several files or a folder use --map-plot FILE.png|pdf");
+  if (arguments.has("--depth-profile")) {
+    throw InputError("--depth-profile: profiles one curve (FILE --index N of a map); per-curve pictures of a batch: --curve-plots FILE.pdf");
   }
+  // --plot of a batch is --map-plot (the map images; docs/afm.md), so one option draws what a run fits.
+  if (arguments.has("--plot") && arguments.has("--map-plot")) {
+    throw InputError("--plot: of a batch it is --map-plot (the map images); give one of them");
+  }
+  const std::string map_plot_option = arguments.has("--plot") ? "--plot" : "--map-plot";
   const std::vector<std::string> files = input_files(arguments.positionals());
   for (const std::string& f : files) register_input(f, "AFM file");
   const unsigned jobs = parse_jobs(arguments);
@@ -628,19 +634,19 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   const bool to_stdout = !cli::output_is_regular_file(output_path);
   const bool resume = arguments.has("--resume");
   if (resume && to_stdout) throw InputError("--resume: needs --output FILE, a regular file (the rows of the interrupted run are in FILE.partial)");
-  std::optional<std::string> plot_path = arguments.get("--map-plot");
+  std::optional<std::string> plot_path = arguments.get(map_plot_option);
   std::string term;
   if (plot_path) {
     const std::size_t dot = plot_path->rfind('.');
     term = dot == std::string::npos ? "" : plot_path->substr(dot + 1);
     if (term != "png" && term != "pdf") {
-      throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
+      throw InputError(map_plot_option + ": " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
     }
   }
   const MapColor color = parse_map_color(arguments, plot_path.has_value());
   const bool sort_by = sort_by_rating(arguments);
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
-  check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
+  check_output_paths({{"--output", output_path}, {map_plot_option, plot_path.value_or("")}});
   if (!to_stdout) check_output_path(partial_path, "--output");
   if (!to_stdout && !resume && std::filesystem::exists(partial_path)) {
     throw InputError("--output: " + cli::quoted(partial_path) + " exists (the rows of an interrupted run); continue it with --resume or remove it");
