@@ -153,7 +153,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
         segment=None, spring_constant=None, tip_range=None, indentation_range=None,
         max_indentation=None, max_force=None, noise=None, work=None, surface_force_range=0.3e-9, tilt=None,
-        baseline_model=None, weight_cp=None):
+        baseline_model=None, weight_cp=None, depth_profile=False):
     """Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):
     F(z) = baseline + E/(1 - nu^2) g(contact_point - z) on the tip-position axis z (decreasing
     toward the sample), g the Hertz/Sneddon force of the tip per reduced modulus, 0 out of
@@ -208,6 +208,15 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                "tilt" (default): the preprocessing's baseline slope is subtracted from the forces
                (the baseline is then the one at its contact point); "offset": the forces as
                measured. With "tilt" in free the model fits the slope (offset).
+    depth_profile
+               True (hertz, a curve with heights, the modulus free, t fixed): the result adds
+               "depth_profile", the modulus against depth (`afm fit --depth-profile`, docs/afm.md):
+               a dict of arrays "depth" (asked, from the whole-range fit's contact point) and
+               "max_indentation" [m], the modulus ("E" or "E1") and its "_error" [Pa], "flag",
+               "points_in_contact"; on a coating also "E_apparent" and "E_apparent_error" [Pa]
+               (the half-space fit of the same points) and "over_thickness_fraction" (bool: deeper
+               than "thickness_fraction" t, 0.1); "modulus_name", "warnings". NaN where a depth
+               has no estimate. The rest of the result is the whole-range fit.
 
     A Curve, or a mapping with a height, a spring constant and optionally a "segment" column,
     goes through the library's one-curve pipeline, as `coatcontact afm fit` and each row of
@@ -256,10 +265,13 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         try:
             r = _afm.fit_curve(*arrays, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), coating,
                                segment, *ranges, adhesion, baseline_model or "", float(noise or 0.0),
-                               weight_cp=float(weight_cp or 0.0))
+                               weight_cp=float(weight_cp or 0.0), depth_profile=bool(depth_profile))
         except RuntimeError as e:
             raise NumericalError(str(e)) from None
     else:
+        if depth_profile:
+            raise ValueError("depth_profile: needs a curve with heights and a spring constant (the one-curve "
+                             "pipeline's preprocessing); (tip_position, force) arrays have none")
         r = _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, nu, free, contact_point,
                               baseline, coating, ranges, noise, work, surface_force_range, tilt, baseline_model,
                               float(weight_cp or 0.0))
@@ -410,12 +422,12 @@ def _curve_arrays(curve, number, spring_constant):
             meta.get("grid index x"), meta.get("grid index y"), meta.get("position x"), meta.get("position y"))
 
 
-def _fit_part(files, survey, tolerate, first, count, args, adhesion=None, baseline_model=""):
+def _fit_part(files, survey, tolerate, first, count, args, adhesion=None, baseline_model="", weight_cp=0.0):
     """One share of a fit_map run (a task of a Dask worker): curves first..first+count-1 of the
     files, read by the worker itself (the survey spares it counting the curves: it opens only
     the files of its share, once)."""
     return _afm.fit_map_files(files, *args, jobs=1, first=first, count=count, survey=survey, tolerate=tolerate,
-                               adhesion=adhesion, baseline_model=baseline_model)
+                               adhesion=adhesion, baseline_model=baseline_model, weight_cp=weight_cp)
 
 
 def _concatenated(parts):
@@ -456,7 +468,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
             thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
             segment=None, spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
             max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False, work=None,
-            surface_force_range=0.3e-9, tilt=None, baseline_model=None, sort_by=None):
+            surface_force_range=0.3e-9, tilt=None, baseline_model=None, sort_by=None, weight_cp=None):
     """Fits every curve of maps, QI data, files or folders (or of the curves given) and returns
     one row per curve, as `coatcontact afm fit FILES...` does (THEORY.md section 15, "Many
     curves"): each curve through fit()'s pipeline with the same keywords (preprocessed: baseline
@@ -490,7 +502,8 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     rating (0..10, docs/afm.md "Curve rating"; 0 without estimates), tabor_mu and maugis_lambda
     (adhesive models; NaN for hertz), warnings ("; "-separated, "" for none);
     NaN where a flagged curve has no value.
-    sort_by          "rating": the rows by their rating, highest first (stable)."""
+    sort_by          "rating": the rows by their rating, highest first (stable).
+    weight_cp        D [m]: nanite's contact-point weighting, as fit()'s (hertz on a half-space)."""
     if sort_by not in (None, "rating"):
         raise ValueError(f"sort_by: {sort_by!r} is not allowed; expected 'rating' (or None: curve order)")
     if model == "maugis-dugdale":
@@ -518,6 +531,9 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     if baseline_model not in (None, "tilt", "offset"):
         raise ValueError(f"baseline_model: {baseline_model!r} is not allowed; expected 'tilt' or 'offset'")
     baseline_model = baseline_model or ""
+    weight_cp = 0.0 if weight_cp is None else float(weight_cp)
+    if not (math.isfinite(weight_cp) and weight_cp >= 0.0):
+        raise ValueError(f"weight_cp: {weight_cp!r} is not allowed; expected a length > 0 (m) or None")
     if jobs is not None and (int(jobs) != jobs or jobs < 1):
         raise ValueError(f"jobs: {jobs!r} is not allowed; expected a whole number of threads >= 1 (or None: the cores)")
     k = None if spring_constant is None else _calibration(spring_constant, "spring_constant")
@@ -536,7 +552,8 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
                 warnings.warn(f"afm.fit_map: {what}, one flagged row: {why}", stacklevel=2)
         if client is None:
             columns = _afm.fit_map_files(files, *args, k, s, jobs=int(jobs or 0), first=0, count=None, survey=survey,
-                                         tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model)
+                                         tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model,
+                                         weight_cp=weight_cp)
         else:
             workers = max(1, len(client.scheduler_info().get("workers", {})))
             shares = _shares(survey, workers)
@@ -544,7 +561,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
             # rows keep the names the caller gave, as the serial run's do.
             absolute = [os.path.abspath(f) for f in files]
             futures = [client.submit(_fit_part, absolute, survey, tolerate, first, count, args + (k, s), adhesion,
-                                     baseline_model, pure=False)
+                                     baseline_model, weight_cp, pure=False)
                        for first, count in shares]
             parts = client.gather(futures)
             if parts:
@@ -553,12 +570,14 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
                 columns["file"] = [given.get(f, f) for f in columns["file"]]
             else:
                 columns = _afm.fit_map_files(files, *args, k, s, jobs=1, first=0, count=0, survey=survey,
-                                             tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model)
+                                             tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model,
+                                             weight_cp=weight_cp)
     elif items and not any(_is_path(i) for i in items):
         if client is not None:
             raise ValueError("client: spreads the curves of files; give paths, or fit given curves without client=")
         curves = [_curve_arrays(c, n, spring_constant) for n, c in enumerate(items)]
-        columns = _afm.fit_map_curves(curves, *args, adhesion=adhesion, baseline_model=baseline_model)
+        columns = _afm.fit_map_curves(curves, *args, adhesion=adhesion, baseline_model=baseline_model,
+                                      weight_cp=weight_cp)
     else:
         raise ValueError("paths_or_curves: expected a path, a folder, a list of them, or a list of curves (not mixed)")
     rows = _structured(columns)
