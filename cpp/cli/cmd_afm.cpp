@@ -362,10 +362,13 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--max-indentation", "D", "fit only indentations z_ref - z <= D [m] (relative to z_ref as above)", false},
     {"--max-force", "F", "fit only forces up to F [N] above the preprocessing's baseline", false},
     {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},
-    {"--plot", "FILE", "draw data, fit, residuals, contact point and pull-off with gnuplot (.png or .pdf)", false},
+    {"--plot", "FILE", "draw data, fit, residuals, contact point and pull-off with gnuplot (.png or .pdf); with --depth-profile "
+                       "the profile; of a batch: the map images (--map-plot)", false},
     {"--jobs", "N", "batch: curves fitted in parallel (default: the machine's cores); the table is the same for any N", false},
     {"--resume", "", "batch: continue the interrupted run whose rows are in OUTPUT.partial (needs --output)", false},
     {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf; several map files: FILE-K.png, one per file)", false},
+    {"--curve-plots", "FILE", "batch: one control-plot page per curve (data, fit, residuals, contact point, flag, rating, "
+                              "estimates) in FILE.pdf", false},
     {"--color-range", "MIN,MAX", "--map-plot: colour range of the moduli [Pa; units as 1kPa,10kPa] (default: their min and max)", false},
     {"--color-log", "", "--map-plot: moduli on a log colour scale", false},
     {"--depth-profile", "", "one curve, hertz: the modulus (E, or E1 with E of the half-space fit beside it on a coating) "

@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "afm_curve_plots.hpp"
 #include "afm_fit_map.hpp"
 #include "afm_partial.hpp"
 #include "afm_map_plot_script.hpp"
@@ -373,7 +374,7 @@ std::string fit_range_text(const fit::AfmRange& range) {
 bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration) {
   const auto& positionals = arguments.positionals();
   const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot") ||
-                            arguments.has("--sort-by");
+                            arguments.has("--sort-by") || arguments.has("--curve-plots");
   if (arguments.has("--index")) {
     if (positionals.size() > 1 || is_folder(positionals.front()) || batch_option) {
       throw InputError("--index: selects one curve of one FILE; without it every curve of the FILEs and FOLDERs is fitted "
@@ -644,9 +645,17 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     }
   }
   const MapColor color = parse_map_color(arguments, plot_path.has_value());
+  const std::optional<std::string> curve_plots_path = arguments.get("--curve-plots");
+  if (curve_plots_path) {
+    const std::string& c = *curve_plots_path;
+    if (c.size() < 5 || c.compare(c.size() - 4, 4, ".pdf") != 0) {
+      throw InputError("--curve-plots: " + cli::quoted(c) + " is not allowed; it must end in .pdf (one page per curve)");
+    }
+    if (resume) throw InputError("--curve-plots: draws every curve of a run; a --resume does not fit the curves of FILE.partial again");
+  }
   const bool sort_by = sort_by_rating(arguments);
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
-  check_output_paths({{"--output", output_path}, {map_plot_option, plot_path.value_or("")}});
+  check_output_paths({{"--output", output_path}, {map_plot_option, plot_path.value_or("")}, {"--curve-plots", curve_plots_path.value_or("")}});
   if (!to_stdout) check_output_path(partial_path, "--output");
   if (!to_stdout && !resume && std::filesystem::exists(partial_path)) {
     throw InputError("--output: " + cli::quoted(partial_path) + " exists (the rows of an interrupted run); continue it with --resume or remove it");
@@ -657,7 +666,10 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   settings.segment = setup.kind;
   settings.range = setup.range;
   settings.baseline = setup.baseline;
+  settings.keep_traces = curve_plots_path.has_value();
   const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
+  std::unique_ptr<AfmCurvePlots> curve_plots;
+  if (curve_plots_path) curve_plots = std::make_unique<AfmCurvePlots>(parameters, settings.segment == afm::SegmentKind::kRetract);
   const bool contact_point_column = !settings.problem.free.contact_point;
   // A file that cannot be read is a flagged row when the run has several files or a folder; a
   // single FILE named is the run's input (exit 2).
@@ -710,6 +722,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     for (const auto& row : rows) {
       std::string line = row_line(row, parameters.size(), contact_point_column);
       if (plot_path) plot_rows.push_back(line.substr(0, line.size() - 1));
+      if (curve_plots) curve_plots->add(row);
       text += line;
     }
     if (partial) partial->append(text);
@@ -729,6 +742,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     pictures = render_map_plots(plot_rows, parameters, contact_point_column, term, *plot_path, files,
                                 settings.problem.tip.description, color);
   }
+  const std::size_t map_images = pictures.size();
+  if (curve_plots) pictures.emplace_back(*curve_plots_path, curve_plots->render());  // the last picture
+  const auto option_of = [&](std::size_t k) { return k < map_images ? map_plot_option : std::string("--curve-plots"); };
   const std::size_t rating_column = columns.size() - 4;
   if (to_stdout) {
     if (sort_by) write_sorted(sorted_rows, rows_out, rating_column);
@@ -751,9 +767,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     if (sort_by) write_sorted(std::string(std::istreambuf_iterator<char>(rows_in), {}), output.stream(), rating_column);
     else if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
     std::vector<std::unique_ptr<Output>> plot_outputs;  // alive until the table's commit: all or none
-    for (const auto& [path, picture] : pictures) {
-      plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
-      plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+    for (std::size_t k = 0; k < pictures.size(); ++k) {
+      plot_outputs.push_back(std::make_unique<Output>(pictures[k].first, option_of(k)));
+      plot_outputs.back()->stream().write(pictures[k].second.data(), static_cast<std::streamsize>(pictures[k].second.size()));
       plot_outputs.back()->commit();
     }
     output.commit();
@@ -761,13 +777,13 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   }
   // All made before any commit, so that they are published together (all or none).
   std::vector<std::unique_ptr<Output>> plot_outputs;
-  for (const auto& [path, picture] : pictures) {
-    if (!to_stdout) break;  // written with the table above
-    plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
-    plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+  for (std::size_t k = 0; k < pictures.size() && to_stdout; ++k) {  // (else written with the table above)
+    plot_outputs.push_back(std::make_unique<Output>(pictures[k].first, option_of(k)));
+    plot_outputs.back()->stream().write(pictures[k].second.data(), static_cast<std::streamsize>(pictures[k].second.size()));
   }
   for (const auto& plot_output : plot_outputs) plot_output->commit();
-  if (pictures.size() > 1) std::cerr << "coatcontact afm fit: " << pictures.size() << " map images, " << pictures.front().first << " ...\n";
+  if (map_images > 1) std::cerr << "coatcontact afm fit: " << map_images << " map images, " << pictures.front().first << " ...\n";
+  if (curve_plots) std::cerr << "coatcontact afm fit: " << curve_plots->pages() << " control-plot pages in " << *curve_plots_path << "\n";
   report_run(files, survey, total, flag_text, summary);
   return kExitSuccess;
 }
