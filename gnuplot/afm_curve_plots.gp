@@ -48,6 +48,7 @@ do for [i=1:N] {
          NaN w p pt 7 ps 0.6 lc rgb '#a6c8e0' t 'data (no estimates)'
   } else {
     set xrange [0:1]; set yrange [0:1]
+    set key off
     set label 1 'no data to draw (see the flag above)' at graph 0.5, 0.5 center
     plot NaN notitle
   } }
@@ -66,7 +67,8 @@ do for [i=1:N] {
   if (HAS[i] + RES[i] == 2) {
     plot datafile index (i-1) u ($1*ZS[i]):($4*FS[i]):(colour($5, 1)) w p pt 7 ps 0.3 lc rgb variable, 0 w l ls 5
   } else {
-    set xrange [0:1]; set yrange [-1:1]
+    if (HAS[i] == 0) { set xrange [0:1] }
+    set yrange [-1:1]
     set label 1 'no residuals: the curve has no estimates' at graph 0.5, 0.5 center
     plot NaN notitle
   }

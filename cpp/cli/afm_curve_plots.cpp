@@ -37,6 +37,14 @@ std::pair<double, std::string> prefix(double magnitude, const char* unit) {
   return {std::pow(10.0, -e), std::string(names[(e + 15) / 3]) + unit};
 }
 
+// At most `width` characters of a message (a page's line), cut at a word with "...".
+std::string clipped(const std::string& text, std::size_t width) {
+  if (text.size() <= width) return text;
+  std::size_t cut = text.rfind(' ', width - 3);
+  if (cut == std::string::npos || cut < width / 2) cut = width - 3;
+  return text.substr(0, cut) + "...";
+}
+
 // A file name as a gnuplot single-quoted string (gnuplot_string's escapes are for shown text).
 std::string quoted_path(const std::string& path) {
   std::string out = "'";
@@ -112,9 +120,9 @@ void AfmCurvePlots::add(const fit::AfmCurveRow& row) {
     char chi[48];
     std::snprintf(chi, sizeof chi, ", χ²/dof = %.3g", row.chi2_per_dof);
     key += chi;
-    if (row.flag != fit::AfmFlag::kFitted && !row.message.empty()) key += " — " + row.message.substr(0, 140);
+    if (row.flag != fit::AfmFlag::kFitted && !row.message.empty()) key += " — " + clipped(row.message, 60);
   } else {
-    key = row.message.substr(0, 160);
+    key = clipped(row.message, 125);
   }
   const auto [zs, zu] = prefix(z_big, "m");
   // The contact region, as the one-curve plot's middle panel: from the deepest point to two

@@ -789,7 +789,16 @@ std::string profile_cell(double v, const std::string& column) { return std::isfi
 int write_depth_profile(const afm::ForceCurve& curve, const fit::AfmCurveRequest& request, const std::string& modulus_name,
                         const std::string& path, std::size_t index, const std::string& output_path,
                         const std::optional<std::string>& plot_path, const std::string& term) {
-  const fit::AfmDepthProfile profile = fit::afm_depth_profile(curve, request, {});
+  fit::AfmDepthProfile profile;
+  try {
+    profile = fit::afm_depth_profile(curve, request, {});
+  } catch (const fit::AfmCurveInputError&) {
+    throw;  // the curve's own failure, as the one-curve fit reports it
+  } catch (const InputError& error) {
+    std::string message = error.what();  // the library's "depth profile: ..." names the option here
+    if (message.rfind("depth profile: ", 0) == 0) message = "--depth-profile: " + message.substr(15);
+    throw InputError(message);
+  }
   const fit::AfmCurveFit& whole = profile.reference;
   std::vector<std::pair<std::string, std::string>> items = {
       {"coatcontact afm fit", "modulus against depth: the adhesionless fit of one AFM curve at increasing maximum indentation "
