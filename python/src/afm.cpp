@@ -640,6 +640,39 @@ std::vector<std::tuple<std::size_t, std::string, int>> survey_files(const std::v
   return out;
 }
 
+// One control-plot page of fit_map(curve_plots=): the row's place, flag, rating and estimates,
+// and its trace (afm_curve_trace: "z", "force", "model", "segment", "fitted", "contact_point";
+// absent for a curve without data). Called with the GIL held.
+py::dict trace_dict(const coatcontact::fit::AfmCurveRow& row, const std::vector<coatcontact::fit::AfmBatchParameter>& parameters) {
+  namespace fit = coatcontact::fit;
+  py::dict d;
+  d["file"] = row.source_file;
+  d["curve"] = row.curve_index;
+  d["grid"] = row.grid_x && row.grid_y ? py::object(py::make_tuple(*row.grid_x, *row.grid_y)) : py::object(py::none());
+  d["flag"] = fit::afm_flag_name(row.flag);
+  d["rating"] = row.rating;
+  d["message"] = row.message;
+  py::list estimates;
+  if (fit::afm_flag_keeps_estimates(row.flag)) {
+    for (std::size_t p = 0; p < parameters.size() && p < row.estimates.size(); ++p) {
+      estimates.append(py::make_tuple(parameters[p].name, row.estimates[p], row.errors[p], parameters[p].unit));
+    }
+    d["chi2_per_dof"] = row.chi2_per_dof;
+  }
+  d["estimates"] = estimates;
+  if (row.trace && !row.trace->z.empty()) {
+    const fit::AfmCurveTrace& t = *row.trace;
+    d["z"] = to_array(t.z);
+    d["force"] = to_array(t.force);
+    d["model"] = to_array(t.model);
+    d["segment"] = to_array(t.segment);
+    std::vector<int> fitted(t.fitted.begin(), t.fitted.end());
+    d["fitted"] = to_array(fitted);
+    d["contact_point"] = t.contact_point;
+  }
+  return d;
+}
+
 // Curves [first, first + count) of the run over `files`, fitted with `jobs` threads (0: cores).
 py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& shape, double modulus, double poisson,
                        const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
@@ -647,7 +680,8 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
                        const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
                        const py::object& count, const py::object& survey, bool tolerate,
-                       const py::object& adhesion, const std::string& baseline_model, double weight_cp) {
+                       const py::object& adhesion, const std::string& baseline_model, double weight_cp,
+                       const py::object& trace_sink) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::optional<Columns> columns;
@@ -656,6 +690,8 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                            indentation_min, indentation_max, max_force, adhesion);
     settings.baseline = baseline_model_of(baseline_model, settings.problem);
     settings.problem.weight_cp = weight_cp;
+    settings.keep_traces = !trace_sink.is_none();
+    const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
     columns.emplace(settings);
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     fit::AfmBatchOptions options;
@@ -672,6 +708,9 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
     options.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) {
       py::gil_scoped_acquire acquire;
       columns->add(chunk);
+      if (!trace_sink.is_none()) {
+        for (const fit::AfmCurveRow& row : chunk) trace_sink(trace_dict(row, parameters));  // a page each, as they come
+      }
     };
     SignalCheck signals;
     options.progress = [&](std::size_t, std::size_t) { return signals(); };
@@ -827,7 +866,7 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
                         const py::object& coating, const std::string& segment, const py::object& tip_min,
                         const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
                         const py::object& max_force, const py::object& adhesion, const std::string& baseline_model,
-                        double weight_cp) {
+                        double weight_cp, const py::object& trace_sink) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::vector<fit::AfmCurveRow> rows;
@@ -836,6 +875,7 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
                            indentation_min, indentation_max, max_force, adhesion);
     settings.baseline = baseline_model_of(baseline_model, settings.problem);
     settings.problem.weight_cp = weight_cp;
+    settings.keep_traces = !trace_sink.is_none();
     for (const py::handle item : curves) {
       const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
       afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
@@ -847,8 +887,14 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
       if (!c[8].is_none()) m.grid_index_y = c[8].cast<long>();
       if (!c[9].is_none()) m.position_x = c[9].cast<double>();
       if (!c[10].is_none()) m.position_y = c[10].cast<double>();
-      py::gil_scoped_release release;
-      rows.push_back(fit::afm_fit_curve_row(curve, settings));
+      {
+        py::gil_scoped_release release;
+        rows.push_back(fit::afm_fit_curve_row(curve, settings));
+      }
+      if (!trace_sink.is_none()) {
+        trace_sink(trace_dict(rows.back(), fit::afm_batch_parameters(settings.problem)));
+        rows.back().trace.reset();  // drawn: the page holds it now
+      }
     }
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
@@ -886,9 +932,11 @@ void register_afm(py::module_& root) {
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
         py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false,
-        py::arg("adhesion") = py::none(), py::arg("baseline_model") = "", py::arg("weight_cp") = 0.0);
+        py::arg("adhesion") = py::none(), py::arg("baseline_model") = "", py::arg("weight_cp") = 0.0,
+        py::arg("trace_sink") = py::none());
   m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"), py::arg("adhesion") = py::none(), py::arg("baseline_model") = "", py::arg("weight_cp") = 0.0);
+        py::arg("max_force"), py::arg("adhesion") = py::none(), py::arg("baseline_model") = "", py::arg("weight_cp") = 0.0,
+        py::arg("trace_sink") = py::none());
 }

@@ -74,3 +74,29 @@ def test_fit_map_weight_cp_is_fits():
         assert row["E"] != unweighted["E"]  # the weighting reached the batch
     with pytest.raises(ValueError, match="weight_cp"):
         cc.afm.fit_map(curves, radius=R, halfspace=(1e4, NU), weight_cp=-1.0)
+
+
+def _pdf_pages(path):
+    """Pages of a PDF: its page objects (matplotlib writes them uncompressed)."""
+    data = open(path, "rb").read()
+    return data.count(b"/Type /Page\n") + data.count(b"/Type /Page ") + data.count(b"/Type /Page/") \
+        + data.count(b"/Type /Page>")
+
+
+def test_fit_map_curve_plots_one_page_per_curve(tmp_path):
+    pytest.importorskip("matplotlib")
+    map2 = os.path.join(SOURCE_DIR, "data", "afm", "fmt-jpk-fd_map2x2_extracted.jpk-force-map")
+    out = tmp_path / "pages.pdf"
+    rows = cc.afm.fit_map(map2, radius=5e-6, halfspace=(1e3, 0.5), curve_plots=out)
+    assert len(rows) == 4 and _pdf_pages(out) == 4
+    # Given curves, one without contact (flagged, no estimates): still one page each.
+    flat = synthetic(4)
+    flat["force"] = np.random.default_rng(4).normal(0, 2e-12, flat["force"].size)
+    flat["height (piezo)"] = np.linspace(5e-6, 0.0, flat["force"].size) - flat["force"] / K
+    out2 = tmp_path / "given.pdf"
+    rows = cc.afm.fit_map([synthetic(1), flat], radius=R, halfspace=(1e4, NU), curve_plots=str(out2))
+    assert list(rows["reason"]) == ["fitted", "no_contact"] and _pdf_pages(out2) == 2
+    with pytest.raises(ValueError, match="curve_plots"):
+        cc.afm.fit_map(map2, radius=5e-6, halfspace=(1e3, 0.5), curve_plots=tmp_path / "pages.png")
+    assert not (tmp_path / "pages.png").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["given.pdf", "pages.pdf"]  # no temporary file left
