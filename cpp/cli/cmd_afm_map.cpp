@@ -618,7 +618,16 @@ void report_run(const std::vector<std::string>& files, const std::vector<fit::Af
   }
 }
 
-int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
+namespace {
+
+// The pictures of a batch: --map-plot (or --plot, the same option for a batch) and --curve-plots.
+struct BatchPictures {
+  std::string map_plot_option;       // "--map-plot" or "--plot", as given
+  std::optional<std::string> map_plot, curve_plots;
+  std::string term;                  // of the map images: "png" or "pdf"
+};
+
+BatchPictures parse_batch_pictures(const Arguments& arguments, bool resume) {
   if (arguments.has("--depth-profile")) {
     throw InputError("--depth-profile: profiles one curve (FILE --index N of a map); per-curve pictures of a batch: --curve-plots FILE.pdf");
   }
@@ -626,7 +635,30 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   if (arguments.has("--plot") && arguments.has("--map-plot")) {
     throw InputError("--plot: of a batch it is --map-plot (the map images); give one of them");
   }
-  const std::string map_plot_option = arguments.has("--plot") ? "--plot" : "--map-plot";
+  BatchPictures p;
+  p.map_plot_option = arguments.has("--plot") ? "--plot" : "--map-plot";
+  p.map_plot = arguments.get(p.map_plot_option);
+  if (p.map_plot) {
+    const std::size_t dot = p.map_plot->rfind('.');
+    p.term = dot == std::string::npos ? "" : p.map_plot->substr(dot + 1);
+    if (p.term != "png" && p.term != "pdf") {
+      throw InputError(p.map_plot_option + ": " + cli::quoted(*p.map_plot) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
+    }
+  }
+  p.curve_plots = arguments.get("--curve-plots");
+  if (p.curve_plots) {
+    const std::string& c = *p.curve_plots;
+    if (c.size() < 5 || c.compare(c.size() - 4, 4, ".pdf") != 0) {
+      throw InputError("--curve-plots: " + cli::quoted(c) + " is not allowed; it must end in .pdf (one page per curve)");
+    }
+    if (resume) throw InputError("--curve-plots: draws every curve of a run; a --resume does not fit the curves of FILE.partial again");
+  }
+  return p;
+}
+
+}  // namespace
+
+int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
   const std::vector<std::string> files = input_files(arguments.positionals());
   for (const std::string& f : files) register_input(f, "AFM file");
   const unsigned jobs = parse_jobs(arguments);
@@ -635,24 +667,12 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   const bool to_stdout = !cli::output_is_regular_file(output_path);
   const bool resume = arguments.has("--resume");
   if (resume && to_stdout) throw InputError("--resume: needs --output FILE, a regular file (the rows of the interrupted run are in FILE.partial)");
-  std::optional<std::string> plot_path = arguments.get(map_plot_option);
-  std::string term;
-  if (plot_path) {
-    const std::size_t dot = plot_path->rfind('.');
-    term = dot == std::string::npos ? "" : plot_path->substr(dot + 1);
-    if (term != "png" && term != "pdf") {
-      throw InputError(map_plot_option + ": " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
-    }
-  }
+  const BatchPictures batch_pictures = parse_batch_pictures(arguments, resume);
+  const std::string& map_plot_option = batch_pictures.map_plot_option;
+  const std::optional<std::string>& plot_path = batch_pictures.map_plot;
+  const std::string& term = batch_pictures.term;
+  const std::optional<std::string>& curve_plots_path = batch_pictures.curve_plots;
   const MapColor color = parse_map_color(arguments, plot_path.has_value());
-  const std::optional<std::string> curve_plots_path = arguments.get("--curve-plots");
-  if (curve_plots_path) {
-    const std::string& c = *curve_plots_path;
-    if (c.size() < 5 || c.compare(c.size() - 4, 4, ".pdf") != 0) {
-      throw InputError("--curve-plots: " + cli::quoted(c) + " is not allowed; it must end in .pdf (one page per curve)");
-    }
-    if (resume) throw InputError("--curve-plots: draws every curve of a run; a --resume does not fit the curves of FILE.partial again");
-  }
   const bool sort_by = sort_by_rating(arguments);
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
   check_output_paths({{"--output", output_path}, {map_plot_option, plot_path.value_or("")}, {"--curve-plots", curve_plots_path.value_or("")}});
