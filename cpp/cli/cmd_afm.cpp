@@ -611,7 +611,7 @@ void print_fit_help() {
                      "FILE|FILE...|FOLDER [--index N] [--model hertz|jkr|md|dmt] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                      "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                      "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
-                     "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf] [--color-range MIN,MAX] [--color-log]",
+                     "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--depth-profile] [--jobs N] [--resume] [--map-plot FILE.png|pdf] [--color-range MIN,MAX] [--color-log] [--curve-plots FILE.pdf]",
                      "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):\n"
                      "F(z) = b + E/(1 - nu^2) g(z_c - z) on the tip-position axis z (decreasing toward\n"
                      "the sample), g the Hertz/Sneddon force of the tip per reduced modulus, zero out of\n"
@@ -649,7 +649,9 @@ void print_fit_help() {
                      "and the run goes on (exit 0; the count in the header and on stderr). Each row is\n"
                      "the one-curve fit of its curve (same pipeline and defaults). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
                      "go to FILE.partial chunk by chunk and FILE is written at the end; --resume\n"
-                     "continues an interrupted FILE.partial.\n"
+                     "continues an interrupted FILE.partial. --curve-plots FILE.pdf: one control-plot page per curve;\n"
+                     "--plot of a batch is --map-plot. --depth-profile (one curve): the fit at 10 increasing maximum\n"
+                     "indentations, one row per depth (on a coating with the half-space fit's apparent E beside E1).\n"
                      "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
                          std::string(kFormats),
                      kFitSpec);
