@@ -19,9 +19,11 @@
 #include <vector>
 
 #include "afm_fit_map.hpp"
+#include "afm_depth_profile_script.hpp"
 #include "afm_fit_plot_script.hpp"
 #include "coatcontact/gnuplot_run.hpp"
 #include "coatcontact/afm_curve_fit.hpp"
+#include "coatcontact/afm_depth_profile.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_models.hpp"
 #include "coatcontact/afm_preprocess.hpp"
@@ -368,12 +370,17 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--max-indentation", "D", "fit only indentations z_ref - z <= D [m] (relative to z_ref as above)", false},
     {"--max-force", "F", "fit only forces up to F [N] above the preprocessing's baseline", false},
     {"--output", "FILE", "write the table to FILE (atomically) instead of stdout", false},
-    {"--plot", "FILE", "draw data, fit, residuals, contact point and pull-off with gnuplot (.png or .pdf)", false},
+    {"--plot", "FILE", "draw data, fit, residuals, contact point and pull-off with gnuplot (.png or .pdf); with --depth-profile "
+                       "the profile; of a batch: the map images (--map-plot)", false},
     {"--jobs", "N", "batch: curves fitted in parallel (default: the machine's cores); the table is the same for any N", false},
     {"--resume", "", "batch: continue the interrupted run whose rows are in OUTPUT.partial (needs --output)", false},
     {"--map-plot", "FILE", "batch: heat maps of the estimates, chi2/dof and flags on the grid (.png or .pdf; several map files: FILE-K.png, one per file)", false},
+    {"--curve-plots", "FILE", "batch: one control-plot page per curve (data, fit, residuals, contact point, flag, rating, "
+                              "estimates) in FILE.pdf", false},
     {"--color-range", "MIN,MAX", "--map-plot: colour range of the moduli [Pa; units as 1kPa,10kPa] (default: their min and max)", false},
     {"--color-log", "", "--map-plot: moduli on a log colour scale", false},
+    {"--depth-profile", "", "one curve, hertz: the modulus (E, or E1 with E of the half-space fit beside it on a coating) "
+                            "fitted at 10 increasing maximum indentations; the table has one row per depth (docs/afm.md)", false},
     {"--sort-by", "KEY", "batch: rating sorts the rows by their curve rating, highest first (stable; docs/afm.md)", false},
 };
 
@@ -603,7 +610,7 @@ void print_fit_help() {
                      "FILE|FILE...|FOLDER [--index N] [--model " + fit::afm_model_names("|") + "] [--work W] [--range Z0] [--tilt M] (--radius R | --shape SPEC) (--halfspace E,nu | --film E1,nu1 "
                      "--substrate E0,nu0|rigid --thickness t) [--free E,contact_point,baseline | E1,t,...] [--contact-point Z] [--baseline B] [--segment approach|retract] "
                      "[--spring-constant K] [--sensitivity S] [--tip-range MIN,MAX] [--indentation-range MIN,MAX] "
-                     "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--jobs N] [--resume] [--map-plot FILE.png|pdf] [--color-range MIN,MAX] [--color-log]",
+                     "[--max-indentation D] [--max-force F] [--output FILE] [--plot FILE.png|pdf] [--depth-profile] [--jobs N] [--resume] [--map-plot FILE.png|pdf] [--color-range MIN,MAX] [--color-log] [--curve-plots FILE.pdf]",
                      "Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):\n"
                      "F(z) = b + E/(1 - nu^2) g(z_c - z) on the tip-position axis z (decreasing toward\n"
                      "the sample), g the Hertz/Sneddon force of the tip per reduced modulus, zero out of\n"
@@ -641,7 +648,9 @@ void print_fit_help() {
                      "and the run goes on (exit 0; the count in the header and on stderr). Each row is\n"
                      "the one-curve fit of its curve (same pipeline and defaults). --jobs N fits in parallel with the same table; with --output FILE the rows\n"
                      "go to FILE.partial chunk by chunk and FILE is written at the end; --resume\n"
-                     "continues an interrupted FILE.partial.\n"
+                     "continues an interrupted FILE.partial. --curve-plots FILE.pdf: one control-plot page per curve;\n"
+                     "--plot of a batch is --map-plot. --depth-profile (one curve): the fit at 10 increasing maximum\n"
+                     "indentations, one row per depth (on a coating with the half-space fit's apparent E beside E1).\n"
                      "Units: SI (N, m, Pa); lengths take m, mm, um, nm suffixes where noted.\n" +
                          std::string(kFormats),
                      kFitSpec);
@@ -756,6 +765,109 @@ std::string fit_plot_settings(const std::string& term, const std::string& path, 
                                "; po_F=" + gp_number(pulloff.found ? pulloff.force + pulloff.baseline_offset + pulloff.baseline_slope * pulloff.tip_position : NAN);
 }
 
+// A cell of the depth-profile table: the number, or "-" where a depth has no estimate.
+std::string profile_cell(double v, const std::string& column) { return std::isfinite(v) ? format_value(v, column) : "-"; }
+
+// `afm fit FILE --depth-profile`: the table (one row per depth) replaces the points' table, the
+// header keeps the whole-range fit; --plot draws the profile (gnuplot/afm_depth_profile.gp).
+int write_depth_profile(const afm::ForceCurve& curve, const fit::AfmCurveRequest& request, const std::string& modulus_name,
+                        const std::string& path, std::size_t index, const std::string& output_path,
+                        const std::optional<std::string>& plot_path, const std::string& term) {
+  fit::AfmDepthProfile profile;
+  try {
+    profile = fit::afm_depth_profile(curve, request, {});
+  } catch (const fit::AfmCurveInputError&) {
+    throw;  // the curve's own failure, as the one-curve fit reports it
+  } catch (const InputError& error) {
+    std::string message = error.what();  // the library's "depth profile: ..." names the option here
+    if (message.rfind("depth profile: ", 0) == 0) message = "--depth-profile: " + message.substr(15);
+    throw InputError(message);
+  }
+  const fit::AfmCurveFit& whole = profile.reference;
+  std::vector<std::pair<std::string, std::string>> items = {
+      {"coatcontact afm fit", "modulus against depth: the adhesionless fit of one AFM curve at increasing maximum indentation "
+                              "(THEORY.md section 15, \"Modulus against depth\")"}};
+  add_curve_header(items, curve);
+  add_fit_model_lines(items, whole.problem);
+  items.push_back({"whole-range fit", "the estimates below; its contact point is the depths' origin"});
+  add_fit_estimates(items, whole.problem, whole.result, modulus_name, whole.pulloff);
+  items.push_back({"depths", std::to_string(profile.steps.size()) + " maximum indentations from the whole-range fit's contact point, "
+                             "evenly in log from the " + std::to_string(fit::kDepthProfileFirstPoints) +
+                             "th fitted point past it (at least the deepest / " + format_parameter(fit::kDepthProfileSpan, "span") +
+                             ") to the deepest; each fit is the one-curve fit with that --max-indentation"});
+  if (profile.coated) {
+    items.push_back({"apparent E", "the half-space fit of the same points (E free, nu = the film's): the substrate shows as its rise with depth"});
+    items.push_back({"thickness fraction", format_parameter(fit::kDepthProfileThicknessFraction, "fraction") + " t = " +
+                                               format_parameter(fit::kDepthProfileThicknessFraction * profile.thickness, "limit") +
+                                               " m: deeper, the film's strain (about delta/t) leaves the linear model's range"});
+  }
+  for (const std::string& warning : profile.warnings) items.push_back({"warning", warning});
+  if (!profile.warnings.empty()) {
+    std::cerr << "coatcontact afm fit: warning: " << profile.warnings.size() << " of " << profile.steps.size()
+              << " depths exceed " << format_parameter(fit::kDepthProfileThicknessFraction, "fraction")
+              << " t (the over_thickness_fraction column; THEORY.md section 15)\n";
+  }
+  std::vector<std::string> columns = {"depth", "max_indentation", modulus_name, modulus_name + "_error"};
+  std::string units = "m\tm\tPa\tPa";
+  if (profile.coated) columns.insert(columns.end(), {"E_apparent", "E_apparent_error"}), units += "\tPa\tPa";
+  columns.insert(columns.end(), {"points_in_contact", "chi2_per_dof", "flag", "reason"});
+  units += "\t-\t-\t-\t-";
+  if (profile.coated) columns.push_back("over_thickness_fraction"), units += "\t-";
+  items.push_back({"units", units});
+  std::ostringstream table, data;
+  write_header(table, items, columns);
+  double z_big = 0.0, e_big = 0.0;
+  for (const fit::AfmDepthStep& s : profile.steps) {
+    const bool kept = fit::afm_flag_keeps_estimates(s.flag);
+    table << format_value(s.depth, "depth") << '\t' << profile_cell(s.max_indentation, "max_indentation") << '\t'
+          << profile_cell(s.modulus, modulus_name) << '\t' << profile_cell(s.modulus_error, modulus_name + "_error");
+    if (profile.coated) {
+      table << '\t' << profile_cell(s.apparent_modulus, "E_apparent") << '\t' << profile_cell(s.apparent_modulus_error, "E_apparent_error");
+    }
+    table << '\t' << (kept ? std::to_string(s.points_in_contact) : "-") << '\t' << profile_cell(s.chi2_per_dof, "chi2_per_dof") << '\t'
+          << static_cast<int>(s.flag) << '\t' << fit::afm_flag_name(s.flag);
+    if (profile.coated) table << '\t' << (s.beyond_thickness_fraction ? 1 : 0);
+    table << '\n';
+    const auto gp = [](double v) { return std::isfinite(v) ? gp_number(v) : std::string("NaN"); };
+    data << gp(s.depth) << '\t' << gp(s.max_indentation) << '\t' << gp(s.modulus) << '\t' << gp(s.modulus_error) << '\t'
+         << gp(s.apparent_modulus) << '\t' << gp(s.apparent_modulus_error) << '\n';
+    if (std::isfinite(s.max_indentation)) z_big = std::max(z_big, s.max_indentation);
+    for (const auto& [e, de] : {std::pair{s.modulus, s.modulus_error}, std::pair{s.apparent_modulus, s.apparent_modulus_error}}) {
+      if (!std::isfinite(e)) continue;
+      e_big = std::max(e_big, e + de);
+    }
+  }
+  std::string picture;
+  if (plot_path) {
+    if (!(z_big > 0.0 && e_big > 0.0)) throw NumericalError("--plot: no depth of the profile has an estimate to draw");
+    // The axes from 0 to the values and their error bars, a margin of 10 % and room for the key.
+    const double z_high = z_big * 1.1, e_high = e_big * 1.35;
+    const auto [zs, zunit] = prefix_of(z_big);
+    const auto [es, eunit] = prefix_of(e_big);
+    const std::string title = std::filesystem::path(path).filename().string() + " #" + std::to_string(index) + ": " +
+                              modulus_name + " against depth, " + whole.problem.tip.description;
+    const double limit = profile.coated ? fit::kDepthProfileThicknessFraction * profile.thickness : NAN;
+    char tlabel[120];
+    std::snprintf(tlabel, sizeof tlabel, "δ = %g t (t = %.4g µm)", fit::kDepthProfileThicknessFraction, profile.thickness * 1e6);
+    picture = run_gnuplot({{"profile.tsv", data.str()}}, "afm_depth_profile.gp", kAfmDepthProfileScript, [&](const std::string& dir) {
+      return "datafile=" + gnuplot_string(dir + "/profile.tsv") + "; term='" + term + "'; plottitle=" + gnuplot_string(title) +
+             "; modname=" + gnuplot_string(modulus_name) + "; coated=" + (profile.coated ? "1" : "0") + "; tlimit=" + gp_number(limit) +
+             "; tlabel=" + gnuplot_string(tlabel) + "; zs=" + gp_number(zs) + "; zunit='" + zunit + "m'; es=" + gp_number(es) +
+             "; eunit='" + eunit + "Pa'; xhi=" + gp_number(z_high * zs) + "; yhi=" + gp_number(e_high * es);
+    }, "--plot", true);
+  }
+  Output output(output_path);
+  output.stream() << table.str();
+  std::unique_ptr<Output> plot_output;
+  if (plot_path) {
+    plot_output = std::make_unique<Output>(*plot_path, "--plot");
+    plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+    plot_output->commit();
+  }
+  output.commit();
+  return kExitSuccess;
+}
+
 int run_fit_curve(const Args& args) {
   return run_guarded("afm fit", [&]() -> int {
     const Arguments arguments(args, kFitSpec, kMaxFitInputs);
@@ -801,6 +913,9 @@ int run_fit_curve(const Args& args) {
     request.segment = kind;
     request.range = range;
     request.baseline = setup.baseline;
+    if (arguments.has("--depth-profile")) {
+      return write_depth_profile(curve, request, modulus_name, path, index, output_path, plot_path, term);
+    }
     const fit::AfmCurveFit fitted = fit::afm_fit_curve(curve, request);
     problem = fitted.problem;
     const afm::PreprocessedCurve& steps = fitted.preprocessed;

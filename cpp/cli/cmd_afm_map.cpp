@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "afm_curve_plots.hpp"
 #include "afm_fit_map.hpp"
 #include "afm_partial.hpp"
 #include "afm_map_plot_script.hpp"
@@ -348,7 +349,8 @@ std::vector<std::pair<std::string, std::string>> render_map_plots(const std::vec
     if (cells[2] != "-" && cells[3] != "-") on_grid[next] = true;
   }
   const auto maps = static_cast<std::size_t>(std::count(on_grid.begin(), on_grid.end(), true));
-  if (maps == 0) throw InputError("--map-plot: no curve of the run has a grid position (is it a map?)");
+  if (maps == 0) throw InputError("--map-plot (--plot of a batch): no curve of the run has a grid position (is it a map?); "
+                                  "each curve's own picture: --curve-plots FILE.pdf");
   const std::size_t dot = plot_path.rfind('.');
   std::vector<std::pair<std::string, std::string>> pictures;
   for (std::size_t f = 0; f < files.size(); ++f) {
@@ -375,7 +377,7 @@ std::string fit_range_text(const fit::AfmRange& range) {
 bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration) {
   const auto& positionals = arguments.positionals();
   const bool batch_option = arguments.has("--jobs") || arguments.has("--resume") || arguments.has("--map-plot") ||
-                            arguments.has("--sort-by");
+                            arguments.has("--sort-by") || arguments.has("--curve-plots");
   if (arguments.has("--index")) {
     if (positionals.size() > 1 || is_folder(positionals.front()) || batch_option) {
       throw InputError("--index: selects one curve of one FILE; without it every curve of the FILEs and FOLDERs is fitted "
@@ -601,10 +603,47 @@ void report_run(const std::vector<std::string>& files, const std::vector<fit::Af
   }
 }
 
-int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
-  if (arguments.has("--plot")) {
-    throw InputError("--plot: draws one curve (FILE --index N); for a map, several files or a folder use --map-plot FILE.png|pdf");
+namespace {
+
+// The pictures of a batch: --map-plot (or --plot, the same option for a batch) and --curve-plots.
+struct BatchPictures {
+  std::string map_plot_option;       // "--map-plot" or "--plot", as given
+  std::optional<std::string> map_plot, curve_plots;
+  std::string term;                  // of the map images: "png" or "pdf"
+};
+
+BatchPictures parse_batch_pictures(const Arguments& arguments, bool resume) {
+  if (arguments.has("--depth-profile")) {
+    throw InputError("--depth-profile: profiles one curve (FILE --index N of a map); per-curve pictures of a batch: --curve-plots FILE.pdf");
   }
+  // --plot of a batch is --map-plot (the map images; docs/afm.md), so one option draws what a run fits.
+  if (arguments.has("--plot") && arguments.has("--map-plot")) {
+    throw InputError("--plot: of a batch it is --map-plot (the map images); give one of them");
+  }
+  BatchPictures p;
+  p.map_plot_option = arguments.has("--plot") ? "--plot" : "--map-plot";
+  p.map_plot = arguments.get(p.map_plot_option);
+  if (p.map_plot) {
+    const std::size_t dot = p.map_plot->rfind('.');
+    p.term = dot == std::string::npos ? "" : p.map_plot->substr(dot + 1);
+    if (p.term != "png" && p.term != "pdf") {
+      throw InputError(p.map_plot_option + ": " + cli::quoted(*p.map_plot) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
+    }
+  }
+  p.curve_plots = arguments.get("--curve-plots");
+  if (p.curve_plots) {
+    const std::string& c = *p.curve_plots;
+    if (c.size() < 5 || c.compare(c.size() - 4, 4, ".pdf") != 0) {
+      throw InputError("--curve-plots: " + cli::quoted(c) + " is not allowed; it must end in .pdf (one page per curve)");
+    }
+    if (resume) throw InputError("--curve-plots: draws every curve of a run; a --resume does not fit the curves of FILE.partial again");
+  }
+  return p;
+}
+
+}  // namespace
+
+int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm::Calibration& calibration) {
   const std::vector<std::string> files = input_files(arguments.positionals());
   for (const std::string& f : files) register_input(f, "AFM file");
   const unsigned jobs = parse_jobs(arguments);
@@ -613,19 +652,15 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   const bool to_stdout = !cli::output_is_regular_file(output_path);
   const bool resume = arguments.has("--resume");
   if (resume && to_stdout) throw InputError("--resume: needs --output FILE, a regular file (the rows of the interrupted run are in FILE.partial)");
-  std::optional<std::string> plot_path = arguments.get("--map-plot");
-  std::string term;
-  if (plot_path) {
-    const std::size_t dot = plot_path->rfind('.');
-    term = dot == std::string::npos ? "" : plot_path->substr(dot + 1);
-    if (term != "png" && term != "pdf") {
-      throw InputError("--map-plot: " + cli::quoted(*plot_path) + " is not allowed; it must end in .png or .pdf (the format follows the extension)");
-    }
-  }
+  const BatchPictures batch_pictures = parse_batch_pictures(arguments, resume);
+  const std::string& map_plot_option = batch_pictures.map_plot_option;
+  const std::optional<std::string>& plot_path = batch_pictures.map_plot;
+  const std::string& term = batch_pictures.term;
+  const std::optional<std::string>& curve_plots_path = batch_pictures.curve_plots;
   const MapColor color = parse_map_color(arguments, plot_path.has_value());
   const bool sort_by = sort_by_rating(arguments);
   const std::string partial_path = to_stdout ? std::string() : output_path + ".partial";
-  check_output_paths({{"--output", output_path}, {"--map-plot", plot_path.value_or("")}});
+  check_output_paths({{"--output", output_path}, {map_plot_option, plot_path.value_or("")}, {"--curve-plots", curve_plots_path.value_or("")}});
   if (!to_stdout) check_output_path(partial_path, "--output");
   if (!to_stdout && !resume && std::filesystem::exists(partial_path)) {
     throw InputError("--output: " + cli::quoted(partial_path) + " exists (the rows of an interrupted run); continue it with --resume or remove it");
@@ -636,7 +671,10 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   settings.segment = setup.kind;
   settings.range = setup.range;
   settings.baseline = setup.baseline;
+  settings.keep_traces = curve_plots_path.has_value();
   const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
+  std::unique_ptr<AfmCurvePlots> curve_plots;
+  if (curve_plots_path) curve_plots = std::make_unique<AfmCurvePlots>(parameters, settings.segment == afm::SegmentKind::kRetract);
   const bool contact_point_column = !settings.problem.free.contact_point;
   // A file that cannot be read is a flagged row when the run has several files or a folder; a
   // single FILE named is the run's input (exit 2).
@@ -689,6 +727,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     for (const auto& row : rows) {
       std::string line = row_line(row, parameters.size(), contact_point_column);
       if (plot_path) plot_rows.push_back(line.substr(0, line.size() - 1));
+      if (curve_plots) curve_plots->add(row);
       text += line;
     }
     if (partial) partial->append(text);
@@ -708,6 +747,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     pictures = render_map_plots(plot_rows, parameters, contact_point_column, term, *plot_path, files,
                                 settings.problem.tip.description, color);
   }
+  const std::size_t map_images = pictures.size();
+  if (curve_plots) pictures.emplace_back(*curve_plots_path, curve_plots->render());  // the last picture
+  const auto option_of = [&](std::size_t k) { return k < map_images ? map_plot_option : std::string("--curve-plots"); };
   const std::size_t rating_column = columns.size() - 4;
   if (to_stdout) {
     if (sort_by) write_sorted(sorted_rows, rows_out, rating_column);
@@ -730,9 +772,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     if (sort_by) write_sorted(std::string(std::istreambuf_iterator<char>(rows_in), {}), output.stream(), rating_column);
     else if (rows_in.peek() != std::char_traits<char>::eof()) output.stream() << rows_in.rdbuf();
     std::vector<std::unique_ptr<Output>> plot_outputs;  // alive until the table's commit: all or none
-    for (const auto& [path, picture] : pictures) {
-      plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
-      plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+    for (std::size_t k = 0; k < pictures.size(); ++k) {
+      plot_outputs.push_back(std::make_unique<Output>(pictures[k].first, option_of(k)));
+      plot_outputs.back()->stream().write(pictures[k].second.data(), static_cast<std::streamsize>(pictures[k].second.size()));
       plot_outputs.back()->commit();
     }
     output.commit();
@@ -740,13 +782,13 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   }
   // All made before any commit, so that they are published together (all or none).
   std::vector<std::unique_ptr<Output>> plot_outputs;
-  for (const auto& [path, picture] : pictures) {
-    if (!to_stdout) break;  // written with the table above
-    plot_outputs.push_back(std::make_unique<Output>(path, "--map-plot"));
-    plot_outputs.back()->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+  for (std::size_t k = 0; k < pictures.size() && to_stdout; ++k) {  // (else written with the table above)
+    plot_outputs.push_back(std::make_unique<Output>(pictures[k].first, option_of(k)));
+    plot_outputs.back()->stream().write(pictures[k].second.data(), static_cast<std::streamsize>(pictures[k].second.size()));
   }
   for (const auto& plot_output : plot_outputs) plot_output->commit();
-  if (pictures.size() > 1) std::cerr << "coatcontact afm fit: " << pictures.size() << " map images, " << pictures.front().first << " ...\n";
+  if (map_images > 1) std::cerr << "coatcontact afm fit: " << map_images << " map images, " << pictures.front().first << " ...\n";
+  if (curve_plots) std::cerr << "coatcontact afm fit: " << curve_plots->pages() << " control-plot pages in " << *curve_plots_path << "\n";
   report_run(files, survey, total, flag_text, summary);
   return kExitSuccess;
 }

@@ -71,10 +71,13 @@ AfmCurveRow afm_fit_curve_row(const afm::ForceCurve& curve, const AfmBatchSettin
   try {
     fitted = afm_fit_curve(curve, settings);
   } catch (const AfmCurveInputError& error) {
+    if (settings.keep_traces) row.trace = afm_curve_trace(curve, settings, nullptr);
     return flagged(std::move(row), error.flag(), error.what());
   } catch (const AfmCurveNumericalError& error) {
+    if (settings.keep_traces) row.trace = afm_curve_trace(curve, settings, nullptr);
     return flagged(std::move(row), error.flag(), error.what());
   }
+  if (settings.keep_traces) row.trace = afm_curve_trace(curve, settings, &fitted);
   const AfmFitResult& r = fitted.result;
   for (const AfmBatchParameter& p : afm_batch_parameters(settings.problem)) {
     row.estimates.push_back(r.*p.value);

@@ -153,7 +153,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
         segment=None, spring_constant=None, tip_range=None, indentation_range=None,
         max_indentation=None, max_force=None, noise=None, work=None, surface_force_range=0.3e-9, tilt=None,
-        baseline_model=None, weight_cp=None):
+        baseline_model=None, weight_cp=None, depth_profile=False):
     """Adhesionless fit of one segment of an AFM force curve (THEORY.md section 15):
     F(z) = baseline + E/(1 - nu^2) g(contact_point - z) on the tip-position axis z (decreasing
     toward the sample), g the Hertz/Sneddon force of the tip per reduced modulus, 0 out of
@@ -208,6 +208,15 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                "tilt" (default): the preprocessing's baseline slope is subtracted from the forces
                (the baseline is then the one at its contact point); "offset": the forces as
                measured. With "tilt" in free the model fits the slope (offset).
+    depth_profile
+               True (hertz, a curve with heights, the modulus free, t fixed): the result adds
+               "depth_profile", the modulus against depth (`afm fit --depth-profile`, docs/afm.md):
+               a dict of arrays "depth" (asked, from the whole-range fit's contact point) and
+               "max_indentation" [m], the modulus ("E" or "E1") and its "_error" [Pa], "flag",
+               "points_in_contact"; on a coating also "E_apparent" and "E_apparent_error" [Pa]
+               (the half-space fit of the same points) and "over_thickness_fraction" (bool: deeper
+               than "thickness_fraction" t, 0.1); "modulus_name", "warnings". NaN where a depth
+               has no estimate. The rest of the result is the whole-range fit.
 
     A Curve, or a mapping with a height, a spring constant and optionally a "segment" column,
     goes through the library's one-curve pipeline, as `coatcontact afm fit` and each row of
@@ -255,10 +264,13 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         try:
             r = _afm.fit_curve(*arrays, tip, E, nu, free, float(contact_point or 0.0), float(baseline or 0.0), coating,
                                segment, *ranges, adhesion, baseline_model or "", float(noise or 0.0),
-                               weight_cp=float(weight_cp or 0.0))
+                               weight_cp=float(weight_cp or 0.0), depth_profile=bool(depth_profile))
         except RuntimeError as e:
             raise NumericalError(str(e)) from None
     else:
+        if depth_profile:
+            raise ValueError("depth_profile: needs a curve with heights and a spring constant (the one-curve "
+                             "pipeline's preprocessing); (tip_position, force) arrays have none")
         r = _fit_given_arrays(curve, mapping, model, segment, spring_constant, tip, E, nu, free, contact_point,
                               baseline, coating, ranges, noise, work, surface_force_range, tilt, baseline_model,
                               float(weight_cp or 0.0))
@@ -422,12 +434,12 @@ def _curve_arrays(curve, number, spring_constant):
             meta.get("grid index x"), meta.get("grid index y"), meta.get("position x"), meta.get("position y"))
 
 
-def _fit_part(files, survey, tolerate, first, count, args, adhesion=None, baseline_model=""):
+def _fit_part(files, survey, tolerate, first, count, args, adhesion=None, baseline_model="", weight_cp=0.0):
     """One share of a fit_map run (a task of a Dask worker): curves first..first+count-1 of the
     files, read by the worker itself (the survey spares it counting the curves: it opens only
     the files of its share, once)."""
     return _afm.fit_map_files(files, *args, jobs=1, first=first, count=count, survey=survey, tolerate=tolerate,
-                               adhesion=adhesion, baseline_model=baseline_model)
+                               adhesion=adhesion, baseline_model=baseline_model, weight_cp=weight_cp)
 
 
 def _concatenated(parts):
@@ -468,7 +480,8 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
             thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
             segment=None, spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
             max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False, work=None,
-            surface_force_range=0.3e-9, tilt=None, baseline_model=None, sort_by=None):
+            surface_force_range=0.3e-9, tilt=None, baseline_model=None, sort_by=None, weight_cp=None,
+            curve_plots=None):
     """Fits every curve of maps, QI data, files or folders (or of the curves given) and returns
     one row per curve, as `coatcontact afm fit FILES...` does (THEORY.md section 15, "Many
     curves"): each curve through fit()'s pipeline with the same keywords (preprocessed: baseline
@@ -503,7 +516,13 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     through the spring), points, rating (0..10, docs/afm.md "Curve rating"; 0 without estimates),
     tabor_mu and maugis_lambda (these four: adhesive models; NaN for hertz), warnings ("; "-separated, "" for none);
     NaN where a flagged curve has no value.
-    sort_by          "rating": the rows by their rating, highest first (stable)."""
+    sort_by          "rating": the rows by their rating, highest first (stable).
+    weight_cp        D [m]: nanite's contact-point weighting, as fit()'s (hertz on a half-space).
+    curve_plots      FILE.pdf: one control-plot page per curve, as `afm fit --curve-plots` draws
+                     them (the contact region's data, fitted points dark, the model, the contact
+                     point; the residuals; file, curve, grid place, flag, rating and estimates in
+                     the title), drawn with matplotlib as the rows come (not with client=);
+                     written atomically when the run ends."""
     if sort_by not in (None, "rating"):
         raise ValueError(f"sort_by: {sort_by!r} is not allowed; expected 'rating' (or None: curve order)")
     model = _model_name(model)
@@ -530,11 +549,42 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     if baseline_model not in (None, "tilt", "offset"):
         raise ValueError(f"baseline_model: {baseline_model!r} is not allowed; expected 'tilt' or 'offset'")
     baseline_model = baseline_model or ""
+    weight_cp = 0.0 if weight_cp is None else float(weight_cp)
+    if not (math.isfinite(weight_cp) and weight_cp >= 0.0):
+        raise ValueError(f"weight_cp: {weight_cp!r} is not allowed; expected a length > 0 (m) or None")
     if jobs is not None and (int(jobs) != jobs or jobs < 1):
         raise ValueError(f"jobs: {jobs!r} is not allowed; expected a whole number of threads >= 1 (or None: the cores)")
     k = None if spring_constant is None else _calibration(spring_constant, "spring_constant")
     s = None if sensitivity is None else _calibration(sensitivity, "sensitivity")
     items = [paths_or_curves] if _is_path(paths_or_curves) else list(paths_or_curves)
+    pages = None
+    if curve_plots is not None:
+        if client is not None:
+            raise ValueError("curve_plots: draws the pages as the rows come; not with client= (fit the paths without it)")
+        pages = _CurvePlotPages(os.fspath(curve_plots), [os.fspath(i) for i in items if _is_path(i)])
+    try:
+        rows = _fit_map_rows(items, args, k, s, jobs, client, model_args=(adhesion, baseline_model, weight_cp),
+                             spring_constant=spring_constant, pages=pages)
+        if pages is not None:
+            pages.commit()
+    finally:
+        if pages is not None:
+            pages.close()
+    if sort_by == "rating":
+        rows = rows[np.argsort(-rows["rating"], kind="stable")]
+    if as_frame:
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("as_frame=True needs pandas (Debian: python3-pandas)") from None
+        return pandas.DataFrame(rows)
+    return rows
+
+
+def _fit_map_rows(items, args, k, s, jobs, client, model_args, spring_constant, pages):
+    """The rows of fit_map (a structured array) for paths or curves; `pages` draws each row's page."""
+    adhesion, baseline_model, weight_cp = model_args
+    sink = pages.add if pages is not None else None
     if items and all(_is_path(i) for i in items):
         paths = [os.fspath(i) for i in items]
         files = _afm.expand_paths(paths)
@@ -545,10 +595,11 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
         for curves, why, flag in survey:
             if why:
                 what = "file without calibration" if flag == 6 else "unreadable file"
-                warnings.warn(f"afm.fit_map: {what}, one flagged row: {why}", stacklevel=2)
+                warnings.warn(f"afm.fit_map: {what}, one flagged row: {why}", stacklevel=3)
         if client is None:
             columns = _afm.fit_map_files(files, *args, k, s, jobs=int(jobs or 0), first=0, count=None, survey=survey,
-                                         tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model)
+                                         tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model,
+                                         weight_cp=weight_cp, trace_sink=sink)
         else:
             workers = max(1, len(client.scheduler_info().get("workers", {})))
             shares = _shares(survey, workers)
@@ -556,7 +607,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
             # rows keep the names the caller gave, as the serial run's do.
             absolute = [os.path.abspath(f) for f in files]
             futures = [client.submit(_fit_part, absolute, survey, tolerate, first, count, args + (k, s), adhesion,
-                                     baseline_model, pure=False)
+                                     baseline_model, weight_cp, pure=False)
                        for first, count in shares]
             parts = client.gather(futures)
             if parts:
@@ -565,21 +616,112 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
                 columns["file"] = [given.get(f, f) for f in columns["file"]]
             else:
                 columns = _afm.fit_map_files(files, *args, k, s, jobs=1, first=0, count=0, survey=survey,
-                                             tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model)
+                                             tolerate=tolerate, adhesion=adhesion, baseline_model=baseline_model,
+                                             weight_cp=weight_cp)
     elif items and not any(_is_path(i) for i in items):
         if client is not None:
             raise ValueError("client: spreads the curves of files; give paths, or fit given curves without client=")
         curves = [_curve_arrays(c, n, spring_constant) for n, c in enumerate(items)]
-        columns = _afm.fit_map_curves(curves, *args, adhesion=adhesion, baseline_model=baseline_model)
+        columns = _afm.fit_map_curves(curves, *args, adhesion=adhesion, baseline_model=baseline_model,
+                                      weight_cp=weight_cp, trace_sink=sink)
     else:
         raise ValueError("paths_or_curves: expected a path, a folder, a list of them, or a list of curves (not mixed)")
-    rows = _structured(columns)
-    if sort_by == "rating":
-        rows = rows[np.argsort(-rows["rating"], kind="stable")]
-    if as_frame:
+    return _structured(columns)
+
+
+_PREFIXES = {-15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M"}
+
+
+def _prefix(magnitude, unit):
+    e = 3 * math.floor(math.log10(magnitude) / 3 + 1e-9) if magnitude > 0 else 0
+    e = min(max(e, -15), 6)
+    return 10.0 ** -e, _PREFIXES[e] + unit
+
+
+class _CurvePlotPages:
+    """fit_map(curve_plots=): one page per row (the command line's --curve-plots layout), drawn
+    into a temporary file beside FILE.pdf that commit() renames over it."""
+
+    def __init__(self, path, inputs):
+        if not path.endswith(".pdf"):
+            raise ValueError(f"curve_plots: {path!r} is not allowed; it must end in .pdf (one page per curve)")
+        if any(os.path.exists(i) and os.path.exists(path) and os.path.samefile(i, path) for i in inputs):
+            raise ValueError(f"curve_plots: {path!r} is an input of the run")
+        import matplotlib
+        matplotlib.use("Agg", force=False)
+        from matplotlib.backends.backend_pdf import PdfPages
+        from matplotlib.figure import Figure
+        self._figure = Figure
+        import tempfile
+        folder = os.path.dirname(os.path.abspath(path))
+        fd, self._temporary = tempfile.mkstemp(prefix=os.path.basename(path) + ".tmp.", dir=folder)
+        os.close(fd)
+        self._path = path
+        self._pdf = PdfPages(self._temporary)
+        self.pages = 0
+
+    def add(self, page):
+        fig = self._figure(figsize=(7.5, 5.5))
+        top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2.3, 1]})
+        grid = f" (grid {page['grid'][0]}, {page['grid'][1]})" if page["grid"] is not None else ""
+        fig.suptitle(f"{os.path.basename(page['file'])} #{page['curve']}{grid}: {page['flag']}, "
+                     f"rating {page['rating']:.1f}/10", fontsize=11)
+        if page["estimates"]:
+            parts = []
+            for name, value, error, unit in page["estimates"]:
+                scale, u = _prefix(abs(value), unit)
+                digits = 7 if name in ("contact_point", "baseline") else 4
+                parts.append(f"{name} = {value * scale:.{digits}g} ± {error * scale:.2g} {u}")
+            key = ", ".join(parts) + f", χ²/dof = {page['chi2_per_dof']:.3g}"
+        else:
+            key = page["message"][:125]
+        top.set_title(key, fontsize=8)
+        if "z" in page:
+            z, F, model, seg, fitted = (page[k] for k in ("z", "force", "model", "segment", "fitted"))
+            zs, zu = _prefix(np.max(np.abs(z)), "m")
+            fs, fu = _prefix(np.max(np.abs(F)), "N")
+            colours = np.where(seg == 0, np.where(fitted == 1, "#0072b2", "#a6c8e0"),
+                               np.where(fitted == 1, "#d55e00", "#f2bfa0"))
+            top.scatter(z * zs, F * fs, s=3, c=colours)
+            zc = page["contact_point"]
+            lo, hi = z.min(), z.max()
+            if np.isfinite(zc) and zc > lo:
+                hi = min(hi, zc + 2 * (zc - lo))
+                top.plot(z * zs, model * fs, color="black", lw=1.5, label="model")
+                for ax in (top, bottom):
+                    ax.axvline(zc * zs, color="#009e73", ls="--", lw=1.2, label="contact point" if ax is top else None)
+                keep = fitted == 1
+                bottom.scatter(z[keep] * zs, (model[keep] - F[keep]) * fs, s=3, c=colours[keep])
+                bottom.axhline(0, color="#555555", lw=0.8, ls=":")
+                inside = (z >= lo) & (z <= hi)
+                top.set_ylim(*_margins(F[inside] * fs))
+                top.legend(loc="upper right", fontsize=8)
+            top.set_xlim(lo * zs, hi * zs)
+            top.set_ylabel(f"force F ({fu})")
+            bottom.set_ylabel(f"model - data ({fu})")
+            bottom.set_xlabel(f"tip position z ({zu})   [the tip indents the sample for z < z_c]")
+        else:
+            top.text(0.5, 0.5, "no data to draw (see the flag above)", ha="center", transform=top.transAxes)
+        for ax in (top, bottom):
+            ax.grid(color="#dddddd")
+        self._pdf.savefig(fig)
+        self.pages += 1
+
+    def commit(self):
+        self._pdf.close()
+        self._closed = True
+        os.replace(self._temporary, self._path)
+
+    def close(self):
         try:
-            import pandas
-        except ImportError:
-            raise ImportError("as_frame=True needs pandas (Debian: python3-pandas)") from None
-        return pandas.DataFrame(rows)
-    return rows
+            if not getattr(self, "_closed", False):
+                self._pdf.close()
+        finally:
+            if os.path.exists(self._temporary):
+                os.remove(self._temporary)
+
+
+def _margins(values):
+    lo, hi = float(np.min(values)), float(np.max(values))
+    pad = 0.05 * (hi - lo) if hi > lo else 1.0
+    return lo - pad, hi + pad

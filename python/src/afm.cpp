@@ -17,6 +17,7 @@
 
 #include "coatcontact/afm_batch.hpp"
 #include "coatcontact/afm_curve_fit.hpp"
+#include "coatcontact/afm_depth_profile.hpp"
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_models.hpp"
 #include "coatcontact/afm_preprocess.hpp"
@@ -665,6 +666,39 @@ std::vector<std::tuple<std::size_t, std::string, int>> survey_files(const std::v
   return out;
 }
 
+// One control-plot page of fit_map(curve_plots=): the row's place, flag, rating and estimates,
+// and its trace (afm_curve_trace: "z", "force", "model", "segment", "fitted", "contact_point";
+// absent for a curve without data). Called with the GIL held.
+py::dict trace_dict(const coatcontact::fit::AfmCurveRow& row, const std::vector<coatcontact::fit::AfmBatchParameter>& parameters) {
+  namespace fit = coatcontact::fit;
+  py::dict d;
+  d["file"] = row.source_file;
+  d["curve"] = row.curve_index;
+  d["grid"] = row.grid_x && row.grid_y ? py::object(py::make_tuple(*row.grid_x, *row.grid_y)) : py::object(py::none());
+  d["flag"] = fit::afm_flag_name(row.flag);
+  d["rating"] = row.rating;
+  d["message"] = row.message;
+  py::list estimates;
+  if (fit::afm_flag_keeps_estimates(row.flag)) {
+    for (std::size_t p = 0; p < parameters.size() && p < row.estimates.size(); ++p) {
+      estimates.append(py::make_tuple(parameters[p].name, row.estimates[p], row.errors[p], parameters[p].unit));
+    }
+    d["chi2_per_dof"] = row.chi2_per_dof;
+  }
+  d["estimates"] = estimates;
+  if (row.trace && !row.trace->z.empty()) {
+    const fit::AfmCurveTrace& t = *row.trace;
+    d["z"] = to_array(t.z);
+    d["force"] = to_array(t.force);
+    d["model"] = to_array(t.model);
+    d["segment"] = to_array(t.segment);
+    std::vector<int> fitted(t.fitted.begin(), t.fitted.end());
+    d["fitted"] = to_array(fitted);
+    d["contact_point"] = t.contact_point;
+  }
+  return d;
+}
+
 // Curves [first, first + count) of the run over `files`, fitted with `jobs` threads (0: cores).
 py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& shape, double modulus, double poisson,
                        const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
@@ -672,7 +706,8 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
                        const py::object& spring_constant, const py::object& sensitivity, unsigned jobs, std::size_t first,
                        const py::object& count, const py::object& survey, bool tolerate,
-                       const py::object& adhesion, const std::string& baseline_model) {
+                       const py::object& adhesion, const std::string& baseline_model, double weight_cp,
+                       const py::object& trace_sink) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::optional<Columns> columns;
@@ -680,6 +715,9 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
                            indentation_min, indentation_max, max_force, adhesion);
     settings.baseline = baseline_model_of(baseline_model, settings.problem);
+    settings.problem.weight_cp = weight_cp;
+    settings.keep_traces = !trace_sink.is_none();
+    const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
     columns.emplace(settings);
     const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
     fit::AfmBatchOptions options;
@@ -696,6 +734,9 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
     options.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) {
       py::gil_scoped_acquire acquire;
       columns->add(chunk);
+      if (!trace_sink.is_none()) {
+        for (const fit::AfmCurveRow& row : chunk) trace_sink(trace_dict(row, parameters));  // a page each, as they come
+      }
     };
     SignalCheck signals;
     options.progress = [&](std::size_t, std::size_t) { return signals(); };
@@ -714,6 +755,47 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
   return columns->dict();
 }
 
+// afm_depth_profile as a dict of arrays: "depth", "max_indentation" [m], the modulus ("E" or
+// "E1") and its "_error" [Pa], "flag" (names), "points_in_contact", and on a coating
+// "E_apparent", "E_apparent_error" [Pa] (the half-space fit) and "over_thickness_fraction"; NaN
+// where a depth has no estimate. Scalars: "modulus_name", "thickness_fraction", "warnings".
+py::dict depth_profile_dict(const coatcontact::fit::AfmDepthProfile& profile) {
+  namespace fit = coatcontact::fit;
+  std::vector<double> depth, indentation, modulus, error, apparent, apparent_error;
+  std::vector<long> contact;
+  std::vector<bool> beyond;
+  py::list flags;
+  for (const fit::AfmDepthStep& s : profile.steps) {
+    depth.push_back(s.depth);
+    indentation.push_back(s.max_indentation);
+    modulus.push_back(s.modulus);
+    error.push_back(s.modulus_error);
+    apparent.push_back(s.apparent_modulus);
+    apparent_error.push_back(s.apparent_modulus_error);
+    contact.push_back(static_cast<long>(s.points_in_contact));
+    beyond.push_back(s.beyond_thickness_fraction);
+    flags.append(fit::afm_flag_name(s.flag));
+  }
+  py::dict d;
+  d["depth"] = to_array(depth);
+  d["max_indentation"] = to_array(indentation);
+  d[py::str(profile.modulus_name)] = to_array(modulus);
+  d[py::str(profile.modulus_name + "_error")] = to_array(error);
+  d["points_in_contact"] = to_array(contact);
+  d["flag"] = flags;
+  d["modulus_name"] = profile.modulus_name;
+  if (profile.coated) {
+    d["E_apparent"] = to_array(apparent);
+    d["E_apparent_error"] = to_array(apparent_error);
+    py::array_t<bool> marks(static_cast<py::ssize_t>(beyond.size()));
+    for (std::size_t i = 0; i < beyond.size(); ++i) marks.mutable_data()[i] = beyond[i];
+    d["over_thickness_fraction"] = marks;
+    d["thickness_fraction"] = fit::kDepthProfileThicknessFraction;
+  }
+  d["warnings"] = profile.warnings;
+  return d;
+}
+
 // One curve given as arrays through the library's one-curve pipeline (afm_fit_curve): the
 // segment, the preprocessing steps, the baseline model, the range, the fit and the pull-off,
 // as `afm fit` and each row of fit_map. noise > 0 replaces the baseline's sigma in chi2.
@@ -723,7 +805,8 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
                    const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
                    const std::string& segment, const py::object& tip_min, const py::object& tip_max,
                    const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
-                   const py::object& adhesion, const std::string& baseline_model, double noise, double weight_cp) {
+                   const py::object& adhesion, const std::string& baseline_model, double noise, double weight_cp,
+                   bool depth_profile) {
   namespace fit = coatcontact::fit;
   const afm::ForceCurve curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
   py::dict out;
@@ -735,11 +818,17 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
     request.problem.weight_cp = weight_cp;
     request.baseline = baseline_model_of(baseline_model, request.problem);
     fit::AfmCurveFit fitted;
+    std::optional<fit::AfmDepthProfile> profile;
     SignalCheck signals;
     try {
       py::gil_scoped_release release;
       const coatcontact::ScopedProgressHook hook([&](std::size_t, std::size_t) { return signals(); });
-      fitted = fit::afm_fit_curve(curve, request);
+      if (depth_profile) {
+        profile = fit::afm_depth_profile(curve, request, {});
+        fitted = profile->reference;  // the whole-range fit: the result as without the profile
+      } else {
+        fitted = fit::afm_fit_curve(curve, request);
+      }
     } catch (const coatcontact::Interrupted&) {
       signals.rethrow();
       throw;
@@ -775,6 +864,7 @@ py::dict fit_curve(const py::object& force, const py::object& height_piezo, cons
     } else {
       out["pulloff"] = py::none();
     }
+    if (profile) out["depth_profile"] = depth_profile_dict(*profile);
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
   } catch (const coatcontact::NumericalError& e) {
@@ -801,7 +891,8 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
                         const std::vector<std::string>& free, double contact_point, double baseline,
                         const py::object& coating, const std::string& segment, const py::object& tip_min,
                         const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
-                        const py::object& max_force, const py::object& adhesion, const std::string& baseline_model) {
+                        const py::object& max_force, const py::object& adhesion, const std::string& baseline_model,
+                        double weight_cp, const py::object& trace_sink) {
   namespace fit = coatcontact::fit;
   fit::AfmBatchSettings settings;
   std::vector<fit::AfmCurveRow> rows;
@@ -809,6 +900,8 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
     settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
                            indentation_min, indentation_max, max_force, adhesion);
     settings.baseline = baseline_model_of(baseline_model, settings.problem);
+    settings.problem.weight_cp = weight_cp;
+    settings.keep_traces = !trace_sink.is_none();
     for (const py::handle item : curves) {
       const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
       afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
@@ -820,8 +913,14 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
       if (!c[8].is_none()) m.grid_index_y = c[8].cast<long>();
       if (!c[9].is_none()) m.position_x = c[9].cast<double>();
       if (!c[10].is_none()) m.position_y = c[10].cast<double>();
-      py::gil_scoped_release release;
-      rows.push_back(fit::afm_fit_curve_row(curve, settings));
+      {
+        py::gil_scoped_release release;
+        rows.push_back(fit::afm_fit_curve_row(curve, settings));
+      }
+      if (!trace_sink.is_none()) {
+        trace_sink(trace_dict(rows.back(), fit::afm_batch_parameters(settings.problem)));
+        rows.back().trace.reset();  // drawn: the page holds it now
+      }
     }
   } catch (const coatcontact::InputError& e) {
     throw py::value_error(e.what());
@@ -849,7 +948,8 @@ void register_afm(py::module_& root) {
         py::arg("spring_constant"), py::arg("name"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"), py::arg("free"),
         py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"), py::arg("tip_min"),
         py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"), py::arg("max_force"),
-        py::arg("adhesion"), py::arg("baseline_model"), py::arg("noise"), py::arg("weight_cp") = 0.0);
+        py::arg("adhesion"), py::arg("baseline_model"), py::arg("noise"), py::arg("weight_cp") = 0.0,
+        py::arg("depth_profile") = false);
   m.def("measured_pulloff", &measured_pulloff, py::arg("tip_position"), py::arg("force"), py::arg("fraction") = 0.5);
   m.def("expand_paths", &expand_paths, py::arg("paths"));
   m.def("survey_files", &survey_files, py::arg("files"), py::arg("spring_constant"), py::arg("sensitivity"),
@@ -859,9 +959,11 @@ void register_afm(py::module_& root) {
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
         py::arg("max_force"), py::arg("spring_constant"), py::arg("sensitivity"), py::arg("jobs"), py::arg("first"),
         py::arg("count"), py::arg("survey") = py::none(), py::arg("tolerate") = false,
-        py::arg("adhesion") = py::none(), py::arg("baseline_model") = "");
+        py::arg("adhesion") = py::none(), py::arg("baseline_model") = "", py::arg("weight_cp") = 0.0,
+        py::arg("trace_sink") = py::none());
   m.def("fit_map_curves", &fit_map_curves, py::arg("curves"), py::arg("shape"), py::arg("modulus"), py::arg("poisson"),
         py::arg("free"), py::arg("contact_point"), py::arg("baseline"), py::arg("coating"), py::arg("segment"),
         py::arg("tip_min"), py::arg("tip_max"), py::arg("indentation_min"), py::arg("indentation_max"),
-        py::arg("max_force"), py::arg("adhesion") = py::none(), py::arg("baseline_model") = "");
+        py::arg("max_force"), py::arg("adhesion") = py::none(), py::arg("baseline_model") = "", py::arg("weight_cp") = 0.0,
+        py::arg("trace_sink") = py::none());
 }

@@ -153,7 +153,8 @@ expect_error "--jobs" "'0'" "1 to 1024" -- afm fit "$map" "${model[@]}" --jobs 0
 expect_error "--jobs" "'2.5'" -- afm fit "$map" "${model[@]}" --jobs 2.5 --output "$work/bad.tsv"
 expect_error "--resume" "--output" -- afm fit "$map" "${model[@]}" --resume
 expect_error "--map-plot" ".png or .pdf" -- afm fit "$map" "${model[@]}" --map-plot "$work/bad.gif" --output "$work/bad.tsv"
-expect_error "--plot" "--map-plot" -- afm fit "$map" "${model[@]}" --plot "$work/bad.png" --output "$work/bad.tsv"
+# --plot of a batch is --map-plot (test_afm_curve_plots.sh); both at once are refused.
+expect_error "--plot" "--map-plot" -- afm fit "$map" "${model[@]}" --plot "$work/bad.png" --map-plot "$work/bad2.png" --output "$work/bad.tsv"
 expect_error "--index" "one FILE" -- afm fit "$map" "$map" "${model[@]}" --index 1 --output "$work/bad.tsv"
 expect_error "given twice" -- afm fit "$map" "$map" "${model[@]}" --output "$work/bad.tsv"
 expect_error "no such file" -- afm fit "$map" "$work/none.jpk-force" "${model[@]}" --output "$work/bad.tsv"

@@ -15,6 +15,7 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +32,22 @@ namespace coatcontact::fit {
 // checks jump-ins by default.
 struct AfmBatchSettings : AfmCurveRequest {
   AfmBatchSettings() { check_jump_in = true; }
+  bool keep_traces = false;  // each row gets its AfmCurveTrace (per-curve control plots)
 };
+
+// What a control plot of one curve draws (afm fit --curve-plots): the approach's points, and the
+// retract's for a retract fit, on the tip-position axis, with the model over the fitted segment.
+// Empty when the curve has no force or no tip position (unreadable, no calibration).
+struct AfmCurveTrace {
+  std::vector<double> z, force;  // [m] tip position, [N] force as measured
+  std::vector<int> segment;      // 0 approach, 1 retract
+  std::vector<double> model;     // [N] the model at z (the subtracted tilt added back); NaN off the fitted segment
+  std::vector<char> fitted;      // 1: a fitted point (its residual is model - force)
+  double contact_point = 0.0;    // [m] fitted; NaN without estimates
+};
+// The trace of a curve and its fit (nullptr: a curve without estimates).
+std::shared_ptr<const AfmCurveTrace> afm_curve_trace(const afm::ForceCurve& curve, const AfmBatchSettings& settings,
+                                                     const AfmCurveFit* fitted);
 
 // One free estimate's column: its name, unit and where afm_fit puts it.
 struct AfmBatchParameter {
@@ -62,6 +78,7 @@ struct AfmCurveRow {
   std::size_t points = 0;      // fitted points
   // Measured pull-off of the retract segment less the fitted baseline (when there is one).
   std::optional<double> pulloff_force, pulloff_position;
+  std::shared_ptr<const AfmCurveTrace> trace;  // with AfmBatchSettings::keep_traces (nullptr for an unreadable curve)
 };
 
 // Fits one curve; per-curve problems become the row's flag (never an exception, except
