@@ -218,8 +218,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                than "thickness_fraction" t, 0.1); "modulus_name", "warnings". NaN where a depth
                has no estimate. The rest of the result is the whole-range fit.
 
-    A Curve, or a mapping with a height, a spring constant and optionally a "segment" column,
-    goes through the library's one-curve pipeline, as `coatcontact afm fit` and each row of
+    A file path (a file of one curve), a Curve, or a mapping with a height, a spring constant
+    and optionally a "segment" column, goes through the library's one-curve pipeline, as `coatcontact afm fit` and each row of
     fit_map: the requested segment only, the preprocessing steps (recorded in "steps"), the
     baseline model, the range, the fit and the pull-off; a curve without contact raises the
     command line's ValueError. (tip_position, force) arrays, or a mapping with a "tip position"
@@ -233,6 +233,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     [m]} of the retract's most tensile force against its free-cantilever baseline, a line
     "baseline_offset" [N] + "baseline_slope" [N/m] z on its last half; or None), and per fitted point index (into the curve), tip_position, F,
     indentation, F_model, residual (F_model - F); seconds (the fit's time)."""
+    curve = _one_curve(curve, spring_constant)
     model = _model_name(model)
     jkr = _MODELS[model]["spring"]  # the adhesive models share their keywords
     if segment is None:
@@ -278,6 +279,23 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
         warnings.warn(message, RuntimeWarning, stacklevel=2)
     r["contact_point"] = r["estimates"]["contact_point"]
     return r
+
+
+def _one_curve(curve, spring_constant):
+    """fit()'s curve: a file path is read (it must hold one curve, as `afm fit FILE` without
+    --index needs); anything but a Curve, a mapping or two arrays is refused by name."""
+    if _is_path(curve):
+        curves = read(os.fsdecode(curve), spring_constant=spring_constant)
+        if len(curves) != 1:
+            raise ValueError(f"curve: {os.fsdecode(curve)!r} holds {len(curves)} curves; fit() takes one: pass "
+                             f"coatcontact.afm.read(path)[i], or fit them all with fit_map(path)")
+        return curves[0]
+    if isinstance(curve, (tuple, list)) and len(curve) == 2:
+        return curve
+    if isinstance(curve, Curve) or hasattr(curve, "keys") or hasattr(curve, "__getitem__") and not isinstance(curve, (tuple, list)):
+        return curve
+    raise TypeError(f"curve: a {type(curve).__name__} is not allowed; expected a file path, a Curve "
+                    "(coatcontact.afm.read), a mapping of columns, or (tip_position, force) arrays")
 
 
 def _has_heights(mapping):

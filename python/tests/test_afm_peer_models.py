@@ -77,3 +77,47 @@ def test_cli_agrees_on_spot3(cli):
         r = cc.afm.fit(cc.afm.read(SPOT)[0], shape=shape, halfspace=(1e3, 0.5), weight_cp=500e-9)
         line = [h for h in header if h.startswith("# E [Pa]: ")][0]
         assert r["estimates"]["E"] == pytest.approx(float(line.split(": ")[1].split()[0]), rel=1e-12)
+
+
+def paraboloid(R, d):  # nanite hertz_paraboloidal per E/(1 - nu^2)
+    return 4.0 / 3.0 * np.sqrt(R) * d ** 1.5
+
+
+@pytest.mark.parametrize("shape,g,weight_cp", [
+    (("pyramid3", np.radians(35)), lambda d: pyr3(np.radians(35), d), None),
+    (("sneddon-sphere", 5e-6), lambda d: sphere(5e-6, d), None),
+    (("sphere", 5e-6), lambda d: paraboloid(5e-6, d), 500e-9),  # the paraboloid tip
+])
+def test_spot3_estimates_are_nanites_optimum(shape, g, weight_cp):
+    """On the real spot3 approach (the offset baseline, nanite's convention), our estimates are
+    the optimum of nanite's own residuals (model.residuals.residual: force - model, times
+    compute_contact_point_weights at the trial contact point): the weighted normal equations in
+    E and b hold, and moving the contact point by 0.1 nm either way (a third of its standard
+    error) with E and b re-solved raises nanite's weighted sum of squares."""
+    r = cc.afm.fit(SPOT, shape=shape, halfspace=(1e3, NU), baseline_model="offset", weight_cp=weight_cp)
+    z, F = np.asarray(r["tip_position"]), np.asarray(r["F"])
+
+    def solved(zc):  # nanite's weighted problem at a fixed contact point: linear in (E*, b)
+        w = np.ones_like(z) if weight_cp is None else np.minimum(np.abs(z - zc) / weight_cp, 1.0)
+        gz = g(np.clip(zc - z, 0, None))
+        scale = np.array([gz.max(), 1.0])  # columns of one magnitude for lstsq's cut-off
+        A = np.column_stack([gz, np.ones_like(z)]) * w[:, None] / scale
+        x, *_ = np.linalg.lstsq(A, F * w, rcond=None)
+        return x / scale, np.sum((F * w - A @ x) ** 2)
+
+    E, zc, b = (r["estimates"][k] for k in ("E", "contact_point", "baseline"))
+    x, rss = solved(zc)
+    assert x[0] * (1 - NU ** 2) == pytest.approx(E, rel=1e-9)
+    assert x[1] == pytest.approx(b, rel=1e-9)
+    assert solved(zc - 1e-10)[1] > rss and solved(zc + 1e-10)[1] > rss
+
+
+def test_fit_reads_a_path_of_one_curve():
+    from_path = cc.afm.fit(SPOT, radius=5e-6, halfspace=(1e3, NU))
+    from_curve = cc.afm.fit(cc.afm.read(SPOT)[0], radius=5e-6, halfspace=(1e3, NU))
+    assert from_path["estimates"] == from_curve["estimates"]
+    with pytest.raises(ValueError, match="holds 4 curves"):
+        cc.afm.fit(os.path.join(SOURCE_DIR, "data", "afm", "fmt-jpk-fd_map2x2_extracted.jpk-force-map"),
+                   radius=5e-6, halfspace=(1e3, NU))
+    with pytest.raises(TypeError, match="a float is not allowed"):
+        cc.afm.fit(3.0, radius=5e-6, halfspace=(1e3, NU))
