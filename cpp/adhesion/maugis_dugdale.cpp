@@ -17,6 +17,7 @@
 #include "coatcontact/solve_cache.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <functional>
@@ -48,6 +49,12 @@ constexpr double kSlopeStep = 1e-4;
 // Relative error of a direct solve's values (tests/adhesive/test_md_table.cpp: root to 1e-13 in
 // ln(c/a - 1), values ~1e-13 relative, with a margin).
 constexpr double kDirectNoise = 1e-11;
+// Location of a direct pull-off: the root of the implicit derivative (~1e-10 relative, with a
+// margin; MaugisDugdaleModel::refine).
+constexpr double kDirectLocation = 1e-9;
+// Step in ln a_bar of the central differences at a pull-off from the table (locate_errors): the
+// curve and the table's change vary over a grid cell (0.3 in ln a).
+constexpr double kErrorStep = 0.01;
 
 void check_value(double value, const std::string& what, bool zero_allowed) {
   if (!std::isfinite(value) || !(zero_allowed ? value >= 0.0 : value > 0.0)) {
@@ -74,6 +81,19 @@ double error_of(const MaugisDugdalePoint& p, Control c) {
     case Control::kLoad: return p.load_error;
     case Control::kDisplacement: return p.penetration_error;
     default: return p.penetration_error + p.load_error / c.k_bar;
+  }
+}
+
+// A table point's change when the coarse splines stand for the fine ones (MdTableState::*_shift),
+// in the point's units: P, D, m.
+struct PointShift {
+  double load = 0.0, penetration = 0.0, m = 0.0;
+};
+double shift_of(const PointShift& s, Control c) {
+  switch (c.kind) {
+    case Control::kLoad: return s.load;
+    case Control::kDisplacement: return s.penetration;
+    default: return s.penetration + s.load / c.k_bar;
   }
 }
 
@@ -177,7 +197,7 @@ struct MaugisDugdaleModel::Impl {
   // The curve at a_bar; the root c(a) is searched from guess_excess (c/a - 1, or c at a = 0)
   // in first steps of `step` in ln(excess). *excess receives the root's excess.
   MaugisDugdalePoint point(double eta, double lambda, double a_bar, double guess_excess, double step,
-                           double* excess = nullptr) const {
+                           double* excess = nullptr, PointShift* shift = nullptr) const {  // shift: kStateChecks
     const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
     const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
     const double a = a_bar / eta;
@@ -197,6 +217,11 @@ struct MaugisDugdaleModel::Impl {
         p.load_error = eta * eta * eta * st->force_error;
         p.penetration_error = eta * eta * st->delta_error;
         p.from_table = true;
+        if (shift != nullptr) {
+          for (int c = 0; c < detail::kStateChecks; ++c) {
+            shift[c] = {eta * eta * eta * st->shift[c][2], eta * eta * st->shift[c][1], st->shift[c][0]};
+          }
+        }
         return p;
       }
     }
@@ -323,6 +348,7 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
   // at its own resolution, may evaluate the same two points until its iteration limit).
   std::map<double, MaugisDugdalePoint> memo;  // by ln a_bar
   std::map<double, double> roots;              // ln a_bar -> ln(c/a - 1)
+  std::map<double, std::array<PointShift, detail::kStateChecks>> shifts;  // ln a_bar -> checks - splines
   int evaluations = 0;
   auto point_at = [&](double x) -> const MaugisDugdalePoint& {
     auto it = memo.find(x);
@@ -330,9 +356,39 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
     ++evaluations;
     double guess = 1.0, step = 1.5, excess = 1.0;
     start_from(roots, x, guess, step);
-    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess)).first;
+    std::array<PointShift, detail::kStateChecks> shift{};
+    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess, shift.data())).first;
     roots[x] = std::log(excess);
+    shifts[x] = shift;
     return it->second;
+  };
+  // Error estimates at a minimum at ln a_bar = x from the table (THEORY.md section 13, "Error
+  // estimates of the state"): the minimum the coarse splines give lies dx = -E'/V'' away (E the
+  // coarse - fine change of the minimised V, V'' by central differences of the fine curve), and
+  // every printed quantity's change there is its own E plus its slope times dx; each estimate is
+  // kStateErrorFactor times that change, plus the minimiser's location tolerance times the slope.
+  auto locate_errors = [&](MaugisDugdalePoint& q, double x, Control control) {
+    const double h = kErrorStep;
+    const MaugisDugdalePoint pp = point_at(x + h), pm = point_at(x - h), p0 = point_at(x);
+    const double v2 = (value_of(pp, control) - 2.0 * value_of(p0, control) + value_of(pm, control)) / (h * h);
+    const double k = detail::kStateErrorFactor, tol = o.location_tolerance;
+    double change[4] = {0.0, 0.0, 0.0, 0.0};  // P, D, m, ln a_bar: the larger of the checks'
+    for (int c = 0; c < detail::kStateChecks; ++c) {
+      const PointShift sp = shifts.at(x + h)[c], sm = shifts.at(x - h)[c], s0 = shifts.at(x)[c];
+      const double e1 = (shift_of(sp, control) - shift_of(sm, control)) / (2.0 * h);
+      const double dx = v2 > 0.0 ? -e1 / v2 : 0.0;
+      const double moved[4] = {s0.load + (pp.load - pm.load) / (2.0 * h) * dx,
+                               s0.penetration + (pp.penetration - pm.penetration) / (2.0 * h) * dx,
+                               s0.m + (pp.m - pm.m) / (2.0 * h) * dx, dx};
+      for (int i = 0; i < 4; ++i) change[i] = std::max(change[i], std::abs(moved[i]));
+    }
+    auto located = [&](double value, double plus, double minus) {
+      return std::abs(plus - minus) / (2.0 * h) * tol + kDirectNoise * std::abs(value);
+    };
+    q.load_error = k * change[0] + located(q.load, pp.load, pm.load);
+    q.penetration_error = k * change[1] + located(q.penetration, pp.penetration, pm.penetration);
+    q.m_error = k * change[2] + located(q.m, pp.m, pm.m);
+    q.a_bar_error = q.a_bar * (k * change[3] + tol);
   };
   std::vector<double> v(n);  // ln a_bar
   std::vector<MaugisDugdalePoint> points(n);
@@ -368,8 +424,15 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
           x = refine(eta, lambda, x, control.kind == Control::kLoad, std::exp(roots.at(x)), evaluations);
         }
         at = point_at(x);
-        if (value_of(at, control) > f1) at = points[k];
+        if (value_of(at, control) > f1) {
+          at = points[k];
+          x = v[k];
+        }
+        if (at.from_table) locate_errors(at, x, control);
+      } else if (at.from_table) {
+        locate_errors(at, v[k], control);
       }
+      if (!at.from_table) at.a_bar_error = kDirectLocation * at.a_bar;
       if (!found || value_of(at, control) < value_of(best.point, control)) best.point = at;
       found = true;
     }

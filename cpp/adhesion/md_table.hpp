@@ -84,12 +84,25 @@ struct MdTableValue {
 };
 
 // The Maugis-Dugdale state at contact radius a from the table: root s of
-// g_R + σ̂ g_σ = h0 (R = 1) by Brent, δ and F reconstructed, each with its error estimate
-// (the functions' errors plus the shift of the root they cause).
+// g_R + σ̂ g_σ = h0 (R = 1) by Brent, δ and F reconstructed, each with its error estimate.
+// The estimate is the whole state's change when a more accurate interpolant of the same nodes
+// (Lagrange of degree 7 or 5, error O(h^8), O(h^6) against the cubic splines' O(h^4)) stands for
+// the splines, root included (shift, check - splines, signed: errors of the four functions that
+// cancel through the root cancel here too), times kStateErrorFactor (THEORY.md section 13,
+// "Error estimates of the state").
 struct MdTableState {
   double excess = 0.0, delta = 0.0, force = 0.0;
   double excess_error = 0.0, delta_error = 0.0, force_error = 0.0;
+  // shift[c]: (excess, delta, force) of check c minus the splines'.
+  double shift[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
 };
+// Two checks, Lagrange of degrees 7 and 5: the estimate takes the larger shift, so that a check
+// agreeing with the splines by chance does not hide their error.
+inline constexpr int kStateChecks = 2;
+inline constexpr int kCheckDegrees[kStateChecks] = {7, 5};
+// The shift is the splines' error up to the check's own (O(h^2) of it); the factor is a margin
+// for that, calibrated against the direct solve (tests/adhesive/test_md_error_estimate.cpp).
+inline constexpr double kStateErrorFactor = 5.0;
 
 class MaugisDugdaleTable {
  public:
@@ -104,7 +117,9 @@ class MaugisDugdaleTable {
   bool covers(double a, double excess) const;
   bool covers_radius(double a) const;
   // InputError outside the table (see covers()).
-  MdTableValue at(double a, double excess) const;
+  // check > 0: the values of the check interpolant (Lagrange of that degree on the nearest
+  // nodes; errors as the splines'), whose difference from the splines' estimates their error.
+  MdTableValue at(double a, double excess, int check = 0) const;
   // The end of the curve a = 0: root c of g_R + σ̂ g_σ = h0 in ln c; `excess` holds c (as
   // CohesiveState). nullopt if the root lies outside [end_c_over_t_min, c_over_t_max].
   std::optional<MdTableState> solve_end(double sigma_hat, double h0) const;
@@ -140,7 +155,7 @@ class MaugisDugdaleTable {
   void solve_nodes(const std::vector<std::pair<std::size_t, std::size_t>>& nodes) const;
   void solve_end_nodes(std::size_t first, std::size_t last) const;
   void solve_radius_nodes(std::size_t first, std::size_t last) const;
-  void end_values(double u, double* value, double* error) const;
+  void end_values(double u, double* value, double* error, int check = 0) const;
   MdTableValue closed_form_value(double a, double excess) const;
   std::pair<double, double> gap_functions(double a, double excess) const;
   void load_cached_nodes() const;

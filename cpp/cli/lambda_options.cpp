@@ -247,6 +247,9 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
   }
   // Rows: the base columns, then per k_bar its own row with k_bar, P, a_bar, D at the jump and
   // the error estimate of Z = D + P/k_bar.
+  // The error columns of every other printed pull-off quantity, appended after the others (and
+  // after the spring columns) so that existing column positions keep their meaning.
+  std::vector<std::vector<double>> extra_errors, spring_errors;
   auto add_rows = [&](std::vector<double> base, const std::vector<PulloffPoint>& jkr_springs,
                       const std::vector<MaugisDugdalePulloffPoint>* md_spring) {
     if (k_bars.empty()) {
@@ -260,11 +263,13 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
         const MaugisDugdalePoint& q = (*md_spring)[k].point;
         const double z_error = k_bar == 0.0 ? q.load_error : q.penetration_error + q.load_error / k_bar;
         row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+        spring_errors.push_back({q.load_error, q.a_bar_error, q.penetration_error});
       } else {
         const PulloffPoint& q = jkr_springs[k];
         const double z_error = k_bar == 0.0 ? tol * std::abs(q.load)
                                             : tol * (std::abs(q.penetration) + std::abs(q.load) / k_bar);
         row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+        spring_errors.push_back({tol * std::abs(q.load), tol * q.a_bar, tol * std::abs(q.penetration)});
       }
       rows.push_back(std::move(row));
     }
@@ -287,6 +292,8 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                   p.displacement_control.load, p.displacement_control.a_bar, p.displacement_control.penetration, 1.0,
                   tol * std::abs(p.load_control.load), tol * std::abs(p.displacement_control.penetration)},
                  springs, nullptr);
+        extra_errors.push_back({tol * p.load_control.a_bar, tol * std::abs(p.load_control.penetration), 0.0,
+                                tol * std::abs(p.displacement_control.load), tol * p.displacement_control.a_bar, 0.0});
         for (const auto& w : p.warnings) notes.emplace_back("warning", w);
         continue;
       }
@@ -297,6 +304,7 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
       add_rows({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m, l.load_error,
                 d.penetration_error},
                {}, &md_springs[index]);
+      extra_errors.push_back({l.a_bar_error, l.penetration_error, l.m_error, d.load_error, d.a_bar_error, d.m_error});
       for (const auto* c : {&p.load_control, &p.displacement_control}) {
         const bool load = c == &p.load_control;
         notes.emplace_back(std::string(load ? "load" : "displacement") + " control, " + at,
@@ -319,8 +327,9 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                                  "Brent's minimiser in ln a_bar" +
                                  (direct ? ", then as the root of dP/da_bar (dD/da_bar) differentiated implicitly "
                                            "through c(a) (a_bar to ~1e-10, P and D to ~1e-12)"
-                                         : " to 1e-7 (P_load_err, D_disp_err: the error estimates of the minima; "
-                                           "JKR rows: the tolerance times |P|, |D|)"));
+                                         : " to 1e-7 (*_err: the error estimates of the pull-off's quantities, "
+                                           "the minimum's location included; JKR rows: the tolerance times the "
+                                           "value; m = inf at the curve's end: m_*_err 0)"));
   if (!k_bars.empty()) {
     h.emplace_back("k_bar", join(k_bars));
     h.emplace_back("spring control",
@@ -334,8 +343,22 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
   if (!k_bars.empty()) {
     for (const char* c : {"k_bar", "P_spring", "a_bar_spring", "D_spring", "Z_spring_err"}) columns.emplace_back(c);
   }
+  for (const char* c : {"a_bar_load_err", "D_load_err", "m_load_err", "P_disp_err", "a_bar_disp_err", "m_disp_err"}) {
+    columns.emplace_back(c);
+  }
+  if (!k_bars.empty()) {
+    for (const char* c : {"P_spring_err", "a_bar_spring_err", "D_spring_err"}) columns.emplace_back(c);
+  }
   write_header(os, h, columns);
-  for (const auto& row : rows) write_cells(os, row, columns);
+  // One row per (eta, lambda) without springs, k_bars.size() rows per pair with them.
+  const std::size_t per_pair = k_bars.empty() ? 1 : k_bars.size();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::vector<double> row = rows[i];
+    const std::vector<double>& extra = extra_errors[i / per_pair];
+    row.insert(row.end(), extra.begin(), extra.end());
+    if (!k_bars.empty()) row.insert(row.end(), spring_errors[i].begin(), spring_errors[i].end());
+    write_cells(os, row, columns);
+  }
 }
 
 std::vector<OptionSpec> cohesive_options() {
