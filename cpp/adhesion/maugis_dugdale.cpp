@@ -380,7 +380,7 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
       const double moved[4] = {s0.load + (pp.load - pm.load) / (2.0 * h) * dx,
                                s0.penetration + (pp.penetration - pm.penetration) / (2.0 * h) * dx,
                                s0.m + (pp.m - pm.m) / (2.0 * h) * dx, dx};
-      for (int i = 0; i < 4; ++i) change[i] = std::max(change[i], std::abs(moved[i]));
+      for (int i = 0; i < 4; ++i) change[i] = std::max(change[i], detail::kCheckWeights[c] * std::abs(moved[i]));
     }
     auto located = [&](double value, double plus, double minus) {
       return std::abs(plus - minus) / (2.0 * h) * tol + kDirectNoise * std::abs(value);

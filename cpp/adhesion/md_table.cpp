@@ -715,18 +715,18 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess, int check) const {
   }
   double wx[kCheckDegree + 1], wt[kCheckDegree + 1];
   std::size_t ix = 0, it = 0, nx = 0, nt = 0;
-  if (check) {
+  if (check > 0) {
     nx = check_weights(g.x, tile.node_x0, tile.node_x1, x, check, ix, wx);
     nt = check_weights(g.tau, tile.node_s0, tile.node_s1, tau, check, it, wt);
   }
   for (int k = 0; k < kTwoD; ++k) {
     double r = 0.0;
-    if (check) {
+    if (check > 0) {
       for (std::size_t q = 0; q < nt; ++q) {
         for (std::size_t p = 0; p < nx; ++p) r += wt[q] * wx[p] * g.z[k][(it + q) * g.x.size() + ix + p];
       }
     } else {
-      r = gsl_spline2d_eval(tile.fine[k].spline, x, tau, nullptr, nullptr);
+      r = gsl_spline2d_eval((check < 0 ? tile.coarse : tile.fine)[k].spline, x, tau, nullptr, nullptr);
     }
     double flat = 0.0;
     if (flat_weight > 0.0) {
@@ -744,14 +744,14 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess, int check) const {
   const std::size_t interval = cell_of(g.x1_coarse, x) - radius.interval0;
   double w1[kCheckDegree + 1];
   std::size_t i1 = 0, n1 = 0;
-  if (check) n1 = check_weights(g.x1, radius.node0, radius.node1, x, check, i1, w1);
+  if (check > 0) n1 = check_weights(g.x1, radius.node0, radius.node1, x, check, i1, w1);
   for (int k = 0; k < kOneD; ++k) {
     const auto kk = static_cast<std::size_t>(k);
     double r = 0.0;
-    if (check) {
+    if (check > 0) {
       for (std::size_t p = 0; p < n1; ++p) r += w1[p] * g.y[k][i1 + p];
     } else {
-      r = gsl_spline_eval(radius.fine[kk].spline, x, nullptr);
+      r = gsl_spline_eval((check < 0 ? radius.coarse : radius.fine)[kk].spline, x, nullptr);
     }
     v1[k] = r * hom1[k];
     e1[k] = (options_.error_factor * radius.interval_error[kk][interval] + options_.source_noise * std::abs(r)) *
@@ -796,7 +796,14 @@ double homogeneous_root(double sigma_hat, double h0, double a, double lo, double
   return root ? root->x : 0.0;
 }
 
-constexpr double kBracketStep = 0.5;  // first step in s (or ln c) from the homogeneous root
+constexpr double kBracketStep = 0.5;
+
+// The largest of the checks' weighted shifts of quantity i (excess, delta, force).
+double largest_shift(const MdTableState& st, int i) {
+  double out = 0.0;
+  for (int c = 0; c < kStateChecks; ++c) out = std::max(out, kCheckWeights[c] * std::abs(st.shift[c][i]));
+  return out;
+}  // first step in s (or ln c) from the homogeneous root
 
 }  // namespace
 
@@ -868,9 +875,9 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
     st.shift[c][1] = c1.value.delta_h + sigma_hat * c1.value.d - st.delta;
     st.shift[c][2] = c1.value.force_h + sigma_hat * c1.value.f - st.force;
   }
-  st.excess_error += kStateErrorFactor * std::max(std::abs(st.shift[0][0]), std::abs(st.shift[1][0]));
-  st.delta_error += kStateErrorFactor * std::max(std::abs(st.shift[0][1]), std::abs(st.shift[1][1]));
-  st.force_error += kStateErrorFactor * std::max(std::abs(st.shift[0][2]), std::abs(st.shift[1][2]));
+  st.excess_error += kStateErrorFactor * largest_shift(st, 0);
+  st.delta_error += kStateErrorFactor * largest_shift(st, 1);
+  st.force_error += kStateErrorFactor * largest_shift(st, 2);
   if (e < o.excess_min) {
     // Below the grid the ratios are held at their edge values, which both splines share: the
     // functions' own estimates (their linear change in c/a - 1) propagated through the root.
@@ -906,14 +913,14 @@ void MaugisDugdaleTable::end_values(double u, double* value, double* error, int 
   const double flat_weight = below > 0.0 ? (c_min - below) / (c_1 - c_min) : 0.0;
   double w[kCheckDegree + 1];
   std::size_t i0 = 0, n = 0;
-  if (check) n = check_weights(g.xe, tile.node0, tile.node1, ug, check, i0, w);
+  if (check > 0) n = check_weights(g.xe, tile.node0, tile.node1, ug, check, i0, w);
   for (int k = 0; k < kTwoD; ++k) {
     const auto kk = static_cast<std::size_t>(k);
     double r = 0.0;
-    if (check) {
+    if (check > 0) {
       for (std::size_t p = 0; p < n; ++p) r += w[p] * g.ye[k][i0 + p];
     } else {
-      r = gsl_spline_eval(tile.fine[kk].spline, ug, nullptr);
+      r = gsl_spline_eval((check < 0 ? tile.coarse : tile.fine)[kk].spline, ug, nullptr);
     }
     const double flat =
         flat_weight > 0.0 ? flat_weight * std::abs(gsl_spline_eval(tile.fine[kk].spline, g.xe[1], nullptr) - r) : 0.0;
@@ -980,9 +987,9 @@ std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, doub
     st.shift[c][1] = sigma_hat * vc[0] - st.delta;
     st.shift[c][2] = sigma_hat * vc[1] - st.force;
   }
-  st.excess_error += kStateErrorFactor * std::max(std::abs(st.shift[0][0]), std::abs(st.shift[1][0]));
-  st.delta_error += kStateErrorFactor * std::max(std::abs(st.shift[0][1]), std::abs(st.shift[1][1]));
-  st.force_error += kStateErrorFactor * std::max(std::abs(st.shift[0][2]), std::abs(st.shift[1][2]));
+  st.excess_error += kStateErrorFactor * largest_shift(st, 0);
+  st.delta_error += kStateErrorFactor * largest_shift(st, 1);
+  st.force_error += kStateErrorFactor * largest_shift(st, 2);
   if (u < g.xe.front()) {
     // Under the grid both splines hold the edge values: the functions' own estimates.
     const double u_error = (e[2] + sigma_hat * e[3]) / std::abs(h_u);

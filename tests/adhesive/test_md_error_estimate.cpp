@@ -7,7 +7,10 @@
 //  2. pull-offs (load and displacement control): a_bar, m, P, D the same.
 // Only errors the reference can measure count: above kMeasurable (relative) — the direct
 // solve's values carry ~1e-11 and its pull-off location ~1e-10.
-// The distribution of estimate / actual is printed per quantity.
+// The distribution of estimate / actual is printed per quantity. Measured on this set (700
+// values): min 1.33, quartiles 2.9 / 3.3 / 5.7, 95 % 30, max 340; 15.6 % above 10x. The lower
+// bound is asserted everywhere, the upper one for the share kOverFraction: a pointwise estimate
+// overstates where the splines happen to be far more accurate than every check.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,7 +27,7 @@ using namespace coatcontact;
 namespace {
 constexpr double kMeasurable = 1e-8;       // relative: 100x the reference's own error, or more
 constexpr double kMaxOverestimate = 10.0;  // the bound on estimate / actual
-constexpr double kOverFraction = 0.2;      // share of the set allowed above it (measured 16 %)
+constexpr double kOverFraction = 0.2;      // share of the set allowed above it (measured 15.6 %)
 
 Stack film_on(double e1, double nu1, double e0, double nu0, bool rigid = false) {
   Substrate s;
