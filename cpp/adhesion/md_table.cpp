@@ -863,10 +863,12 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   st.excess = e;
   st.delta = v.value.delta_h + sigma_hat * v.value.d;
   st.force = v.value.force_h + sigma_hat * v.value.f;
+  // The nodes' noise on the scale of the homogeneous forms (the ratios are O(1) at most).
   const double noise = o.source_noise;
+  const CohesiveFunctions hom = homogeneous_functions(a, e);
   st.excess_error = noise * e;
-  st.delta_error = noise * (std::abs(v.value.delta_h) + sigma_hat * std::abs(v.value.d));
-  st.force_error = noise * (std::abs(v.value.force_h) + sigma_hat * std::abs(v.value.f));
+  st.delta_error = noise * (std::abs(hom.delta_h) + sigma_hat * std::abs(hom.d));
+  st.force_error = noise * (std::abs(hom.force_h) + sigma_hat * std::abs(hom.f));
   for (int c = 0; c < kStateChecks; ++c) {
     const MdTableValue c0 = at(a, e, kCheckDegrees[c]);
     const double s_c = std::clamp(s - (c0.value.g_r + sigma_hat * c0.value.g_s - h0) / h_s, lo, hi);
@@ -976,9 +978,10 @@ std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, doub
   st.force = sigma_hat * v[1];
   // As solve(): the check interpolant's root by one Newton step, the state's change the estimate.
   const double noise = options_.source_noise;
+  const CohesiveFunctions hom = homogeneous_end_functions(st.excess);
   st.excess_error = noise * st.excess;
-  st.delta_error = noise * std::abs(st.delta);
-  st.force_error = noise * std::abs(st.force);
+  st.delta_error = noise * sigma_hat * std::abs(hom.d);
+  st.force_error = noise * sigma_hat * std::abs(hom.f);
   for (int c = 0; c < kStateChecks; ++c) {
     end_values(u, vc, scratch, kCheckDegrees[c]);
     const double u_c = std::clamp(u - (vc[2] + sigma_hat * vc[3] - h0) / h_u, lo, hi);

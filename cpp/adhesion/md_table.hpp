@@ -59,10 +59,9 @@ struct MdTableOptions {
   // difference alone can vanish by chance (measured: errors up to 2.7 times it), the cell's
   // largest cannot.
   double error_factor = 1.0;
-  // The nodes' relative noise: their 8-point annulus rule's bound ~4^-16 ~ 2e-10 per piece (below),
-  // with a margin for the sums over pieces (measured 3.4e-10 at the curve's end, rigid base,
-  // lambda = 1e-3).
-  double source_noise = 5e-10;
+  // The nodes' noise relative to the homogeneous forms (the ratios' scale): their 8-point
+  // annulus rule's bound ~4^-16 ~ 2e-10 (below).
+  double source_noise = 2e-10;
   // Tiles: tile_cells coarse cells per direction, interpolated with margin_cells more on each
   // side (the splines' end conditions decay over a few nodes; the error estimate sees what is
   // left, since the coarse spline's end error is the larger). The 1-D functions, cheap, keep
