@@ -97,6 +97,52 @@ double shift_of(const PointShift& s, Control c) {
   }
 }
 
+// Error estimates at a minimum at ln a_bar = x from the table (THEORY.md section 13, "Error
+// estimates of the state"): the minimum each check gives lies dx = -E'/V'' away (E the check's
+// change of the minimised V, V'' by central differences of the curve), and every printed
+// quantity's change there is its own E plus its slope times dx; each estimate is
+// kStateErrorFactor times the largest weighted change, plus the minimiser's location tolerance
+// times the slope.
+using PointAt = std::function<const MaugisDugdalePoint&(double)>;
+using Shifts = std::map<double, std::array<PointShift, detail::kStateChecks>>;
+void locate_errors(MaugisDugdalePoint& q, double x, Control control, const PointAt& point_at, const Shifts& shifts,
+                   double tol) {
+  const double h = kErrorStep;
+  const MaugisDugdalePoint pp = point_at(x + h), pm = point_at(x - h), p0 = point_at(x);
+  const double v2 = (value_of(pp, control) - 2.0 * value_of(p0, control) + value_of(pm, control)) / (h * h);
+  double change[4] = {0.0, 0.0, 0.0, 0.0};  // P, D, m, ln a_bar: the largest of the checks'
+  for (int c = 0; c < detail::kStateChecks; ++c) {
+    const PointShift sp = shifts.at(x + h)[c], sm = shifts.at(x - h)[c], s0 = shifts.at(x)[c];
+    const double e1 = (shift_of(sp, control) - shift_of(sm, control)) / (2.0 * h);
+    const double dx = v2 > 0.0 ? -e1 / v2 : 0.0;
+    const double moved[4] = {s0.load + (pp.load - pm.load) / (2.0 * h) * dx,
+                             s0.penetration + (pp.penetration - pm.penetration) / (2.0 * h) * dx,
+                             s0.m + (pp.m - pm.m) / (2.0 * h) * dx, dx};
+    for (int i = 0; i < 4; ++i) change[i] = std::max(change[i], detail::kCheckWeights[c] * std::abs(moved[i]));
+  }
+  auto located = [&](double value, double plus, double minus) {
+    return std::abs(plus - minus) / (2.0 * h) * tol + kDirectNoise * std::abs(value);
+  };
+  const double k = detail::kStateErrorFactor;
+  q.load_error = k * change[0] + located(q.load, pp.load, pm.load);
+  q.penetration_error = k * change[1] + located(q.penetration, pp.penetration, pm.penetration);
+  q.m_error = k * change[2] + located(q.m, pp.m, pm.m);
+  q.a_bar_error = q.a_bar * (k * change[3] + tol);
+}
+
+// From the table, another local minimum whose value lies within the two estimates of the lowest
+// may be the true lowest (the table's errors can reorder shallow minima, as near the curve's end
+// on a stiff film at small lambda): the reported minimum's estimates grow to cover it.
+void widen_to_minima(MaugisDugdalePoint& best, const std::vector<MaugisDugdalePoint>& minima, Control control) {
+  for (const MaugisDugdalePoint& q : minima) {
+    if (value_of(q, control) > value_of(best, control) + error_of(best, control) + error_of(q, control)) continue;
+    best.a_bar_error = std::max(best.a_bar_error, std::abs(q.a_bar - best.a_bar) + q.a_bar_error);
+    best.load_error = std::max(best.load_error, std::abs(q.load - best.load) + q.load_error);
+    best.penetration_error = std::max(best.penetration_error, std::abs(q.penetration - best.penetration) + q.penetration_error);
+    best.m_error = std::max(best.m_error, std::abs(q.m - best.m) + q.m_error);
+  }
+}
+
 // Start of the root c(a) at ln a_bar = x from the roots u = ln(c/a - 1) already known at other
 // x: u interpolated (extrapolated) through the three nearest (quadratic), the first bracket
 // step twice its difference from the linear estimate through the two nearest (at least
@@ -348,9 +394,9 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
   // at its own resolution, may evaluate the same two points until its iteration limit).
   std::map<double, MaugisDugdalePoint> memo;  // by ln a_bar
   std::map<double, double> roots;              // ln a_bar -> ln(c/a - 1)
-  std::map<double, std::array<PointShift, detail::kStateChecks>> shifts;  // ln a_bar -> checks - splines
+  Shifts shifts;  // ln a_bar -> checks - splines
   int evaluations = 0;
-  auto point_at = [&](double x) -> const MaugisDugdalePoint& {
+  PointAt point_at = [&](double x) -> const MaugisDugdalePoint& {
     auto it = memo.find(x);
     if (it != memo.end()) return it->second;
     ++evaluations;
@@ -361,34 +407,6 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
     roots[x] = std::log(excess);
     shifts[x] = shift;
     return it->second;
-  };
-  // Error estimates at a minimum at ln a_bar = x from the table (THEORY.md section 13, "Error
-  // estimates of the state"): the minimum the coarse splines give lies dx = -E'/V'' away (E the
-  // coarse - fine change of the minimised V, V'' by central differences of the fine curve), and
-  // every printed quantity's change there is its own E plus its slope times dx; each estimate is
-  // kStateErrorFactor times that change, plus the minimiser's location tolerance times the slope.
-  auto locate_errors = [&](MaugisDugdalePoint& q, double x, Control control) {
-    const double h = kErrorStep;
-    const MaugisDugdalePoint pp = point_at(x + h), pm = point_at(x - h), p0 = point_at(x);
-    const double v2 = (value_of(pp, control) - 2.0 * value_of(p0, control) + value_of(pm, control)) / (h * h);
-    const double k = detail::kStateErrorFactor, tol = o.location_tolerance;
-    double change[4] = {0.0, 0.0, 0.0, 0.0};  // P, D, m, ln a_bar: the larger of the checks'
-    for (int c = 0; c < detail::kStateChecks; ++c) {
-      const PointShift sp = shifts.at(x + h)[c], sm = shifts.at(x - h)[c], s0 = shifts.at(x)[c];
-      const double e1 = (shift_of(sp, control) - shift_of(sm, control)) / (2.0 * h);
-      const double dx = v2 > 0.0 ? -e1 / v2 : 0.0;
-      const double moved[4] = {s0.load + (pp.load - pm.load) / (2.0 * h) * dx,
-                               s0.penetration + (pp.penetration - pm.penetration) / (2.0 * h) * dx,
-                               s0.m + (pp.m - pm.m) / (2.0 * h) * dx, dx};
-      for (int i = 0; i < 4; ++i) change[i] = std::max(change[i], detail::kCheckWeights[c] * std::abs(moved[i]));
-    }
-    auto located = [&](double value, double plus, double minus) {
-      return std::abs(plus - minus) / (2.0 * h) * tol + kDirectNoise * std::abs(value);
-    };
-    q.load_error = k * change[0] + located(q.load, pp.load, pm.load);
-    q.penetration_error = k * change[1] + located(q.penetration, pp.penetration, pm.penetration);
-    q.m_error = k * change[2] + located(q.m, pp.m, pm.m);
-    q.a_bar_error = q.a_bar * (k * change[3] + tol);
   };
   std::vector<double> v(n);  // ln a_bar
   std::vector<MaugisDugdalePoint> points(n);
@@ -409,6 +427,7 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
                        : control.kind == Control::kLoad ? "load control (minimum of P)"
                                                         : "displacement control (minimum of D)";
     MaugisDugdalePulloffPoint best;
+    std::vector<MaugisDugdalePoint> minima;  // every local minimum, refined
     bool found = false;
     for (std::size_t k = 1; k + 1 < n; ++k) {
       const double f0 = value_of(points[k - 1], control), f1 = value_of(points[k], control),
@@ -428,14 +447,16 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
           at = points[k];
           x = v[k];
         }
-        if (at.from_table) locate_errors(at, x, control);
+        if (at.from_table) locate_errors(at, x, control, point_at, shifts, o.location_tolerance);
       } else if (at.from_table) {
-        locate_errors(at, v[k], control);
+        locate_errors(at, v[k], control, point_at, shifts, o.location_tolerance);
       }
       if (!at.from_table) at.a_bar_error = kDirectLocation * at.a_bar;
+      minima.push_back(at);
       if (!found || value_of(at, control) < value_of(best.point, control)) best.point = at;
       found = true;
     }
+    if (found && best.point.from_table) widen_to_minima(best.point, minima, control);
     const MaugisDugdalePoint& end = result.curve_end;
     std::ostringstream w;
     w.precision(6);

@@ -208,6 +208,34 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
   }
 }
 
+// The pull-off table: base columns, the spring's (with springs), then the error columns of every
+// other printed quantity, appended after the others so that existing column positions keep their
+// meaning. rows: one per (eta, lambda) without springs, one per k_bar with them.
+void write_pulloff_rows(std::ostream& os, const Header& h, bool springs, const std::vector<std::vector<double>>& rows,
+                        const std::vector<std::vector<double>>& extra_errors,
+                        const std::vector<std::vector<double>>& spring_errors) {
+  std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load",   "m_load",
+                                      "P_disp", "a_bar_disp", "D_disp", "m_disp",     "P_load_err", "D_disp_err"};
+  if (springs) {
+    for (const char* c : {"k_bar", "P_spring", "a_bar_spring", "D_spring", "Z_spring_err"}) columns.emplace_back(c);
+  }
+  for (const char* c : {"a_bar_load_err", "D_load_err", "m_load_err", "P_disp_err", "a_bar_disp_err", "m_disp_err"}) {
+    columns.emplace_back(c);
+  }
+  if (springs) {
+    for (const char* c : {"P_spring_err", "a_bar_spring_err", "D_spring_err"}) columns.emplace_back(c);
+  }
+  write_header(os, h, columns);
+  const std::size_t per_pair = springs ? rows.size() / extra_errors.size() : 1;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::vector<double> row = rows[i];
+    const std::vector<double>& extra = extra_errors[i / per_pair];
+    row.insert(row.end(), extra.begin(), extra.end());
+    if (springs) row.insert(row.end(), spring_errors[i].begin(), spring_errors[i].end());
+    write_cells(os, row, columns);
+  }
+}
+
 void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
                       const std::vector<double>& lambdas, double tol, bool direct, const std::vector<double>& k_bars) {
   const MaugisDugdaleModel md(stack, md_options(direct));
@@ -247,8 +275,7 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
   }
   // Rows: the base columns, then per k_bar its own row with k_bar, P, a_bar, D at the jump and
   // the error estimate of Z = D + P/k_bar.
-  // The error columns of every other printed pull-off quantity, appended after the others (and
-  // after the spring columns) so that existing column positions keep their meaning.
+  // The error columns of the other printed quantities (write_pulloff_rows).
   std::vector<std::vector<double>> extra_errors, spring_errors;
   auto add_rows = [&](std::vector<double> base, const std::vector<PulloffPoint>& jkr_springs,
                       const std::vector<MaugisDugdalePulloffPoint>* md_spring) {
@@ -338,27 +365,7 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                    "and displacement values; Z_spring_err: the error estimate of Z");
   }
   for (auto& n : notes) h.push_back(std::move(n));
-  std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load",   "m_load",
-                                      "P_disp", "a_bar_disp", "D_disp", "m_disp",     "P_load_err", "D_disp_err"};
-  if (!k_bars.empty()) {
-    for (const char* c : {"k_bar", "P_spring", "a_bar_spring", "D_spring", "Z_spring_err"}) columns.emplace_back(c);
-  }
-  for (const char* c : {"a_bar_load_err", "D_load_err", "m_load_err", "P_disp_err", "a_bar_disp_err", "m_disp_err"}) {
-    columns.emplace_back(c);
-  }
-  if (!k_bars.empty()) {
-    for (const char* c : {"P_spring_err", "a_bar_spring_err", "D_spring_err"}) columns.emplace_back(c);
-  }
-  write_header(os, h, columns);
-  // One row per (eta, lambda) without springs, k_bars.size() rows per pair with them.
-  const std::size_t per_pair = k_bars.empty() ? 1 : k_bars.size();
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    std::vector<double> row = rows[i];
-    const std::vector<double>& extra = extra_errors[i / per_pair];
-    row.insert(row.end(), extra.begin(), extra.end());
-    if (!k_bars.empty()) row.insert(row.end(), spring_errors[i].begin(), spring_errors[i].end());
-    write_cells(os, row, columns);
-  }
+  write_pulloff_rows(os, h, !k_bars.empty(), rows, extra_errors, spring_errors);
 }
 
 std::vector<OptionSpec> cohesive_options() {
