@@ -443,8 +443,11 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
     h.emplace_back("pull-off force, " + name + " [N]", num(c->point.load * force));
     h.emplace_back("pull-off force error estimate, " + name + " [N]", num(c->point.load_error * force));
     h.emplace_back("pull-off contact radius, " + name + " [m]", num(c->point.a_bar * length));
+    h.emplace_back("pull-off contact radius error estimate, " + name + " [m]", num(c->point.a_bar_error * length));
     h.emplace_back("pull-off a_bar_M, " + name, num(c->point.a_bar * to_maugis));
     h.emplace_back("pull-off penetration, " + name + " [m]", num(c->point.penetration * penetration));
+    h.emplace_back("pull-off penetration error estimate, " + name + " [m]",
+                   num(c->point.penetration_error * penetration));
     h.emplace_back("pull-off, " + name, c->interior ? "stationary minimum (contact radius > 0)"
                                                     : "end of the curve a -> 0 (no vertical tangent)");
   }
