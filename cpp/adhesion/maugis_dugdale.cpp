@@ -17,6 +17,7 @@
 #include "coatcontact/solve_cache.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <functional>
@@ -48,6 +49,12 @@ constexpr double kSlopeStep = 1e-4;
 // Relative error of a direct solve's values (tests/adhesive/test_md_table.cpp: root to 1e-13 in
 // ln(c/a - 1), values ~1e-13 relative, with a margin).
 constexpr double kDirectNoise = 1e-11;
+// Location of a direct pull-off: the root of the implicit derivative (~1e-10 relative, with a
+// margin; MaugisDugdaleModel::refine).
+constexpr double kDirectLocation = 1e-9;
+// Step in ln a_bar of the central differences at a pull-off from the table (locate_errors): the
+// curve and the table's change vary over a grid cell (0.3 in ln a).
+constexpr double kErrorStep = 0.01;
 
 void check_value(double value, const std::string& what, bool zero_allowed) {
   if (!std::isfinite(value) || !(zero_allowed ? value >= 0.0 : value > 0.0)) {
@@ -74,6 +81,65 @@ double error_of(const MaugisDugdalePoint& p, Control c) {
     case Control::kLoad: return p.load_error;
     case Control::kDisplacement: return p.penetration_error;
     default: return p.penetration_error + p.load_error / c.k_bar;
+  }
+}
+
+// A table point's change when the coarse splines stand for the fine ones (MdTableState::*_shift),
+// in the point's units: P, D, m.
+struct PointShift {
+  double load = 0.0, penetration = 0.0, m = 0.0;
+};
+double shift_of(const PointShift& s, Control c) {
+  switch (c.kind) {
+    case Control::kLoad: return s.load;
+    case Control::kDisplacement: return s.penetration;
+    default: return s.penetration + s.load / c.k_bar;
+  }
+}
+
+// Error estimates at a minimum at ln a_bar = x from the table (THEORY.md section 13, "Error
+// estimates of the state"): the minimum each check gives lies dx = -E'/V'' away (E the check's
+// change of the minimised V, V'' by central differences of the curve), and every printed
+// quantity's change there is its own E plus its slope times dx; each estimate is
+// kStateErrorFactor times the largest weighted change, plus the minimiser's location tolerance
+// times the slope.
+using PointAt = std::function<const MaugisDugdalePoint&(double)>;
+using Shifts = std::map<double, std::array<PointShift, detail::kStateChecks>>;
+void locate_errors(MaugisDugdalePoint& q, double x, Control control, const PointAt& point_at, const Shifts& shifts,
+                   double tol) {
+  const double h = kErrorStep;
+  const MaugisDugdalePoint pp = point_at(x + h), pm = point_at(x - h), p0 = point_at(x);
+  const double v2 = (value_of(pp, control) - 2.0 * value_of(p0, control) + value_of(pm, control)) / (h * h);
+  double change[4] = {0.0, 0.0, 0.0, 0.0};  // P, D, m, ln a_bar: the largest of the checks'
+  for (int c = 0; c < detail::kStateChecks; ++c) {
+    const PointShift sp = shifts.at(x + h)[c], sm = shifts.at(x - h)[c], s0 = shifts.at(x)[c];
+    const double e1 = (shift_of(sp, control) - shift_of(sm, control)) / (2.0 * h);
+    const double dx = v2 > 0.0 ? -e1 / v2 : 0.0;
+    const double moved[4] = {s0.load + (pp.load - pm.load) / (2.0 * h) * dx,
+                             s0.penetration + (pp.penetration - pm.penetration) / (2.0 * h) * dx,
+                             s0.m + (pp.m - pm.m) / (2.0 * h) * dx, dx};
+    for (int i = 0; i < 4; ++i) change[i] = std::max(change[i], detail::kCheckWeights[c] * std::abs(moved[i]));
+  }
+  auto located = [&](double value, double plus, double minus) {
+    return std::abs(plus - minus) / (2.0 * h) * tol + kDirectNoise * std::abs(value);
+  };
+  const double k = detail::kStateErrorFactor;
+  q.load_error = k * change[0] + located(q.load, pp.load, pm.load);
+  q.penetration_error = k * change[1] + located(q.penetration, pp.penetration, pm.penetration);
+  q.m_error = k * change[2] + located(q.m, pp.m, pm.m);
+  q.a_bar_error = q.a_bar * (k * change[3] + tol);
+}
+
+// From the table, another local minimum whose value lies within the two estimates of the lowest
+// may be the true lowest (the table's errors can reorder shallow minima, as near the curve's end
+// on a stiff film at small lambda): the reported minimum's estimates grow to cover it.
+void widen_to_minima(MaugisDugdalePoint& best, const std::vector<MaugisDugdalePoint>& minima, Control control) {
+  for (const MaugisDugdalePoint& q : minima) {
+    if (value_of(q, control) > value_of(best, control) + error_of(best, control) + error_of(q, control)) continue;
+    best.a_bar_error = std::max(best.a_bar_error, std::abs(q.a_bar - best.a_bar) + q.a_bar_error);
+    best.load_error = std::max(best.load_error, std::abs(q.load - best.load) + q.load_error);
+    best.penetration_error = std::max(best.penetration_error, std::abs(q.penetration - best.penetration) + q.penetration_error);
+    best.m_error = std::max(best.m_error, std::abs(q.m - best.m) + q.m_error);
   }
 }
 
@@ -177,7 +243,7 @@ struct MaugisDugdaleModel::Impl {
   // The curve at a_bar; the root c(a) is searched from guess_excess (c/a - 1, or c at a = 0)
   // in first steps of `step` in ln(excess). *excess receives the root's excess.
   MaugisDugdalePoint point(double eta, double lambda, double a_bar, double guess_excess, double step,
-                           double* excess = nullptr) const {
+                           double* excess = nullptr, PointShift* shift = nullptr) const {  // shift: kStateChecks
     const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
     const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
     const double a = a_bar / eta;
@@ -197,6 +263,11 @@ struct MaugisDugdaleModel::Impl {
         p.load_error = eta * eta * eta * st->force_error;
         p.penetration_error = eta * eta * st->delta_error;
         p.from_table = true;
+        if (shift != nullptr) {
+          for (int c = 0; c < detail::kStateChecks; ++c) {
+            shift[c] = {eta * eta * eta * st->shift[c][2], eta * eta * st->shift[c][1], st->shift[c][0]};
+          }
+        }
         return p;
       }
     }
@@ -323,15 +394,18 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
   // at its own resolution, may evaluate the same two points until its iteration limit).
   std::map<double, MaugisDugdalePoint> memo;  // by ln a_bar
   std::map<double, double> roots;              // ln a_bar -> ln(c/a - 1)
+  Shifts shifts;  // ln a_bar -> checks - splines
   int evaluations = 0;
-  auto point_at = [&](double x) -> const MaugisDugdalePoint& {
+  PointAt point_at = [&](double x) -> const MaugisDugdalePoint& {
     auto it = memo.find(x);
     if (it != memo.end()) return it->second;
     ++evaluations;
     double guess = 1.0, step = 1.5, excess = 1.0;
     start_from(roots, x, guess, step);
-    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess)).first;
+    std::array<PointShift, detail::kStateChecks> shift{};
+    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess, shift.data())).first;
     roots[x] = std::log(excess);
+    shifts[x] = shift;
     return it->second;
   };
   std::vector<double> v(n);  // ln a_bar
@@ -353,6 +427,7 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
                        : control.kind == Control::kLoad ? "load control (minimum of P)"
                                                         : "displacement control (minimum of D)";
     MaugisDugdalePulloffPoint best;
+    std::vector<MaugisDugdalePoint> minima;  // every local minimum, refined
     bool found = false;
     for (std::size_t k = 1; k + 1 < n; ++k) {
       const double f0 = value_of(points[k - 1], control), f1 = value_of(points[k], control),
@@ -368,11 +443,20 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
           x = refine(eta, lambda, x, control.kind == Control::kLoad, std::exp(roots.at(x)), evaluations);
         }
         at = point_at(x);
-        if (value_of(at, control) > f1) at = points[k];
+        if (value_of(at, control) > f1) {
+          at = points[k];
+          x = v[k];
+        }
+        if (at.from_table) locate_errors(at, x, control, point_at, shifts, o.location_tolerance);
+      } else if (at.from_table) {
+        locate_errors(at, v[k], control, point_at, shifts, o.location_tolerance);
       }
+      if (!at.from_table) at.a_bar_error = kDirectLocation * at.a_bar;
+      minima.push_back(at);
       if (!found || value_of(at, control) < value_of(best.point, control)) best.point = at;
       found = true;
     }
+    if (found && best.point.from_table) widen_to_minima(best.point, minima, control);
     const MaugisDugdalePoint& end = result.curve_end;
     std::ostringstream w;
     w.precision(6);

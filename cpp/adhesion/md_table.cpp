@@ -137,6 +137,26 @@ CohesiveFunctions homogeneous_end_functions(double c) {
 
 // A node in the solve cache: its kind, its index in that kind's grid, its values (ratios).
 enum NodeKind : std::int64_t { kNode2d = 0, kNodeEnd = 1, kNodeRadius = 2 };
+// Lagrange interpolation of degree up to kCheckDegree on the nodes of `grid` nearest v within
+// [first, last]: the check of the cubic splines (their difference is the splines' error to
+// O(h^2) relative, THEORY.md section 13, "Error estimates of the state"). Writes the first node
+// and the weights, returns the number of nodes.
+constexpr std::size_t kCheckDegree = 7;
+std::size_t check_weights(const std::vector<double>& grid, std::size_t first, std::size_t last, double v, int degree,
+                          std::size_t& start, double* w) {
+  const std::size_t n = std::min({kCheckDegree, static_cast<std::size_t>(degree), last - first}) + 1;
+  const std::size_t cell = cell_of(grid, v);
+  const std::size_t back = (n - 1) / 2;
+  start = std::clamp(cell >= back ? cell - back : 0, first, last + 1 - n);
+  for (std::size_t i = 0; i < n; ++i) {
+    w[i] = 1.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j != i) w[i] *= (v - grid[start + j]) / (grid[start + i] - grid[start + j]);
+    }
+  }
+  return n;
+}
+
 constexpr std::size_t kNodeRecordBytes = 2 * sizeof(std::int64_t) + kTwoD * sizeof(double);
 constexpr std::size_t kNodeIdBytes = 2 * sizeof(std::int64_t);  // the kind and the index identify a node
 
@@ -153,6 +173,7 @@ std::string node_record(NodeKind kind, std::size_t index, const double* values, 
 // splines on the fine nodes [node_x0, node_x1] x [node_s0, node_s1] (own cells plus margins).
 struct MaugisDugdaleTable::Tile2d {
   std::size_t cell_x0 = 0, cell_s0 = 0, own_x = 0, own_s = 0;
+  std::size_t node_x0 = 0, node_x1 = 0, node_s0 = 0, node_s1 = 0;  // the fine nodes interpolated
   Spline2d fine[kTwoD], coarse[kTwoD];
   std::vector<double> cell_error[kTwoD];  // own cells, index (j - cell_s0) own_x + (i - cell_x0)
 };
@@ -161,6 +182,7 @@ struct MaugisDugdaleTable::Tile2d {
 // against ln c): own coarse intervals from interval0, error per interval of the tile's range.
 struct MaugisDugdaleTable::Tile1d {
   std::size_t interval0 = 0;  // the tile's first coarse interval (margin included)
+  std::size_t node0 = 0, node1 = 0;  // the fine nodes interpolated
   std::vector<Spline1d> fine, coarse;
   std::vector<std::vector<double>> interval_error;
 };
@@ -510,6 +532,8 @@ const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_radius(std::size_t ti
     solve_radius_nodes(first1, last1);
     auto tile = std::make_unique<Tile1d>();
     tile->interval0 = lo_cell;
+    tile->node0 = first1;
+    tile->node1 = last1;
     GslHandlerOff guard;
     fit_1d(g.x1, g.y, kOneD, first1, last1, tile->fine, tile->coarse, tile->interval_error);
     g.radius_tiles[ti] = std::move(tile);
@@ -526,6 +550,8 @@ const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_end(std::size_t ti) c
     solve_end_nodes(first, last);
     auto tile = std::make_unique<Tile1d>();
     tile->interval0 = first / 2;
+    tile->node0 = first;
+    tile->node1 = last;
     GslHandlerOff guard;
     fit_1d(g.xe, g.ye, kTwoD, first, last, tile->fine, tile->coarse, tile->interval_error);
     g.end_tiles[ti] = std::move(tile);
@@ -557,6 +583,10 @@ const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::tile_2d(std::size_t ti, st
     tile->cell_s0 = os0;
     tile->own_x = ox;
     tile->own_s = os;
+    tile->node_x0 = fx0;
+    tile->node_x1 = fx1;
+    tile->node_s0 = fs0;
+    tile->node_s1 = fs1;
     GslHandlerOff guard;
     for (int k = 0; k < kTwoD; ++k) {
       std::vector<double> z(tx * ts), zc(cx * cs);
@@ -657,7 +687,7 @@ MdTableValue MaugisDugdaleTable::closed_form_value(double a, double excess) cons
   return out;
 }
 
-MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
+MdTableValue MaugisDugdaleTable::at(double a, double excess, int check) const {
   if (!covers(a, excess)) {
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
                      ") outside the table");
@@ -683,8 +713,21 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
     const double e_1 = std::exp(s_min + tau_1 * (s_max - s_min));
     flat_weight = (options_.excess_min - excess) / (e_1 - options_.excess_min);
   }
+  double wx[kCheckDegree + 1], wt[kCheckDegree + 1];
+  std::size_t ix = 0, it = 0, nx = 0, nt = 0;
+  if (check > 0) {
+    nx = check_weights(g.x, tile.node_x0, tile.node_x1, x, check, ix, wx);
+    nt = check_weights(g.tau, tile.node_s0, tile.node_s1, tau, check, it, wt);
+  }
   for (int k = 0; k < kTwoD; ++k) {
-    const double r = gsl_spline2d_eval(tile.fine[k].spline, x, tau, nullptr, nullptr);
+    double r = 0.0;
+    if (check > 0) {
+      for (std::size_t q = 0; q < nt; ++q) {
+        for (std::size_t p = 0; p < nx; ++p) r += wt[q] * wx[p] * g.z[k][(it + q) * g.x.size() + ix + p];
+      }
+    } else {
+      r = gsl_spline2d_eval((check < 0 ? tile.coarse : tile.fine)[k].spline, x, tau, nullptr, nullptr);
+    }
     double flat = 0.0;
     if (flat_weight > 0.0) {
       flat = flat_weight * std::abs(gsl_spline2d_eval(tile.fine[k].spline, x, tau_1, nullptr, nullptr) - r);
@@ -699,9 +742,17 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess) const {
   const double hom1[kOneD] = {hom.delta_h, hom.force_h};
   double v1[kOneD], e1[kOneD];
   const std::size_t interval = cell_of(g.x1_coarse, x) - radius.interval0;
+  double w1[kCheckDegree + 1];
+  std::size_t i1 = 0, n1 = 0;
+  if (check > 0) n1 = check_weights(g.x1, radius.node0, radius.node1, x, check, i1, w1);
   for (int k = 0; k < kOneD; ++k) {
     const auto kk = static_cast<std::size_t>(k);
-    const double r = gsl_spline_eval(radius.fine[kk].spline, x, nullptr);
+    double r = 0.0;
+    if (check > 0) {
+      for (std::size_t p = 0; p < n1; ++p) r += w1[p] * g.y[k][i1 + p];
+    } else {
+      r = gsl_spline_eval((check < 0 ? radius.coarse : radius.fine)[kk].spline, x, nullptr);
+    }
     v1[k] = r * hom1[k];
     e1[k] = (options_.error_factor * radius.interval_error[kk][interval] + options_.source_noise * std::abs(r)) *
             std::abs(hom1[k]);
@@ -745,7 +796,14 @@ double homogeneous_root(double sigma_hat, double h0, double a, double lo, double
   return root ? root->x : 0.0;
 }
 
-constexpr double kBracketStep = 0.5;  // first step in s (or ln c) from the homogeneous root
+constexpr double kBracketStep = 0.5;
+
+// The largest of the checks' weighted shifts of quantity i (excess, delta, force).
+double largest_shift(const MdTableState& st, int i) {
+  double out = 0.0;
+  for (int c = 0; c < kStateChecks; ++c) out = std::max(out, kCheckWeights[c] * std::abs(st.shift[c][i]));
+  return out;
+}  // first step in s (or ln c) from the homogeneous root
 
 }  // namespace
 
@@ -794,26 +852,49 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
     st.force = v.value.force_h + sigma_hat * v.value.f;
     return st;
   }
-  // Slopes in s by central differences of the interpolant (only for the error estimate).
+  // Slope of the gap in s by central differences of the interpolant: the check interpolant's
+  // root is one Newton step from the splines' (their difference is the table's error, ~1e-5:
+  // the step's own error is its square).
   const double step = 1e-5;
   const double sp = std::min(s + step, hi), sm = std::max(s - step, lo);
   const MdTableValue vp = at(a, std::exp(sp)), vm = at(a, std::exp(sm));
   const double h_s = (vp.value.g_r - vm.value.g_r + sigma_hat * (vp.value.g_s - vm.value.g_s)) / (sp - sm);
-  const double d_s = sigma_hat * (vp.value.d - vm.value.d) / (sp - sm);
-  const double f_s = sigma_hat * (vp.value.f - vm.value.f) / (sp - sm);
-  const double s_error = (v.error.g_r + sigma_hat * v.error.g_s) / std::abs(h_s);
   MdTableState st;
   st.excess = e;
   st.delta = v.value.delta_h + sigma_hat * v.value.d;
   st.force = v.value.force_h + sigma_hat * v.value.f;
-  st.excess_error = e * s_error;
-  st.delta_error = v.error.delta_h + sigma_hat * v.error.d + std::abs(d_s) * s_error;
-  st.force_error = v.error.force_h + sigma_hat * v.error.f + std::abs(f_s) * s_error;
+  // The nodes' noise on the scale of the homogeneous forms (the ratios are O(1) at most).
+  const double noise = o.source_noise;
+  const CohesiveFunctions hom = homogeneous_functions(a, e);
+  st.excess_error = noise * e;
+  st.delta_error = noise * (std::abs(hom.delta_h) + sigma_hat * std::abs(hom.d));
+  st.force_error = noise * (std::abs(hom.force_h) + sigma_hat * std::abs(hom.f));
+  for (int c = 0; c < kStateChecks; ++c) {
+    const MdTableValue c0 = at(a, e, kCheckDegrees[c]);
+    const double s_c = std::clamp(s - (c0.value.g_r + sigma_hat * c0.value.g_s - h0) / h_s, lo, hi);
+    const MdTableValue c1 = at(a, std::exp(s_c), kCheckDegrees[c]);
+    st.shift[c][0] = std::exp(s_c) - e;
+    st.shift[c][1] = c1.value.delta_h + sigma_hat * c1.value.d - st.delta;
+    st.shift[c][2] = c1.value.force_h + sigma_hat * c1.value.f - st.force;
+  }
+  st.excess_error += kStateErrorFactor * largest_shift(st, 0);
+  st.delta_error += kStateErrorFactor * largest_shift(st, 1);
+  st.force_error += kStateErrorFactor * largest_shift(st, 2);
+  if (e < o.excess_min) {
+    // Below the grid the ratios are held at their edge values, which both splines share: the
+    // functions' own estimates (their linear change in c/a - 1) propagated through the root.
+    const double d_s = sigma_hat * (vp.value.d - vm.value.d) / (sp - sm);
+    const double f_s = sigma_hat * (vp.value.f - vm.value.f) / (sp - sm);
+    const double s_error = (v.error.g_r + sigma_hat * v.error.g_s) / std::abs(h_s);
+    st.excess_error += e * s_error;
+    st.delta_error += v.error.delta_h + sigma_hat * v.error.d + std::abs(d_s) * s_error;
+    st.force_error += v.error.force_h + sigma_hat * v.error.f + std::abs(f_s) * s_error;
+  }
   return st;
 }
 
 // Values and error estimates of d, f, g_r, g_s at the curve's end, u = ln(c/t).
-void MaugisDugdaleTable::end_values(double u, double* value, double* error) const {
+void MaugisDugdaleTable::end_values(double u, double* value, double* error, int check) const {
   const Grids& g = *grids_;
   u = std::clamp(u, std::log(std::min(options_.end_c_over_t_floor, options_.end_c_over_t_min)), g.xe.back());
   const double below = u < g.xe.front() ? std::exp(u) : 0.0;  // c under the grid
@@ -832,9 +913,17 @@ void MaugisDugdaleTable::end_values(double u, double* value, double* error) cons
   // Under the grid: r(c) = r(c_min) + O(c), the slope from the next node c_1.
   const double c_min = std::exp(g.xe.front()), c_1 = std::exp(g.xe[1]);
   const double flat_weight = below > 0.0 ? (c_min - below) / (c_1 - c_min) : 0.0;
+  double w[kCheckDegree + 1];
+  std::size_t i0 = 0, n = 0;
+  if (check > 0) n = check_weights(g.xe, tile.node0, tile.node1, ug, check, i0, w);
   for (int k = 0; k < kTwoD; ++k) {
     const auto kk = static_cast<std::size_t>(k);
-    const double r = gsl_spline_eval(tile.fine[kk].spline, ug, nullptr);
+    double r = 0.0;
+    if (check > 0) {
+      for (std::size_t p = 0; p < n; ++p) r += w[p] * g.ye[k][i0 + p];
+    } else {
+      r = gsl_spline_eval((check < 0 ? tile.coarse : tile.fine)[kk].spline, ug, nullptr);
+    }
     const double flat =
         flat_weight > 0.0 ? flat_weight * std::abs(gsl_spline_eval(tile.fine[kk].spline, g.xe[1], nullptr) - r) : 0.0;
     value[k] = r * hom[k];
@@ -877,20 +966,40 @@ std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, doub
     u = root->x;
   }
   const double step = 1e-5;
-  double v[kTwoD], e[kTwoD], vp[kTwoD], vm[kTwoD], scratch[kTwoD];
+  double v[kTwoD], e[kTwoD], vp[kTwoD], vm[kTwoD], vc[kTwoD], scratch[kTwoD];
   end_values(u, v, e);
   const double up = std::min(u + step, hi), um = std::max(u - step, lo);
   end_values(up, vp, scratch);
   end_values(um, vm, scratch);
   const double h_u = (vp[2] - vm[2] + sigma_hat * (vp[3] - vm[3])) / (up - um);
-  const double u_error = (e[2] + sigma_hat * e[3]) / std::abs(h_u);
   MdTableState st;
   st.excess = std::exp(u);
   st.delta = sigma_hat * v[0];
   st.force = sigma_hat * v[1];
-  st.excess_error = st.excess * u_error;
-  st.delta_error = sigma_hat * (e[0] + std::abs((vp[0] - vm[0]) / (up - um)) * u_error);
-  st.force_error = sigma_hat * (e[1] + std::abs((vp[1] - vm[1]) / (up - um)) * u_error);
+  // As solve(): the check interpolant's root by one Newton step, the state's change the estimate.
+  const double noise = options_.source_noise;
+  const CohesiveFunctions hom = homogeneous_end_functions(st.excess);
+  st.excess_error = noise * st.excess;
+  st.delta_error = noise * sigma_hat * std::abs(hom.d);
+  st.force_error = noise * sigma_hat * std::abs(hom.f);
+  for (int c = 0; c < kStateChecks; ++c) {
+    end_values(u, vc, scratch, kCheckDegrees[c]);
+    const double u_c = std::clamp(u - (vc[2] + sigma_hat * vc[3] - h0) / h_u, lo, hi);
+    end_values(u_c, vc, scratch, kCheckDegrees[c]);
+    st.shift[c][0] = std::exp(u_c) - st.excess;
+    st.shift[c][1] = sigma_hat * vc[0] - st.delta;
+    st.shift[c][2] = sigma_hat * vc[1] - st.force;
+  }
+  st.excess_error += kStateErrorFactor * largest_shift(st, 0);
+  st.delta_error += kStateErrorFactor * largest_shift(st, 1);
+  st.force_error += kStateErrorFactor * largest_shift(st, 2);
+  if (u < g.xe.front()) {
+    // Under the grid both splines hold the edge values: the functions' own estimates.
+    const double u_error = (e[2] + sigma_hat * e[3]) / std::abs(h_u);
+    st.excess_error += st.excess * u_error;
+    st.delta_error += sigma_hat * (e[0] + std::abs((vp[0] - vm[0]) / (up - um)) * u_error);
+    st.force_error += sigma_hat * (e[1] + std::abs((vp[1] - vm[1]) / (up - um)) * u_error);
+  }
   return st;
 }
 

@@ -52,13 +52,16 @@ struct MdTableOptions {
   // end_c_over_t_floor, the error widened by their linear change in c.
   double end_c_over_t_floor = 1e-12;
   double step = 0.3;  // node spacing in x = ln(a/t) and (at most) in s = ln(c/a - 1), fine grid
-  // The error estimate of a value is error_factor times the largest |fine - coarse| in its
-  // coarse cell (coarse: every other node), plus the direct solve's own relative noise.
+  // The error estimate of a value of at() is error_factor times the largest |fine - coarse| in
+  // its coarse cell (coarse: every other node), plus the nodes' own relative noise (solve()'s
+  // states use the check interpolants instead, MdTableState).
   // Cubic interpolation makes the fine error ~1/16 of that difference; the pointwise
   // difference alone can vanish by chance (measured: errors up to 2.7 times it), the cell's
   // largest cannot.
   double error_factor = 1.0;
-  double source_noise = 1e-11;
+  // The nodes' noise relative to the homogeneous forms (the ratios' scale): their 8-point
+  // annulus rule's bound ~4^-16 ~ 2e-10 (below).
+  double source_noise = 2e-10;
   // Tiles: tile_cells coarse cells per direction, interpolated with margin_cells more on each
   // side (the splines' end conditions decay over a few nodes; the error estimate sees what is
   // left, since the coarse spline's end error is the larger). The 1-D functions, cheap, keep
@@ -84,12 +87,27 @@ struct MdTableValue {
 };
 
 // The Maugis-Dugdale state at contact radius a from the table: root s of
-// g_R + σ̂ g_σ = h0 (R = 1) by Brent, δ and F reconstructed, each with its error estimate
-// (the functions' errors plus the shift of the root they cause).
+// g_R + σ̂ g_σ = h0 (R = 1) by Brent, δ and F reconstructed, each with its error estimate.
+// The estimate is the whole state's change when a more accurate interpolant of the same nodes
+// (Lagrange of degree 7 or 5, error O(h^8), O(h^6) against the cubic splines' O(h^4)) stands for
+// the splines, root included (shift, check - splines, signed: errors of the four functions that
+// cancel through the root cancel here too), times kStateErrorFactor (THEORY.md section 13,
+// "Error estimates of the state").
 struct MdTableState {
   double excess = 0.0, delta = 0.0, force = 0.0;
   double excess_error = 0.0, delta_error = 0.0, force_error = 0.0;
+  // shift[c]: (excess, delta, force) of check c minus the splines'.
+  double shift[3][3] = {};
 };
+// Three checks: Lagrange of degrees 7 and 5, and the coarse splines (every other node, cubic:
+// their error ~16 times the fine ones', weight 1/15); the estimate takes the largest weighted
+// shift, so that a check agreeing with the splines by chance does not hide their error.
+inline constexpr int kStateChecks = 3;
+inline constexpr int kCheckDegrees[kStateChecks] = {7, 5, -1};
+inline constexpr double kCheckWeights[kStateChecks] = {1.0, 1.0, 1.0 / 40.0};
+// The shift is the splines' error up to the check's own (O(h^2) of it); the factor is a margin
+// for that, calibrated against the direct solve (tests/adhesive/test_md_error_estimate.cpp).
+inline constexpr double kStateErrorFactor = 3.0;
 
 class MaugisDugdaleTable {
  public:
@@ -104,7 +122,10 @@ class MaugisDugdaleTable {
   bool covers(double a, double excess) const;
   bool covers_radius(double a) const;
   // InputError outside the table (see covers()).
-  MdTableValue at(double a, double excess) const;
+  // check > 0: the values of the check interpolant (Lagrange of that degree on the nearest
+  // nodes; errors as the splines'), whose difference from the splines' estimates their error;
+  // check < 0: the coarse splines'.
+  MdTableValue at(double a, double excess, int check = 0) const;
   // The end of the curve a = 0: root c of g_R + σ̂ g_σ = h0 in ln c; `excess` holds c (as
   // CohesiveState). nullopt if the root lies outside [end_c_over_t_min, c_over_t_max].
   std::optional<MdTableState> solve_end(double sigma_hat, double h0) const;
@@ -140,7 +161,7 @@ class MaugisDugdaleTable {
   void solve_nodes(const std::vector<std::pair<std::size_t, std::size_t>>& nodes) const;
   void solve_end_nodes(std::size_t first, std::size_t last) const;
   void solve_radius_nodes(std::size_t first, std::size_t last) const;
-  void end_values(double u, double* value, double* error) const;
+  void end_values(double u, double* value, double* error, int check = 0) const;
   MdTableValue closed_form_value(double a, double excess) const;
   std::pair<double, double> gap_functions(double a, double excess) const;
   void load_cached_nodes() const;

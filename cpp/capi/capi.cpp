@@ -1008,7 +1008,7 @@ int cc_md_curve(const cc_md_model* model, double eta, double lambda, int n, cons
 namespace {
 
 int md_pulloff(const char* function, const cc_md_model* model, double eta, double lambda, double* out,
-               double* errors, int* flags) {
+               double* errors, int* flags, bool all_errors = false) {
   return guarded([&] {
     require(model, function, "model");
     require(out, function, "out");
@@ -1016,7 +1016,13 @@ int md_pulloff(const char* function, const cc_md_model* model, double eta, doubl
     const auto& l = p.load_control.point;
     const auto& d = p.displacement_control.point;
     copy_out({l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m}, out);
-    if (errors != nullptr) copy_out({l.load_error, d.penetration_error}, errors);
+    if (errors != nullptr && all_errors) {
+      copy_out({l.load_error, l.a_bar_error, l.penetration_error, l.m_error, d.load_error, d.a_bar_error,
+                d.penetration_error, d.m_error},
+               errors);
+    } else if (errors != nullptr) {
+      copy_out({l.load_error, d.penetration_error}, errors);
+    }
     if (flags != nullptr) *flags = p.displacement_control.interior ? 0 : 1;
   });
 }
@@ -1032,6 +1038,12 @@ int cc_md_pulloff_errors(const cc_md_model* model, double eta, double lambda,
                          double out[CC_MD_PULLOFF_COLUMNS], double errors[CC_MD_PULLOFF_ERROR_COLUMNS],
                          int* flags) {
   return md_pulloff("cc_md_pulloff_errors", model, eta, lambda, out, errors, flags);
+}
+
+int cc_md_pulloff_all_errors(const cc_md_model* model, double eta, double lambda,
+                             double out[CC_MD_PULLOFF_COLUMNS], double errors[CC_MD_PULLOFF_ALL_ERROR_COLUMNS],
+                             int* flags) {
+  return md_pulloff("cc_md_pulloff_all_errors", model, eta, lambda, out, errors, flags, true);
 }
 
 // ---- shapes and their SI contact --------------------------------------------------------

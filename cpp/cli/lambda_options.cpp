@@ -208,6 +208,34 @@ void write_md_adhesive(std::ostream& os, const Stack& stack, const std::vector<d
   }
 }
 
+// The pull-off table: base columns, the spring's (with springs), then the error columns of every
+// other printed quantity, appended after the others so that existing column positions keep their
+// meaning. rows: one per (eta, lambda) without springs, one per k_bar with them.
+void write_pulloff_rows(std::ostream& os, const Header& h, bool springs, const std::vector<std::vector<double>>& rows,
+                        const std::vector<std::vector<double>>& extra_errors,
+                        const std::vector<std::vector<double>>& spring_errors) {
+  std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load",   "m_load",
+                                      "P_disp", "a_bar_disp", "D_disp", "m_disp",     "P_load_err", "D_disp_err"};
+  if (springs) {
+    for (const char* c : {"k_bar", "P_spring", "a_bar_spring", "D_spring", "Z_spring_err"}) columns.emplace_back(c);
+  }
+  for (const char* c : {"a_bar_load_err", "D_load_err", "m_load_err", "P_disp_err", "a_bar_disp_err", "m_disp_err"}) {
+    columns.emplace_back(c);
+  }
+  if (springs) {
+    for (const char* c : {"P_spring_err", "a_bar_spring_err", "D_spring_err"}) columns.emplace_back(c);
+  }
+  write_header(os, h, columns);
+  const std::size_t per_pair = springs ? rows.size() / extra_errors.size() : 1;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::vector<double> row = rows[i];
+    const std::vector<double>& extra = extra_errors[i / per_pair];
+    row.insert(row.end(), extra.begin(), extra.end());
+    if (springs) row.insert(row.end(), spring_errors[i].begin(), spring_errors[i].end());
+    write_cells(os, row, columns);
+  }
+}
+
 void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<double>& etas,
                       const std::vector<double>& lambdas, double tol, bool direct, const std::vector<double>& k_bars) {
   const MaugisDugdaleModel md(stack, md_options(direct));
@@ -247,6 +275,8 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
   }
   // Rows: the base columns, then per k_bar its own row with k_bar, P, a_bar, D at the jump and
   // the error estimate of Z = D + P/k_bar.
+  // The error columns of the other printed quantities (write_pulloff_rows).
+  std::vector<std::vector<double>> extra_errors, spring_errors;
   auto add_rows = [&](std::vector<double> base, const std::vector<PulloffPoint>& jkr_springs,
                       const std::vector<MaugisDugdalePulloffPoint>* md_spring) {
     if (k_bars.empty()) {
@@ -260,11 +290,13 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
         const MaugisDugdalePoint& q = (*md_spring)[k].point;
         const double z_error = k_bar == 0.0 ? q.load_error : q.penetration_error + q.load_error / k_bar;
         row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+        spring_errors.push_back({q.load_error, q.a_bar_error, q.penetration_error});
       } else {
         const PulloffPoint& q = jkr_springs[k];
         const double z_error = k_bar == 0.0 ? tol * std::abs(q.load)
                                             : tol * (std::abs(q.penetration) + std::abs(q.load) / k_bar);
         row.insert(row.end(), {k_bar, q.load, q.a_bar, q.penetration, z_error});
+        spring_errors.push_back({tol * std::abs(q.load), tol * q.a_bar, tol * std::abs(q.penetration)});
       }
       rows.push_back(std::move(row));
     }
@@ -287,6 +319,8 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                   p.displacement_control.load, p.displacement_control.a_bar, p.displacement_control.penetration, 1.0,
                   tol * std::abs(p.load_control.load), tol * std::abs(p.displacement_control.penetration)},
                  springs, nullptr);
+        extra_errors.push_back({tol * p.load_control.a_bar, tol * std::abs(p.load_control.penetration), 0.0,
+                                tol * std::abs(p.displacement_control.load), tol * p.displacement_control.a_bar, 0.0});
         for (const auto& w : p.warnings) notes.emplace_back("warning", w);
         continue;
       }
@@ -297,6 +331,7 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
       add_rows({eta, lambda, l.load, l.a_bar, l.penetration, l.m, d.load, d.a_bar, d.penetration, d.m, l.load_error,
                 d.penetration_error},
                {}, &md_springs[index]);
+      extra_errors.push_back({l.a_bar_error, l.penetration_error, l.m_error, d.load_error, d.a_bar_error, d.m_error});
       for (const auto* c : {&p.load_control, &p.displacement_control}) {
         const bool load = c == &p.load_control;
         notes.emplace_back(std::string(load ? "load" : "displacement") + " control, " + at,
@@ -319,8 +354,9 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                                  "Brent's minimiser in ln a_bar" +
                                  (direct ? ", then as the root of dP/da_bar (dD/da_bar) differentiated implicitly "
                                            "through c(a) (a_bar to ~1e-10, P and D to ~1e-12)"
-                                         : " to 1e-7 (P_load_err, D_disp_err: the error estimates of the minima; "
-                                           "JKR rows: the tolerance times |P|, |D|)"));
+                                         : " to 1e-7 (*_err: the error estimates of the pull-off's quantities, "
+                                           "the minimum's location included; JKR rows: the tolerance times the "
+                                           "value; m = inf at the curve's end: m_*_err 0)"));
   if (!k_bars.empty()) {
     h.emplace_back("k_bar", join(k_bars));
     h.emplace_back("spring control",
@@ -329,13 +365,7 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                    "and displacement values; Z_spring_err: the error estimate of Z");
   }
   for (auto& n : notes) h.push_back(std::move(n));
-  std::vector<std::string> columns = {"eta",    "lambda",     "P_load", "a_bar_load", "D_load",   "m_load",
-                                      "P_disp", "a_bar_disp", "D_disp", "m_disp",     "P_load_err", "D_disp_err"};
-  if (!k_bars.empty()) {
-    for (const char* c : {"k_bar", "P_spring", "a_bar_spring", "D_spring", "Z_spring_err"}) columns.emplace_back(c);
-  }
-  write_header(os, h, columns);
-  for (const auto& row : rows) write_cells(os, row, columns);
+  write_pulloff_rows(os, h, !k_bars.empty(), rows, extra_errors, spring_errors);
 }
 
 std::vector<OptionSpec> cohesive_options() {
@@ -413,8 +443,11 @@ void write_md_sphere(std::ostream& os, const Stack& stack, double radius, double
     h.emplace_back("pull-off force, " + name + " [N]", num(c->point.load * force));
     h.emplace_back("pull-off force error estimate, " + name + " [N]", num(c->point.load_error * force));
     h.emplace_back("pull-off contact radius, " + name + " [m]", num(c->point.a_bar * length));
+    h.emplace_back("pull-off contact radius error estimate, " + name + " [m]", num(c->point.a_bar_error * length));
     h.emplace_back("pull-off a_bar_M, " + name, num(c->point.a_bar * to_maugis));
     h.emplace_back("pull-off penetration, " + name + " [m]", num(c->point.penetration * penetration));
+    h.emplace_back("pull-off penetration error estimate, " + name + " [m]",
+                   num(c->point.penetration_error * penetration));
     h.emplace_back("pull-off, " + name, c->interior ? "stationary minimum (contact radius > 0)"
                                                     : "end of the curve a -> 0 (no vertical tangent)");
   }

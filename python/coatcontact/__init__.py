@@ -979,16 +979,15 @@ def maugis_dugdale_pulloff(stack=None, *, film=None, substrate=None, indenter=No
                            direct_solve=False):
     """Maugis-Dugdale pull-off (section 13): dict P_load, a_bar_load, D_load, m_load (minimum
     of P), P_disp, a_bar_disp, D_disp, m_disp (minimum of D; at the end of the curve, a -> 0,
-    when end_of_curve is True), and P_load_err, D_disp_err, the error estimates of the two
-    minima. direct_solve as maugis_dugdale_curve: False reads the reduced table of the
+    when end_of_curve is True), and for each its error estimate KEY_err (P_load_err, ...,
+    m_disp_err; the minimum's location included; m_disp_err 0 at the curve's end). direct_solve as maugis_dugdale_curve: False reads the reduced table of the
     cohesive zone (error estimates ~1e-5 relative), True the direct per-radius solve (~1e-11).
     Homogeneous: -1.81556, -1.60073, -1.51676 at lambda 0.3, 1, 3."""
     row, errors, flags = _maugis_dugdale(_stack(stack, film, substrate, indenter), bool(direct_solve)).pulloff(
         float(eta), float(lambda_))
     keys = ("P_load", "a_bar_load", "D_load", "m_load", "P_disp", "a_bar_disp", "D_disp", "m_disp")
     out = {key: float(row[i]) for i, key in enumerate(keys)}
-    out["P_load_err"] = float(errors[0])
-    out["D_disp_err"] = float(errors[1])
+    out.update({key + "_err": float(errors[i]) for i, key in enumerate(keys)})
     out["end_of_curve"] = bool(flags & 1)
     return out
 

@@ -412,14 +412,14 @@ struct MaugisDugdale {
     call_released([&] { return n == 0 ? static_cast<int>(CC_OK) : cc_md_curve(handle.get(), eta, lambda, n, in, o); });
     return out;
   }
-  // (values, error estimates of P_load and D_disp, flags)
+  // (values, the error estimate of each, flags)
   py::tuple pulloff(double eta, double lambda) const {
     auto out = py::array_t<double>(CC_MD_PULLOFF_COLUMNS);
-    auto errors = py::array_t<double>(CC_MD_PULLOFF_ERROR_COLUMNS);
+    auto errors = py::array_t<double>(CC_MD_PULLOFF_ALL_ERROR_COLUMNS);
     double* o = out.mutable_data();
     double* e = errors.mutable_data();
     int flags = 0;
-    call_released([&] { return cc_md_pulloff_errors(handle.get(), eta, lambda, o, e, &flags); });
+    call_released([&] { return cc_md_pulloff_all_errors(handle.get(), eta, lambda, o, e, &flags); });
     return py::make_tuple(out, errors, flags);
   }
 };

@@ -64,6 +64,11 @@ def test_maugis_dugdale_pulloff_table_within_its_estimate_of_the_direct_solve(fi
     assert direct["P_load_err"] < table["P_load_err"] < 0.05 * abs(table["P_load"])
     assert 0.0 < direct["D_disp_err"] < table["D_disp_err"] < 0.05 * abs(table["D_disp"])
     assert table["end_of_curve"] == direct["end_of_curve"]
+    # Every value carries its estimate (the minimum's location included): under load control,
+    # an interior minimum in these cases, a_bar, D and m lie within theirs.
+    for key in ("a_bar_load", "D_load", "m_load"):
+        assert 0.0 < table[key + "_err"]
+        assert abs(table[key] - direct[key]) <= table[key + "_err"] + direct[key + "_err"]
 
 
 def test_paraboloid_shape_equals_the_sphere():

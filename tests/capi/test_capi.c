@@ -697,6 +697,21 @@ static void test_md_table_against_direct(void) {
       snprintf(label, sizeof label, "MD film %g lambda %g: the same kind of displacement minimum", films[f][0],
                lambdas[k]);
       check(label, tf == df);
+      {
+        double ta[CC_MD_PULLOFF_COLUMNS], ae[CC_MD_PULLOFF_ALL_ERROR_COLUMNS], da[CC_MD_PULLOFF_COLUMNS];
+        double dae[CC_MD_PULLOFF_ALL_ERROR_COLUMNS];
+        int j, within = 1;
+        check("MD table pull-off, all errors", cc_md_pulloff_all_errors(table, 1.0, lambdas[k], ta, ae, NULL) == CC_OK);
+        check("MD direct pull-off, all errors", cc_md_pulloff_all_errors(direct, 1.0, lambdas[k], da, dae, NULL) == CC_OK);
+        snprintf(label, sizeof label, "MD film %g lambda %g: all errors hold P_load_err and D_disp_err", films[f][0],
+                 lambdas[k]);
+        check(label, ae[0] == te[0] && ae[6] == te[1]);
+        /* a_bar, D, m under load control (an interior minimum here): within their estimates */
+        for (j = 1; j < 4; ++j) within = within && fabs(ta[j] - da[j]) <= ae[j] + dae[j] && ae[j] > 0.0;
+        snprintf(label, sizeof label, "MD film %g lambda %g: a_bar, D, m (load) within their estimates", films[f][0],
+                 lambdas[k]);
+        check(label, within);
+      }
     }
     check("cc_md_pulloff_errors: errors may be NULL",
           cc_md_pulloff_errors(table, 1.0, 1.0, scratch, NULL, NULL) == CC_OK);

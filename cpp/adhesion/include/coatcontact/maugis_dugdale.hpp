@@ -63,6 +63,9 @@ struct MaugisDugdalePoint {
   // Error estimates of m, P, D: the table's (MaugisDugdaleOptions::use_table), or the direct
   // solve's own (root to 1e-13 in ln(c/a - 1), values ~1e-11 relative).
   double m_error = 0.0, load_error = 0.0, penetration_error = 0.0;
+  // At a pull-off (MaugisDugdalePulloffPoint): the estimate of a_bar's error (the location of
+  // the minimum), and m, P, D's estimates there include the location's; elsewhere 0.
+  double a_bar_error = 0.0;
   bool from_table = false;   // false: the direct per-radius solve
 };
 

@@ -219,6 +219,9 @@ typedef struct cc_md_model cc_md_model;
 #define CC_MD_CURVE_COLUMNS 5   /* a_bar, a_over_t, m = c/a, P, D */
 #define CC_MD_PULLOFF_COLUMNS 8 /* P_load, a_bar_load, D_load, m_load, P_disp, a_bar_disp, D_disp, m_disp */
 #define CC_MD_PULLOFF_ERROR_COLUMNS 2 /* P_load_err, D_disp_err: error estimates of the two minima */
+/* The error estimate of each of the CC_MD_PULLOFF_COLUMNS values, in their order (0 for m at
+ * the end of the curve, where it is infinite). */
+#define CC_MD_PULLOFF_ALL_ERROR_COLUMNS 8
 int cc_md_model_create(const cc_stack *stack, cc_md_model **model);
 int cc_md_model_create_direct(const cc_stack *stack, cc_md_model **model);
 void cc_md_model_destroy(cc_md_model *model);
@@ -233,6 +236,11 @@ int cc_md_pulloff(const cc_md_model *model, double eta, double lambda,
 int cc_md_pulloff_errors(const cc_md_model *model, double eta, double lambda,
                          double out[CC_MD_PULLOFF_COLUMNS], double errors[CC_MD_PULLOFF_ERROR_COLUMNS],
                          int *flags);
+/* cc_md_pulloff plus the error estimate of every value (THEORY.md section 13, the pull-off's
+ * location included); errors may be NULL. */
+int cc_md_pulloff_all_errors(const cc_md_model *model, double eta, double lambda,
+                             double out[CC_MD_PULLOFF_COLUMNS], double errors[CC_MD_PULLOFF_ALL_ERROR_COLUMNS],
+                             int *flags);
 
 /* ---- indenters of any axisymmetric shape, SI units (THEORY.md section 11) --------------
  * Lengths in m, angles (half included angle beta) in radians, in (0, pi/2). */
