@@ -555,6 +555,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const bool coated = stacked || arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
   // --free E<K> with --layer: layer K's modulus is the fit's E1 (AfmCoating's free layer).
   std::string free_text = arguments.get("--free").value_or(fit::afm_free_default(info, coated));
+  const std::string free_given = free_text;  // the header's (a stack's E<K> before it becomes E1)
   if (stacked) {
     if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a stack (--layer ...)");
     if (arguments.has("--thickness")) throw InputError("--thickness: not with --layer (each layer carries its thickness h)");
@@ -581,7 +582,9 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     problem.poisson = sample.poisson_ratio;
   }
   problem.free = {false, false, false, false};
-  const std::string modulus_name = coated ? "E1" : "E";
+  // A stack's free modulus is named by its layer (E2: the second layer's), as --free named it.
+  const std::string modulus_name =
+      !coated ? "E" : stacked ? "E" + std::to_string(problem.coating->free_layer + 1) : "E1";
   const std::string allowed = fit::afm_free_allowed(info, coated);
   std::size_t start = 0;
   while (start <= free_text.size()) {
@@ -641,7 +644,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     range.indentation_max = range.indentation_max ? std::min(*range.indentation_max, d) : d;
   }
   if (auto text = arguments.get("--max-force")) range.max_force = parse_quantity(*text, Quantity::kForce, "--max-force");
-  return {problem, coated, modulus_name, free_text, segment_name, kind, range, baseline};
+  return {problem, coated, modulus_name, free_given, segment_name, kind, range, baseline};
 }
 
 // The help text of `afm fit` (one curve, or one row per curve of many).
@@ -705,7 +708,8 @@ void add_afm_stack_lines(std::vector<std::pair<std::string, std::string>>& items
                                  " substrate (THEORY.md sections 12, 15: tabled reduced variables in a/T and the free modulus)"});
   add_material_header(items, stack);
   const std::string k = std::to_string(coating.free_layer + 1);
-  items.push_back({"free layer", k + " (its modulus E" + k + " is the fit's E1 column; the others fixed)"});
+  items.push_back({"free layer", k + " (its modulus E" + k + "; named E1 in a map's columns and Python's estimates, the "
+                                     "free modulus; the other layers fixed)"});
 }
 
 namespace {
@@ -750,7 +754,7 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
                                                                    : format_parameter(r.contact_point, "contact point") + " (fixed)"});
   items.push_back({"baseline [N]", problem.free.baseline ? with_error(r.baseline, r.baseline_error, "baseline")
                                                          : format_parameter(r.baseline, "baseline") + " (fixed)"});
-  items.push_back({problem.coating ? "E1* [Pa]" : "E* [Pa]", format_parameter(r.reduced_modulus, "E*")});
+  items.push_back({modulus_name + "* [Pa]", format_parameter(r.reduced_modulus, "E*")});
   items.push_back({"max indentation [m]", format_parameter(r.max_indentation, "max indentation")});
   items.push_back({"residual sigma [N]", format_parameter(r.residual_sigma, "residual sigma")});
   items.push_back({"chi2", format_parameter(r.chi2, "chi2") + " (chi2/dof " + format_parameter(r.chi2_per_dof, "chi2/dof") + ", " +
