@@ -66,11 +66,12 @@ void check_afm_coating(const AfmFitProblem& problem) {
     throw InputError("afm fit: the free layer " + std::to_string(c.free_layer + 1) + " is not a layer of the stack; allowed: 1.." +
                      std::to_string(n) + " (E1..E" + std::to_string(n) + ")");
   }
-  if (n == 1) return;
-  if (problem.model != AfmModel::kHertz) {
-    throw InputError(std::string("afm fit: --model ") + problem.model.name() + " takes one film (--film, or one --layer); a stack of " +
-                     std::to_string(n) + " layers takes --model hertz");
+  if (problem.model != AfmModel::kHertz && (n > 1 || c.layers.front().slip_below)) {
+    throw InputError(std::string("afm fit: --model ") + problem.model.name() + " takes one bonded film (--film, or one --layer); " +
+                     (n > 1 ? "a stack of " + std::to_string(n) + " layers" : std::string("a sliding film")) +
+                     " takes --model hertz");
   }
+  if (n == 1) return;
   if (problem.free.thickness) {
     throw InputError("afm fit: t is free on one film only; a stack of " + std::to_string(n) +
                      " layers frees one layer's modulus (E1..E" + std::to_string(n) + ")");

@@ -41,5 +41,5 @@ def test_stack_refusals():
         cc.afm.fit(curve, radius=10e-6, layers=[(5e3, 0.5)], substrate="rigid")
     with pytest.raises(ValueError, match="not with film="):
         cc.afm.fit(curve, radius=10e-6, layers=LAYERS, film=(5e3, 0.5), substrate="rigid")
-    with pytest.raises(ValueError, match="takes one film"):
+    with pytest.raises(ValueError, match="takes one bonded film"):
         cc.afm.fit(curve, "jkr", radius=10e-6, layers=LAYERS, substrate="rigid", work=1e-3)

@@ -61,7 +61,8 @@ expect_error 2 "--thickness" "not with --layer" -- afm fit "$spot" "${stack[@]}"
 expect_error 2 "--layer" "cannot be combined with --film" -- afm fit "$spot" "${stack[@]}" --film 5kPa,0.5
 expect_error 2 "--substrate" -- afm fit "$spot" --radius 10um --layer 1um,5kPa,0.5 --layer 4um,20kPa,0.5
 expect_error 2 "t is free on one film only" "E1..E2" -- afm fit "$spot" "${stack[@]}" --free t,contact_point,baseline
-expect_error 2 "--model jkr takes one film" "--model hertz" -- afm fit "$spot" "${stack[@]}" --model jkr --work 1mJ/m2
+expect_error 2 "--model jkr takes one bonded film" "--model hertz" -- afm fit "$spot" "${stack[@]}" --model jkr --work 1mJ/m2
+expect_error 2 "--model dmt takes one bonded film" "a sliding film" -- afm fit "$spot" --radius 10um --layer 2um,5kPa,0.5,slip --substrate rigid --model dmt --work 1mJ/m2
 expect_error 2 "--depth-profile" "takes a half-space or one film" -- afm fit "$spot" "${stack[@]}" --depth-profile
 
 [ "$failures" -eq 0 ] && echo "all afm stack CLI checks passed"

@@ -145,7 +145,7 @@ void check_refusals() {
   p.model = fit::AfmModel::kJkr;
   p.spring_constant = 0.1;
   p.work = 1e-3;
-  check::throws<InputError>([&] { fit::afm_fit(c.z, c.f, p); }, {"--model jkr takes one film", "--model hertz"});
+  check::throws<InputError>([&] { fit::afm_fit(c.z, c.f, p); }, {"--model jkr takes one bonded film", "--model hertz"});
 }
 
 }  // namespace

@@ -238,7 +238,7 @@ static void bad_requests(const char *folder) {
   check("two layers", cc_afm_request_set_sample_layer(request, two, 1) == CC_OK);
   check("sphere again", cc_afm_request_set_tip(request, "sphere", 10e-6) == CC_OK &&
                             cc_afm_request_set_free(request, "E1,w,contact_point") == CC_OK);
-  check("jkr on two layers", cc_afm_fit_curve(curve, request, &fit) == CC_INPUT_ERROR && message_has("takes one film") &&
+  check("jkr on two layers", cc_afm_fit_curve(curve, request, &fit) == CC_INPUT_ERROR && message_has("takes one bonded film") &&
                                  message_has("--model hertz"));
   cc_stack_destroy(two);
   cc_afm_request_destroy(request);
