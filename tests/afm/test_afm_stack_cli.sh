@@ -53,6 +53,14 @@ for key in 'contact point \[m\]' 'baseline \[N\]'; do
     exit !(d <= 0.01 * y[2]) }' || fail "identical layers: $key differs by more than SE/100"
 done
 
+# One --layer is the one-film shorthand's sample: the same output, line for line (E1 free).
+"$cli" afm fit "$spot" --radius 10um --layer 2um,5kPa,0.5 --substrate rigid --output "$work/l1.tsv" 2>"$work/stderr" \
+  || fail "one layer: $(cat "$work/stderr")"
+"$cli" afm fit "$spot" --radius 10um --film 5kPa,0.5 --thickness 2um --substrate rigid --output "$work/f1.tsv" \
+  2>"$work/stderr" || fail "one film: $(cat "$work/stderr")"
+diff <(grep -v '^# command\|^# fit time' "$work/l1.tsv") <(grep -v '^# command\|^# fit time' "$work/f1.tsv") >/dev/null \
+  || fail "one --layer differs from --film"
+
 # ---- refusals ------------------------------------------------------------------------------------
 expect_error 2 "--free" "'E3'" "allowed with 2 --layer: E1..E2" -- afm fit "$spot" "${stack[@]}" --free E3,contact_point,baseline
 expect_error 2 "--free" "one layer's modulus is free at a time" -- afm fit "$spot" "${stack[@]}" --free E1,E2,contact_point
