@@ -297,18 +297,23 @@ int cc_afm_request_set_tip_shape(cc_afm_request* request, const cc_shape* shape)
 }
 
 int cc_afm_request_set_sample(cc_afm_request* request, const cc_stack* stack) {
+  return cc_afm_request_set_sample_layer(request, stack, 0);
+}
+
+int cc_afm_request_set_sample_layer(cc_afm_request* request, const cc_stack* stack, long free_layer) {
   return guard([&] {
     const std::string f = "cc_afm_request_set_sample";
     cc_afm_request& r = request_of(request, f.c_str());
     require(stack, f.c_str(), "stack");
     if (!stack->has_substrate) throw InputError(f + ": the stack has no substrate (the half-space, or the coating's substrate)");
     if (!stack->indenter.rigid) throw InputError(f + ": the AFM tip is rigid; the stack has an elastic indenter");
-    if (stack->layers.size() > 1) {
-      throw InputError(f + ": the stack has " + std::to_string(stack->layers.size()) +
-                       " layers; the AFM fit takes a half-space (no layer) or one film");
+    const std::size_t n = stack->layers.size();
+    if (free_layer < 0 || (n > 0 && static_cast<std::size_t>(free_layer) >= n) || (n == 0 && free_layer != 0)) {
+      throw InputError(f + ": free layer " + std::to_string(free_layer) + " is not allowed; the stack's layers are 0.." +
+                       std::to_string(n == 0 ? 0 : n - 1) + " (top first)");
     }
     fit::AfmFitProblem& p = r.request.problem;
-    if (stack->layers.empty()) {
+    if (n == 0) {
       if (stack->substrate.rigid) throw InputError(f + ": a half-space sample (no layer) needs an elastic substrate, not a rigid one");
       coatcontact::Stack({coatcontact::Layer{1.0, stack->substrate.material, false}}, stack->substrate);  // checks E, nu
       p.coating.reset();
@@ -316,15 +321,13 @@ int cc_afm_request_set_sample(cc_afm_request* request, const cc_stack* stack) {
       p.poisson = stack->substrate.material.poisson_ratio;
       r.coated = false;
     } else {
-      const coatcontact::Layer& film = stack->layers.front();
-      if (film.slip_below) throw InputError(f + ": the film slides on its substrate (slip_below); the AFM fit takes a bonded film");
-      coatcontact::Stack({film}, stack->substrate);  // checks the constants
-      fit::AfmCoating coating;
-      coating.film = film.material;
-      coating.substrate = stack->substrate;
-      coating.thickness = film.thickness;
-      p.coating = coating;
-      p.poisson = film.material.poisson_ratio;
+      if (n == 1 && stack->layers.front().slip_below) {
+        throw InputError(f + ": the film slides on its substrate (slip_below); the AFM fit takes a bonded film");
+      }
+      // The stack's layers, top first; layer free_layer's modulus is the fit's E1 (AfmCoating).
+      const coatcontact::Stack checked(stack->layers, stack->substrate);  // checks the constants
+      p.coating = fit::afm_coating(checked, static_cast<std::size_t>(free_layer));
+      p.poisson = p.coating->film.poisson_ratio;
       r.coated = true;
     }
     r.has_sample = true;

@@ -2,6 +2,8 @@
 // the one-curve fit are parsed once (cmd_afm.cpp).
 #pragma once
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
@@ -24,6 +26,10 @@ struct AfmFitSetup {
 
 // The fit range options in words for a header ("whole segment" without any).
 std::string fit_range_text(const fit::AfmRange& range);
+
+// The header lines of a --layer stack: each layer (as other commands list a stack), the
+// substrate and which layer's modulus is the fit's E1.
+void add_afm_stack_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmCoating& coating);
 
 // True when `afm fit` fits a batch: several FILEs, a FOLDER, --jobs/--resume/--map-plot, or one
 // file of several curves without --index.

@@ -350,6 +350,10 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--film", "E1,nu1", "the sample: a coating (with --substrate, --thickness); E1 the value if fixed, else the centre of its search", false},
     {"--substrate", "E0,nu0|rigid", "the coating's substrate (fixed)", false},
     {"--thickness", "t", "the coating's thickness [m] (the value if fixed, else the centre of its search)", false},
+    {"--layer", "h,E,nu[,slip]", "the sample: a stack of layers, top first, repeated (with --substrate; instead of --film, "
+                                 "--thickness): thickness [m], E (the value if fixed, else the centre of its search), nu; "
+                                 "',slip' a frictionless interface below it. --free E<K> frees layer K's modulus (default E1); "
+                                 "hertz only, thicknesses fixed (THEORY.md sections 12, 15)", false, true},
     {"--free", "LIST", "free parameters: E, contact_point, baseline on a half-space (default all three); "
                        "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline); "
                        "tilt adds a baseline slope (hertz: fitted instead of the preprocessing's being subtracted); "
@@ -493,6 +497,34 @@ std::pair<double, std::string> prefix_of(double magnitude) {
 }
 
 // The model, tip, sample, free parameters, segment and fit range of `afm fit` (one curve or a batch).
+// The free layer of a --layer stack: the K of an item E<K> in --free (at most one; default 1),
+// which the list then names E1 (the fit's name for the free layer's modulus).
+std::size_t stack_free_layer(std::string& free_text, std::size_t layers) {
+  const std::string allowed = "E1..E" + std::to_string(layers);
+  std::size_t free_layer = 0, found = 0, start = 0;
+  std::string rewritten;
+  while (start <= free_text.size()) {
+    const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
+    std::string item = free_text.substr(start, comma - start);
+    item.erase(0, item.find_first_not_of(" \t"));
+    item.erase(item.find_last_not_of(" \t") + 1);
+    if (item.size() >= 2 && item[0] == 'E' && item.find_first_not_of("0123456789", 1) == std::string::npos) {
+      const unsigned long k = item.size() > 6 ? 0 : std::stoul(item.substr(1));
+      if (k < 1 || k > layers) {
+        throw InputError("--free: '" + item.substr(0, 60) + "' is not a layer's modulus; allowed with " + std::to_string(layers) +
+                         " --layer: " + allowed);
+      }
+      if (++found > 1) throw InputError("--free: one layer's modulus is free at a time (got '" + free_text.substr(0, 60) + "')");
+      free_layer = k - 1;
+      item = "E1";
+    }
+    rewritten += (rewritten.empty() ? "" : ",") + item;
+    start = comma + 1;
+  }
+  free_text = rewritten;
+  return free_layer;
+}
+
 AfmFitSetup parse_fit_setup(const Arguments& arguments) {
   const std::string model = arguments.get("--model").value_or("hertz");
   const fit::AfmModelInfo& info = fit::afm_model_by_name(model, "--model");
@@ -519,8 +551,18 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
       if (arguments.has(option)) throw InputError(std::string(option) + ": needs --model " + fit::afm_spring_model_names());
     }
   }
-  const bool coated = arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
-  if (coated) {
+  const bool stacked = arguments.has("--layer");
+  const bool coated = stacked || arguments.has("--film") || arguments.has("--substrate") || arguments.has("--thickness");
+  // --free E<K> with --layer: layer K's modulus is the fit's E1 (AfmCoating's free layer).
+  std::string free_text = arguments.get("--free").value_or(fit::afm_free_default(info, coated));
+  const std::string free_given = free_text;  // the header's (a stack's E<K> before it becomes E1)
+  if (stacked) {
+    if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a stack (--layer ...)");
+    if (arguments.has("--thickness")) throw InputError("--thickness: not with --layer (each layer carries its thickness h)");
+    const Stack stack = parse_stack(arguments);
+    problem.coating = fit::afm_coating(stack, stack_free_layer(free_text, stack.layers().size()));
+    problem.poisson = problem.coating->film.poisson_ratio;
+  } else if (coated) {
     if (arguments.has("--halfspace")) throw InputError("--halfspace: give one sample, a half-space or a coating (--film ...)");
     for (const char* option : {"--film", "--substrate", "--thickness"}) {
       if (!arguments.has(option)) throw InputError(std::string("a coating needs --film E1,nu1, --substrate E0,nu0|rigid and --thickness t (") + option + " is missing)");
@@ -540,9 +582,10 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     problem.poisson = sample.poisson_ratio;
   }
   problem.free = {false, false, false, false};
-  const std::string modulus_name = coated ? "E1" : "E";
+  // A stack's free modulus is named by its layer (E2: the second layer's), as --free named it.
+  const std::string modulus_name =
+      !coated ? "E" : stacked ? "E" + std::to_string(problem.coating->free_layer + 1) : "E1";
   const std::string allowed = fit::afm_free_allowed(info, coated);
-  const std::string free_text = arguments.get("--free").value_or(fit::afm_free_default(info, coated));
   std::size_t start = 0;
   while (start <= free_text.size()) {
     const std::size_t comma = std::min(free_text.find(',', start), free_text.size());
@@ -601,7 +644,7 @@ AfmFitSetup parse_fit_setup(const Arguments& arguments) {
     range.indentation_max = range.indentation_max ? std::min(*range.indentation_max, d) : d;
   }
   if (auto text = arguments.get("--max-force")) range.max_force = parse_quantity(*text, Quantity::kForce, "--max-force");
-  return {problem, coated, modulus_name, free_text, segment_name, kind, range, baseline};
+  return {problem, coated, modulus_name, free_given, segment_name, kind, range, baseline};
 }
 
 // The help text of `afm fit` (one curve, or one row per curve of many).
@@ -656,11 +699,28 @@ void print_fit_help() {
                      kFitSpec);
 }
 
+}  // namespace
+
+void add_afm_stack_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmCoating& coating) {
+  const Stack stack = coating.stack();
+  items.push_back({"sample", "stack of " + std::to_string(stack.layers().size()) + " layers on a " +
+                                 (stack.substrate().rigid ? std::string("rigid") : std::string("elastic")) +
+                                 " substrate (THEORY.md sections 12, 15: tabled reduced variables in a/T and the free modulus)"});
+  add_material_header(items, stack);
+  const std::string k = std::to_string(coating.free_layer + 1);
+  items.push_back({"free layer", k + " (its modulus E" + k + "; named E1 in a map's columns and Python's estimates, the "
+                                     "free modulus; the other layers fixed)"});
+}
+
+namespace {
+
 // The model, tip and sample lines of a one-curve fit's header.
 void add_fit_model_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmFitProblem& problem) {
   items.push_back({"model", problem.model.info().formula(problem, false)});
   items.push_back({"tip", problem.tip.description});
-  if (problem.coating) {
+  if (problem.coating && !problem.coating->layers.empty()) {
+    add_afm_stack_lines(items, *problem.coating);
+  } else if (problem.coating) {
     const fit::AfmCoating& c = *problem.coating;
     items.push_back({"sample", "coating: film nu1 = " + format_parameter(c.film.poisson_ratio, "nu1") + ", substrate " +
                                    (c.substrate.rigid ? std::string("rigid")
@@ -694,7 +754,7 @@ void add_fit_estimates(std::vector<std::pair<std::string, std::string>>& items, 
                                                                    : format_parameter(r.contact_point, "contact point") + " (fixed)"});
   items.push_back({"baseline [N]", problem.free.baseline ? with_error(r.baseline, r.baseline_error, "baseline")
                                                          : format_parameter(r.baseline, "baseline") + " (fixed)"});
-  items.push_back({problem.coating ? "E1* [Pa]" : "E* [Pa]", format_parameter(r.reduced_modulus, "E*")});
+  items.push_back({modulus_name + "* [Pa]", format_parameter(r.reduced_modulus, "E*")});
   items.push_back({"max indentation [m]", format_parameter(r.max_indentation, "max indentation")});
   items.push_back({"residual sigma [N]", format_parameter(r.residual_sigma, "residual sigma")});
   items.push_back({"chi2", format_parameter(r.chi2, "chi2") + " (chi2/dof " + format_parameter(r.chi2_per_dof, "chi2/dof") + ", " +

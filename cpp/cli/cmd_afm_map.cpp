@@ -484,7 +484,9 @@ std::string map_table_header(const std::vector<std::string>& files, const std::v
   if (calibration.sensitivity) items.push_back({"sensitivity [m/V]", format_parameter(*calibration.sensitivity, "sensitivity") + " (user, every curve)"});
   items.push_back({"model", model.formula(settings.problem, true)});
   items.push_back({"tip", settings.problem.tip.description});
-  if (settings.problem.coating) {
+  if (settings.problem.coating && !settings.problem.coating->layers.empty()) {
+    add_afm_stack_lines(items, *settings.problem.coating);
+  } else if (settings.problem.coating) {
     const fit::AfmCoating& c = *settings.problem.coating;
     items.push_back({"sample", "coating: film E1 = " + format_parameter(c.film.youngs_modulus, "E1") + " Pa, nu1 = " +
                                    format_parameter(c.film.poisson_ratio, "nu1") + ", t = " + format_parameter(c.thickness, "t") +

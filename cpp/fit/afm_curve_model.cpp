@@ -238,14 +238,14 @@ class CoatingForces {
 
   std::unique_ptr<LogLogTable> force(double film_modulus, double thickness) {
     const std::vector<ReducedVariables>& sweep = sweep_of(film_modulus);
-    Material film = coating_.film;
-    film.youngs_modulus = film_modulus;
-    const double reduced = film.reduced_modulus();
+    // A stack: a/T and the top layer's E* (AfmCoating; one film: t and E1*).
+    const double reduced = coating_.reference_modulus(film_modulus);
+    const double length = coating_.total_thickness(thickness);
     std::vector<double> delta, force;
     const bool sphere = problem_.tip.kind == AfmTip::Kind::kParaboloid;
     const double radius = problem_.tip.radius, cot = 1.0 / std::tan(problem_.tip.angle);
     for (const ReducedVariables& v : sweep) {
-      const double a = v.a_over_t * thickness;
+      const double a = v.a_over_t * length;
       if (sphere) {
         delta.push_back(a * a / radius * v.delta_s);
         force.push_back(a * a * a * reduced / (2.0 * radius) * v.pi_s);
@@ -272,9 +272,7 @@ class CoatingForces {
       if (sweeps_.size() > 64) sweeps_.clear();
       return sweeps_.emplace(film_modulus, std::move(sweep)).first->second;
     }
-    Material film = coating_.film;
-    film.youngs_modulus = film_modulus;
-    const ReducedSolver solver(Stack::film_on(film, coating_.substrate));
+    const ReducedSolver solver(coating_.stack_with(film_modulus, coating_.thickness));
     std::vector<ReducedVariables> sweep = solver.sweep(a_over_t_, coating_.solver_tolerance);
     solver_calls_ += static_cast<long>(a_over_t_.size());
     if (sweeps_.size() > 64) sweeps_.clear();
@@ -790,6 +788,7 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
   const AfmModelInfo& model = problem.model.info();
   const int free_count = afm_free_count(model, problem.free);
   check_fit_input(z, force, problem, free_count);
+  internal::check_afm_coating(problem);
   if (problem.free.work && afm_free_count(model, AfmFree{false, false, false, false, true, false}) == 0) {
     throw InputError("afm fit: w is a parameter of the adhesive (" + afm_spring_model_names() + ") models only");
   }

@@ -78,6 +78,10 @@ AfmDepthProfile afm_depth_profile(const afm::ForceCurve& curve, const AfmCurveRe
     throw InputError("depth profile: takes the adhesionless fit (model hertz); the adhesive models fit the retract's pull-off");
   }
   if (!problem.free.modulus) throw InputError("depth profile: the modulus must be free (it is what the profile follows)");
+  if (problem.coating && problem.coating->multilayer()) {
+    throw InputError("depth profile: takes a half-space or one film (--film); a stack of " +
+                     std::to_string(problem.coating->layers.size()) + " layers is fitted whole (without --depth-profile)");
+  }
   if (problem.coating && problem.free.thickness) {
     throw InputError("depth profile: t must be fixed on a coating (the depths are read against it)");
   }

@@ -142,5 +142,7 @@ namespace coatcontact::fit::internal {
 std::shared_ptr<const CoatedTable> afm_coated_table(const AfmCoating& coating);
 // Drops them (afm_clear_shared_sweeps: a benchmark's first curve of a sample).
 void afm_clear_coated_tables();
+// A multi-layer sample's limits (AfmCoating): the free layer in range, the Hertz model, t fixed.
+void check_afm_coating(const AfmFitProblem& problem);
 
 }  // namespace coatcontact::fit::internal

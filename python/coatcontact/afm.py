@@ -150,7 +150,7 @@ def _segment_slice(curve, segment, n):
 
 
 def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=None, substrate=None,
-        thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
+        thickness=None, layers=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
         segment=None, spring_constant=None, tip_range=None, indentation_range=None,
         max_indentation=None, max_force=None, noise=None, work=None, surface_force_range=0.3e-9, tilt=None,
         baseline_model=None, weight_cp=None, depth_profile=False):
@@ -193,6 +193,9 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                a coating instead: film (E1 [Pa], nu1), substrate (E0, nu0) or "rigid", thickness
                t [m]; E1 and t are the values if fixed, else the centres of their log searches
                (a factor 10 each way). Tips: sphere, cone, pyramid.
+    layers     a stack instead, as the CLI's --layer and coatcontact.fit's layers=: [(h [m], E [Pa],
+               nu[, slip]), ...] top first, with substrate=; "E<K>" in free frees layer K's modulus
+               (default E1; the estimate is named "E1"), the others and every h fixed; model hertz.
     free       names among "E" (half-space) or "E1", "t" (coating), "contact_point", "baseline"
                (default: the modulus, contact_point and baseline); a fixed contact_point [m] or
                baseline [N] is given by the keyword of that name.
@@ -243,7 +246,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
     if not jkr and (work is not None or tilt is not None):
         raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")
     tip, E, nu, free, coating = _problem("afm.fit", model, radius, shape, halfspace, film, substrate, thickness, free,
-                                         contact_point)
+                                         contact_point, layers)
 
     if baseline_model not in (None, "tilt", "offset"):
         raise ValueError(f"baseline_model: {baseline_model!r} is not allowed; expected 'tilt' or 'offset'")
@@ -386,14 +389,55 @@ def _model_name(model):
     return model
 
 
-def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point):
+def _stack_free(free, count):
+    """The free layer of layers= (the K of "E<K>" in free, default 1) and free with it named E1."""
+    layer, found, out = 0, 0, []
+    for item in free:
+        if len(item) >= 2 and item[0] == "E" and item[1:].isdigit():
+            k = int(item[1:])
+            if not 1 <= k <= count:
+                raise ValueError(f"free: {item!r} is not a layer's modulus; allowed with {count} layers: E1..E{count}")
+            found += 1
+            if found > 1:
+                raise ValueError(f"free: one layer's modulus is free at a time (got {','.join(free)!r})")
+            layer, item = k - 1, "E1"
+        out.append(item)
+    return layer, out
+
+
+def _stack_coating(layers, substrate, free, film, thickness, halfspace):
+    """The coating tuple of layers= (as the CLI's --layer h,E,nu[,slip], repeated)."""
+    if film is not None or thickness is not None or halfspace is not None:
+        raise ValueError("layers: give the sample as layers= with substrate=, not with film=, thickness= or halfspace=")
+    if substrate is None:
+        raise ValueError("layers: a stack needs substrate=(E0, nu0) or \"rigid\"")
+    rows = []
+    for i, layer in enumerate(layers):
+        if len(layer) not in (3, 4):
+            raise ValueError(f"layers: layer {i + 1} is {layer!r}; expected (h, E, nu) or (h, E, nu, slip)")
+        rows.append((float(layer[0]), float(layer[1]), float(layer[2]), bool(layer[3]) if len(layer) > 3 else False))
+    if not rows:
+        raise ValueError("layers: give at least one layer (h, E, nu)")
+    if isinstance(free, str):
+        free = [f.strip() for f in free.split(",")]
+    k, free = _stack_free([str(f) for f in free], len(rows))
+    sub = None if (isinstance(substrate, str) and substrate == "rigid") else tuple(float(v) for v in substrate)
+    return (rows[k][1], rows[k][2], sub, rows[k][0], tuple(rows), k), free
+
+
+def _problem(caller, model, radius, shape, halfspace, film, substrate, thickness, free, contact_point, layers=None):
     """The tip, sample and free parameters of fit and fit_map as _afm takes them."""
     model = _model_name(model)
     default_free = free == ("E", "contact_point", "baseline")  # the keyword's default: the model's
     if default_free:
         free = tuple(_MODELS[model]["default_free"].split(","))
     coating = None
-    if film is not None or substrate is not None or thickness is not None:
+    if layers is not None:
+        if default_free:
+            free = tuple(_MODELS[model]["coating_default_free"].split(","))
+        coating, free = _stack_coating(layers, substrate, free, film, thickness, halfspace)
+        E, nu = coating[0], coating[1]
+    elif film is not None or substrate is not None or thickness is not None:
         if halfspace is not None:
             raise ValueError("halfspace: give one sample, halfspace=(E, nu) or film=, substrate=, thickness=")
         if film is None or substrate is None or thickness is None:
@@ -495,7 +539,7 @@ def _structured(columns):
 
 
 def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspace=None, film=None, substrate=None,
-            thickness=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
+            thickness=None, layers=None, free=("E", "contact_point", "baseline"), contact_point=None, baseline=None,
             segment=None, spring_constant=None, sensitivity=None, tip_range=None, indentation_range=None,
             max_indentation=None, max_force=None, jobs=None, client=None, as_frame=False, work=None,
             surface_force_range=0.3e-9, tilt=None, baseline_model=None, sort_by=None, weight_cp=None,
@@ -545,7 +589,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
         raise ValueError(f"sort_by: {sort_by!r} is not allowed; expected 'rating' (or None: curve order)")
     model = _model_name(model)
     tip, E, nu, free, coating = _problem("afm.fit_map", model, radius, shape, halfspace, film, substrate, thickness,
-                                         free, contact_point)
+                                         free, contact_point, layers)
     adhesive = _MODELS[model]["spring"]
     if not adhesive and (work is not None or tilt is not None):
         raise ValueError("work, tilt: parameters of model='jkr' or 'md' only")

@@ -325,6 +325,14 @@ coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulu
       layer.substrate.material.poisson_ratio = sub[1].cast<double>();
     }
     layer.thickness = c[3].cast<double>();
+    if (c.size() > 5) {  // a stack: ((h, E, nu, slip), ...) and the free layer (coatcontact.afm._stack_coating)
+      std::vector<coatcontact::Layer> layers;
+      for (const py::handle& row : c[4].cast<py::tuple>()) {
+        const py::tuple l = row.cast<py::tuple>();
+        layers.push_back({l[0].cast<double>(), {l[1].cast<double>(), l[2].cast<double>()}, l[3].cast<bool>()});
+      }
+      layer = fit::afm_coating(coatcontact::Stack(layers, layer.substrate), c[5].cast<std::size_t>());
+    }
     problem.coating = layer;
     problem.poisson = layer.film.poisson_ratio;
   }

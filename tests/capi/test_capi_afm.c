@@ -3,8 +3,10 @@
  * metadata against what the files state, the preprocessing, the spot3 fit (hertz and jkr)
  * against afm_fit_curve called directly (test_capi_afm_reference.cpp) to 1e-12, the map2x2
  * batch's rows against the one-curve fit, and the error paths (NULL handle, unknown model,
- * unknown parameter, curve index out of range, short buffer) with their status and message.
- * Argument: the data/afm folder. */
+ * unknown parameter, curve index out of range, short buffer) with their status and message;
+ * a two-layer stack's fit against the CLI's `afm fit --layer`.
+ * Arguments: the data/afm folder, the coatcontact CLI. */
+#define _POSIX_C_SOURCE 200809L /* popen */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -231,7 +233,13 @@ static void bad_requests(const char *folder) {
   cc_stack_add_layer(two, 1e-6, 1e3, 0.5, 0);
   cc_stack_add_layer(two, 1e-6, 1e4, 0.5, 0);
   cc_stack_set_substrate(two, 1e5, 0.5);
-  check("two layers", cc_afm_request_set_sample(request, two) == CC_INPUT_ERROR && message_has("2 layers"));
+  check("free layer outside the stack", cc_afm_request_set_sample_layer(request, two, 2) == CC_INPUT_ERROR &&
+                                           message_has("free layer 2") && message_has("0..1"));
+  check("two layers", cc_afm_request_set_sample_layer(request, two, 1) == CC_OK);
+  check("sphere again", cc_afm_request_set_tip(request, "sphere", 10e-6) == CC_OK &&
+                            cc_afm_request_set_free(request, "E1,w,contact_point") == CC_OK);
+  check("jkr on two layers", cc_afm_fit_curve(curve, request, &fit) == CC_INPUT_ERROR && message_has("takes one bonded film") &&
+                                 message_has("--model hertz"));
   cc_stack_destroy(two);
   cc_afm_request_destroy(request);
   /* A fit range outside the curve: the input code, its flag named. */
@@ -362,11 +370,57 @@ static void batch(const char *folder) {
   cc_afm_request_destroy(request);
 }
 
+/* The header value (and its error) of `key` in the CLI's output. */
+static int header_pair(const char *text, const char *key, double *value, double *error) {
+  char pattern[128];
+  snprintf(pattern, sizeof pattern, "# %s: ", key);
+  const char *line = strstr(text, pattern);
+  return line && sscanf(line + strlen(pattern), "%lf +- %lf", value, error) == 2;
+}
+
+/* A two-layer stack (cell on gel on glass) on spot3 through the C API equals `afm fit --layer`
+ * (run here) to 1e-12: z_c and b free, the layers' moduli fixed (one modulus: a cheap table). */
+static void stack_fit(const char *folder, const char *cli) {
+  char path[4096], command[8192];
+  cc_afm_curve *curve = read_curve(folder, "fmt-jpk-fd_spot3-0192.jpk-force", 0, path, sizeof path);
+  cc_afm_request *request = NULL;
+  cc_stack *stack = NULL;
+  check("request", cc_afm_request_create(&request) == CC_OK && cc_afm_request_set_tip(request, "sphere", 10e-6) == CC_OK);
+  check("stack", cc_stack_create(&stack) == CC_OK && cc_stack_add_layer(stack, 1e-6, 5e3, 0.5, 0) == CC_OK &&
+                     cc_stack_add_layer(stack, 4e-6, 2e4, 0.5, 0) == CC_OK && cc_stack_set_rigid_substrate(stack) == CC_OK);
+  check("stack sample", cc_afm_request_set_sample(request, stack) == CC_OK);
+  check("free", cc_afm_request_set_free(request, "contact_point,baseline") == CC_OK);
+  cc_stack_destroy(stack);
+  cc_afm_fit *fit = NULL;
+  check("stack fit", cc_afm_fit_curve(curve, request, &fit) == CC_OK);
+  snprintf(command, sizeof command,
+           "'%s' afm fit '%s' --radius 10um --layer 1um,5kPa,0.5 --layer 4um,20kPa,0.5 --substrate rigid "
+           "--free contact_point,baseline 2>/dev/null | grep '^#'", cli, path);
+  FILE *pipe = popen(command, "r");
+  static char text[1 << 16];
+  size_t length = pipe ? fread(text, 1, sizeof text - 1, pipe) : 0;
+  text[length] = '\0';
+  check("the CLI ran", pipe != NULL && pclose(pipe) == 0);
+  const char *names[] = {"contact_point", "baseline"}, *keys[] = {"contact point [m]", "baseline [N]"};
+  for (int k = 0; k < 2 && fit; ++k) {
+    double value = 0.0, error = 0.0, cli_value = 0.0, cli_error = 0.0;
+    check(names[k], cc_afm_fit_estimate(fit, names[k], &value, &error) == CC_OK);
+    check(keys[k], header_pair(text, keys[k], &cli_value, &cli_error));
+    close_to(names[k], value, cli_value);
+    close_to(names[k], error, cli_error);
+    printf("stack %s: C API %.17g +- %.3g, CLI %.17g\n", names[k], value, error, cli_value);
+  }
+  cc_afm_fit_destroy(fit);
+  cc_afm_request_destroy(request);
+  cc_afm_curve_destroy(curve);
+}
+
 int main(int argc, char **argv) {
-  if (argc != 2) {
-    fprintf(stderr, "usage: test_capi_afm DATA_AFM_FOLDER\n");
+  if (argc != 3) {
+    fprintf(stderr, "usage: test_capi_afm DATA_AFM_FOLDER COATCONTACT_CLI\n");
     return 2;
   }
+  stack_fit(argv[1], argv[2]);
   reading(argv[1]);
   compare_fit(argv[1], "hertz");
   compare_fit(argv[1], "jkr");

@@ -161,9 +161,14 @@ int cc_afm_request_set_tip(cc_afm_request *request, const char *kind, double val
 int cc_afm_request_set_tip_shape(cc_afm_request *request, const struct cc_shape *shape);
 /* The sample as a stack (copied): no layer and an elastic substrate (E, nu) is the homogeneous
  * half-space; one layer (thickness t [m], E1, nu1) on a substrate (elastic or rigid) is a
- * coating. E, E1 and t are the values if fixed, else the centres of their searches. More
- * layers or an elastic indenter: CC_INPUT_ERROR. */
+ * coating. E, E1 and t are the values if fixed, else the centres of their searches. An
+ * elastic indenter: CC_INPUT_ERROR. More layers: the top one's modulus free (as _layer, 0). */
 int cc_afm_request_set_sample(cc_afm_request *request, const struct cc_stack *stack);
+/* A stack of any number of layers (thicknesses [m], top first; bonded or sliding) whose layer
+ * free_layer (0-based) has the free modulus, named E1 in the fit's parameters (its value in
+ * the stack the fixed value or the centre of its search). More than one layer: model hertz,
+ * t fixed (CC_INPUT_ERROR at the fit otherwise). free_layer outside the layers: CC_INPUT_ERROR. */
+int cc_afm_request_set_sample_layer(cc_afm_request *request, const struct cc_stack *stack, long free_layer);
 /* Comma-separated names of the free parameters, the CLI's --free: E (half-space) or E1 and t
  * (coating), w (adhesive models), tilt, contact_point, baseline. */
 int cc_afm_request_set_free(cc_afm_request *request, const char *names);

@@ -95,16 +95,38 @@ inline constexpr AfmModel AfmModel::kDmt{"dmt"};
 // [kCoatingAOverT] (kCoatingPerDecade points per decade) and interpolated in log-log; below
 // the sweep the film's own power law, past it (trial contact points of the search only) the
 // power law of its last two nodes; the final fit must lie inside the sweep. Tips: paraboloid, cone, pyramid.
+// A multi-layer sample (a cell on a gel on glass; THEORY.md sections 12 and 15): `layers`, top
+// first, each with its thickness [m], material and bonding; layer `free_layer` is the one whose
+// modulus the fit may free, and its material and thickness are `film` and `thickness` (its
+// entry in `layers` only gives its bonding). Empty `layers`: the one film of thickness t. The
+// Hertz model reads a multi-layer stack from the tabled force law of that layer's modulus
+// (CoatedTable); the length of a/t is then the stack's total thickness T and the force's scale
+// the top layer's E*. The thickness is free on one film only, the adhesive models take one film.
 struct AfmCoating {
-  Material film;
+  Material film;           // the free layer's material (the film's with one layer)
   Substrate substrate;
-  double thickness = 0.0;  // t [m] (value if fixed, else the centre of its search)
+  double thickness = 0.0;  // t [m] of the free layer (value if fixed, else the centre of its search)
+  std::vector<Layer> layers;
+  std::size_t free_layer = 0;
+  bool multilayer() const { return layers.size() > 1; }
+  // The sample with the free layer's modulus E and thickness t (one film: Stack::film_on).
+  Stack stack_with(double modulus, double t) const;
+  Stack stack() const { return stack_with(film.youngs_modulus, thickness); }
+  // The length of a/t: T with the free layer's thickness t (one film: t itself).
+  double total_thickness(double t) const;
+  // The top layer's E* with the free layer's modulus E: the scale of the reduced force.
+  double reference_modulus(double modulus) const;
   double solver_tolerance = 1e-8;
   // false: the Hertz model reads every trial E1 from the process's shared tabled force law
   // (THEORY.md section 15, "Tabled coated force laws"); true: a reduced-solver sweep per trial
   // E1 (the direct path, kept for comparison).
   bool direct = false;
 };
+// The sample `stack` with layer `free_layer`'s modulus (the fit's E<free_layer + 1>) free;
+// InputError naming the allowed layers when free_layer is out of range. One layer: film, t.
+// A stack's solves ask kStackSolverTolerance (its kernel tables are not good to 1e-8 near a/T = 1e2).
+AfmCoating afm_coating(const Stack& stack, std::size_t free_layer);
+constexpr double kStackSolverTolerance = 1e-7;
 constexpr double kCoatingAOverT[2] = {1e-2, 1e2};
 constexpr double kCoatingPerDecade = 16.0;
 // Free E1 and t are searched on a log grid within this factor of their given values

@@ -1,0 +1,45 @@
+"""The AFM sample as a stack (issue 35; THEORY.md section 15, "A stack of layers"):
+coatcontact.afm.fit(..., layers=[(h, E, nu), ...], substrate=...) equals `afm fit --layer ...`
+on the real spot3 curve to 1e-12 relative (one pipeline behind both doors), names the free layer
+as --free does (E<K>), and refuses what the CLI refuses."""
+import os
+
+import pytest
+
+import coatcontact as cc
+
+from conftest import SOURCE_DIR
+
+SPOT = os.path.join(SOURCE_DIR, "data", "afm", "fmt-jpk-fd_spot3-0192.jpk-force")
+LAYERS = [(1e-6, 5e3, 0.5), (4e-6, 2e4, 0.5)]
+
+
+def header_value(header, key):
+    for line in header:
+        if line.startswith(f"# {key}: "):
+            return [float(v) for v in line[len(f"# {key}: "):].split() if v not in ("+-", "(fixed)")]
+    raise AssertionError(f"no {key} in the header")
+
+
+def test_stack_fit_equals_the_cli(cli):
+    out, _, _ = cli("afm", "fit", SPOT, "--radius", "10um", "--layer", "1um,5kPa,0.5", "--layer", "4um,20kPa,0.5",
+                    "--substrate", "rigid", "--free", "contact_point,baseline")
+    curve = cc.afm.read(SPOT)[0]
+    r = cc.afm.fit(curve, radius=10e-6, layers=LAYERS, substrate="rigid", free=("contact_point", "baseline"))
+    for name, key in (("contact_point", "contact point [m]"), ("baseline", "baseline [N]")):
+        value, error = header_value(out, key)
+        for a, b in ((r["estimates"][name], value), (r["errors"][name], error)):
+            assert abs(a - b) <= 1e-12 * abs(b), (name, a, b)
+    assert header_value(out, "E1 [Pa]") == [5000.0]
+
+
+def test_stack_refusals():
+    curve = cc.afm.read(SPOT)[0]
+    with pytest.raises(ValueError, match=r"'E3' is not a layer's modulus; allowed with 2 layers: E1\.\.E2"):
+        cc.afm.fit(curve, radius=10e-6, layers=LAYERS, substrate="rigid", free=("E3", "contact_point", "baseline"))
+    with pytest.raises(ValueError, match=r"layer 1 is .*expected \(h, E, nu\)"):
+        cc.afm.fit(curve, radius=10e-6, layers=[(5e3, 0.5)], substrate="rigid")
+    with pytest.raises(ValueError, match="not with film="):
+        cc.afm.fit(curve, radius=10e-6, layers=LAYERS, film=(5e3, 0.5), substrate="rigid")
+    with pytest.raises(ValueError, match="takes one bonded film"):
+        cc.afm.fit(curve, "jkr", radius=10e-6, layers=LAYERS, substrate="rigid", work=1e-3)
