@@ -9,6 +9,7 @@
 #include <gsl/gsl_interp.h>
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_matrix.h>
+#include <gsl/gsl_multifit.h>
 
 #include <algorithm>
 #include <array>
@@ -784,6 +785,104 @@ void finish_fit(AfmFitResult& r, const std::vector<double>& z, const std::vector
   for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
 }
 
+// E1 of the coated Hertz fit on an elastic base, t fixed (THEORY.md section 15, "Tabled coated
+// force laws", "The search"): the fixed point of E1 <- (closed-form scale) E1, each step one
+// contact-point search with the shape at the current E1 (the half-space's search), secant-
+// accelerated; then Gauss-Newton on (ln E1, z_c, b, m) with the shape's ln E1-derivative by
+// central differences, to the least squares itself (the fixed point is not it). nullopt: no
+// convergence (the caller runs the nested search).
+std::optional<double> profiled_film_modulus(CoatingForces& forces, const std::vector<double>& z,
+                                            const std::vector<double>& force, const AfmFitProblem& problem, double z_lo,
+                                            double c_hi, double t, int& evaluations) {
+  const double ln10 = std::log(10.0), start = std::log(problem.coating->film.youngs_modulus);
+  const std::size_t grid = std::max<std::size_t>(problem.profile_points / 4, 16);
+  double u = start, u_prev = 0.0, psi_prev = 0.0, psi = 0.0;
+  ContactSearch found;
+  for (int k = 0;; ++k) {
+    if (k == 30) return std::nullopt;
+    const auto table = forces.force(std::exp(u), t);
+    Profile profile(z, force, *table, true, 1.0, problem.free.baseline, problem.baseline);
+    if (problem.free.tilt) profile.free_tilt();
+    found = search_contact(profile, problem, z_lo, c_hi, grid, 1e-9);
+    evaluations += found.evaluations;
+    if (!(found.linear.reduced_modulus > 0.0)) return std::nullopt;
+    psi = std::log(found.linear.reduced_modulus);  // the scale s: F = s F(E1), E1 implied s E1
+    if (std::abs(psi) < 1e-3) break;
+    double next = u + psi;  // contracts at the rate |d ln g / d ln r| < 1
+    const double slope = k > 0 ? (psi - psi_prev) / (u - u_prev) : 0.0;
+    if (slope < -1e-3 && std::isfinite(slope)) next = u - psi / slope;  // secant on psi(ln E1) = 0
+    next = std::clamp(next, u - ln10, u + ln10);
+    if (std::abs(next - start) > 3.0 * ln10) {
+      throw NumericalError("afm fit: E1 runs out of its search range (best at " + short_text(std::exp(next)) +
+                           "); the data do not determine it, or its given value is far off");
+    }
+    u_prev = u, psi_prev = psi, u = next;
+  }
+  // Gauss-Newton from the fixed point's neighbour (u + psi, its z_c, b, m).
+  u += psi;
+  const std::size_t n = z.size();
+  double zc = found.contact_point, b = found.linear.baseline, m = found.linear.tilt;
+  std::vector<std::size_t> slot;  // parameter of each column: 0 ln E1, 1 z_c, 2 b, 3 m
+  slot.push_back(0);
+  if (problem.free.contact_point) slot.push_back(1);
+  if (problem.free.baseline) slot.push_back(2);
+  if (problem.free.tilt) slot.push_back(3);
+  const std::size_t p = slot.size();
+  if (n <= p) return std::nullopt;
+  coatcontact::detail::GslHandlerOff handler_off;
+  std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> x(gsl_matrix_alloc(n, p), gsl_matrix_free);
+  std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> cov(gsl_matrix_alloc(p, p), gsl_matrix_free);
+  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> y(gsl_vector_alloc(n), gsl_vector_free), c(gsl_vector_alloc(p), gsl_vector_free);
+  std::unique_ptr<gsl_multifit_linear_workspace, void (*)(gsl_multifit_linear_workspace*)> work(
+      gsl_multifit_linear_alloc(n, p), gsl_multifit_linear_free);
+  const auto rss_at = [&](double uu, double zz, double bb, double mm) {
+    const auto table = forces.force(std::exp(uu), t);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double delta = zz - z[i];
+      const double r = force[i] - bb - mm * (z[i] - zz) - (delta > 0.0 ? table->value(delta) : 0.0);
+      sum += r * r;
+    }
+    return sum;
+  };
+  constexpr double h = 1e-4;
+  double rss = rss_at(u, zc, b, m);
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const double e = std::exp(u);
+    const auto mid = forces.force(e, t), lo = forces.force(e * (1 - h), t), hi = forces.force(e * (1 + h), t);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double delta = zc - z[i];
+      double g = 0.0, dg = 0.0, du = 0.0;
+      if (delta > 0.0) {
+        std::tie(g, dg) = mid->at(delta);
+        du = (hi->value(delta) - lo->value(delta)) / (2 * h);
+      }
+      const double columns[4] = {du, dg - m, 1.0, z[i] - zc};
+      for (std::size_t a = 0; a < p; ++a) gsl_matrix_set(x.get(), i, a, columns[slot[a]]);
+      gsl_vector_set(y.get(), i, force[i] - b - m * (z[i] - zc) - g);
+    }
+    double chi2 = 0.0;
+    if (gsl_multifit_linear(x.get(), y.get(), c.get(), cov.get(), &chi2, work.get()) != 0) return std::nullopt;
+    double step[4] = {0.0, 0.0, 0.0, 0.0}, se[4] = {0.0, 0.0, 0.0, 0.0};
+    for (std::size_t a = 0; a < p; ++a) {
+      step[slot[a]] = gsl_vector_get(c.get(), a);
+      se[slot[a]] = std::sqrt(gsl_matrix_get(cov.get(), a, a));  // GSL's cov carries chi2/(n - p)
+    }
+    // Halve a step that raises the sum (the kink of z_c where points enter contact).
+    double factor = 1.0, trial = rss_at(u + step[0], zc + step[1], b + step[2], m + step[3]);
+    for (int k = 0; k < 8 && !(trial <= rss * (1 + 1e-12)); ++k) {
+      factor *= 0.5;
+      trial = rss_at(u + factor * step[0], zc + factor * step[1], b + factor * step[2], m + factor * step[3]);
+    }
+    if (!(trial <= rss * (1 + 1e-12))) return std::nullopt;
+    u += factor * step[0], zc += factor * step[1], b += factor * step[2], m += factor * step[3];
+    rss = trial;
+    // Converged: the step a thousandth of the standard errors of ln E1 and z_c.
+    if (std::abs(step[0]) <= 1e-3 * se[0] && std::abs(step[1]) <= 1e-3 * se[1] + 1e-15) return std::exp(u);
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
@@ -798,6 +897,11 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
 
 AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force,
                                      const AfmFitProblem& problem, int free_count) {
+  return afm_fit_hertz(z, force, problem, free_count, CoatedE1Search::kProfiled);
+}
+
+AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force,
+                                     const AfmFitProblem& problem, int free_count, CoatedE1Search search) {
   const auto start = std::chrono::steady_clock::now();
   // The Hertz model's tilt is free or 0 (afm_fit_curve's baseline model subtracts the preprocessing's).
   const std::size_t n = z.size();
@@ -886,7 +990,12 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
     };
     double e1 = coating.film.youngs_modulus;
     if (problem.free.modulus && !linear_e1) {
-      e1 = minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
+      std::optional<double> profiled;
+      if (search == internal::CoatedE1Search::kProfiled && !problem.free.thickness && !coating.direct) {
+        profiled = profiled_film_modulus(forces, z, force, problem, z_lo, c_hi, coating.thickness, evaluations);
+      }
+      e1 = profiled ? *profiled
+                    : minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
     }
     const double t = best_t(e1, true);
     const ContactSearch found = fit_at(e1, t, true);
