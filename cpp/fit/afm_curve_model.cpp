@@ -791,7 +791,10 @@ void finish_fit(AfmFitResult& r, const std::vector<double>& z, const std::vector
 // accelerated; then Gauss-Newton on (ln E1, z_c, b, m) with the shape's ln E1-derivative by
 // central differences, to the least squares itself (the fixed point is not it). nullopt: no
 // convergence (the caller runs the nested search).
-std::optional<double> profiled_film_modulus(CoatingForces& forces, const std::vector<double>& z,
+struct ProfiledModulus {
+  double modulus = 0.0, contact_point = 0.0, contact_point_error = 0.0;
+};
+std::optional<ProfiledModulus> profiled_film_modulus(CoatingForces& forces, const std::vector<double>& z,
                                             const std::vector<double>& force, const AfmFitProblem& problem, double z_lo,
                                             double c_hi, double t, int& evaluations) {
   const double ln10 = std::log(10.0), start = std::log(problem.coating->film.youngs_modulus);
@@ -803,7 +806,12 @@ std::optional<double> profiled_film_modulus(CoatingForces& forces, const std::ve
     const auto table = forces.force(std::exp(u), t);
     Profile profile(z, force, *table, true, 1.0, problem.free.baseline, problem.baseline);
     if (problem.free.tilt) profile.free_tilt();
-    found = search_contact(profile, problem, z_lo, c_hi, grid, 1e-9);
+    // After the first step z_c moves little: a window of a tenth of the range around the last
+    // one (the final search on the full grid checks it is the global minimum).
+    const double window = 0.05 * (c_hi - z_lo);
+    found = k == 0 ? search_contact(profile, problem, z_lo, c_hi, grid, 1e-9)
+                   : search_contact(profile, problem, std::max(z_lo, found.contact_point - window),
+                                    std::min(c_hi, found.contact_point + window), 16, 1e-9);
     evaluations += found.evaluations;
     if (!(found.linear.reduced_modulus > 0.0)) return std::nullopt;
     psi = std::log(found.linear.reduced_modulus);  // the scale s: F = s F(E1), E1 implied s E1
@@ -878,7 +886,9 @@ std::optional<double> profiled_film_modulus(CoatingForces& forces, const std::ve
     u += factor * step[0], zc += factor * step[1], b += factor * step[2], m += factor * step[3];
     rss = trial;
     // Converged: the step a thousandth of the standard errors of ln E1 and z_c.
-    if (std::abs(step[0]) <= 1e-3 * se[0] && std::abs(step[1]) <= 1e-3 * se[1] + 1e-15) return std::exp(u);
+    if (std::abs(step[0]) <= 1e-3 * se[0] && std::abs(step[1]) <= 1e-3 * se[1] + 1e-15) {
+      return ProfiledModulus{std::exp(u), zc, se[1]};
+    }
   }
   return std::nullopt;
 }
@@ -989,16 +999,23 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
       return minimize_log([&](double t) { return fit_at(e1, t, false).linear.rss; }, coating.thickness, "t", strict);
     };
     double e1 = coating.film.youngs_modulus;
+    std::optional<ProfiledModulus> profiled;
     if (problem.free.modulus && !linear_e1) {
-      std::optional<double> profiled;
       if (search == internal::CoatedE1Search::kProfiled && !problem.free.thickness && !coating.direct) {
         profiled = profiled_film_modulus(forces, z, force, problem, z_lo, c_hi, coating.thickness, evaluations);
       }
-      e1 = profiled ? *profiled
+      e1 = profiled ? profiled->modulus
                     : minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
     }
     const double t = best_t(e1, true);
-    const ContactSearch found = fit_at(e1, t, true);
+    ContactSearch found = fit_at(e1, t, true);
+    // The profiled search is local in z_c: if the full grid finds another minimum at its E1,
+    // the nested search (global in both) decides.
+    if (profiled && problem.free.contact_point &&
+        !(std::abs(found.contact_point - profiled->contact_point) <= 1e-2 * profiled->contact_point_error)) {
+      e1 = minimize_log([&](double e) { return fit_at(e, t, false).linear.rss; }, coating.film.youngs_modulus, "E1");
+      found = fit_at(e1, t, true);
+    }
     if (linear_e1) {
       if (!(found.linear.reduced_modulus > 0.0)) {
         throw NumericalError("afm fit: the data show no contact in the fitted range (the best E1 is 0); "
