@@ -234,6 +234,21 @@ class CoatingForces {
     }
   }
   long solver_calls() const { return table_ ? static_cast<long>(table_->source_solves()) : solver_calls_; }
+  // Tabled: the sweep stops at a/t = a_over_t_max (a decade's end: the table builds no decade
+  // above it); widen() restores the whole range. Returns whether it changed the sweep.
+  bool limit_reach(double a_over_t_max) {
+    if (!table_ || !(a_over_t_max < a_over_t_.back())) return false;
+    std::vector<double> kept;
+    for (double v : a_over_t_) {
+      if (v <= a_over_t_max * (1 + 1e-9)) kept.push_back(std::min(v, a_over_t_max));
+    }
+    if (kept.size() < 8) return false;
+    full_ = a_over_t_;
+    a_over_t_ = std::move(kept);
+    sweeps_.clear();
+    return true;
+  }
+  bool limited() const { return !full_.empty(); }
   // E1 only scales the force (a film on a rigid base, tabled): F(E1) = (E1*/E1_ref*) F(E1_ref).
   bool scale_free() const { return table_ && table_->scale_free(); }
 
@@ -284,7 +299,7 @@ class CoatingForces {
 
   const AfmFitProblem& problem_;
   const AfmCoating& coating_;
-  std::vector<double> a_over_t_;
+  std::vector<double> a_over_t_, full_;  // full_: the whole range while limited
   std::map<double, std::vector<ReducedVariables>> sweeps_;
   long solver_calls_ = 0;
   std::shared_ptr<const CoatedTable> table_;  // null: the direct path
@@ -910,8 +925,24 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
   return afm_fit_hertz(z, force, problem, free_count, CoatedE1Search::kProfiled);
 }
 
-AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force,
-                                     const AfmFitProblem& problem, int free_count, CoatedE1Search search) {
+namespace {
+
+// A coated fit whose indentations pass the reach its sweep was limited to: fitted again on the
+// whole a/t range.
+struct WiderReach {};
+
+// The a/t a coated fit's indentations up to max_delta can reach, rounded up to a decade's end:
+// a = sqrt(R delta / Delta_s) (sphere), 2 delta tan(beta) / (pi Delta_c) (cone), Delta >= 1/4
+// (1/2 for a thin film on a rigid base; 1 on a half-space; above 1 for a stiff film).
+double coating_reach(const AfmFitProblem& problem, double max_delta) {
+  const double t = problem.coating->thickness;
+  const double a = problem.tip.kind == AfmTip::Kind::kParaboloid ? 2.0 * std::sqrt(problem.tip.radius * max_delta)
+                                                                  : 8.0 * max_delta * std::tan(problem.tip.angle) / kPi;
+  return std::pow(10.0, std::max(0.0, std::ceil(std::log10(a / t) - 1e-9)));
+}
+
+AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                       int free_count, internal::CoatedE1Search search, bool whole_reach) {
   const auto start = std::chrono::steady_clock::now();
   // The Hertz model's tilt is free or 0 (afm_fit_curve's baseline model subtracts the preprocessing's).
   const std::size_t n = z.size();
@@ -968,6 +999,8 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
     // sweep of the solver, a new t only a rescaled table), z_c and b profiled as above.
     CoatingForces forces(problem);
     const AfmCoating& coating = *problem.coating;
+    // (a free t moves a/t: the whole range)
+    if (!whole_reach && !problem.free.thickness) forces.limit_reach(coating_reach(problem, max_delta));
     int evaluations = 0;
     // A trial whose indentations leave the table (a/t too large: t small) costs +infinity in
     // the search; at the optimum it is an error.
@@ -987,6 +1020,7 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
       ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid, final ? 1e-12 : 1e-9);
       evaluations += found.evaluations;
       if (final && found.contact_point - z_lo > table->max_penetration()) {
+        if (forces.limited()) throw WiderReach{};
         throw NumericalError("afm fit: the indentations reach " + short_text(found.contact_point - z_lo) +
                              " m, past the " + short_text(table->max_penetration()) + " m at which the contact radius reaches " +
                              short_text(kCoatingAOverT[1]) + " film thicknesses (t = " + short_text(t) +
@@ -1075,6 +1109,17 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
   finish_fit(r, z, force, problem, free_count, columns, error_slots);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
+}
+
+}  // namespace
+
+AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force,
+                                     const AfmFitProblem& problem, int free_count, CoatedE1Search search) {
+  try {
+    return fit_hertz(z, force, problem, free_count, search, false);
+  } catch (const WiderReach&) {
+    return fit_hertz(z, force, problem, free_count, search, true);
+  }
 }
 
 std::vector<std::size_t> afm_select(const std::vector<double>& z, const std::vector<double>& force, const AfmRange& range,
