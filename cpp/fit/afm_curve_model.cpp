@@ -941,6 +941,50 @@ double coating_reach(const AfmFitProblem& problem, double max_delta) {
   return std::pow(10.0, std::max(0.0, std::ceil(std::log10(a / t) - 1e-9)));
 }
 
+// The half-space: E* and b in closed form at each z_c (Profile), z_c searched; r and the
+// Jacobian columns of the free parameters (in result order) filled.
+void fit_halfspace(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                   double z_lo, double c_hi, double max_delta, AfmFitResult& r, std::vector<std::vector<double>>& columns,
+                   std::vector<double*>& error_slots) {
+  const std::size_t n = z.size();
+  const TipForce tip(problem.tip, max_delta);
+  const double nu_factor = 1.0 - problem.poisson * problem.poisson;
+  Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
+                  problem.baseline);
+  if (problem.free.tilt) profile.free_tilt();
+  if (problem.weight_cp > 0.0) profile.weight_cp(problem.weight_cp);
+  const ContactSearch found = search_contact(profile, problem, z_lo, c_hi, problem.profile_points);
+  if (!(found.linear.reduced_modulus > 0.0)) {
+    throw NumericalError("afm fit: the data show no contact in the fitted range (the best modulus is 0); "
+                         "widen the range or check the segment");
+  }
+  r.reduced_modulus = found.linear.reduced_modulus;
+  r.modulus = r.reduced_modulus * nu_factor;
+  r.contact_point = found.contact_point;
+  r.baseline = found.linear.baseline;
+  r.tilt = found.linear.tilt;
+  r.profile_evaluations = found.evaluations;
+  std::vector<double> col_e(n, 0.0), col_c(n, 0.0), col_b(n, 1.0), col_m(n, 0.0);
+  r.model_force.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double delta = r.contact_point - z[i];
+    double g = 0.0, slope = 0.0;
+    if (delta > 0.0) std::tie(g, slope) = tip.at(delta);
+    r.model_force[i] = r.baseline + r.reduced_modulus * g;
+    col_e[i] = g / nu_factor;
+    col_c[i] = r.reduced_modulus * slope;
+    if (problem.free.tilt) {
+      r.model_force[i] += r.tilt * (z[i] - r.contact_point);
+      col_c[i] -= r.tilt;
+      col_m[i] = z[i] - r.contact_point;
+    }
+  }
+  if (problem.free.modulus) columns.push_back(col_e), error_slots.push_back(&r.modulus_error);
+  if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
+  if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
+  if (problem.free.tilt) columns.push_back(col_m), error_slots.push_back(&r.tilt_error);
+}
+
 AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                        int free_count, internal::CoatedE1Search search, bool whole_reach) {
   const auto start = std::chrono::steady_clock::now();
@@ -958,42 +1002,7 @@ AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& 
   std::vector<std::vector<double>> columns;  // Jacobian of the free parameters, in result order
   std::vector<double*> error_slots;
   if (!problem.coating) {
-    const TipForce tip(problem.tip, max_delta);
-    const double nu_factor = 1.0 - problem.poisson * problem.poisson;
-    Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
-                    problem.baseline);
-    if (problem.free.tilt) profile.free_tilt();
-    if (problem.weight_cp > 0.0) profile.weight_cp(problem.weight_cp);
-    const ContactSearch found = search_contact(profile, problem, z_lo, c_hi, problem.profile_points);
-    if (!(found.linear.reduced_modulus > 0.0)) {
-      throw NumericalError("afm fit: the data show no contact in the fitted range (the best modulus is 0); "
-                           "widen the range or check the segment");
-    }
-    r.reduced_modulus = found.linear.reduced_modulus;
-    r.modulus = r.reduced_modulus * nu_factor;
-    r.contact_point = found.contact_point;
-    r.baseline = found.linear.baseline;
-    r.tilt = found.linear.tilt;
-    r.profile_evaluations = found.evaluations;
-    std::vector<double> col_e(n, 0.0), col_c(n, 0.0), col_b(n, 1.0), col_m(n, 0.0);
-    r.model_force.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double delta = r.contact_point - z[i];
-      double g = 0.0, slope = 0.0;
-      if (delta > 0.0) std::tie(g, slope) = tip.at(delta);
-      r.model_force[i] = r.baseline + r.reduced_modulus * g;
-      col_e[i] = g / nu_factor;
-      col_c[i] = r.reduced_modulus * slope;
-      if (problem.free.tilt) {
-        r.model_force[i] += r.tilt * (z[i] - r.contact_point);
-        col_c[i] -= r.tilt;
-        col_m[i] = z[i] - r.contact_point;
-      }
-    }
-    if (problem.free.modulus) columns.push_back(col_e), error_slots.push_back(&r.modulus_error);
-    if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
-    if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
-    if (problem.free.tilt) columns.push_back(col_m), error_slots.push_back(&r.tilt_error);
+    fit_halfspace(z, force, problem, z_lo, c_hi, max_delta, r, columns, error_slots);
   } else {
     // A coating: E1 and/or t by a log search (t inside E1 when both are free: a new E1 needs a
     // sweep of the solver, a new t only a rescaled table), z_c and b profiled as above.
