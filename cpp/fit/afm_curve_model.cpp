@@ -305,6 +305,16 @@ class CoatingForces {
   std::shared_ptr<const CoatedTable> table_;  // null: the direct path
 };
 
+// The a/t a coated fit's indentations up to max_delta can reach, rounded up to a decade's end:
+// a = sqrt(R delta / Delta_s) (sphere), 2 delta tan(beta) / (pi Delta_c) (cone), Delta >= 1/4
+// (1/2 for a thin film on a rigid base; 1 on a half-space; above 1 for a stiff film).
+double coating_reach(const AfmFitProblem& problem, double max_delta) {
+  const double t = problem.coating->thickness;
+  const double a = problem.tip.kind == AfmTip::Kind::kParaboloid ? 2.0 * std::sqrt(problem.tip.radius * max_delta)
+                                                                  : 8.0 * max_delta * std::tan(problem.tip.angle) / kPi;
+  return std::pow(10.0, std::max(0.0, std::ceil(std::log10(a / t) - 1e-9)));
+}
+
 // At one z_c: the closed-form (E*, b) (E* >= 0) and the residual sum of squares. Forces are
 // centred on their mean (b is then relative to it) to keep the sums well conditioned.
 struct LinearFit {
@@ -660,8 +670,15 @@ std::vector<double> internal::afm_hertz_model_force(const AfmFitProblem& problem
   // The baseline's tilt (0 unless a fit estimated it).
   for (std::size_t i = 0; i < f.size(); ++i) f[i] += problem.tilt * (tip_position[i] - problem.contact_point);
   if (problem.coating) {
+    // Only the decades of a/t these indentations reach (the whole range if they pass them).
     CoatingForces forces(problem);
-    const auto table = forces.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
+    const double max_delta = *std::max_element(delta.begin(), delta.end());
+    if (max_delta > 0.0) forces.limit_reach(coating_reach(problem, max_delta));
+    auto table = forces.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
+    if (max_delta > table->max_penetration() && forces.limited()) {
+      CoatingForces whole(problem);
+      table = whole.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
+    }
     for (std::size_t i = 0; i < f.size(); ++i) {
       if (delta[i] > 0.0) f[i] += table->at(delta[i]).first;
     }
@@ -930,16 +947,6 @@ namespace {
 // A coated fit whose indentations pass the reach its sweep was limited to: fitted again on the
 // whole a/t range.
 struct WiderReach {};
-
-// The a/t a coated fit's indentations up to max_delta can reach, rounded up to a decade's end:
-// a = sqrt(R delta / Delta_s) (sphere), 2 delta tan(beta) / (pi Delta_c) (cone), Delta >= 1/4
-// (1/2 for a thin film on a rigid base; 1 on a half-space; above 1 for a stiff film).
-double coating_reach(const AfmFitProblem& problem, double max_delta) {
-  const double t = problem.coating->thickness;
-  const double a = problem.tip.kind == AfmTip::Kind::kParaboloid ? 2.0 * std::sqrt(problem.tip.radius * max_delta)
-                                                                  : 8.0 * max_delta * std::tan(problem.tip.angle) / kPi;
-  return std::pow(10.0, std::max(0.0, std::ceil(std::log10(a / t) - 1e-9)));
-}
 
 // The half-space: E* and b in closed form at each z_c (Profile), z_c searched; r and the
 // Jacobian columns of the free parameters (in result order) filled.
