@@ -80,6 +80,10 @@ class LogLogTable final : public PenetrationForce {
   LogLogTable(const LogLogTable&) = delete;
   LogLogTable& operator=(const LogLogTable&) = delete;
   double max_penetration() const { return std::exp(log_delta_.back()); }
+  // Below this the spline is clear of its natural end condition (the coating's sweep limited
+  // to a decade's end: its a/t up to a third of it); past it the whole range is needed.
+  double safe_penetration() const { return safe_penetration_; }
+  void set_safe_penetration(double delta) { safe_penetration_ = delta; }
 
   // F alone (the profile's sums need no slope).
   double value(double delta) const override {
@@ -110,6 +114,7 @@ class LogLogTable final : public PenetrationForce {
  private:
   std::string what_;
   bool extrapolate_ = false;
+  double safe_penetration_ = std::numeric_limits<double>::infinity();
   std::vector<double> log_delta_, log_force_;
   double first_slope_ = 1.5, last_slope_ = 1.5;
   gsl_interp* interp_ = nullptr;
@@ -270,7 +275,13 @@ class CoatingForces {
         force.push_back(kPi * a * a * reduced * cot / 4.0 * v.pi_c);
       }
     }
-    return std::make_unique<LogLogTable>(delta, force, "coating, a/t up to " + short_text(kCoatingAOverT[1]), true, true);
+    auto table = std::make_unique<LogLogTable>(delta, force, "coating, a/t up to " + short_text(kCoatingAOverT[1]), true, true);
+    if (limited()) {  // the natural spline's end effect decays ~0.27x a node: 7 nodes in (A/3, A]
+      std::size_t k = 0;
+      while (k + 1 < sweep.size() && sweep[k + 1].a_over_t <= sweep.back().a_over_t / 3.0) ++k;
+      table->set_safe_penetration(delta[k]);
+    }
+    return table;
   }
 
  private:
@@ -675,7 +686,7 @@ std::vector<double> internal::afm_hertz_model_force(const AfmFitProblem& problem
     const double max_delta = *std::max_element(delta.begin(), delta.end());
     if (max_delta > 0.0) forces.limit_reach(coating_reach(problem, max_delta));
     auto table = forces.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
-    if (max_delta > table->max_penetration() && forces.limited()) {
+    if (max_delta > table->safe_penetration()) {
       CoatingForces whole(problem);
       table = whole.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
     }
@@ -1035,8 +1046,8 @@ AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& 
       // minimum being quadratic, far below what the E1/t search resolves)
       ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid, final ? 1e-12 : 1e-9);
       evaluations += found.evaluations;
+      if (final && found.contact_point - z_lo > table->safe_penetration()) throw WiderReach{};
       if (final && found.contact_point - z_lo > table->max_penetration()) {
-        if (forces.limited()) throw WiderReach{};
         throw NumericalError("afm fit: the indentations reach " + short_text(found.contact_point - z_lo) +
                              " m, past the " + short_text(table->max_penetration()) + " m at which the contact radius reaches " +
                              short_text(kCoatingAOverT[1]) + " film thicknesses (t = " + short_text(t) +
