@@ -11,6 +11,9 @@
 #    curves) fitted with `--model jkr` (E1 from 250 kPa, w, contact point, baseline, tilt free),
 #    --jobs 2: wall and CPU time, and the recovered E1 and w against the truth (mean and RMS of
 #    the relative error, mean |z-score|) over the fitted curves, and the flags against the truth's.
+#  - the approaches of the same map (the adhesionless coated model, make_afm_map --jkr) fitted
+#    with the coated Hertz model (E1 from 250 kPa free on 1 MPa, t = 4 um; issue 37's 32 x 32
+#    coated map, target 30 s on 2 cores): wall and CPU time, E1 against the truth.
 #  - with ZIP_OPEN_RSS (bench/zip_open_rss.cpp): the heap libzip alone keeps for each opened
 #    map (per entry of its central directory) and the peak RSS of a process that only opens it:
 #    the memory budget of THEORY.md section 15, "Memory of a run".
@@ -73,6 +76,19 @@ awk -v wj="$wj" -v uj="$uj" -v sj="$sj" 'BEGIN { FS = "\t" }
     printf "afm fit 32x32 JKR coating map, E1 mean |z-score|\t%.3g\t\t\t1\tratio\n", aze / fitted
     printf "afm fit 32x32 JKR coating map, w mean |z-score|\t%.3g\t\t\t1\tratio\n", azw / fitted
   }' "$work/map32jkr.truth" "$work/jkr.tsv"
+read -r wh uh sh mh < <(run hertzcoat afm fit "$work/map32jkr.jpk-force-map" --segment approach --radius 10um \
+  --film 250kPa,0.5 --substrate 1MPa,0.3 --thickness 4um --jobs 2)
+awk -v wh="$wh" -v uh="$uh" -v sh="$sh" 'BEGIN { FS = "\t" }
+  FNR == NR { if ($0 !~ /^#/) e[$1] = $4; next }
+  /^# columns:/ { sub(/^# columns: /, ""); for (k = 1; k <= NF; ++k) col[$k] = k; next }
+  /^#/ { next }
+  $col["flag"] == 0 { de = $col["E1"] / e[$col["curve"]] - 1; ++fitted; see += de * de }
+  END {
+    printf "afm fit 32x32 coated map, Hertz approach, --jobs 2 (wall)\t%.4g\t\t\t1\tcli\n", wh * 1000
+    printf "afm fit 32x32 coated map, Hertz approach, --jobs 2 (user+sys CPU)\t%.4g\t\t\t1\tcli\n", (uh + sh) * 1000
+    printf "afm fit 32x32 coated map, Hertz approach, fitted curves\t%d\t\t\t1\tratio\n", fitted
+    printf "afm fit 32x32 coated map, Hertz approach, E1 RMS relative error\t%.3g\t\t\t1\tratio\n", sqrt(see / fitted)
+  }' "$work/map32jkr.truth" "$work/hertzcoat.tsv"
 
 "$make_map" "$work/map64.jpk-force-map" 64 64 --points 100 --seed 4 --clean
 "$make_map" "$work/map256.jpk-force-map" 256 256 --points 100 --seed 6 --clean

@@ -4,6 +4,7 @@
 // term of Newton's form), which is the cross-node estimate.
 #include "coatcontact/coated_table.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -37,14 +38,40 @@ std::vector<double> lagrange(double x, const std::vector<long>& nodes) {
 
 }  // namespace
 
+// A node is built a decade of a/t at a time, when a lookup first needs that decade: a curve
+// rarely reaches the top decades, whose solves cost most (at a/t ~ 30 ~50x one at a/t ~ 1).
+// Each decade is a verified ReducedTable of its own over fixed ends, so a value does not depend
+// on which decades exist.
 struct CoatedTable::Node {
-  explicit Node(const Stack& stack, const CoatedTableOptions& o)
-      : solver(stack), source(solver, o.solver_tolerance), table(source, sweep_table_options(o.a_over_t_tolerance)) {
-    table.prepare_range(o.a_over_t_min, o.a_over_t_max);
+  explicit Node(const Stack& stack, const CoatedTableOptions& o) : options(o), solver(stack), source(solver, o.solver_tolerance) {
+    first = static_cast<int>(std::floor(std::log10(o.a_over_t_min) + 1e-9));
+    last = std::max(first, static_cast<int>(std::ceil(std::log10(o.a_over_t_max) - 1e-9)) - 1);
   }
+  int decade_of(double a_over_t) const {
+    // (a decade's upper end belongs to it: a sweep that stops at 10^k needs no decade above)
+    int d = static_cast<int>(std::ceil(std::log10(a_over_t))) - 1;
+    if (a_over_t <= std::pow(10.0, d)) --d;  // log10's rounding at a decade's end
+    if (a_over_t > std::pow(10.0, d + 1)) ++d;
+    return std::clamp(d, first, last);
+  }
+  // The decade's table, built if needed (the caller holds the CoatedTable's mutex).
+  const ReducedTable& decade(int d) {
+    auto it = decades.find(d);
+    if (it != decades.end()) return *it->second;
+    auto table = std::make_unique<ReducedTable>(source, sweep_table_options(options.a_over_t_tolerance));
+    table->prepare_range(std::max(options.a_over_t_min, std::pow(10.0, d)), std::min(options.a_over_t_max, std::pow(10.0, d + 1)));
+    return *decades.emplace(d, std::move(table)).first->second;
+  }
+  std::size_t solves() const {
+    std::size_t n = 0;
+    for (const auto& [d, table] : decades) n += table->source_evaluations();
+    return n;
+  }
+  CoatedTableOptions options;
   ReducedSolver solver;
   SolverSource source;
-  ReducedTable table;
+  int first = 0, last = 0;
+  std::map<int, std::unique_ptr<ReducedTable>> decades;
 };
 
 CoatedTable::CoatedTable(const Stack& stack, std::size_t free_layer, CoatedTableOptions options)
@@ -71,7 +98,7 @@ Stack CoatedTable::stack_with(double modulus) const {
   return Stack(layers, stack_.substrate(), stack_.indenter());
 }
 
-const CoatedTable::Node& CoatedTable::node(long j) const {
+CoatedTable::Node& CoatedTable::node(long j) const {
   auto it = nodes_.find(j);
   if (it != nodes_.end()) return *it->second;
   const double modulus = scale_free_ ? stack_.layers()[free_layer_].material.youngs_modulus
@@ -88,7 +115,7 @@ std::size_t CoatedTable::nodes() const {
 std::size_t CoatedTable::source_solves() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::size_t n = 0;
-  for (const auto& [j, node] : nodes_) n += node->table.source_evaluations();
+  for (const auto& [j, node] : nodes_) n += node->solves();
   return n;
 }
 
@@ -114,21 +141,33 @@ std::vector<CoatedValues> CoatedTable::at(double modulus, const std::vector<doub
   }
   const double x = scale_free_ ? 0.0 : std::log10(modulus / reference_) * options_.nodes_per_decade;
   const std::vector<double> w3 = lagrange(x, cubic), w4 = quartic.empty() ? std::vector<double>{} : lagrange(x, quartic);
-  std::vector<const Node*> used;
+  // The decade tables each lookup reads, built under the lock (a/t in the range first).
+  const std::vector<long>& nodes_used = quartic.empty() ? cubic : quartic;
+  std::vector<std::vector<const ReducedTable*>> tables(nodes_used.size(), std::vector<const ReducedTable*>(a_over_t.size()));
+  for (double v : a_over_t) {
+    if (!(v >= options_.a_over_t_min * (1 - 1e-12) && v <= options_.a_over_t_max * (1 + 1e-12))) {
+      throw InputError("coated table: a/t = " + detail::short_text(v) + " outside its range [" +
+                       detail::short_text(options_.a_over_t_min) + ", " + detail::short_text(options_.a_over_t_max) + "]");
+    }
+  }
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    for (long j : quartic.empty() ? cubic : quartic) used.push_back(&node(j));
+    for (std::size_t k = 0; k < nodes_used.size(); ++k) {
+      Node& n = node(nodes_used[k]);
+      for (std::size_t i = 0; i < a_over_t.size(); ++i) tables[k][i] = &n.decade(n.decade_of(a_over_t[i]));
+    }
   }
   std::vector<CoatedValues> out(a_over_t.size());
   for (std::size_t i = 0; i < a_over_t.size(); ++i) {
     std::array<double, kVariables> v3{}, d3{}, v4{};
     double inner = 0.0, node_error = 0.0;
-    for (std::size_t k = 0; k < used.size(); ++k) {
-      const ReducedPoint p = used[k]->table.at(a_over_t[i]);
+    for (std::size_t k = 0; k < nodes_used.size(); ++k) {
+      const ReducedTable& table = *tables[k][i];
+      const ReducedPoint p = table.at(a_over_t[i]);
       const auto lv = logs_of(p), dv = dlogs_of(p);
       if (k < cubic.size()) {
-        const double total = used[k]->table.error_estimate_at(a_over_t[i]);
-        const double interpolation = used[k]->table.interpolation_error_at(a_over_t[i]);
+        const double total = table.error_estimate_at(a_over_t[i]);
+        const double interpolation = table.interpolation_error_at(a_over_t[i]);
         inner += std::abs(w3[k]) * (total + (options_.a_over_t_safety - 1.0) * interpolation);
         node_error += std::abs(w3[k]) * (total - interpolation);
         for (int j = 0; j < kVariables; ++j) v3[j] += w3[k] * lv[j], d3[j] += w3[k] * dv[j];

@@ -9,6 +9,7 @@
 #include <gsl/gsl_interp.h>
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_matrix.h>
+#include <gsl/gsl_multifit.h>
 
 #include <algorithm>
 #include <array>
@@ -79,6 +80,10 @@ class LogLogTable final : public PenetrationForce {
   LogLogTable(const LogLogTable&) = delete;
   LogLogTable& operator=(const LogLogTable&) = delete;
   double max_penetration() const { return std::exp(log_delta_.back()); }
+  // Below this the spline is clear of its natural end condition (the coating's sweep limited
+  // to a decade's end: its a/t up to a third of it); past it the whole range is needed.
+  double safe_penetration() const { return safe_penetration_; }
+  void set_safe_penetration(double delta) { safe_penetration_ = delta; }
 
   // F alone (the profile's sums need no slope).
   double value(double delta) const override {
@@ -109,6 +114,7 @@ class LogLogTable final : public PenetrationForce {
  private:
   std::string what_;
   bool extrapolate_ = false;
+  double safe_penetration_ = std::numeric_limits<double>::infinity();
   std::vector<double> log_delta_, log_force_;
   double first_slope_ = 1.5, last_slope_ = 1.5;
   gsl_interp* interp_ = nullptr;
@@ -233,6 +239,21 @@ class CoatingForces {
     }
   }
   long solver_calls() const { return table_ ? static_cast<long>(table_->source_solves()) : solver_calls_; }
+  // Tabled: the sweep stops at a/t = a_over_t_max (a decade's end: the table builds no decade
+  // above it); widen() restores the whole range. Returns whether it changed the sweep.
+  bool limit_reach(double a_over_t_max) {
+    if (!table_ || !(a_over_t_max < a_over_t_.back())) return false;
+    std::vector<double> kept;
+    for (double v : a_over_t_) {
+      if (v <= a_over_t_max * (1 + 1e-9)) kept.push_back(std::min(v, a_over_t_max));
+    }
+    if (kept.size() < 8) return false;
+    full_ = a_over_t_;
+    a_over_t_ = std::move(kept);
+    sweeps_.clear();
+    return true;
+  }
+  bool limited() const { return !full_.empty(); }
   // E1 only scales the force (a film on a rigid base, tabled): F(E1) = (E1*/E1_ref*) F(E1_ref).
   bool scale_free() const { return table_ && table_->scale_free(); }
 
@@ -254,7 +275,13 @@ class CoatingForces {
         force.push_back(kPi * a * a * reduced * cot / 4.0 * v.pi_c);
       }
     }
-    return std::make_unique<LogLogTable>(delta, force, "coating, a/t up to " + short_text(kCoatingAOverT[1]), true, true);
+    auto table = std::make_unique<LogLogTable>(delta, force, "coating, a/t up to " + short_text(kCoatingAOverT[1]), true, true);
+    if (limited()) {  // the natural spline's end effect decays ~0.27x a node: 7 nodes in (A/3, A]
+      std::size_t k = 0;
+      while (k + 1 < sweep.size() && sweep[k + 1].a_over_t <= sweep.back().a_over_t / 3.0) ++k;
+      table->set_safe_penetration(delta[k]);
+    }
+    return table;
   }
 
  private:
@@ -281,11 +308,21 @@ class CoatingForces {
 
   const AfmFitProblem& problem_;
   const AfmCoating& coating_;
-  std::vector<double> a_over_t_;
+  std::vector<double> a_over_t_, full_;  // full_: the whole range while limited
   std::map<double, std::vector<ReducedVariables>> sweeps_;
   long solver_calls_ = 0;
   std::shared_ptr<const CoatedTable> table_;  // null: the direct path
 };
+
+// The a/t a coated fit's indentations up to max_delta can reach, rounded up to a decade's end:
+// a = sqrt(R delta / Delta_s) (sphere), 2 delta tan(beta) / (pi Delta_c) (cone), Delta >= 1/4
+// (1/2 for a thin film on a rigid base; 1 on a half-space; above 1 for a stiff film).
+double coating_reach(const AfmFitProblem& problem, double max_delta) {
+  const double t = problem.coating->thickness;
+  const double a = problem.tip.kind == AfmTip::Kind::kParaboloid ? 2.0 * std::sqrt(problem.tip.radius * max_delta)
+                                                                  : 8.0 * max_delta * std::tan(problem.tip.angle) / kPi;
+  return std::pow(10.0, std::max(0.0, std::ceil(std::log10(a / t) - 1e-9)));
+}
 
 // At one z_c: the closed-form (E*, b) (E* >= 0) and the residual sum of squares. Forces are
 // centred on their mean (b is then relative to it) to keep the sums well conditioned.
@@ -642,8 +679,15 @@ std::vector<double> internal::afm_hertz_model_force(const AfmFitProblem& problem
   // The baseline's tilt (0 unless a fit estimated it).
   for (std::size_t i = 0; i < f.size(); ++i) f[i] += problem.tilt * (tip_position[i] - problem.contact_point);
   if (problem.coating) {
+    // Only the decades of a/t these indentations reach (the whole range if they pass them).
     CoatingForces forces(problem);
-    const auto table = forces.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
+    const double max_delta = *std::max_element(delta.begin(), delta.end());
+    if (max_delta > 0.0) forces.limit_reach(coating_reach(problem, max_delta));
+    auto table = forces.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
+    if (max_delta > table->safe_penetration()) {
+      CoatingForces whole(problem);
+      table = whole.force(problem.coating->film.youngs_modulus, problem.coating->thickness);
+    }
     for (std::size_t i = 0; i < f.size(); ++i) {
       if (delta[i] > 0.0) f[i] += table->at(delta[i]).first;
     }
@@ -782,6 +826,114 @@ void finish_fit(AfmFitResult& r, const std::vector<double>& z, const std::vector
   for (std::size_t a = 0; a < errors.size(); ++a) *error_slots[a] = errors[a];
 }
 
+// E1 of the coated Hertz fit on an elastic base, t fixed (THEORY.md section 15, "Tabled coated
+// force laws", "The search"): the fixed point of E1 <- (closed-form scale) E1, each step one
+// contact-point search with the shape at the current E1 (the half-space's search), secant-
+// accelerated; then Gauss-Newton on (ln E1, z_c, b, m) with the shape's ln E1-derivative by
+// central differences, to the least squares itself (the fixed point is not it). nullopt: no
+// convergence (the caller runs the nested search).
+struct ProfiledModulus {
+  double modulus = 0.0, contact_point = 0.0, contact_point_error = 0.0;
+};
+std::optional<ProfiledModulus> profiled_film_modulus(CoatingForces& forces, const std::vector<double>& z,
+                                            const std::vector<double>& force, const AfmFitProblem& problem, double z_lo,
+                                            double c_hi, double t, int& evaluations) {
+  const double ln10 = std::log(10.0), start = std::log(problem.coating->film.youngs_modulus);
+  const std::size_t grid = std::max<std::size_t>(problem.profile_points / 4, 16);
+  double u = start, u_prev = 0.0, psi_prev = 0.0, psi = 0.0;
+  ContactSearch found;
+  for (int k = 0;; ++k) {
+    if (k == 30) return std::nullopt;
+    const auto table = forces.force(std::exp(u), t);
+    Profile profile(z, force, *table, true, 1.0, problem.free.baseline, problem.baseline);
+    if (problem.free.tilt) profile.free_tilt();
+    // After the first step z_c moves little: a window of a tenth of the range around the last
+    // one (the final search on the full grid checks it is the global minimum).
+    const double window = 0.05 * (c_hi - z_lo);
+    found = k == 0 ? search_contact(profile, problem, z_lo, c_hi, grid, 1e-9)
+                   : search_contact(profile, problem, std::max(z_lo, found.contact_point - window),
+                                    std::min(c_hi, found.contact_point + window), 16, 1e-9);
+    evaluations += found.evaluations;
+    if (!(found.linear.reduced_modulus > 0.0)) return std::nullopt;
+    psi = std::log(found.linear.reduced_modulus);  // the scale s: F = s F(E1), E1 implied s E1
+    if (std::abs(psi) < 1e-3) break;
+    double next = u + psi;  // contracts at the rate |d ln g / d ln r| < 1
+    const double slope = k > 0 ? (psi - psi_prev) / (u - u_prev) : 0.0;
+    if (slope < -1e-3 && std::isfinite(slope)) next = u - psi / slope;  // secant on psi(ln E1) = 0
+    next = std::clamp(next, u - ln10, u + ln10);
+    if (std::abs(next - start) > 3.0 * ln10) {
+      throw NumericalError("afm fit: E1 runs out of its search range (best at " + short_text(std::exp(next)) +
+                           "); the data do not determine it, or its given value is far off");
+    }
+    u_prev = u, psi_prev = psi, u = next;
+  }
+  // Gauss-Newton from the fixed point's neighbour (u + psi, its z_c, b, m).
+  u += psi;
+  const std::size_t n = z.size();
+  double zc = found.contact_point, b = found.linear.baseline, m = found.linear.tilt;
+  std::vector<std::size_t> slot;  // parameter of each column: 0 ln E1, 1 z_c, 2 b, 3 m
+  slot.push_back(0);
+  if (problem.free.contact_point) slot.push_back(1);
+  if (problem.free.baseline) slot.push_back(2);
+  if (problem.free.tilt) slot.push_back(3);
+  const std::size_t p = slot.size();
+  if (n <= p) return std::nullopt;
+  coatcontact::detail::GslHandlerOff handler_off;
+  std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> x(gsl_matrix_alloc(n, p), gsl_matrix_free);
+  std::unique_ptr<gsl_matrix, void (*)(gsl_matrix*)> cov(gsl_matrix_alloc(p, p), gsl_matrix_free);
+  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> y(gsl_vector_alloc(n), gsl_vector_free), c(gsl_vector_alloc(p), gsl_vector_free);
+  std::unique_ptr<gsl_multifit_linear_workspace, void (*)(gsl_multifit_linear_workspace*)> work(
+      gsl_multifit_linear_alloc(n, p), gsl_multifit_linear_free);
+  const auto rss_at = [&](double uu, double zz, double bb, double mm) {
+    const auto table = forces.force(std::exp(uu), t);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double delta = zz - z[i];
+      const double r = force[i] - bb - mm * (z[i] - zz) - (delta > 0.0 ? table->value(delta) : 0.0);
+      sum += r * r;
+    }
+    return sum;
+  };
+  constexpr double h = 1e-4;
+  double rss = rss_at(u, zc, b, m);
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const double e = std::exp(u);
+    const auto mid = forces.force(e, t), lo = forces.force(e * (1 - h), t), hi = forces.force(e * (1 + h), t);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double delta = zc - z[i];
+      double g = 0.0, dg = 0.0, du = 0.0;
+      if (delta > 0.0) {
+        std::tie(g, dg) = mid->at(delta);
+        du = (hi->value(delta) - lo->value(delta)) / (2 * h);
+      }
+      const double columns[4] = {du, dg - m, 1.0, z[i] - zc};
+      for (std::size_t a = 0; a < p; ++a) gsl_matrix_set(x.get(), i, a, columns[slot[a]]);
+      gsl_vector_set(y.get(), i, force[i] - b - m * (z[i] - zc) - g);
+    }
+    double chi2 = 0.0;
+    if (gsl_multifit_linear(x.get(), y.get(), c.get(), cov.get(), &chi2, work.get()) != 0) return std::nullopt;
+    double step[4] = {0.0, 0.0, 0.0, 0.0}, se[4] = {0.0, 0.0, 0.0, 0.0};
+    for (std::size_t a = 0; a < p; ++a) {
+      step[slot[a]] = gsl_vector_get(c.get(), a);
+      se[slot[a]] = std::sqrt(gsl_matrix_get(cov.get(), a, a));  // GSL's cov carries chi2/(n - p)
+    }
+    // Halve a step that raises the sum (the kink of z_c where points enter contact).
+    double factor = 1.0, trial = rss_at(u + step[0], zc + step[1], b + step[2], m + step[3]);
+    for (int k = 0; k < 8 && !(trial <= rss * (1 + 1e-12)); ++k) {
+      factor *= 0.5;
+      trial = rss_at(u + factor * step[0], zc + factor * step[1], b + factor * step[2], m + factor * step[3]);
+    }
+    if (!(trial <= rss * (1 + 1e-12))) return std::nullopt;
+    u += factor * step[0], zc += factor * step[1], b += factor * step[2], m += factor * step[3];
+    rss = trial;
+    // Converged: the step a thousandth of the standard errors of ln E1 and z_c.
+    if (std::abs(step[0]) <= 1e-3 * se[0] && std::abs(step[1]) <= 1e-3 * se[1] + 1e-15) {
+      return ProfiledModulus{std::exp(u), zc, se[1]};
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem) {
@@ -797,6 +949,61 @@ AfmFitResult afm_fit(const std::vector<double>& z, const std::vector<double>& fo
 
 AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force,
                                      const AfmFitProblem& problem, int free_count) {
+  return afm_fit_hertz(z, force, problem, free_count, CoatedE1Search::kProfiled);
+}
+
+namespace {
+
+// A coated fit whose indentations pass the reach its sweep was limited to: fitted again on the
+// whole a/t range.
+struct WiderReach {};
+
+// The half-space: E* and b in closed form at each z_c (Profile), z_c searched; r and the
+// Jacobian columns of the free parameters (in result order) filled.
+void fit_halfspace(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                   double z_lo, double c_hi, double max_delta, AfmFitResult& r, std::vector<std::vector<double>>& columns,
+                   std::vector<double*>& error_slots) {
+  const std::size_t n = z.size();
+  const TipForce tip(problem.tip, max_delta);
+  const double nu_factor = 1.0 - problem.poisson * problem.poisson;
+  Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
+                  problem.baseline);
+  if (problem.free.tilt) profile.free_tilt();
+  if (problem.weight_cp > 0.0) profile.weight_cp(problem.weight_cp);
+  const ContactSearch found = search_contact(profile, problem, z_lo, c_hi, problem.profile_points);
+  if (!(found.linear.reduced_modulus > 0.0)) {
+    throw NumericalError("afm fit: the data show no contact in the fitted range (the best modulus is 0); "
+                         "widen the range or check the segment");
+  }
+  r.reduced_modulus = found.linear.reduced_modulus;
+  r.modulus = r.reduced_modulus * nu_factor;
+  r.contact_point = found.contact_point;
+  r.baseline = found.linear.baseline;
+  r.tilt = found.linear.tilt;
+  r.profile_evaluations = found.evaluations;
+  std::vector<double> col_e(n, 0.0), col_c(n, 0.0), col_b(n, 1.0), col_m(n, 0.0);
+  r.model_force.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double delta = r.contact_point - z[i];
+    double g = 0.0, slope = 0.0;
+    if (delta > 0.0) std::tie(g, slope) = tip.at(delta);
+    r.model_force[i] = r.baseline + r.reduced_modulus * g;
+    col_e[i] = g / nu_factor;
+    col_c[i] = r.reduced_modulus * slope;
+    if (problem.free.tilt) {
+      r.model_force[i] += r.tilt * (z[i] - r.contact_point);
+      col_c[i] -= r.tilt;
+      col_m[i] = z[i] - r.contact_point;
+    }
+  }
+  if (problem.free.modulus) columns.push_back(col_e), error_slots.push_back(&r.modulus_error);
+  if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
+  if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
+  if (problem.free.tilt) columns.push_back(col_m), error_slots.push_back(&r.tilt_error);
+}
+
+AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                       int free_count, internal::CoatedE1Search search, bool whole_reach) {
   const auto start = std::chrono::steady_clock::now();
   // The Hertz model's tilt is free or 0 (afm_fit_curve's baseline model subtracts the preprocessing's).
   const std::size_t n = z.size();
@@ -812,47 +1019,14 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
   std::vector<std::vector<double>> columns;  // Jacobian of the free parameters, in result order
   std::vector<double*> error_slots;
   if (!problem.coating) {
-    const TipForce tip(problem.tip, max_delta);
-    const double nu_factor = 1.0 - problem.poisson * problem.poisson;
-    Profile profile(z, force, tip, problem.free.modulus, problem.modulus / nu_factor, problem.free.baseline,
-                    problem.baseline);
-    if (problem.free.tilt) profile.free_tilt();
-    if (problem.weight_cp > 0.0) profile.weight_cp(problem.weight_cp);
-    const ContactSearch found = search_contact(profile, problem, z_lo, c_hi, problem.profile_points);
-    if (!(found.linear.reduced_modulus > 0.0)) {
-      throw NumericalError("afm fit: the data show no contact in the fitted range (the best modulus is 0); "
-                           "widen the range or check the segment");
-    }
-    r.reduced_modulus = found.linear.reduced_modulus;
-    r.modulus = r.reduced_modulus * nu_factor;
-    r.contact_point = found.contact_point;
-    r.baseline = found.linear.baseline;
-    r.tilt = found.linear.tilt;
-    r.profile_evaluations = found.evaluations;
-    std::vector<double> col_e(n, 0.0), col_c(n, 0.0), col_b(n, 1.0), col_m(n, 0.0);
-    r.model_force.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double delta = r.contact_point - z[i];
-      double g = 0.0, slope = 0.0;
-      if (delta > 0.0) std::tie(g, slope) = tip.at(delta);
-      r.model_force[i] = r.baseline + r.reduced_modulus * g;
-      col_e[i] = g / nu_factor;
-      col_c[i] = r.reduced_modulus * slope;
-      if (problem.free.tilt) {
-        r.model_force[i] += r.tilt * (z[i] - r.contact_point);
-        col_c[i] -= r.tilt;
-        col_m[i] = z[i] - r.contact_point;
-      }
-    }
-    if (problem.free.modulus) columns.push_back(col_e), error_slots.push_back(&r.modulus_error);
-    if (problem.free.contact_point) columns.push_back(col_c), error_slots.push_back(&r.contact_point_error);
-    if (problem.free.baseline) columns.push_back(col_b), error_slots.push_back(&r.baseline_error);
-    if (problem.free.tilt) columns.push_back(col_m), error_slots.push_back(&r.tilt_error);
+    fit_halfspace(z, force, problem, z_lo, c_hi, max_delta, r, columns, error_slots);
   } else {
     // A coating: E1 and/or t by a log search (t inside E1 when both are free: a new E1 needs a
     // sweep of the solver, a new t only a rescaled table), z_c and b profiled as above.
     CoatingForces forces(problem);
     const AfmCoating& coating = *problem.coating;
+    // (a free t moves a/t: the whole range)
+    if (!whole_reach && !problem.free.thickness) forces.limit_reach(coating_reach(problem, max_delta));
     int evaluations = 0;
     // A trial whose indentations leave the table (a/t too large: t small) costs +infinity in
     // the search; at the optimum it is an error.
@@ -871,6 +1045,7 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
       // minimum being quadratic, far below what the E1/t search resolves)
       ContactSearch found = search_contact(profile, problem, z_lo, c_hi, grid, final ? 1e-12 : 1e-9);
       evaluations += found.evaluations;
+      if (final && found.contact_point - z_lo > table->safe_penetration()) throw WiderReach{};
       if (final && found.contact_point - z_lo > table->max_penetration()) {
         throw NumericalError("afm fit: the indentations reach " + short_text(found.contact_point - z_lo) +
                              " m, past the " + short_text(table->max_penetration()) + " m at which the contact radius reaches " +
@@ -884,11 +1059,23 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
       return minimize_log([&](double t) { return fit_at(e1, t, false).linear.rss; }, coating.thickness, "t", strict);
     };
     double e1 = coating.film.youngs_modulus;
+    std::optional<ProfiledModulus> profiled;
     if (problem.free.modulus && !linear_e1) {
-      e1 = minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
+      if (search == internal::CoatedE1Search::kProfiled && !problem.free.thickness && !coating.direct) {
+        profiled = profiled_film_modulus(forces, z, force, problem, z_lo, c_hi, coating.thickness, evaluations);
+      }
+      e1 = profiled ? profiled->modulus
+                    : minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
     }
     const double t = best_t(e1, true);
-    const ContactSearch found = fit_at(e1, t, true);
+    ContactSearch found = fit_at(e1, t, true);
+    // The profiled search is local in z_c: if the full grid finds another minimum at its E1,
+    // the nested search (global in both) decides.
+    if (profiled && problem.free.contact_point &&
+        !(std::abs(found.contact_point - profiled->contact_point) <= 1e-2 * profiled->contact_point_error)) {
+      e1 = minimize_log([&](double e) { return fit_at(e, t, false).linear.rss; }, coating.film.youngs_modulus, "E1");
+      found = fit_at(e1, t, true);
+    }
     if (linear_e1) {
       if (!(found.linear.reduced_modulus > 0.0)) {
         throw NumericalError("afm fit: the data show no contact in the fitted range (the best E1 is 0); "
@@ -948,6 +1135,17 @@ AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::ve
   finish_fit(r, z, force, problem, free_count, columns, error_slots);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
+}
+
+}  // namespace
+
+AfmFitResult internal::afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force,
+                                     const AfmFitProblem& problem, int free_count, CoatedE1Search search) {
+  try {
+    return fit_hertz(z, force, problem, free_count, search, false);
+  } catch (const WiderReach&) {
+    return fit_hertz(z, force, problem, free_count, search, true);
+  }
 }
 
 std::vector<std::size_t> afm_select(const std::vector<double>& z, const std::vector<double>& force, const AfmRange& range,

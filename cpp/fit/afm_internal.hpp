@@ -23,6 +23,14 @@ AfmParameterInfo afm_work_parameter();
 // The Hertz/Sneddon fit (afm_curve_model.cpp) and its model force at z.
 AfmFitResult afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                            int free_count);
+// The coated Hertz fit's search for a free E1 on an elastic base (THEORY.md section 15, "Tabled
+// coated force laws", "The search"): kProfiled (afm_fit_hertz's) finds the fixed point of the
+// closed-form scale and polishes it by Gauss-Newton at the contact point; kNested minimizes over
+// ln E1 with a contact-point search per trial (the direct path's search; kept to check the
+// first against).
+enum class CoatedE1Search { kProfiled, kNested };
+AfmFitResult afm_fit_hertz(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                           int free_count, CoatedE1Search search);
 std::vector<double> afm_hertz_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
 
 // s^2 (J^T J)^-1 on the column-scaled normal matrix: the standard errors of the columns'

@@ -3,8 +3,9 @@
 // of log10(E_L/E_ref) (E_ref the base's modulus, 1 Pa on a rigid base), Lagrange in ln X
 // across the nearest nodes. A fit with the layer's modulus free reads every trial from it.
 //
-// Thread safety: nodes are built whole (prepare_range) under the table's mutex before any
-// reader sees them; a built node is only read, so one CoatedTable serves every thread.
+// Thread safety: a node's decades of a/t are built (prepare_range) under the table's mutex
+// before any reader sees them; a built decade is only read, so one CoatedTable serves every
+// thread. A decade is built when a lookup first needs it.
 #pragma once
 #include <cstddef>
 #include <map>
@@ -68,7 +69,7 @@ class CoatedTable {
 
  private:
   struct Node;
-  const Node& node(long j) const;  // caller holds mutex_
+  Node& node(long j) const;  // caller holds mutex_
   Stack stack_with(double modulus) const;
 
   Stack stack_;
