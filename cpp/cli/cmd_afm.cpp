@@ -916,15 +916,7 @@ int write_depth_profile(const afm::ForceCurve& curve, const fit::AfmCurveRequest
              "; eunit='" + eunit + "Pa'; xhi=" + gp_number(z_high * zs) + "; yhi=" + gp_number(e_high * es);
     }, "--plot", true);
   }
-  Output output(output_path);
-  output.stream() << table.str();
-  std::unique_ptr<Output> plot_output;
-  if (plot_path) {
-    plot_output = std::make_unique<Output>(*plot_path, "--plot");
-    plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-    plot_output->commit();
-  }
-  output.commit();
+  write_table_and_picture(output_path, table.str(), plot_path, picture);
   return kExitSuccess;
 }
 
@@ -1038,15 +1030,7 @@ int run_fit_curve(const Args& args) {
       picture = render_afm_plot(table.str(), fit_plot_settings(term, path, index, segment_name, modulus_name, problem, r,
                                                                z_segment, f_segment, pulloff));
     }
-    Output output(output_path);
-    output.stream() << table.str();
-    std::unique_ptr<Output> plot_output;
-    if (plot_path) {
-      plot_output = std::make_unique<Output>(*plot_path, "--plot");
-      plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
-      plot_output->commit();
-    }
-    output.commit();
+    write_table_and_picture(output_path, table.str(), plot_path, picture);
     return kExitSuccess;
   });
 }

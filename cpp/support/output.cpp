@@ -618,6 +618,19 @@ std::ostream& Output::stream() {
   return *impl_->file_stream;
 }
 
+void write_table_and_picture(const std::string& output_path, const std::string& table,
+                             const std::optional<std::string>& plot_path, const std::string& picture) {
+  Output output(output_path);
+  output.stream() << table;
+  std::unique_ptr<Output> plot_output;
+  if (plot_path) {
+    plot_output = std::make_unique<Output>(*plot_path, "--plot");
+    plot_output->stream().write(picture.data(), static_cast<std::streamsize>(picture.size()));
+    plot_output->commit();
+  }
+  output.commit();
+}
+
 void Output::commit() {
   if (impl_->committed || impl_->complete) return;
   if (g_output_set_aborted) throw InputError(impl_->option + ": not written (another output of this command failed)");

@@ -197,6 +197,11 @@ class Output {
   std::unique_ptr<Impl> impl_;
 };
 
+// The table to `output_path` ("" or "-": stdout) and, when `plot_path` is given, the rendered
+// picture to it (option "--plot"): all or none, as every Output of a command.
+void write_table_and_picture(const std::string& output_path, const std::string& table,
+                             const std::optional<std::string>& plot_path, const std::string& picture);
+
 // An input file of this command (e.g. "data file"): no Output may write to it.
 void register_input(const std::string& path, const std::string& what);
 // A data table of the measure floor (data_file.hpp) read as an input of this command: the file
