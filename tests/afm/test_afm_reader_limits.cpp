@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "zip_entries.hpp"
 #include "coatcontact/afm_batch.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/errors.hpp"
@@ -30,49 +31,9 @@ namespace {
 
 std::string data_dir, make_map, work;
 
-struct Entry {
-  std::string name, data;
-};
-
-std::vector<Entry> entries_of(const std::string& path) {
-  int error = 0;
-  zip_t* archive = zip_open(path.c_str(), ZIP_RDONLY, &error);
-  std::vector<Entry> out;
-  if (archive == nullptr) return out;
-  for (zip_int64_t i = 0; i < zip_get_num_entries(archive, 0); ++i) {
-    zip_stat_t st;
-    zip_stat_index(archive, static_cast<zip_uint64_t>(i), 0, &st);
-    Entry e{st.name, std::string(st.size, '\0')};
-    zip_file_t* f = zip_fopen_index(archive, static_cast<zip_uint64_t>(i), 0);
-    if (f != nullptr) {
-      zip_fread(f, e.data.data(), st.size);
-      zip_fclose(f);
-    }
-    out.push_back(std::move(e));
-  }
-  zip_discard(archive);
-  return out;
-}
-
-void write_zip(const std::string& path, const std::vector<Entry>& entries) {
-  std::remove(path.c_str());
-  int error = 0;
-  zip_t* archive = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
-  for (const Entry& e : entries) {
-    // libzip frees a buffer it owns only when it is not empty: an empty entry (a folder) gets
-    // no buffer (LeakSanitizer found the 1-byte copies).
-    zip_source_t* source = nullptr;
-    if (e.data.empty()) {
-      source = zip_source_buffer(archive, nullptr, 0, 0);
-    } else {
-      char* copy = static_cast<char*>(std::malloc(e.data.size()));
-      std::copy(e.data.begin(), e.data.end(), copy);
-      source = zip_source_buffer(archive, copy, e.data.size(), 1);
-    }
-    zip_file_add(archive, e.name.c_str(), source, ZIP_FL_OVERWRITE);
-  }
-  zip_close(archive);
-}
+using Entry = coatcontact_test::ZipEntry;
+using coatcontact_test::write_zip;
+const auto& entries_of = coatcontact_test::zip_entries;
 
 // A copy of data/afm/`name` with `change` applied to its entries (return false to drop one).
 std::string variant(const std::string& name, const std::string& tag, const std::function<bool(Entry&)>& change) {

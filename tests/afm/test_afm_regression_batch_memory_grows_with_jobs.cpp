@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "zip_entries.hpp"
 #include "coatcontact/afm_batch.hpp"
 #include "coatcontact/afm_readers.hpp"
 
@@ -28,60 +29,24 @@ namespace {
 
 constexpr std::size_t kCurves = 12;
 
-struct Entry {
-  std::string name, data;
-};
-
-std::vector<Entry> entries_of(const std::string& path) {
-  int error = 0;
-  zip_t* archive = zip_open(path.c_str(), ZIP_RDONLY, &error);
-  std::vector<Entry> out;
-  if (archive == nullptr) return out;
-  for (zip_int64_t i = 0; i < zip_get_num_entries(archive, 0); ++i) {
-    zip_stat_t st;
-    zip_stat_index(archive, static_cast<zip_uint64_t>(i), 0, &st);
-    Entry e{st.name, std::string(st.size, '\0')};
-    zip_file_t* f = zip_fopen_index(archive, static_cast<zip_uint64_t>(i), 0);
-    if (f != nullptr) {
-      zip_fread(f, e.data.data(), st.size);
-      zip_fclose(f);
-    }
-    out.push_back(std::move(e));
-  }
-  zip_discard(archive);
-  return out;
-}
+using Entry = coatcontact_test::ZipEntry;
 
 // The real map's own entries, and index/N/... copied from index/(N % 2)/... for N < kCurves
 // (stored uncompressed: the test fits, it does not time compression).
 std::string make_map(const std::string& data_dir, const std::string& work) {
-  const std::vector<Entry> source = entries_of(data_dir + "/fmt-jpk-fd_map2x2_extracted.jpk-force-map");
-  const std::string path = work + "/real12.jpk-force-map";
-  std::remove(path.c_str());
-  int error = 0;
-  zip_t* archive = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
-  const auto add = [&](const std::string& name, const std::string& data) {
-    zip_source_t* s = nullptr;
-    if (data.empty()) {
-      s = zip_source_buffer(archive, nullptr, 0, 0);
-    } else {
-      char* copy = static_cast<char*>(std::malloc(data.size()));
-      std::copy(data.begin(), data.end(), copy);
-      s = zip_source_buffer(archive, copy, data.size(), 1);
-    }
-    const zip_int64_t i = zip_file_add(archive, name.c_str(), s, ZIP_FL_OVERWRITE);
-    zip_set_file_compression(archive, static_cast<zip_uint64_t>(i), ZIP_CM_STORE, 0);
-  };
+  const std::vector<Entry> source = coatcontact_test::zip_entries(data_dir + "/fmt-jpk-fd_map2x2_extracted.jpk-force-map");
+  std::vector<Entry> entries;
   for (const Entry& e : source) {
-    if (e.name.rfind("index/", 0) != 0) add(e.name, e.data);
+    if (e.name.rfind("index/", 0) != 0) entries.push_back(e);
   }
   for (std::size_t n = 0; n < kCurves; ++n) {
     const std::string from = "index/" + std::to_string(n % 2) + "/";
     for (const Entry& e : source) {
-      if (e.name.rfind(from, 0) == 0) add("index/" + std::to_string(n) + "/" + e.name.substr(from.size()), e.data);
+      if (e.name.rfind(from, 0) == 0) entries.push_back({"index/" + std::to_string(n) + "/" + e.name.substr(from.size()), e.data});
     }
   }
-  zip_close(archive);
+  const std::string path = work + "/real12.jpk-force-map";
+  coatcontact_test::write_zip(path, entries, true);
   return path;
 }
 
