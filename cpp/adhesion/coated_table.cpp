@@ -120,10 +120,15 @@ std::size_t CoatedTable::source_solves() const {
 }
 
 std::vector<CoatedValues> CoatedTable::at(double modulus, const std::vector<double>& a_over_t) const {
+  CoatedSweepCache cache;
+  return at(modulus, a_over_t, cache);
+}
+
+std::vector<CoatedValues> CoatedTable::at(double modulus, const std::vector<double>& a_over_t, CoatedSweepCache& cache) const {
   if (!(modulus > 0.0 && std::isfinite(modulus))) {
     throw InputError("coated table: the free modulus must be > 0 and finite (got " + detail::short_text(modulus) + ")");
   }
-  // The nodes of the cubic and of the quartic (the cubic's four and the next nearest).
+  // The nodes of the quintic (`stencil` nearest) and of the next polynomial (one more node).
   std::vector<long> cubic, quartic;
   if (scale_free_) {
     cubic = {0};
@@ -141,33 +146,32 @@ std::vector<CoatedValues> CoatedTable::at(double modulus, const std::vector<doub
   }
   const double x = scale_free_ ? 0.0 : std::log10(modulus / reference_) * options_.nodes_per_decade;
   const std::vector<double> w3 = lagrange(x, cubic), w4 = quartic.empty() ? std::vector<double>{} : lagrange(x, quartic);
-  // The decade tables each lookup reads, built under the lock (a/t in the range first).
   const std::vector<long>& nodes_used = quartic.empty() ? cubic : quartic;
-  std::vector<std::vector<const ReducedTable*>> tables(nodes_used.size(), std::vector<const ReducedTable*>(a_over_t.size()));
-  for (double v : a_over_t) {
-    if (!(v >= options_.a_over_t_min * (1 - 1e-12) && v <= options_.a_over_t_max * (1 + 1e-12))) {
-      throw InputError("coated table: a/t = " + detail::short_text(v) + " outside its range [" +
-                       detail::short_text(options_.a_over_t_min) + ", " + detail::short_text(options_.a_over_t_max) + "]");
+  if (cache.a_over_t_ != a_over_t) {
+    for (double v : a_over_t) {
+      if (!(v >= options_.a_over_t_min * (1 - 1e-12) && v <= options_.a_over_t_max * (1 + 1e-12))) {
+        throw InputError("coated table: a/t = " + detail::short_text(v) + " outside its range [" +
+                         detail::short_text(options_.a_over_t_min) + ", " + detail::short_text(options_.a_over_t_max) + "]");
+      }
     }
+    cache.nodes_.clear();
+    cache.a_over_t_ = a_over_t;
   }
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    for (std::size_t k = 0; k < nodes_used.size(); ++k) {
-      Node& n = node(nodes_used[k]);
-      for (std::size_t i = 0; i < a_over_t.size(); ++i) tables[k][i] = &n.decade(n.decade_of(a_over_t[i]));
-    }
+  std::vector<const CoatedSweepCache::NodeValues*> values(nodes_used.size());
+  for (std::size_t k = 0; k < nodes_used.size(); ++k) {
+    auto it = cache.nodes_.find(nodes_used[k]);
+    if (it == cache.nodes_.end()) it = cache.nodes_.emplace(nodes_used[k], node_values(nodes_used[k], a_over_t)).first;
+    values[k] = &it->second;
   }
   std::vector<CoatedValues> out(a_over_t.size());
   for (std::size_t i = 0; i < a_over_t.size(); ++i) {
     std::array<double, kVariables> v3{}, d3{}, v4{};
     double inner = 0.0, node_error = 0.0;
     for (std::size_t k = 0; k < nodes_used.size(); ++k) {
-      const ReducedTable& table = *tables[k][i];
-      const ReducedPoint p = table.at(a_over_t[i]);
-      const auto lv = logs_of(p), dv = dlogs_of(p);
+      const auto& lv = values[k]->logs[i];
+      const auto& dv = values[k]->dlogs[i];
       if (k < cubic.size()) {
-        const double total = table.error_estimate_at(a_over_t[i]);
-        const double interpolation = table.interpolation_error_at(a_over_t[i]);
+        const double total = values[k]->total[i], interpolation = values[k]->interpolation[i];
         inner += std::abs(w3[k]) * (total + (options_.a_over_t_safety - 1.0) * interpolation);
         node_error += std::abs(w3[k]) * (total - interpolation);
         for (int j = 0; j < kVariables; ++j) v3[j] += w3[k] * lv[j], d3[j] += w3[k] * dv[j];
@@ -188,6 +192,26 @@ std::vector<CoatedValues> CoatedTable::at(double modulus, const std::vector<doub
     p.dlog_delta_c = d3[3], p.dlog_e_eq = d3[4], p.dlog_gamma1 = d3[5];
   }
   return out;
+}
+
+// Node j's logs, log-derivatives and estimates at each a/t; its decades built under the lock.
+CoatedSweepCache::NodeValues CoatedTable::node_values(long j, const std::vector<double>& a_over_t) const {
+  std::vector<const ReducedTable*> tables(a_over_t.size());
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    Node& n = node(j);
+    for (std::size_t i = 0; i < a_over_t.size(); ++i) tables[i] = &n.decade(n.decade_of(a_over_t[i]));
+  }
+  CoatedSweepCache::NodeValues v;
+  v.logs.resize(a_over_t.size()), v.dlogs.resize(a_over_t.size());
+  v.total.resize(a_over_t.size()), v.interpolation.resize(a_over_t.size());
+  for (std::size_t i = 0; i < a_over_t.size(); ++i) {
+    const ReducedPoint p = tables[i]->at(a_over_t[i]);
+    v.logs[i] = logs_of(p), v.dlogs[i] = dlogs_of(p);
+    v.total[i] = tables[i]->error_estimate_at(a_over_t[i]);
+    v.interpolation[i] = tables[i]->interpolation_error_at(a_over_t[i]);
+  }
+  return v;
 }
 
 CoatedValues CoatedTable::at(double modulus, double a_over_t) const { return at(modulus, std::vector<double>{a_over_t}).front(); }

@@ -121,6 +121,88 @@ class LogLogTable final : public PenetrationForce {
   gsl_interp_accel* accel_ = nullptr;
 };
 
+// A coating's force law resampled for the per-point sums of a fit (THEORY.md section 15, "The
+// force law per point"): the cubic Hermite of F in s = sqrt(delta) (sphere) or s = delta (cone)
+// on a uniform grid over [0, s(max_delta)], values and slopes from the log-log table (GSL's
+// spline and its derivative). A point costs a sqrt, an index and three multiply-adds instead of
+// a log, a spline evaluation and an exp. Past the grid: the log-log table itself.
+class UniformForceTable final : public PenetrationForce {
+ public:
+  // Intervals start at kFirstIntervals and double while the estimated largest error exceeds
+  // kTolerance x F(max_delta) (at most kMaxIntervals; the estimate says what the grid is worth).
+  static constexpr std::size_t kFirstIntervals = 256, kMaxIntervals = 8192;
+  static constexpr double kTolerance = 1e-10;
+
+  UniformForceTable(std::unique_ptr<LogLogTable> table, bool sphere, double max_delta)
+      : table_(std::move(table)), sphere_(sphere) {
+    if (!(max_delta > 0.0)) return;  // no grid: every point from the log-log table
+    s_max_ = s_of(max_delta);
+    for (std::size_t intervals = kFirstIntervals;; intervals *= 2) {
+      build(intervals);
+      if (error_estimate_ <= kTolerance || intervals >= kMaxIntervals) break;
+    }
+  }
+  const LogLogTable& log_log() const { return *table_; }
+  double max_penetration() const { return table_->max_penetration(); }
+  double safe_penetration() const { return table_->safe_penetration(); }
+  // Estimated largest |H - F| over the grid relative to F(max_delta).
+  double error_estimate() const { return error_estimate_; }
+  std::size_t intervals() const { return intervals_; }
+
+  double value(double delta) const override {
+    const double x = s_of(delta) * inverse_h_;
+    if (!(x < static_cast<double>(intervals_))) return table_->value(delta);
+    const auto k = static_cast<std::size_t>(x);
+    const double t = x - static_cast<double>(k);
+    const double* c = &coefficients_[4 * k];
+    return c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+  }
+  std::pair<double, double> at(double delta) const override {
+    const double s = s_of(delta), x = s * inverse_h_;
+    if (!(x < static_cast<double>(intervals_))) return table_->at(delta);
+    const auto k = static_cast<std::size_t>(x);
+    const double t = x - static_cast<double>(k);
+    const double* c = &coefficients_[4 * k];
+    const double slope = (c[1] + t * (2.0 * c[2] + t * 3.0 * c[3])) * inverse_h_;  // dF/ds
+    return {c[0] + t * (c[1] + t * (c[2] + t * c[3])), sphere_ ? slope / (2.0 * s) : slope};
+  }
+
+ private:
+  double s_of(double delta) const { return sphere_ ? std::sqrt(delta) : delta; }
+  // F and dF/ds at s > 0 from the log-log table.
+  std::pair<double, double> node(double s) const {
+    const double delta = sphere_ ? s * s : s;
+    const auto [f, df] = table_->at(delta);
+    return {f, sphere_ ? df * 2.0 * s : df};
+  }
+  void build(std::size_t intervals) {
+    intervals_ = intervals;
+    const double h = s_max_ / static_cast<double>(intervals);
+    inverse_h_ = 1.0 / h;
+    coefficients_.assign(4 * intervals, 0.0);
+    double f0 = 0.0, m0 = 0.0;  // F and dF/ds vanish at s = 0 (F ~ s^3 sphere, s^2 cone)
+    for (std::size_t k = 0; k < intervals; ++k) {
+      const auto [f1, d1] = node(h * static_cast<double>(k + 1));
+      const double m1 = d1 * h;
+      double* c = &coefficients_[4 * k];
+      c[0] = f0, c[1] = m0, c[2] = 3.0 * (f1 - f0) - 2.0 * m0 - m1, c[3] = 2.0 * (f0 - f1) + m0 + m1;
+      f0 = f1, m0 = m1;
+    }
+    // H''' = 6 c3 / h^3 on an interval; F'''' ~ its jump / h, and |F - H| <= h^4 |F''''| / 384.
+    double largest = 0.0;
+    for (std::size_t k = 0; k + 1 < intervals; ++k) {
+      largest = std::max(largest, std::abs(coefficients_[4 * k + 7] - coefficients_[4 * k + 3]) / 32.0);
+    }
+    error_estimate_ = f0 > 0.0 ? largest / f0 : 0.0;
+  }
+
+  std::unique_ptr<LogLogTable> table_;
+  bool sphere_;
+  double s_max_ = 0.0, inverse_h_ = 0.0, error_estimate_ = 0.0;
+  std::size_t intervals_ = 0;
+  std::vector<double> coefficients_;  // per interval c0..c3 of H = c0 + c1 t + c2 t^2 + c3 t^3
+};
+
 // Sneddon's exact sphere (afm_fit.hpp): g = F/E* and dg/d delta = 2a at delta > 0. With
 // x = a/R: delta = a atanh(x), g = R^2 [(1 + x^2) atanh(x) - x]; below x = 0.1 the series
 // sum_k 4k/(4k^2 - 1) x^(2k+1) (the closed form loses (R/a)^2 of its digits there).
@@ -257,7 +339,10 @@ class CoatingForces {
   // E1 only scales the force (a film on a rigid base, tabled): F(E1) = (E1*/E1_ref*) F(E1_ref).
   bool scale_free() const { return table_ && table_->scale_free(); }
 
-  std::unique_ptr<LogLogTable> force(double film_modulus, double thickness) {
+  // The fits' tables are resampled on [0, max_delta] (UniformForceTable); 0: not resampled.
+  void resample_up_to(double max_delta) { resample_delta_ = max_delta; }
+
+  std::unique_ptr<UniformForceTable> force(double film_modulus, double thickness) {
     const std::vector<ReducedVariables>& sweep = sweep_of(film_modulus);
     // A stack: a/T and the top layer's E* (AfmCoating; one film: t and E1*).
     const double reduced = coating_.reference_modulus(film_modulus);
@@ -281,7 +366,7 @@ class CoatingForces {
       while (k + 1 < sweep.size() && sweep[k + 1].a_over_t <= sweep.back().a_over_t / 3.0) ++k;
       table->set_safe_penetration(delta[k]);
     }
-    return table;
+    return std::make_unique<UniformForceTable>(std::move(table), sphere, resample_delta_);
   }
 
  private:
@@ -289,7 +374,7 @@ class CoatingForces {
     auto it = sweeps_.find(film_modulus);
     if (it != sweeps_.end()) return it->second;
     if (table_) {  // the tabled force law: lookups, no solve
-      const std::vector<CoatedValues> values = table_->at(film_modulus, a_over_t_);
+      const std::vector<CoatedValues> values = table_->at(film_modulus, a_over_t_, node_cache_);
       std::vector<ReducedVariables> sweep(values.size());
       for (std::size_t k = 0; k < values.size(); ++k) {
         static_cast<ReducedValues&>(sweep[k]) = values[k].point;
@@ -311,7 +396,9 @@ class CoatingForces {
   std::vector<double> a_over_t_, full_;  // full_: the whole range while limited
   std::map<double, std::vector<ReducedVariables>> sweeps_;
   long solver_calls_ = 0;
+  double resample_delta_ = 0.0;
   std::shared_ptr<const CoatedTable> table_;  // null: the direct path
+  CoatedSweepCache node_cache_;  // the nodes at a_over_t_: a trial E1 only sums across them
 };
 
 // The a/t a coated fit's indentations up to max_delta can reach, rounded up to a decade's end:
@@ -335,7 +422,8 @@ class Profile {
   // free_scale: E* (the factor of `force`) in closed form, else fixed_scale; likewise b.
   Profile(const std::vector<double>& z, const std::vector<double>& f, const PenetrationForce& force, bool free_scale,
           double fixed_scale, bool free_baseline, double fixed_baseline)
-      : force_(force), free_scale_(free_scale), free_baseline_(free_baseline), fixed_scale_(fixed_scale) {
+      : force_(force), uniform_(dynamic_cast<const UniformForceTable*>(&force)), free_scale_(free_scale),
+        free_baseline_(free_baseline), fixed_scale_(fixed_scale) {
     mean_ = std::accumulate(f.begin(), f.end(), 0.0) / static_cast<double>(f.size());
     fixed_baseline_ = fixed_baseline - mean_;
     // Sorted by tip position: the points in contact (z < z_c) are a prefix.
@@ -371,7 +459,7 @@ class Profile {
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
       if (delta <= 0.0) break;
-      const double g = force_.value(delta);
+      const double g = g_at(delta);
       sg += g;
       sgg += g * g;
       sgf += g * centred_[i];
@@ -402,7 +490,7 @@ class Profile {
       const double f = centred_[i], delta = contact_point - z_[i];
       sw += ww, sf += ww * f, sff += ww * f * f;
       if (delta <= 0.0) continue;
-      const double g = force_.value(delta);
+      const double g = g_at(delta);
       sg += ww * g, sgg += ww * g * g, sgf += ww * g * f;
     }
     double e = fixed_scale_, b = fixed_baseline_;
@@ -428,7 +516,7 @@ class Profile {
     for (std::size_t i = 0; i < z_.size(); ++i) {
       const double delta = contact_point - z_[i];
       if (delta <= 0.0) break;
-      const double g = force_.value(delta);
+      const double g = g_at(delta);
       sg += g, sgg += g * g, sgf += g * centred_[i], sxg += (z_[i] - origin_) * g;
     }
     const double n = static_cast<double>(z_.size()), c = contact_point - origin_;
@@ -483,7 +571,11 @@ class Profile {
     return {e, b + mean_, std::max(0.0, rss), m};
   }
 
+  // The per-point force: a coating's resampled table called directly (inlined, the class is final).
+  double g_at(double delta) const { return uniform_ ? uniform_->value(delta) : force_.value(delta); }
+
   const PenetrationForce& force_;
+  const UniformForceTable* uniform_;
   bool free_scale_, free_baseline_;
   double fixed_scale_, fixed_baseline_ = 0.0;
   std::vector<double> z_, centred_;
@@ -1027,6 +1119,7 @@ AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& 
     const AfmCoating& coating = *problem.coating;
     // (a free t moves a/t: the whole range)
     if (!whole_reach && !problem.free.thickness) forces.limit_reach(coating_reach(problem, max_delta));
+    forces.resample_up_to(max_delta);
     int evaluations = 0;
     // A trial whose indentations leave the table (a/t too large: t small) costs +infinity in
     // the search; at the optimum it is an error.
@@ -1093,7 +1186,7 @@ AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& 
     r.tilt = found.linear.tilt;
     r.profile_evaluations = evaluations;
     const auto table = forces.force(e1, t);
-    const auto model_at = [&](const LogLogTable& tab, std::vector<double>* slope) {
+    const auto model_at = [&](const PenetrationForce& tab, std::vector<double>* slope) {
       std::vector<double> f(n, r.baseline);
       for (std::size_t i = 0; i < n; ++i) {
         const double delta = r.contact_point - z[i];

@@ -7,6 +7,7 @@
 // before any reader sees them; a built decade is only read, so one CoatedTable serves every
 // thread. A decade is built when a lookup first needs it.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -47,6 +48,23 @@ struct CoatedValues {
   double node_error = 0.0;      // the nodes' own (solver) error estimates, interpolated
 };
 
+// The nodes' values at one grid of a/t, kept by one caller (not shared between threads) that
+// asks for many moduli at that grid, as a fit's trials do: each node's tables are read once per
+// grid, and a new modulus costs only the sums across the nodes. Another grid clears it.
+class CoatedSweepCache {
+ public:
+  std::size_t nodes() const { return nodes_.size(); }
+
+ private:
+  friend class CoatedTable;
+  struct NodeValues {
+    std::vector<std::array<double, 6>> logs, dlogs;  // ln X and d ln X / d ln(a/t) per a/t
+    std::vector<double> total, interpolation;        // the node table's estimates per a/t
+  };
+  std::vector<double> a_over_t_;
+  std::map<long, NodeValues> nodes_;
+};
+
 class CoatedTable {
  public:
   // `stack` fixes everything but layer `free_layer`'s Young's modulus (its Poisson ratio stays).
@@ -61,6 +79,8 @@ class CoatedTable {
   // each row's error_estimate the table's; builds the nodes it needs (thread-safe).
   std::vector<CoatedValues> at(double modulus, const std::vector<double>& a_over_t) const;
   CoatedValues at(double modulus, double a_over_t) const;
+  // The same values, the nodes' values at `a_over_t` kept in `cache` (bit-identical to the above).
+  std::vector<CoatedValues> at(double modulus, const std::vector<double>& a_over_t, CoatedSweepCache& cache) const;
 
   bool scale_free() const { return scale_free_; }
   std::size_t nodes() const;
@@ -70,6 +90,7 @@ class CoatedTable {
  private:
   struct Node;
   Node& node(long j) const;  // caller holds mutex_
+  CoatedSweepCache::NodeValues node_values(long j, const std::vector<double>& a_over_t) const;
   Stack stack_with(double modulus) const;
 
   Stack stack_;
