@@ -8,6 +8,7 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_interp.h>
 #include <gsl/gsl_linalg.h>
+#include <gsl/gsl_machine.h>
 #include <gsl/gsl_matrix.h>
 #include <gsl/gsl_multifit.h>
 
@@ -596,7 +597,7 @@ struct ContactSearch {
 // grid minima (the profile has a kink where a point enters contact and may have several
 // minima; the grid keeps the global one, Brent polishes it). Fixed: the problem's value.
 ContactSearch search_contact(const Profile& profile, const AfmFitProblem& problem, double z_lo, double c_hi,
-                             std::size_t grid_points, double relative_tolerance = 1e-12) {
+                             std::size_t grid_points, double relative_tolerance = 1e-12, std::size_t polished = 3) {
   ContactSearch out;
   double contact = problem.contact_point;
   if (problem.free.contact_point) {
@@ -614,14 +615,18 @@ ContactSearch search_contact(const Profile& profile, const AfmFitProblem& proble
       if (left && right) minima.push_back(k);
     }
     std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return cost[a] < cost[b]; });
-    if (minima.size() > 3) minima.resize(3);
+    if (minima.size() > polished) minima.resize(polished);
     double best = cost[minima.front()];
     contact = grid[minima.front()];
     const auto rss = [&](double c) { return profile.at(c).rss; };
+    // GSL's Brent steps no closer than sqrt(eps)|x| to its best point, so its bracket stalls at
+    // 2 sqrt(eps)|x| (measured): a tolerance below that is never met and only runs out the
+    // iterations (~200 evaluations per minimum). 3 sqrt(eps)|x| is the finest it reaches.
+    const double reachable = 3.0 * GSL_SQRT_DBL_EPSILON * std::max(std::abs(z_lo), std::abs(c_hi));
     for (std::size_t k : minima) {
       if (k == 0 || k + 1 == m) continue;
-      const auto found = coatcontact::detail::brent_minimum(rss, grid[k - 1], cost[k - 1], grid[k], cost[k], grid[k + 1],
-                                                            cost[k + 1], {span * relative_tolerance, 0.0, 200});
+      const auto found = coatcontact::detail::brent_minimum(rss, grid[k - 1], cost[k - 1], grid[k], cost[k], grid[k + 1], cost[k + 1],
+                                                            {std::max(span * relative_tolerance, reachable), 0.0, 200});
       if (!found) continue;
       const double value = rss(found->x);
       if (value < best) {
@@ -944,7 +949,7 @@ std::optional<ProfiledModulus> profiled_film_modulus(CoatingForces& forces, cons
     const double window = 0.05 * (c_hi - z_lo);
     found = k == 0 ? search_contact(profile, problem, z_lo, c_hi, grid, 1e-9)
                    : search_contact(profile, problem, std::max(z_lo, found.contact_point - window),
-                                    std::min(c_hi, found.contact_point + window), 16, 1e-9);
+                                    std::min(c_hi, found.contact_point + window), 16, 1e-9, 1);
     evaluations += found.evaluations;
     if (!(found.linear.reduced_modulus > 0.0)) return std::nullopt;
     psi = std::log(found.linear.reduced_modulus);  // the scale s: F = s F(E1), E1 implied s E1
