@@ -189,9 +189,11 @@ class UniformForceTable final : public PenetrationForce {
       c[0] = f0, c[1] = m0, c[2] = 3.0 * (f1 - f0) - 2.0 * m0 - m1, c[3] = 2.0 * (f0 - f1) + m0 + m1;
       f0 = f1, m0 = m1;
     }
-    // H''' = 6 c3 / h^3 on an interval; F'''' ~ its jump / h, and |F - H| <= h^4 |F''''| / 384.
-    double largest = 0.0;
-    for (std::size_t k = 0; k + 1 < intervals; ++k) {
+    // H''' = 6 c3 / h^3 on an interval; F'''' ~ its jump / h, and |F - H| <= h^4 |F''''| / 384:
+    // |c3 jump| / 64 per interval, twice that taken. The first interval holds the table's
+    // small-contact power law, not a polynomial in s: checked at its midpoint instead (twice).
+    double largest = 2.0 * std::abs(value(sphere_ ? 0.25 * h * h : 0.5 * h) - node(0.5 * h).first);
+    for (std::size_t k = 1; k + 1 < intervals; ++k) {
       largest = std::max(largest, std::abs(coefficients_[4 * k + 7] - coefficients_[4 * k + 3]) / 32.0);
     }
     error_estimate_ = f0 > 0.0 ? largest / f0 : 0.0;

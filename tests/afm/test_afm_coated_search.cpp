@@ -6,6 +6,12 @@
 // 1 MPa, a synthetic soft film (E1/E0 = 0.005, the fixed point contracts fast) and a synthetic
 // stiff film (E1/E0 = 3, it contracts slowly: the secant's case), each started 4x off. Both
 // searches read the same tabled force law, so the difference is the search's alone.
+// Also (THEORY.md section 15, "The force law per point", "Many moduli at one grid"): the fit's
+// resampled force law (the cubic Hermite on a uniform grid) gives the model force of the spline
+// it resamples within 1e-6 of the largest force, for a sphere (grid in sqrt(delta)) and a cone
+// (grid in delta); and the table read through a fit's node cache equals the uncached read bit
+// for bit, error estimates included.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -17,6 +23,7 @@
 #include "coatcontact/afm_fit.hpp"
 #include "coatcontact/afm_models.hpp"
 #include "coatcontact/afm_readers.hpp"
+#include "coatcontact/coated_table.hpp"
 
 namespace fit = coatcontact::fit;
 namespace afm = coatcontact::afm;
@@ -59,6 +66,52 @@ void check_same(const Curve& c, const fit::AfmFitProblem& p, const std::string& 
   check::below(a.profile_evaluations, b.profile_evaluations, name + ": the profiled search evaluates fewer profiles");
 }
 
+// The fitted model force (the fit's resampled table) against afm_model_force at the fitted
+// parameters (the log-log spline itself, not resampled).
+void check_resampled_force(const Curve& c, const fit::AfmFitProblem& p, const std::string& name) {
+  const fit::AfmFitResult r = fit::afm_fit(c.z, c.f, p);
+  fit::AfmFitProblem at = p;
+  at.coating->film.youngs_modulus = r.modulus;
+  at.coating->thickness = r.thickness;
+  at.contact_point = r.contact_point;
+  at.baseline = r.baseline;
+  at.tilt = r.tilt;
+  const std::vector<double> spline = fit::afm_model_force(at, c.z);
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < c.z.size(); ++i) {
+    largest = std::max(largest, std::abs(spline[i] - r.baseline));
+    worst = std::max(worst, std::abs(r.model_force[i] - spline[i]));
+  }
+  std::printf("%s: fitted model force - spline's: largest %.3g of the largest force %.3g N\n", name.c_str(), worst / largest, largest);
+  check::that(largest > 0.0, name + ": the fit is in contact");
+  // The grid's tolerance is 1e-10 of the force at the far end of the contact-point search, which
+  // for spot3 (a long approach) is ~5 000x the largest force in contact: 1e-6 here.
+  check::below(worst, 1e-6 * largest, name + ": the resampled force law = the spline's within 1e-6 of the largest force");
+}
+
+// CoatedTable::at through a node cache (a fit's reads) = the uncached read, bit for bit.
+void check_node_cache(const fit::AfmFitProblem& p) {
+  const auto table = fit::internal::afm_coated_table(*p.coating);
+  const std::vector<double> grid = {0.01, 0.13, 0.9, 2.2, 7.5}, other = {0.05, 1.7};
+  coatcontact::CoatedSweepCache cache;
+  bool same = true;
+  for (const double e : {4.6e3, 4.55e3, 4.61e3, 5.2e3}) {
+    for (const auto* at : {&grid, &other, &grid}) {
+      const auto cached = table->at(e, *at, cache), plain = table->at(e, *at);
+      for (std::size_t i = 0; i < at->size(); ++i) {
+        const auto& a = cached[i];
+        const auto& b = plain[i];
+        same = same && a.point.pi_s == b.point.pi_s && a.point.delta_s == b.point.delta_s && a.point.pi_c == b.point.pi_c &&
+               a.point.delta_c == b.point.delta_c && a.point.e_eq == b.point.e_eq && a.point.gamma1 == b.point.gamma1 &&
+               a.point.dlog_pi_s == b.point.dlog_pi_s && a.point.dlog_delta_c == b.point.dlog_delta_c &&
+               a.error_estimate == b.error_estimate && a.cross_error == b.cross_error && a.node_error == b.node_error;
+      }
+    }
+  }
+  check::that(same, "coated table: the cached read = the uncached one bit for bit (values, derivatives, estimates)");
+  check::that(cache.nodes() > 0, "coated table: the cache holds the nodes it read");
+}
+
 Curve synthetic(const fit::AfmFitProblem& truth, double noise, unsigned seed) {
   Curve c;
   for (int i = 0; i < 300; ++i) c.z.push_back(4e-6 * (1.0 - i / 299.0));
@@ -86,6 +139,15 @@ int main(int argc, char** argv) {
     const Curve c{{tip.begin() + seg->begin, tip.begin() + seg->end},
                   {curve.force.begin() + seg->begin, curve.force.begin() + seg->end}};
     check_same(c, coated(1e4, 1e6, 2e-6), "spot3, film on 1 MPa, E1 free");
+    check_resampled_force(c, coated(1e4, 1e6, 2e-6), "spot3, sphere, film on 1 MPa");
+    check_node_cache(coated(1e4, 1e6, 2e-6));
+  }
+  {
+    fit::AfmFitProblem truth = coated(5e3, 1e6, 2e-6);
+    truth.tip = fit::afm_cone(35.0 * 3.14159265358979323846 / 180.0);
+    fit::AfmFitProblem p = truth;
+    p.coating->film.youngs_modulus = 1e4;
+    check_resampled_force(synthetic(truth, 1e-9, 4), p, "cone 35 deg, film 5 kPa on 1 MPa");
   }
   {
     const fit::AfmFitProblem truth = coated(5e3, 1e6, 2e-6);
