@@ -458,15 +458,7 @@ class Profile {
     ++evaluations_;
     if (free_tilt_) return at_with_tilt(contact_point);
     if (weight_cp_ > 0.0) return at_weighted(contact_point);
-    double sg = 0.0, sgg = 0.0, sgf = 0.0;
-    for (std::size_t i = 0; i < z_.size(); ++i) {
-      const double delta = contact_point - z_[i];
-      if (delta <= 0.0) break;
-      const double g = g_at(delta);
-      sg += g;
-      sgg += g * g;
-      sgf += g * centred_[i];
-    }
+    const auto [sg, sgg, sgf] = uniform_ ? sums(contact_point, *uniform_) : sums(contact_point, force_);
     const double n = static_cast<double>(z_.size());
     double e = fixed_scale_, b = fixed_baseline_;
     if (free_scale_ && free_baseline_) {
@@ -574,6 +566,21 @@ class Profile {
     return {e, b + mean_, std::max(0.0, rss), m};
   }
 
+  // sum g, sum g^2, sum g F' over the points in contact (a prefix: z sorted). Instantiated for a
+  // coating's resampled table apart, its calls then direct and inlined (the class is final).
+  template <class Force>
+  std::array<double, 3> sums(double contact_point, const Force& force) const {
+    double sg = 0.0, sgg = 0.0, sgf = 0.0;
+    for (std::size_t i = 0; i < z_.size(); ++i) {
+      const double delta = contact_point - z_[i];
+      if (delta <= 0.0) break;
+      const double g = force.value(delta);
+      sg += g;
+      sgg += g * g;
+      sgf += g * centred_[i];
+    }
+    return {sg, sgg, sgf};
+  }
   // The per-point force: a coating's resampled table called directly (inlined, the class is final).
   double g_at(double delta) const { return uniform_ ? uniform_->value(delta) : force_.value(delta); }
 
