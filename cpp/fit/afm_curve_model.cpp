@@ -143,12 +143,8 @@ class UniformForceTable final : public PenetrationForce {
       if (error_estimate_ <= kTolerance || intervals >= kMaxIntervals) break;
     }
   }
-  const LogLogTable& log_log() const { return *table_; }
   double max_penetration() const { return table_->max_penetration(); }
   double safe_penetration() const { return table_->safe_penetration(); }
-  // Estimated largest |H - F| over the grid relative to F(max_delta).
-  double error_estimate() const { return error_estimate_; }
-  std::size_t intervals() const { return intervals_; }
 
   double value(double delta) const override {
     const double x = s_of(delta) * inverse_h_;
@@ -201,6 +197,7 @@ class UniformForceTable final : public PenetrationForce {
 
   std::unique_ptr<LogLogTable> table_;
   bool sphere_;
+  // error_estimate_: the estimated largest |H - F| over the grid relative to F(max_delta).
   double s_max_ = 0.0, inverse_h_ = 0.0, error_estimate_ = 0.0;
   std::size_t intervals_ = 0;
   std::vector<double> coefficients_;  // per interval c0..c3 of H = c0 + c1 t + c2 t^2 + c3 t^3
