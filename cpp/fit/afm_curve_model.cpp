@@ -148,7 +148,7 @@ class UniformForceTable final : public PenetrationForce {
 
   double value(double delta) const override {
     const double x = s_of(delta) * inverse_h_;
-    if (!(x < static_cast<double>(intervals_))) return table_->value(delta);
+    if (!(x >= 0.0 && x < static_cast<double>(intervals_))) return table_->value(delta);
     const auto k = static_cast<std::size_t>(x);
     const double t = x - static_cast<double>(k);
     const double* c = &coefficients_[4 * k];
@@ -156,7 +156,7 @@ class UniformForceTable final : public PenetrationForce {
   }
   std::pair<double, double> at(double delta) const override {
     const double s = s_of(delta), x = s * inverse_h_;
-    if (!(x < static_cast<double>(intervals_))) return table_->at(delta);
+    if (!(x > 0.0 && x < static_cast<double>(intervals_))) return table_->at(delta);
     const auto k = static_cast<std::size_t>(x);
     const double t = x - static_cast<double>(k);
     const double* c = &coefficients_[4 * k];
