@@ -424,18 +424,13 @@ int run_pulloff(const Args& raw) {
     // "Pull-off sweeps"). One eta, --direct, or a node the solver cannot deliver: the table of
     // decades, built as each eta reaches them (a failing decade then costs only the etas that
     // need it, and an eta's row is the same as from its own call).
-    std::string table_note = args.has("--direct") ? "--direct" : etas.size() == 1 ? "one eta" : "";
-    auto model_holder =
-        table_note.empty()
-            ? std::make_unique<AdhesiveModel>(solver, kPulloffNodeShare * tol, pulloff_sweep_table_options(tol))
-            : std::make_unique<AdhesiveModel>(solver, tol);
-    if (table_note.empty()) {
-      try {
-        model_holder->prepare_pulloff_range(etas);
-      } catch (const NumericalError& e) {
-        table_note = e.what();
-        model_holder = std::make_unique<AdhesiveModel>(solver, tol);
-      }
+    std::string table_note = "--direct";
+    std::unique_ptr<AdhesiveModel> model_holder;
+    if (!args.has("--direct")) model_holder = pulloff_sweep_model(solver, tol, etas, &table_note);
+    if (model_holder) {
+      table_note.clear();
+    } else {
+      model_holder = std::make_unique<AdhesiveModel>(solver, tol);
     }
     const AdhesiveModel& model = *model_holder;
     const auto [scan_lo, scan_hi] = model.default_curve_range();  // pull-off scans from 0.1 scan_lo

@@ -7,6 +7,7 @@
 // can fail). 3 material pairs x 25 eta over 0.01..100: a soft and a stiff film, a two-layer stack.
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -66,9 +67,11 @@ void check_pair(const std::string& name, const Stack& stack) {
   std::vector<double> etas;
   for (int i = 0; i < 25; ++i) etas.push_back(std::pow(10.0, -2.0 + 4.0 * i / 24.0));
   const coatcontact::ReducedSolver solver(stack);
-  const AdhesiveModel sweep(solver, coatcontact::kPulloffNodeShare * kTolerance,
-                           coatcontact::pulloff_sweep_table_options(kTolerance));
-  sweep.prepare_pulloff_range(etas);
+  std::string why_not;
+  const std::unique_ptr<AdhesiveModel> built = coatcontact::pulloff_sweep_model(solver, kTolerance, etas, &why_not);
+  check::that(built != nullptr, name + ": the sweep's table built (" + why_not + ")");
+  if (!built) return;
+  const AdhesiveModel& sweep = *built;
   check::that(sweep.table().ranged(), name + ": one table over the whole range");
   const AdhesiveModel reference(solver, kReferenceTolerance);  // decades, as each eta reaches them
   Worst worst;

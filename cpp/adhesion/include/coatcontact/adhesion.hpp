@@ -170,4 +170,13 @@ class AdhesiveModel {
   PulloffOptions pulloff_options_;
 };
 
+// The model whose pull-offs serve a list of etas at solver tolerance `tolerance` (THEORY.md
+// section 5, "Pull-off sweeps"): for several etas, a model on one verified table over exactly
+// the a/t they scan (nodes at kPulloffNodeShare x tolerance, pulloff_sweep_table_options), built
+// here; nullptr for a single eta, or when a node of that table cannot be solved (`why_not`, if
+// given, says which): then each eta's pull-off is the decade model's (AdhesiveModel(solver,
+// tolerance)). The CLI, the C API and Python call this one function. InputError for a bad eta.
+std::unique_ptr<AdhesiveModel> pulloff_sweep_model(const ReducedSolver& solver, double tolerance,
+                                                   const std::vector<double>& etas, std::string* why_not = nullptr);
+
 }  // namespace coatcontact
