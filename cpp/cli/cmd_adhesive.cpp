@@ -366,6 +366,34 @@ std::string pulloff_picture(const std::string& path, const std::vector<Pulloff>&
   return render_curve_plot({panel}, "pull-off of a sphere, E1*/E0* = " + si_text(stack.modulus_ratio(), ""), path);
 }
 
+// The model of `pulloff`'s JKR rows. Several etas: one verified table over exactly the a/t that
+// they scan (THEORY.md section 5, "Pull-off sweeps"; note empty). One eta, --direct, or a node
+// the solver cannot deliver: the table of decades, built as each eta reaches them (a failing
+// decade then costs only the etas that need it, and an eta's row is the same as from its own
+// call); note says why.
+std::unique_ptr<AdhesiveModel> pulloff_model(const ReducedSolver& solver, double tol, const std::vector<double>& etas,
+                                             bool direct, std::string& note) {
+  note = "--direct";
+  std::unique_ptr<AdhesiveModel> model;
+  if (!direct) model = pulloff_sweep_model(solver, tol, etas, &note);
+  if (model) {
+    note.clear();
+    return model;
+  }
+  return std::make_unique<AdhesiveModel>(solver, tol);
+}
+
+void describe_pulloff_table(Header& h, const AdhesiveModel& model, double tol, const std::string& note) {
+  describe_table(h, model, note.empty() ? kPulloffNodeShare * tol : tol);
+  h.emplace_back("table", note.empty() ? "verified over the etas' whole a/t range (segments checked against direct "
+                                         "solves at their ends; THEORY.md section 5, Pull-off sweeps)"
+                                       : "decades of a/t as the etas reach them (" + note + ")");
+  h.emplace_back("error estimates", std::string("*_err: absolute, from the table's errors of the reduced variables "
+                                                "and their log-derivatives at the pull-off; reduced_err: relative, "
+                                                "of the reduced variables there") +
+                                        (note.empty() ? " (<= --tol)" : ""));
+}
+
 }  // namespace
 
 int run_pulloff(const Args& raw) {
@@ -420,18 +448,8 @@ int run_pulloff(const Args& raw) {
     }
 
     const ReducedSolver solver(stack);
-    // Several etas: one verified table over exactly the a/t that they scan (THEORY.md section 5,
-    // "Pull-off sweeps"). One eta, --direct, or a node the solver cannot deliver: the table of
-    // decades, built as each eta reaches them (a failing decade then costs only the etas that
-    // need it, and an eta's row is the same as from its own call).
-    std::string table_note = "--direct";
-    std::unique_ptr<AdhesiveModel> model_holder;
-    if (!args.has("--direct")) model_holder = pulloff_sweep_model(solver, tol, etas, &table_note);
-    if (model_holder) {
-      table_note.clear();
-    } else {
-      model_holder = std::make_unique<AdhesiveModel>(solver, tol);
-    }
+    std::string table_note;
+    const std::unique_ptr<AdhesiveModel> model_holder = pulloff_model(solver, tol, etas, args.has("--direct"), table_note);
     const AdhesiveModel& model = *model_holder;
     const auto [scan_lo, scan_hi] = model.default_curve_range();  // pull-off scans from 0.1 scan_lo
     const bool strict = args.has("--strict");
@@ -471,14 +489,7 @@ int run_pulloff(const Args& raw) {
     h.emplace_back("location", "Brent minimiser, then root of dP/da_bar (load) or dD/da_bar (displacement) "
                                "on the interpolated curve to relative " +
                                    short_num(model.pulloff_options().location_tolerance));
-    describe_table(h, model, table_note.empty() ? kPulloffNodeShare * tol : tol);
-    h.emplace_back("table", table_note.empty()
-                                ? "verified over the etas' whole a/t range (segments checked against direct solves at "
-                                  "their ends; THEORY.md section 5, Pull-off sweeps)"
-                                : "decades of a/t as the etas reach them (" + table_note + ")");
-    h.emplace_back("error estimates", "*_err: absolute, from the table's errors of the reduced variables and their "
-                                      "log-derivatives at the pull-off (reduced_err: relative, of the reduced "
-                                      "variables there, <= --tol)");
+    describe_pulloff_table(h, model, tol, table_note);
     h.emplace_back("JKR reference (homogeneous film; THEORY.md section 5) P_load, P_disp", "-1.5, -0.8333333333333334");
     for (const auto& r : results) add_pulloff_warnings(h, r);
     springs.describe(h);
