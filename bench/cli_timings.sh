@@ -52,6 +52,11 @@ time_task_cpu "200 radii (reduced --direct, a/t 1e-3..1e4)" \
   "$cli" reduced --film 10,0.25 --substrate 1,0.25 --a-over-t 0.001:10000:200 --direct
 time_task_cpu "pulloff, 100 eta" \
   "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 0.01:100:100
+# the same etas on the table of decades (the path before the pull-off sweep's table, issue 37)
+time_task_cpu "pulloff --direct, 100 eta" \
+  "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 0.01:100:100 --direct
+time_task_cpu "pulloff, 1 eta" \
+  "$cli" pulloff --film 0.1,0.25 --substrate 1,0.25 --eta 1
 
 root="$(cd "$(dirname "$0")/.." && pwd)"
 # fits with w and t free and no start values (global search included), 80 and 60 points

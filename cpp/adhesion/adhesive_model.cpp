@@ -235,21 +235,88 @@ std::vector<CurvePoint> AdhesiveModel::curve(double eta, const std::vector<doubl
   return out;
 }
 
+void AdhesiveModel::estimate_errors(PulloffPoint& point, double eta, bool load_control, double lo, double hi) const {
+  const double a = point.a_bar, a_over_t = a / eta;
+  const ReducedPoint r = table_->at(a_over_t);
+  const double value_err = table_->error_estimate_at(a_over_t);
+  const double slope_err = table_->derivative_error_at(a_over_t);
+  const CurvePoint base = law_->point(r, eta, a);
+  // Worst-case sums of the changes of P, D and their slopes when each reduced variable moves
+  // by its relative error and each log-derivative by its error (the law is linear in each).
+  double err[4] = {0.0, 0.0, 0.0, 0.0};  // P, D, dP/da_bar, dD/da_bar
+  auto add = [&](const ReducedPoint& moved) {
+    const CurvePoint p = law_->point(moved, eta, a);
+    err[0] += std::abs(p.load - base.load);
+    err[1] += std::abs(p.penetration - base.penetration);
+    err[2] += std::abs(p.dload - base.dload);
+    err[3] += std::abs(p.dpenetration - base.dpenetration);
+  };
+  double ReducedPoint::*values[] = {&ReducedPoint::pi_s, &ReducedPoint::delta_s, &ReducedPoint::pi_c,
+                                    &ReducedPoint::delta_c, &ReducedPoint::e_eq, &ReducedPoint::gamma1};
+  double ReducedPoint::*slopes[] = {&ReducedPoint::dlog_pi_s, &ReducedPoint::dlog_delta_s, &ReducedPoint::dlog_pi_c,
+                                    &ReducedPoint::dlog_delta_c, &ReducedPoint::dlog_e_eq, &ReducedPoint::dlog_gamma1};
+  for (int j = 0; j < 6; ++j) {
+    ReducedPoint moved = r;
+    moved.*values[j] *= 1.0 + value_err;
+    add(moved);
+    moved = r;
+    moved.*slopes[j] += slope_err;
+    add(moved);
+  }
+  // Curvature of the minimised curve from its analytic slope on either side.
+  const double a_up = std::min(a * (1.0 + 1e-4), hi), a_down = std::max(a * (1.0 - 1e-4), lo);
+  const CurvePoint above = law_->point(table_->at(a_up / eta), eta, a_up);
+  const CurvePoint below = law_->point(table_->at(a_down / eta), eta, a_down);
+  const double curvature = load_control ? (above.dload - below.dload) / (a_up - a_down)
+                                        : (above.dpenetration - below.dpenetration) / (a_up - a_down);
+  const double shift = std::abs(curvature) > 0.0 ? err[load_control ? 2 : 3] / std::abs(curvature) : 0.0;
+  point.a_bar_err = std::min(shift, a);
+  point.reduced_err = value_err;
+  const double half_curve = 0.5 * std::abs(curvature) * point.a_bar_err * point.a_bar_err;
+  if (load_control) {
+    point.load_err = err[0] + half_curve;
+    point.penetration_err = err[1] + std::abs(base.dpenetration) * point.a_bar_err;
+  } else {
+    point.penetration_err = err[1] + half_curve;
+    point.load_err = err[0] + std::abs(base.dload) * point.a_bar_err;
+  }
+}
+
+std::pair<double, double> AdhesiveModel::pulloff_scan_range() const {
+  const double r = stack().substrate_length_ratio();
+  const double lo = pulloff_options_.a_bar_min > 0.0 ? pulloff_options_.a_bar_min : 1e-3 * std::min(1.0, r);
+  const double hi = pulloff_options_.a_bar_max > 0.0 ? pulloff_options_.a_bar_max : 10.0 * std::max(1.0, r);
+  if (!(lo < hi && std::isfinite(hi))) {
+    throw InputError("pull-off a_bar range [" + format_g(lo) + ", " + format_g(hi) + "] not allowed");
+  }
+  return {lo, hi};
+}
+
+void AdhesiveModel::prepare_pulloff_range(const std::vector<double>& etas) const {
+  if (etas.empty()) throw InputError("empty eta list");
+  for (double eta : etas) check_eta(eta);
+  const auto [lo, hi] = pulloff_scan_range();
+  const auto [eta_min, eta_max] = std::minmax_element(etas.begin(), etas.end());
+  table_->prepare_range(lo / *eta_max, hi / *eta_min);
+}
+
 Pulloff AdhesiveModel::pulloff(double eta) const {
   check_eta(eta);
   Pulloff result;
   result.eta = eta;
-  const double r = stack().substrate_length_ratio();
-  double lo = pulloff_options_.a_bar_min > 0.0 ? pulloff_options_.a_bar_min : 1e-3 * std::min(1.0, r);
-  double hi = pulloff_options_.a_bar_max > 0.0 ? pulloff_options_.a_bar_max : 10.0 * std::max(1.0, r);
-  if (!(lo < hi && std::isfinite(hi))) {
-    throw InputError("pull-off a_bar range [" + format_g(lo) + ", " + format_g(hi) + "] not allowed");
-  }
+  auto [lo, hi] = pulloff_scan_range();
   // Build the table decade by decade upwards: if the source fails at large a/t (thin films,
   // large a_bar), the scan stops below the failing decade and says so (warning below), or
   // throws if no minimum was found by then.
   std::string truncation;
-  {
+  if (table_->ranged()) {  // a sweep's verified table (pulloff_sweep): it must hold the whole scan
+    const double slack = 1.0 + 1e-12;
+    if (!(lo / eta >= table_->range_min() / slack && hi / eta <= table_->range_max() * slack)) {
+      throw InputError("pull-off at eta = " + format_g(eta) + " scans a/t [" + format_g(lo / eta) + ", " +
+                       format_g(hi / eta) + "], outside the table's range [" + format_g(table_->range_min()) + ", " +
+                       format_g(table_->range_max()) + "]");
+    }
+  } else {
     const long k_lo = static_cast<long>(std::floor(std::log10(lo / eta)));
     const long k_hi = static_cast<long>(std::floor(std::log10(hi / eta)));
     for (long k = k_lo; k <= k_hi; ++k) {
@@ -332,6 +399,7 @@ Pulloff AdhesiveModel::pulloff(double eta) const {
                            ": no minimum below a_bar = " + format_g(hi) +
                            " and the reduced variables are unavailable above: " + truncation);
     }
+    if (found) estimate_errors(best, eta, control == Control::kLoad, lo, hi);
     (control == Control::kLoad ? result.load_control : result.displacement_control) = best;
   }
   if (!truncation.empty()) {

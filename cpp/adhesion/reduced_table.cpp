@@ -311,12 +311,28 @@ void ReducedTable::prepare_range(double a_over_t_min, double a_over_t_max) const
   build_segments(std::move(pending));
 }
 
+double ReducedTable::range_min() const { return std::exp(range_lo_); }
+double ReducedTable::range_max() const { return std::exp(range_hi_); }
+
 double ReducedTable::error_estimate_at(double a_over_t) const {
   if (!(a_over_t > 0.0 && std::isfinite(a_over_t))) {
     throw InputError("a/t = " + format_g(a_over_t) + " not allowed (need finite and > 0)");
   }
   const Segment& s = segment_for(std::log(a_over_t));
   return s.interpolation_error() + s.noise;
+}
+
+double ReducedTable::derivative_error_at(double a_over_t) const {
+  error_estimate_at(a_over_t);  // the input check
+  const double u = std::log(a_over_t);
+  const Segment& s = segment_for(u);
+  // The interpolation error taken as e T_(n+1)(x) (its leading term; THEORY.md section 5,
+  // "Pull-off sweeps"): d/du = e (2/h) (n+1) U_n(x), |U_n(x)| <= min(n+1, 1/sqrt(1 - x^2)).
+  const double h = s.u_hi - s.u_lo;
+  const double x = std::min(1.0, std::abs(2.0 * (u - s.u_lo) / h - 1.0));
+  const double k = static_cast<double>(options_.order + 1);
+  const double envelope = x < 1.0 ? std::min(k, 1.0 / std::sqrt(1.0 - x * x)) : k;
+  return s.interpolation_error() * (2.0 / h) * k * envelope;
 }
 
 double ReducedTable::interpolation_error_at(double a_over_t) const {
@@ -387,6 +403,15 @@ TableOptions sweep_table_options(double tolerance) {
   options.tail_noise_factor = 1.0;
   options.max_halvings = 5;
   options.verify = true;
+  return options;
+}
+
+TableOptions pulloff_sweep_table_options(double tolerance) {
+  // The sweep's table with room for the nodes' own error: solved at kPulloffNodeShare x tol,
+  // interpolation held below the rest, so that interpolation + node estimate <= tol.
+  TableOptions options = sweep_table_options(tolerance);
+  options.tail_tolerance = (1.0 - kPulloffNodeShare) * tolerance;
+  options.tail_noise_factor = 0.0;
   return options;
 }
 

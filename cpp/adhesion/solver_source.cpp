@@ -25,4 +25,22 @@ AdhesiveModel::AdhesiveModel(const ReducedSolver& solver, double tolerance, Tabl
                              PulloffOptions pulloff)
     : AdhesiveModel(std::make_shared<SolverSource>(solver, tolerance), table, pulloff) {}
 
+std::unique_ptr<AdhesiveModel> pulloff_sweep_model(const ReducedSolver& solver, double tolerance,
+                                                   const std::vector<double>& etas, std::string* why_not) {
+  check_tolerance(tolerance);
+  if (etas.size() < 2) {
+    if (why_not != nullptr) *why_not = "one eta";
+    return nullptr;
+  }
+  auto model = std::make_unique<AdhesiveModel>(solver, kPulloffNodeShare * tolerance,
+                                               pulloff_sweep_table_options(tolerance));
+  try {
+    model->prepare_pulloff_range(etas);
+  } catch (const NumericalError& e) {
+    if (why_not != nullptr) *why_not = e.what();
+    return nullptr;
+  }
+  return model;
+}
+
 }  // namespace coatcontact

@@ -45,6 +45,10 @@ struct cc_reduced_solver {
 struct cc_adhesive_model {
   std::shared_ptr<const coatcontact::ReducedSolver> solver;
   std::shared_ptr<const coatcontact::AdhesiveModel> model;
+  double tolerance = 0.0;
+  // cc_pulloff_prepare: the pull-off sweep's model and the etas it serves (THEORY.md section 5).
+  std::shared_ptr<const coatcontact::AdhesiveModel> sweep;
+  double sweep_min = 0.0, sweep_max = 0.0;
 };
 
 struct cc_contact {
@@ -374,7 +378,7 @@ int cc_adhesive_model_create(const cc_reduced_solver* solver, double tolerance, 
     require(model, "cc_adhesive_model_create", "model");
     const double tol = tolerance == 0.0 ? coatcontact::kDefaultAdhesiveTolerance : tolerance;
     auto made = std::make_shared<const coatcontact::AdhesiveModel>(*solver->solver, tol);
-    *model = new cc_adhesive_model{solver->solver, std::move(made)};
+    *model = new cc_adhesive_model{solver->solver, std::move(made), tol, nullptr};
   });
 }
 
@@ -427,11 +431,27 @@ int cc_adhesive_curve_each(cc_adhesive_model* model, double eta, int n, const do
   });
 }
 
+int cc_pulloff_prepare(cc_adhesive_model* model, int n, const double* eta) {
+  return guarded([&] {
+    require(model, "cc_pulloff_prepare", "model");
+    const std::size_t count = count_of(n, "cc_pulloff_prepare");
+    if (count > 0) require(eta, "cc_pulloff_prepare", "eta");
+    const std::vector<double> etas(eta, eta + count);
+    model->sweep = coatcontact::pulloff_sweep_model(*model->solver, model->tolerance, etas);
+    if (model->sweep) {
+      const auto [lo, hi] = std::minmax_element(etas.begin(), etas.end());
+      model->sweep_min = *lo;
+      model->sweep_max = *hi;
+    }
+  });
+}
+
 int cc_pulloff(cc_adhesive_model* model, double eta, double out[CC_PULLOFF_COLUMNS], int* flags) {
   return guarded([&] {
     require(model, "cc_pulloff", "model");
     require(out, "cc_pulloff", "out");
-    const coatcontact::Pulloff p = model->model->pulloff(eta);
+    const bool swept = model->sweep && eta >= model->sweep_min && eta <= model->sweep_max;
+    const coatcontact::Pulloff p = (swept ? model->sweep : model->model)->pulloff(eta);
     const auto& l = p.load_control;
     const auto& d = p.displacement_control;
     copy_out({l.load, l.a_bar, l.penetration, d.load, d.a_bar, d.penetration}, out);

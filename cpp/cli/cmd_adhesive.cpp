@@ -95,7 +95,10 @@ void describe_table(Header& h, const AdhesiveModel& model, double tol) {
   h.emplace_back("reduced variables",
                  "ReducedSolver at tolerance " + num(tol) +
                      ", interpolated: piecewise Chebyshev series of ln X in ln(a/t), order " +
-                     std::to_string(t.options().order) + " per decade of a/t (halved where needed)");
+                     std::to_string(t.options().order) + " per " +
+                     (t.options().decades_per_segment == 1.0 ? std::string("decade")
+                                                             : short_num(t.options().decades_per_segment) + " decades") +
+                     " of a/t (halved where needed)");
   h.emplace_back("solver evaluations", std::to_string(t.source_evaluations()));
   h.emplace_back("interpolation segments", std::to_string(t.segments()));
   h.emplace_back("interpolation error estimate (relative)", num(t.interpolation_error_estimate()));
@@ -363,6 +366,34 @@ std::string pulloff_picture(const std::string& path, const std::vector<Pulloff>&
   return render_curve_plot({panel}, "pull-off of a sphere, E1*/E0* = " + si_text(stack.modulus_ratio(), ""), path);
 }
 
+// The model of `pulloff`'s JKR rows. Several etas: one verified table over exactly the a/t that
+// they scan (THEORY.md section 5, "Pull-off sweeps"; note empty). One eta, --direct, or a node
+// the solver cannot deliver: the table of decades, built as each eta reaches them (a failing
+// decade then costs only the etas that need it, and an eta's row is the same as from its own
+// call); note says why.
+std::unique_ptr<AdhesiveModel> pulloff_model(const ReducedSolver& solver, double tol, const std::vector<double>& etas,
+                                             bool direct, std::string& note) {
+  note = "--direct";
+  std::unique_ptr<AdhesiveModel> model;
+  if (!direct) model = pulloff_sweep_model(solver, tol, etas, &note);
+  if (model) {
+    note.clear();
+    return model;
+  }
+  return std::make_unique<AdhesiveModel>(solver, tol);
+}
+
+void describe_pulloff_table(Header& h, const AdhesiveModel& model, double tol, const std::string& note) {
+  describe_table(h, model, note.empty() ? kPulloffNodeShare * tol : tol);
+  h.emplace_back("table", note.empty() ? "verified over the etas' whole a/t range (segments checked against direct "
+                                         "solves at their ends; THEORY.md section 5, Pull-off sweeps)"
+                                       : "decades of a/t as the etas reach them (" + note + ")");
+  h.emplace_back("error estimates", std::string("*_err: absolute, from the table's errors of the reduced variables "
+                                                "and their log-derivatives at the pull-off; reduced_err: relative, "
+                                                "of the reduced variables there") +
+                                        (note.empty() ? " (<= --tol)" : ""));
+}
+
 }  // namespace
 
 int run_pulloff(const Args& raw) {
@@ -370,6 +401,10 @@ int run_pulloff(const Args& raw) {
     auto spec = normalized_options();
     spec.push_back(spring_bar_option());
     spec.push_back(strict_option());
+    spec.push_back({"--direct", "",
+                    "JKR: build the reduced table a decade of a/t at a time as each eta reaches it (order 24, "
+                    "tail 1e-10) instead of one verified table over all the etas' a/t",
+                    false});
     spec.push_back(plot_option("P_load and P_disp against eta (JKR)"));
     const Arguments args(raw, spec);
     if (args.help()) {
@@ -398,6 +433,10 @@ int run_pulloff(const Args& raw) {
     if (lambdas && args.has("--strict")) {
       throw InputError("--strict: not used with --lambda (it selects how the JKR pull-offs are delivered); omit --strict");
     }
+    if (lambdas && args.has("--direct")) {
+      throw InputError("--direct: not used with --lambda (it selects the JKR pull-offs' table); the Maugis-Dugdale "
+                       "zone's direct solve is --md-direct");
+    }
     const auto plot = plot_path(args, lambdas ? "not with --lambda (JKR pull-offs only)" : "");
     Output out(args.get("--output").value_or(""));
     if (lambdas) {  // Maugis-Dugdale zone (THEORY.md section 13), lambda_options.cpp
@@ -409,7 +448,9 @@ int run_pulloff(const Args& raw) {
     }
 
     const ReducedSolver solver(stack);
-    const AdhesiveModel model(solver, tol);
+    std::string table_note;
+    const std::unique_ptr<AdhesiveModel> model_holder = pulloff_model(solver, tol, etas, args.has("--direct"), table_note);
+    const AdhesiveModel& model = *model_holder;
     const auto [scan_lo, scan_hi] = model.default_curve_range();  // pull-off scans from 0.1 scan_lo
     const bool strict = args.has("--strict");
     // One end of the a/t range out of reach may leave the other etas deliverable; a single eta
@@ -448,7 +489,7 @@ int run_pulloff(const Args& raw) {
     h.emplace_back("location", "Brent minimiser, then root of dP/da_bar (load) or dD/da_bar (displacement) "
                                "on the interpolated curve to relative " +
                                    short_num(model.pulloff_options().location_tolerance));
-    describe_table(h, model, tol);
+    describe_pulloff_table(h, model, tol, table_note);
     h.emplace_back("JKR reference (homogeneous film; THEORY.md section 5) P_load, P_disp", "-1.5, -0.8333333333333334");
     for (const auto& r : results) add_pulloff_warnings(h, r);
     springs.describe(h);
@@ -457,6 +498,10 @@ int run_pulloff(const Args& raw) {
     std::vector<std::string> columns = {"eta",   "P_load",     "a_bar_load", "D_load",
                                         "P_disp", "a_bar_disp", "D_disp"};
     springs.extend(columns);
+    for (const char* name : {"P_load_err", "a_bar_load_err", "D_load_err", "P_disp_err", "a_bar_disp_err",
+                             "D_disp_err", "reduced_err"}) {
+      columns.emplace_back(name);
+    }
     std::ostream& os = out.stream();
     write_header(os, h, columns);
     for (std::size_t i = 0, d = 0; i < etas.size(); ++i) {
@@ -465,13 +510,16 @@ int run_pulloff(const Args& raw) {
         continue;
       }
       const Pulloff& r = results[d];
-      const std::vector<double> row = {
-          r.eta, r.load_control.load, r.load_control.a_bar, r.load_control.penetration,
-          r.displacement_control.load, r.displacement_control.a_bar, r.displacement_control.penetration};
+      const PulloffPoint &l = r.load_control, &m = r.displacement_control;
+      std::vector<double> row = {r.eta, l.load, l.a_bar, l.penetration, m.load, m.a_bar, m.penetration};
+      const std::vector<double> errors = {l.load_err,        l.a_bar_err, l.penetration_err,
+                                          m.load_err,        m.a_bar_err, m.penetration_err,
+                                          std::max(l.reduced_err, m.reduced_err)};
       if (springs.empty()) {
+        row.insert(row.end(), errors.begin(), errors.end());
         write_row(os, row, columns);
       } else {
-        springs.write(os, d, row, columns);
+        springs.write(os, d, row, columns, errors);
       }
       ++d;
     }

@@ -80,12 +80,13 @@ void SpringRows::extend(std::vector<std::string>& columns) const {
 }
 
 void SpringRows::write(std::ostream& out, std::size_t index, const std::vector<double>& base,
-                       const std::vector<std::string>& columns) const {
+                       const std::vector<std::string>& columns, const std::vector<double>& tail) const {
   for (const SpringPulloff& p : rows_[index]) {
     std::vector<double> values = base;
     // k_bar = inf is printed as its own line of text: write_row refuses non-finite values.
     values.insert(values.end(), {std::isinf(p.k_bar) ? 0.0 : p.k_bar, p.point.load, p.point.a_bar,
                                  p.point.penetration});
+    values.insert(values.end(), tail.begin(), tail.end());
     if (!std::isinf(p.k_bar)) {
       write_row(out, values, columns);
       continue;

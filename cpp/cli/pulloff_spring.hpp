@@ -24,9 +24,10 @@ class SpringRows {
   // Header lines (k_bar list, criterion, warnings) and the four extra columns.
   void describe(std::vector<std::pair<std::string, std::string>>& header) const;
   void extend(std::vector<std::string>& columns) const;
-  // The rows of eta number `index`: `base` (the existing columns) followed by k_bar, P, a_bar, D.
+  // The rows of eta number `index`: `base` (the existing columns) followed by k_bar, P, a_bar, D
+  // and `tail` (columns after the spring's, the same on every row of the eta).
   void write(std::ostream& out, std::size_t index, const std::vector<double>& base,
-             const std::vector<std::string>& columns) const;
+             const std::vector<std::string>& columns, const std::vector<double>& tail = {}) const;
 
  private:
   std::vector<double> k_bars_;

@@ -227,6 +227,8 @@ struct Model {
     Monitor monitor{std::move(progress), false, nullptr};
     call_monitored(monitor, [&] {
       std::lock_guard<std::mutex> guard(*lock);
+      const int prepared = cc_pulloff_prepare(handle.get(), n, in);  // one table for the etas, as the CLI
+      if (prepared != CC_OK) return prepared;
       for (int i = 0; i < n; ++i) {
         const int status = cc_pulloff(handle.get(), in[i], o + CC_PULLOFF_COLUMNS * i, f + i);
         if (status != CC_OK) return status;

@@ -57,6 +57,12 @@ struct PulloffPoint {
   // shows the ~sqrt(eps) limit of minimising values (diagnostic only; -1 if the minimiser
   // could not be bracketed on the grid, e.g. a minimum in the first or last grid cell).
   double minimiser_discrepancy = 0.0;
+  // Estimated absolute errors of a_bar, P and D (THEORY.md section 5, "Pull-off sweeps"): the
+  // table's errors of the reduced variables and of their log-derivatives at a_bar, carried to
+  // the stationary point to first order.
+  double a_bar_err = 0.0, load_err = 0.0, penetration_err = 0.0;
+  // The table's estimate of the relative error of the reduced variables at a_bar.
+  double reduced_err = 0.0;
 };
 
 struct Pulloff {
@@ -131,7 +137,14 @@ class AdhesiveModel {
   // whole decade of a/t at a time). dload and dpenetration are not set (0).
   std::vector<CurvePoint> curve_solved(double eta, const std::vector<double>& a_bar) const;
   // Pull-off under load and displacement control; NumericalError if it cannot be located.
+  // On a table of prepare_pulloff_range, eta's whole scan must lie in its range (InputError).
   Pulloff pulloff(double eta) const;
+  // The a_bar range a pull-off scans (PulloffOptions::a_bar_min/max or their defaults).
+  std::pair<double, double> pulloff_scan_range() const;
+  // Builds the table over exactly the a/t that the pull-offs of `etas` scan, with one
+  // ReducedTable::prepare_range (a verified table, e.g. sweep_table_options: the pull-off
+  // sweep, THEORY.md section 5, "Pull-off sweeps"). Only on a model whose table is empty.
+  void prepare_pulloff_range(const std::vector<double>& etas) const;
   // Pull-off through a spring (cpp/adhesion/spring_pulloff.cpp). k_bar >= 0 or +inf; the two
   // limits return exactly pulloff(eta)'s load- and displacement-controlled points. InputError
   // for a negative or NaN k_bar.
@@ -148,10 +161,22 @@ class AdhesiveModel {
   const PulloffOptions& pulloff_options() const { return pulloff_options_; }
 
  private:
+  // Fills the error estimates of a pull-off point located in the scan [lo, hi] (minimum of P
+  // or of D).
+  void estimate_errors(PulloffPoint& point, double eta, bool load_control, double lo, double hi) const;
   std::shared_ptr<const ReducedSource> source_;
   std::shared_ptr<const AdhesionLaw> law_;
   std::unique_ptr<ReducedTable> table_;
   PulloffOptions pulloff_options_;
 };
+
+// The model whose pull-offs serve a list of etas at solver tolerance `tolerance` (THEORY.md
+// section 5, "Pull-off sweeps"): for several etas, a model on one verified table over exactly
+// the a/t they scan (nodes at kPulloffNodeShare x tolerance, pulloff_sweep_table_options), built
+// here; nullptr for a single eta, or when a node of that table cannot be solved (`why_not`, if
+// given, says which): then each eta's pull-off is the decade model's (AdhesiveModel(solver,
+// tolerance)). The CLI, the C API and Python call this one function. InputError for a bad eta.
+std::unique_ptr<AdhesiveModel> pulloff_sweep_model(const ReducedSolver& solver, double tolerance,
+                                                   const std::vector<double>& etas, std::string* why_not = nullptr);
 
 }  // namespace coatcontact

@@ -96,6 +96,10 @@ class ReducedTable {
   double error_estimate_at(double a_over_t) const;
   // Its first part alone: the estimated difference of the interpolant from the source's values.
   double interpolation_error_at(double a_over_t) const;
+  // Estimated error of the interpolated log-derivatives d ln X / d ln(a/t) at a/t (absolute),
+  // from that difference taken as e T_(n+1) over the segment (THEORY.md section 5, "Pull-off
+  // sweeps"); the source's own error is taken smooth in a/t and not counted here.
+  double derivative_error_at(double a_over_t) const;
   // Which variables at() evaluates: all six, or only those of one indenter and the flat punch
   // (E_eq, Gamma(1)); the others are left 0. The kinetics asks for one indenter's at every step.
   enum class Variables { kAll, kSphere, kCone };
@@ -110,6 +114,10 @@ class ReducedTable {
   std::size_t segments() const;
   const ReducedSource& source() const { return source_; }
   const TableOptions& options() const { return options_; }
+  // A table of prepare_range serves only [range_min(), range_max()] of a/t.
+  bool ranged() const { return ranged_; }
+  double range_min() const;
+  double range_max() const;
 
  private:
   struct Segment;
@@ -134,6 +142,12 @@ class ReducedTable {
 // The table of interpolated_sweep at `tolerance`: order 14, two decades a segment, verified
 // ends, halved while max(tail, end difference) > 0.4 tolerance + the nodes' own estimate.
 TableOptions sweep_table_options(double tolerance);
+
+// The table of the pull-off sweep (THEORY.md section 5, "Pull-off sweeps"): its nodes solved at
+// kPulloffNodeShare x tol, the verified interpolation error held below (1 - kPulloffNodeShare)
+// x tol, so that every value's estimate (interpolation + node estimate) is <= tol.
+inline constexpr double kPulloffNodeShare = 0.7;
+TableOptions pulloff_sweep_table_options(double tolerance);
 
 struct InterpolatedSweep {
   // One row per a/t, as ReducedSolver::sweep's; error_estimate is the table's

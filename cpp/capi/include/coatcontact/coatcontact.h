@@ -129,6 +129,12 @@ int cc_adhesive_curve(cc_adhesive_model *model, double eta, int n, const double 
 #define CC_PULLOFF_SCAN_TRUNCATED 16 /* solver failed at large a/t; a lower minimum may lie above */
 
 int cc_pulloff(cc_adhesive_model *model, double eta, double out[CC_PULLOFF_COLUMNS], int *flags);
+/* Before the cc_pulloff calls of a list of n etas (as `coatcontact pulloff --eta LIST`): for
+ * n >= 2 builds one verified table over the a/t they scan, which cc_pulloff then reads for every
+ * eta in [min, max] of the list, until the next cc_pulloff_prepare (THEORY.md section 5,
+ * "Pull-off sweeps"); n < 2, or a table the solver cannot build: cc_pulloff stays on the model's
+ * own table. */
+int cc_pulloff_prepare(cc_adhesive_model *model, int n, const double *eta);
 
 /* ---- contact in SI units (THEORY.md section 5) -------------------------------------------
  *
