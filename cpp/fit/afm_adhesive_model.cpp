@@ -51,41 +51,32 @@ using Reduced = internal::ReducedAt;
 class CoatingSweep {
  public:
   CoatingSweep(const std::vector<ReducedVariables>& sweep) {
+    std::vector<double> x, pi, delta, eeq, gamma;
     for (const ReducedVariables& v : sweep) {
-      x_.push_back(std::log(v.a_over_t));
-      pi_.push_back(v.pi_s);
-      delta_.push_back(v.delta_s);
-      eeq_.push_back(v.e_eq);
-      gamma_.push_back(v.gamma1);
+      x.push_back(std::log(v.a_over_t));
+      pi.push_back(v.pi_s);
+      delta.push_back(v.delta_s);
+      eeq.push_back(v.e_eq);
+      gamma.push_back(v.gamma1);
     }
-    for (auto* y : {&pi_, &delta_, &eeq_, &gamma_}) {
-      splines_.push_back(gsl_interp_alloc(gsl_interp_cspline, x_.size()));
-      gsl_interp_init(splines_.back(), x_.data(), y->data(), x_.size());
+    for (auto* y : {&pi, &delta, &eeq, &gamma}) {
+      splines_.emplace_back(x, *y);
+      splines_.back().declare_uniform();  // the lattice is uniform in ln(a/t)
     }
-    accel_ = gsl_interp_accel_alloc();
   }
-  ~CoatingSweep() {
-    for (gsl_interp* s : splines_) gsl_interp_free(s);
-    gsl_interp_accel_free(accel_);
-  }
-  CoatingSweep(const CoatingSweep&) = delete;
-  CoatingSweep& operator=(const CoatingSweep&) = delete;
 
   // Outside the sweep: its end values (the film's own limit below; trials only above, the
   // final fit is checked against max_a_over_t()).
   Reduced at(double a_over_t) const {
-    const double x = std::clamp(std::log(a_over_t), x_.front(), x_.back());
-    const double* ys[4] = {pi_.data(), delta_.data(), eeq_.data(), gamma_.data()};
-    double out[4];
-    for (int k = 0; k < 4; ++k) out[k] = gsl_interp_eval(splines_[k], x_.data(), ys[k], x, accel_);
-    return {out[0], out[1], out[2], out[3]};
+    const std::vector<double>& x = splines_.front().x();
+    const double v = std::clamp(std::log(a_over_t), x.front(), x.back());
+    const std::size_t k = splines_.front().interval(v);
+    return {splines_[0].value(v, k), splines_[1].value(v, k), splines_[2].value(v, k), splines_[3].value(v, k)};
   }
-  double max_a_over_t() const { return std::exp(x_.back()); }
+  double max_a_over_t() const { return std::exp(splines_.front().x().back()); }
 
  private:
-  std::vector<double> x_, pi_, delta_, eeq_, gamma_;
-  std::vector<gsl_interp*> splines_;
-  gsl_interp_accel* accel_ = nullptr;
+  std::vector<internal::SplinePieces> splines_;
 };
 
 // Reduced-solver sweeps of the E1 nodes, shared by every fit of the process: the curves of a
@@ -226,9 +217,13 @@ class Objective {
     ++evaluations_;
     double sg = 0.0, szg = 0.0, sfg = 0.0, sgg = 0.0;
     const double limit = contact - branch.jump_delta();  // in contact: z < limit
-    for (std::size_t i = 0; i < p_.z.size() && p_.z[i] < limit; ++i) {
-      const double g = branch.at(contact - p_.z[i]).first, w = p_.weight[i];
-      sg += w * g, szg += w * (p_.z[i] - origin()) * g, sfg += w * p_.f[i] * g, sgg += w * g * g;
+    const std::size_t count = static_cast<std::size_t>(std::lower_bound(p_.z.begin(), p_.z.end(), limit) - p_.z.begin());
+    thread_local std::vector<double> g;
+    g.resize(count);
+    branch.values(contact, p_.z.data(), count, g.data());
+    for (std::size_t i = 0; i < count; ++i) {
+      const double w = p_.weight[i];
+      sg += w * g[i], szg += w * (p_.z[i] - origin()) * g[i], sfg += w * p_.f[i] * g[i], sgg += w * g[i] * g[i];
     }
     // y = F - g; u = z - z_c = (z - origin) - c.
     const double c = contact - origin();
