@@ -43,6 +43,15 @@ constexpr int kScanPerDecade = 24;
 // Bounded searches: Nelder-Mead iterations (binned data), Gauss-Newton steps (all points).
 constexpr int kSimplexIterations = 300;
 constexpr int kPolishSteps = 8;
+// The coarse stage of a free E1 on a coating sweeps its nodes up to this a/t: below ~1 the
+// solver needs no kernel table (~0.02 ms a radius; the first radius past it builds one, ~10 ms,
+// for a soft film of nu1 = 0.5 on a stiffer base; measured at E1/E0 0.005-2.5).
+constexpr double kCoarseAOverT = 1.0;
+// The anchored model of a free E1 on a coating: re-anchored while the polish moves E1 by more
+// than this in ln E1 (the fitted E1 then misses the anchor-exact one by ~6e-3 of the move: ~2e-6; THEORY.md section 15), at most
+// kAnchorMoves times.
+constexpr double kAnchorTolerance = 3e-4;
+constexpr int kAnchorMoves = 4;
 
 // The four reduced variables at a/t: constant on a half-space, splines of a reduced-solver
 // sweep (per film modulus) on a coating.
@@ -72,6 +81,18 @@ class CoatingSweep {
     const double v = std::clamp(std::log(a_over_t), x.front(), x.back());
     const std::size_t k = splines_.front().interval(v);
     return {splines_[0].value(v, k), splines_[1].value(v, k), splines_[2].value(v, k), splines_[3].value(v, k)};
+  }
+  // Past the sweep's end the natural spline's line in ln(a/t) (the coarse stage's trials,
+  // THEORY.md section 15, "The JKR search on a coating"); inside, at().
+  Reduced extrapolated(double a_over_t) const {
+    const std::vector<double>& x = splines_.front().x();
+    const double v = std::log(a_over_t);
+    if (v <= x.back()) return at(a_over_t);
+    const std::size_t k = x.size() - 2;
+    const double end = x.back();
+    double out[4];
+    for (int j = 0; j < 4; ++j) out[j] = splines_[j].value(end, k) + (v - end) * splines_[j].slope(end, k);
+    return {out[0], out[1], out[2], out[3]};
   }
   double max_a_over_t() const { return std::exp(splines_.front().x().back()); }
 
@@ -117,9 +138,9 @@ std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate
   const std::lock_guard<std::mutex> lock(node->mutex);
   if (!node->solver) node->solver = std::make_unique<ReducedSolver>(Stack::film_on(film, substrate));
   if (node->values.size() < count) {
-    const std::vector<double> extra(lattice.begin() + static_cast<long>(node->values.size()), lattice.begin() + static_cast<long>(count));
-    const std::vector<ReducedVariables> more = node->solver->sweep(extra, tolerance);
-    node->values.insert(node->values.end(), more.begin(), more.end());
+    // One radius at a time: a node's few tens of radii cost ~1 ms beside its kernel table, and a
+    // parallel sweep's idle threads spin between them (twice the CPU of a first curve).
+    for (std::size_t k = node->values.size(); k < count; ++k) node->values.push_back(node->solver->solve(lattice[k], tolerance));
   }
   return {node->values.begin(), node->values.begin() + static_cast<long>(count)};
 }
@@ -130,7 +151,8 @@ using Branch = internal::SpringBranch;
 // The branch F(delta) of a law under spring control for one trial (internal::SpringBranch): the
 // scan of delta + F/k over a/L_a in [kScanLow, kScanHigh], kBranchNodes radii from a_s.
 std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
-                                   const Trial& trial, double max_indentation, const internal::ReducedLaw& law) {
+                                   const Trial& trial, double max_indentation, const internal::ReducedLaw& law,
+                                   bool extrapolate = false) {
   const double reduced = trial.modulus / (1.0 - problem.poisson * problem.poisson);
   if (!(reduced > 0.0) || !std::isfinite(reduced) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
       (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
@@ -140,7 +162,7 @@ std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr
   const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
   const auto point = [&](double a) -> std::pair<double, double> {
     Reduced v;
-    if (sweep) v = sweep->at(a / trial.thickness);
+    if (sweep) v = extrapolate ? sweep->extrapolated(a / trial.thickness) : sweep->at(a / trial.thickness);
     return law.point(a, v, reduced, trial.work, radius);
   };
   return std::make_unique<Branch>(point, length, kScanLow, kScanHigh, kScanPerDecade, problem.spring_constant,
@@ -246,7 +268,7 @@ class Objective {
     const double rss = syy + b * b * sw_ + m * m * suu - 2.0 * b * sy - 2.0 * m * suy + 2.0 * b * m * su;
     out.baseline = b;
     out.tilt = m;
-    out.rss = std::max(0.0, rss);
+    out.rss = std::isfinite(rss) ? std::max(0.0, rss) : kInfinity;  // (a NaN would read as a perfect fit)
     return out;
   }
   int evaluations() const { return evaluations_; }
@@ -476,6 +498,28 @@ class CoatingNodes {
     swept_ = std::min(lattice_.size(), std::max<std::size_t>(k + 1, 8));
     sweeps_.clear();
   }
+  // Sweeps the radii up to a_over_t only (the coarse stage).
+  void reach_below(double a_over_t) {
+    std::size_t k = 0;
+    while (k < lattice_.size() && lattice_[k] <= a_over_t * (1.0 + 1e-9)) ++k;
+    swept_ = std::max<std::size_t>(k, 8);
+    sweeps_.clear();
+  }
+  // From here on every E1 is read from the sweep at `film_modulus` itself and the quadratic
+  // through it and its two neighbouring nodes.
+  void anchor(double film_modulus) {
+    anchor_ = film_modulus;
+    anchor_sweep_.clear();
+    sweeps_.clear();
+  }
+  double anchored() const { return anchor_; }
+  // Until anchored, every E1 is read from the quadratic through the node nearest `film_modulus`
+  // and its two neighbours.
+  void centre(double film_modulus) {
+    centred_ = true;
+    centre_ = std::lround(std::log10(film_modulus / e_hint_) * kModulusNodesPerDecade);
+    sweeps_.clear();
+  }
   bool covers(double a_over_t) const { return swept_ == lattice_.size() || a_over_t <= lattice_[swept_ - 1]; }
   // (the solves the fit's model rests on, whether this fit or an earlier one made them)
   long solver_calls() const { return solver_calls_; }
@@ -487,24 +531,46 @@ class CoatingNodes {
     const double x = std::log10(film_modulus / e_hint_) * kModulusNodesPerDecade;
     const double nearest = std::round(x);
     std::shared_ptr<const CoatingSweep> sweep;
-    if (std::abs(x - nearest) < 1e-9) {
+    if (problem_.coating->direct) {
+      // The direct path: a sweep at this very E1 (AfmCoating::direct; the check of the nodes).
+      Material film = problem_.coating->film;
+      film.youngs_modulus = film_modulus;
+      solver_calls_ += static_cast<long>(swept_);
+      sweep = std::make_shared<const CoatingSweep>(
+          shared_sweep(film, problem_.coating->substrate, problem_.coating->solver_tolerance, lattice_, swept_));
+    } else if (centred_ && anchor_ == 0.0) {
+      // Before the anchor: the quadratic through the node nearest the coarse estimate and its
+      // two neighbours.
+      double weight[3];
+      for (int a = 0; a < 3; ++a) {
+        weight[a] = 1.0;
+        for (int b = 0; b < 3; ++b) {
+          if (b != a) weight[a] *= (x - static_cast<double>(centre_ - 1 + b)) / static_cast<double>(a - b);
+        }
+      }
+      sweep = std::make_shared<const CoatingSweep>(mixed({&node(centre_ - 1), &node(centre_), &node(centre_ + 1)}, weight));
+    } else if (anchor_ > 0.0) {
+      // Anchored: the quadratic in log E1 through the anchor's own sweep and the nodes either
+      // side of it, each at least a quarter spacing away (THEORY.md section 15, "The JKR search
+      // on a coating").
+      const double xa = std::log10(anchor_ / e_hint_) * kModulusNodesPerDecade;
+      const long lo = static_cast<long>(std::floor(xa - 0.25)), hi = static_cast<long>(std::ceil(xa + 0.25));
+      const double at[3] = {xa, static_cast<double>(lo), static_cast<double>(hi)};
+      double weight[3];
+      for (int a = 0; a < 3; ++a) {
+        weight[a] = 1.0;
+        for (int b = 0; b < 3; ++b) {
+          if (b != a) weight[a] *= (x - at[b]) / (at[a] - at[b]);
+        }
+      }
+      sweep = std::make_shared<const CoatingSweep>(mixed({&anchor_values(), &node(lo), &node(hi)}, weight));
+    } else if (std::abs(x - nearest) < 1e-9) {
       sweep = std::make_shared<const CoatingSweep>(node(static_cast<long>(nearest)));
     } else {
       const long j0 = static_cast<long>(std::floor(x)) - 1;
       double weight[4];
       lagrange_weights(x, j0, weight);
-      std::vector<ReducedVariables> mixed(swept_);
-      for (int a = 0; a < 4; ++a) {
-        const std::vector<ReducedVariables>& v = node(j0 + a);
-        for (std::size_t k = 0; k < mixed.size(); ++k) {
-          mixed[k].a_over_t = lattice_[k];
-          mixed[k].pi_s += weight[a] * v[k].pi_s;
-          mixed[k].delta_s += weight[a] * v[k].delta_s;
-          mixed[k].e_eq += weight[a] * v[k].e_eq;
-          mixed[k].gamma1 += weight[a] * v[k].gamma1;
-        }
-      }
-      sweep = std::make_shared<const CoatingSweep>(mixed);
+      sweep = std::make_shared<const CoatingSweep>(mixed({&node(j0), &node(j0 + 1), &node(j0 + 2), &node(j0 + 3)}, weight));
     }
     if (sweeps_.size() > 64) sweeps_.clear();
     sweeps_.emplace(film_modulus, sweep);
@@ -523,8 +589,38 @@ class CoatingNodes {
     return v;
   }
 
+  // The sweep at the anchor (a node of its own, shared like the others).
+  const std::vector<ReducedVariables>& anchor_values() {
+    if (anchor_sweep_.size() < swept_) {
+      Material film = problem_.coating->film;
+      film.youngs_modulus = anchor_;
+      solver_calls_ += static_cast<long>(swept_ - anchor_sweep_.size());
+      anchor_sweep_ = shared_sweep(film, problem_.coating->substrate, problem_.coating->solver_tolerance, lattice_, swept_);
+    }
+    return anchor_sweep_;
+  }
+  // sum_a weight[a] v_a of the swept prefix.
+  std::vector<ReducedVariables> mixed(const std::vector<const std::vector<ReducedVariables>*>& values, const double* weight) const {
+    std::vector<ReducedVariables> out(swept_);
+    for (std::size_t a = 0; a < values.size(); ++a) {
+      const std::vector<ReducedVariables>& v = *values[a];
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        out[k].a_over_t = lattice_[k];
+        out[k].pi_s += weight[a] * v[k].pi_s;
+        out[k].delta_s += weight[a] * v[k].delta_s;
+        out[k].e_eq += weight[a] * v[k].e_eq;
+        out[k].gamma1 += weight[a] * v[k].gamma1;
+      }
+    }
+    return out;
+  }
+
   const AfmFitProblem& problem_;
   double e_hint_;
+  double anchor_ = 0.0;  // E1 of the anchored model (0: none)
+  bool centred_ = false;
+  long centre_ = 0;
+  std::vector<ReducedVariables> anchor_sweep_;
   std::map<long, std::vector<ReducedVariables>> nodes_;  // this fit's prefix of each node's sweep
   long solver_calls_ = 0;
   std::vector<double> lattice_;  // the whole a/t lattice
@@ -611,7 +707,14 @@ State polish(State state, const std::vector<int>& axes, const AfmFitProblem& pro
     }
     std::vector<double> residual(n);
     for (std::size_t i = 0; i < n; ++i) residual[i] = all.f[i] - m0[i];
-    const std::vector<double> step = internal::afm_least_squares_step(cols, residual);
+    std::vector<double> step = internal::afm_least_squares_step(cols, residual);
+    // A parameter that hardly changes the model (w of a curve without adhesion) gets a huge
+    // step: at most a decade of any ln-parameter a step.
+    double largest = 0.0;
+    for (std::size_t k = 0; k < axes.size(); ++k) largest = std::max(largest, std::abs(step[k]));
+    if (largest > std::log(10.0)) {
+      for (double& v : step) v *= std::log(10.0) / largest;
+    }
     bool improved = false;
     for (double scale = 1.0; scale > 1.0 / 64.0; scale /= 4.0) {
       State next = state;
@@ -624,6 +727,12 @@ State polish(State state, const std::vector<int>& axes, const AfmFitProblem& pro
         continue;
       }
       next.c.linear = fine.at(*b, next.c.contact);
+      // The sums' closed form loses the residual to cancellation when a wild trial's force
+      // dwarfs the data: the candidate's sum point by point.
+      const std::vector<double> model = model_all(*b, next.c, nullptr);
+      double rss = 0.0;
+      for (std::size_t i = 0; i < n; ++i) rss += all.weight[i] * (all.f[i] - model[i]) * (all.f[i] - model[i]);
+      next.c.linear.rss = std::isfinite(rss) ? rss : kInfinity;
       if (next.c.linear.rss < state.c.linear.rss) {
         const double gain = (state.c.linear.rss - next.c.linear.rss) / state.c.linear.rss;
         state = next;
@@ -728,14 +837,20 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   for (int a : axes) u0.push_back(std::log(a == 0 ? e_hint : a == 1 ? w_hint : t_hint));
 
   CoatingNodes nodes(problem, e_hint);
-  if (coated) nodes.reach(2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint);
+  // A free E1 is searched first on nodes swept to kCoarseAOverT only (THEORY.md section 15,
+  // "The JKR search on a coating"), then polished on the whole reach.
+  const double full_reach = coated ? 2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint : 0.0;
+  const bool anchoring = coated && !model && problem.free.modulus && !problem.coating->direct;
+  bool coarse_stage = anchoring && full_reach > kCoarseAOverT;
+  if (coarse_stage) nodes.reach_below(kCoarseAOverT);
+  else if (coated) nodes.reach(full_reach);
   int tables = 0;
   const auto branch_of = [&](const Trial& t) {
     for (;;) {
       ++tables;
-      auto branch = model ? model->branch(t, max_delta) : law_branch(p, nodes.sweep_of(t.modulus), t, max_delta, law);
+      auto branch = model ? model->branch(t, max_delta) : law_branch(p, nodes.sweep_of(t.modulus), t, max_delta, law, coarse_stage);
       // The branch's radii past the swept a/t would take the sweep's end values: widen it.
-      if (model || !coated || nodes.covers(branch->top_radius() / t.thickness)) return branch;
+      if (model || !coated || coarse_stage || nodes.covers(branch->top_radius() / t.thickness)) return branch;
       nodes.reach(branch->top_radius() / t.thickness);
     }
   };
@@ -780,6 +895,11 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
                      0.15, 1e-6, &iterations);
   }
   Trial estimate = trial_of(u_best);
+  if (anchoring) {
+    coarse_stage = false;
+    nodes.reach(full_reach);
+    nodes.centre(estimate.modulus);
+  }
   const ContactFit fit = trial_cost(estimate, nullptr);
   if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the " + name + " search ended on a trial without a jump-off");
 
@@ -793,6 +913,13 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   }
   state = polish(state, axes, problem, all, fine, branch_at);
   estimate = trial_of(state.u);
+  // The anchor follows E1 until the polish leaves it where it was (THEORY.md section 15).
+  for (int k = 0; anchoring && k < kAnchorMoves && !(std::abs(std::log(estimate.modulus / nodes.anchored())) <= kAnchorTolerance); ++k) {
+    nodes.anchor(estimate.modulus);
+    state.c.linear = fine.at(*branch_of(estimate), state.c.contact);
+    state = polish(state, axes, problem, all, fine, branch_at);
+    estimate = trial_of(state.u);
+  }
   const auto branch = branch_of(estimate);
 
   AfmFitResult r;
