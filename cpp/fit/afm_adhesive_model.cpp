@@ -840,8 +840,9 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   // A free E1 is searched first on nodes swept to kCoarseAOverT only (THEORY.md section 15,
   // "The JKR search on a coating"), then polished on the whole reach.
   const double full_reach = coated ? 2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint : 0.0;
-  const bool anchoring = coated && !model && problem.free.modulus && !problem.coating->direct;
-  bool coarse_stage = anchoring && full_reach > kCoarseAOverT;
+  const bool staged = coated && !model && problem.free.modulus;
+  const bool anchoring = staged && !problem.coating->direct;  // (the direct path reads every E1 exactly)
+  bool coarse_stage = staged && full_reach > kCoarseAOverT;
   if (coarse_stage) nodes.reach_below(kCoarseAOverT);
   else if (coated) nodes.reach(full_reach);
   int tables = 0;
@@ -895,9 +896,19 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
                      0.15, 1e-6, &iterations);
   }
   Trial estimate = trial_of(u_best);
-  if (anchoring) {
+  if (coarse_stage) {
+    // The simplex again on the whole reach from the coarse stage's end (its model, short of
+    // the deepest points, can hold a basin of its own), on the three nodes around it.
     coarse_stage = false;
     nodes.reach(full_reach);
+    nodes.centre(estimate.modulus);
+    const double centre = trial_cost(estimate, nullptr).contact;
+    int more = 0;
+    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
+                     0.15, 1e-6, &more);
+    iterations = std::max(iterations, more);
+    estimate = trial_of(u_best);
+  } else if (staged) {
     nodes.centre(estimate.modulus);
   }
   const ContactFit fit = trial_cost(estimate, nullptr);
