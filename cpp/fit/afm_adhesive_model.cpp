@@ -47,6 +47,9 @@ constexpr int kPolishSteps = 8;
 // solver needs no kernel table (~0.02 ms a radius; the first radius past it builds one, ~10 ms,
 // for a soft film of nu1 = 0.5 on a stiffer base; measured at E1/E0 0.005-2.5).
 constexpr double kCoarseAOverT = 1.0;
+// The coarse stage's simplex stops at this size in the ln-parameters: the whole reach's simplex
+// starts from it.
+constexpr double kCoarseSimplexSize = 1e-3;
 // The anchored model of a free E1 on a coating: re-anchored while the polish moves E1 by more
 // than this in ln E1 (the fitted E1 then misses the anchor-exact one by ~6e-3 of the move: ~2e-6; THEORY.md section 15), at most
 // kAnchorMoves times.
@@ -893,7 +896,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   if (!axes.empty()) {
     const double centre = best_fit.contact;
     u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
-                     0.15, 1e-6, &iterations);
+                     0.15, coarse_stage ? kCoarseSimplexSize : 1e-6, &iterations);
   }
   Trial estimate = trial_of(u_best);
   if (coarse_stage) {

@@ -78,7 +78,7 @@ fit::AfmFitResult check_against_direct(const afm::ForceCurve& curve, fit::AfmBat
   if (std::abs(ze) > 0.01 || std::abs(zw) > 0.01 || std::abs(zc) > 0.01) {
     // The searches' paths parted on a rough profile and ended in two minima: then the tabled
     // estimates must be the better point of the direct path's own sum.
-    std::printf("%s: two minima; the direct sum at the tabled estimates is %.3g of the direct fit's\n", name.c_str(), rss / b.rss);
+    std::printf("%s: two minima; the direct sum at the tabled estimates / the direct fit's - 1 = %.2g\n", name.c_str(), rss / b.rss - 1);
     check::below(rss, b.rss, name + ": not within SE/100 of the direct fit, so a lower point of its own sum");
   }
   return a;
