@@ -54,6 +54,9 @@ constexpr double kCoarseSimplexSize = 1e-3;
 // than this in ln E1 (the fitted E1 then misses the anchor-exact one by ~6e-3 of the move: ~2e-6; THEORY.md section 15), at most
 // kAnchorMoves times.
 constexpr double kAnchorTolerance = 3e-4;
+// ... or by more than this fraction of the standard error of ln E1, when larger (a miss of
+// ~6e-3 of the move is then ~0.003 of a standard error).
+constexpr double kAnchorTolerancePerError = 0.5;
 constexpr int kAnchorMoves = 4;
 
 // The four reduced variables at a/t: constant on a half-space, splines of a reduced-solver
@@ -664,6 +667,7 @@ std::vector<double> start_grid(const std::vector<int>& axes, const std::vector<d
 struct State {
   std::vector<double> u;
   ContactFit c;
+  double first_error = 0.0;  // standard error of u[0] at the polish's last Jacobian (0: none)
 };
 
 // 3. Every point: damped Gauss-Newton steps on all free parameters from `state` (bounded; a
@@ -711,6 +715,13 @@ State polish(State state, const std::vector<int>& axes, const AfmFitProblem& pro
     std::vector<double> residual(n);
     for (std::size_t i = 0; i < n; ++i) residual[i] = all.f[i] - m0[i];
     std::vector<double> step = internal::afm_least_squares_step(cols, residual);
+    double sum = 0.0;
+    for (double v : residual) sum += v * v;
+    try {
+      state.first_error = internal::afm_standard_errors(cols, std::sqrt(sum / static_cast<double>(n - cols.size()))).front();
+    } catch (const NumericalError&) {
+      state.first_error = 0.0;
+    }
     // A parameter that hardly changes the model (w of a curve without adhesion) gets a huge
     // step: at most a decade of any ln-parameter a step.
     double largest = 0.0;
@@ -928,7 +939,8 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   state = polish(state, axes, problem, all, fine, branch_at);
   estimate = trial_of(state.u);
   // The anchor follows E1 until the polish leaves it where it was (THEORY.md section 15).
-  for (int k = 0; anchoring && k < kAnchorMoves && !(std::abs(std::log(estimate.modulus / nodes.anchored())) <= kAnchorTolerance); ++k) {
+  const auto anchor_tolerance = [&] { return std::max(kAnchorTolerance, kAnchorTolerancePerError * state.first_error); };
+  for (int k = 0; anchoring && k < kAnchorMoves && !(std::abs(std::log(estimate.modulus / nodes.anchored())) <= anchor_tolerance()); ++k) {
     nodes.anchor(estimate.modulus);
     state.c.linear = fine.at(*branch_of(estimate), state.c.contact);
     state = polish(state, axes, problem, all, fine, branch_at);
