@@ -810,6 +810,64 @@ void fill_errors(AfmFitResult& r, const std::vector<double>& z_data, const std::
   }
 }
 
+// A trial's cost: the contact point on the whole range (centre null: global) or within a
+// window around `centre` (the simplex's trials; widened to the whole range at its edge).
+ContactFit trial_contact(const Objective& objective, const Branch& branch, const AfmFitProblem& problem, double z_lo,
+                         double c_hi, double span, int grid_points, const double* centre) {
+  const double lo = z_lo + std::min(0.0, branch.jump_delta());
+  if (centre == nullptr) return search_contact(objective, branch, problem, lo, c_hi, grid_points);
+  const double half = 0.1 * span;
+  const double a = std::max(lo, *centre - half), b = std::min(c_hi, *centre + half);
+  ContactFit local = search_contact(objective, branch, problem, a, b, 13);
+  const double edge = 0.02 * (b - a);
+  if (problem.free.contact_point && (local.contact - a < edge || b - local.contact < edge)) {
+    const ContactFit wide = search_contact(objective, branch, problem, lo, c_hi, grid_points);
+    if (wide.linear.rss < local.linear.rss) local = wide;
+  }
+  return local;
+}
+
+// NumericalError when the final branch's deepest fitted indentation needs radii past the tabulated a/t.
+void check_tabulated_reach(const Branch& check, const Trial& estimate, double deepest) {
+  if (check.max_radius() / estimate.thickness > kCoatingAOverT[1]) {
+    throw NumericalError("afm fit: the indentations reach " + short_text(deepest) + " m, where the contact radius " +
+                         short_text(check.max_radius()) + " m exceeds " + short_text(kCoatingAOverT[1]) +
+                         " film thicknesses (t = " + short_text(estimate.thickness) +
+                         " m), as far as the coating model is tabulated; a thicker film or a shallower --indentation-range");
+  }
+}
+
+// The estimates of a fit and its branch's jump-off.
+AfmFitResult estimates_of(const Trial& estimate, const State& state, const Branch& branch, bool coated, std::size_t n,
+                          int free_count) {
+  AfmFitResult r;
+  r.points = n;
+  r.free_count = free_count;
+  r.modulus = estimate.modulus;
+  r.work = estimate.work;
+  r.thickness = coated ? estimate.thickness : 0.0;
+  r.reduced_modulus = branch.reduced_modulus();
+  r.contact_point = state.c.contact;
+  r.baseline = state.c.linear.baseline;
+  r.tilt = state.c.linear.tilt;
+  r.tilt_origin = r.contact_point;
+  r.jump_off_indentation = branch.jump_delta();
+  r.jump_off_force = branch.jump_force();
+  return r;
+}
+
+// A warning for each ln-parameter that ended more than 2.5 decades from its start.
+void warn_far_from_start(AfmFitResult& r, const std::vector<int>& axes, const std::vector<double>& u, const std::vector<double>& u0,
+                         bool coated) {
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    if (std::abs(u[k] - u0[k]) > std::log(10.0) * 2.5) {
+      r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +
+                           " ended more than 2.5 decades from its start (" + short_text(std::exp(u0[k])) +
+                           "); check the given value");
+    }
+  }
+}
+
 }  // namespace
 
 AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
@@ -882,17 +940,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     } catch (const NumericalError&) {
       return {0.0, Linear{}};
     }
-    const double lo = z_lo + std::min(0.0, branch->jump_delta());
-    if (centre == nullptr) return search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
-    const double half = 0.1 * span;
-    const double a = std::max(lo, *centre - half), b = std::min(c_hi, *centre + half);
-    ContactFit local = search_contact(coarse, *branch, problem, a, b, 13);
-    const double edge = 0.02 * (b - a);
-    if (problem.free.contact_point && (local.contact - a < edge || b - local.contact < edge)) {
-      const ContactFit wide = search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
-      if (wide.linear.rss < local.linear.rss) local = wide;
-    }
-    return local;
+    return trial_contact(coarse, *branch, problem, z_lo, c_hi, span, grid_points, centre);
   };
 
   ContactFit best_fit;
@@ -902,25 +950,22 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
                          "the spring constant and the segment)");
   }
-  // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near the start's.
+  // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near `centre`.
   int iterations = 0;
-  if (!axes.empty()) {
-    const double centre = best_fit.contact;
-    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
-                     0.15, coarse_stage ? kCoarseSimplexSize : 1e-6, &iterations);
-  }
+  const auto run_simplex = [&](double centre, double size) {
+    int k = 0;
+    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best, 0.15, size, &k);
+    iterations = std::max(iterations, k);
+  };
+  if (!axes.empty()) run_simplex(best_fit.contact, coarse_stage ? kCoarseSimplexSize : 1e-6);
   Trial estimate = trial_of(u_best);
   if (coarse_stage) {
-    // The simplex again on the whole reach from the coarse stage's end (its model, short of
-    // the deepest points, can hold a basin of its own), on the three nodes around it.
+    // Again on the whole reach (on the three nodes around the coarse E1): the coarse model,
+    // short of the deepest points, can hold a basin of its own.
     coarse_stage = false;
     nodes.reach(full_reach);
     nodes.centre(estimate.modulus);
-    const double centre = trial_cost(estimate, nullptr).contact;
-    int more = 0;
-    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
-                     0.15, 1e-6, &more);
-    iterations = std::max(iterations, more);
+    run_simplex(trial_cost(estimate, nullptr).contact, 1e-6);
     estimate = trial_of(u_best);
   } else if (staged) {
     nodes.centre(estimate.modulus);
@@ -939,8 +984,9 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   state = polish(state, axes, problem, all, fine, branch_at);
   estimate = trial_of(state.u);
   // The anchor follows E1 until the polish leaves it where it was (THEORY.md section 15).
-  const auto anchor_tolerance = [&] { return std::max(kAnchorTolerance, kAnchorTolerancePerError * state.first_error); };
-  for (int k = 0; anchoring && k < kAnchorMoves && !(std::abs(std::log(estimate.modulus / nodes.anchored())) <= anchor_tolerance()); ++k) {
+  for (int k = 0; anchoring && k < kAnchorMoves &&
+                  !(std::abs(std::log(estimate.modulus / nodes.anchored())) <= std::max(kAnchorTolerance, kAnchorTolerancePerError * state.first_error));
+       ++k) {
     nodes.anchor(estimate.modulus);
     state.c.linear = fine.at(*branch_of(estimate), state.c.contact);
     state = polish(state, axes, problem, all, fine, branch_at);
@@ -948,46 +994,20 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   }
   const auto branch = branch_of(estimate);
 
-  AfmFitResult r;
-  r.points = n;
-  r.free_count = free_count;
-  r.modulus = estimate.modulus;
-  r.work = estimate.work;
-  r.thickness = coated ? estimate.thickness : 0.0;
-  r.reduced_modulus = branch->reduced_modulus();
-  r.contact_point = state.c.contact;
-  r.baseline = state.c.linear.baseline;
-  r.tilt = state.c.linear.tilt;
-  r.tilt_origin = r.contact_point;
-  r.jump_off_indentation = branch->jump_delta();
-  r.jump_off_force = branch->jump_force();
+  AfmFitResult r = estimates_of(estimate, state, *branch, coated, n, free_count);
   r.solver_calls = nodes.solver_calls();
   r.profile_evaluations = coarse.evaluations() + fine.evaluations();
   r.model_evaluations = tables;
-  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] &&
-      r.contact_point - z_lo > 0.0) {
+  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] && r.contact_point - z_lo > 0.0) {
     // Only the radii the data reach matter: the deepest fitted indentation's.
-    double deepest = r.contact_point - z_lo;
-    if (deepest > 0.0) {
-      const auto check = model ? model->branch(estimate, deepest) : law_branch(p, nodes.sweep_of(estimate.modulus), estimate, deepest, law);
-      if (check->max_radius() / estimate.thickness > kCoatingAOverT[1]) {
-        throw NumericalError("afm fit: the indentations reach " + short_text(deepest) + " m, where the contact radius " +
-                             short_text(check->max_radius()) + " m exceeds " + short_text(kCoatingAOverT[1]) +
-                             " film thicknesses (t = " + short_text(estimate.thickness) +
-                             " m), as far as the coating model is tabulated; a thicker film or a shallower --indentation-range");
-      }
-    }
+    const double deepest = r.contact_point - z_lo;
+    const auto check = model ? model->branch(estimate, deepest) : law_branch(p, nodes.sweep_of(estimate.modulus), estimate, deepest, law);
+    check_tabulated_reach(*check, estimate, deepest);
   }
   fill_errors(r, z_data, f_data, *branch, state, axes, branch_at, problem, free_count, name);
   if (model) model->report(estimate, r);
   else law.report(p, r);
-  for (std::size_t k = 0; k < axes.size(); ++k) {
-    if (std::abs(state.u[k] - u0[k]) > std::log(10.0) * 2.5) {
-      r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +
-                           " ended more than 2.5 decades from its start (" + short_text(std::exp(u0[k])) +
-                           "); check the given value");
-    }
-  }
+  warn_far_from_start(r, axes, state.u, u0, coated);
   if (iterations >= kSimplexIterations) r.warnings.push_back("the simplex search stopped at its iteration bound");
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
