@@ -482,6 +482,16 @@ std::pair<double, double> adhesive_hints(const std::vector<double>& z_data, cons
   return {e_hint, w_hint};
 }
 
+// Lagrange weights at x of the three points at[0..2].
+void quadratic_weights(double x, const double at[3], double weight[3]) {
+  for (int a = 0; a < 3; ++a) {
+    weight[a] = 1.0;
+    for (int b = 0; b < 3; ++b) {
+      if (b != a) weight[a] *= (x - at[b]) / (at[a] - at[b]);
+    }
+  }
+}
+
 // Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
 // (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
 // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15). The
@@ -515,6 +525,7 @@ class CoatingNodes {
   // through it and its two neighbouring nodes.
   void anchor(double film_modulus) {
     anchor_ = film_modulus;
+    anchor_solver_.reset();
     anchor_sweep_.clear();
     sweeps_.clear();
   }
@@ -547,13 +558,9 @@ class CoatingNodes {
     } else if (centred_ && anchor_ == 0.0) {
       // Before the anchor: the quadratic through the node nearest the coarse estimate and its
       // two neighbours.
+      const double at[3] = {static_cast<double>(centre_ - 1), static_cast<double>(centre_), static_cast<double>(centre_ + 1)};
       double weight[3];
-      for (int a = 0; a < 3; ++a) {
-        weight[a] = 1.0;
-        for (int b = 0; b < 3; ++b) {
-          if (b != a) weight[a] *= (x - static_cast<double>(centre_ - 1 + b)) / static_cast<double>(a - b);
-        }
-      }
+      quadratic_weights(x, at, weight);
       sweep = std::make_shared<const CoatingSweep>(mixed({&node(centre_ - 1), &node(centre_), &node(centre_ + 1)}, weight));
     } else if (anchor_ > 0.0) {
       // Anchored: the quadratic in log E1 through the anchor's own sweep and the nodes either
@@ -563,12 +570,7 @@ class CoatingNodes {
       const long lo = static_cast<long>(std::floor(xa - 0.25)), hi = static_cast<long>(std::ceil(xa + 0.25));
       const double at[3] = {xa, static_cast<double>(lo), static_cast<double>(hi)};
       double weight[3];
-      for (int a = 0; a < 3; ++a) {
-        weight[a] = 1.0;
-        for (int b = 0; b < 3; ++b) {
-          if (b != a) weight[a] *= (x - at[b]) / (at[a] - at[b]);
-        }
-      }
+      quadratic_weights(x, at, weight);
       sweep = std::make_shared<const CoatingSweep>(mixed({&anchor_values(), &node(lo), &node(hi)}, weight));
     } else if (std::abs(x - nearest) < 1e-9) {
       sweep = std::make_shared<const CoatingSweep>(node(static_cast<long>(nearest)));
@@ -595,13 +597,17 @@ class CoatingNodes {
     return v;
   }
 
-  // The sweep at the anchor (a node of its own, shared like the others).
+  // The sweep at the anchor: this fit's own solver (an anchor is the fit's estimate, so no
+  // other fit asks for it; kept among the shared nodes, a map's anchors would crowd them out).
   const std::vector<ReducedVariables>& anchor_values() {
-    if (anchor_sweep_.size() < swept_) {
+    if (!anchor_solver_) {
       Material film = problem_.coating->film;
       film.youngs_modulus = anchor_;
-      solver_calls_ += static_cast<long>(swept_ - anchor_sweep_.size());
-      anchor_sweep_ = shared_sweep(film, problem_.coating->substrate, problem_.coating->solver_tolerance, lattice_, swept_);
+      anchor_solver_ = std::make_unique<ReducedSolver>(Stack::film_on(film, problem_.coating->substrate));
+    }
+    for (std::size_t k = anchor_sweep_.size(); k < swept_; ++k) {
+      anchor_sweep_.push_back(anchor_solver_->solve(lattice_[k], problem_.coating->solver_tolerance));
+      ++solver_calls_;
     }
     return anchor_sweep_;
   }
@@ -626,6 +632,7 @@ class CoatingNodes {
   double anchor_ = 0.0;  // E1 of the anchored model (0: none)
   bool centred_ = false;
   long centre_ = 0;
+  std::unique_ptr<ReducedSolver> anchor_solver_;
   std::vector<ReducedVariables> anchor_sweep_;
   std::map<long, std::vector<ReducedVariables>> nodes_;  // this fit's prefix of each node's sweep
   long solver_calls_ = 0;
