@@ -43,6 +43,21 @@ constexpr int kScanPerDecade = 24;
 // Bounded searches: Nelder-Mead iterations (binned data), Gauss-Newton steps (all points).
 constexpr int kSimplexIterations = 300;
 constexpr int kPolishSteps = 8;
+// The coarse stage of a free E1 on a coating sweeps its nodes up to this a/t: below ~1 the
+// solver needs no kernel table (~0.02 ms a radius; the first radius past it builds one, ~10 ms,
+// for a soft film of nu1 = 0.5 on a stiffer base; measured at E1/E0 0.005-2.5).
+constexpr double kCoarseAOverT = 1.0;
+// The coarse stage's simplex stops at this size in the ln-parameters: the whole reach's simplex
+// starts from it.
+constexpr double kCoarseSimplexSize = 1e-3;
+// The anchored model of a free E1 on a coating: re-anchored while the polish moves E1 by more
+// than this in ln E1 (the fitted E1 then misses the anchor-exact one by ~6e-3 of the move: ~2e-6; THEORY.md section 15), at most
+// kAnchorMoves times.
+constexpr double kAnchorTolerance = 3e-4;
+// ... or by more than this fraction of the standard error of ln E1, when larger (a miss of
+// ~6e-3 of the move is then ~0.003 of a standard error).
+constexpr double kAnchorTolerancePerError = 0.5;
+constexpr int kAnchorMoves = 4;
 
 // The four reduced variables at a/t: constant on a half-space, splines of a reduced-solver
 // sweep (per film modulus) on a coating.
@@ -51,41 +66,44 @@ using Reduced = internal::ReducedAt;
 class CoatingSweep {
  public:
   CoatingSweep(const std::vector<ReducedVariables>& sweep) {
+    std::vector<double> x, pi, delta, eeq, gamma;
     for (const ReducedVariables& v : sweep) {
-      x_.push_back(std::log(v.a_over_t));
-      pi_.push_back(v.pi_s);
-      delta_.push_back(v.delta_s);
-      eeq_.push_back(v.e_eq);
-      gamma_.push_back(v.gamma1);
+      x.push_back(std::log(v.a_over_t));
+      pi.push_back(v.pi_s);
+      delta.push_back(v.delta_s);
+      eeq.push_back(v.e_eq);
+      gamma.push_back(v.gamma1);
     }
-    for (auto* y : {&pi_, &delta_, &eeq_, &gamma_}) {
-      splines_.push_back(gsl_interp_alloc(gsl_interp_cspline, x_.size()));
-      gsl_interp_init(splines_.back(), x_.data(), y->data(), x_.size());
+    for (auto* y : {&pi, &delta, &eeq, &gamma}) {
+      splines_.emplace_back(x, *y);
+      splines_.back().declare_uniform();  // the lattice is uniform in ln(a/t)
     }
-    accel_ = gsl_interp_accel_alloc();
   }
-  ~CoatingSweep() {
-    for (gsl_interp* s : splines_) gsl_interp_free(s);
-    gsl_interp_accel_free(accel_);
-  }
-  CoatingSweep(const CoatingSweep&) = delete;
-  CoatingSweep& operator=(const CoatingSweep&) = delete;
 
   // Outside the sweep: its end values (the film's own limit below; trials only above, the
   // final fit is checked against max_a_over_t()).
   Reduced at(double a_over_t) const {
-    const double x = std::clamp(std::log(a_over_t), x_.front(), x_.back());
-    const double* ys[4] = {pi_.data(), delta_.data(), eeq_.data(), gamma_.data()};
+    const std::vector<double>& x = splines_.front().x();
+    const double v = std::clamp(std::log(a_over_t), x.front(), x.back());
+    const std::size_t k = splines_.front().interval(v);
+    return {splines_[0].value(v, k), splines_[1].value(v, k), splines_[2].value(v, k), splines_[3].value(v, k)};
+  }
+  // Past the sweep's end the natural spline's line in ln(a/t) (the coarse stage's trials,
+  // THEORY.md section 15, "The JKR search on a coating"); inside, at().
+  Reduced extrapolated(double a_over_t) const {
+    const std::vector<double>& x = splines_.front().x();
+    const double v = std::log(a_over_t);
+    if (v <= x.back()) return at(a_over_t);
+    const std::size_t k = x.size() - 2;
+    const double end = x.back();
     double out[4];
-    for (int k = 0; k < 4; ++k) out[k] = gsl_interp_eval(splines_[k], x_.data(), ys[k], x, accel_);
+    for (int j = 0; j < 4; ++j) out[j] = splines_[j].value(end, k) + (v - end) * splines_[j].slope(end, k);
     return {out[0], out[1], out[2], out[3]};
   }
-  double max_a_over_t() const { return std::exp(x_.back()); }
+  double max_a_over_t() const { return std::exp(splines_.front().x().back()); }
 
  private:
-  std::vector<double> x_, pi_, delta_, eeq_, gamma_;
-  std::vector<gsl_interp*> splines_;
-  gsl_interp_accel* accel_ = nullptr;
+  std::vector<internal::SplinePieces> splines_;
 };
 
 // Reduced-solver sweeps of the E1 nodes, shared by every fit of the process: the curves of a
@@ -126,9 +144,9 @@ std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate
   const std::lock_guard<std::mutex> lock(node->mutex);
   if (!node->solver) node->solver = std::make_unique<ReducedSolver>(Stack::film_on(film, substrate));
   if (node->values.size() < count) {
-    const std::vector<double> extra(lattice.begin() + static_cast<long>(node->values.size()), lattice.begin() + static_cast<long>(count));
-    const std::vector<ReducedVariables> more = node->solver->sweep(extra, tolerance);
-    node->values.insert(node->values.end(), more.begin(), more.end());
+    // One radius at a time: a node's few tens of radii cost ~1 ms beside its kernel table, and a
+    // parallel sweep's idle threads spin between them (twice the CPU of a first curve).
+    for (std::size_t k = node->values.size(); k < count; ++k) node->values.push_back(node->solver->solve(lattice[k], tolerance));
   }
   return {node->values.begin(), node->values.begin() + static_cast<long>(count)};
 }
@@ -139,7 +157,8 @@ using Branch = internal::SpringBranch;
 // The branch F(delta) of a law under spring control for one trial (internal::SpringBranch): the
 // scan of delta + F/k over a/L_a in [kScanLow, kScanHigh], kBranchNodes radii from a_s.
 std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
-                                   const Trial& trial, double max_indentation, const internal::ReducedLaw& law) {
+                                   const Trial& trial, double max_indentation, const internal::ReducedLaw& law,
+                                   bool extrapolate = false) {
   const double reduced = trial.modulus / (1.0 - problem.poisson * problem.poisson);
   if (!(reduced > 0.0) || !std::isfinite(reduced) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
       (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
@@ -149,7 +168,7 @@ std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr
   const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
   const auto point = [&](double a) -> std::pair<double, double> {
     Reduced v;
-    if (sweep) v = sweep->at(a / trial.thickness);
+    if (sweep) v = extrapolate ? sweep->extrapolated(a / trial.thickness) : sweep->at(a / trial.thickness);
     return law.point(a, v, reduced, trial.work, radius);
   };
   return std::make_unique<Branch>(point, length, kScanLow, kScanHigh, kScanPerDecade, problem.spring_constant,
@@ -226,9 +245,13 @@ class Objective {
     ++evaluations_;
     double sg = 0.0, szg = 0.0, sfg = 0.0, sgg = 0.0;
     const double limit = contact - branch.jump_delta();  // in contact: z < limit
-    for (std::size_t i = 0; i < p_.z.size() && p_.z[i] < limit; ++i) {
-      const double g = branch.at(contact - p_.z[i]).first, w = p_.weight[i];
-      sg += w * g, szg += w * (p_.z[i] - origin()) * g, sfg += w * p_.f[i] * g, sgg += w * g * g;
+    const std::size_t count = static_cast<std::size_t>(std::lower_bound(p_.z.begin(), p_.z.end(), limit) - p_.z.begin());
+    thread_local std::vector<double> g;
+    g.resize(count);
+    branch.values(contact, p_.z.data(), count, g.data());
+    for (std::size_t i = 0; i < count; ++i) {
+      const double w = p_.weight[i];
+      sg += w * g[i], szg += w * (p_.z[i] - origin()) * g[i], sfg += w * p_.f[i] * g[i], sgg += w * g[i] * g[i];
     }
     // y = F - g; u = z - z_c = (z - origin) - c.
     const double c = contact - origin();
@@ -251,7 +274,7 @@ class Objective {
     const double rss = syy + b * b * sw_ + m * m * suu - 2.0 * b * sy - 2.0 * m * suy + 2.0 * b * m * su;
     out.baseline = b;
     out.tilt = m;
-    out.rss = std::max(0.0, rss);
+    out.rss = std::isfinite(rss) ? std::max(0.0, rss) : kInfinity;  // (a NaN would read as a perfect fit)
     return out;
   }
   int evaluations() const { return evaluations_; }
@@ -459,6 +482,16 @@ std::pair<double, double> adhesive_hints(const std::vector<double>& z_data, cons
   return {e_hint, w_hint};
 }
 
+// Lagrange weights at x of the three points at[0..2].
+void quadratic_weights(double x, const double at[3], double weight[3]) {
+  for (int a = 0; a < 3; ++a) {
+    weight[a] = 1.0;
+    for (int b = 0; b < 3; ++b) {
+      if (b != a) weight[a] *= (x - at[b]) / (at[a] - at[b]);
+    }
+  }
+}
+
 // Coating: reduced-solver sweeps at film moduli E1_j = E1_hint 10^(j/kModulusNodesPerDecade)
 // (kept); a trial E1 between nodes takes the cubic Lagrange interpolant in ln E1 of the four
 // reduced variables at each a/t from its four nearest nodes (THEORY.md section 15). The
@@ -481,6 +514,29 @@ class CoatingNodes {
     swept_ = std::min(lattice_.size(), std::max<std::size_t>(k + 1, 8));
     sweeps_.clear();
   }
+  // Sweeps the radii up to a_over_t only (the coarse stage).
+  void reach_below(double a_over_t) {
+    std::size_t k = 0;
+    while (k < lattice_.size() && lattice_[k] <= a_over_t * (1.0 + 1e-9)) ++k;
+    swept_ = std::max<std::size_t>(k, 8);
+    sweeps_.clear();
+  }
+  // From here on every E1 is read from the sweep at `film_modulus` itself and the quadratic
+  // through it and its two neighbouring nodes.
+  void anchor(double film_modulus) {
+    anchor_ = film_modulus;
+    anchor_solver_.reset();
+    anchor_sweep_.clear();
+    sweeps_.clear();
+  }
+  double anchored() const { return anchor_; }
+  // Until anchored, every E1 is read from the quadratic through the node nearest `film_modulus`
+  // and its two neighbours.
+  void centre(double film_modulus) {
+    centred_ = true;
+    centre_ = std::lround(std::log10(film_modulus / e_hint_) * kModulusNodesPerDecade);
+    sweeps_.clear();
+  }
   bool covers(double a_over_t) const { return swept_ == lattice_.size() || a_over_t <= lattice_[swept_ - 1]; }
   // (the solves the fit's model rests on, whether this fit or an earlier one made them)
   long solver_calls() const { return solver_calls_; }
@@ -492,24 +548,37 @@ class CoatingNodes {
     const double x = std::log10(film_modulus / e_hint_) * kModulusNodesPerDecade;
     const double nearest = std::round(x);
     std::shared_ptr<const CoatingSweep> sweep;
-    if (std::abs(x - nearest) < 1e-9) {
+    if (problem_.coating->direct) {
+      // The direct path: a sweep at this very E1 (AfmCoating::direct; the check of the nodes).
+      Material film = problem_.coating->film;
+      film.youngs_modulus = film_modulus;
+      solver_calls_ += static_cast<long>(swept_);
+      sweep = std::make_shared<const CoatingSweep>(
+          shared_sweep(film, problem_.coating->substrate, problem_.coating->solver_tolerance, lattice_, swept_));
+    } else if (centred_ && anchor_ == 0.0) {
+      // Before the anchor: the quadratic through the node nearest the coarse estimate and its
+      // two neighbours.
+      const double at[3] = {static_cast<double>(centre_ - 1), static_cast<double>(centre_), static_cast<double>(centre_ + 1)};
+      double weight[3];
+      quadratic_weights(x, at, weight);
+      sweep = std::make_shared<const CoatingSweep>(mixed({&node(centre_ - 1), &node(centre_), &node(centre_ + 1)}, weight));
+    } else if (anchor_ > 0.0) {
+      // Anchored: the quadratic in log E1 through the anchor's own sweep and the nodes either
+      // side of it, each at least a quarter spacing away (THEORY.md section 15, "The JKR search
+      // on a coating").
+      const double xa = std::log10(anchor_ / e_hint_) * kModulusNodesPerDecade;
+      const long lo = static_cast<long>(std::floor(xa - 0.25)), hi = static_cast<long>(std::ceil(xa + 0.25));
+      const double at[3] = {xa, static_cast<double>(lo), static_cast<double>(hi)};
+      double weight[3];
+      quadratic_weights(x, at, weight);
+      sweep = std::make_shared<const CoatingSweep>(mixed({&anchor_values(), &node(lo), &node(hi)}, weight));
+    } else if (std::abs(x - nearest) < 1e-9) {
       sweep = std::make_shared<const CoatingSweep>(node(static_cast<long>(nearest)));
     } else {
       const long j0 = static_cast<long>(std::floor(x)) - 1;
       double weight[4];
       lagrange_weights(x, j0, weight);
-      std::vector<ReducedVariables> mixed(swept_);
-      for (int a = 0; a < 4; ++a) {
-        const std::vector<ReducedVariables>& v = node(j0 + a);
-        for (std::size_t k = 0; k < mixed.size(); ++k) {
-          mixed[k].a_over_t = lattice_[k];
-          mixed[k].pi_s += weight[a] * v[k].pi_s;
-          mixed[k].delta_s += weight[a] * v[k].delta_s;
-          mixed[k].e_eq += weight[a] * v[k].e_eq;
-          mixed[k].gamma1 += weight[a] * v[k].gamma1;
-        }
-      }
-      sweep = std::make_shared<const CoatingSweep>(mixed);
+      sweep = std::make_shared<const CoatingSweep>(mixed({&node(j0), &node(j0 + 1), &node(j0 + 2), &node(j0 + 3)}, weight));
     }
     if (sweeps_.size() > 64) sweeps_.clear();
     sweeps_.emplace(film_modulus, sweep);
@@ -528,8 +597,43 @@ class CoatingNodes {
     return v;
   }
 
+  // The sweep at the anchor: this fit's own solver (an anchor is the fit's estimate, so no
+  // other fit asks for it; kept among the shared nodes, a map's anchors would crowd them out).
+  const std::vector<ReducedVariables>& anchor_values() {
+    if (!anchor_solver_) {
+      Material film = problem_.coating->film;
+      film.youngs_modulus = anchor_;
+      anchor_solver_ = std::make_unique<ReducedSolver>(Stack::film_on(film, problem_.coating->substrate));
+    }
+    for (std::size_t k = anchor_sweep_.size(); k < swept_; ++k) {
+      anchor_sweep_.push_back(anchor_solver_->solve(lattice_[k], problem_.coating->solver_tolerance));
+      ++solver_calls_;
+    }
+    return anchor_sweep_;
+  }
+  // sum_a weight[a] v_a of the swept prefix.
+  std::vector<ReducedVariables> mixed(const std::vector<const std::vector<ReducedVariables>*>& values, const double* weight) const {
+    std::vector<ReducedVariables> out(swept_);
+    for (std::size_t a = 0; a < values.size(); ++a) {
+      const std::vector<ReducedVariables>& v = *values[a];
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        out[k].a_over_t = lattice_[k];
+        out[k].pi_s += weight[a] * v[k].pi_s;
+        out[k].delta_s += weight[a] * v[k].delta_s;
+        out[k].e_eq += weight[a] * v[k].e_eq;
+        out[k].gamma1 += weight[a] * v[k].gamma1;
+      }
+    }
+    return out;
+  }
+
   const AfmFitProblem& problem_;
   double e_hint_;
+  double anchor_ = 0.0;  // E1 of the anchored model (0: none)
+  bool centred_ = false;
+  long centre_ = 0;
+  std::unique_ptr<ReducedSolver> anchor_solver_;
+  std::vector<ReducedVariables> anchor_sweep_;
   std::map<long, std::vector<ReducedVariables>> nodes_;  // this fit's prefix of each node's sweep
   long solver_calls_ = 0;
   std::vector<double> lattice_;  // the whole a/t lattice
@@ -570,6 +674,7 @@ std::vector<double> start_grid(const std::vector<int>& axes, const std::vector<d
 struct State {
   std::vector<double> u;
   ContactFit c;
+  double first_error = 0.0;  // standard error of u[0] at the polish's last Jacobian (0: none)
 };
 
 // 3. Every point: damped Gauss-Newton steps on all free parameters from `state` (bounded; a
@@ -616,7 +721,21 @@ State polish(State state, const std::vector<int>& axes, const AfmFitProblem& pro
     }
     std::vector<double> residual(n);
     for (std::size_t i = 0; i < n; ++i) residual[i] = all.f[i] - m0[i];
-    const std::vector<double> step = internal::afm_least_squares_step(cols, residual);
+    std::vector<double> step = internal::afm_least_squares_step(cols, residual);
+    double sum = 0.0;
+    for (double v : residual) sum += v * v;
+    try {
+      state.first_error = internal::afm_standard_errors(cols, std::sqrt(sum / static_cast<double>(n - cols.size()))).front();
+    } catch (const NumericalError&) {
+      state.first_error = 0.0;
+    }
+    // A parameter that hardly changes the model (w of a curve without adhesion) gets a huge
+    // step: at most a decade of any ln-parameter a step.
+    double largest = 0.0;
+    for (std::size_t k = 0; k < axes.size(); ++k) largest = std::max(largest, std::abs(step[k]));
+    if (largest > std::log(10.0)) {
+      for (double& v : step) v *= std::log(10.0) / largest;
+    }
     bool improved = false;
     for (double scale = 1.0; scale > 1.0 / 64.0; scale /= 4.0) {
       State next = state;
@@ -629,6 +748,12 @@ State polish(State state, const std::vector<int>& axes, const AfmFitProblem& pro
         continue;
       }
       next.c.linear = fine.at(*b, next.c.contact);
+      // The sums' closed form loses the residual to cancellation when a wild trial's force
+      // dwarfs the data: the candidate's sum point by point.
+      const std::vector<double> model = model_all(*b, next.c, nullptr);
+      double rss = 0.0;
+      for (std::size_t i = 0; i < n; ++i) rss += all.weight[i] * (all.f[i] - model[i]) * (all.f[i] - model[i]);
+      next.c.linear.rss = std::isfinite(rss) ? rss : kInfinity;
       if (next.c.linear.rss < state.c.linear.rss) {
         const double gain = (state.c.linear.rss - next.c.linear.rss) / state.c.linear.rss;
         state = next;
@@ -692,6 +817,64 @@ void fill_errors(AfmFitResult& r, const std::vector<double>& z_data, const std::
   }
 }
 
+// A trial's cost: the contact point on the whole range (centre null: global) or within a
+// window around `centre` (the simplex's trials; widened to the whole range at its edge).
+ContactFit trial_contact(const Objective& objective, const Branch& branch, const AfmFitProblem& problem, double z_lo,
+                         double c_hi, double span, int grid_points, const double* centre) {
+  const double lo = z_lo + std::min(0.0, branch.jump_delta());
+  if (centre == nullptr) return search_contact(objective, branch, problem, lo, c_hi, grid_points);
+  const double half = 0.1 * span;
+  const double a = std::max(lo, *centre - half), b = std::min(c_hi, *centre + half);
+  ContactFit local = search_contact(objective, branch, problem, a, b, 13);
+  const double edge = 0.02 * (b - a);
+  if (problem.free.contact_point && (local.contact - a < edge || b - local.contact < edge)) {
+    const ContactFit wide = search_contact(objective, branch, problem, lo, c_hi, grid_points);
+    if (wide.linear.rss < local.linear.rss) local = wide;
+  }
+  return local;
+}
+
+// NumericalError when the final branch's deepest fitted indentation needs radii past the tabulated a/t.
+void check_tabulated_reach(const Branch& check, const Trial& estimate, double deepest) {
+  if (check.max_radius() / estimate.thickness > kCoatingAOverT[1]) {
+    throw NumericalError("afm fit: the indentations reach " + short_text(deepest) + " m, where the contact radius " +
+                         short_text(check.max_radius()) + " m exceeds " + short_text(kCoatingAOverT[1]) +
+                         " film thicknesses (t = " + short_text(estimate.thickness) +
+                         " m), as far as the coating model is tabulated; a thicker film or a shallower --indentation-range");
+  }
+}
+
+// The estimates of a fit and its branch's jump-off.
+AfmFitResult estimates_of(const Trial& estimate, const State& state, const Branch& branch, bool coated, std::size_t n,
+                          int free_count) {
+  AfmFitResult r;
+  r.points = n;
+  r.free_count = free_count;
+  r.modulus = estimate.modulus;
+  r.work = estimate.work;
+  r.thickness = coated ? estimate.thickness : 0.0;
+  r.reduced_modulus = branch.reduced_modulus();
+  r.contact_point = state.c.contact;
+  r.baseline = state.c.linear.baseline;
+  r.tilt = state.c.linear.tilt;
+  r.tilt_origin = r.contact_point;
+  r.jump_off_indentation = branch.jump_delta();
+  r.jump_off_force = branch.jump_force();
+  return r;
+}
+
+// A warning for each ln-parameter that ended more than 2.5 decades from its start.
+void warn_far_from_start(AfmFitResult& r, const std::vector<int>& axes, const std::vector<double>& u, const std::vector<double>& u0,
+                         bool coated) {
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    if (std::abs(u[k] - u0[k]) > std::log(10.0) * 2.5) {
+      r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +
+                           " ended more than 2.5 decades from its start (" + short_text(std::exp(u0[k])) +
+                           "); check the given value");
+    }
+  }
+}
+
 }  // namespace
 
 AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
@@ -733,14 +916,21 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   for (int a : axes) u0.push_back(std::log(a == 0 ? e_hint : a == 1 ? w_hint : t_hint));
 
   CoatingNodes nodes(problem, e_hint);
-  if (coated) nodes.reach(2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint);
+  // A free E1 is searched first on nodes swept to kCoarseAOverT only (THEORY.md section 15,
+  // "The JKR search on a coating"), then polished on the whole reach.
+  const double full_reach = coated ? 2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint : 0.0;
+  const bool staged = coated && !model && problem.free.modulus;
+  const bool anchoring = staged && !problem.coating->direct;  // (the direct path reads every E1 exactly)
+  bool coarse_stage = staged && full_reach > kCoarseAOverT;
+  if (coarse_stage) nodes.reach_below(kCoarseAOverT);
+  else if (coated) nodes.reach(full_reach);
   int tables = 0;
   const auto branch_of = [&](const Trial& t) {
     for (;;) {
       ++tables;
-      auto branch = model ? model->branch(t, max_delta) : law_branch(p, nodes.sweep_of(t.modulus), t, max_delta, law);
+      auto branch = model ? model->branch(t, max_delta) : law_branch(p, nodes.sweep_of(t.modulus), t, max_delta, law, coarse_stage);
       // The branch's radii past the swept a/t would take the sweep's end values: widen it.
-      if (model || !coated || nodes.covers(branch->top_radius() / t.thickness)) return branch;
+      if (model || !coated || coarse_stage || nodes.covers(branch->top_radius() / t.thickness)) return branch;
       nodes.reach(branch->top_radius() / t.thickness);
     }
   };
@@ -757,17 +947,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     } catch (const NumericalError&) {
       return {0.0, Linear{}};
     }
-    const double lo = z_lo + std::min(0.0, branch->jump_delta());
-    if (centre == nullptr) return search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
-    const double half = 0.1 * span;
-    const double a = std::max(lo, *centre - half), b = std::min(c_hi, *centre + half);
-    ContactFit local = search_contact(coarse, *branch, problem, a, b, 13);
-    const double edge = 0.02 * (b - a);
-    if (problem.free.contact_point && (local.contact - a < edge || b - local.contact < edge)) {
-      const ContactFit wide = search_contact(coarse, *branch, problem, lo, c_hi, grid_points);
-      if (wide.linear.rss < local.linear.rss) local = wide;
-    }
-    return local;
+    return trial_contact(coarse, *branch, problem, z_lo, c_hi, span, grid_points, centre);
   };
 
   ContactFit best_fit;
@@ -777,14 +957,26 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
                          "the spring constant and the segment)");
   }
-  // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near the start's.
+  // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near `centre`.
   int iterations = 0;
-  if (!axes.empty()) {
-    const double centre = best_fit.contact;
-    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best,
-                     0.15, 1e-6, &iterations);
-  }
+  const auto run_simplex = [&](double centre, double size) {
+    int k = 0;
+    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best, 0.15, size, &k);
+    iterations = std::max(iterations, k);
+  };
+  if (!axes.empty()) run_simplex(best_fit.contact, coarse_stage ? kCoarseSimplexSize : 1e-6);
   Trial estimate = trial_of(u_best);
+  if (coarse_stage) {
+    // Again on the whole reach (on the three nodes around the coarse E1): the coarse model,
+    // short of the deepest points, can hold a basin of its own.
+    coarse_stage = false;
+    nodes.reach(full_reach);
+    nodes.centre(estimate.modulus);
+    run_simplex(trial_cost(estimate, nullptr).contact, 1e-6);
+    estimate = trial_of(u_best);
+  } else if (staged) {
+    nodes.centre(estimate.modulus);
+  }
   const ContactFit fit = trial_cost(estimate, nullptr);
   if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the " + name + " search ended on a trial without a jump-off");
 
@@ -798,48 +990,31 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   }
   state = polish(state, axes, problem, all, fine, branch_at);
   estimate = trial_of(state.u);
+  // The anchor follows E1 until the polish leaves it where it was (THEORY.md section 15).
+  for (int k = 0; anchoring && k < kAnchorMoves &&
+                  !(std::abs(std::log(estimate.modulus / nodes.anchored())) <= std::max(kAnchorTolerance, kAnchorTolerancePerError * state.first_error));
+       ++k) {
+    nodes.anchor(estimate.modulus);
+    state.c.linear = fine.at(*branch_of(estimate), state.c.contact);
+    state = polish(state, axes, problem, all, fine, branch_at);
+    estimate = trial_of(state.u);
+  }
   const auto branch = branch_of(estimate);
 
-  AfmFitResult r;
-  r.points = n;
-  r.free_count = free_count;
-  r.modulus = estimate.modulus;
-  r.work = estimate.work;
-  r.thickness = coated ? estimate.thickness : 0.0;
-  r.reduced_modulus = branch->reduced_modulus();
-  r.contact_point = state.c.contact;
-  r.baseline = state.c.linear.baseline;
-  r.tilt = state.c.linear.tilt;
-  r.tilt_origin = r.contact_point;
-  r.jump_off_indentation = branch->jump_delta();
-  r.jump_off_force = branch->jump_force();
+  AfmFitResult r = estimates_of(estimate, state, *branch, coated, n, free_count);
   r.solver_calls = nodes.solver_calls();
   r.profile_evaluations = coarse.evaluations() + fine.evaluations();
   r.model_evaluations = tables;
-  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] &&
-      r.contact_point - z_lo > 0.0) {
+  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] && r.contact_point - z_lo > 0.0) {
     // Only the radii the data reach matter: the deepest fitted indentation's.
-    double deepest = r.contact_point - z_lo;
-    if (deepest > 0.0) {
-      const auto check = model ? model->branch(estimate, deepest) : law_branch(p, nodes.sweep_of(estimate.modulus), estimate, deepest, law);
-      if (check->max_radius() / estimate.thickness > kCoatingAOverT[1]) {
-        throw NumericalError("afm fit: the indentations reach " + short_text(deepest) + " m, where the contact radius " +
-                             short_text(check->max_radius()) + " m exceeds " + short_text(kCoatingAOverT[1]) +
-                             " film thicknesses (t = " + short_text(estimate.thickness) +
-                             " m), as far as the coating model is tabulated; a thicker film or a shallower --indentation-range");
-      }
-    }
+    const double deepest = r.contact_point - z_lo;
+    const auto check = model ? model->branch(estimate, deepest) : law_branch(p, nodes.sweep_of(estimate.modulus), estimate, deepest, law);
+    check_tabulated_reach(*check, estimate, deepest);
   }
   fill_errors(r, z_data, f_data, *branch, state, axes, branch_at, problem, free_count, name);
   if (model) model->report(estimate, r);
   else law.report(p, r);
-  for (std::size_t k = 0; k < axes.size(); ++k) {
-    if (std::abs(state.u[k] - u0[k]) > std::log(10.0) * 2.5) {
-      r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +
-                           " ended more than 2.5 decades from its start (" + short_text(std::exp(u0[k])) +
-                           "); check the given value");
-    }
-  }
+  warn_far_from_start(r, axes, state.u, u0, coated);
   if (iterations >= kSimplexIterations) r.warnings.push_back("the simplex search stopped at its iteration bound");
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

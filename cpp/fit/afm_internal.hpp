@@ -53,6 +53,35 @@ struct AdhesiveTrial {
   double thickness = 0.0;
 };
 
+// GSL's natural cubic spline through (x_k, y_k) as explicit pieces (THEORY.md section 15, "The
+// JKR search on a coating"): GSL solves for the spline, its slopes at the knots give each
+// interval's cubic y_k + s (b_k + s (c_k + s d_k)), s = x - x_k, so an evaluation is one
+// interval lookup and a Horner step (no per-call coefficient solve or accelerator).
+class SplinePieces {
+ public:
+  SplinePieces() = default;
+  SplinePieces(std::vector<double> x, std::vector<double> y);  // x strictly increasing, >= 3 knots
+  // The interval holding v (clamped to the first/last): binary search, or direct indexing
+  // when the knots were declared uniform.
+  std::size_t interval(double v) const;
+  double value(double v, std::size_t k) const {
+    const double s = v - x_[k];
+    return y_[k] + s * (b_[k] + s * (c_[k] + s * d_[k]));
+  }
+  double slope(double v, std::size_t k) const {
+    const double s = v - x_[k];
+    return b_[k] + s * (2.0 * c_[k] + 3.0 * s * d_[k]);
+  }
+  double value(double v) const { return value(v, interval(v)); }
+  // Knots uniform in x to rounding: interval() indexes directly.
+  void declare_uniform() { uniform_ = true; }
+  const std::vector<double>& x() const { return x_; }
+
+ private:
+  std::vector<double> x_, y_, b_, c_, d_;
+  bool uniform_ = false;
+};
+
 // The adhesive force F(delta) on the branch a cantilever of stiffness k holds (THEORY.md
 // section 15, JKR and Maugis-Dugdale alike): from the curve point(a) = (delta, F) [SI], the
 // jump-off a_s is the lowest minimum of Z = delta + F/k on a scan of a in [a_lo, a_hi]
@@ -72,6 +101,10 @@ class SpringBranch {
   SpringBranch& operator=(const SpringBranch&) = delete;
 
   std::pair<double, double> at(double delta) const;  // F and dF/ddelta (0 off contact)
+  double value(double delta) const;                   // F alone (the contact search's sums)
+  // F at contact - z[i] for i < count, z ascending (the indentations descending): one walk
+  // down the knots instead of a search per point.
+  void values(double contact, const double* z, std::size_t count, double* out) const;
   double jump_delta() const { return jump_delta_; }
   double jump_force() const { return jump_force_; }
   bool jump_at_end() const { return jump_at_end_; }  // the jump-off is the curve's end a -> 0
@@ -81,11 +114,10 @@ class SpringBranch {
   double reduced_modulus() const { return reduced_; }
 
  private:
-  struct Spline;
   double reduced_ = 0.0, a_max_ = 0.0, a_top_ = 0.0, jump_delta_ = 0.0, jump_force_ = 0.0, last_slope_ = 1.5;
   bool jump_at_end_ = false;
   std::vector<double> delta_, force_;
-  std::unique_ptr<Spline> spline_;
+  SplinePieces spline_;
 };
 
 // A spring-held adhesive model other than JKR for the shared search of the adhesive fit: the

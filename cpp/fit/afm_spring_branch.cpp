@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <tuple>
+#include <utility>
 
 #include "afm_internal.hpp"
 #include "coatcontact/detail/brent.hpp"
@@ -16,14 +18,34 @@ namespace coatcontact::fit::internal {
 
 using coatcontact::detail::short_text;
 
-struct SpringBranch::Spline {
-  gsl_interp* interp = nullptr;
-  gsl_interp_accel* accel = nullptr;
-  ~Spline() {
-    if (interp) gsl_interp_free(interp);
-    if (accel) gsl_interp_accel_free(accel);
+SplinePieces::SplinePieces(std::vector<double> x, std::vector<double> y) : x_(std::move(x)), y_(std::move(y)) {
+  const std::size_t n = x_.size();
+  std::unique_ptr<gsl_interp, void (*)(gsl_interp*)> spline(gsl_interp_alloc(gsl_interp_cspline, n), gsl_interp_free);
+  std::unique_ptr<gsl_interp_accel, void (*)(gsl_interp_accel*)> accel(gsl_interp_accel_alloc(), gsl_interp_accel_free);
+  gsl_interp_init(spline.get(), x_.data(), y_.data(), n);
+  std::vector<double> slope(n);
+  for (std::size_t k = 0; k < n; ++k) slope[k] = gsl_interp_eval_deriv(spline.get(), x_.data(), y_.data(), x_[k], accel.get());
+  // The cubic of [x_k, x_k+1] from its end values and slopes (Hermite): the spline's piece.
+  b_.assign(n, 0.0), c_.assign(n, 0.0), d_.assign(n, 0.0);
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double h = x_[k + 1] - x_[k], secant = (y_[k + 1] - y_[k]) / h;
+    b_[k] = slope[k];
+    c_[k] = (3.0 * secant - 2.0 * slope[k] - slope[k + 1]) / h;
+    d_[k] = (slope[k] + slope[k + 1] - 2.0 * secant) / (h * h);
   }
-};
+}
+
+std::size_t SplinePieces::interval(double v) const {
+  const std::size_t last = x_.size() - 2;
+  if (uniform_) {
+    const double at = (v - x_.front()) / (x_.back() - x_.front()) * static_cast<double>(x_.size() - 1);
+    if (!(at > 0.0)) return 0;  // (NaN too)
+    return std::min(last, static_cast<std::size_t>(at));
+  }
+  const auto it = std::upper_bound(x_.begin(), x_.end(), v);
+  if (it == x_.begin()) return 0;
+  return std::min(last, static_cast<std::size_t>(it - x_.begin()) - 1);
+}
 
 SpringBranch::SpringBranch(const CurvePoint& point, double scale, double lo, double hi, int per_decade, double spring,
                            double max_indentation, double a_top_guess, int nodes,
@@ -83,10 +105,7 @@ SpringBranch::SpringBranch(const CurvePoint& point, double scale, double lo, dou
   last_slope_ = force_[n - 1] > 0.0 && force_[n - 2] > 0.0 && d0 > 0.0
                     ? std::log(force_[n - 1] / force_[n - 2]) / std::log(d1 / d0)
                     : 1.5;
-  spline_ = std::make_unique<Spline>();
-  spline_->interp = gsl_interp_alloc(gsl_interp_cspline, n);
-  spline_->accel = gsl_interp_accel_alloc();
-  gsl_interp_init(spline_->interp, delta_.data(), force_.data(), n);
+  spline_ = SplinePieces(delta_, force_);
 }
 
 SpringBranch::~SpringBranch() = default;
@@ -99,8 +118,28 @@ std::pair<double, double> SpringBranch::at(double delta) const {
     const double g = force_.back() * std::pow(x, last_slope_);
     return {g, last_slope_ * g / (delta - jump_delta_)};
   }
-  return {gsl_interp_eval(spline_->interp, delta_.data(), force_.data(), delta, spline_->accel),
-          gsl_interp_eval_deriv(spline_->interp, delta_.data(), force_.data(), delta, spline_->accel)};
+  const std::size_t k = spline_.interval(delta);
+  return {spline_.value(delta, k), spline_.slope(delta, k)};
+}
+
+double SpringBranch::value(double delta) const {
+  if (delta <= jump_delta_) return 0.0;
+  if (delta < delta_.front()) return force_.front();
+  if (delta >= delta_.back()) return force_.back() * std::pow((delta - jump_delta_) / (delta_.back() - jump_delta_), last_slope_);
+  return spline_.value(delta);
+}
+
+void SpringBranch::values(double contact, const double* z, std::size_t count, double* out) const {
+  std::size_t k = delta_.size() - 1;  // the knot at or below the current indentation
+  for (std::size_t i = 0; i < count; ++i) {
+    const double delta = contact - z[i];
+    if (delta >= delta_.back() || delta < delta_.front()) {
+      out[i] = value(delta);
+      continue;
+    }
+    while (delta < delta_[k]) --k;
+    out[i] = spline_.value(delta, std::min(k, delta_.size() - 2));
+  }
 }
 
 void lagrange_weights(double x, long j0, double weight[4]) {

@@ -119,7 +119,8 @@ struct AfmCoating {
   double solver_tolerance = 1e-8;
   // false: the Hertz model reads every trial E1 from the process's shared tabled force law
   // (THEORY.md section 15, "Tabled coated force laws"); true: a reduced-solver sweep per trial
-  // E1 (the direct path, kept for comparison).
+  // E1 (the direct path, kept for comparison). The JKR model likewise: false, E1 between its
+  // nodes interpolated; true, a sweep at every trial E1.
   bool direct = false;
 };
 // The sample `stack` with layer `free_layer`'s modulus (the fit's E<free_layer + 1>) free;
