@@ -45,8 +45,17 @@ using ModelKey = std::tuple<double, double, bool, double, double>;
 constexpr std::size_t kSharedModels = 96;
 std::mutex shared_models_mutex;
 
-std::shared_ptr<const MaugisDugdaleModel> shared_model(const Material& film, const Substrate& substrate) {
+std::shared_ptr<const MaugisDugdaleModel> shared_model(Material film, Substrate substrate) {
   static std::map<ModelKey, std::shared_ptr<const MaugisDugdaleModel>> models;
+  // On a rigid base or a half-space the table, in units of t and E1*, does not depend on E1
+  // (THEORY.md section 15, "Its cost"): one model per nu1, whatever modulus the caller holds (the
+  // fit its start value, afm_md_model_force the estimate).
+  const bool half_space = !substrate.rigid && substrate.material.youngs_modulus == film.youngs_modulus &&
+                          substrate.material.poisson_ratio == film.poisson_ratio;
+  if (substrate.rigid || half_space) {
+    film.youngs_modulus = 1.0;
+    if (half_space) substrate.material = film;
+  }
   const ModelKey key{film.youngs_modulus, film.poisson_ratio, substrate.rigid,
                      substrate.rigid ? 0.0 : substrate.material.youngs_modulus,
                      substrate.rigid ? 0.0 : substrate.material.poisson_ratio};
