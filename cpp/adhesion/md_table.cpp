@@ -34,9 +34,12 @@ namespace {
 using detail::kPi;
 constexpr int kTwoD = 4;  // d, f, g_r, g_s
 constexpr int kOneD = 2;  // delta_h, force_h
-// The radius functions cost one factorization per node and vary with a/t as fast as the 2-D
-// ones (on a rigid base with nu = 0.5 F_H/a³ spans decades): a grid 8 times finer than x.
-constexpr double kOneDRefinement = 8.0;
+// The radius functions cost one factorization per node (~100 µs, more than a 2-D node) and
+// vary with a/t as fast as the 2-D ones (on a rigid base with nu = 0.5 F_H/a³ spans decades):
+// a grid 4 times finer than x. Their cubic splines' error is then 1/256 of x's step (h^4) and
+// stays below the 2-D functions'; 8 times finer moved AFM fits by <= 1e-3 of their standard
+// errors at 1.15-1.2 times the cost (THEORY.md section 15, "Its cost").
+constexpr double kOneDRefinement = 4.0;
 // Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
 constexpr int kSamples = 5;
 
@@ -302,6 +305,7 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
     // Everything a node's value depends on besides its grid index.
     const MdTableOptions& o = options_;
     const std::string key = cache_key + "; zone table " + exact_text(o.a_over_t_min) + " " +
+                            exact_text(kOneDRefinement) + " " +
                             exact_text(o.a_over_t_max) + " " + exact_text(o.excess_min) + " " +
                             exact_text(o.c_over_t_max) + " " + exact_text(o.end_c_over_t_min) + " " +
                             exact_text(o.step) + "; panels " + std::to_string(disc_.nodes_per_panel) + " " +

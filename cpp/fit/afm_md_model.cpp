@@ -45,8 +45,17 @@ using ModelKey = std::tuple<double, double, bool, double, double>;
 constexpr std::size_t kSharedModels = 96;
 std::mutex shared_models_mutex;
 
-std::shared_ptr<const MaugisDugdaleModel> shared_model(const Material& film, const Substrate& substrate) {
+std::shared_ptr<const MaugisDugdaleModel> shared_model(Material film, Substrate substrate) {
   static std::map<ModelKey, std::shared_ptr<const MaugisDugdaleModel>> models;
+  // On a rigid base or a half-space the table, in units of t and E1*, does not depend on E1
+  // (THEORY.md section 15, "Its cost"): one model per nu1, whatever modulus the caller holds (the
+  // fit its start value, afm_md_model_force the estimate).
+  const bool half_space = !substrate.rigid && substrate.material.youngs_modulus == film.youngs_modulus &&
+                          substrate.material.poisson_ratio == film.poisson_ratio;
+  if (substrate.rigid || half_space) {
+    film.youngs_modulus = 1.0;
+    if (half_space) substrate.material = film;
+  }
   const ModelKey key{film.youngs_modulus, film.poisson_ratio, substrate.rigid,
                      substrate.rigid ? 0.0 : substrate.material.youngs_modulus,
                      substrate.rigid ? 0.0 : substrate.material.poisson_ratio};
@@ -64,7 +73,9 @@ std::shared_ptr<const MaugisDugdaleModel> shared_model(const Material& film, con
 }
 
 // The Maugis-Dugdale curves of one fit: one stack's model (half-space; a coating with E1 fixed)
-// or one per node E1_j = E1 10^(j/kModulusNodesPerDecade) (a coating with E1 free), each with its
+// or one per node E1_j = E0 10^(j/kModulusNodesPerDecade) on an elastic base with E1 free (nodes
+// on the substrate's scale, not the start value's: every fit of the sample, and the model force at
+// the estimates, interpolate between the same tables), each with its
 // cohesive-zone table built tile by tile as the trials need it.
 class MdCurves {
  public:
@@ -73,6 +84,7 @@ class MdCurves {
         coated_(problem.coating.has_value()),
         poisson_(coated_ ? problem.coating->film.poisson_ratio : problem.poisson),
         hint_(coated_ ? problem.coating->film.youngs_modulus : problem.modulus),
+        anchor_(coated_ && !problem.coating->substrate.rigid ? problem.coating->substrate.material.youngs_modulus : hint_),
         h0_(kDugdaleRangeOverZ0 * problem.surface_force_range) {}
 
   // lambda of a trial's w and reduced modulus: 2 (w/h0) (R/(pi w K^2))^(1/3), K = 4E*/3.
@@ -100,7 +112,7 @@ class MdCurves {
     // On a rigid base the modulus is a pure scale (the table's units are t and E1*): one table
     // serves every E1, and the trial's own E1 sets L and lambda.
     if (coated_ && problem_.free.modulus && !problem_.coating->substrate.rigid) {
-      const double x = std::log10(trial.modulus / hint_) * kModulusNodesPerDecade;
+      const double x = std::log10(trial.modulus / anchor_) * kModulusNodesPerDecade;
       const double nearest = std::round(x);
       if (std::abs(x - nearest) < 1e-9) {
         add_node(static_cast<long>(nearest), 1.0, mix, node_reduced);
@@ -177,7 +189,7 @@ class MdCurves {
  private:
   void add_node(long j, double weight, std::vector<std::pair<const MaugisDugdaleModel*, double>>& mix,
                 std::vector<double>& node_reduced) {
-    const double e = hint_ * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+    const double e = anchor_ * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
     mix.push_back({&model(e, j), weight});
     node_reduced.push_back(e / (1.0 - poisson_ * poisson_));
   }
@@ -194,7 +206,7 @@ class MdCurves {
 
   const AfmFitProblem& problem_;
   bool coated_;
-  double poisson_, hint_, h0_, force_limit_ = 0.0;
+  double poisson_, hint_, anchor_, h0_, force_limit_ = 0.0;
   std::map<long, std::shared_ptr<const MaugisDugdaleModel>> models_;
 };
 
@@ -261,9 +273,7 @@ std::vector<double> afm_md_model_force(const AfmFitProblem& problem, const std::
   }
   double max_delta = 0.0;
   for (double v : z) max_delta = std::max(max_delta, problem.contact_point - v);
-  AfmFitProblem fixed = problem;
-  fixed.free.modulus = false;  // one stack: the given E or E1
-  MdCurves curves(fixed);
+  MdCurves curves(problem);
   AdhesiveTrial trial{problem.coating ? problem.coating->film.youngs_modulus : problem.modulus, problem.work,
                       problem.coating ? problem.coating->thickness : 0.0};
   const auto branch = curves.branch(trial, std::max(max_delta, 1e-12));
