@@ -5,10 +5,14 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
 
 #include "capi_afm.hpp"
 #include "capi_guard.hpp"
+#include "coatcontact/afm_batch_table.hpp"
+#include "coatcontact/afm_models.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/progress.hpp"
 
@@ -22,6 +26,9 @@ using coatcontact::capi::require;
 struct cc_afm_rows {
   std::vector<fit::AfmBatchParameter> parameters;
   std::vector<fit::AfmCurveRow> rows;
+  // A run over files: what its table's header states (cc_afm_rows_write_table).
+  std::optional<fit::AfmBatchSettings> settings;
+  fit::AfmBatchTableRun run;
 };
 
 struct cc_afm_file_list {
@@ -58,7 +65,9 @@ fit::AfmBatchSettings settings_of(const cc_afm_request& request, const cc_afm_ba
 // stops the run (Interrupted).
 void deliver(cc_afm_rows& made, const std::vector<fit::AfmCurveRow>& chunk, const cc_afm_batch_options* options) {
   if (options && options->sink) {
-    cc_afm_rows view{made.parameters, chunk};
+    cc_afm_rows view;
+    view.parameters = made.parameters;
+    view.rows = chunk;
     if (options->sink(options->sink_user, &view) != 0) throw coatcontact::Interrupted("interrupted");
   } else {
     made.rows.insert(made.rows.end(), chunk.begin(), chunk.end());
@@ -131,6 +140,16 @@ int cc_afm_fit_batch(const char* const* files, long file_count, const cc_afm_cal
       if (options->count > 0) batch.count = static_cast<std::size_t>(options->count);
       batch.survey = survey_of(*options, paths.size(), f);
     }
+    // Surveyed here when the caller has no survey (as afm_fit_batch would): the table's header
+    // names each file's curves.
+    if (batch.survey.empty()) batch.survey = fit::afm_survey_files(paths, cal, batch.unreadable_file_rows);
+    made->settings = settings;
+    made->run.files = paths;
+    made->run.survey = batch.survey;
+    for (const fit::AfmFileSurvey& s : batch.survey) made->run.total += s.curves;
+    made->run.calibration = cal;
+    const fit::AfmModelInfo& info = settings.problem.model.info();
+    made->run.free_text = request->free.empty() ? fit::afm_free_default(info, request->coated) : request->free;
     batch.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) { deliver(*made, chunk, options); };
     if (coatcontact::ProgressHook hook = current_hook()) batch.progress = hook;
     fit::afm_fit_batch(paths, cal, settings, batch);
@@ -312,6 +331,37 @@ int cc_afm_rows_trace(const cc_afm_rows* rows, long row, const char* name, doubl
     if (n == "segment") return copy_out(std::vector<double>(t.segment.begin(), t.segment.end()), values, capacity, length, f, n);
     if (n == "fitted") return copy_out(std::vector<double>(t.fitted.begin(), t.fitted.end()), values, capacity, length, f, n);
     throw InputError(std::string(f) + ": name '" + n.substr(0, 60) + "' is not a trace array; allowed: z, force, model, segment, fitted");
+  });
+}
+
+int cc_afm_rows_write_table(const cc_afm_rows* rows, const char* path) {
+  return guard([&] {
+    const char* f = "cc_afm_rows_write_table";
+    const cc_afm_rows& r = rows_of(rows, f);
+    require(path, f, "path");
+    if (!r.settings) {
+      throw InputError(std::string(f) + ": the rows are not a run over files (cc_afm_fit_batch without a sink); their table has no header");
+    }
+    const fit::AfmBatchTable table = fit::afm_batch_table(*r.settings, r.run);
+    std::size_t by_flag[fit::kAfmFlagCount] = {};
+    for (const fit::AfmCurveRow& row : r.rows) ++by_flag[static_cast<int>(row.flag)];
+    std::string text = fit::afm_batch_final_header(table.header, fit::afm_batch_flagged_text(by_flag, r.run.total));
+    for (const fit::AfmCurveRow& row : r.rows) text += fit::afm_batch_row_line(row, table);
+    // Atomic: a temporary file beside it, renamed.
+    const std::string temporary = std::string(path) + ".tmp";
+    {
+      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+      out << text;
+      out.close();
+      if (!out) {
+        std::remove(temporary.c_str());
+        throw InputError(std::string(f) + ": cannot write '" + std::string(path).substr(0, 200) + "'");
+      }
+    }
+    if (std::rename(temporary.c_str(), path) != 0) {
+      std::remove(temporary.c_str());
+      throw InputError(std::string(f) + ": cannot replace '" + std::string(path).substr(0, 200) + "'");
+    }
   });
 }
 

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h> /* getpid */
 
 #include "coatcontact/coatcontact.h"
 
@@ -419,6 +420,58 @@ static void stack_fit(const char *folder, const char *cli) {
   cc_afm_curve_destroy(curve);
 }
 
+/* The whole text of a file (NULL if it cannot be read); the caller frees it. */
+static char *file_text(const char *path) {
+  FILE *in = fopen(path, "rb");
+  if (!in) return NULL;
+  static const size_t limit = 1 << 20;
+  char *text = malloc(limit);
+  size_t length = fread(text, 1, limit - 1, in);
+  text[length] = '\0';
+  fclose(in);
+  return text;
+}
+
+/* The map2x2 batch's table through the C API is the CLI's `afm fit --output` table byte for
+ * byte (one writer in the fit floor), the CLI's "# command:" line aside. */
+static void batch_table(const char *folder, const char *cli) {
+  char path[4096], c_table[4200], cli_table[4200], command[16384];
+  snprintf(path, sizeof path, "%s/fmt-jpk-fd_map2x2_extracted.jpk-force-map", folder);
+  const char *tmp = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
+  snprintf(c_table, sizeof c_table, "%s/capi_afm_table_%ld.tsv", tmp, (long)getpid());
+  snprintf(cli_table, sizeof cli_table, "%s/capi_afm_table_cli_%ld.tsv", tmp, (long)getpid());
+  const char *files[] = {path};
+  cc_afm_request *request = sphere_request("hertz");
+  cc_afm_rows *rows = NULL;
+  cc_afm_batch_options options = {0};
+  options.jobs = 1;
+  check("batch for the table", cc_afm_fit_batch(files, 1, NULL, request, &options, &rows) == CC_OK);
+  check("write table", cc_afm_rows_write_table(rows, c_table) == CC_OK);
+  check("write table NULL path", cc_afm_rows_write_table(rows, NULL) == CC_INPUT_ERROR && message_has("path is NULL"));
+  check("write table NULL rows", cc_afm_rows_write_table(NULL, c_table) == CC_INPUT_ERROR && message_has("rows is NULL"));
+  check("write table to a folder", cc_afm_rows_write_table(rows, "/nonexistent-folder/x.tsv") == CC_INPUT_ERROR &&
+                                      message_has("cannot write"));
+  cc_afm_rows *curves_rows = NULL;
+  check("rows of curves", cc_afm_fit_curves(NULL, 0, request, NULL, &curves_rows) == CC_OK);
+  check("rows of curves have no table", cc_afm_rows_write_table(curves_rows, c_table) == CC_INPUT_ERROR &&
+                                            message_has("not a run over files"));
+  cc_afm_rows_destroy(curves_rows);
+  snprintf(command, sizeof command, "'%s' afm fit '%s' --radius 10um --halfspace 1000,0.5 --jobs 1 --output '%s' 2>/dev/null",
+           cli, path, cli_table);
+  check("the CLI wrote its table", system(command) == 0);
+  char *a = file_text(c_table), *b = file_text(cli_table);
+  const char *b_rest = b ? strchr(b, '\n') : NULL; /* past "# command: ..." */
+  check("the CLI's table starts with its command", b && strncmp(b, "# command: ", 11) == 0);
+  check("C API table = CLI table", a && b_rest && strcmp(a, b_rest + 1) == 0);
+  if (a && b_rest && strcmp(a, b_rest + 1) != 0) printf("C API table:\n%s\nCLI table:\n%s\n", a, b_rest + 1);
+  free(a);
+  free(b);
+  remove(c_table);
+  remove(cli_table);
+  cc_afm_rows_destroy(rows);
+  cc_afm_request_destroy(request);
+}
+
 /* The sink of python_needs: counts the chunks' rows and keeps the first row's E and trace length. */
 struct sink_state {
   long rows, trace_points;
@@ -615,6 +668,7 @@ int main(int argc, char **argv) {
   arrays(argv[1]);
   batch(argv[1]);
   python_needs(argv[1]);
+  batch_table(argv[1], argv[2]);
   if (failures) {
     printf("%d failures\n", failures);
     return 1;

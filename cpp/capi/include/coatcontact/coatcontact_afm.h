@@ -376,6 +376,10 @@ int cc_afm_rows_get(const cc_afm_rows *rows, long row, cc_afm_row *out);
 /* A row's control-plot trace (keep_traces): "z" [m], "force" [N], "segment" (0 approach, 1
  * retract), "model" [N] (NaN off the fitted segment), "fitted" (1 fitted point, else 0). */
 int cc_afm_rows_trace(const cc_afm_rows *rows, long row, const char *name, double *values, long capacity, long *length);
+/* The rows of a run over files (cc_afm_fit_batch without a sink) as the CLI's `afm fit FILES
+ * --output FILE` table (coatcontact/afm_batch_table.hpp: the same header, flagged count and
+ * row lines, without the "# command:" line), written atomically to path. */
+int cc_afm_rows_write_table(const cc_afm_rows *rows, const char *path);
 
 /* ---- files of a run ------------------------------------------------------------------------ */
 typedef struct cc_afm_file_list cc_afm_file_list;
