@@ -236,6 +236,11 @@ std::pair<double, double> estimate_of(const cc_afm_fit& f, const std::string& na
   const fit::AfmFitResult& r = f.fit.result;
   const bool coated = f.fit.problem.coating.has_value();
   const fit::AfmModelInfo& info = f.fit.problem.model.info();
+  for (const fit::AfmParameterInfo& parameter : info.parameters) {  // the results' names (a stack's E<K>)
+    if ((coated || !parameter.coating_only) && fit::afm_result_parameter_name(parameter, f.fit.problem) == name) {
+      return {r.*parameter.value, r.*parameter.error};
+    }
+  }
   if (const fit::AfmParameterInfo* parameter = fit::afm_parameter(info, name, coated)) {
     return {r.*parameter->value, r.*parameter->error};
   }

@@ -188,8 +188,8 @@ void add_afm_stack_items(detail::HeaderItems& items, const AfmCoating& coating) 
                                  " substrate (THEORY.md sections 12, 15: tabled reduced variables in a/T and the free modulus)"});
   detail::add_stack_header_items(items, stack);
   const std::string k = std::to_string(coating.free_layer + 1);
-  items.push_back({"free layer", k + " (its modulus E" + k + "; named E1 in a map's columns and Python's estimates, the "
-                                     "free modulus; the other layers fixed)"});
+  items.push_back({"free layer", k + " (its modulus E" + k + ", the free modulus, so named in the estimates, a map's columns and "
+                                     "Python's results; the other layers fixed)"});
 }
 
 }  // namespace coatcontact::fit

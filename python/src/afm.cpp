@@ -521,8 +521,11 @@ RequestHandle settings_of(const py::tuple& shape, double modulus, double poisson
 
 // ---- one fit ---------------------------------------------------------------------------------
 
-// The modulus as the Python layer names it: E, or E1 on a coating.
-std::string modulus_key(const cc_afm_fit_details& details) { return details.coated ? "E1" : "E"; }
+// The modulus as the results name it: E, or on a coating E<K> after the free layer K (one
+// film: E1), as the C API's free parameters and a map's columns.
+std::string modulus_key(const cc_afm_fit_details& details) {
+  return details.coated ? "E" + std::to_string(details.free_layer + 1) : "E";
+}
 
 std::vector<double> fit_array(const cc_afm_fit* fit, const char* name) {
   return array_of([&](double* v, long cap, long* len) { return cc_afm_fit_array(fit, name, v, cap, len); });
@@ -567,7 +570,7 @@ py::dict result_dict(const cc_afm_fit* fit, bool weighted) {
     estimates[py::str(key)] = value;
     errors[py::str(key)] = error;
     units[py::str(key)] = unit;
-    if (is_free(name)) free_list.append(key);
+    if (is_free(key)) free_list.append(key);
   }
   out["names"] = names;
   out["estimates"] = estimates;

@@ -169,8 +169,10 @@ int cc_afm_request_set_tip_shape(cc_afm_request *request, const struct cc_shape 
  * elastic indenter: CC_INPUT_ERROR. More layers: the top one's modulus free (as _layer, 0). */
 int cc_afm_request_set_sample(cc_afm_request *request, const struct cc_stack *stack);
 /* A stack of any number of layers (thicknesses [m], top first; bonded or sliding) whose layer
- * free_layer (0-based) has the free modulus, named E1 in the fit's parameters (its value in
- * the stack the fixed value or the centre of its search). More than one layer: model hertz,
+ * free_layer (0-based) has the free modulus, set free as E1 (cc_afm_request_set_free) and
+ * named E<free_layer + 1> in the results (cc_afm_fit_parameter_name, cc_afm_fit_estimate, the
+ * rows' columns; "E1" is read too); its value in the stack the fixed value or the centre of its
+ * search. More than one layer: model hertz,
  * t fixed (CC_INPUT_ERROR at the fit otherwise). free_layer outside the layers: CC_INPUT_ERROR. */
 int cc_afm_request_set_sample_layer(cc_afm_request *request, const struct cc_stack *stack, long free_layer);
 /* Comma-separated names of the free parameters, the CLI's --free: E (half-space) or E1 and t
