@@ -29,6 +29,7 @@ struct cc_afm_fit {
   std::vector<std::pair<std::string, std::vector<double>>> arrays;
   std::optional<fit::AfmDepthProfile> profile;  // with the request's depth_profile
   std::vector<std::pair<std::string, std::vector<double>>> profile_arrays;
+  std::string profile_modulus;  // "E", or a coating's E<K> (K the free layer), as the results name it
 };
 
 namespace {
@@ -269,6 +270,8 @@ void fill_fit(cc_afm_fit& out) {
 
 void fill_profile(cc_afm_fit& out) {
   const fit::AfmDepthProfile& p = *out.profile;
+  const fit::AfmFitProblem& problem = out.fit.problem;
+  out.profile_modulus = problem.coating ? "E" + std::to_string(problem.coating->free_layer + 1) : p.modulus_name;
   std::vector<double> depth, indentation, modulus, error, apparent, apparent_error, contact, beyond;
   for (const fit::AfmDepthStep& s : p.steps) {
     depth.push_back(s.depth);
@@ -646,7 +649,7 @@ int cc_afm_fit_depth_profile(const cc_afm_fit* fit, cc_afm_depth_profile_info* i
     if (f.profile) {
       o.steps = static_cast<long>(f.profile->steps.size());
       o.coated = f.profile->coated;
-      o.modulus_name = f.profile->modulus_name.c_str();
+      o.modulus_name = f.profile_modulus.c_str();
       o.thickness_fraction = fit::kDepthProfileThicknessFraction;
       o.warning_count = static_cast<long>(f.profile->warnings.size());
     }

@@ -412,6 +412,27 @@ ResumedRows resume_partial(const std::string& partial_path, const std::string& h
 
 
 
+// The run's table (header, columns, row lines: the fit floor's afm_batch_table, the C API's too).
+fit::AfmBatchTable batch_table(const std::vector<std::string>& files, const std::vector<fit::AfmFileSurvey>& survey,
+                               std::size_t total, const afm::Calibration& calibration, const AfmFitSetup& setup,
+                               const fit::AfmBatchSettings& settings) {
+  fit::AfmBatchTableRun run;
+  run.files = files;
+  run.survey = survey;
+  run.total = total;
+  run.calibration = calibration;
+  run.free_text = setup.free_text;
+  run.command_line = command_line();
+  return fit::afm_batch_table(settings, run);
+}
+
+// "N of M (no_contact 2, ...)": the flagged curves of the run, those of a resumed part included.
+std::string flagged_text(const fit::AfmBatchSummary& summary, const fit::AfmBatchSummary& before, std::size_t total) {
+  std::size_t by_flag[fit::kAfmFlagCount];
+  for (int f = 0; f < fit::kAfmFlagCount; ++f) by_flag[f] = summary.by_flag[f] + before.by_flag[f];
+  return fit::afm_batch_flagged_text(by_flag, total);
+}
+
 // --sort-by: "rating" or none (InputError for another key).
 bool sort_by_rating(const Arguments& arguments) {
   const std::optional<std::string> sort_by = arguments.get("--sort-by");
@@ -538,14 +559,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   std::size_t total = 0;
   for (const fit::AfmFileSurvey& s : survey) total += s.curves;
 
-  fit::AfmBatchTableRun run;
-  run.files = files;
-  run.survey = survey;
-  run.total = total;
-  run.calibration = calibration;
-  run.free_text = setup.free_text;
-  run.command_line = command_line();
-  const fit::AfmBatchTable table = fit::afm_batch_table(settings, run);
+  const fit::AfmBatchTable table = batch_table(files, survey, total, calibration, setup, settings);
   const std::vector<std::string>& columns = table.columns;
   const std::string& header = table.header;
 
@@ -600,9 +614,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     return true;
   };
   const fit::AfmBatchSummary summary = fit::afm_fit_batch(files, calibration, settings, options);
-  std::size_t by_flag[fit::kAfmFlagCount];
-  for (int f = 0; f < fit::kAfmFlagCount; ++f) by_flag[f] = summary.by_flag[f] + before.by_flag[f];
-  const std::string flag_text = fit::afm_batch_flagged_text(by_flag, total);
+  const std::string flag_text = flagged_text(summary, before, total);
   progress_pause();
 
   std::vector<std::pair<std::string, std::string>> pictures;

@@ -273,7 +273,7 @@ int cc_afm_fit_get_details(const cc_afm_fit *fit, cc_afm_fit_details *details);
 typedef struct cc_afm_depth_profile_info {
   long steps;
   int coated;
-  const char *modulus_name;  /* "E" or "E1" */
+  const char *modulus_name;  /* "E", or "E1" on a coating (a stack's E<K>) */
   double thickness_fraction; /* over_thickness_fraction marks depths beyond this fraction of t */
   long warning_count;
 } cc_afm_depth_profile_info;
