@@ -85,9 +85,9 @@ std::vector<fit::AfmFileSurvey> survey_of(const cc_afm_batch_options& options, s
   }
   for (long i = 0; i < options.survey_count; ++i) {
     const cc_afm_file_survey& s = options.survey[i];
-    if (s.curves < 1 || s.flag < 0 || s.flag >= fit::kAfmFlagCount) {
+    if (s.curves < 0 || s.flag < 0 || s.flag >= fit::kAfmFlagCount) {
       throw InputError(std::string(f) + ": survey[" + std::to_string(i) + "] curves " + std::to_string(s.curves) + ", flag " +
-                       std::to_string(s.flag) + " are not allowed; expected curves >= 1 and a flag 0.." +
+                       std::to_string(s.flag) + " are not allowed; expected curves >= 0 and a flag 0.." +
                        std::to_string(fit::kAfmFlagCount - 1));
     }
     out.push_back({static_cast<std::size_t>(s.curves), s.unreadable ? s.unreadable : "", static_cast<fit::AfmFlag>(s.flag)});

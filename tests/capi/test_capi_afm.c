@@ -602,11 +602,11 @@ static void python_needs(const char *folder) {
   state.rows = 0;
   state.stop = 1;
   check("a sink stops the run", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_INTERRUPTED && !sunk);
-  cc_afm_file_survey wrong = {"", 0, "", 0};
+  cc_afm_file_survey wrong = {"", -1, "", 0};
   options.sink = NULL;
   options.survey_count = 1;
   options.survey = &wrong;
-  check("survey curves 0", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_INPUT_ERROR &&
+  check("survey curves -1", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_INPUT_ERROR &&
                                message_has("survey[0]"));
   options.survey_count = 2;
   check("survey count", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_INPUT_ERROR &&
