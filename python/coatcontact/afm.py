@@ -216,7 +216,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                True (hertz, a curve with heights, the modulus free, t fixed): the result adds
                "depth_profile", the modulus against depth (`afm fit --depth-profile`, docs/afm.md):
                a dict of arrays "depth" (asked, from the whole-range fit's contact point) and
-               "max_indentation" [m], the modulus ("E" or "E1") and its "_error" [Pa], "flag",
+               "max_indentation" [m], the modulus ("E", "E1", a stack's "E<K>") and its "_error" [Pa], "flag",
                "points_in_contact"; on a coating also "E_apparent" and "E_apparent_error" [Pa]
                (the half-space fit of the same points) and "over_thickness_fraction" (bool: deeper
                than "thickness_fraction" t, 0.1); "modulus_name", "warnings". NaN where a depth
