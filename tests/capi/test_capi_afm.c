@@ -563,6 +563,7 @@ static void python_needs(const char *folder) {
   cc_afm_fit_destroy(again);
   cc_afm_fit_destroy(fit);
   cc_afm_request_destroy(request);
+  cc_afm_curve_destroy(curve);
   free(z);
   free(f);
 
