@@ -391,6 +391,33 @@ int cc_afm_curve_grid(const cc_afm_curve* curve, cc_afm_grid* grid) {
   });
 }
 
+int cc_afm_curve_set_place(cc_afm_curve* curve, long curve_index, const cc_afm_grid* grid) {
+  return guard([&] {
+    const char* f = "cc_afm_curve_set_place";
+    require(curve, f, "curve");
+    if (curve_index < 0) throw InputError(std::string(f) + ": curve_index " + std::to_string(curve_index) + " is not allowed; expected >= 0");
+    if (grid && grid->has_position && !(std::isfinite(grid->position_x) && std::isfinite(grid->position_y))) {
+      throw InputError(std::string(f) + ": position (" + text_of(grid->position_x) + ", " + text_of(grid->position_y) +
+                       ") is not allowed; expected finite numbers [m]");
+    }
+    afm::CurveMetadata& m = curve->curve.metadata;
+    m.curve_index = static_cast<std::size_t>(curve_index);
+    m.grid_index_x.reset();
+    m.grid_index_y.reset();
+    m.position_x.reset();
+    m.position_y.reset();
+    if (grid && grid->has_index) {
+      m.grid_index_x = grid->index_x;
+      m.grid_index_y = grid->index_y;
+    }
+    if (grid && grid->has_position) {
+      m.position_x = grid->position_x;
+      m.position_y = grid->position_y;
+    }
+    fill_metadata(*curve);
+  });
+}
+
 int cc_afm_preprocess_defaults(cc_afm_preprocess_options* options) {
   return guard([&] {
     require(options, "cc_afm_preprocess_defaults", "options");

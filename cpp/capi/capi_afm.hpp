@@ -35,6 +35,7 @@ struct cc_afm_request {
   std::optional<coatcontact::afm::SegmentKind> segment;
   std::optional<coatcontact::fit::AfmBaselineModel> baseline;
   std::optional<bool> check_jump_in;  // unset: the one-curve fit's default (off), the batch's (on)
+  bool depth_profile = false;         // cc_afm_fit_curve also fits the depth profile
   bool has_contact_point = false, has_baseline = false, has_work = false, has_tilt = false;
 };
 

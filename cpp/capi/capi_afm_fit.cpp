@@ -9,6 +9,7 @@
 #include "capi_guard.hpp"
 #include "capi_handles.hpp"
 #include "coatcontact/detail/constants.hpp"
+#include "coatcontact/afm_depth_profile.hpp"
 #include "coatcontact/afm_models.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/stack.hpp"
@@ -26,6 +27,9 @@ struct cc_afm_fit {
   std::vector<fit::AfmBatchParameter> parameters;
   std::vector<std::string> warnings;  // the model's, then the flag's
   std::vector<std::pair<std::string, std::vector<double>>> arrays;
+  std::optional<fit::AfmDepthProfile> profile;  // with the request's depth_profile
+  std::vector<std::pair<std::string, std::vector<double>>> profile_arrays;
+  std::string profile_modulus;  // "E", or a coating's E<K> (K the free layer), as the results name it
 };
 
 namespace {
@@ -208,6 +212,9 @@ void set_value(cc_afm_request& r, const std::string& name, double v) {
   } else if (name == "check_jump_in") {
     if (v != 0.0 && v != 1.0) throw InputError(f + "0 or 1");
     r.check_jump_in = v == 1.0;
+  } else if (name == "depth_profile") {
+    if (v != 0.0 && v != 1.0) throw InputError(f + "0 or 1");
+    r.depth_profile = v == 1.0;
   } else if (name == "tip_min") bound(range.tip_min);
   else if (name == "tip_max") bound(range.tip_max);
   else if (name == "indentation_min") bound(range.indentation_min);
@@ -216,7 +223,7 @@ void set_value(cc_afm_request& r, const std::string& name, double v) {
   else {
     throw InputError("cc_afm_request_set: name '" + name.substr(0, 60) +
                      "' is not a setting; allowed: contact_point, baseline, w, tilt, spring_constant, surface_force_range, "
-                     "weight_cp, noise_sigma, min_points, check_jump_in, tip_min, tip_max, indentation_min, indentation_max, max_force");
+                     "weight_cp, noise_sigma, min_points, check_jump_in, depth_profile, tip_min, tip_max, indentation_min, indentation_max, max_force");
   }
 }
 
@@ -230,6 +237,11 @@ std::pair<double, double> estimate_of(const cc_afm_fit& f, const std::string& na
   const fit::AfmFitResult& r = f.fit.result;
   const bool coated = f.fit.problem.coating.has_value();
   const fit::AfmModelInfo& info = f.fit.problem.model.info();
+  for (const fit::AfmParameterInfo& parameter : info.parameters) {  // the results' names (a stack's E<K>)
+    if ((coated || !parameter.coating_only) && fit::afm_result_parameter_name(parameter, f.fit.problem) == name) {
+      return {r.*parameter.value, r.*parameter.error};
+    }
+  }
   if (const fit::AfmParameterInfo* parameter = fit::afm_parameter(info, name, coated)) {
     return {r.*parameter->value, r.*parameter->error};
   }
@@ -254,6 +266,37 @@ void fill_fit(cc_afm_fit& out) {
                 {"residual", f.result.residual},
                 {"indentation", f.result.indentation},
                 {"index", index}};
+}
+
+void fill_profile(cc_afm_fit& out) {
+  const fit::AfmDepthProfile& p = *out.profile;
+  const fit::AfmFitProblem& problem = out.fit.problem;
+  out.profile_modulus = problem.coating ? "E" + std::to_string(problem.coating->free_layer + 1) : p.modulus_name;
+  std::vector<double> depth, indentation, modulus, error, apparent, apparent_error, contact, beyond;
+  for (const fit::AfmDepthStep& s : p.steps) {
+    depth.push_back(s.depth);
+    indentation.push_back(s.max_indentation);
+    modulus.push_back(s.modulus);
+    error.push_back(s.modulus_error);
+    apparent.push_back(s.apparent_modulus);
+    apparent_error.push_back(s.apparent_modulus_error);
+    contact.push_back(static_cast<double>(s.points_in_contact));
+    beyond.push_back(s.beyond_thickness_fraction ? 1.0 : 0.0);
+  }
+  out.profile_arrays = {{"depth", depth},
+                        {"max_indentation", indentation},
+                        {"modulus", modulus},
+                        {"modulus_error", error},
+                        {"apparent_modulus", apparent},
+                        {"apparent_modulus_error", apparent_error},
+                        {"points_in_contact", contact},
+                        {"over_thickness_fraction", beyond}};
+}
+
+const fit::AfmDepthProfile& profile_of(const cc_afm_fit* fit, const char* function) {
+  const cc_afm_fit& f = fit_of(fit, function);
+  if (!f.profile) throw InputError(std::string(function) + ": the fit has no depth profile (cc_afm_request_set(request, \"depth_profile\", 1))");
+  return *f.profile;
 }
 
 }  // namespace
@@ -400,7 +443,13 @@ int cc_afm_fit_curve(const cc_afm_curve* curve, const cc_afm_request* request, c
     const fit::AfmCurveRequest resolved = coatcontact::capi::resolve_request(*request, "cc_afm_fit_curve");
     auto made = std::make_unique<cc_afm_fit>();
     try {
-      made->fit = fit::afm_fit_curve(curve->curve, resolved);
+      if (request->depth_profile) {
+        made->profile = fit::afm_depth_profile(curve->curve, resolved, {});
+        made->fit = made->profile->reference;  // the whole-range fit: the result as without the profile
+        fill_profile(*made);
+      } else {
+        made->fit = fit::afm_fit_curve(curve->curve, resolved);
+      }
     } catch (const fit::AfmCurveInputError& e) {
       last_flag = fit::afm_flag_name(e.flag());
       throw;
@@ -531,6 +580,112 @@ int cc_afm_fit_array(const cc_afm_fit* fit, const char* name, double* values, lo
     }
     throw InputError("cc_afm_fit_array: name " + quoted(name) +
                      " is not an array of the fit; allowed: tip_position, force, model_force, residual, indentation, index");
+  });
+}
+
+int cc_afm_fit_arrays(long n, const double* tip_position, const double* force, const cc_afm_request* request,
+                      double reference_contact, double reference_baseline, cc_afm_fit** fit) {
+  return guard([&] {
+    const char* f = "cc_afm_fit_arrays";
+    require(tip_position, f, "tip_position");
+    require(force, f, "force");
+    require(request, f, "request");
+    require(fit, f, "fit");
+    if (n < 1) throw InputError(std::string(f) + ": n " + std::to_string(n) + " is not allowed; expected >= 1 points");
+    if (request->depth_profile) throw InputError(std::string(f) + ": a depth profile needs a curve (cc_afm_fit_curve)");
+    const fit::AfmCurveRequest resolved = coatcontact::capi::resolve_request(*request, f);
+    auto made = std::make_unique<cc_afm_fit>();
+    fit::AfmCurveFit& c = made->fit;
+    c.problem = resolved.problem;
+    c.baseline = fit::AfmBaselineModel::kOffset;
+    c.z_segment.assign(tip_position, tip_position + n);
+    c.f_segment.assign(force, force + n);
+    c.segment.begin = 0;
+    c.segment.end = static_cast<std::size_t>(n);
+    c.kept = fit::afm_select(c.z_segment, c.f_segment, resolved.range, reference_contact, reference_baseline);
+    std::vector<double> z, fz;
+    for (std::size_t i : c.kept) {
+      z.push_back(c.z_segment[i]);
+      fz.push_back(c.f_segment[i]);
+    }
+    c.result = fit::afm_fit(z, fz, c.problem);
+    c.reference_contact = reference_contact;
+    c.reference_baseline = reference_baseline;
+    fill_fit(*made);
+    *fit = made.release();
+  });
+}
+
+int cc_afm_fit_get_details(const cc_afm_fit* fit, cc_afm_fit_details* details) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_get_details");
+    require(details, "cc_afm_fit_get_details", "details");
+    const fit::AfmFitProblem& p = f.fit.problem;
+    const fit::AfmFitResult& r = f.fit.result;
+    cc_afm_fit_details d{};
+    d.model = p.model.name();
+    d.tip = p.tip.description.c_str();
+    d.baseline_model = fit::afm_baseline_model_name(f.fit.baseline);
+    d.surface_force_range = p.surface_force_range;
+    d.profile_evaluations = static_cast<long>(r.profile_evaluations);
+    d.solver_calls = static_cast<long>(r.solver_calls);
+    d.model_evaluations = static_cast<long>(r.model_evaluations);
+    d.seconds = r.seconds;
+    d.model_warnings = static_cast<long>(r.warnings.size());
+    d.pulloff_baseline_offset = f.fit.pulloff.baseline_offset;
+    d.pulloff_baseline_slope = f.fit.pulloff.baseline_slope;
+    d.coated = p.coating.has_value();
+    d.free_layer = p.coating ? static_cast<long>(p.coating->free_layer) : 0;
+    *details = d;
+  });
+}
+
+int cc_afm_fit_depth_profile(const cc_afm_fit* fit, cc_afm_depth_profile_info* info) {
+  return guard([&] {
+    const cc_afm_fit& f = fit_of(fit, "cc_afm_fit_depth_profile");
+    require(info, "cc_afm_fit_depth_profile", "info");
+    cc_afm_depth_profile_info o{};
+    o.modulus_name = "";
+    if (f.profile) {
+      o.steps = static_cast<long>(f.profile->steps.size());
+      o.coated = f.profile->coated;
+      o.modulus_name = f.profile_modulus.c_str();
+      o.thickness_fraction = fit::kDepthProfileThicknessFraction;
+      o.warning_count = static_cast<long>(f.profile->warnings.size());
+    }
+    *info = o;
+  });
+}
+
+int cc_afm_fit_depth_profile_array(const cc_afm_fit* fit, const char* name, double* values, long capacity, long* length) {
+  return guard([&] {
+    const char* fn = "cc_afm_fit_depth_profile_array";
+    profile_of(fit, fn);
+    require(name, fn, "name");
+    for (const auto& [array, data] : fit->profile_arrays) {
+      if (array == name) return copy_out(data, values, capacity, length, fn, array);
+    }
+    throw InputError(std::string(fn) + ": name " + quoted(name) +
+                     " is not an array of the profile; allowed: depth, max_indentation, modulus, modulus_error, "
+                     "apparent_modulus, apparent_modulus_error, points_in_contact, over_thickness_fraction");
+  });
+}
+
+int cc_afm_fit_depth_profile_flag(const cc_afm_fit* fit, long step, const char** flag) {
+  return guard([&] {
+    const char* fn = "cc_afm_fit_depth_profile_flag";
+    const fit::AfmDepthProfile& p = profile_of(fit, fn);
+    require(flag, fn, "flag");
+    *flag = fit::afm_flag_name(p.steps[checked_index(step, p.steps.size(), fn, "step")].flag);
+  });
+}
+
+int cc_afm_fit_depth_profile_warning(const cc_afm_fit* fit, long warning, const char** text) {
+  return guard([&] {
+    const char* fn = "cc_afm_fit_depth_profile_warning";
+    const fit::AfmDepthProfile& p = profile_of(fit, fn);
+    require(text, fn, "text");
+    *text = p.warnings[checked_index(warning, p.warnings.size(), fn, "warning")].c_str();
   });
 }
 

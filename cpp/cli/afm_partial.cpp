@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "coatcontact/afm_batch_table.hpp"
 #include "coatcontact/cli_support.hpp"
 #include "coatcontact/errors.hpp"
 
@@ -37,7 +38,7 @@ PartialLock::~PartialLock() {
   if (fd_ >= 0) ::close(fd_);  // releases the lock
 }
 
-std::string table_file_name(const std::string& path) { return !path.empty() && path[0] == '#' ? "./" + path : path; }
+std::string table_file_name(const std::string& path) { return fit::afm_table_file_name(path); }
 
 void check_partial_rows(const std::string& partial_path, const std::vector<std::pair<std::string, std::size_t>>& curves) {
   std::ifstream in(partial_path, std::ios::binary);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "afm_fit_map.hpp"
+#include "coatcontact/afm_batch_table.hpp"
 #include "afm_depth_profile_script.hpp"
 #include "afm_fit_plot_script.hpp"
 #include "coatcontact/gnuplot_run.hpp"
@@ -702,14 +703,7 @@ void print_fit_help() {
 }  // namespace
 
 void add_afm_stack_lines(std::vector<std::pair<std::string, std::string>>& items, const fit::AfmCoating& coating) {
-  const Stack stack = coating.stack();
-  items.push_back({"sample", "stack of " + std::to_string(stack.layers().size()) + " layers on a " +
-                                 (stack.substrate().rigid ? std::string("rigid") : std::string("elastic")) +
-                                 " substrate (THEORY.md sections 12, 15: tabled reduced variables in a/T and the free modulus)"});
-  add_material_header(items, stack);
-  const std::string k = std::to_string(coating.free_layer + 1);
-  items.push_back({"free layer", k + " (its modulus E" + k + "; named E1 in a map's columns and Python's estimates, the "
-                                     "free modulus; the other layers fixed)"});
+  fit::add_afm_stack_items(items, coating);
 }
 
 namespace {

@@ -34,6 +34,7 @@
 #include "afm_partial.hpp"
 #include "afm_map_plot_script.hpp"
 #include "coatcontact/afm_batch.hpp"
+#include "coatcontact/afm_batch_table.hpp"
 #include "coatcontact/afm_models.hpp"
 #include "coatcontact/gnuplot_run.hpp"
 
@@ -75,44 +76,6 @@ unsigned parse_jobs(const Arguments& arguments) {
     throw InputError("--jobs: " + cli::quoted(*text) + " is not allowed; expected a whole number of threads from 1 to 1024");
   }
   return static_cast<unsigned>(value);
-}
-
-std::string text_of(const std::optional<long>& v) { return v ? std::to_string(*v) : "-"; }
-std::string text_of(const std::optional<double>& v, const std::string& column) { return v ? format_value(*v, column) : "-"; }
-
-// A warning as one cell: tabs and line ends would split the row.
-std::string cell_text(std::string text) {
-  for (char& c : text) {
-    if (c == '\t' || c == '\n' || c == '\r') c = ' ';
-  }
-  return text.empty() ? "-" : text;
-}
-
-// One TSV line of a row; "-" where a curve has no value (its flag says why).
-std::string row_line(const fit::AfmCurveRow& row, std::size_t parameter_count, bool contact_point_column) {
-  std::string line = table_file_name(row.source_file) + '\t' + std::to_string(row.curve_index) + '\t' + text_of(row.grid_x) + '\t' +
-                     text_of(row.grid_y) + '\t' + text_of(row.position_x, "x") + '\t' + text_of(row.position_y, "y") + '\t' +
-                     std::to_string(static_cast<int>(row.flag)) + '\t' + fit::afm_flag_name(row.flag);
-  const bool fitted = fit::afm_flag_keeps_estimates(row.flag);
-  for (std::size_t i = 0; i < parameter_count; ++i) {
-    line += '\t' + (fitted ? format_value(row.estimates[i], "estimate") : "-");
-    line += '\t' + (fitted ? format_value(row.errors[i], "error") : "-");
-  }
-  if (contact_point_column) line += '\t' + (fitted ? format_value(row.contact_point, "contact_point") : "-");
-  line += '\t' + (fitted ? format_value(row.chi2, "chi2") : "-");
-  line += '\t' + (fitted ? format_value(row.chi2_per_dof, "chi2_per_dof") : "-");
-  line += '\t' + (fitted ? format_value(row.residual_sigma, "residual_sigma") : "-");
-  line += '\t' + (fitted ? text_of(row.pulloff_force, "pulloff") : "-");
-  line += '\t' + (fitted ? text_of(row.pulloff_position, "pulloff_position") : "-");
-  line += '\t' + (fitted ? text_of(row.model_jump_off_force, "model_jump_off_force") : "-");
-  line += '\t' + (fitted ? text_of(row.model_jump_off_indentation, "model_jump_off_indentation") : "-");
-  line += '\t' + (fitted ? std::to_string(row.points) : "-");
-  line += '\t' + format_value(row.rating, "rating");
-  line += '\t' + text_of(row.tabor_mu, "tabor_mu");
-  line += '\t' + text_of(row.maugis_lambda, "maugis_lambda");
-  line += '\t' + cell_text(row.warnings);
-  line += '\n';
-  return line;
 }
 
 // --sort-by rating: the rows (each ending in a line end) by their rating cell, highest first;
@@ -364,15 +327,7 @@ std::vector<std::pair<std::string, std::string>> render_map_plots(const std::vec
 
 }  // namespace
 
-std::string fit_range_text(const fit::AfmRange& range) {
-  std::string text = range.any() ? "" : "whole segment";
-  const auto add = [&](const std::string& part) { text += (text.empty() ? "" : "; ") + part; };
-  if (range.tip_min) add("tip position in [" + format_parameter(*range.tip_min, "min") + ", " + format_parameter(*range.tip_max, "max") + "] m");
-  if (range.indentation_min) add("indentation >= " + format_parameter(*range.indentation_min, "min") + " m");
-  if (range.indentation_max) add("indentation <= " + format_parameter(*range.indentation_max, "max") + " m");
-  if (range.max_force) add("force - baseline <= " + format_parameter(*range.max_force, "max force") + " N");
-  return text;
-}
+std::string fit_range_text(const fit::AfmRange& range) { return fit::afm_fit_range_text(range); }
 
 bool batch_mode(const Arguments& arguments, const afm::Calibration& calibration) {
   const auto& positionals = arguments.positionals();
@@ -454,110 +409,28 @@ ResumedRows resume_partial(const std::string& partial_path, const std::string& h
   return resumed;
 }
 
-// Why a file cannot be read: the reader's message without its leading "FILE: " (the header
-// line names the file).
-std::string why_unreadable(const std::string& file, const fit::AfmFileSurvey& survey) {
-  std::string why = survey.unreadable;
-  if (starts_with(why, file + ": ")) why.erase(0, file.size() + 2);
-  std::replace_if(why.begin(), why.end(), [](char c) { return c == '\t' || c == '\n' || c == '\r'; }, ' ');
-  return why;
-}
 
-// The table's header without the flagged count (which only the end knows); `columns` receives
-// the column names.
-std::string map_table_header(const std::vector<std::string>& files, const std::vector<fit::AfmFileSurvey>& survey, std::size_t total,
-                             const afm::Calibration& calibration, const AfmFitSetup& setup,
-                             const fit::AfmBatchSettings& settings, const std::vector<fit::AfmBatchParameter>& parameters,
-                             bool contact_point_column, std::vector<std::string>& columns) {
-  const fit::AfmModelInfo& model = settings.problem.model.info();
-  std::vector<std::pair<std::string, std::string>> items = {
-      {"coatcontact afm fit", "one row per curve: " + model.summary + " of each curve of the files (THEORY.md section 15)"}};
-  items.push_back({"files", std::to_string(files.size())});
-  for (std::size_t f = 0; f < files.size(); ++f) {
-    items.push_back({"file " + std::to_string(f), files[f] + (survey[f].unreadable.empty()
-                                                                   ? " (" + std::to_string(survey[f].curves) + " curves)"
-                                                                   : std::string(" (") + fit::afm_flag_name(survey[f].flag) + ", one flagged row: " +
-                                                                         why_unreadable(files[f], survey[f]) + ")")});
-  }
-  items.push_back({"curves", std::to_string(total)});
-  if (calibration.spring_constant) items.push_back({"spring constant [N/m]", format_parameter(*calibration.spring_constant, "k") + " (user, every curve)"});
-  if (calibration.sensitivity) items.push_back({"sensitivity [m/V]", format_parameter(*calibration.sensitivity, "sensitivity") + " (user, every curve)"});
-  items.push_back({"model", model.formula(settings.problem, true)});
-  items.push_back({"tip", settings.problem.tip.description});
-  if (settings.problem.coating && !settings.problem.coating->layers.empty()) {
-    add_afm_stack_lines(items, *settings.problem.coating);
-  } else if (settings.problem.coating) {
-    const fit::AfmCoating& c = *settings.problem.coating;
-    items.push_back({"sample", "coating: film E1 = " + format_parameter(c.film.youngs_modulus, "E1") + " Pa, nu1 = " +
-                                   format_parameter(c.film.poisson_ratio, "nu1") + ", t = " + format_parameter(c.thickness, "t") +
-                                   " m, substrate " +
-                                   (c.substrate.rigid ? std::string("rigid")
-                                                      : "E0 = " + format_parameter(c.substrate.material.youngs_modulus, "E0") +
-                                                            " Pa, nu0 = " + format_parameter(c.substrate.material.poisson_ratio, "nu0"))});
-  } else {
-    items.push_back({"sample", "homogeneous half-space, E = " + format_parameter(settings.problem.modulus, "E") +
-                                   " Pa (start or fixed value), nu = " + format_parameter(settings.problem.poisson, "nu")});
-  }
-  items.push_back({"free", setup.free_text});
-  if (!settings.problem.free.contact_point) items.push_back({"contact point [m]", format_parameter(settings.problem.contact_point, "z_c") + " (fixed)"});
-  if (!settings.problem.free.baseline) items.push_back({"baseline [N]", format_parameter(settings.problem.baseline, "b") + " (fixed)"});
-  items.push_back({"segment", setup.segment_name});
-  items.push_back({"fit range", fit_range_text(settings.range) + " (relative ranges from each curve's preprocessing contact point and baseline)"});
-  const bool tilt_step = settings.baseline == fit::AfmBaselineModel::kTilt && !settings.problem.free.tilt;
-  items.push_back({"preprocessing", std::string("tip position = height + F/k; baseline offset and tilt on the first half of the approach; ") +
-                                        (tilt_step ? "baseline model tilt: the tilt subtracted from the fitted forces (b: the baseline at the reference contact point); "
-                                                   : "baseline model offset: the forces as measured; ") +
-                                        "reference contact point by piecewise-fit; chi2 noise = the baseline's residual sigma"});
-  items.push_back({"flags", "0 fitted, 1 no_contact, 2 jump_in (approach below its baseline by > " +
-                                format_parameter(fit::kJumpInSigmas, "sigmas") + " sigma and > " +
-                                format_parameter(fit::kJumpInFraction, "fraction") +
-                                " of its largest force), 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration, 7 too_few_points, "
-                                "8 unreadable, 9 bad_data, 10 undetermined (a free E, E1, t or w with a standard error above its value), "
-                                "11 no_detachment (the retract ends off the free-cantilever level); 10 and 11 keep their "
-                                "estimates; '-' where a flagged curve has no value"});
-  items.push_back({"rating", "0..10 from the residuals against the baseline noise, the signal over the noise, the points in "
-                             "contact and the flags (docs/afm.md, \"Curve rating\"); 0 without estimates"});
-  items.push_back({"pull-off", "measured: the retract's most tensile force against its free-cantilever baseline (a line on its last half), and its tip position"});
-  if (model.needs_spring) {
-    items.push_back({"model jump-off", "the fitted model's own jump-off through the spring: its force above the baseline and its indentation"});
-  }
-  columns = {"file", "curve", "grid_x", "grid_y", "x", "y", "flag", "reason"};
-  std::string units = "-\t-\t-\t-\tm\tm\t-\t-";
-  for (const auto& p : parameters) {
-    columns.push_back(p.name);
-    columns.push_back(p.name + "_error");
-    units += "\t" + p.unit + "\t" + p.unit;
-  }
-  if (contact_point_column) {
-    columns.push_back("contact_point");
-    units += "\tm";
-  }
-  for (const char* c : {"chi2", "chi2_per_dof", "residual_sigma", "pulloff", "pulloff_position", "model_jump_off_force",
-                        "model_jump_off_indentation", "points", "rating", "tabor_mu", "maugis_lambda", "warnings"}) {
-    columns.push_back(c);
-  }
-  units += "\t-\t-\tN\tN\tm\tN\tm\t-\t-\t-\t-\t-";
-  items.push_back({"units", units});
-  std::ostringstream header_stream;
-  write_header(header_stream, items, columns);
-  return header_stream.str();
+
+
+// The run's table (header, columns, row lines: the fit floor's afm_batch_table, the C API's too).
+fit::AfmBatchTable batch_table(const std::vector<std::string>& files, const std::vector<fit::AfmFileSurvey>& survey,
+                               std::size_t total, const afm::Calibration& calibration, const AfmFitSetup& setup,
+                               const fit::AfmBatchSettings& settings) {
+  fit::AfmBatchTableRun run;
+  run.files = files;
+  run.survey = survey;
+  run.total = total;
+  run.calibration = calibration;
+  run.free_text = setup.free_text;
+  run.command_line = command_line();
+  return fit::afm_batch_table(settings, run);
 }
 
 // "N of M (no_contact 2, ...)": the flagged curves of the run, those of a resumed part included.
 std::string flagged_text(const fit::AfmBatchSummary& summary, const fit::AfmBatchSummary& before, std::size_t total) {
   std::size_t by_flag[fit::kAfmFlagCount];
-  std::size_t flagged = 0;
-  for (int f = 0; f < fit::kAfmFlagCount; ++f) {
-    by_flag[f] = summary.by_flag[f] + before.by_flag[f];
-    if (f != 0) flagged += by_flag[f];
-  }
-  std::string flag_text = std::to_string(flagged) + " of " + std::to_string(total);
-  std::string reasons;
-  for (int f = 1; f < fit::kAfmFlagCount; ++f) {
-    if (by_flag[f] > 0) reasons += (reasons.empty() ? "" : ", ") + std::string(fit::afm_flag_name(static_cast<fit::AfmFlag>(f))) + " " + std::to_string(by_flag[f]);
-  }
-  if (!reasons.empty()) flag_text += " (" + reasons + ")";
-  return flag_text;
+  for (int f = 0; f < fit::kAfmFlagCount; ++f) by_flag[f] = summary.by_flag[f] + before.by_flag[f];
+  return fit::afm_batch_flagged_text(by_flag, total);
 }
 
 // --sort-by: "rating" or none (InputError for another key).
@@ -686,9 +559,9 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   std::size_t total = 0;
   for (const fit::AfmFileSurvey& s : survey) total += s.curves;
 
-  std::vector<std::string> columns;
-  const std::string header = map_table_header(files, survey, total, calibration, setup, settings, parameters,
-                                              contact_point_column, columns);
+  const fit::AfmBatchTable table = batch_table(files, survey, total, calibration, setup, settings);
+  const std::vector<std::string>& columns = table.columns;
+  const std::string& header = table.header;
 
   // One run at a time on FILE.partial; a resume checks its rows against the run's curves.
   const bool partial_existed = !to_stdout && std::filesystem::exists(partial_path);
@@ -727,7 +600,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   options.sink = [&](const std::vector<fit::AfmCurveRow>& rows) {
     std::string text;
     for (const auto& row : rows) {
-      std::string line = row_line(row, parameters.size(), contact_point_column);
+      std::string line = fit::afm_batch_row_line(row, table);
       if (plot_path) plot_rows.push_back(line.substr(0, line.size() - 1));
       if (curve_plots) curve_plots->add(row);
       text += line;
@@ -752,7 +625,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
   const std::size_t map_images = pictures.size();
   if (curve_plots) pictures.emplace_back(*curve_plots_path, curve_plots->render());  // the last picture
   const auto option_of = [&](std::size_t k) { return k < map_images ? map_plot_option : std::string("--curve-plots"); };
-  const std::size_t rating_column = columns.size() - 4;
+  const std::size_t rating_column = table.rating_column();
   if (to_stdout) {
     if (sort_by) write_sorted(sorted_rows, rows_out, rating_column);
     rows_out << "# flagged curves: " << flag_text << "\n" << std::flush;
@@ -766,9 +639,7 @@ int run_fit_map(const Arguments& arguments, const AfmFitSetup& setup, const afm:
     while (std::getline(rows_in, line) && !starts_with(line, "# columns:")) {
     }
     if (!rows_in) throw InputError("--output: " + cli::quoted(partial_path) + " lost its header while the run went on");
-    std::string final_header = header;
-    const std::size_t columns_at = final_header.find("# columns:");
-    final_header.insert(columns_at, "# flagged curves: " + flag_text + "\n");
+    const std::string final_header = fit::afm_batch_final_header(header, flag_text);
     Output output(output_path);
     output.stream() << final_header;
     if (sort_by) write_sorted(std::string(std::istreambuf_iterator<char>(rows_in), {}), output.stream(), rating_column);

@@ -26,11 +26,17 @@
 
 namespace coatcontact::fit {
 
+std::string afm_result_parameter_name(const AfmParameterInfo& parameter, const AfmFitProblem& problem) {
+  const bool coated = problem.coating.has_value();
+  // A stack's free modulus is layer K's: E<K>, as --free names it (one film: E1).
+  if (coated && parameter.value == &AfmFitResult::modulus) return "E" + std::to_string(problem.coating->free_layer + 1);
+  return afm_parameter_name(parameter, coated);
+}
+
 std::vector<AfmBatchParameter> afm_batch_parameters(const AfmFitProblem& problem) {
   std::vector<AfmBatchParameter> parameters;
-  const bool coated = problem.coating.has_value();
   for (const AfmParameterInfo& p : problem.model.info().parameters) {
-    if (problem.free.*p.free) parameters.push_back({afm_parameter_name(p, coated), p.unit, p.value, p.error});
+    if (problem.free.*p.free) parameters.push_back({afm_result_parameter_name(p, problem), p.unit, p.value, p.error});
   }
   return parameters;
 }

@@ -195,7 +195,8 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                (a factor 10 each way). Tips: sphere, cone, pyramid.
     layers     a stack instead, as the CLI's --layer and coatcontact.fit's layers=: [(h [m], E [Pa],
                nu[, slip]), ...] top first, with substrate=; "E<K>" in free frees layer K's modulus
-               (default E1; the estimate is named "E1"), the others and every h fixed; model hertz.
+               (default E1; the estimate, its error and unit are named "E<K>", as fit_map's columns), the
+               others and every h fixed; model hertz.
     free       names among "E" (half-space) or "E1", "t" (coating), "contact_point", "baseline"
                (default: the modulus, contact_point and baseline); a fixed contact_point [m] or
                baseline [N] is given by the keyword of that name.
@@ -215,7 +216,7 @@ def fit(curve, model="hertz", *, radius=None, shape=None, halfspace=None, film=N
                True (hertz, a curve with heights, the modulus free, t fixed): the result adds
                "depth_profile", the modulus against depth (`afm fit --depth-profile`, docs/afm.md):
                a dict of arrays "depth" (asked, from the whole-range fit's contact point) and
-               "max_indentation" [m], the modulus ("E" or "E1") and its "_error" [Pa], "flag",
+               "max_indentation" [m], the modulus ("E", "E1", a stack's "E<K>") and its "_error" [Pa], "flag",
                "points_in_contact"; on a coating also "E_apparent" and "E_apparent_error" [Pa]
                (the half-space fit of the same points) and "over_thickness_fraction" (bool: deeper
                than "thickness_fraction" t, 0.1); "modulus_name", "warnings". NaN where a depth
@@ -570,7 +571,7 @@ def fit_map(paths_or_curves, model="hertz", *, radius=None, shape=None, halfspac
     no_contact, 2 jump_in, 3 no_convergence, 4 empty_segment, 5 missing_segment, 6 calibration,
     7 too_few_points, 8 unreadable, 9 bad_data; 10 undetermined: a free E, E1, t or w whose standard
     error exceeds its value, 11 no_detachment: the retract ends off the free-cantilever level; 10
-    and 11 keep their estimates), reason, each free estimate ("E" [Pa], "E1" [Pa],
+    and 11 keep their estimates), reason, each free estimate ("E" [Pa], "E1" [Pa] (a stack's E<K>),
     "t" [m], "w" [J/m2] and "tilt" [N/m] of jkr and md, "contact_point" [m], "baseline" [N]) and its
     "_error", contact_point [m] when
     fixed, chi2, chi2_per_dof, residual_sigma [N], pulloff [N], pulloff_position [m],

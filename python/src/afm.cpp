@@ -1,35 +1,33 @@
-// Compiled part of coatcontact.afm (module coatcontact._afm): the library's AFM readers, each
-// curve returned as a dict of NumPy arrays under the names of the Python AFM tools plus its
-// metadata and segments. InputError (unreadable file, missing calibration) -> ValueError.
+// Compiled part of coatcontact.afm (module coatcontact._afm) over the C API only
+// (coatcontact/coatcontact_afm.h, cc_afm_*): the readers (each curve a dict of NumPy arrays
+// under the names of the Python AFM tools, with its metadata and segments), preprocessing, the
+// one-curve fit, the fit of given arrays and the batch of many curves. This file is compiled
+// with the C API's public include folder only (python/CMakeLists.txt), so it cannot reach the
+// library's C++ headers. InputError -> ValueError; a numerical failure -> RuntimeError
+// ("numerical failure: ..."), which coatcontact.afm raises as NumericalError.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <sys/stat.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
-#include "coatcontact/afm_batch.hpp"
-#include "coatcontact/afm_curve_fit.hpp"
-#include "coatcontact/afm_depth_profile.hpp"
-#include "coatcontact/afm_fit.hpp"
-#include "coatcontact/afm_models.hpp"
-#include "coatcontact/afm_preprocess.hpp"
-#include "coatcontact/afm_readers.hpp"
-#include "coatcontact/errors.hpp"
-#include "coatcontact/progress.hpp"
-#include "coatcontact/indenter_shape.hpp"
+#include "coatcontact/coatcontact.h"
 
 namespace py = pybind11;
-namespace afm = coatcontact::afm;
 
 namespace {
+
+using Segments = std::vector<std::tuple<std::string, std::size_t, std::size_t>>;
 
 template <class T>
 py::array_t<T> to_array(const std::vector<T>& values) {
@@ -38,10 +36,46 @@ py::array_t<T> to_array(const std::vector<T>& values) {
   return out;
 }
 
-// Ctrl-C during a long library call (issue 40): called between units of work (curves, a
-// chunk's curves, a sweep's radii) on the calling thread, it takes the GIL and runs Python's
-// signal handlers; a KeyboardInterrupt stops the call (the library's Interrupted) and is raised
-// by rethrow() once the call has returned.
+template <class T>
+py::array_t<T> converted(const std::vector<double>& values) {
+  py::array_t<T> out(static_cast<py::ssize_t>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) out.mutable_data()[i] = static_cast<T>(values[i]);
+  return out;
+}
+
+// The C API names its functions and the CLI's options in messages; Python callers pass the
+// keywords of coatcontact.afm.
+std::string python_message(std::string text) {
+  static const std::pair<const char*, const char*> prefixes[] = {
+      {"cc_afm_request_set_free: ", "free: "},           {"cc_afm_request_set_tip_shape: ", "shape: "},
+      {"cc_afm_request_set_tip: ", "shape: "},           {"cc_afm_request_set_model: ", ""},
+      {"cc_afm_request_set_sample: ", "sample: "},       {"cc_afm_request_set_segment: segment ", "segment: "},
+      {"cc_afm_request_set_baseline_model: model ", "baseline_model: "},
+      {"cc_afm_request_set: ", ""},                      {"cc_afm_fit_curve: ", ""},
+      {"cc_afm_fit_arrays: ", ""},                       {"cc_afm_fit_batch: ", ""},
+      {"cc_afm_fit_curves: ", ""},                       {"cc_afm_survey_files: ", ""},
+      {"cc_afm_expand_paths: ", ""},                     {"cc_afm_open: ", ""},
+      {"cc_afm_preprocess: ", ""}};
+  for (const auto& [prefix, keyword] : prefixes) {
+    const std::string p(prefix);
+    if (text.compare(0, p.size(), p) == 0) {
+      text.replace(0, p.size(), keyword);
+      break;
+    }
+  }
+  for (const auto& [option, keyword] : {std::pair<std::string, std::string>{"--spring-constant", "spring_constant"},
+                                        {"--sensitivity", "sensitivity"}}) {
+    for (std::size_t at = text.find(option + ": "); at != std::string::npos; at = text.find(option + ": ")) {
+      text.replace(at, option.size(), keyword);
+    }
+  }
+  return text;
+}
+
+// Ctrl-C during a long C call (issue 40): the thread's progress hook (cc_set_progress_hook),
+// called between units of work (curves, chunks of curves), takes the GIL and runs Python's
+// signal handlers; a KeyboardInterrupt stops the call (CC_INTERRUPTED) and is raised by
+// rethrow() once the call has returned. A Python exception of a sink is kept the same way.
 struct SignalCheck {
   std::exception_ptr error;
   bool operator()() {
@@ -54,111 +88,53 @@ struct SignalCheck {
     }
     return true;
   }
+  static int hook(void* user, long, long) { return (*static_cast<SignalCheck*>(user))() ? 0 : 1; }
   void rethrow() const {
     if (error) std::rethrow_exception(error);
   }
 };
 
-py::dict metadata_of(const afm::ForceCurve& curve) {
-  const afm::CurveMetadata& m = curve.metadata;
-  py::dict d;
-  if (m.spring_constant_source != afm::CalibrationSource::kNone) d["spring constant"] = m.spring_constant;
-  if (m.sensitivity_source != afm::CalibrationSource::kNone) d["sensitivity"] = m.sensitivity;
-  d["spring constant source"] = afm::calibration_source_name(m.spring_constant_source);
-  d["sensitivity source"] = afm::calibration_source_name(m.sensitivity_source);
-  d["vendor"] = m.vendor;
-  d["format"] = m.format;
-  if (!m.instrument.empty()) d["instrument"] = m.instrument;
-  if (!m.date.empty()) d["date"] = m.date;
-  if (!m.time.empty()) d["time"] = m.time;
-  d["path"] = m.source_file;
-  if (!m.entry.empty()) d["archive entry"] = m.entry;
-  d["curve index"] = m.curve_index;
-  d["curve count"] = m.curve_count;
-  if (m.grid_index_x) d["grid index x"] = *m.grid_index_x;
-  if (m.grid_index_y) d["grid index y"] = *m.grid_index_y;
-  if (m.grid_shape_x) d["grid shape x"] = *m.grid_shape_x;
-  if (m.grid_shape_y) d["grid shape y"] = *m.grid_shape_y;
-  if (m.position_x) d["position x"] = *m.position_x;
-  if (m.position_y) d["position y"] = *m.position_y;
-  d["point count"] = curve.point_count();
-  for (const auto& [key, value] : m.details) d[py::str(key)] = value;
-  return d;
+// The hook installed on this thread for one call.
+struct ScopedHook {
+  explicit ScopedHook(SignalCheck& signals) { cc_set_progress_hook(&SignalCheck::hook, &signals); }
+  ~ScopedHook() { cc_set_progress_hook(nullptr, nullptr); }
+  ScopedHook(const ScopedHook&) = delete;
+  ScopedHook& operator=(const ScopedHook&) = delete;
+};
+
+// A C status as the module's exception (the message read on the calling thread).
+void check(int status, const SignalCheck* signals = nullptr) {
+  if (status == CC_OK) return;
+  const std::string message = python_message(cc_last_error_message());
+  if (status == CC_INTERRUPTED && signals) signals->rethrow();
+  if (status == CC_INPUT_ERROR) throw py::value_error(message);
+  if (status == CC_NUMERICAL_ERROR) throw std::runtime_error("numerical failure: " + message);
+  throw std::runtime_error(message.empty() ? "coatcontact: internal error" : message);
 }
 
-py::list read_curves(const std::string& path, std::optional<double> spring_constant, std::optional<double> sensitivity) {
-  afm::Calibration calibration;
-  calibration.spring_constant = spring_constant;
-  calibration.sensitivity = sensitivity;
-  std::vector<afm::ForceCurve> curves;
-  std::vector<std::string> unreadable;  // curves of a map that cannot be read, with why
-  std::string error;
+// A C call without the GIL; the status is checked with it.
+template <typename Call>
+void released(Call&& call, const SignalCheck* signals = nullptr) {
+  int status;
   {
-    SignalCheck signals;
     py::gil_scoped_release release;
-    try {
-      // Curve by curve, so that Ctrl-C stops the reading of a large map between curves, and a
-      // corrupt curve of a map costs that curve only (as in `afm show`).
-      const afm::CurveSource source(path, calibration);
-      for (std::size_t i = 0; i < source.size(); ++i) {
-        if (!signals()) break;
-        try {
-          curves.push_back(source.read(i));
-        } catch (const coatcontact::InputError& e) {
-          if (source.size() == 1) throw;
-          unreadable.push_back("curve " + std::to_string(i) + ": " + e.what());
-        }
-      }
-      if (curves.empty() && !unreadable.empty()) error = "no curve of the file can be read; " + unreadable.front();
-    } catch (const coatcontact::InputError& e) {
-      error = e.what();
-    }
-    py::gil_scoped_acquire gil;
-    signals.rethrow();
+    status = call();
   }
-  if (error.empty()) {
-    for (const auto& why : unreadable) {
-      const std::string text = path + ": " + why + " (left out; the others keep their \"curve index\")";
-      if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 2) != 0) throw py::error_already_set();
-    }
-  }
-  if (!error.empty()) {
-    // The library names the CLI's options; Python callers pass keywords of the same names.
-    for (const auto& [option, keyword] : {std::pair<std::string, std::string>{"--spring-constant", "spring_constant"},
-                                          {"--sensitivity", "sensitivity"}}) {
-      for (std::size_t at = error.find(option + ": "); at != std::string::npos; at = error.find(option + ": ")) {
-        error.replace(at, option.size(), keyword);
-      }
-    }
-    throw py::value_error(error);
-  }
-  py::list out;
-  for (const auto& curve : curves) {
-    py::dict d;
-    d["force"] = to_array(curve.force);
-    if (curve.has_height_piezo()) d["height (piezo)"] = to_array(curve.height_piezo);
-    if (curve.has_height_measured()) d["height (measured)"] = to_array(curve.height_measured);
-    if (curve.metadata.spring_constant_source != afm::CalibrationSource::kNone) {
-      d["tip position"] = to_array(curve.tip_position());
-    }
-    d["segment"] = to_array(curve.segment);
-    if (!curve.time.empty()) d["time"] = to_array(curve.time);
-    py::list segments;
-    for (const auto& s : curve.segments) {
-      py::dict seg;
-      seg["kind"] = afm::segment_kind_name(s.kind);
-      seg["begin"] = s.begin;
-      seg["end"] = s.end;
-      seg["name"] = s.name;
-      if (s.duration > 0.0) seg["duration"] = s.duration;
-      segments.append(seg);
-    }
-    d["segments"] = segments;
-    d["metadata"] = metadata_of(curve);
-    out.append(d);
-  }
-  return out;
+  check(status, signals);
 }
+
+template <class T, void (*Destroy)(T*)>
+struct Deleter {
+  void operator()(T* p) const { Destroy(p); }
+};
+using CurveHandle = std::unique_ptr<cc_afm_curve, Deleter<cc_afm_curve, cc_afm_curve_destroy>>;
+using FileHandle = std::unique_ptr<cc_afm_file, Deleter<cc_afm_file, cc_afm_file_destroy>>;
+using RequestHandle = std::unique_ptr<cc_afm_request, Deleter<cc_afm_request, cc_afm_request_destroy>>;
+using FitHandle = std::unique_ptr<cc_afm_fit, Deleter<cc_afm_fit, cc_afm_fit_destroy>>;
+using RowsHandle = std::unique_ptr<cc_afm_rows, Deleter<cc_afm_rows, cc_afm_rows_destroy>>;
+using StackHandle = std::unique_ptr<cc_stack, Deleter<cc_stack, cc_stack_destroy>>;
+using ShapeHandle = std::unique_ptr<cc_shape, Deleter<cc_shape, cc_shape_destroy>>;
+using FileListHandle = std::unique_ptr<cc_afm_file_list, Deleter<cc_afm_file_list, cc_afm_file_list_destroy>>;
 
 std::vector<double> to_vector(const py::object& array) {
   if (array.is_none()) return {};
@@ -167,290 +143,479 @@ std::vector<double> to_vector(const py::object& array) {
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
+// A channel or array of a handle, copied out (the length asked first).
+template <typename Get>
+std::vector<double> array_of(Get&& get) {
+  long length = 0;
+  check(get(nullptr, 0L, &length));
+  std::vector<double> values(static_cast<std::size_t>(length));
+  check(get(values.data(), length, &length));
+  return values;
+}
+
+const char* segment_kind_name(int kind) {
+  return kind == CC_AFM_APPROACH ? "approach" : kind == CC_AFM_PAUSE ? "pause" : "retract";
+}
+
+// ---- reading ---------------------------------------------------------------------------------
+
+// read()'s metadata dict, in the order and with the types of the Python AFM tools.
+py::dict metadata_of(const cc_afm_curve* curve, long points) {
+  long count = 0;
+  check(cc_afm_curve_metadata_count(curve, &count));
+  std::map<std::string, std::string> fixed;  // the first 13 entries (coatcontact_afm.h)
+  std::vector<std::pair<std::string, std::string>> details;
+  for (long i = 0; i < count; ++i) {
+    const char *key = nullptr, *value = nullptr;
+    check(cc_afm_curve_metadata_entry(curve, i, &key, &value));
+    if (i < 13) fixed[key] = value;
+    else details.emplace_back(key, value);
+  }
+  py::dict d;
+  if (fixed["spring_constant_source"] != "none") d["spring constant"] = std::strtod(fixed["spring_constant"].c_str(), nullptr);
+  if (fixed["sensitivity_source"] != "none") d["sensitivity"] = std::strtod(fixed["sensitivity"].c_str(), nullptr);
+  d["spring constant source"] = fixed["spring_constant_source"];
+  d["sensitivity source"] = fixed["sensitivity_source"];
+  d["vendor"] = fixed["vendor"];
+  d["format"] = fixed["format"];
+  for (const auto& [key, name] : {std::pair<const char*, const char*>{"instrument", "instrument"}, {"date", "date"}, {"time", "time"}}) {
+    if (!fixed[key].empty()) d[name] = fixed[key];
+  }
+  d["path"] = fixed["source_file"];
+  if (!fixed["entry"].empty()) d["archive entry"] = fixed["entry"];
+  d["curve index"] = std::stoull(fixed["curve_index"]);
+  d["curve count"] = std::stoull(fixed["curve_count"]);
+  cc_afm_grid grid{};
+  check(cc_afm_curve_grid(curve, &grid));
+  if (grid.has_index) {
+    d["grid index x"] = grid.index_x;
+    d["grid index y"] = grid.index_y;
+  }
+  if (grid.has_shape) {
+    d["grid shape x"] = grid.shape_x;
+    d["grid shape y"] = grid.shape_y;
+  }
+  if (grid.has_position) {
+    d["position x"] = grid.position_x;
+    d["position y"] = grid.position_y;
+  }
+  d["point count"] = static_cast<std::size_t>(points);
+  for (const auto& [key, value] : details) d[py::str(key)] = value;
+  return d;
+}
+
+// One curve of read(): its channels under the tools' names, segments and metadata.
+py::dict curve_dict(const cc_afm_curve* curve) {
+  long points = 0, channels = 0, segments = 0;
+  check(cc_afm_curve_points(curve, &points));
+  check(cc_afm_curve_channel_count(curve, &channels));
+  std::map<std::string, std::vector<double>> data;
+  for (long c = 0; c < channels; ++c) {
+    const char* name = nullptr;
+    check(cc_afm_curve_channel_name(curve, c, &name));
+    data[name] = array_of([&](double* v, long cap, long* len) { return cc_afm_curve_channel(curve, name, v, cap, len); });
+  }
+  py::dict d;
+  d["force"] = to_array(data["force"]);
+  if (data.count("height_piezo")) d["height (piezo)"] = to_array(data["height_piezo"]);
+  if (data.count("height_measured")) d["height (measured)"] = to_array(data["height_measured"]);
+  if (data.count("tip_position")) d["tip position"] = to_array(data["tip_position"]);
+  d["segment"] = converted<int>(data["segment"]);
+  if (data.count("time")) d["time"] = to_array(data["time"]);
+  check(cc_afm_curve_segment_count(curve, &segments));
+  py::list parts;
+  for (long k = 0; k < segments; ++k) {
+    cc_afm_segment s{};
+    check(cc_afm_curve_segment(curve, k, &s));
+    py::dict seg;
+    seg["kind"] = segment_kind_name(s.kind);
+    seg["begin"] = static_cast<std::size_t>(s.begin);
+    seg["end"] = static_cast<std::size_t>(s.end);
+    seg["name"] = s.name ? s.name : "";
+    if (s.duration > 0.0) seg["duration"] = s.duration;
+    parts.append(seg);
+  }
+  d["segments"] = parts;
+  d["metadata"] = metadata_of(curve, points);
+  return d;
+}
+
+py::list read_curves(const std::string& path, std::optional<double> spring_constant, std::optional<double> sensitivity) {
+  const cc_afm_calibration calibration{spring_constant.value_or(0.0), sensitivity.value_or(0.0), 0};
+  std::vector<CurveHandle> curves;
+  std::vector<std::string> unreadable;  // curves of a map that cannot be read, with why
+  std::string error;
+  SignalCheck signals;
+  {
+    py::gil_scoped_release release;
+    // Curve by curve, so that Ctrl-C stops the reading of a large map between curves, and a
+    // corrupt curve of a map costs that curve only (as in `afm show`).
+    cc_afm_file* opened = nullptr;
+    long count = 0;
+    if (cc_afm_open(path.c_str(), &calibration, &opened) != CC_OK || cc_afm_file_count(opened, &count) != CC_OK) {
+      error = cc_last_error_message();
+    }
+    const FileHandle file(opened);
+    for (long i = 0; error.empty() && i < count; ++i) {
+      if (!signals()) break;
+      cc_afm_curve* curve = nullptr;
+      const int status = cc_afm_curve_read(file.get(), i, &curve);
+      if (status == CC_OK) {
+        curves.emplace_back(curve);
+      } else if (status == CC_INPUT_ERROR && count > 1) {
+        unreadable.push_back("curve " + std::to_string(i) + ": " + cc_last_error_message());
+      } else {
+        error = cc_last_error_message();
+      }
+    }
+    if (error.empty() && curves.empty() && !unreadable.empty()) error = "no curve of the file can be read; " + unreadable.front();
+  }
+  signals.rethrow();
+  if (!error.empty()) throw py::value_error(python_message(error));
+  for (const auto& why : unreadable) {
+    const std::string text = path + ": " + why + " (left out; the others keep their \"curve index\")";
+    if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 2) != 0) throw py::error_already_set();
+  }
+  py::list out;
+  for (const auto& curve : curves) out.append(curve_dict(curve.get()));
+  return out;
+}
+
 // A curve given as arrays; segments as (kind, begin, end) triples covering the points in order.
-afm::ForceCurve curve_of(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
-                         const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments,
-                         double spring_constant, const std::string& name) {
-  afm::ForceCurve curve;
-  curve.force = to_vector(force);
-  curve.height_piezo = to_vector(height_piezo);
-  curve.height_measured = to_vector(height_measured);
-  const std::size_t n = curve.force.size();
-  if ((curve.has_height_piezo() && curve.height_piezo.size() != n) || (curve.has_height_measured() && curve.height_measured.size() != n) ||
-      (!curve.has_height_piezo() && !curve.has_height_measured())) {
+CurveHandle curve_of(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
+                     const Segments& segments, double spring_constant, const std::string& name) {
+  const std::vector<double> f = to_vector(force), piezo = to_vector(height_piezo), measured = to_vector(height_measured);
+  const std::size_t n = f.size();
+  if ((!piezo.empty() && piezo.size() != n) || (!measured.empty() && measured.size() != n) || (piezo.empty() && measured.empty())) {
     throw py::value_error("a height channel as long as the force is needed");
   }
+  std::vector<cc_afm_segment> parts;
   std::size_t expected = 0;
   for (const auto& [kind, begin, end] : segments) {
-    afm::Segment s;
-    if (kind == "approach") s.kind = afm::SegmentKind::kApproach;
-    else if (kind == "pause") s.kind = afm::SegmentKind::kPause;
-    else if (kind == "retract") s.kind = afm::SegmentKind::kRetract;
+    cc_afm_segment s{};
+    if (kind == "approach") s.kind = CC_AFM_APPROACH;
+    else if (kind == "pause") s.kind = CC_AFM_PAUSE;
+    else if (kind == "retract") s.kind = CC_AFM_RETRACT;
     else throw py::value_error("segment kind '" + kind + "' is not approach, pause or retract");
     if (begin != expected || end <= begin || end > n) throw py::value_error("segments must cover the points in order");
-    s.begin = begin;
-    s.end = end;
+    s.begin = static_cast<long>(begin);
+    s.end = static_cast<long>(end);
+    s.name = "";
     expected = end;
-    curve.segments.push_back(s);
+    parts.push_back(s);
   }
   if (expected != n) throw py::value_error("segments must cover the points in order");
-  curve.segment.assign(n, 0);
-  for (std::size_t k = 0; k < curve.segments.size(); ++k) {
-    for (std::size_t i = curve.segments[k].begin; i < curve.segments[k].end; ++i) curve.segment[i] = static_cast<int>(k);
-  }
   if (!(std::isfinite(spring_constant) && spring_constant > 0.0)) throw py::value_error("spring_constant must be a finite number > 0");
-  curve.metadata.spring_constant = spring_constant;
-  curve.metadata.spring_constant_source = afm::CalibrationSource::kUser;
-  curve.metadata.source_file = name;
-  return curve;
+  cc_afm_curve* curve = nullptr;
+  check(cc_afm_curve_create(static_cast<long>(n), f.data(), piezo.empty() ? nullptr : piezo.data(),
+                            measured.empty() ? nullptr : measured.data(), nullptr, static_cast<long>(parts.size()),
+                            parts.data(), spring_constant, name.c_str(), &curve));
+  return CurveHandle(curve);
 }
 
 // Preprocessing steps of one curve given as arrays; segments as (kind, begin, end) triples.
 py::dict preprocess_arrays(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
-                           const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments,
-                           double spring_constant, const std::string& contact_point, double baseline_fraction,
-                           double deviation_sigmas, const std::string& name) {
-  afm::ForceCurve curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
-  afm::PreprocessOptions options;
-  if (contact_point == "piecewise-fit") options.contact_method = afm::ContactPointMethod::kPiecewiseFit;
-  else if (contact_point == "deviation") options.contact_method = afm::ContactPointMethod::kDeviation;
+                           const Segments& segments, double spring_constant, const std::string& contact_point,
+                           double baseline_fraction, double deviation_sigmas, const std::string& name) {
+  const CurveHandle curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
+  cc_afm_preprocess_options options{};
+  check(cc_afm_preprocess_defaults(&options));
+  if (contact_point == "piecewise-fit") options.contact_method = CC_AFM_CONTACT_PIECEWISE_FIT;
+  else if (contact_point == "deviation") options.contact_method = CC_AFM_CONTACT_DEVIATION;
   else throw py::value_error("contact_point: '" + contact_point + "' is not a method; expected piecewise-fit or deviation");
   options.baseline_fraction = baseline_fraction;
   options.deviation_sigmas = deviation_sigmas;
-  afm::PreprocessedCurve p;
-  try {
-    py::gil_scoped_release release;
-    p = afm::preprocess(curve, options);
-  } catch (const coatcontact::InputError& e) {
-    throw py::value_error(e.what());
-  }
+  long points = 0;
+  check(cc_afm_curve_points(curve.get(), &points));
+  std::vector<double> z(static_cast<std::size_t>(points)), corrected(static_cast<std::size_t>(points));
+  cc_afm_preprocessed p{};
+  released([&] { return cc_afm_preprocess(curve.get(), &options, &p, z.data(), corrected.data(), points); });
   py::dict out;
-  out["tip position"] = to_array(p.tip_position);
-  out["force (corrected)"] = to_array(p.force_corrected);
+  out["tip position"] = to_array(z);
+  out["force (corrected)"] = to_array(corrected);
   out["baseline offset"] = p.baseline_offset;
   out["baseline slope"] = p.baseline_slope;
   out["baseline offset error"] = p.baseline_offset_error;
   out["baseline slope error"] = p.baseline_slope_error;
   out["baseline sigma"] = p.baseline_sigma;
-  out["baseline points"] = p.baseline_points;
-  out["contact point method"] = afm::contact_point_method_name(p.contact_method);
+  out["baseline points"] = static_cast<std::size_t>(p.baseline_points);
+  out["contact point method"] = p.contact_method == CC_AFM_CONTACT_PIECEWISE_FIT ? "piecewise-fit" : "deviation";
   out["contact point"] = p.contact_point;
-  out["contact index"] = p.contact_index;
+  out["contact index"] = static_cast<std::size_t>(p.contact_index);
   return out;
 }
 
-// The tip of coatcontact.afm.fit: ("sphere", R), ("cone", beta), ("pyramid", theta), ("pyramid3", theta),
-// ("sneddon-sphere", R),
-// ("punch", A), ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z); angles in rad.
-coatcontact::fit::AfmTip tip_of(const py::tuple& spec) {
-  namespace cc = coatcontact;
-  if (spec.size() < 2) throw py::value_error("shape: expected a tuple (kind, parameters...)");
-  const std::string kind = py::str(spec[0]);
-  const auto number = [&](std::size_t i) { return spec[i].cast<double>(); };
-  const auto count = [&](std::size_t n) {
-    if (spec.size() != n + 1) throw py::value_error("shape: '" + kind + "' takes " + std::to_string(n) + " parameter(s)");
-  };
-  if (kind == "sphere") return count(1), cc::fit::afm_paraboloid(number(1));
-  if (kind == "cone") return count(1), cc::fit::afm_cone(number(1));
-  if (kind == "pyramid") return count(1), cc::fit::afm_pyramid(number(1));
-  if (kind == "pyramid3") return count(1), cc::fit::afm_pyramid3(number(1));
-  if (kind == "sneddon-sphere") return count(1), cc::fit::afm_sneddon_sphere(number(1));
-  if (kind == "punch") return count(1), cc::fit::afm_shape(cc::make_flat_punch(number(1)));
-  if (kind == "power") return count(2), cc::fit::afm_shape(cc::make_power_law(number(1), number(2)));
-  if (kind == "blunted-cone") return count(2), cc::fit::afm_shape(cc::make_blunted_cone(number(1), number(2)));
-  if (kind == "profile") {
-    count(2);
-    return cc::fit::afm_shape(cc::make_measured_profile(to_vector(spec[1]), to_vector(spec[2]), "shape profile"));
-  }
-  throw py::value_error("shape: '" + kind + "' is not a tip; allowed: sphere, cone, pyramid, pyramid3, sneddon-sphere, punch, power, blunted-cone, profile");
-}
+// ---- the registry and the request ------------------------------------------------------------
 
 // The registry's models for the Python layer: name, aliases, whether it needs the spring
 // constant, its default segment, and its parameters (name, unit, free by default) per sample.
 py::list model_list() {
-  namespace fit = coatcontact::fit;
+  long count = 0;
+  check(cc_afm_model_count(&count));
   py::list models;
-  for (const fit::AfmModelInfo* m : fit::afm_models()) {
+  for (long m = 0; m < count; ++m) {
+    cc_afm_model_info info{};
+    check(cc_afm_model_get(m, &info));
     py::dict d;
-    d["name"] = m->name;
-    d["aliases"] = m->aliases;
-    d["title"] = m->title;
-    d["spring"] = m->needs_spring;
-    d["segment"] = coatcontact::afm::segment_kind_name(m->segment);
-    for (const bool coated : {false, true}) {
+    d["name"] = info.name;
+    py::list aliases;
+    for (std::string rest = info.aliases; !rest.empty();) {
+      const std::size_t comma = rest.find(',');
+      aliases.append(rest.substr(0, comma));
+      rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+    }
+    d["aliases"] = aliases;
+    d["title"] = info.title;
+    d["spring"] = info.needs_spring != 0;
+    d["segment"] = info.segment;
+    for (const int coated : {0, 1}) {
+      long n = 0;
+      check(cc_afm_model_parameter_count(m, coated, &n));
       py::list parameters;
-      for (const fit::AfmParameterInfo& p : m->parameters) {
-        if (p.coating_only && !coated) continue;
+      for (long k = 0; k < n; ++k) {
+        const char *name = nullptr, *unit = nullptr;
+        int free = 0;
+        check(cc_afm_model_parameter(m, coated, k, &name, &unit, &free));
         py::dict q;
-        q["name"] = fit::afm_parameter_name(p, coated);
-        q["unit"] = p.unit;
-        q["free"] = p.free_by_default;
+        q["name"] = name;
+        q["unit"] = unit;
+        q["free"] = free != 0;
         parameters.append(q);
       }
       d[coated ? "coating_parameters" : "parameters"] = parameters;
-      d[coated ? "coating_default_free" : "default_free"] = fit::afm_free_default(*m, coated);
+      d[coated ? "coating_default_free" : "default_free"] = coated ? info.coating_default_free : info.default_free;
     }
     models.append(d);
   }
   return models;
 }
 
-std::optional<double> optional_number(const py::object& v) {
-  if (v.is_none()) return std::nullopt;
-  return v.cast<double>();
+bool model_needs_spring(const std::string& model) {
+  long count = 0;
+  check(cc_afm_model_count(&count));
+  for (long m = 0; m < count; ++m) {
+    cc_afm_model_info info{};
+    check(cc_afm_model_get(m, &info));
+    if (model == info.name) return info.needs_spring != 0;
+  }
+  return false;
 }
 
-// The problem of coatcontact.afm.fit and fit_map: tip, sample (coating: (E1, nu1, substrate
-// (E0, nu0) or None for rigid, t)), free parameters and fixed values. InputError when not allowed.
-coatcontact::fit::AfmFitProblem problem_of(const py::tuple& shape, double modulus, double poisson,
-                                           const std::vector<std::string>& free, double contact_point, double baseline,
-                                           const py::object& coating, const py::object& adhesion) {
-  namespace fit = coatcontact::fit;
-  fit::AfmFitProblem problem;
-  problem.tip = tip_of(shape);
-  problem.modulus = modulus;
-  problem.poisson = poisson;
-  // coating: (E1, nu1, substrate (E0, nu0) or None for rigid, t)
-  const bool coated = !coating.is_none();
-  if (coated) {
+// The tip of coatcontact.afm.fit: ("sphere", R), ("cone", beta), ("pyramid", theta), ("pyramid3", theta),
+// ("sneddon-sphere", R), ("punch", A), ("power", n, R), ("blunted-cone", R, beta), ("profile", r, z);
+// angles in rad.
+void set_tip(cc_afm_request* request, const py::tuple& spec) {
+  if (spec.size() < 2) throw py::value_error("shape: expected a tuple (kind, parameters...)");
+  const std::string kind = py::str(spec[0]);
+  const auto number = [&](std::size_t i) { return spec[i].cast<double>(); };
+  const auto count = [&](std::size_t n) {
+    if (spec.size() != n + 1) throw py::value_error("shape: '" + kind + "' takes " + std::to_string(n) + " parameter(s)");
+  };
+  if (kind == "sphere" || kind == "cone" || kind == "pyramid" || kind == "pyramid3" || kind == "sneddon-sphere") {
+    count(1);
+    return check(cc_afm_request_set_tip(request, kind.c_str(), number(1)));
+  }
+  cc_shape* shape = nullptr;
+  if (kind == "punch") count(1), check(cc_shape_flat_punch(number(1), &shape));
+  else if (kind == "power") count(2), check(cc_shape_power_law(number(1), number(2), &shape));
+  else if (kind == "blunted-cone") count(2), check(cc_shape_blunted_cone(number(1), number(2), &shape));
+  else if (kind == "profile") {
+    count(2);
+    const std::vector<double> r = to_vector(spec[1]), z = to_vector(spec[2]);
+    if (r.size() != z.size()) throw py::value_error("shape profile: r and z differ in length");
+    check(cc_shape_profile(static_cast<int>(r.size()), r.data(), z.data(), &shape));
+  } else {
+    throw py::value_error("shape: '" + kind + "' is not a tip; allowed: sphere, cone, pyramid, pyramid3, sneddon-sphere, punch, power, blunted-cone, profile");
+  }
+  const ShapeHandle owned(shape);
+  check(cc_afm_request_set_tip_shape(request, owned.get()));
+}
+
+// The sample: a half-space (E, nu), or coating (E1, nu1, substrate (E0, nu0) or None for rigid,
+// t[, layers ((h, E, nu, slip), ...), free layer]) (coatcontact.afm._stack_coating).
+void set_sample(cc_afm_request* request, double modulus, double poisson, const py::object& coating) {
+  cc_stack* made = nullptr;
+  check(cc_stack_create(&made));
+  const StackHandle stack(made);
+  long free_layer = 0;
+  if (coating.is_none()) {
+    check(cc_stack_set_substrate(stack.get(), modulus, poisson));
+  } else {
     const py::tuple c = coating.cast<py::tuple>();
-    fit::AfmCoating layer;
-    layer.film.youngs_modulus = c[0].cast<double>();
-    layer.film.poisson_ratio = c[1].cast<double>();
-    if (c[2].is_none()) {
-      layer.substrate.rigid = true;
-    } else {
-      const py::tuple sub = c[2].cast<py::tuple>();
-      layer.substrate.material.youngs_modulus = sub[0].cast<double>();
-      layer.substrate.material.poisson_ratio = sub[1].cast<double>();
-    }
-    layer.thickness = c[3].cast<double>();
-    if (c.size() > 5) {  // a stack: ((h, E, nu, slip), ...) and the free layer (coatcontact.afm._stack_coating)
-      std::vector<coatcontact::Layer> layers;
+    if (c.size() > 5) {
       for (const py::handle& row : c[4].cast<py::tuple>()) {
         const py::tuple l = row.cast<py::tuple>();
-        layers.push_back({l[0].cast<double>(), {l[1].cast<double>(), l[2].cast<double>()}, l[3].cast<bool>()});
+        check(cc_stack_add_layer(stack.get(), l[0].cast<double>(), l[1].cast<double>(), l[2].cast<double>(), l[3].cast<bool>()));
       }
-      layer = fit::afm_coating(coatcontact::Stack(layers, layer.substrate), c[5].cast<std::size_t>());
+      free_layer = c[5].cast<long>();
+    } else {
+      check(cc_stack_add_layer(stack.get(), c[3].cast<double>(), c[0].cast<double>(), c[1].cast<double>(), 0));
     }
-    problem.coating = layer;
-    problem.poisson = layer.film.poisson_ratio;
+    if (c[2].is_none()) {
+      check(cc_stack_set_rigid_substrate(stack.get()));
+    } else {
+      const py::tuple sub = c[2].cast<py::tuple>();
+      check(cc_stack_set_substrate(stack.get(), sub[0].cast<double>(), sub[1].cast<double>()));
+    }
   }
-  // adhesion: (w, k, z0, tilt, model) of the adhesive model, "jkr" or "md" (k 0: each curve's),
-  // or None (Hertz/Sneddon)
-  const bool jkr = !adhesion.is_none();
-  if (jkr) {
+  check(cc_afm_request_set_sample_layer(request, stack.get(), free_layer));
+}
+
+void set_number(cc_afm_request* request, const char* name, double value) { check(cc_afm_request_set(request, name, value)); }
+
+void set_bound(cc_afm_request* request, const char* name, const py::object& value) {
+  if (!value.is_none()) set_number(request, name, value.cast<double>());
+}
+
+// The request of fit, fit_map: tip, sample, model (adhesion: (w, k, z0, tilt, model), k 0: each
+// curve's; None: hertz), free parameters and fixed values.
+RequestHandle request_of(const py::tuple& shape, double modulus, double poisson, const std::vector<std::string>& free,
+                         double contact_point, double baseline, const py::object& coating, const py::object& adhesion) {
+  cc_afm_request* made = nullptr;
+  check(cc_afm_request_create(&made));
+  RequestHandle request(made);
+  const auto is_free = [&](const char* name) { return std::find(free.begin(), free.end(), name) != free.end(); };
+  if (!adhesion.is_none()) {
     const py::tuple a = adhesion.cast<py::tuple>();
-    problem.model = fit::afm_model_by_name(a.size() > 4 ? a[4].cast<std::string>() : "jkr").model();
-    problem.work = a[0].cast<double>();
-    problem.spring_constant = a[1].cast<double>();
-    problem.surface_force_range = a[2].cast<double>();
-    problem.tilt = a[3].cast<double>();
+    check(cc_afm_request_set_model(request.get(), a.size() > 4 ? a[4].cast<std::string>().c_str() : "jkr"));
+    if (a[0].cast<double>() > 0.0) set_number(request.get(), "w", a[0].cast<double>());
+    if (a[1].cast<double>() > 0.0) set_number(request.get(), "spring_constant", a[1].cast<double>());
+    set_number(request.get(), "surface_force_range", a[2].cast<double>());
+    if (!is_free("tilt")) set_number(request.get(), "tilt", a[3].cast<double>());
   }
-  const fit::AfmModelInfo& info = problem.model.info();
-  const std::string allowed = fit::afm_free_allowed(info, coated);
-  problem.free = {false, false, false, false};
-  for (const auto& name : free) {
-    const fit::AfmParameterInfo* parameter = fit::afm_parameter(info, name, coated);
-    if (!parameter) throw coatcontact::InputError("free: '" + name + "' is not a parameter of this fit; allowed: " + allowed);
-    problem.free.*parameter->free = true;
+  set_tip(request.get(), shape);
+  set_sample(request.get(), modulus, poisson, coating);
+  std::string names;
+  for (const auto& name : free) names += (names.empty() ? "" : ",") + name;
+  check(cc_afm_request_set_free(request.get(), names.c_str()));
+  if (!is_free("contact_point")) set_number(request.get(), "contact_point", contact_point);
+  if (!is_free("baseline")) set_number(request.get(), "baseline", baseline);
+  return request;
+}
+
+// The request of fit_curve and the maps: request_of with the segment, range and baseline model.
+RequestHandle settings_of(const py::tuple& shape, double modulus, double poisson, const std::vector<std::string>& free,
+                          double contact_point, double baseline, const py::object& coating, const std::string& segment,
+                          const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
+                          const py::object& indentation_max, const py::object& max_force, const py::object& adhesion,
+                          const std::string& baseline_model, double weight_cp) {
+  RequestHandle request = request_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
+  if (segment != "approach" && segment != "retract") {
+    throw py::value_error("segment: '" + segment + "' is not allowed; expected 'approach' or 'retract'");
   }
-  if (fit::afm_free_count(info, problem.free) == 0) throw coatcontact::InputError("free: names no parameter; allowed: " + allowed);
-  problem.contact_point = contact_point;
-  problem.baseline = baseline;
-  return problem;
+  check(cc_afm_request_set_segment(request.get(), segment.c_str()));
+  set_bound(request.get(), "tip_min", tip_min);
+  set_bound(request.get(), "tip_max", tip_max);
+  set_bound(request.get(), "indentation_min", indentation_min);
+  set_bound(request.get(), "indentation_max", indentation_max);
+  set_bound(request.get(), "max_force", max_force);
+  if (!baseline_model.empty()) {
+    if (baseline_model != "tilt" && baseline_model != "offset") {
+      throw py::value_error("baseline_model: '" + baseline_model + "' is not allowed; expected 'tilt' or 'offset'");
+    }
+    check(cc_afm_request_set_baseline_model(request.get(), baseline_model.c_str()));
+  }
+  set_number(request.get(), "weight_cp", weight_cp);
+  return request;
+}
+
+// ---- one fit ---------------------------------------------------------------------------------
+
+// The modulus as the results name it: E, or on a coating E<K> after the free layer K (one
+// film: E1), as the C API's free parameters and a map's columns.
+std::string modulus_key(const cc_afm_fit_details& details) {
+  return details.coated ? "E" + std::to_string(details.free_layer + 1) : "E";
+}
+
+std::vector<double> fit_array(const cc_afm_fit* fit, const char* name) {
+  return array_of([&](double* v, long cap, long* len) { return cc_afm_fit_array(fit, name, v, cap, len); });
 }
 
 // The result dict of one fit (fit_arrays, fit_curve): estimates, errors and units by name,
 // statistics, and the fitted points (index: into the caller's arrays).
-py::dict result_dict(const coatcontact::fit::AfmFitProblem& problem, const coatcontact::fit::AfmFitResult& r,
-                     const std::vector<double>& z, const std::vector<double>& f, const std::vector<long>& index,
-                     bool weighted) {
-  namespace fit = coatcontact::fit;
-  const bool coated = problem.coating.has_value();
-  const bool jkr = problem.model.info().needs_spring;  // the adhesive models
-  const std::string modulus_name = coated ? "E1" : "E";
-  py::dict out;
-    std::vector<std::string> names = {modulus_name, "contact_point", "baseline"};
-    std::vector<double> values = {r.modulus, r.contact_point, r.baseline};
-    std::vector<double> errors = {r.modulus_error, r.contact_point_error, r.baseline_error};
-    std::vector<bool> is_free = {problem.free.modulus, problem.free.contact_point, problem.free.baseline};
-    py::dict estimates, error_dict, units;
-    if (coated) {
-      names.insert(names.begin() + 1, "t");
-      values.insert(values.begin() + 1, r.thickness);
-      errors.insert(errors.begin() + 1, r.thickness_error);
-      is_free.insert(is_free.begin() + 1, problem.free.thickness);
-      units["t"] = "m";
+py::dict result_dict(const cc_afm_fit* fit, bool weighted) {
+  cc_afm_fit_details details{};
+  cc_afm_fit_summary summary{};
+  check(cc_afm_fit_get_details(fit, &details));
+  check(cc_afm_fit_get_summary(fit, &summary));
+  const bool coated = details.coated != 0;
+  const bool jkr = model_needs_spring(details.model);  // the adhesive models
+  long free_count = 0;
+  check(cc_afm_fit_parameter_count(fit, &free_count));
+  std::vector<std::string> free_names;
+  for (long k = 0; k < free_count; ++k) {
+    const char* name = nullptr;
+    check(cc_afm_fit_parameter_name(fit, k, &name, nullptr));
+    free_names.push_back(name);
+  }
+  const auto is_free = [&](const std::string& n) { return std::find(free_names.begin(), free_names.end(), n) != free_names.end(); };
+  // (the C API's name, the Python key, the unit)
+  std::vector<std::tuple<std::string, std::string, std::string>> parameters = {{coated ? "E1" : "E", modulus_key(details), "Pa"}};
+  if (coated) parameters.emplace_back("t", "t", "m");
+  if (jkr) parameters.emplace_back("w", "w", "J/m2");
+  parameters.emplace_back("contact_point", "contact_point", "m");
+  parameters.emplace_back("baseline", "baseline", "N");
+  if (jkr || is_free("tilt")) parameters.emplace_back("tilt", "tilt", "N/m");
+  py::dict out, estimates, errors, units;
+  py::list names, free_list;
+  // units: the optional parameters' first, then the modulus, contact point and baseline (the
+  // order the module has always given)
+  for (const auto& [name, key, unit] : parameters) {
+    if (key == "t" || key == "w" || key == "tilt") units[py::str(key)] = unit;
+  }
+  for (const auto& [name, key, unit] : parameters) {
+    double value = 0.0, error = 0.0;
+    check(cc_afm_fit_estimate(fit, name.c_str(), &value, &error));
+    names.append(key);
+    estimates[py::str(key)] = value;
+    errors[py::str(key)] = error;
+    units[py::str(key)] = unit;
+    if (is_free(key)) free_list.append(key);
+  }
+  out["names"] = names;
+  out["estimates"] = estimates;
+  out["errors"] = errors;
+  out["units"] = units;
+  out["free"] = free_list;
+  out["reduced_modulus"] = summary.reduced_modulus;
+  out["points"] = static_cast<std::size_t>(summary.points);
+  out["points_in_contact"] = static_cast<std::size_t>(summary.points_in_contact);
+  out["residual_norm"] = std::sqrt(summary.rss);
+  out["residual_sigma"] = summary.residual_sigma;
+  out["r_squared"] = summary.r_squared;
+  out["weighted"] = false;
+  out["chi2"] = weighted ? py::object(py::float_(summary.chi2)) : py::object(py::none());
+  out["chi2_per_dof"] = weighted ? py::object(py::float_(summary.chi2_per_dof)) : py::object(py::none());
+  out["max_indentation"] = summary.max_indentation;
+  out["index"] = converted<long>(fit_array(fit, "index"));
+  out["tip_position"] = to_array(fit_array(fit, "tip_position"));
+  out["F"] = to_array(fit_array(fit, "force"));
+  out["indentation"] = to_array(fit_array(fit, "indentation"));
+  out["F_model"] = to_array(fit_array(fit, "model_force"));
+  out["residual"] = to_array(fit_array(fit, "residual"));
+  out["profile_evaluations"] = static_cast<std::size_t>(details.profile_evaluations);
+  out["solver_calls"] = static_cast<std::size_t>(details.solver_calls);
+  out["seconds"] = details.seconds;
+  out["tip"] = details.tip;
+  out["model"] = details.model;
+  if (jkr) {
+    out["spring_constant"] = summary.spring_constant;
+    out["surface_force_range"] = details.surface_force_range;
+    out["tabor_mu"] = summary.tabor_mu;
+    out["maugis_lambda"] = summary.maugis_lambda;
+    py::dict jump;
+    jump["F"] = summary.jump_off_force;
+    jump["indentation"] = summary.jump_off_indentation;
+    out["jump_off"] = jump;
+    py::list warnings;
+    for (long w = 0; w < details.model_warnings; ++w) {
+      const char* text = nullptr;
+      check(cc_afm_fit_warning(fit, w, &text));
+      warnings.append(text);
     }
-    if (jkr) {
-      names.insert(names.begin() + (coated ? 2 : 1), "w");
-      values.insert(values.begin() + (coated ? 2 : 1), r.work);
-      errors.insert(errors.begin() + (coated ? 2 : 1), r.work_error);
-      is_free.insert(is_free.begin() + (coated ? 2 : 1), problem.free.work);
-      units["w"] = "J/m2";
-    }
-    if (jkr || problem.free.tilt) {
-      names.push_back("tilt");
-      values.push_back(r.tilt);
-      errors.push_back(r.tilt_error);
-      is_free.push_back(problem.free.tilt);
-      units["tilt"] = "N/m";
-    }
-    py::list free_names;
-    for (std::size_t k = 0; k < names.size(); ++k) {
-      estimates[py::str(names[k])] = values[k];
-      error_dict[py::str(names[k])] = errors[k];
-      if (is_free[k]) free_names.append(names[k]);
-    }
-    units[py::str(modulus_name)] = "Pa";
-    units["contact_point"] = "m";
-    units["baseline"] = "N";
-    out["names"] = names;
-    out["estimates"] = estimates;
-    out["errors"] = error_dict;
-    out["units"] = units;
-    out["free"] = free_names;
-    out["reduced_modulus"] = r.reduced_modulus;
-    out["points"] = r.points;
-    out["points_in_contact"] = r.points_in_contact;
-    out["residual_norm"] = std::sqrt(r.rss);
-    out["residual_sigma"] = r.residual_sigma;
-    out["r_squared"] = r.r_squared;
-    out["weighted"] = false;
-    if (weighted) {
-      out["chi2"] = r.chi2;
-      out["chi2_per_dof"] = r.chi2_per_dof;
-    } else {
-      out["chi2"] = py::none();
-      out["chi2_per_dof"] = py::none();
-    }
-    out["max_indentation"] = r.max_indentation;
-    out["index"] = to_array(index);
-    out["tip_position"] = to_array(z);
-    out["F"] = to_array(f);
-    out["indentation"] = to_array(r.indentation);
-    out["F_model"] = to_array(r.model_force);
-    out["residual"] = to_array(r.residual);
-    out["profile_evaluations"] = r.profile_evaluations;
-    out["solver_calls"] = r.solver_calls;
-    out["seconds"] = r.seconds;
-    out["tip"] = problem.tip.description;
-    if (jkr) {
-      out["model"] = problem.model.name();
-      out["spring_constant"] = problem.spring_constant;
-      out["surface_force_range"] = problem.surface_force_range;
-      out["tabor_mu"] = r.tabor_mu;
-      out["maugis_lambda"] = r.maugis_lambda;
-      py::dict jump;
-      jump["F"] = r.jump_off_force;
-      jump["indentation"] = r.jump_off_indentation;
-      out["jump_off"] = jump;
-      out["warnings"] = r.warnings;
-      out["model_evaluations"] = r.model_evaluations;
-    } else {
-      out["model"] = problem.model.name();
-    }
+    out["warnings"] = warnings;
+    out["model_evaluations"] = static_cast<std::size_t>(details.model_evaluations);
+  }
   return out;
 }
 
@@ -460,128 +625,205 @@ py::dict fit_arrays(const py::object& tip_position, const py::object& force, con
                     double noise, const py::object& tip_min, const py::object& tip_max, const py::object& indentation_min,
                     const py::object& indentation_max, const py::object& max_force, double reference_contact,
                     double reference_baseline, const py::object& coating, const py::object& adhesion, double weight_cp) {
-  namespace fit = coatcontact::fit;
-  const std::vector<double> z_all = to_vector(tip_position), f_all = to_vector(force);
-  if (z_all.size() != f_all.size()) throw py::value_error("tip position and force differ in length");
-  fit::AfmFitProblem problem;
-  py::dict out;
-  try {
-    problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
-    problem.noise_sigma = noise;
-    problem.weight_cp = weight_cp;
-    fit::AfmRange range;
-    range.tip_min = optional_number(tip_min);
-    range.tip_max = optional_number(tip_max);
-    range.indentation_min = optional_number(indentation_min);
-    range.indentation_max = optional_number(indentation_max);
-    range.max_force = optional_number(max_force);
-    const std::vector<std::size_t> kept = fit::afm_select(z_all, f_all, range, reference_contact, reference_baseline);
-    std::vector<double> z, f;
-    for (std::size_t i : kept) {
-      z.push_back(z_all[i]);
-      f.push_back(f_all[i]);
-    }
-    fit::AfmFitResult r;
-    {
-      py::gil_scoped_release release;
-      r = fit::afm_fit(z, f, problem);
-    }
-    out = result_dict(problem, r, z, f, std::vector<long>(kept.begin(), kept.end()), noise > 0.0);
-  } catch (const coatcontact::InputError& e) {
-    throw py::value_error(e.what());
-  } catch (const coatcontact::NumericalError& e) {
-    throw std::runtime_error(std::string("numerical failure: ") + e.what());
+  const std::vector<double> z = to_vector(tip_position), f = to_vector(force);
+  if (z.size() != f.size()) throw py::value_error("tip position and force differ in length");
+  const RequestHandle request = request_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
+  set_number(request.get(), "noise_sigma", noise);
+  set_number(request.get(), "weight_cp", weight_cp);
+  set_bound(request.get(), "tip_min", tip_min);
+  set_bound(request.get(), "tip_max", tip_max);
+  set_bound(request.get(), "indentation_min", indentation_min);
+  set_bound(request.get(), "indentation_max", indentation_max);
+  set_bound(request.get(), "max_force", max_force);
+  cc_afm_fit* made = nullptr;
+  released([&] {
+    return cc_afm_fit_arrays(static_cast<long>(z.size()), z.data(), f.data(), request.get(), reference_contact,
+                             reference_baseline, &made);
+  });
+  const FitHandle fit(made);
+  return result_dict(fit.get(), noise > 0.0);
+}
+
+// The depth profile of a fit as a dict of arrays: "depth", "max_indentation" [m], the modulus
+// ("E" or "E1") and its "_error" [Pa], "flag" (names), "points_in_contact", and on a coating
+// "E_apparent", "E_apparent_error" [Pa] and "over_thickness_fraction"; NaN where a depth has no
+// estimate. Scalars: "modulus_name", "thickness_fraction", "warnings".
+py::dict depth_profile_dict(const cc_afm_fit* fit) {
+  cc_afm_depth_profile_info info{};
+  check(cc_afm_fit_depth_profile(fit, &info));
+  const auto profile = [&](const char* name) {
+    return array_of([&](double* v, long cap, long* len) { return cc_afm_fit_depth_profile_array(fit, name, v, cap, len); });
+  };
+  const std::string modulus = info.modulus_name;
+  py::list flags, warnings;
+  for (long s = 0; s < info.steps; ++s) {
+    const char* flag = nullptr;
+    check(cc_afm_fit_depth_profile_flag(fit, s, &flag));
+    flags.append(flag);
   }
+  for (long w = 0; w < info.warning_count; ++w) {
+    const char* text = nullptr;
+    check(cc_afm_fit_depth_profile_warning(fit, w, &text));
+    warnings.append(text);
+  }
+  py::dict d;
+  d["depth"] = to_array(profile("depth"));
+  d["max_indentation"] = to_array(profile("max_indentation"));
+  d[py::str(modulus)] = to_array(profile("modulus"));
+  d[py::str(modulus + "_error")] = to_array(profile("modulus_error"));
+  d["points_in_contact"] = converted<long>(profile("points_in_contact"));
+  d["flag"] = flags;
+  d["modulus_name"] = modulus;
+  if (info.coated) {
+    d["E_apparent"] = to_array(profile("apparent_modulus"));
+    d["E_apparent_error"] = to_array(profile("apparent_modulus_error"));
+    d["over_thickness_fraction"] = converted<bool>(profile("over_thickness_fraction"));
+    d["thickness_fraction"] = info.thickness_fraction;
+  }
+  d["warnings"] = warnings;
+  return d;
+}
+
+// One curve given as arrays through the library's one-curve pipeline (cc_afm_fit_curve): the
+// segment, the preprocessing steps, the baseline model, the range, the fit and the pull-off,
+// as `afm fit` and each row of fit_map. noise > 0 replaces the baseline's sigma in chi2.
+py::dict fit_curve(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
+                   const Segments& segments, double spring_constant, const std::string& name, const py::tuple& shape,
+                   double modulus, double poisson, const std::vector<std::string>& free, double contact_point,
+                   double baseline, const py::object& coating, const std::string& segment, const py::object& tip_min,
+                   const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
+                   const py::object& max_force, const py::object& adhesion, const std::string& baseline_model,
+                   double noise, double weight_cp, bool depth_profile) {
+  const CurveHandle curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
+  const RequestHandle request = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min,
+                                            tip_max, indentation_min, indentation_max, max_force, adhesion, baseline_model,
+                                            weight_cp);
+  set_number(request.get(), "noise_sigma", noise);
+  if (depth_profile) set_number(request.get(), "depth_profile", 1.0);
+  cc_afm_fit* made = nullptr;
+  SignalCheck signals;
+  released(
+      [&] {
+        const ScopedHook hook(signals);
+        return cc_afm_fit_curve(curve.get(), request.get(), &made);
+      },
+      &signals);
+  const FitHandle fit(made);
+  py::dict out = result_dict(fit.get(), true);
+  long steps = 0, warning_count = 0;
+  check(cc_afm_fit_step_count(fit.get(), &steps));
+  py::list step_list;
+  for (long s = 0; s < steps; ++s) {
+    const char *step = nullptr, *parameters = nullptr;
+    check(cc_afm_fit_step(fit.get(), s, &step, &parameters));
+    step_list.append(py::make_tuple(step, parameters));
+  }
+  out["steps"] = step_list;
+  cc_afm_fit_details details{};
+  cc_afm_fit_summary summary{};
+  check(cc_afm_fit_get_details(fit.get(), &details));
+  check(cc_afm_fit_get_summary(fit.get(), &summary));
+  out["baseline_model"] = details.baseline_model;
+  out["reference_contact_point"] = summary.reference_contact;
+  // The flag (fitted, or undetermined / no_detachment with the estimates kept), its reasons
+  // and the model's warnings, and the curve rating (afm_curve_fit.hpp).
+  const char* flag = nullptr;
+  check(cc_afm_fit_flag(fit.get(), &flag));
+  out["flag"] = flag;
+  out["rating"] = summary.rating;
+  check(cc_afm_fit_warning_count(fit.get(), &warning_count));
+  py::list warnings;
+  for (long k = 0; k < warning_count; ++k) {  // the flag's reasons first, then the model's
+    const long w = (details.model_warnings + k) % warning_count;
+    const char* text = nullptr;
+    check(cc_afm_fit_warning(fit.get(), w, &text));
+    warnings.append(text);
+  }
+  out["warnings"] = warnings;
+  if (summary.has_pulloff) {
+    py::dict pulloff;
+    pulloff["F"] = summary.pulloff_force;
+    pulloff["z"] = summary.pulloff_position;
+    pulloff["baseline_offset"] = details.pulloff_baseline_offset;
+    pulloff["baseline_slope"] = details.pulloff_baseline_slope;
+    out["pulloff"] = pulloff;
+  } else {
+    out["pulloff"] = py::none();
+  }
+  if (depth_profile) out["depth_profile"] = depth_profile_dict(fit.get());
   return out;
 }
 
-
-// ---- fit_map: one row per curve (coatcontact/afm_batch.hpp) --------------------------------
-
-afm::Calibration calibration_of(const py::object& spring_constant, const py::object& sensitivity) {
-  afm::Calibration calibration;
-  if (!spring_constant.is_none()) calibration.spring_constant = spring_constant.cast<double>();
-  if (!sensitivity.is_none()) calibration.sensitivity = sensitivity.cast<double>();
-  return calibration;
+// The measured pull-off of a retract given as arrays (cc_afm_measured_pulloff): a dict, or None.
+py::object measured_pulloff(const py::object& tip_position, const py::object& force, double fraction) {
+  const std::vector<double> z = to_vector(tip_position), f = to_vector(force);
+  if (z.size() != f.size()) throw py::value_error("tip position and force differ in length");
+  cc_afm_pulloff p{};
+  check(cc_afm_measured_pulloff(static_cast<long>(z.size()), z.data(), f.data(), fraction, &p));
+  if (!p.found) return py::none();
+  py::dict out;
+  out["F"] = p.force;
+  out["z"] = p.tip_position;
+  out["baseline_offset"] = p.baseline_offset;
+  out["baseline_slope"] = p.baseline_slope;
+  return out;
 }
 
-// baseline_model= of fit and fit_map: "tilt" (the default), "offset", or "" for the default.
-coatcontact::fit::AfmBaselineModel baseline_model_of(const std::string& name, const coatcontact::fit::AfmFitProblem& problem) {
-  namespace fit = coatcontact::fit;
-  if (name.empty()) return fit::kAfmDefaultBaseline;
-  if (name == "offset") return fit::AfmBaselineModel::kOffset;
-  if (name != "tilt") throw coatcontact::InputError("baseline_model: '" + name + "' is not allowed; expected 'tilt' or 'offset'");
-  if (problem.free.tilt) throw coatcontact::InputError("baseline_model: 'tilt' with \"tilt\" in free would count the slope twice; drop one");
-  return fit::AfmBaselineModel::kTilt;
-}
-
-coatcontact::fit::AfmBatchSettings settings_of(const py::tuple& shape, double modulus, double poisson,
-                                               const std::vector<std::string>& free, double contact_point,
-                                               double baseline, const py::object& coating, const std::string& segment,
-                                               const py::object& tip_min, const py::object& tip_max,
-                                               const py::object& indentation_min, const py::object& indentation_max,
-                                               const py::object& max_force, const py::object& adhesion) {
-  coatcontact::fit::AfmBatchSettings settings;
-  settings.problem = problem_of(shape, modulus, poisson, free, contact_point, baseline, coating, adhesion);
-  if (segment == "approach") settings.segment = afm::SegmentKind::kApproach;
-  else if (segment == "retract") settings.segment = afm::SegmentKind::kRetract;
-  else throw coatcontact::InputError("segment: '" + segment + "' is not allowed; expected 'approach' or 'retract'");
-  settings.range.tip_min = optional_number(tip_min);
-  settings.range.tip_max = optional_number(tip_max);
-  settings.range.indentation_min = optional_number(indentation_min);
-  settings.range.indentation_max = optional_number(indentation_max);
-  settings.range.max_force = optional_number(max_force);
-  return settings;
-}
+// ---- fit_map: one row per curve (cc_afm_fit_batch, cc_afm_fit_curves) ------------------------
 
 // The rows as columns (the CLI table's): NaN (floats) and -1 (grid indices) where a curve has no
-// value. Rows are added chunk by chunk (a run never holds its AfmCurveRow's, only these ~100
-// bytes per curve); the file and reason cells of equal text are one Python string (a map's
-// rows share their file), which also keeps them once in a pickle sent from a Dask worker.
+// value. Rows are added chunk by chunk (a run never holds its rows, only these ~100 bytes per
+// curve); the file and reason cells of equal text are one Python string (a map's rows share
+// their file), which also keeps them once in a pickle sent from a Dask worker.
 class Columns {
  public:
-  explicit Columns(const coatcontact::fit::AfmBatchSettings& settings)
-      : parameters_(coatcontact::fit::afm_batch_parameters(settings.problem)),
-        contact_column_(!settings.problem.free.contact_point),
-        value_(parameters_.size()),
-        error_(parameters_.size()) {}
+  explicit Columns(const cc_afm_rows* rows) {
+    long count = 0;
+    check(cc_afm_rows_parameter_count(rows, &count));
+    for (long p = 0; p < count; ++p) {
+      const char *name = nullptr, *unit = nullptr;
+      check(cc_afm_rows_parameter_name(rows, p, &name, &unit));
+      parameters_.emplace_back(name, unit);
+    }
+    value_.resize(parameters_.size());
+    error_.resize(parameters_.size());
+  }
+  void set_contact_column(bool on) { contact_column_ = on; }
+  const std::vector<std::pair<std::string, std::string>>& parameters() const { return parameters_; }
 
   // Called with the GIL held (the Python strings).
-  void add(const std::vector<coatcontact::fit::AfmCurveRow>& rows) {
-    namespace fit = coatcontact::fit;
+  void add(const cc_afm_row& r) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (const fit::AfmCurveRow& r : rows) {
-      const bool fitted = fit::afm_flag_keeps_estimates(r.flag);
-      if (!last_file_ || r.source_file != last_file_text_) {
-        last_file_text_ = r.source_file;
-        last_file_ = py::str(r.source_file);
-      }
-      file_.append(*last_file_);
-      reason_.append(reason_name(r.flag));
-      curve_.push_back(static_cast<long>(r.curve_index));
-      grid_x_.push_back(r.grid_x.value_or(-1));
-      grid_y_.push_back(r.grid_y.value_or(-1));
-      x_.push_back(r.position_x.value_or(nan));
-      y_.push_back(r.position_y.value_or(nan));
-      flag_.push_back(static_cast<int>(r.flag));
-      for (std::size_t p = 0; p < parameters_.size(); ++p) {
-        value_[p].push_back(fitted ? r.estimates[p] : nan);
-        error_[p].push_back(fitted ? r.errors[p] : nan);
-      }
-      contact_.push_back(fitted ? r.contact_point : nan);
-      chi2_.push_back(fitted ? r.chi2 : nan);
-      chi2_per_dof_.push_back(fitted ? r.chi2_per_dof : nan);
-      sigma_.push_back(fitted ? r.residual_sigma : nan);
-      pulloff_.push_back(fitted ? r.pulloff_force.value_or(nan) : nan);
-      pulloff_position_.push_back(fitted ? r.pulloff_position.value_or(nan) : nan);
-      jump_force_.push_back(fitted ? r.model_jump_off_force.value_or(nan) : nan);
-      jump_indentation_.push_back(fitted ? r.model_jump_off_indentation.value_or(nan) : nan);
-      points_.push_back(fitted ? static_cast<long>(r.points) : 0);
-      rating_.push_back(r.rating);
-      tabor_mu_.push_back(r.tabor_mu.value_or(nan));
-      maugis_lambda_.push_back(r.maugis_lambda.value_or(nan));
-      warnings_.append(py::str(r.warnings));
+    const bool fitted = r.has_estimates != 0;
+    if (!last_file_ || r.file != last_file_text_) {
+      last_file_text_ = r.file;
+      last_file_ = py::str(r.file);
     }
+    file_.append(*last_file_);
+    reason_.append(reason_name(r.flag, r.flag_name));
+    curve_.push_back(r.curve);
+    grid_x_.push_back(r.grid_x_or_none);
+    grid_y_.push_back(r.grid_y_or_none);
+    x_.push_back(r.position_x_or_nan);
+    y_.push_back(r.position_y_or_nan);
+    flag_.push_back(r.flag);
+    for (std::size_t p = 0; p < parameters_.size(); ++p) {
+      value_[p].push_back(fitted && r.estimates ? r.estimates[p] : nan);
+      error_[p].push_back(fitted && r.errors ? r.errors[p] : nan);
+    }
+    contact_.push_back(fitted ? r.contact_point : nan);
+    chi2_.push_back(fitted ? r.chi2 : nan);
+    chi2_per_dof_.push_back(fitted ? r.chi2_per_dof : nan);
+    sigma_.push_back(fitted ? r.residual_sigma : nan);
+    pulloff_.push_back(fitted && r.has_pulloff ? r.pulloff_force : nan);
+    pulloff_position_.push_back(fitted && r.has_pulloff ? r.pulloff_position : nan);
+    jump_force_.push_back(fitted && r.has_model_jump_off ? r.model_jump_off_force : nan);
+    jump_indentation_.push_back(fitted && r.has_model_jump_off ? r.model_jump_off_indentation : nan);
+    points_.push_back(fitted ? r.points : 0);
+    rating_.push_back(r.rating);
+    tabor_mu_.push_back(r.has_adhesion ? r.tabor_mu : nan);
+    maugis_lambda_.push_back(r.has_adhesion ? r.maugis_lambda : nan);
+    warnings_.append(py::str(r.warnings));
   }
 
   py::dict dict() const {
@@ -600,8 +842,8 @@ class Columns {
     put("flag", to_array(flag_));
     put("reason", reason_);
     for (std::size_t p = 0; p < parameters_.size(); ++p) {
-      put(parameters_[p].name, to_array(value_[p]));
-      put(parameters_[p].name + "_error", to_array(error_[p]));
+      put(parameters_[p].first, to_array(value_[p]));
+      put(parameters_[p].first + "_error", to_array(error_[p]));
     }
     if (contact_column_) put("contact_point", to_array(contact_));
     put("chi2", to_array(chi2_));
@@ -621,18 +863,18 @@ class Columns {
   }
 
  private:
-  py::str reason_name(coatcontact::fit::AfmFlag flag) {
-    auto& name = reasons_[static_cast<std::size_t>(flag)];
-    if (!name) name = py::str(coatcontact::fit::afm_flag_name(flag));
-    return *name;
+  py::str reason_name(int flag, const char* name) {
+    auto& cached = reasons_[flag];
+    if (!cached) cached = py::str(name);
+    return *cached;
   }
 
-  std::vector<coatcontact::fit::AfmBatchParameter> parameters_;
-  bool contact_column_;
+  std::vector<std::pair<std::string, std::string>> parameters_;  // (name, unit)
+  bool contact_column_ = false;
   py::list file_, reason_, warnings_;
   std::optional<py::str> last_file_;
   std::string last_file_text_;
-  std::optional<py::str> reasons_[coatcontact::fit::kAfmFlagCount];
+  std::map<int, std::optional<py::str>> reasons_;
   std::vector<long> curve_, grid_x_, grid_y_, points_;
   std::vector<int> flag_;
   std::vector<double> x_, y_, chi2_, chi2_per_dof_, sigma_, pulloff_, pulloff_position_, contact_;
@@ -642,70 +884,123 @@ class Columns {
 
 // The files of `paths` (a folder: its AFM files by extension, sorted), in order.
 std::vector<std::string> expand_paths(const std::vector<std::string>& paths) {
+  if (paths.empty()) return {};
+  std::vector<const char*> items;
+  for (const auto& p : paths) items.push_back(p.c_str());
+  cc_afm_file_list* made = nullptr;
+  check(cc_afm_expand_paths(items.data(), static_cast<long>(items.size()), &made));
+  const FileListHandle list(made);
+  long count = 0;
+  check(cc_afm_file_list_count(list.get(), &count));
   std::vector<std::string> files;
-  try {
-    for (const auto& p : paths) {
-      struct stat info {};
-      if (::stat(p.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
-        for (auto& f : afm::afm_files_in_folder(p)) files.push_back(std::move(f));
-      } else {
-        files.push_back(p);
-      }
-    }
-  } catch (const coatcontact::InputError& e) {
-    throw py::value_error(e.what());
+  for (long i = 0; i < count; ++i) {
+    cc_afm_file_survey s{};
+    check(cc_afm_file_list_get(list.get(), i, &s));
+    files.emplace_back(s.path);
   }
   return files;
 }
 
-// (curves, why unreadable or "", flag of its row) of each file (afm_survey_files): with `tolerate` a file that
-// cannot be read is one flagged row of the run instead of a ValueError.
+cc_afm_calibration calibration_of(const py::object& spring_constant, const py::object& sensitivity) {
+  return {spring_constant.is_none() ? 0.0 : spring_constant.cast<double>(), sensitivity.is_none() ? 0.0 : sensitivity.cast<double>(), 0};
+}
+
+// (curves, why unreadable or "", flag of its row) of each file (cc_afm_survey_files): with
+// `tolerate` a file that cannot be read is one flagged row of the run instead of a ValueError.
 std::vector<std::tuple<std::size_t, std::string, int>> survey_files(const std::vector<std::string>& files,
-                                                              const py::object& spring_constant,
-                                                              const py::object& sensitivity, bool tolerate) {
+                                                                    const py::object& spring_constant,
+                                                                    const py::object& sensitivity, bool tolerate) {
   std::vector<std::tuple<std::size_t, std::string, int>> out;
-  try {
-    const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
-    py::gil_scoped_release release;
-    for (auto& s : coatcontact::fit::afm_survey_files(files, calibration, tolerate)) out.emplace_back(s.curves, std::move(s.unreadable), static_cast<int>(s.flag));
-  } catch (const coatcontact::InputError& e) {
-    throw py::value_error(e.what());
+  if (files.empty()) return out;
+  std::vector<const char*> items;
+  for (const auto& f : files) items.push_back(f.c_str());
+  const cc_afm_calibration calibration = calibration_of(spring_constant, sensitivity);
+  cc_afm_file_list* made = nullptr;
+  released([&] { return cc_afm_survey_files(items.data(), static_cast<long>(items.size()), &calibration, tolerate, &made); });
+  const FileListHandle list(made);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    cc_afm_file_survey s{};
+    check(cc_afm_file_list_get(list.get(), static_cast<long>(i), &s));
+    out.emplace_back(static_cast<std::size_t>(s.curves), s.unreadable, s.flag);
   }
   return out;
 }
 
 // One control-plot page of fit_map(curve_plots=): the row's place, flag, rating and estimates,
-// and its trace (afm_curve_trace: "z", "force", "model", "segment", "fitted", "contact_point";
-// absent for a curve without data). Called with the GIL held.
-py::dict trace_dict(const coatcontact::fit::AfmCurveRow& row, const std::vector<coatcontact::fit::AfmBatchParameter>& parameters) {
-  namespace fit = coatcontact::fit;
+// and its trace ("z", "force", "model", "segment", "fitted", "contact_point"; absent for a
+// curve without data). Called with the GIL held.
+py::dict trace_dict(const cc_afm_rows* rows, long index, const cc_afm_row& row,
+                    const std::vector<std::pair<std::string, std::string>>& parameters) {
   py::dict d;
-  d["file"] = row.source_file;
-  d["curve"] = row.curve_index;
-  d["grid"] = row.grid_x && row.grid_y ? py::object(py::make_tuple(*row.grid_x, *row.grid_y)) : py::object(py::none());
-  d["flag"] = fit::afm_flag_name(row.flag);
+  d["file"] = row.file;
+  d["curve"] = static_cast<std::size_t>(row.curve);
+  d["grid"] = row.has_grid ? py::object(py::make_tuple(row.grid_x, row.grid_y)) : py::object(py::none());
+  d["flag"] = row.flag_name;
   d["rating"] = row.rating;
   d["message"] = row.message;
   py::list estimates;
-  if (fit::afm_flag_keeps_estimates(row.flag)) {
-    for (std::size_t p = 0; p < parameters.size() && p < row.estimates.size(); ++p) {
-      estimates.append(py::make_tuple(parameters[p].name, row.estimates[p], row.errors[p], parameters[p].unit));
+  if (row.has_estimates) {
+    for (std::size_t p = 0; p < parameters.size() && row.estimates; ++p) {
+      estimates.append(py::make_tuple(parameters[p].first, row.estimates[p], row.errors[p], parameters[p].second));
     }
     d["chi2_per_dof"] = row.chi2_per_dof;
   }
   d["estimates"] = estimates;
-  if (row.trace && !row.trace->z.empty()) {
-    const fit::AfmCurveTrace& t = *row.trace;
-    d["z"] = to_array(t.z);
-    d["force"] = to_array(t.force);
-    d["model"] = to_array(t.model);
-    d["segment"] = to_array(t.segment);
-    std::vector<int> fitted(t.fitted.begin(), t.fitted.end());
-    d["fitted"] = to_array(fitted);
-    d["contact_point"] = t.contact_point;
+  if (row.has_trace) {
+    const auto trace = [&](const char* name) {
+      return array_of([&](double* v, long cap, long* len) { return cc_afm_rows_trace(rows, index, name, v, cap, len); });
+    };
+    d["z"] = to_array(trace("z"));
+    d["force"] = to_array(trace("force"));
+    d["model"] = to_array(trace("model"));
+    d["segment"] = converted<int>(trace("segment"));
+    d["fitted"] = converted<int>(trace("fitted"));
+    d["contact_point"] = row.trace_contact_point;
   }
   return d;
 }
+
+// The sink of a run: each chunk's rows into the columns (and the trace pages), with the GIL.
+struct RowsSink {
+  std::optional<Columns> columns;
+  py::object trace_sink;
+  bool contact_column = false;
+  SignalCheck signals;  // a Python exception of a page (or Ctrl-C) stops the run
+
+  static int call(void* user, const cc_afm_rows* chunk) {
+    auto* self = static_cast<RowsSink*>(user);
+    py::gil_scoped_acquire gil;
+    try {
+      self->add(chunk);
+    } catch (...) {
+      self->signals.error = std::current_exception();
+      return 1;
+    }
+    return 0;
+  }
+  void add(const cc_afm_rows* chunk) {
+    if (!columns) {
+      columns.emplace(chunk);
+      columns->set_contact_column(contact_column);
+    }
+    long count = 0;
+    check(cc_afm_rows_count(chunk, &count));
+    for (long i = 0; i < count; ++i) {
+      cc_afm_row row{};
+      check(cc_afm_rows_get(chunk, i, &row));
+      columns->add(row);
+      if (!trace_sink.is_none()) trace_sink(trace_dict(chunk, i, row, columns->parameters()));  // a page each, as they come
+    }
+  }
+  // The columns (those of the returned handle when no row came).
+  py::dict dict(const cc_afm_rows* rows) {
+    if (!columns) {
+      columns.emplace(rows);
+      columns->set_contact_column(contact_column);
+    }
+    return columns->dict();
+  }
+};
 
 // Curves [first, first + count) of the run over `files`, fitted with `jobs` threads (0: cores).
 py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& shape, double modulus, double poisson,
@@ -716,181 +1011,46 @@ py::dict fit_map_files(const std::vector<std::string>& files, const py::tuple& s
                        const py::object& count, const py::object& survey, bool tolerate,
                        const py::object& adhesion, const std::string& baseline_model, double weight_cp,
                        const py::object& trace_sink) {
-  namespace fit = coatcontact::fit;
-  fit::AfmBatchSettings settings;
-  std::optional<Columns> columns;
-  try {
-    settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
-                           indentation_min, indentation_max, max_force, adhesion);
-    settings.baseline = baseline_model_of(baseline_model, settings.problem);
-    settings.problem.weight_cp = weight_cp;
-    settings.keep_traces = !trace_sink.is_none();
-    const std::vector<fit::AfmBatchParameter> parameters = fit::afm_batch_parameters(settings.problem);
-    columns.emplace(settings);
-    const afm::Calibration calibration = calibration_of(spring_constant, sensitivity);
-    fit::AfmBatchOptions options;
-    options.jobs = jobs;
-    options.skip = first;
-    if (!count.is_none()) options.count = count.cast<std::size_t>();
-    if (!survey.is_none()) {
-      for (auto& [curves, why, flag] : survey.cast<std::vector<std::tuple<std::size_t, std::string, int>>>()) {
-        options.survey.push_back({curves, std::move(why), static_cast<fit::AfmFlag>(flag)});
-      }
+  const RequestHandle request = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min,
+                                            tip_max, indentation_min, indentation_max, max_force, adhesion, baseline_model,
+                                            weight_cp);
+  const cc_afm_calibration calibration = calibration_of(spring_constant, sensitivity);
+  std::vector<std::string> why;  // the survey's texts, alive through the run
+  std::vector<cc_afm_file_survey> entries;
+  if (!survey.is_none()) {
+    const auto given = survey.cast<std::vector<std::tuple<std::size_t, std::string, int>>>();
+    for (const auto& entry : given) why.push_back(std::get<1>(entry));
+    for (std::size_t i = 0; i < given.size(); ++i) {
+      entries.push_back({"", static_cast<long>(std::get<0>(given[i])), why[i].c_str(), std::get<2>(given[i])});
     }
-    options.unreadable_file_rows = tolerate;
-    // The sink runs on the calling thread, which holds no GIL during the batch.
-    options.sink = [&](const std::vector<fit::AfmCurveRow>& chunk) {
-      py::gil_scoped_acquire acquire;
-      columns->add(chunk);
-      if (!trace_sink.is_none()) {
-        for (const fit::AfmCurveRow& row : chunk) trace_sink(trace_dict(row, parameters));  // a page each, as they come
-      }
-    };
-    SignalCheck signals;
-    options.progress = [&](std::size_t, std::size_t) { return signals(); };
-    try {
-      py::gil_scoped_release release;
-      fit::afm_fit_batch(files, calibration, settings, options);
-    } catch (const coatcontact::Interrupted&) {
-      signals.rethrow();
-      throw;
-    }
-  } catch (const coatcontact::InputError& e) {
-    throw py::value_error(e.what());
-  } catch (const coatcontact::NumericalError& e) {
-    throw std::runtime_error(std::string("numerical failure: ") + e.what());
   }
-  return columns->dict();
-}
-
-// afm_depth_profile as a dict of arrays: "depth", "max_indentation" [m], the modulus ("E" or
-// "E1") and its "_error" [Pa], "flag" (names), "points_in_contact", and on a coating
-// "E_apparent", "E_apparent_error" [Pa] (the half-space fit) and "over_thickness_fraction"; NaN
-// where a depth has no estimate. Scalars: "modulus_name", "thickness_fraction", "warnings".
-py::dict depth_profile_dict(const coatcontact::fit::AfmDepthProfile& profile) {
-  namespace fit = coatcontact::fit;
-  std::vector<double> depth, indentation, modulus, error, apparent, apparent_error;
-  std::vector<long> contact;
-  std::vector<bool> beyond;
-  py::list flags;
-  for (const fit::AfmDepthStep& s : profile.steps) {
-    depth.push_back(s.depth);
-    indentation.push_back(s.max_indentation);
-    modulus.push_back(s.modulus);
-    error.push_back(s.modulus_error);
-    apparent.push_back(s.apparent_modulus);
-    apparent_error.push_back(s.apparent_modulus_error);
-    contact.push_back(static_cast<long>(s.points_in_contact));
-    beyond.push_back(s.beyond_thickness_fraction);
-    flags.append(fit::afm_flag_name(s.flag));
-  }
-  py::dict d;
-  d["depth"] = to_array(depth);
-  d["max_indentation"] = to_array(indentation);
-  d[py::str(profile.modulus_name)] = to_array(modulus);
-  d[py::str(profile.modulus_name + "_error")] = to_array(error);
-  d["points_in_contact"] = to_array(contact);
-  d["flag"] = flags;
-  d["modulus_name"] = profile.modulus_name;
-  if (profile.coated) {
-    d["E_apparent"] = to_array(apparent);
-    d["E_apparent_error"] = to_array(apparent_error);
-    py::array_t<bool> marks(static_cast<py::ssize_t>(beyond.size()));
-    for (std::size_t i = 0; i < beyond.size(); ++i) marks.mutable_data()[i] = beyond[i];
-    d["over_thickness_fraction"] = marks;
-    d["thickness_fraction"] = fit::kDepthProfileThicknessFraction;
-  }
-  d["warnings"] = profile.warnings;
-  return d;
-}
-
-// One curve given as arrays through the library's one-curve pipeline (afm_fit_curve): the
-// segment, the preprocessing steps, the baseline model, the range, the fit and the pull-off,
-// as `afm fit` and each row of fit_map. noise > 0 replaces the baseline's sigma in chi2.
-py::dict fit_curve(const py::object& force, const py::object& height_piezo, const py::object& height_measured,
-                   const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& segments, double spring_constant,
-                   const std::string& name, const py::tuple& shape, double modulus, double poisson,
-                   const std::vector<std::string>& free, double contact_point, double baseline, const py::object& coating,
-                   const std::string& segment, const py::object& tip_min, const py::object& tip_max,
-                   const py::object& indentation_min, const py::object& indentation_max, const py::object& max_force,
-                   const py::object& adhesion, const std::string& baseline_model, double noise, double weight_cp,
-                   bool depth_profile) {
-  namespace fit = coatcontact::fit;
-  const afm::ForceCurve curve = curve_of(force, height_piezo, height_measured, segments, spring_constant, name);
-  py::dict out;
-  try {
-    fit::AfmCurveRequest request = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment,
-                                               tip_min, tip_max, indentation_min, indentation_max, max_force, adhesion);
-    request.check_jump_in = false;
-    request.problem.noise_sigma = noise;
-    request.problem.weight_cp = weight_cp;
-    request.baseline = baseline_model_of(baseline_model, request.problem);
-    fit::AfmCurveFit fitted;
-    std::optional<fit::AfmDepthProfile> profile;
-    SignalCheck signals;
-    try {
-      py::gil_scoped_release release;
-      const coatcontact::ScopedProgressHook hook([&](std::size_t, std::size_t) { return signals(); });
-      if (depth_profile) {
-        profile = fit::afm_depth_profile(curve, request, {});
-        fitted = profile->reference;  // the whole-range fit: the result as without the profile
-      } else {
-        fitted = fit::afm_fit_curve(curve, request);
-      }
-    } catch (const coatcontact::Interrupted&) {
-      signals.rethrow();
-      throw;
-    }
-    std::vector<double> z, f;
-    std::vector<long> index;
-    for (std::size_t i : fitted.kept) {
-      z.push_back(fitted.z_segment[i]);
-      f.push_back(fitted.f_segment[i]);
-      index.push_back(static_cast<long>(fitted.segment.begin + i));
-    }
-    out = result_dict(fitted.problem, fitted.result, z, f, index, true);
-    py::list steps;
-    for (const fit::AfmStep& step : fitted.steps) steps.append(py::make_tuple(step.name, step.parameters));
-    out["steps"] = steps;
-    out["baseline_model"] = fit::afm_baseline_model_name(fitted.baseline);
-    out["reference_contact_point"] = fitted.reference_contact;
-    // The flag (fitted, or undetermined / no_detachment with the estimates kept), its reasons
-    // and the model's warnings, and the curve rating (afm_curve_fit.hpp).
-    out["flag"] = fit::afm_flag_name(fitted.flag);
-    out["rating"] = fitted.rating;
-    py::list warnings;
-    for (const std::string& w : fitted.flag_warnings) warnings.append(w);
-    for (const std::string& w : fitted.result.warnings) warnings.append(w);
-    out["warnings"] = warnings;
-    if (fitted.pulloff.found) {
-      py::dict pulloff;
-      pulloff["F"] = fitted.pulloff.force;
-      pulloff["z"] = fitted.pulloff.tip_position;
-      pulloff["baseline_offset"] = fitted.pulloff.baseline_offset;
-      pulloff["baseline_slope"] = fitted.pulloff.baseline_slope;
-      out["pulloff"] = pulloff;
-    } else {
-      out["pulloff"] = py::none();
-    }
-    if (profile) out["depth_profile"] = depth_profile_dict(*profile);
-  } catch (const coatcontact::InputError& e) {
-    throw py::value_error(e.what());
-  } catch (const coatcontact::NumericalError& e) {
-    throw std::runtime_error(std::string("numerical failure: ") + e.what());
-  }
-  return out;
-}
-
-// The measured pull-off of a retract given as arrays (afm_measured_pulloff): a dict, or None.
-py::object measured_pulloff(const py::object& tip_position, const py::object& force, double fraction) {
-  const auto p = coatcontact::fit::afm_measured_pulloff(to_vector(tip_position), to_vector(force), fraction);
-  if (!p.found) return py::none();
-  py::dict out;
-  out["F"] = p.force;
-  out["z"] = p.tip_position;
-  out["baseline_offset"] = p.baseline_offset;
-  out["baseline_slope"] = p.baseline_slope;
-  return out;
+  RowsSink sink;
+  sink.trace_sink = trace_sink;
+  sink.contact_column = std::find(free.begin(), free.end(), "contact_point") == free.end();
+  cc_afm_batch_options options{};
+  options.jobs = jobs;
+  options.unreadable_file_rows = tolerate;
+  options.skip = static_cast<long>(first);
+  options.count = count.is_none() ? 0 : count.cast<long>();
+  options.survey_count = static_cast<long>(entries.size());
+  options.survey = entries.empty() ? nullptr : entries.data();
+  options.keep_traces = !trace_sink.is_none();
+  options.sink = &RowsSink::call;
+  options.sink_user = &sink;
+  std::vector<const char*> items;
+  for (const auto& f : files) items.push_back(f.c_str());
+  cc_afm_rows* made = nullptr;
+  SignalCheck& signals = sink.signals;
+  released(
+      [&] {
+        const ScopedHook hook(signals);
+        // No file (an empty folder): no row, the columns of the request.
+        if (items.empty()) return cc_afm_fit_curves(nullptr, 0, request.get(), &options, &made);
+        return cc_afm_fit_batch(items.data(), static_cast<long>(items.size()), &calibration, request.get(), &options, &made);
+      },
+      &signals);
+  const RowsHandle rows(made);
+  return sink.dict(rows.get());
 }
 
 // Curves given as arrays: (force, height_piezo, height_measured, segments, spring_constant,
@@ -901,41 +1061,39 @@ py::dict fit_map_curves(const py::list& curves, const py::tuple& shape, double m
                         const py::object& tip_max, const py::object& indentation_min, const py::object& indentation_max,
                         const py::object& max_force, const py::object& adhesion, const std::string& baseline_model,
                         double weight_cp, const py::object& trace_sink) {
-  namespace fit = coatcontact::fit;
-  fit::AfmBatchSettings settings;
-  std::vector<fit::AfmCurveRow> rows;
-  try {
-    settings = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min, tip_max,
-                           indentation_min, indentation_max, max_force, adhesion);
-    settings.baseline = baseline_model_of(baseline_model, settings.problem);
-    settings.problem.weight_cp = weight_cp;
-    settings.keep_traces = !trace_sink.is_none();
-    for (const py::handle item : curves) {
-      const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
-      afm::ForceCurve curve = curve_of(c[0], c[1], c[2], c[3].cast<std::vector<std::tuple<std::string, std::size_t, std::size_t>>>(),
-                                       c[4].cast<double>(), c[5].cast<std::string>());
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between curves
-      afm::CurveMetadata& m = curve.metadata;
-      m.curve_index = c[6].cast<std::size_t>();
-      if (!c[7].is_none()) m.grid_index_x = c[7].cast<long>();
-      if (!c[8].is_none()) m.grid_index_y = c[8].cast<long>();
-      if (!c[9].is_none()) m.position_x = c[9].cast<double>();
-      if (!c[10].is_none()) m.position_y = c[10].cast<double>();
-      {
-        py::gil_scoped_release release;
-        rows.push_back(fit::afm_fit_curve_row(curve, settings));
-      }
-      if (!trace_sink.is_none()) {
-        trace_sink(trace_dict(rows.back(), fit::afm_batch_parameters(settings.problem)));
-        rows.back().trace.reset();  // drawn: the page holds it now
-      }
-    }
-  } catch (const coatcontact::InputError& e) {
-    throw py::value_error(e.what());
+  const RequestHandle request = settings_of(shape, modulus, poisson, free, contact_point, baseline, coating, segment, tip_min,
+                                            tip_max, indentation_min, indentation_max, max_force, adhesion, baseline_model,
+                                            weight_cp);
+  std::vector<CurveHandle> handles;
+  for (const py::handle item : curves) {
+    const py::tuple c = py::reinterpret_borrow<py::tuple>(item);
+    handles.push_back(curve_of(c[0], c[1], c[2], c[3].cast<Segments>(), c[4].cast<double>(), c[5].cast<std::string>()));
+    cc_afm_grid grid{};
+    grid.has_index = !c[7].is_none() && !c[8].is_none();
+    if (grid.has_index) grid.index_x = c[7].cast<long>(), grid.index_y = c[8].cast<long>();
+    grid.has_position = !c[9].is_none() && !c[10].is_none();
+    if (grid.has_position) grid.position_x = c[9].cast<double>(), grid.position_y = c[10].cast<double>();
+    check(cc_afm_curve_set_place(handles.back().get(), c[6].cast<long>(), &grid));
   }
-  Columns columns(settings);
-  columns.add(rows);
-  return columns.dict();
+  std::vector<const cc_afm_curve*> pointers;
+  for (const auto& h : handles) pointers.push_back(h.get());
+  RowsSink sink;
+  sink.trace_sink = trace_sink;
+  sink.contact_column = std::find(free.begin(), free.end(), "contact_point") == free.end();
+  cc_afm_batch_options options{};
+  options.keep_traces = !trace_sink.is_none();
+  options.sink = &RowsSink::call;
+  options.sink_user = &sink;
+  cc_afm_rows* made = nullptr;
+  SignalCheck& signals = sink.signals;
+  released(
+      [&] {
+        const ScopedHook hook(signals);
+        return cc_afm_fit_curves(pointers.data(), static_cast<long>(pointers.size()), request.get(), &options, &made);
+      },
+      &signals);
+  const RowsHandle rows(made);
+  return sink.dict(rows.get());
 }
 
 }  // namespace

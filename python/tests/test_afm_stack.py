@@ -43,3 +43,26 @@ def test_stack_refusals():
         cc.afm.fit(curve, radius=10e-6, layers=LAYERS, film=(5e3, 0.5), substrate="rigid")
     with pytest.raises(ValueError, match="takes one bonded film"):
         cc.afm.fit(curve, "jkr", radius=10e-6, layers=LAYERS, substrate="rigid", work=1e-3)
+
+
+def test_stack_free_modulus_named_after_its_layer(cli):
+    """--free E2 on two layers: the map's columns, Python's keys (fit and fit_map) and the C API's
+    parameter say E2, not E1; the values equal the CLI's map row (1e-12). One film keeps E1."""
+    layers = [(1e-6, 15e3, 0.5), (4e-6, 15e3, 0.5)]
+    header, rows_printed, _ = cli("afm", "fit", SPOT, "--radius", "10um", "--layer", "1um,15kPa,0.5", "--layer",
+                                  "4um,15kPa,0.5", "--substrate", "rigid", "--free", "E2,contact_point,baseline",
+                                  "--jobs", "1")
+    columns = next(line for line in header if line.startswith("# columns: "))[len("# columns: "):].split("\t")
+    assert "E2" in columns and "E2_error" in columns and "E1" not in columns, columns
+    row = dict(zip(columns, rows_printed[0]))
+    curve = cc.afm.read(SPOT)[0]
+    keywords = dict(radius=10e-6, layers=layers, substrate="rigid", free=("E2", "contact_point", "baseline"))
+    r = cc.afm.fit(curve, **keywords)
+    assert r["names"][0] == "E2" and "E1" not in r["estimates"] and r["free"][0] == "E2" and r["units"]["E2"] == "Pa"
+    rows = cc.afm.fit_map(SPOT, jobs=1, **keywords)
+    assert "E2" in rows.dtype.names and "E1" not in rows.dtype.names
+    for value in (r["estimates"]["E2"], rows["E2"][0]):
+        assert abs(value - float(row["E2"])) <= 1e-12 * float(row["E2"]), (value, row["E2"])
+    assert abs(r["errors"]["E2"] - float(row["E2_error"])) <= 1e-12 * float(row["E2_error"])
+    one_film = cc.afm.fit(curve, radius=10e-6, layers=layers[:1], substrate="rigid", free=("contact_point", "baseline"))
+    assert one_film["names"][0] == "E1"

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h> /* getpid */
 
 #include "coatcontact/coatcontact.h"
 
@@ -325,7 +326,8 @@ static void batch(const char *folder) {
   cc_afm_request *request = sphere_request("hertz");
   for (unsigned jobs = 1; jobs <= 2; ++jobs) {
     cc_afm_rows *rows = NULL;
-    cc_afm_batch_options options = {jobs, 0, 0, 0};
+    cc_afm_batch_options options = {0};
+    options.jobs = jobs;
     long count = 0, parameters = 0;
     check("batch", cc_afm_fit_batch(files, 1, NULL, request, &options, &rows) == CC_OK);
     check("4 rows", cc_afm_rows_count(rows, &count) == CC_OK && count == 4);
@@ -353,7 +355,10 @@ static void batch(const char *folder) {
   }
   /* A share of the run: curves 1 and 2 only, the rows of the whole run's. */
   cc_afm_rows *rows = NULL;
-  cc_afm_batch_options share = {1, 0, 1, 2};
+  cc_afm_batch_options share = {0};
+  share.jobs = 1;
+  share.skip = 1;
+  share.count = 2;
   long count = 0;
   check("share", cc_afm_fit_batch(files, 1, NULL, request, &share, &rows) == CC_OK && cc_afm_rows_count(rows, &count) == CC_OK &&
                      count == 2);
@@ -415,6 +420,242 @@ static void stack_fit(const char *folder, const char *cli) {
   cc_afm_curve_destroy(curve);
 }
 
+/* The whole text of a file (NULL if it cannot be read); the caller frees it. */
+static char *file_text(const char *path) {
+  FILE *in = fopen(path, "rb");
+  if (!in) return NULL;
+  static const size_t limit = 1 << 20;
+  char *text = malloc(limit);
+  size_t length = fread(text, 1, limit - 1, in);
+  text[length] = '\0';
+  fclose(in);
+  return text;
+}
+
+/* The map2x2 batch's table through the C API is the CLI's `afm fit --output` table byte for
+ * byte (one writer in the fit floor), the CLI's "# command:" line aside. */
+static void batch_table(const char *folder, const char *cli) {
+  char path[4096], c_table[4200], cli_table[4200], command[16384];
+  snprintf(path, sizeof path, "%s/fmt-jpk-fd_map2x2_extracted.jpk-force-map", folder);
+  const char *tmp = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
+  snprintf(c_table, sizeof c_table, "%s/capi_afm_table_%ld.tsv", tmp, (long)getpid());
+  snprintf(cli_table, sizeof cli_table, "%s/capi_afm_table_cli_%ld.tsv", tmp, (long)getpid());
+  const char *files[] = {path};
+  cc_afm_request *request = sphere_request("hertz");
+  cc_afm_rows *rows = NULL;
+  cc_afm_batch_options options = {0};
+  options.jobs = 1;
+  check("batch for the table", cc_afm_fit_batch(files, 1, NULL, request, &options, &rows) == CC_OK);
+  check("write table", cc_afm_rows_write_table(rows, c_table) == CC_OK);
+  check("write table NULL path", cc_afm_rows_write_table(rows, NULL) == CC_INPUT_ERROR && message_has("path is NULL"));
+  check("write table NULL rows", cc_afm_rows_write_table(NULL, c_table) == CC_INPUT_ERROR && message_has("rows is NULL"));
+  check("write table to a folder", cc_afm_rows_write_table(rows, "/nonexistent-folder/x.tsv") == CC_INPUT_ERROR &&
+                                      message_has("cannot write"));
+  cc_afm_rows *curves_rows = NULL;
+  check("rows of curves", cc_afm_fit_curves(NULL, 0, request, NULL, &curves_rows) == CC_OK);
+  check("rows of curves have no table", cc_afm_rows_write_table(curves_rows, c_table) == CC_INPUT_ERROR &&
+                                            message_has("not a run over files"));
+  cc_afm_rows_destroy(curves_rows);
+  snprintf(command, sizeof command, "'%s' afm fit '%s' --radius 10um --halfspace 1000,0.5 --jobs 1 --output '%s' 2>/dev/null",
+           cli, path, cli_table);
+  check("the CLI wrote its table", system(command) == 0);
+  char *a = file_text(c_table), *b = file_text(cli_table);
+  const char *b_rest = b ? strchr(b, '\n') : NULL; /* past "# command: ..." */
+  check("the CLI's table starts with its command", b && strncmp(b, "# command: ", 11) == 0);
+  check("C API table = CLI table", a && b_rest && strcmp(a, b_rest + 1) == 0);
+  if (a && b_rest && strcmp(a, b_rest + 1) != 0) printf("C API table:\n%s\nCLI table:\n%s\n", a, b_rest + 1);
+  free(a);
+  free(b);
+  remove(c_table);
+  remove(cli_table);
+  cc_afm_rows_destroy(rows);
+  cc_afm_request_destroy(request);
+}
+
+/* The sink of python_needs: counts the chunks' rows and keeps the first row's E and trace length. */
+struct sink_state {
+  long rows, trace_points;
+  double first_e;
+  int stop;
+};
+static int count_rows(void *user, const cc_afm_rows *chunk) {
+  struct sink_state *s = (struct sink_state *)user;
+  long n = 0;
+  cc_afm_rows_count(chunk, &n);
+  for (long i = 0; i < n; ++i) {
+    cc_afm_row row;
+    cc_afm_rows_get(chunk, i, &row);
+    if (s->rows == 0 && row.has_estimates) s->first_e = row.estimates[0];
+    long length = 0;
+    if (s->rows == 0 && row.has_trace) cc_afm_rows_trace(chunk, i, "z", NULL, 0, &length);
+    if (s->rows == 0) s->trace_points = length;
+    ++s->rows;
+  }
+  return s->stop;
+}
+
+/* What a binding needs beyond one fit (issue 35: Python on the C API only): the registry, a fit
+ * of given arrays, the fit's details, the depth profile, given curves as rows (equal to the
+ * file's batch rows), a sink with traces, folder expansion and the survey; each with its
+ * input errors. */
+static void python_needs(const char *folder) {
+  long models = 0, parameters = 0;
+  cc_afm_model_info info;
+  check("model count", cc_afm_model_count(&models) == CC_OK && models >= 4);
+  check("model 0 is hertz", cc_afm_model_get(0, &info) == CC_OK && strcmp(info.name, "hertz") == 0 && !info.needs_spring &&
+                                strcmp(info.segment, "approach") == 0);
+  check("model out of range", cc_afm_model_get(models, &info) == CC_INPUT_ERROR && message_has("model"));
+  check("hertz parameters", cc_afm_model_parameter_count(0, 0, &parameters) == CC_OK && parameters >= 3);
+  const char *name = NULL, *unit = NULL;
+  int free_by_default = 0;
+  check("hertz E", cc_afm_model_parameter(0, 0, 0, &name, &unit, &free_by_default) == CC_OK && strcmp(name, "E") == 0 &&
+                       strcmp(unit, "Pa") == 0 && free_by_default);
+  check("coated 2", cc_afm_model_parameter_count(0, 2, &parameters) == CC_INPUT_ERROR && message_has("coated 2"));
+  check("parameter NULL name", cc_afm_model_parameter(0, 0, 0, NULL, NULL, NULL) == CC_INPUT_ERROR);
+
+  /* The fit of the file's curve's fitted points as arrays: the same E as the one-curve fit
+   * with the offset baseline model (no tilt subtracted). */
+  char path[4096];
+  cc_afm_curve *curve = read_curve(folder, "fmt-jpk-fd_spot3-0192.jpk-force", 0, path, sizeof path);
+  cc_afm_request *request = sphere_request("hertz");
+  cc_afm_request_set_baseline_model(request, "offset");
+  cc_afm_fit *fit = NULL, *again = NULL;
+  check("fit curve", cc_afm_fit_curve(curve, request, &fit) == CC_OK);
+  cc_afm_fit_summary summary;
+  cc_afm_fit_get_summary(fit, &summary);
+  long n = 0;
+  cc_afm_fit_array(fit, "tip_position", NULL, 0, &n);
+  double *z = malloc((size_t)n * sizeof(double)), *f = malloc((size_t)n * sizeof(double));
+  cc_afm_fit_array(fit, "tip_position", z, n, &n);
+  cc_afm_fit_array(fit, "force", f, n, &n);
+  check("fit arrays", cc_afm_fit_arrays(n, z, f, request, summary.reference_contact, summary.reference_baseline, &again) == CC_OK);
+  double e1 = 0.0, e2 = 0.0;
+  cc_afm_fit_estimate(fit, "E", &e1, NULL);
+  cc_afm_fit_estimate(again, "E", &e2, NULL);
+  close_to("arrays E = curve E", e2, e1);
+  cc_afm_fit_details details;
+  check("details", cc_afm_fit_get_details(fit, &details) == CC_OK && strcmp(details.model, "hertz") == 0 &&
+                       strcmp(details.baseline_model, "offset") == 0 && !details.coated && details.profile_evaluations > 0);
+  check("details NULL", cc_afm_fit_get_details(NULL, &details) == CC_INPUT_ERROR && message_has("fit is NULL"));
+  cc_afm_fit *bad = NULL;
+  check("arrays n 0", cc_afm_fit_arrays(0, z, f, request, 0.0, 0.0, &bad) == CC_INPUT_ERROR && message_has("n 0") && !bad);
+  check("arrays NULL force", cc_afm_fit_arrays(n, z, NULL, request, 0.0, 0.0, &bad) == CC_INPUT_ERROR && !bad);
+  cc_afm_depth_profile_info profile;
+  check("no profile", cc_afm_fit_depth_profile(fit, &profile) == CC_OK && profile.steps == 0);
+  check("no profile array", cc_afm_fit_depth_profile_array(fit, "depth", NULL, 0, &n) == CC_INPUT_ERROR &&
+                                message_has("no depth profile"));
+  cc_afm_fit_destroy(again);
+  again = NULL;
+  check("depth_profile 2", cc_afm_request_set(request, "depth_profile", 2.0) == CC_INPUT_ERROR && message_has("0 or 1"));
+  check("depth_profile", cc_afm_request_set(request, "depth_profile", 1.0) == CC_OK &&
+                             cc_afm_fit_curve(curve, request, &again) == CC_OK);
+  check("profile", cc_afm_fit_depth_profile(again, &profile) == CC_OK && profile.steps > 0 &&
+                       strcmp(profile.modulus_name, "E") == 0 && !profile.coated);
+  double e3 = 0.0;
+  cc_afm_fit_estimate(again, "E", &e3, NULL);
+  close_to("profile's reference = the fit", e3, e1);
+  const char *flag = NULL;
+  check("profile flag", cc_afm_fit_depth_profile_flag(again, 0, &flag) == CC_OK && flag != NULL);
+  check("profile flag out of range", cc_afm_fit_depth_profile_flag(again, profile.steps, &flag) == CC_INPUT_ERROR);
+  check("profile unknown array", cc_afm_fit_depth_profile_array(again, "E", NULL, 0, &n) == CC_INPUT_ERROR && message_has("allowed"));
+  check("batch refuses a profile", cc_afm_fit_curves(NULL, 0, request, NULL, &(cc_afm_rows *){NULL}) == CC_INPUT_ERROR &&
+                                       message_has("depth profile"));
+  cc_afm_fit_destroy(again);
+  cc_afm_fit_destroy(fit);
+  cc_afm_request_destroy(request);
+  cc_afm_curve_destroy(curve);
+  free(z);
+  free(f);
+
+  /* The map's curves given as handles: the rows of the file's batch; a sink sees them with traces. */
+  snprintf(path, sizeof path, "%s/fmt-jpk-fd_map2x2_extracted.jpk-force-map", folder);
+  const char *files[] = {path};
+  request = sphere_request("hertz");
+  cc_afm_file *map = NULL;
+  cc_afm_curve *curves[4] = {NULL, NULL, NULL, NULL};
+  cc_afm_open(path, NULL, &map);
+  for (long i = 0; i < 4; ++i) cc_afm_curve_read(map, i, &curves[i]);
+  cc_afm_file_destroy(map);
+  cc_afm_rows *from_file = NULL, *from_curves = NULL, *sunk = NULL;
+  check("batch", cc_afm_fit_batch(files, 1, NULL, request, NULL, &from_file) == CC_OK);
+  check("curves", cc_afm_fit_curves((const cc_afm_curve *const *)curves, 4, request, NULL, &from_curves) == CC_OK);
+  for (long i = 0; i < 4; ++i) {
+    cc_afm_row a, b;
+    cc_afm_rows_get(from_file, i, &a);
+    cc_afm_rows_get(from_curves, i, &b);
+    check("curve row flag = file row flag", a.flag == b.flag && a.curve == b.curve && a.grid_x_or_none == b.grid_x_or_none);
+    if (a.has_estimates && b.has_estimates) close_to("curve row E = file row E", b.estimates[0], a.estimates[0]);
+  }
+  struct sink_state state = {0, 0, 0.0, 0};
+  cc_afm_batch_options options = {0};
+  options.keep_traces = 1;
+  options.sink = count_rows;
+  options.sink_user = &state;
+  long kept = -1;
+  check("sink", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_OK && cc_afm_rows_count(sunk, &kept) == CC_OK &&
+                    kept == 0 && state.rows == 4 && state.trace_points > 0);
+  cc_afm_row first;
+  cc_afm_rows_get(from_file, 0, &first);
+  if (first.has_estimates) close_to("sink row E", state.first_e, first.estimates[0]);
+  check("no trace kept", cc_afm_rows_trace(from_file, 0, "z", NULL, 0, &kept) == CC_INPUT_ERROR && message_has("no trace"));
+  cc_afm_rows_destroy(sunk);
+  sunk = NULL;
+  state.rows = 0;
+  state.stop = 1;
+  check("a sink stops the run", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_INTERRUPTED && !sunk);
+  cc_afm_file_survey wrong = {"", -1, "", 0};
+  options.sink = NULL;
+  options.survey_count = 1;
+  options.survey = &wrong;
+  check("survey curves -1", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_INPUT_ERROR &&
+                               message_has("survey[0]"));
+  options.survey_count = 2;
+  check("survey count", cc_afm_fit_batch(files, 1, NULL, request, &options, &sunk) == CC_INPUT_ERROR &&
+                            message_has("survey_count 2"));
+  check("NULL curve", cc_afm_fit_curves((const cc_afm_curve *const *)(const cc_afm_curve *[]){NULL}, 1, request, NULL, &sunk) ==
+                          CC_INPUT_ERROR && message_has("curves[0]"));
+  check("negative place", cc_afm_curve_set_place(curves[0], -1, NULL) == CC_INPUT_ERROR && message_has("curve_index -1"));
+  cc_afm_grid place = {1, 7, 3, 0, 0, 0, 1, 1e-6, 2e-6};
+  cc_afm_grid back;
+  check("place", cc_afm_curve_set_place(curves[0], 9, &place) == CC_OK && cc_afm_curve_grid(curves[0], &back) == CC_OK &&
+                     back.index_x == 7 && back.index_y == 3 && back.position_y == 2e-6 && strcmp(metadata(curves[0], "curve_index"), "9") == 0);
+  for (long i = 0; i < 4; ++i) cc_afm_curve_destroy(curves[i]);
+  cc_afm_rows_destroy(from_file);
+  cc_afm_rows_destroy(from_curves);
+  cc_afm_request_destroy(request);
+
+  /* The folder: its AFM files, each surveyed; a file that cannot be read is an entry when tolerated. */
+  const char *folders[] = {folder};
+  cc_afm_file_list *list = NULL, *survey = NULL;
+  long count = 0, map_curves = 0;
+  check("expand", cc_afm_expand_paths(folders, 1, &list) == CC_OK && cc_afm_file_list_count(list, &count) == CC_OK && count > 5);
+  const char **paths = malloc((size_t)count * sizeof(char *));
+  for (long i = 0; i < count; ++i) {
+    cc_afm_file_survey entry;
+    cc_afm_file_list_get(list, i, &entry);
+    paths[i] = entry.path;
+    check("expanded: not surveyed", entry.curves == -1);
+  }
+  check("survey", cc_afm_survey_files(paths, count, NULL, 1, &survey) == CC_OK);
+  for (long i = 0; i < count; ++i) {
+    cc_afm_file_survey entry;
+    cc_afm_file_list_get(survey, i, &entry);
+    check("surveyed", entry.curves >= 1 && (entry.unreadable[0] == '\0' || entry.flag == 6 || entry.flag == 8));
+    if (strstr(entry.path, "map2x2")) map_curves = entry.curves;
+  }
+  check("map2x2 has 4 curves", map_curves == 4);
+  cc_afm_file_survey entry;
+  check("entry out of range", cc_afm_file_list_get(survey, count, &entry) == CC_INPUT_ERROR && message_has("out of range"));
+  cc_afm_file_list *none = NULL;
+  check("expand none", cc_afm_expand_paths(folders, 0, &none) == CC_INPUT_ERROR && message_has("count 0") && !none);
+  check("survey NULL", cc_afm_survey_files(NULL, 1, NULL, 0, &none) == CC_INPUT_ERROR && !none);
+  const char *missing[] = {"/nonexistent.jpk-force"};
+  check("survey missing", cc_afm_survey_files(missing, 1, NULL, 1, &none) == CC_INPUT_ERROR && !none);
+  free(paths);
+  cc_afm_file_list_destroy(survey);
+  cc_afm_file_list_destroy(list);
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: test_capi_afm DATA_AFM_FOLDER COATCONTACT_CLI\n");
@@ -427,6 +668,8 @@ int main(int argc, char **argv) {
   bad_requests(argv[1]);
   arrays(argv[1]);
   batch(argv[1]);
+  python_needs(argv[1]);
+  batch_table(argv[1], argv[2]);
   if (failures) {
     printf("%d failures\n", failures);
     return 1;

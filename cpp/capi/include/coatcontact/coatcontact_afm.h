@@ -102,6 +102,10 @@ typedef struct cc_afm_grid {
   double position_x, position_y; /* [m] */
 } cc_afm_grid;
 int cc_afm_curve_grid(const cc_afm_curve *curve, cc_afm_grid *grid);
+/* Sets the place of a curve made by cc_afm_curve_create (a binding's curve of a map):
+ * curve_index >= 0 and, from grid (may be NULL), the index (has_index) and the position
+ * (has_position); the shape is ignored. Call before the curve is shared. */
+int cc_afm_curve_set_place(cc_afm_curve *curve, long curve_index, const cc_afm_grid *grid);
 
 /* ---- preprocessing (coatcontact/afm_preprocess.hpp; the CLI's --contact-point,
  * --baseline-fraction) ------------------------------------------------------------------ */
@@ -165,8 +169,10 @@ int cc_afm_request_set_tip_shape(cc_afm_request *request, const struct cc_shape 
  * elastic indenter: CC_INPUT_ERROR. More layers: the top one's modulus free (as _layer, 0). */
 int cc_afm_request_set_sample(cc_afm_request *request, const struct cc_stack *stack);
 /* A stack of any number of layers (thicknesses [m], top first; bonded or sliding) whose layer
- * free_layer (0-based) has the free modulus, named E1 in the fit's parameters (its value in
- * the stack the fixed value or the centre of its search). More than one layer: model hertz,
+ * free_layer (0-based) has the free modulus, set free as E1 (cc_afm_request_set_free) and
+ * named E<free_layer + 1> in the results (cc_afm_fit_parameter_name, cc_afm_fit_estimate, the
+ * rows' columns; "E1" is read too); its value in the stack the fixed value or the centre of its
+ * search. More than one layer: model hertz,
  * t fixed (CC_INPUT_ERROR at the fit otherwise). free_layer outside the layers: CC_INPUT_ERROR. */
 int cc_afm_request_set_sample_layer(cc_afm_request *request, const struct cc_stack *stack, long free_layer);
 /* Comma-separated names of the free parameters, the CLI's --free: E (half-space) or E1 and t
@@ -239,21 +245,100 @@ int cc_afm_fit_get_summary(const cc_afm_fit *fit, cc_afm_fit_summary *summary);
  * "index" (the point's index in the curve). */
 int cc_afm_fit_array(const cc_afm_fit *fit, const char *name, double *values, long capacity, long *length);
 
+/* The fit of (tip_position, force) arrays as given: no segment choice and no preprocessing
+ * (the forces as measured), the request's range relative to reference_contact [m] and
+ * reference_baseline [N] (afm_select), then the model (afm_fit). The request's segment,
+ * baseline model and preprocessing are not used; a depth profile is CC_INPUT_ERROR. n >= 1. */
+int cc_afm_fit_arrays(long n, const double *tip_position, const double *force, const cc_afm_request *request,
+                      double reference_contact, double reference_baseline, cc_afm_fit **fit);
+
+/* What a binding reports beside the summary. */
+typedef struct cc_afm_fit_details {
+  const char *model;          /* the registry's name: "hertz", "jkr", ... */
+  const char *tip;            /* the tip in words ("paraboloid R = 1e-05 m") */
+  const char *baseline_model; /* "tilt" or "offset", as applied */
+  double surface_force_range; /* z0 [m] of tabor_mu and maugis_lambda */
+  long profile_evaluations, solver_calls, model_evaluations;
+  double seconds;             /* the fit's time */
+  long model_warnings;        /* the first this many of cc_afm_fit_warning are the model's */
+  double pulloff_baseline_offset, pulloff_baseline_slope; /* [N], [N/m] the pull-off's line */
+  int coated;                 /* the sample has a layer */
+  long free_layer;            /* the layer (0-based) whose modulus is free; 0 on a half-space */
+} cc_afm_fit_details;
+int cc_afm_fit_get_details(const cc_afm_fit *fit, cc_afm_fit_details *details);
+
+/* The depth profile (afm fit --depth-profile): cc_afm_request_set(request, "depth_profile", 1)
+ * makes cc_afm_fit_curve fit the curve at increasing maximum indentations too; the fit is then
+ * the whole-range one. steps 0 without a profile. */
+typedef struct cc_afm_depth_profile_info {
+  long steps;
+  int coated;
+  const char *modulus_name;  /* "E", or "E1" on a coating (a stack's E<K>) */
+  double thickness_fraction; /* over_thickness_fraction marks depths beyond this fraction of t */
+  long warning_count;
+} cc_afm_depth_profile_info;
+int cc_afm_fit_depth_profile(const cc_afm_fit *fit, cc_afm_depth_profile_info *info);
+/* Arrays of steps values: "depth", "max_indentation" [m], "modulus", "modulus_error",
+ * "apparent_modulus", "apparent_modulus_error" [Pa], "points_in_contact",
+ * "over_thickness_fraction" (0 or 1). NaN where a depth has no estimate. */
+int cc_afm_fit_depth_profile_array(const cc_afm_fit *fit, const char *name, double *values, long capacity, long *length);
+int cc_afm_fit_depth_profile_flag(const cc_afm_fit *fit, long step, const char **flag);
+int cc_afm_fit_depth_profile_warning(const cc_afm_fit *fit, long warning, const char **text);
+
+/* ---- the model registry (coatcontact/afm_models.hpp) ---------------------------------- */
+typedef struct cc_afm_model_info {
+  const char *name, *title;
+  const char *aliases;              /* comma-separated, "" for none */
+  const char *segment;              /* default segment: "approach" or "retract" */
+  int needs_spring;                 /* fitted through the cantilever's spring constant */
+  const char *default_free;         /* half-space, comma-separated */
+  const char *coating_default_free; /* coating */
+} cc_afm_model_info;
+int cc_afm_model_count(long *count);
+int cc_afm_model_get(long model, cc_afm_model_info *info);
+/* The parameters of model `model` on a half-space (coated 0) or a coating (coated 1). */
+int cc_afm_model_parameter_count(long model, int coated, long *count);
+int cc_afm_model_parameter(long model, int coated, long parameter, const char **name, const char **unit, int *free_by_default);
+
 /* ---- many curves (coatcontact/afm_batch.hpp: afm_fit_batch) --------------------------------
  * Every curve of the files, fitted by the request's pipeline on `jobs` threads (0: the
  * machine's cores; the rows do not depend on it). A curve that cannot be fitted is a row with
  * its flag and reason; a file that cannot be opened is CC_INPUT_ERROR, or with
  * unreadable_file_rows != 0 one flagged row. options may be NULL (every curve, all cores). The thread's progress hook (coatcontact.h) sees
  * the curves done and may interrupt (CC_INTERRUPTED). */
+typedef struct cc_afm_rows cc_afm_rows;
+/* What a run knows of one file (afm_survey_files): its curves (-1: not surveyed), or why it
+ * cannot be read at all with its one row's flag (6 calibration, 8 unreadable). */
+typedef struct cc_afm_file_survey {
+  const char *path;
+  long curves;
+  const char *unreadable; /* "" when readable */
+  int flag;
+} cc_afm_file_survey;
+/* Rows of each chunk of a run, in curve order, on the calling thread; the chunk handle is
+ * valid during the call only. A non-zero return stops the run (CC_INTERRUPTED). */
+typedef int (*cc_afm_rows_sink)(void *user, const cc_afm_rows *chunk);
 typedef struct cc_afm_batch_options {
   unsigned jobs;
   int unreadable_file_rows;
-  long skip;  /* the first `skip` curves of the run (over all files) are not fitted (a share of a run) */
+  long skip;  /* the first `skip` curves of the run (over all files) are not fitted (a share of a run, a resume) */
   long count; /* at most this many curves after them; 0: all */
+  /* The files' survey when the caller has it (cc_afm_survey_files; a share of a run: only the
+   * files of the share are opened); survey_count 0: surveyed here, else one per file (paths unused). */
+  long survey_count;
+  const cc_afm_file_survey *survey;
+  int keep_traces; /* each row keeps its control-plot trace (cc_afm_rows_trace) */
+  /* With a sink the rows go to it chunk by chunk and the returned handle holds none. */
+  cc_afm_rows_sink sink;
+  void *sink_user;
 } cc_afm_batch_options;
-typedef struct cc_afm_rows cc_afm_rows;
 int cc_afm_fit_batch(const char *const *files, long file_count, const cc_afm_calibration *calibration,
                      const cc_afm_request *request, const cc_afm_batch_options *options, cc_afm_rows **rows);
+/* The given curves (cc_afm_curve_create with cc_afm_curve_set_place, or read), each a row as a
+ * curve of a file (afm_fit_curve_row), one after another on the calling thread; the progress
+ * hook sees each curve. options: keep_traces, sink (jobs, skip, count, survey unused). */
+int cc_afm_fit_curves(const cc_afm_curve *const *curves, long count, const cc_afm_request *request,
+                      const cc_afm_batch_options *options, cc_afm_rows **rows);
 void cc_afm_rows_destroy(cc_afm_rows *rows);
 int cc_afm_rows_count(const cc_afm_rows *rows, long *count);
 /* The estimate columns: the request's free parameters (as cc_afm_fit_parameter_name). */
@@ -281,8 +366,35 @@ typedef struct cc_afm_row {
   double tabor_mu, maugis_lambda;
   const char *warnings;          /* "; "-separated, "" for none */
   const double *estimates, *errors; /* parameter_count each (NULL without estimates) */
+  /* Each part of the place as known (has_grid, has_position: both parts), else -1 and NaN. */
+  long grid_x_or_none, grid_y_or_none;
+  double position_x_or_nan, position_y_or_nan;
+  int has_model_jump_off;        /* adhesive models: the model's own jump-off through the spring */
+  double model_jump_off_force, model_jump_off_indentation; /* [N] above the baseline, [m] */
+  int has_trace;                 /* keep_traces and a curve with data */
+  double trace_contact_point;    /* [m]; NaN without estimates */
 } cc_afm_row;
 int cc_afm_rows_get(const cc_afm_rows *rows, long row, cc_afm_row *out);
+/* A row's control-plot trace (keep_traces): "z" [m], "force" [N], "segment" (0 approach, 1
+ * retract), "model" [N] (NaN off the fitted segment), "fitted" (1 fitted point, else 0). */
+int cc_afm_rows_trace(const cc_afm_rows *rows, long row, const char *name, double *values, long capacity, long *length);
+/* The rows of a run over files (cc_afm_fit_batch without a sink) as the CLI's `afm fit FILES
+ * --output FILE` table (coatcontact/afm_batch_table.hpp: the same header, flagged count and
+ * row lines, without the "# command:" line), written atomically to path. */
+int cc_afm_rows_write_table(const cc_afm_rows *rows, const char *path);
+
+/* ---- files of a run ------------------------------------------------------------------------ */
+typedef struct cc_afm_file_list cc_afm_file_list;
+/* The files of paths: each file, and each folder's AFM files by extension, sorted (curves -1). */
+int cc_afm_expand_paths(const char *const *paths, long count, cc_afm_file_list **files);
+/* Opens each file once to count its curves (afm_survey_files). A file that cannot be opened:
+ * CC_INPUT_ERROR, or with tolerate != 0 an entry with its reason (a path that does not exist
+ * stays CC_INPUT_ERROR). */
+int cc_afm_survey_files(const char *const *files, long count, const cc_afm_calibration *calibration, int tolerate,
+                        cc_afm_file_list **survey);
+void cc_afm_file_list_destroy(cc_afm_file_list *files);
+int cc_afm_file_list_count(const cc_afm_file_list *files, long *count);
+int cc_afm_file_list_get(const cc_afm_file_list *files, long file, cc_afm_file_survey *out);
 
 #ifdef __cplusplus
 }

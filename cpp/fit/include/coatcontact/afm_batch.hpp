@@ -22,6 +22,7 @@
 
 #include "coatcontact/afm_curve_fit.hpp"
 #include "coatcontact/afm_fit.hpp"
+#include "coatcontact/afm_models.hpp"
 #include "coatcontact/afm_preprocess.hpp"
 #include "coatcontact/afm_readers.hpp"
 #include "coatcontact/force_curve.hpp"
@@ -51,12 +52,15 @@ std::shared_ptr<const AfmCurveTrace> afm_curve_trace(const afm::ForceCurve& curv
 
 // One free estimate's column: its name, unit and where afm_fit puts it.
 struct AfmBatchParameter {
-  std::string name;  // "E", "E1", "t", "contact_point", "baseline"
+  std::string name;  // "E", "E1" (a stack's E<K>), "t", "contact_point", "baseline"
   std::string unit;  // "Pa", "m", "N"
   double AfmFitResult::*value;
   double AfmFitResult::*error;
 };
 std::vector<AfmBatchParameter> afm_batch_parameters(const AfmFitProblem& problem);
+// A parameter's name in the results (columns, the C API, Python): the registry's, except a
+// stack's free modulus, named E<K> after its layer K (one film, and layer 1: E1).
+std::string afm_result_parameter_name(const AfmParameterInfo& parameter, const AfmFitProblem& problem);
 
 struct AfmCurveRow {
   std::string source_file;
