@@ -26,7 +26,8 @@ for cmd in "reduced --a-over-t=1" "adhesive --eta=1 --a-bar=1" "pulloff --eta=1"
 done
 "$cli" pulloff --film=1GPa,0.3 --substrate=10GPa,0.25 --eta=1 --spring-bar=0,1,inf >"$work/p" || fail "pulloff --spring-bar"
 [ "$(grep -vc '^#' "$work/p")" = 3 ] || fail "pulloff --spring-bar: 3 rows expected"
-grep -q "k_bar	P_spring	a_bar_spring	D_spring$" "$work/p" || fail "pulloff --spring-bar columns"
+# The spring columns follow the six pull-off values; the error estimates of the six come after them.
+grep -q "D_disp	k_bar	P_spring	a_bar_spring	D_spring	P_load_err	" "$work/p" || fail "pulloff --spring-bar columns"
 for shape in sphere:5um cone:70deg punch:1um power:3,5um blunted-cone:50nm,70deg; do
   # A flat punch has one contact radius, its own: --points is refused for it (issue 29, defect 5).
   points=(--points=10)
