@@ -209,6 +209,12 @@ DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_po
   $(foreach m,$(SLIP_MODELS),slipreduced_$(m) slippulloff_$(m)) \
   $(foreach r,$(KIN_RATIOS),kinsweep_E$(r)) $(foreach v,$(KIN_LOOPS),kinloop_V$(v))
 
+# The solver tolerance (FIGURE_TOL, data/figures.conf) on every dataset that takes it: the
+# Maugis-Dugdale ones (--lambda) refuse --tol. Part of CMD_<name>, so of its parameter stamp.
+FIGURE_TOL ?=
+$(foreach n,$(DATASET_NAMES),$(if $(FIGURE_TOL),$(if $(findstring --lambda,$(CMD_$(n))),,$(eval \
+  CMD_$(n) += --tol $(FIGURE_TOL)))))
+
 # ---- targets -------------------------------------------------------------------------
 .PHONY: figures figures-only figures-data figures-docs FORCE
 
