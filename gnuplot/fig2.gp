@@ -81,6 +81,15 @@ set label 5 'energy released ≈ ½ δ_{fp}^2 ΔS = 2π a G Δa' at D_end + 0.12
 set arrow 5 from D_end + 0.11, P2 - 0.2 to D_end + 0.02, (P1 + P2) / 2 lc rgb '#b0601a' lw 1.2 size 0.04, 20 front
 
 tangent(D, k) = PH(k) + S(k) * (D - DH(k))
+# The two flat-punch lines by their end points: sampled over a range ('+'), the last sample of
+# 101 came and went with 1e-11 changes of the data (a line end moving by 1 % of its length).
+set print $tangent1
+print sprintf("%.12g %.12g", D_end, tangent(D_end, 1))
+print sprintf("%.12g %.12g", DH(1) + 0.5, tangent(DH(1) + 0.5, 1))
+set print $tangent2
+print sprintf("%.12g %.12g", D_end, tangent(D_end, 2))
+print sprintf("%.12g %.12g", DH(2), tangent(DH(2), 2))
+set print
 set print $marks
 print sprintf("%.12g %.12g", DH(1), PH(1))
 print sprintf("%.12g %.12g", D_end, P1)
@@ -96,9 +105,9 @@ plot $released using 1:2 with filledcurves closed fc rgb '#f0a050' fs transparen
      curve using (eta**2 * column(c_at)**2 * column(c_ds) - sqrt(2 * eta * column(c_at)) / column(c_g1)): \
          (eta**3 * column(c_at)**3 * column(c_pis) / 2 - 2 * sqrt(2) * (eta * column(c_at))**1.5 * column(c_eeq) / column(c_g1)) \
          with lines ls 3 lw 1.6 title sprintf('adhesive curve P(D), η = %g (all contact radii)', eta), \
-     [D = D_end:DH(1) + 0.5] '+' using 1:(tangent($1, 1)) with lines ls 21 \
+     $tangent1 using 1:2 with lines ls 21 \
          title 'flat-punch line at ā: slope S(ā), tangent to P_H', \
-     [D = D_end:DH(2)] '+' using 1:(tangent($1, 2)) with lines ls 21 dt 2 lw 1.6 \
+     $tangent2 using 1:2 with lines ls 21 dt 2 lw 1.6 \
          title 'flat-punch line at ā + Δā, down to the same D', \
      $marks using 1:2 with points ls 41 pt 7 ps 1.3 notitle, \
      $marks2 using 1:2 with points ls 41 pt 6 ps 1.1 notitle

@@ -209,6 +209,12 @@ DATASET_NAMES := $(foreach r,$(REDUCED_RATIOS),reduced_E$(r)) fig2_curve fig2_po
   $(foreach m,$(SLIP_MODELS),slipreduced_$(m) slippulloff_$(m)) \
   $(foreach r,$(KIN_RATIOS),kinsweep_E$(r)) $(foreach v,$(KIN_LOOPS),kinloop_V$(v))
 
+# The solver tolerance (FIGURE_TOL, data/figures.conf) on every dataset that takes it: the
+# Maugis-Dugdale ones (--lambda) refuse --tol. Part of CMD_<name>, so of its parameter stamp.
+FIGURE_TOL ?=
+$(foreach n,$(DATASET_NAMES),$(if $(FIGURE_TOL),$(if $(findstring --lambda,$(CMD_$(n))),,$(eval \
+  CMD_$(n) += --tol $(FIGURE_TOL)))))
+
 # ---- targets -------------------------------------------------------------------------
 .PHONY: figures figures-only figures-data figures-docs FORCE
 
@@ -221,7 +227,7 @@ figures: build-cli
 # The slowest datasets first (measured, docs/solver.md "Solve cache"), so that with -j the
 # short ones fill the other slots instead of one long run finishing alone at the end.
 SLOW_DATASETS := $(foreach n,$(filter $(DATASET_NAMES),mdlambda_E$(SOFT_RATIO) mdlambda_E$(STIFF_RATIO) \
-  stackpulloff_stack pulloff_E0.01 mdlambda_homogeneous stackreduced_stack),$(call data,$(n)))
+  stackpulloff_stack stackreduced_stack pulloff_E$(lastword $(PULLOFF_RATIOS)) mdlambda_homogeneous),$(call data,$(n)))
 figures-only: $(SLOW_DATASETS) $(FIGURE_FILES)
 	$(plot_queued)
 	@echo "figures: $(FIG_DIR)/fig{1..13}.png, fig_md_lambda.png, fig_stack.png, fig_kinetics.png and .pdf   data: $(DATA_DIR)/*.tsv"
