@@ -923,7 +923,9 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   const double full_reach = coated ? 2.0 * std::sqrt(problem.tip.radius * max_delta) / problem.coating->total_thickness(t_hint) : 0.0;
   const bool staged = coated && !model && problem.free.modulus;
   const bool anchoring = staged && !problem.coating->direct;  // (the direct path reads every E1 exactly)
-  bool coarse_stage = staged && full_reach > kCoarseAOverT;
+  // (not on a stack: its layers' features lie inside a/T < 1, at h_i/T, so the coarse sweep's
+  // line past kCoarseAOverT misleads the search; THEORY.md section 15, "JKR and DMT on a stack")
+  bool coarse_stage = staged && full_reach > kCoarseAOverT && !problem.coating->multilayer();
   if (coarse_stage) nodes.reach_below(kCoarseAOverT);
   else if (coated) nodes.reach(full_reach);
   int tables = 0;
