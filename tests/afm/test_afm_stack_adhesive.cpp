@@ -2,10 +2,13 @@
 // a stack"; check "AFM stack adhesive fit"): the laws read the stack's reduced variables in a/T
 // with the top layer's E* as the force scale; the free layer's modulus E_k is the nodes' variable.
 //  - Two identical bonded layers (0.7 + 1.3 um) are one film of 2 um: the model forces agree to the
-//    solver's tolerance, and on the real spot3 retract the JKR and DMT fits (E free as layer 1 or
-//    layer 2, w, z_c, b, m free) equal the one film's within 1e-3 of a standard error.
+//    solver's tolerance, and on the real spot3 retract the JKR and DMT fits with E fixed at the
+//    film's own fit (w, z_c, b, m free; layer 1 or layer 2 the free one) equal the one film's
+//    within 1e-3 of a standard error. (With E_k free the two are different samples: the free
+//    layer moves alone.)
 //  - A synthetic JKR retract on a cell (1 um, 2 kPa) on a gel (4 um, 20 kPa) on 1 MPa, made by the
-//    library's own stack model with noise, is recovered within 3 standard errors (layer 1 free).
+//    library's own stack model with noise, is recovered within 3 standard errors (E_k, w, z_c),
+//    the cell's or the gel's modulus free.
 // Usage: test_afm_stack_adhesive DATA_DIR [identical|recovery|all]
 #include <cmath>
 #include <cstdio>
