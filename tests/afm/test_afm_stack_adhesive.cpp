@@ -8,7 +8,7 @@
 //    layer moves alone.)
 //  - A synthetic JKR retract on a cell (1 um, 2 kPa) on a gel (4 um, 20 kPa) on 1 MPa, made by the
 //    library's own stack model with noise, is recovered within 3 standard errors (E_k, w, z_c),
-//    the cell's or the gel's modulus free.
+//    the cell's or the gel's modulus free, and the cell's when it slides on the gel.
 // Usage: test_afm_stack_adhesive DATA_DIR [identical|recovery|all]
 #include <cmath>
 #include <cstdio>
@@ -154,12 +154,15 @@ void check_recovery() {
   Substrate elastic;
   elastic.material = {1e6, 0.3};
   const Stack cell_on_gel({Layer{1e-6, {2e3, 0.5}}, Layer{4e-6, {2e4, 0.5}}}, elastic);
-  for (std::size_t k : {0u, 1u}) {
-    const fit::AfmFitProblem truth = adhesive_problem(fit::AfmModel::kJkr, fit::afm_coating(cell_on_gel, k));
-    const double e = cell_on_gel.layers()[k].material.youngs_modulus;
+  // (and a cell sliding on the gel: section 12's frictionless interface, layer 1 free)
+  const Stack sliding({Layer{1e-6, {2e3, 0.5}, true}, Layer{4e-6, {2e4, 0.5}}}, elastic);
+  for (std::size_t k : {0u, 1u, 2u}) {
+    const Stack& stack = k < 2 ? cell_on_gel : sliding;
+    const fit::AfmFitProblem truth = adhesive_problem(fit::AfmModel::kJkr, fit::afm_coating(stack, k % 2));
+    const double e = stack.layers()[k % 2].material.youngs_modulus;
     const Curve c = synthetic(truth, 2e-11, 21 + static_cast<unsigned>(k));
     const fit::AfmFitResult r = fit::afm_fit(c.z, c.f, free_problem(truth, 2.0 * e));
-    const std::string name = "JKR cell on gel, layer " + std::to_string(k + 1) + " free";
+    const std::string name = std::string(k < 2 ? "JKR cell on gel" : "JKR cell sliding on gel") + ", layer " + std::to_string(k % 2 + 1) + " free";
     std::printf("%s: E %.6g +- %.3g Pa (truth %g), w %.6g +- %.3g (truth 1e-5), z_c %.3g SE\n", name.c_str(), r.modulus, r.modulus_error,
                 e, r.work, r.work_error, (r.contact_point - truth.contact_point) / r.contact_point_error);
     check::below(std::abs(r.modulus - e) / r.modulus_error, 3.0, name + ": E within 3 SE of the truth");
