@@ -354,7 +354,7 @@ const std::vector<OptionSpec> kFitSpec = {
     {"--layer", "h,E,nu[,slip]", "the sample: a stack of layers, top first, repeated (with --substrate; instead of --film, "
                                  "--thickness): thickness [m], E (the value if fixed, else the centre of its search), nu; "
                                  "',slip' a frictionless interface below it. --free E<K> frees layer K's modulus (default E1); "
-                                 "hertz only, thicknesses fixed (THEORY.md sections 12, 15)", false, true},
+                                 "models hertz, jkr and dmt (not md), thicknesses fixed (THEORY.md sections 12, 15)", false, true},
     {"--free", "LIST", "free parameters: E, contact_point, baseline on a half-space (default all three); "
                        "E1 and/or t, contact_point, baseline on a coating (default E1,contact_point,baseline); "
                        "tilt adds a baseline slope (hertz: fitted instead of the preprocessing's being subtracted); "

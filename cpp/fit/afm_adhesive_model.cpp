@@ -116,7 +116,7 @@ struct SharedNode {
   std::unique_ptr<ReducedSolver> solver;
   std::vector<ReducedVariables> values;
 };
-using NodeKey = std::tuple<double, double, bool, double, double, double, std::size_t>;
+using NodeKey = std::tuple<double, double, bool, double, double, double, std::size_t, std::vector<double>>;
 constexpr std::size_t kSharedNodes = 96;
 std::mutex shared_nodes_mutex;
 std::map<NodeKey, std::shared_ptr<SharedNode>>& shared_nodes() {
@@ -124,16 +124,20 @@ std::map<NodeKey, std::shared_ptr<SharedNode>>& shared_nodes() {
   return nodes;
 }
 
-// The first `count` values of the lattice's sweep of film on substrate (the lattice is
-// identified by its size: kCoatingAOverT at kCoatingPerDecade).
-std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate& substrate, double tolerance,
-                                           const std::vector<double>& lattice, std::size_t count) {
+// The first `count` values of the lattice's sweep of the coating's stack with the free layer's
+// modulus `modulus` (the lattice is identified by its size: kCoatingAOverT at kCoatingPerDecade;
+// a/T on a stack, THEORY.md section 15, "JKR and DMT on a stack").
+std::vector<ReducedVariables> shared_sweep(const AfmCoating& coating, double modulus, const std::vector<double>& lattice,
+                                           std::size_t count) {
+  const Substrate& substrate = coating.substrate;
+  const double tolerance = coating.solver_tolerance;
   std::shared_ptr<SharedNode> node;
   {
     const std::lock_guard<std::mutex> lock(shared_nodes_mutex);
     auto& nodes = shared_nodes();
-    const NodeKey key{film.youngs_modulus, film.poisson_ratio, substrate.rigid, substrate.rigid ? 0.0 : substrate.material.youngs_modulus,
-                      substrate.rigid ? 0.0 : substrate.material.poisson_ratio, tolerance, lattice.size()};
+    const NodeKey key{modulus, coating.film.poisson_ratio, substrate.rigid, substrate.rigid ? 0.0 : substrate.material.youngs_modulus,
+                      substrate.rigid ? 0.0 : substrate.material.poisson_ratio, tolerance, lattice.size(),
+                      internal::afm_stack_shape(coating)};
     auto it = nodes.find(key);
     if (it == nodes.end()) {
       if (nodes.size() >= kSharedNodes) nodes.clear();  // the fits holding one keep it
@@ -142,7 +146,7 @@ std::vector<ReducedVariables> shared_sweep(const Material& film, const Substrate
     node = it->second;
   }
   const std::lock_guard<std::mutex> lock(node->mutex);
-  if (!node->solver) node->solver = std::make_unique<ReducedSolver>(Stack::film_on(film, substrate));
+  if (!node->solver) node->solver = std::make_unique<ReducedSolver>(coating.stack_with(modulus, coating.thickness));
   if (node->values.size() < count) {
     // One radius at a time: a node's few tens of radii cost ~1 ms beside its kernel table, and a
     // parallel sweep's idle threads spin between them (twice the CPU of a first curve).
@@ -159,7 +163,11 @@ using Branch = internal::SpringBranch;
 std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr<const CoatingSweep> sweep,
                                    const Trial& trial, double max_indentation, const internal::ReducedLaw& law,
                                    bool extrapolate = false) {
-  const double reduced = trial.modulus / (1.0 - problem.poisson * problem.poisson);
+  // On a stack: a/T and the top layer's E* (THEORY.md section 15, "JKR and DMT on a stack").
+  const bool stack = sweep && problem.coating && problem.coating->multilayer();
+  const double reduced = stack ? problem.coating->reference_modulus(trial.modulus)
+                               : trial.modulus / (1.0 - problem.poisson * problem.poisson);
+  const double length_unit = stack ? problem.coating->total_thickness(trial.thickness) : trial.thickness;
   if (!(reduced > 0.0) || !std::isfinite(reduced) || !(trial.work > 0.0) || !std::isfinite(trial.work) ||
       (sweep && !(trial.thickness > 0.0 && std::isfinite(trial.thickness)))) {
     throw NumericalError("afm fit: a " + law.name + " trial left the finite positive parameters");
@@ -168,7 +176,7 @@ std::unique_ptr<Branch> law_branch(const AfmFitProblem& problem, std::shared_ptr
   const double length = std::cbrt(kPi * trial.work * radius * radius / reduced);
   const auto point = [&](double a) -> std::pair<double, double> {
     Reduced v;
-    if (sweep) v = extrapolate ? sweep->extrapolated(a / trial.thickness) : sweep->at(a / trial.thickness);
+    if (sweep) v = extrapolate ? sweep->extrapolated(a / length_unit) : sweep->at(a / length_unit);
     return law.point(a, v, reduced, trial.work, radius);
   };
   return std::make_unique<Branch>(point, length, kScanLow, kScanHigh, kScanPerDecade, problem.spring_constant,
@@ -414,7 +422,7 @@ std::vector<double> afm_reduced_model_force(const AfmFitProblem& problem, const 
     const AfmCoating& c = *problem.coating;
     trial = {c.film.youngs_modulus, problem.work, c.thickness};
     p.poisson = c.film.poisson_ratio;
-    const ReducedSolver solver(Stack::film_on(c.film, c.substrate));
+    const ReducedSolver solver(c.stack());
     std::vector<double> grid;
     const double decades = std::log10(kCoatingAOverT[1] / kCoatingAOverT[0]);
     const int count = static_cast<int>(std::lround(decades * kCoatingPerDecade)) + 1;
@@ -550,11 +558,8 @@ class CoatingNodes {
     std::shared_ptr<const CoatingSweep> sweep;
     if (problem_.coating->direct) {
       // The direct path: a sweep at this very E1 (AfmCoating::direct; the check of the nodes).
-      Material film = problem_.coating->film;
-      film.youngs_modulus = film_modulus;
       solver_calls_ += static_cast<long>(swept_);
-      sweep = std::make_shared<const CoatingSweep>(
-          shared_sweep(film, problem_.coating->substrate, problem_.coating->solver_tolerance, lattice_, swept_));
+      sweep = std::make_shared<const CoatingSweep>(shared_sweep(*problem_.coating, film_modulus, lattice_, swept_));
     } else if (centred_ && anchor_ == 0.0) {
       // Before the anchor: the quadratic through the node nearest the coarse estimate and its
       // two neighbours.
@@ -589,10 +594,9 @@ class CoatingNodes {
   const std::vector<ReducedVariables>& node(long j) {
     std::vector<ReducedVariables>& v = nodes_[j];
     if (v.size() < swept_) {
-      Material film = problem_.coating->film;
-      film.youngs_modulus = e_hint_ * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
+      const double modulus = e_hint_ * std::pow(10.0, static_cast<double>(j) / kModulusNodesPerDecade);
       solver_calls_ += static_cast<long>(swept_ - v.size());
-      v = shared_sweep(film, problem_.coating->substrate, problem_.coating->solver_tolerance, lattice_, swept_);
+      v = shared_sweep(*problem_.coating, modulus, lattice_, swept_);
     }
     return v;
   }
@@ -600,11 +604,7 @@ class CoatingNodes {
   // The sweep at the anchor: this fit's own solver (an anchor is the fit's estimate, so no
   // other fit asks for it; kept among the shared nodes, a map's anchors would crowd them out).
   const std::vector<ReducedVariables>& anchor_values() {
-    if (!anchor_solver_) {
-      Material film = problem_.coating->film;
-      film.youngs_modulus = anchor_;
-      anchor_solver_ = std::make_unique<ReducedSolver>(Stack::film_on(film, problem_.coating->substrate));
-    }
+    if (!anchor_solver_) anchor_solver_ = std::make_unique<ReducedSolver>(problem_.coating->stack_with(anchor_, problem_.coating->thickness));
     for (std::size_t k = anchor_sweep_.size(); k < swept_; ++k) {
       anchor_sweep_.push_back(anchor_solver_->solve(lattice_[k], problem_.coating->solver_tolerance));
       ++solver_calls_;
@@ -835,11 +835,11 @@ ContactFit trial_contact(const Objective& objective, const Branch& branch, const
 }
 
 // NumericalError when the final branch's deepest fitted indentation needs radii past the tabulated a/t.
-void check_tabulated_reach(const Branch& check, const Trial& estimate, double deepest) {
-  if (check.max_radius() / estimate.thickness > kCoatingAOverT[1]) {
+void check_tabulated_reach(const Branch& check, double length_unit, double deepest) {
+  if (check.max_radius() / length_unit > kCoatingAOverT[1]) {
     throw NumericalError("afm fit: the indentations reach " + short_text(deepest) + " m, where the contact radius " +
                          short_text(check.max_radius()) + " m exceeds " + short_text(kCoatingAOverT[1]) +
-                         " film thicknesses (t = " + short_text(estimate.thickness) +
+                         " film thicknesses (t = " + short_text(length_unit) +
                          " m), as far as the coating model is tabulated; a thicker film or a shallower --indentation-range");
   }
 }
@@ -918,10 +918,14 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   CoatingNodes nodes(problem, e_hint);
   // A free E1 is searched first on nodes swept to kCoarseAOverT only (THEORY.md section 15,
   // "The JKR search on a coating"), then polished on the whole reach.
-  const double full_reach = coated ? 2.0 * std::sqrt(problem.tip.radius * max_delta) / t_hint : 0.0;
+  // Radii in units of T, the stack's total thickness (t on one film).
+  const auto length_of = [&](const Trial& t) { return coated ? problem.coating->total_thickness(t.thickness) : t.thickness; };
+  const double full_reach = coated ? 2.0 * std::sqrt(problem.tip.radius * max_delta) / problem.coating->total_thickness(t_hint) : 0.0;
   const bool staged = coated && !model && problem.free.modulus;
   const bool anchoring = staged && !problem.coating->direct;  // (the direct path reads every E1 exactly)
-  bool coarse_stage = staged && full_reach > kCoarseAOverT;
+  // (not on a stack: its layers' features lie inside a/T < 1, at h_i/T, so the coarse sweep's
+  // line past kCoarseAOverT misleads the search; THEORY.md section 15, "JKR and DMT on a stack")
+  bool coarse_stage = staged && full_reach > kCoarseAOverT && !problem.coating->multilayer();
   if (coarse_stage) nodes.reach_below(kCoarseAOverT);
   else if (coated) nodes.reach(full_reach);
   int tables = 0;
@@ -930,8 +934,8 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
       ++tables;
       auto branch = model ? model->branch(t, max_delta) : law_branch(p, nodes.sweep_of(t.modulus), t, max_delta, law, coarse_stage);
       // The branch's radii past the swept a/t would take the sweep's end values: widen it.
-      if (model || !coated || coarse_stage || nodes.covers(branch->top_radius() / t.thickness)) return branch;
-      nodes.reach(branch->top_radius() / t.thickness);
+      if (model || !coated || coarse_stage || nodes.covers(branch->top_radius() / length_of(t))) return branch;
+      nodes.reach(branch->top_radius() / length_of(t));
     }
   };
   const BranchAt branch_at = [&](const std::vector<double>& u) { return branch_of(trial_of(u)); };
@@ -1005,11 +1009,11 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   r.solver_calls = nodes.solver_calls();
   r.profile_evaluations = coarse.evaluations() + fine.evaluations();
   r.model_evaluations = tables;
-  if (coated && branch->max_radius() / estimate.thickness > kCoatingAOverT[1] && r.contact_point - z_lo > 0.0) {
+  if (coated && branch->max_radius() / length_of(estimate) > kCoatingAOverT[1] && r.contact_point - z_lo > 0.0) {
     // Only the radii the data reach matter: the deepest fitted indentation's.
     const double deepest = r.contact_point - z_lo;
     const auto check = model ? model->branch(estimate, deepest) : law_branch(p, nodes.sweep_of(estimate.modulus), estimate, deepest, law);
-    check_tabulated_reach(*check, estimate, deepest);
+    check_tabulated_reach(*check, length_of(estimate), deepest);
   }
   fill_errors(r, z_data, f_data, *branch, state, axes, branch_at, problem, free_count, name);
   if (model) model->report(estimate, r);

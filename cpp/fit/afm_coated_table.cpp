@@ -24,21 +24,24 @@ std::map<Key, std::shared_ptr<const CoatedTable>>& tables() {
 
 }  // namespace
 
+std::vector<double> afm_stack_shape(const AfmCoating& coating) {
+  std::vector<double> shape;
+  if (coating.layers.empty()) return shape;
+  const Stack stack = coating.stack();
+  const double total = stack.total_thickness();
+  shape.push_back(static_cast<double>(coating.free_layer));
+  for (std::size_t i = 0; i < stack.layers().size(); ++i) {
+    const Layer& l = stack.layers()[i];
+    shape.insert(shape.end(), {l.thickness / total, i == coating.free_layer ? 0.0 : l.material.youngs_modulus,
+                               l.material.poisson_ratio, l.slip_below ? 1.0 : 0.0});
+  }
+  return shape;
+}
+
 std::shared_ptr<const CoatedTable> afm_coated_table(const AfmCoating& coating) {
   const Substrate& s = coating.substrate;
-  std::vector<double> shape;
-  if (!coating.layers.empty()) {
-    const Stack stack = coating.stack();
-    const double total = stack.total_thickness();
-    shape.push_back(static_cast<double>(coating.free_layer));
-    for (std::size_t i = 0; i < stack.layers().size(); ++i) {
-      const Layer& l = stack.layers()[i];
-      shape.insert(shape.end(), {l.thickness / total, i == coating.free_layer ? 0.0 : l.material.youngs_modulus,
-                                 l.material.poisson_ratio, l.slip_below ? 1.0 : 0.0});
-    }
-  }
   const Key key{coating.film.poisson_ratio, s.rigid, s.rigid ? 0.0 : s.material.youngs_modulus,
-                s.rigid ? 0.0 : s.material.poisson_ratio, coating.solver_tolerance, shape};
+                s.rigid ? 0.0 : s.material.poisson_ratio, coating.solver_tolerance, afm_stack_shape(coating)};
   const std::lock_guard<std::mutex> lock(tables_mutex);
   auto& all = tables();
   auto it = all.find(key);
@@ -66,10 +69,13 @@ void check_afm_coating(const AfmFitProblem& problem) {
     throw InputError("afm fit: the free layer " + std::to_string(c.free_layer + 1) + " is not a layer of the stack; allowed: 1.." +
                      std::to_string(n) + " (E1..E" + std::to_string(n) + ")");
   }
-  if (problem.model != AfmModel::kHertz && (n > 1 || c.layers.front().slip_below)) {
+  // JKR and DMT read the stack's reduced variables (THEORY.md section 15, "JKR and DMT on a
+  // stack"); Maugis-Dugdale's cohesive-zone tables are built per film.
+  const bool stack_model = problem.model == AfmModel::kHertz || problem.model == AfmModel::kJkr || problem.model == AfmModel::kDmt;
+  if (!stack_model && (n > 1 || c.layers.front().slip_below)) {
     throw InputError(std::string("afm fit: --model ") + problem.model.name() + " takes one bonded film (--film, or one --layer); " +
                      (n > 1 ? "a stack of " + std::to_string(n) + " layers" : std::string("a sliding film")) +
-                     " takes --model hertz");
+                     " takes --model hertz, jkr or dmt");
   }
   if (n == 1) return;
   if (problem.free.thickness) {

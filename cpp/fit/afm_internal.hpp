@@ -180,6 +180,9 @@ namespace coatcontact::fit::internal {
 // force laws"): one CoatedTable per (nu1, substrate, solver tolerance), E1 free, a/t over
 // kCoatingAOverT, shared by every fit, curve and thread (built node by node on demand).
 std::shared_ptr<const CoatedTable> afm_coated_table(const AfmCoating& coating);
+// A multi-layer sample's shape (free layer; per layer h_i/T, E_i (0: the free one), nu_i, slip):
+// with the substrate and nu of the free layer, what keys its tables and sweeps (empty: one film).
+std::vector<double> afm_stack_shape(const AfmCoating& coating);
 // Drops them (afm_clear_shared_sweeps: a benchmark's first curve of a sample).
 void afm_clear_coated_tables();
 // A multi-layer sample's limits (AfmCoating): the free layer in range, the Hertz model, t fixed.

@@ -1,7 +1,8 @@
 """The AFM sample as a stack (issue 35; THEORY.md section 15, "A stack of layers"):
 coatcontact.afm.fit(..., layers=[(h, E, nu), ...], substrate=...) equals `afm fit --layer ...`
 on the real spot3 curve to 1e-12 relative (one pipeline behind both doors), names the free layer
-as --free does (E<K>), and refuses what the CLI refuses."""
+as --free does (E<K>), and refuses what the CLI refuses (Maugis-Dugdale on a stack); JKR on a
+stack equals the CLI's."""
 import os
 
 import pytest
@@ -42,7 +43,7 @@ def test_stack_refusals():
     with pytest.raises(ValueError, match="not with film="):
         cc.afm.fit(curve, radius=10e-6, layers=LAYERS, film=(5e3, 0.5), substrate="rigid")
     with pytest.raises(ValueError, match="takes one bonded film"):
-        cc.afm.fit(curve, "jkr", radius=10e-6, layers=LAYERS, substrate="rigid", work=1e-3)
+        cc.afm.fit(curve, "md", radius=10e-6, layers=LAYERS, substrate="rigid", work=1e-3)
 
 
 def test_stack_free_modulus_named_after_its_layer(cli):
@@ -66,3 +67,19 @@ def test_stack_free_modulus_named_after_its_layer(cli):
     assert abs(r["errors"]["E2"] - float(row["E2_error"])) <= 1e-12 * float(row["E2_error"])
     one_film = cc.afm.fit(curve, radius=10e-6, layers=layers[:1], substrate="rigid", free=("contact_point", "baseline"))
     assert one_film["names"][0] == "E1"
+
+
+def test_jkr_stack_equals_the_cli(cli):
+    # JKR on a stack (THEORY.md section 15, "JKR and DMT on a stack"), the deeper layer's E free.
+    free = ("E2", "w", "contact_point", "baseline", "tilt")
+    out, _, _ = cli("afm", "fit", SPOT, "--radius", "10um", "--layer", "1um,5kPa,0.5", "--layer", "4um,20kPa,0.5",
+                    "--substrate", "1MPa,0.3", "--model", "jkr", "--free", ",".join(free))
+    curve = cc.afm.read(SPOT)[0]
+    r = cc.afm.fit(curve, "jkr", radius=10e-6, layers=LAYERS, substrate=(1e6, 0.3), free=free)
+    for name, key in (("w", "w [J/m2]"), ("contact_point", "contact point [m]"), ("baseline", "baseline [N]")):
+        value, error = header_value(out, key)
+        for a, b in ((r["estimates"][name], value), (r["errors"][name], error)):
+            assert abs(a - b) <= 1e-12 * abs(b), (name, a, b)
+    value, error = header_value(out, "E2 [Pa]")
+    modulus = [v for k, v in r["estimates"].items() if k in ("E1", "E2")]
+    assert len(modulus) == 1 and abs(modulus[0] - value) <= 1e-12 * value, (r["estimates"], value)

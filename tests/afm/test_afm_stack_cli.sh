@@ -61,6 +61,25 @@ done
 diff <(grep -v '^# command\|^# fit time' "$work/l1.tsv") <(grep -v '^# command\|^# fit time' "$work/f1.tsv") >/dev/null \
   || fail "one --layer differs from --film"
 
+# ---- JKR and DMT on a stack (THEORY.md section 15, "JKR and DMT on a stack") -----------------------
+# The deeper layer's modulus free: the header names E2 and the estimates carry errors.
+"$cli" afm fit "$spot" --radius 10um --layer 1um,5kPa,0.5 --layer 4um,20kPa,0.5 --substrate 1MPa,0.3 --model jkr --free E2,w,contact_point,baseline,tilt \
+  --output "$work/jkr.tsv" 2>"$work/stderr" || fail "jkr on a stack: $(cat "$work/stderr")"
+grep -qE '^# E2 \[Pa\]: [0-9.e+-]+ \+- [0-9.e+-]+$' "$work/jkr.tsv" || fail "jkr stack: no E2 +- error: $(grep '^# E' "$work/jkr.tsv")"
+grep -qE '^# w \[J/m2\]: [0-9.e+-]+ \+- [0-9.e+-]+$' "$work/jkr.tsv" || fail "jkr stack: no w +- error"
+# Two identical layers with E fixed are one film: the same JKR header, line for line, but the sample's lines.
+"$cli" afm fit "$spot" --radius 10um --layer 0.7um,5kPa,0.5 --layer 1.3um,5kPa,0.5 --substrate 1MPa,0.3 --model dmt \
+  --free w,contact_point,baseline,tilt --output "$work/dmt2.tsv" 2>"$work/stderr" || fail "dmt two layers: $(cat "$work/stderr")"
+"$cli" afm fit "$spot" --radius 10um --film 5kPa,0.5 --thickness 2um --substrate 1MPa,0.3 --model dmt \
+  --free w,contact_point,baseline,tilt --output "$work/dmt1.tsv" 2>"$work/stderr" || fail "dmt one film: $(cat "$work/stderr")"
+for key in 'w \[J.m2\]' 'contact point \[m\]' 'baseline \[N\]'; do
+  a=$(sed -nE "s/^# $key: ([^ ]+) \+- ([^ ]+)$/\1 \2/p" "$work/dmt2.tsv")
+  b=$(sed -nE "s/^# $key: ([^ ]+) \+- ([^ ]+)$/\1 \2/p" "$work/dmt1.tsv")
+  awk -v a="$a" -v b="$b" 'BEGIN { split(a, x, " "); split(b, y, " "); d = x[1] - y[1]; if (d < 0) d = -d;
+    printf "dmt, identical layers vs one film: %s %s +- %s (difference %.3g SE)\n", "'"$key"'", y[1], y[2], d / y[2];
+    exit !(y[2] > 0 && d <= 1e-3 * y[2]) }' || fail "dmt identical layers: $key differs by more than SE/1000"
+done
+
 # ---- refusals ------------------------------------------------------------------------------------
 expect_error 2 "--free" "'E3'" "allowed with 2 --layer: E1..E2" -- afm fit "$spot" "${stack[@]}" --free E3,contact_point,baseline
 expect_error 2 "--free" "one layer's modulus is free at a time" -- afm fit "$spot" "${stack[@]}" --free E1,E2,contact_point
@@ -69,8 +88,8 @@ expect_error 2 "--thickness" "not with --layer" -- afm fit "$spot" "${stack[@]}"
 expect_error 2 "--layer" "cannot be combined with --film" -- afm fit "$spot" "${stack[@]}" --film 5kPa,0.5
 expect_error 2 "--substrate" -- afm fit "$spot" --radius 10um --layer 1um,5kPa,0.5 --layer 4um,20kPa,0.5
 expect_error 2 "t is free on one film only" "E1..E2" -- afm fit "$spot" "${stack[@]}" --free t,contact_point,baseline
-expect_error 2 "--model jkr takes one bonded film" "--model hertz" -- afm fit "$spot" "${stack[@]}" --model jkr --work 1mJ/m2
-expect_error 2 "--model dmt takes one bonded film" "a sliding film" -- afm fit "$spot" --radius 10um --layer 2um,5kPa,0.5,slip --substrate rigid --model dmt --work 1mJ/m2
+expect_error 2 "--model md takes one bonded film" "--model hertz, jkr or dmt" -- afm fit "$spot" "${stack[@]}" --model md --work 1mJ/m2
+expect_error 2 "--model md takes one bonded film" "a sliding film" -- afm fit "$spot" --radius 10um --layer 2um,5kPa,0.5,slip --substrate rigid --model md --work 1mJ/m2
 expect_error 2 "--depth-profile" "takes a half-space or one film" -- afm fit "$spot" "${stack[@]}" --depth-profile
 
 [ "$failures" -eq 0 ] && echo "all afm stack CLI checks passed"

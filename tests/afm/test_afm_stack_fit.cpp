@@ -10,7 +10,8 @@
 //  - A cell (1 um, 2 kPa) on a gel (4 um, 20 kPa) on a rigid base: a curve made by the stack's own
 //    model plus noise; the cell's modulus (layer 1 free) and the gel's (layer 2 free), each from a
 //    start 4x off, are recovered within 3 standard errors.
-//  - Bad input: a free layer outside the stack, a free t or an adhesive model on two layers.
+//  - Bad input: a free layer outside the stack, a free t or Maugis-Dugdale on two layers (JKR and
+//    DMT take a stack: test_afm_stack_adhesive.cpp).
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -142,10 +143,11 @@ void check_refusals() {
   p.coating->free_layer = 5;
   check::throws<InputError>([&] { fit::afm_fit(c.z, c.f, p); }, {"free layer 6", "allowed: 1..2"});
   p = problem_on(fit::afm_coating(two, 0));
-  p.model = fit::AfmModel::kJkr;
+  p.model = fit::AfmModel::kMd;
   p.spring_constant = 0.1;
   p.work = 1e-3;
-  check::throws<InputError>([&] { fit::afm_fit(c.z, c.f, p); }, {"--model jkr takes one bonded film", "--model hertz"});
+  p.surface_force_range = 1e-9;
+  check::throws<InputError>([&] { fit::afm_fit(c.z, c.f, p); }, {"--model md takes one bonded film", "--model hertz, jkr or dmt"});
 }
 
 }  // namespace

@@ -225,7 +225,7 @@ static void bad_requests(const char *folder) {
   /* A fixed contact point needs its value. */
   check("E listed", cc_afm_request_set_free(request, "E,baseline") == CC_OK);
   check("fixed contact point", cc_afm_fit_curve(curve, request, &fit) == CC_INPUT_ERROR && message_has("contact_point"));
-  /* JKR takes a sphere tip; two layers are refused. */
+  /* JKR takes a sphere tip; MD on two layers is refused. */
   check("jkr", cc_afm_request_set_model(request, "jkr") == CC_OK && cc_afm_request_set_free(request, "E,w,contact_point") == CC_OK);
   check("cone", cc_afm_request_set_tip(request, "cone", 0.3) == CC_OK);
   check("jkr with a cone", cc_afm_fit_curve(curve, request, &fit) == CC_INPUT_ERROR && message_has("sphere tip"));
@@ -239,8 +239,10 @@ static void bad_requests(const char *folder) {
   check("two layers", cc_afm_request_set_sample_layer(request, two, 1) == CC_OK);
   check("sphere again", cc_afm_request_set_tip(request, "sphere", 10e-6) == CC_OK &&
                             cc_afm_request_set_free(request, "E1,w,contact_point") == CC_OK);
-  check("jkr on two layers", cc_afm_fit_curve(curve, request, &fit) == CC_INPUT_ERROR && message_has("takes one bonded film") &&
-                                 message_has("--model hertz"));
+  /* (JKR and DMT take a stack, THEORY.md section 15; Maugis-Dugdale one film) */
+  check("md", cc_afm_request_set_model(request, "md") == CC_OK);
+  check("md on two layers", cc_afm_fit_curve(curve, request, &fit) == CC_INPUT_ERROR && message_has("takes one bonded film") &&
+                                message_has("--model hertz, jkr or dmt"));
   cc_stack_destroy(two);
   cc_afm_request_destroy(request);
   /* A fit range outside the curve: the input code, its flag named. */
