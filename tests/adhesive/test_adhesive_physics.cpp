@@ -11,6 +11,7 @@
 #include <string>
 
 #include "check.hpp"
+#include "materials.hpp"
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/errors.hpp"
@@ -19,17 +20,8 @@
 using coatcontact::AdhesiveModel;
 
 namespace {
-coatcontact::Material material(double e, double nu) {
-  coatcontact::Material m;
-  m.youngs_modulus = e;
-  m.poisson_ratio = nu;
-  return m;
-}
-coatcontact::Substrate elastic(double e, double nu) {
-  coatcontact::Substrate s;
-  s.material = material(e, nu);
-  return s;
-}
+using coatcontact::test::elastic;
+using coatcontact::test::material;
 std::string g(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "materials.hpp"
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/reduced_table.hpp"
@@ -29,17 +30,8 @@ using coatcontact::Substrate;
 constexpr double kTolerance = coatcontact::kDefaultTolerance;
 constexpr double kReferenceTolerance = 1e-10;
 
-Material material(double e, double nu) {
-  Material m;
-  m.youngs_modulus = e;
-  m.poisson_ratio = nu;
-  return m;
-}
-Substrate elastic(double e, double nu) {
-  Substrate s;
-  s.material = material(e, nu);
-  return s;
-}
+using coatcontact::test::elastic;
+using coatcontact::test::material;
 
 struct Worst {
   double ratio = 0.0;     // largest |difference| / (estimate + reference estimate)

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "materials.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/reduced_table.hpp"
@@ -25,22 +26,9 @@ using coatcontact::Material;
 using coatcontact::Stack;
 using coatcontact::Substrate;
 
-Material material(double e, double nu) {
-  Material m;
-  m.youngs_modulus = e;
-  m.poisson_ratio = nu;
-  return m;
-}
-Substrate elastic(double e, double nu) {
-  Substrate s;
-  s.material = material(e, nu);
-  return s;
-}
-Substrate rigid() {
-  Substrate s;
-  s.rigid = true;
-  return s;
-}
+using coatcontact::test::elastic;
+using coatcontact::test::material;
+using coatcontact::test::rigid;
 
 // The requested tolerance (the CLI's default) and the reference's (100x tighter, so that its
 // own error, added to the allowance, stays a small part of it).

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "check.hpp"
+#include "materials.hpp"
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/contact.hpp"
 #include "coatcontact/errors.hpp"
@@ -29,12 +30,7 @@ constexpr double kIdentityTier = check::tier::kIdentityByDifferences;
 // Pull-off location: the 1e-8 relative requirement, table at 1e-8 vs table at 1e-9.
 constexpr double kLocationTier = check::tier::kSolver;
 
-coatcontact::Material material(double e, double nu) {
-  coatcontact::Material m;
-  m.youngs_modulus = e;
-  m.poisson_ratio = nu;
-  return m;
-}
+using coatcontact::test::material;
 }  // namespace
 
 int main() {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "../solver/materials.hpp"
+#include "materials.hpp"
 #include "check.hpp"
 #include "coatcontact/errors.hpp"
 #include "coatcontact/shape_contact.hpp"

@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "../solver/materials.hpp"
+#include "materials.hpp"
 #include "check.hpp"
 #include "coatcontact/adhesion.hpp"
 #include "coatcontact/errors.hpp"

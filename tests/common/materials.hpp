@@ -1,4 +1,4 @@
-// Material pairs for the solver tests: film or substrate constants, and the two substrate kinds.
+// Material pairs for the tests: film or substrate constants, and the two substrate kinds.
 #pragma once
 #include "coatcontact/stack.hpp"
 
