@@ -88,11 +88,6 @@ void check_pair(const std::string& name, const Stack& stack) {
 int main() {
   check_pair("soft film (E1/E0 = 0.1)", Stack::film_on(material(0.1, 0.25), elastic(1.0, 0.25)));
   check_pair("stiff film (E1/E0 = 10)", Stack::film_on(material(10.0, 0.25), elastic(1.0, 0.25)));
-  Layer top, bottom;
-  top.thickness = 1.0;
-  top.material = material(1.0, 0.3);
-  bottom.thickness = 2.0;
-  bottom.material = material(20.0, 0.3);
-  check_pair("stack 1 + 2 on E0 = 5", Stack({top, bottom}, elastic(5.0, 0.25)));
+  check_pair("stack 1 + 2 on E0 = 5", coatcontact::test::soft_on_stiff_layers());
   return check::exit_code();
 }

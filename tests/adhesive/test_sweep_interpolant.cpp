@@ -95,11 +95,6 @@ int main() {
   // The solver's kernel term on this pair grows with a/t (two-table estimate 5e-8 at a/t 348,
   // 1.5e-5 at 917): a/t up to 300 at 1e-6.
   check_pair("rigid base, nu1 = 0.5", Stack::film_on(material(1.0, 0.5), rigid()), 1e-6, 300.0);
-  Layer top, bottom;
-  top.thickness = 1.0;
-  top.material = material(1.0, 0.3);
-  bottom.thickness = 2.0;
-  bottom.material = material(20.0, 0.3);
-  check_pair("stack 1 + 2 on E0 = 5", Stack({top, bottom}, elastic(5.0, 0.25)));
+  check_pair("stack 1 + 2 on E0 = 5", coatcontact::test::soft_on_stiff_layers());
   return check::exit_code();
 }
