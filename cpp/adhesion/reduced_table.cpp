@@ -26,6 +26,8 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "coatcontact/detail/constants.hpp"
 #include "coatcontact/reduced_table.hpp"
@@ -187,6 +189,39 @@ double difference_at(const std::array<gsl_cheb_series*, kVariables>& value, doub
 
 }  // namespace
 
+namespace {
+
+// The initial segments [u_lo, u_hi] of prepare_range: ends on the breaks, else on multiples of
+// the width (in decades), clipped to the range: the same grid whatever the range, so two
+// sweeps share their inner segments' nodes.
+std::vector<std::pair<double, double>> initial_segments(const TableOptions& options, double u_lo, double u_hi) {
+  const double width = options.decades_per_segment * kLn10;
+  const std::vector<double>& breaks = options.breaks_decades;
+  const auto next_end = [&](double left) {
+    if (!breaks.empty() && left >= breaks.front() * kLn10 - 1e-9 * width) {
+      for (double b : breaks) {
+        if (b * kLn10 > left + 1e-9 * width) return b * kLn10;
+      }
+    }
+    double end = (std::floor(left / width + 1e-9) + 1.0) * width;
+    if (!breaks.empty() && left < breaks.front() * kLn10) end = std::min(end, breaks.front() * kLn10);
+    return end;
+  };
+  std::vector<std::pair<double, double>> segments;
+  for (double left = u_lo; left < u_hi;) {
+    const double right = std::min(u_hi, next_end(left));
+    if (right - left > 1e-9 * width || segments.empty()) {
+      segments.emplace_back(left, right);
+    } else {
+      segments.back().second = right;  // a sliver of rounding: merged into the segment before
+    }
+    left = right;
+  }
+  return segments;
+}
+
+}  // namespace
+
 void ReducedTable::build_decades(const std::vector<long>& decades) const {
   std::vector<Pending> pending;
   for (long k : decades) {
@@ -291,20 +326,9 @@ void ReducedTable::prepare_range(double a_over_t_min, double a_over_t_max) const
                      "] not allowed (need 0 < min < max, finite)");
   }
   if (!segments_.empty()) throw std::logic_error("ReducedTable::prepare_range on a table already built");
-  // Segment ends on multiples of the width (in decades), clipped to the range: the same grid
-  // whatever the range, so two sweeps share their inner segments' nodes.
   const double u_lo = std::log(a_over_t_min), u_hi = std::log(a_over_t_max);
-  const double width = options_.decades_per_segment * kLn10;
   std::vector<Pending> pending;
-  for (double left = u_lo; left < u_hi;) {
-    const double right = std::min(u_hi, (std::floor(left / width + 1e-9) + 1.0) * width);
-    if (right - left > 1e-9 * width || pending.empty()) {
-      pending.push_back({left, right, 0});
-    } else {
-      pending.back().u_hi = right;  // a sliver of rounding: merged into the segment before
-    }
-    left = right;
-  }
+  for (const auto& [left, right] : initial_segments(options_, u_lo, u_hi)) pending.push_back({left, right, 0});
   ranged_ = true;
   range_lo_ = u_lo;
   range_hi_ = u_hi;
@@ -406,6 +430,12 @@ TableOptions sweep_table_options(double tolerance) {
   return options;
 }
 
+TableOptions radii_sweep_table_options(double tolerance) {
+  TableOptions options = sweep_table_options(tolerance);
+  options.breaks_decades = {-1.0, -0.5, 0.0, 0.5, 1.0, 2.0, 4.0, 6.0, 8.0};
+  return options;
+}
+
 TableOptions pulloff_sweep_table_options(double tolerance) {
   // The sweep's table with room for the nodes' own error: solved at kPulloffNodeShare x tol,
   // interpolation held below the rest, so that interpolation + node estimate <= tol.
@@ -447,11 +477,13 @@ InterpolatedSweep interpolated_sweep(const ReducedSolver& solver, const std::vec
   result.interpolation_error.assign(a_over_t.size(), 0.0);
   if (status != nullptr) status->assign(a_over_t.size(), PointStatus{});
   std::vector<std::size_t> direct;
-  const TableOptions options = sweep_table_options(tolerance);
+  const TableOptions options = radii_sweep_table_options(tolerance);
   double lo = a_over_t.empty() ? 1.0 : *std::min_element(a_over_t.begin(), a_over_t.end());
   double hi = a_over_t.empty() ? 1.0 : *std::max_element(a_over_t.begin(), a_over_t.end());
+  // A lower bound of the table's solves: two-decade segments, none halved (the graded layout
+  // needs ~1.4 times this, one round: 129 solves on a/t 1e-3..1e4).
   const double expected_solves =
-      (std::ceil(std::log10(hi / lo) / options.decades_per_segment) + 1.0) * static_cast<double>(options.order + 2);
+      (std::ceil(std::log10(hi / lo) / 2.0) + 1.0) * static_cast<double>(options.order + 2);
   if (hi > lo && static_cast<double>(a_over_t.size()) >= 1.5 * expected_solves) {
     const SolverSource source(solver, tolerance);
     ReducedTable table(source, options);

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -57,6 +58,9 @@ void check_thread_count(long value, const std::string& name) {
 }
 
 namespace {
+
+// True in the threads of a parallel loop while they run its units.
+thread_local bool inside_parallel_loop = false;
 
 // The threads of a loop of `count` units: OpenMP's count (OMP_NUM_THREADS, omp_set_num_threads)
 // checked against kMaxThreads, and no more than the units.
@@ -105,14 +109,34 @@ void parallel_for(std::size_t count, const std::function<void(std::size_t index)
     // Only the calling thread runs the hook (a binding's signal check must run there).
     if (hook && std::this_thread::get_id() == caller) report(finished);
   };
-  // No parallel region for a single unit: starting it costs more than the work.
-  if (count > 1 && parallel_sweeps_allowed()) {
-    const long n = static_cast<long>(count);
+  // Units in index order from one counter (dynamic schedule, chunks of one): a caller that
+  // puts its costly units first gets them started first.
+  std::atomic<std::size_t> next{0};
+  auto take_units = [&] {
+    for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) unit(i);
+  };
+  // No threads for a single unit (starting one costs more than the work), nor inside a unit of
+  // another loop (nested loops run serially, as OpenMP's default had them).
+  if (count > 1 && parallel_sweeps_allowed() && !inside_parallel_loop) {
     const int threads = loop_threads(count);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (long i = 0; i < n; ++i) unit(static_cast<std::size_t>(i));
+    // Plain threads joined at the end, not an OpenMP team: a team's idle threads spin-wait at
+    // the loop's end and between loops, which cost 15-20 % of a sweep's CPU (docs/speed.md).
+    std::vector<std::thread> helpers;
+    helpers.reserve(static_cast<std::size_t>(std::max(threads - 1, 0)));
+    try {
+      for (int t = 1; t < threads; ++t) helpers.emplace_back([&] {
+        inside_parallel_loop = true;
+        take_units();
+      });
+    } catch (const std::system_error&) {
+      // fewer threads than asked for: the ones started (and the caller) do all units
+    }
+    inside_parallel_loop = true;
+    take_units();
+    inside_parallel_loop = false;
+    for (std::thread& helper : helpers) helper.join();
   } else {
-    for (std::size_t i = 0; i < count; ++i) unit(i);
+    take_units();
   }
   // The last unit may have finished on another thread: the hook always sees the end.
   if (hook && !stop.load() && last_reported < count) report(count);

@@ -72,6 +72,10 @@ struct TableOptions {
   bool verify = false;
   // Initial width of a segment of prepare_range, in decades of a/t.
   double decades_per_segment = 1.0;
+  // Initial segment ends of prepare_range, in log10(a/t), ascending; outside them (and when
+  // empty) the grid of decades_per_segment. Lets segments be narrow where the variables turn
+  // (a/t ~ 1) and wide where they approach their limits, so that few are halved.
+  std::vector<double> breaks_decades;
 };
 
 // Piecewise Chebyshev interpolant (GSL gsl_cheb_*) of ln X versus ln(a/t), one series per
@@ -148,6 +152,12 @@ TableOptions sweep_table_options(double tolerance);
 // x tol, so that every value's estimate (interpolation + node estimate) is <= tol.
 inline constexpr double kPulloffNodeShare = 0.7;
 TableOptions pulloff_sweep_table_options(double tolerance);
+
+// The table of interpolated_sweep: sweep_table_options with graded initial segments (two
+// decades below a/t = 0.1, half decades to 10, a decade to 100, then two decades), the layout
+// that the reduced variables of soft and stiff films, rigid bases and stacks mostly verify
+// without halving (docs/speed.md, "200 radii (radii37)").
+TableOptions radii_sweep_table_options(double tolerance);
 
 struct InterpolatedSweep {
   // One row per a/t, as ReducedSolver::sweep's; error_estimate is the table's
