@@ -439,7 +439,7 @@ TableOptions radii_sweep_table_options(double tolerance) {
 TableOptions pulloff_sweep_table_options(double tolerance) {
   // The sweep's table with room for the nodes' own error: solved at kPulloffNodeShare x tol,
   // interpolation held below the rest, so that interpolation + node estimate <= tol.
-  TableOptions options = sweep_table_options(tolerance);
+  TableOptions options = radii_sweep_table_options(tolerance);
   options.tail_tolerance = (1.0 - kPulloffNodeShare) * tolerance;
   options.tail_noise_factor = 0.0;
   return options;
