@@ -481,7 +481,7 @@ InterpolatedSweep interpolated_sweep(const ReducedSolver& solver, const std::vec
   double lo = a_over_t.empty() ? 1.0 : *std::min_element(a_over_t.begin(), a_over_t.end());
   double hi = a_over_t.empty() ? 1.0 : *std::max_element(a_over_t.begin(), a_over_t.end());
   // A lower bound of the table's solves: two-decade segments, none halved (the graded layout
-  // needs ~1.4 times this, one round: 129 solves on a/t 1e-3..1e4).
+  // needs 1.6 times this on a/t 1e-3..1e4: 129 solves in one round).
   const double expected_solves =
       (std::ceil(std::log10(hi / lo) / 2.0) + 1.0) * static_cast<double>(options.order + 2);
   if (hi > lo && static_cast<double>(a_over_t.size()) >= 1.5 * expected_solves) {
