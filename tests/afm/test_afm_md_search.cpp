@@ -7,7 +7,9 @@
 // faster path of the same least squares), or, where the two searches end in different minima of
 // the real curve (which the model does not describe: chi2/dof 15 to 9e6), the coarse-node
 // search's residual sum no higher than the every-node search's. Both read the same node tables
-// with the same final interpolation, so the difference is the search's alone.
+// with the same final interpolation, so the difference is the search's alone. And the map rule
+// (a map's row = the curve's single fit): the fit repeated on tables other fits built is
+// bit-identical.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -60,6 +62,12 @@ void check_same(const std::string& path, const std::string& name) {
               name.c_str(), a.modulus, b.modulus, b.modulus_error, a.work, b.work, b.work_error, a.contact_point,
               b.contact_point, b.contact_point_error, a.baseline, b.baseline, b.baseline_error, a.tilt, b.tilt, b.tilt_error,
               a.rss, b.rss, a.seconds, b.seconds);
+  // A map's curves share the node tables: the coarse-node fit again, on tables both fits built,
+  // is bit-identical (what a fit reads does not depend on what was built before it).
+  const fit::AfmFitResult again = fit::internal::afm_fit_md(z, f, p, free_count, MdE1Search::kCoarseNodes);
+  check::that(again.modulus == a.modulus && again.work == a.work && again.contact_point == a.contact_point &&
+                  again.baseline == a.baseline && again.tilt == a.tilt && again.rss == a.rss,
+              name + ": the coarse-node fit on tables other fits built = the same fit before them, bit for bit");
   const bool same = within(a.modulus, b.modulus, b.modulus_error) && within(a.work, b.work, b.work_error) &&
                     within(a.contact_point, b.contact_point, b.contact_point_error) &&
                     within(a.baseline, b.baseline, b.baseline_error) && within(a.tilt, b.tilt, b.tilt_error);
