@@ -954,6 +954,9 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     return trial_contact(coarse, *branch, problem, z_lo, c_hi, span, grid_points, centre);
   };
 
+  // A model with a table per E1 node (SpringModel::coarse) searches first on one node a decade.
+  const bool coarse_nodes = model && model->coarse && !axes.empty() && axes[0] == 0;
+  if (coarse_nodes) model->coarse(true);
   ContactFit best_fit;
   std::vector<double> u_best =
       start_grid(axes, u0, coated, [&](const std::vector<double>& u, const double* c) { return trial_cost(trial_of(u), c); }, best_fit);
@@ -968,9 +971,14 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best, 0.15, size, &k);
     iterations = std::max(iterations, k);
   };
-  if (!axes.empty()) run_simplex(best_fit.contact, coarse_stage ? kCoarseSimplexSize : 1e-6);
+  if (!axes.empty()) run_simplex(best_fit.contact, coarse_stage || coarse_nodes ? kCoarseSimplexSize : 1e-6);
   Trial estimate = trial_of(u_best);
-  if (coarse_stage) {
+  if (coarse_nodes) {
+    // Again on every node, from the coarse estimate (THEORY.md section 15, "The coarse nodes").
+    model->coarse(false);
+    run_simplex(trial_cost(estimate, nullptr).contact, 1e-6);
+    estimate = trial_of(u_best);
+  } else if (coarse_stage) {
     // Again on the whole reach (on the three nodes around the coarse E1): the coarse model,
     // short of the deepest points, can hold a basin of its own.
     coarse_stage = false;

@@ -126,7 +126,15 @@ struct SpringModel {
   std::string name;
   std::function<std::unique_ptr<SpringBranch>(const AdhesiveTrial&, double max_indentation)> branch;
   std::function<void(const AdhesiveTrial&, AfmFitResult&)> report;
+  // Set for a model with a table per E1 node (MD on an elastic base with E1 free): coarse(true)
+  // reads a trial between the nodes kCoarseNodeStep apart, linearly in ln E1, each node's table
+  // at the trial's own scale; coarse(false) is the model (THEORY.md section 15, "The coarse nodes").
+  std::function<void(bool)> coarse;
 };
+
+// The coarse stage's node spacing, in nodes (8: one node a decade; its nodes are nodes of the
+// model, so their tables serve the final stage too).
+constexpr long kCoarseNodeStep = 8;
 
 // The four reduced variables of THEORY.md section 5 at one a/t (the half-space's values by default).
 struct ReducedAt {
@@ -159,6 +167,12 @@ void lagrange_weights(double x, long j0, double weight[4]);
 // The Maugis-Dugdale fit through the cantilever (afm_md_model.cpp) and its model force at z.
 AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                         int free_count);
+// Its search for a free E1 on an elastic base (THEORY.md section 15, "The coarse nodes"):
+// kCoarseNodes (afm_fit_md's) first on one node a decade, then on every node; kEveryNode on every
+// node throughout (the search before; kept to check the first against).
+enum class MdE1Search { kCoarseNodes, kEveryNode };
+AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                        int free_count, MdE1Search search);
 std::vector<double> afm_md_model_force(const AfmFitProblem& problem, const std::vector<double>& z);
 
 // The JKR fit through the cantilever (afm_jkr_model.cpp) and its model force at z.

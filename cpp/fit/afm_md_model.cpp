@@ -114,7 +114,17 @@ class MdCurves {
     if (coated_ && problem_.free.modulus && !problem_.coating->substrate.rigid) {
       const double x = std::log10(trial.modulus / anchor_) * kModulusNodesPerDecade;
       const double nearest = std::round(x);
-      if (std::abs(x - nearest) < 1e-9) {
+      if (coarse_) {
+        // The coarse stage: linear in ln E1 between the nodes kCoarseNodeStep apart, each node's
+        // table at the trial's own L and lambda (only the shape E1/E0 interpolated; THEORY.md
+        // section 15, "One table per shape", "The coarse nodes").
+        const double xc = x / static_cast<double>(kCoarseNodeStep);
+        const long j0 = static_cast<long>(std::floor(xc));
+        const double s = xc - static_cast<double>(j0);
+        add_node(j0 * kCoarseNodeStep, 1.0 - s, mix, node_reduced);
+        if (s > 1e-9) add_node((j0 + 1) * kCoarseNodeStep, s, mix, node_reduced);
+        std::fill(node_reduced.begin(), node_reduced.end(), reduced);
+      } else if (std::abs(x - nearest) < 1e-9) {
         add_node(static_cast<long>(nearest), 1.0, mix, node_reduced);
       } else {
         const long j0 = static_cast<long>(std::floor(x)) - 1;
@@ -173,6 +183,9 @@ class MdCurves {
     return made;
   }
 
+  // The coarse stage's reading of E1 (SpringModel::coarse) on or off (off: the model).
+  void coarse(bool on) { coarse_ = on; }
+
   // Trials whose jump-off force exceeds kForceLimit times `range` [N] (the data's) cost +inf:
   // they cannot describe the data, and the least-squares sums of the profile (closed-form
   // normal equations) lose every digit to cancellation for model forces ~1e8 times the data's.
@@ -205,7 +218,7 @@ class MdCurves {
   }
 
   const AfmFitProblem& problem_;
-  bool coated_;
+  bool coated_, coarse_ = false;
   double poisson_, hint_, anchor_, h0_, force_limit_ = 0.0;
   std::map<long, std::shared_ptr<const MaugisDugdaleModel>> models_;
 };
@@ -231,6 +244,11 @@ void check_md_problem(const AfmFitProblem& problem) {
 
 AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
                         int free_count) {
+  return afm_fit_md(z, force, problem, free_count, MdE1Search::kCoarseNodes);
+}
+
+AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>& force, const AfmFitProblem& problem,
+                        int free_count, MdE1Search search) {
   check_md_problem(problem);
   MdCurves curves(problem);
   if (!force.empty()) {
@@ -240,6 +258,9 @@ AfmFitResult afm_fit_md(const std::vector<double>& z, const std::vector<double>&
   SpringModel model;
   model.name = "Maugis-Dugdale";
   model.branch = [&](const AdhesiveTrial& t, double max_indentation) { return curves.branch(t, max_indentation); };
+  if (search == MdE1Search::kCoarseNodes && problem.coating && problem.free.modulus && !problem.coating->substrate.rigid) {
+    model.coarse = [&](bool on) { curves.coarse(on); };
+  }
   model.report = [&](const AdhesiveTrial& estimate, AfmFitResult& r) {
     afm_tabor_maugis(problem, r);
     const double z0 = problem.surface_force_range;

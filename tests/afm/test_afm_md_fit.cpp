@@ -12,11 +12,17 @@
 //    equals the JKR fit's within kJkrLimit and far inside the standard error; the warning
 //    "above 1e4" is given. lambda of the estimates against its formula.
 //  - Bad input: a cone tip, no spring constant.
+//  - One table per shape (THEORY.md section 15, "One table per shape"): the cohesive-zone table
+//    of a film on an elastic base, in Maugis's units (the trial's own L and lambda), is the same
+//    for every E1 of one shape E1/E0: P, D, m of the stack (E1, E0) and of (3 E1, 3 E0) at the
+//    same (eta, lambda, a_bar) agree to rounding, while a stack of another shape differs.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -270,9 +276,40 @@ void check_bad_input() {
   check::throws<InputError>([&] { fit::afm_fit(s.z, s.f, p); }, {"surface-force range"});
 }
 
+void check_one_table_per_shape() {
+  coatcontact::MaugisDugdaleOptions o;
+  o.use_table = true;
+  o.table_errors = false;
+  const auto model_of = [&](double film, double base) {
+    coatcontact::Substrate substrate;
+    substrate.material = {base, 0.25};
+    return std::make_unique<coatcontact::MaugisDugdaleModel>(coatcontact::Stack::film_on({film, 0.5}, substrate), o);
+  };
+  const auto shape = model_of(20e3, 10e3), scaled = model_of(60e3, 30e3), other = model_of(60e3, 10e3);
+  double worst = 0.0, apart = 0.0;
+  for (double eta : {0.5, 2.0}) {
+    for (double lambda : {0.05, 1.0, 20.0}) {
+      for (double a_bar : {0.0, 0.3, 1.0, 3.0}) {
+        const auto p = shape->point(eta, lambda, a_bar), q = scaled->point(eta, lambda, a_bar), r = other->point(eta, lambda, a_bar);
+        for (const auto& [x, y, z] : {std::tuple{p.load, q.load, r.load}, std::tuple{p.penetration, q.penetration, r.penetration}}) {
+          worst = std::max(worst, std::abs(x - y) / std::max(std::abs(x), 1e-3));
+          apart = std::max(apart, std::abs(x - z) / std::max(std::abs(x), 1e-3));
+        }
+        if (a_bar > 0.0) worst = std::max(worst, std::abs(p.m - q.m) / p.m);
+      }
+    }
+  }
+  std::printf("one table per shape: (E1, E0) against (3 E1, 3 E0): largest relative difference of P, D, m %.3g; "
+              "against (3 E1, E0), another shape: %.3g\n",
+              worst, apart);
+  check::below(worst, check::tier::kInterpolation, "the table of one shape E1/E0 is the same for every E1 (Maugis's units)");
+  check::below(1e-3, apart, "a stack of another shape has another table");
+}
+
 }  // namespace
 
 int main() {
+  check_one_table_per_shape();
   check_half_space_model();
   const double sigma = 20e-12;
   {
