@@ -135,50 +135,57 @@ bool outside_ellipse(std::complex<double> z, double rho) {
   return std::max(std::abs(w), 1.0 / std::abs(w)) >= rho;
 }
 
-// The kernel sums of kernel_sums at the rule's own nodes, x = y_k. k(y_k, y) is singular
-// where y_k - y or y_k + y reaches the edge ±i w of H's strip, in φ at arccos((±y_k + i w)/c).
-// A piece integrates k(y_k, ·) with its own nodes when both points lie outside the piece's
-// Bernstein ellipse ρ = 4 (Gauss error ~ρ^-2p, 1e-17 for p = 14); otherwise it is split into
-// pieces graded toward y_k. k is symmetric: the node-to-node values are evaluated once per pair,
-// and only for the pairs that some node integrates with its own nodes (a pair inside a piece
-// that both of its nodes split is never read).
+// The kernel sums of kernel_sums at the rule's own nodes, x = y_k. k(y_k, y) = H(y_k - y) +
+// H(y_k + y) is singular where y_k - y or y_k + y reaches the edge ±i w of H's strip, in φ at
+// arccos((±y_k + i w)/c). Each term integrates over a piece with the piece's own nodes when its
+// point lies outside the piece's Bernstein ellipse ρ = 4 (Gauss error ~ρ^-2p, 1e-17 for p = 14,
+// ~2e-10 for the table's 8: THEORY.md section 13); otherwise the piece is split into pieces
+// graded toward y_k for that term (in practice the near term H(y_k - y) on the pieces around
+// y_k; the mirror term only where y_k lies within ~w of 0). The node-to-node values are
+// evaluated once per pair, and only for the pairs and terms that some node reads.
 void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRule& rule,
                           const CohesiveQuadrature& q, double* sums) {
   constexpr double kRhoMin = 4.0;
+  enum : char { kPlain = 0, kSplitNear = 1, kSplitBoth = 2 };
   const std::size_t m = rule.y.size();
   const std::size_t p = static_cast<std::size_t>(q.points_per_piece);
   const std::size_t pieces = rule.piece_s.size() - 1;
   const double w = kernel.analytic_half_width();
-  // split[k * pieces + j]: node k integrates piece j on a split rule.
-  std::vector<char> split(m * pieces);
+  // how[k * pieces + j]: how node k integrates piece j.
+  std::vector<char> how(m * pieces);
   for (std::size_t k = 0; k < m; ++k) {
     const std::complex<double> near = std::acos(std::complex<double>(rule.y[k], w) / c);
     const std::complex<double> mirror = std::acos(std::complex<double>(-rule.y[k], w) / c);
     for (std::size_t j = 0; j < pieces; ++j) {
       const double mid = 0.5 * (rule.piece_phi[j] + rule.piece_phi[j + 1]);
       const double half = 0.5 * (rule.piece_phi[j + 1] - rule.piece_phi[j]);
-      split[k * pieces + j] =
-          !(outside_ellipse((near - mid) / half, kRhoMin) && outside_ellipse((mirror - mid) / half, kRhoMin));
+      const bool near_out = outside_ellipse((near - mid) / half, kRhoMin);
+      const bool mirror_out = outside_ellipse((mirror - mid) / half, kRhoMin);
+      how[k * pieces + j] = !mirror_out ? kSplitBoth : near_out ? kPlain : kSplitNear;
     }
   }
+  auto minus_read = [&](std::size_t k, std::size_t l) {
+    return how[k * pieces + l / p] == kPlain || how[l * pieces + k / p] == kPlain;
+  };
+  auto plus_read = [&](std::size_t k, std::size_t l) {
+    return how[k * pieces + l / p] != kSplitBoth || how[l * pieces + k / p] != kSplitBoth;
+  };
   std::vector<double> u, h;
   u.reserve(m * (m + 1));
   for (std::size_t k = 0; k < m; ++k) {
     for (std::size_t l = 0; l <= k; ++l) {
-      if (split[k * pieces + l / p] && split[l * pieces + k / p]) continue;
-      u.push_back(rule.y[k] - rule.y[l]);
-      u.push_back(rule.y[k] + rule.y[l]);
+      if (minus_read(k, l)) u.push_back(rule.y[k] - rule.y[l]);
+      if (plus_read(k, l)) u.push_back(rule.y[k] + rule.y[l]);
     }
   }
   h.resize(u.size());
   kernel.evaluate(u.size(), u.data(), h.data());
-  std::vector<double> pair(m * m);  // k(y_k, y_l)
+  std::vector<double> minus(m * m), plus(m * m);  // H(y_k - y_l), H(y_k + y_l)
   std::size_t at = 0;
   for (std::size_t k = 0; k < m; ++k) {
     for (std::size_t l = 0; l <= k; ++l) {
-      if (split[k * pieces + l / p] && split[l * pieces + k / p]) continue;
-      pair[k * m + l] = pair[l * m + k] = h[at] + h[at + 1];
-      at += 2;
+      if (minus_read(k, l)) minus[k * m + l] = minus[l * m + k] = h[at++];
+      if (plus_read(k, l)) plus[k * m + l] = plus[l * m + k] = h[at++];
     }
   }
   AnnulusRule sub;
@@ -186,14 +193,30 @@ void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRul
     const double s_k = c - rule.y[k];
     double sum = 0.0;
     for (std::size_t j = 0; j < pieces; ++j) {
-      if (!split[k * pieces + j]) {
-        for (std::size_t l = j * p; l < (j + 1) * p; ++l) sum += rule.weight_sin2[l] * pair[k * m + l];
+      const char rule_j = how[k * pieces + j];
+      if (rule_j == kPlain) {
+        for (std::size_t l = j * p; l < (j + 1) * p; ++l) {
+          sum += rule.weight_sin2[l] * (minus[k * m + l] + plus[k * m + l]);
+        }
         continue;
       }
       sub.clear();
       append_pieces(c, rule.piece_s[j], rule.piece_phi[j], rule.piece_s[j + 1], rule.piece_phi[j + 1], s_k, q, sub);
+      if (rule_j == kSplitBoth) {
+        double part = 0.0;
+        kernel_sums(kernel, sub, &rule.y[k], 1, &part, u, h);
+        sum += part;
+        continue;
+      }
+      // The mirror term on the piece's own nodes, the near term on the split rule.
       double part = 0.0;
-      kernel_sums(kernel, sub, &rule.y[k], 1, &part, u, h);
+      for (std::size_t l = j * p; l < (j + 1) * p; ++l) part += rule.weight_sin2[l] * plus[k * m + l];
+      const std::size_t n = sub.y.size();
+      u.resize(n);
+      h.resize(n);
+      for (std::size_t i = 0; i < n; ++i) u[i] = rule.y[k] - sub.y[i];
+      kernel.evaluate(n, u.data(), h.data());
+      for (std::size_t i = 0; i < n; ++i) part += sub.weight_sin2[i] * h[i];
       sum += part;
     }
     sums[k] = sum;
