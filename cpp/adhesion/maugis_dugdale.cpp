@@ -25,6 +25,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -149,8 +150,9 @@ void widen_to_minima(MaugisDugdalePoint& best, const std::vector<MaugisDugdalePo
 // x: u interpolated (extrapolated) through the three nearest (quadratic), the first bracket
 // step twice its difference from the linear estimate through the two nearest (at least
 // kMinNearStep); with two known roots the linear estimate and kNearStep; fewer: unchanged.
-void start_from(const std::map<double, double>& roots, double x, double& guess, double& step) {
-  if (roots.size() < 2) return;
+// Returns whether it set them (a guide for the root).
+bool start_from(const std::map<double, double>& roots, double x, double& guess, double& step) {
+  if (roots.size() < 2) return false;
   std::vector<std::pair<double, double>> near;  // up to three on each side, nearest first
   auto hi_it = roots.lower_bound(x);
   auto lo_it = hi_it;
@@ -167,10 +169,10 @@ void start_from(const std::map<double, double>& roots, double x, double& guess, 
         u2 * (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1));
     s = std::clamp(2.0 * std::abs(u - linear), kMinNearStep, kNearStep);
   }
-  if (std::isfinite(u) && std::isfinite(s)) {
-    guess = std::exp(u);
-    step = s;
-  }
+  if (!(std::isfinite(u) && std::isfinite(s))) return false;
+  guess = std::exp(u);
+  step = s;
+  return true;
 }
 
 // Brent minimiser on f over [lo, hi] with f(mid) below both ends; exceptions thrown by f are
@@ -264,8 +266,38 @@ struct MaugisDugdaleModel::Impl {
 
   // The curve at a_bar; the root c(a) is searched from guess_excess (c/a - 1, or c at a = 0)
   // in first steps of `step` in ln(excess). *excess receives the root's excess.
+  // The direct state whose root c is the one the table takes without a guide (md_table.hpp,
+  // bracket_outward; THEORY.md section 13, "Which root"): bracketed outward from the
+  // homogeneous solid's root in ln(c/a - 1) (ln c at the curve's end), then Brent to 1e-13.
+  detail::CohesiveState homogeneous_branch(const detail::CohesiveZone& zone, double sigma_hat, double h0,
+                                           double a) const {
+    const double lo = std::log(1e-14), hi = std::log(1e8);  // CohesiveZone::solve's range
+    std::vector<std::pair<double, detail::CohesiveState>> seen;
+    std::function<double(double)> f = [&](double u) {
+      seen.emplace_back(u, zone.evaluate(sigma_hat, std::exp(u)));
+      return seen.back().second.gap - h0;
+    };
+    const double start = a > 0.0 ? detail::homogeneous_root(sigma_hat, h0, a, lo, hi)
+                                  : std::log(detail::homogeneous_end_root(sigma_hat, h0));
+    const auto bracket = detail::bracket_outward(f, start, lo, hi);
+    std::optional<detail::BrentResult> root;
+    if (bracket && bracket->first != bracket->second) root = detail::brent_root(f, bracket->first, bracket->second, {1e-13, 0.0, 200});
+    if (!bracket || (bracket->first != bracket->second && !root)) {
+      throw NumericalError("cohesive zone: no root of h(c) = h0 for c/a - 1 in [1e-14, 1e8] at a/t = " +
+                           detail::short_text(a));
+    }
+    const double u = root ? root->x : bracket->first;
+    for (auto it = seen.rbegin(); it != seen.rend(); ++it) {
+      if (it->first == u) return it->second;
+    }
+    return zone.evaluate(sigma_hat, std::exp(u));
+  }
+
+  // guided: guess_excess and step come from neighbouring roots of the same curve (start_from);
+  // otherwise the direct solve takes the homogeneous branch's root, as the table does.
   MaugisDugdalePoint point(double eta, double lambda, double a_bar, double guess_excess, double step,
-                           double* excess = nullptr, PointShift* shift = nullptr) const {  // shift: kStateChecks
+                           double* excess = nullptr, PointShift* shift = nullptr,
+                           bool guided = false) const {  // shift: kStateChecks
     const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;  // K^(2/3), K = 4/3
     const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
     const double a = a_bar / eta;
@@ -294,7 +326,8 @@ struct MaugisDugdaleModel::Impl {
       }
     }
     const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
-    const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, step);
+    const detail::CohesiveState st =
+        guided ? zone.solve(sigma_hat, h0, guess_excess, step) : homogeneous_branch(zone, sigma_hat, h0, a);
     if (excess != nullptr) *excess = st.excess;
     p.m = a > 0.0 ? 1.0 + st.excess : std::numeric_limits<double>::infinity();
     p.c_bar = eta * st.c;
@@ -349,8 +382,8 @@ std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lam
     }
     const double x = std::log(a);
     double guess = 1.0, step = 1.5, excess = 1.0;
-    start_from(roots, x, guess, step);
-    out.push_back(impl_->point(eta, lambda, a, guess, step, &excess));
+    const bool guided = start_from(roots, x, guess, step);
+    out.push_back(impl_->point(eta, lambda, a, guess, step, &excess, nullptr, guided));
     roots[x] = std::log(excess);
   }
   return out;
@@ -423,9 +456,9 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
     if (it != memo.end()) return it->second;
     ++evaluations;
     double guess = 1.0, step = 1.5, excess = 1.0;
-    start_from(roots, x, guess, step);
+    const bool guided = start_from(roots, x, guess, step);
     std::array<PointShift, detail::kStateChecks> shift{};
-    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess, shift.data())).first;
+    it = memo.emplace(x, impl_->point(eta, lambda, std::exp(x), guess, step, &excess, shift.data(), guided)).first;
     roots[x] = std::log(excess);
     shifts[x] = shift;
     return it->second;

@@ -138,6 +138,38 @@ CohesiveFunctions homogeneous_end_functions(double c) {
   return h;
 }
 
+std::optional<std::pair<double, double>> bracket_outward(const std::function<double(double)>& f, double start,
+                                                         double lo, double hi, double step) {
+  double u0 = std::clamp(start, lo, hi), f0 = f(u0);
+  if (f0 == 0.0) return std::pair{u0, u0};
+  for (int k = 0; k < 200; ++k) {
+    const double u1 = f0 > 0.0 ? std::max(lo, u0 - step) : std::min(hi, u0 + step);
+    if (u1 == u0) return std::nullopt;
+    const double f1 = f(u1);
+    if ((f1 > 0.0) != (f0 > 0.0) || f1 == 0.0) return f0 > 0.0 ? std::pair{u1, u0} : std::pair{u0, u1};
+    u0 = u1;
+    f0 = f1;
+    step *= 1.5;
+  }
+  return std::nullopt;
+}
+
+double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi) {
+  auto f = [&](double s) {
+    const CohesiveFunctions h = homogeneous_functions(a, std::exp(s));
+    return h.g_r + sigma_hat * h.g_s - h0;
+  };
+  if (f(lo) >= 0.0) return lo;
+  if (f(hi) <= 0.0) return hi;
+  const auto root = brent_root(f, lo, hi, {1e-6, 0.0, 200});
+  return root ? root->x : 0.0;
+}
+
+double homogeneous_end_root(double sigma_hat, double h0) {
+  const double b = sigma_hat * (1.0 - 2.0 / kPi);
+  return 2.0 * h0 / (b + std::sqrt(b * b + 2.0 * h0));
+}
+
 // A node in the solve cache: its kind, its index in that kind's grid, its values (ratios).
 enum NodeKind : std::int64_t { kNode2d = 0, kNodeEnd = 1, kNodeRadius = 2 };
 // Lagrange interpolation of degree up to kCheckDegree on the nodes of `grid` nearest v within
@@ -770,37 +802,7 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess, int check) const {
 
 namespace {
 
-// A sign change of f on [lo, hi] bracketed from `start` outward (f grows with its argument),
-// in steps of `step` growing by half each time; nullopt when f keeps its sign to the end.
-std::optional<std::pair<double, double>> bracket_from(const std::function<double(double)>& f, double start,
-                                                      double lo, double hi, double step) {
-  double u0 = std::clamp(start, lo, hi), f0 = f(u0);
-  if (f0 == 0.0) return std::pair{u0, u0};
-  for (int k = 0; k < 200; ++k) {
-    const double u1 = f0 > 0.0 ? std::max(lo, u0 - step) : std::min(hi, u0 + step);
-    if (u1 == u0) return std::nullopt;
-    const double f1 = f(u1);
-    if ((f1 > 0.0) != (f0 > 0.0) || f1 == 0.0) return f0 > 0.0 ? std::pair{u1, u0} : std::pair{u0, u1};
-    u0 = u1;
-    f0 = f1;
-    step *= 1.5;
-  }
-  return std::nullopt;
-}
-
-// Root in s = ln(c/a - 1) of the homogeneous solid's gap (the start of the table's search).
-double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi) {
-  auto f = [&](double s) {
-    const CohesiveFunctions h = homogeneous_functions(a, std::exp(s));
-    return h.g_r + sigma_hat * h.g_s - h0;
-  };
-  if (f(lo) >= 0.0) return lo;
-  if (f(hi) <= 0.0) return hi;
-  const auto root = brent_root(f, lo, hi, {1e-6, 0.0, 200});
-  return root ? root->x : 0.0;
-}
-
-constexpr double kBracketStep = 0.5;
+constexpr double kBracketStep = kRootBracketStep;
 
 // The largest of the checks' weighted shifts of quantity i (excess, delta, force).
 double largest_shift(const MdTableState& st, int i) {
@@ -839,7 +841,7 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
     return g_r + sigma_hat * g_s - h0;
   };
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
-  const auto bracket = bracket_from(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
+  const auto bracket = bracket_outward(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;
   double s = bracket->first;
   if (bracket->first != bracket->second) {
@@ -958,10 +960,7 @@ std::optional<MdTableState> MaugisDugdaleTable::solve_end(double sigma_hat, doub
     end_values(u, v, e);
     return v[2] + sigma_hat * v[3] - h0;
   };
-  // Homogeneous start: c²/2 + σ̂ (1 - 2/π) c = h0.
-  const double b = sigma_hat * (1.0 - 2.0 / kPi);
-  const double c_hom = 2.0 * h0 / (b + std::sqrt(b * b + 2.0 * h0));
-  const auto bracket = bracket_from(residual, std::log(c_hom), lo, hi, kBracketStep);
+  const auto bracket = bracket_outward(residual, std::log(homogeneous_end_root(sigma_hat, h0)), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;
   double u = bracket->first;
   if (bracket->first != bracket->second) {

@@ -17,6 +17,7 @@
 // is destroyed: a node is a pure function of the stack, the options and its grid index, so
 // every value the table returns is the same with and without the cache.
 #pragma once
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -31,6 +32,20 @@ namespace coatcontact::detail {
 
 // The zone's functions (CohesiveFunctions, cohesive_zone.hpp) at c/a - 1 = excess, R = 1.
 CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess);
+// Which root of h(c) = h0 (THEORY.md section 13, "Which root"): a layered stack's gap need not
+// grow monotonically with c. Where no neighbouring root of the same curve guides the search, the
+// table and the direct solve both take the root reached by bracketing outward from the
+// homogeneous solid's root: f grows with its argument; from `start`, steps of `step` growing by
+// half each time toward the side f's sign points to; the first sign change [lo', hi'] is
+// returned (nullopt when f keeps its sign to the end of [lo, hi]).
+inline constexpr double kRootBracketStep = 0.5;
+std::optional<std::pair<double, double>> bracket_outward(const std::function<double(double)>& f, double start,
+                                                         double lo, double hi, double step = kRootBracketStep);
+// The homogeneous solid's root in s = ln(c/a - 1), clamped to [lo, hi] (a > 0), and at the
+// curve's end (a = 0) its c: c²/2 + σ̂ (1 - 2/π) c = h0.
+double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi);
+double homogeneous_end_root(double sigma_hat, double h0);
+
 // The homogeneous closed forms (Maugis), free of cancellation as excess -> 0.
 CohesiveFunctions homogeneous_functions(double a, double excess);
 // The same at the end of the curve, a = 0, zone radius c (d, f, g_r, g_s only).

@@ -76,12 +76,19 @@ void append_pieces(double c, double s_begin, double phi_begin, double s_end, dou
       }
     }
     const double mid = 0.5 * (phi + phi_next), half = 0.5 * (phi_next - phi);
-    for (int k = 0; k < q.points_per_piece; ++k) {
-      const double f = mid + half * gauss.nodes[static_cast<std::size_t>(k)];
-      rule.phi.push_back(f);
-      rule.weight.push_back(half * gauss.weights[static_cast<std::size_t>(k)]);
-      rule.y.push_back(c * std::cos(f));
-      rule.weight_sin2.push_back(rule.weight.back() * std::sin(f) * std::sin(f));
+    // Grown once per piece and written by index (a push_back per value cost ~5 % of a node).
+    const std::size_t first = rule.y.size(), count = static_cast<std::size_t>(q.points_per_piece);
+    rule.phi.resize(first + count);
+    rule.weight.resize(first + count);
+    rule.y.resize(first + count);
+    rule.weight_sin2.resize(first + count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const double f = mid + half * gauss.nodes[k];
+      const double weight = half * gauss.weights[k];
+      rule.phi[first + k] = f;
+      rule.weight[first + k] = weight;
+      rule.y[first + k] = c * std::cos(f);
+      rule.weight_sin2[first + k] = weight * std::sin(f) * std::sin(f);
     }
     s = next;
     phi = phi_next;
@@ -99,10 +106,12 @@ void annulus_rule(double c, double s_end, double phi_end, double center, const C
 
 // sums[i] = Σ_k w_k sin²φ_k [H(x_i - y_k) + H(x_i + y_k)] for one rule and many x; the
 // cohesive values are b(x_i) = (c²/π) sums[i].
+// u and h: scratch, resized here.
 void kernel_sums(const KernelSource& kernel, const AnnulusRule& rule, const double* x, std::size_t count,
-                 double* sums) {
+                 double* sums, std::vector<double>& u, std::vector<double>& h) {
   const std::size_t m = rule.y.size();
-  std::vector<double> u(2 * m * count), h(2 * m * count);
+  u.resize(2 * m * count);
+  h.resize(2 * m * count);
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t k = 0; k < m; ++k) {
       u[2 * (i * m + k)] = x[i] - rule.y[k];
@@ -126,50 +135,88 @@ bool outside_ellipse(std::complex<double> z, double rho) {
   return std::max(std::abs(w), 1.0 / std::abs(w)) >= rho;
 }
 
-// The kernel sums of kernel_sums at the rule's own nodes, x = y_k. k(y_k, y) is singular
-// where y_k - y or y_k + y reaches the edge ±i w of H's strip, in φ at arccos((±y_k + i w)/c).
-// A piece integrates k(y_k, ·) with its own nodes when both points lie outside the piece's
-// Bernstein ellipse ρ = 4 (Gauss error ~ρ^-2p, 1e-17 for p = 14); otherwise it is split into
-// pieces graded toward y_k. k is symmetric: the node-to-node values are evaluated once per pair.
+// The kernel sums of kernel_sums at the rule's own nodes, x = y_k. k(y_k, y) = H(y_k - y) +
+// H(y_k + y) is singular where y_k - y or y_k + y reaches the edge ±i w of H's strip, in φ at
+// arccos((±y_k + i w)/c). Each term integrates over a piece with the piece's own nodes when its
+// point lies outside the piece's Bernstein ellipse ρ = 4 (Gauss error ~ρ^-2p, 1e-17 for p = 14,
+// ~2e-10 for the table's 8: THEORY.md section 13); otherwise the piece is split into pieces
+// graded toward y_k for that term (in practice the near term H(y_k - y) on the pieces around
+// y_k; the mirror term only where y_k lies within ~w of 0). The node-to-node values are
+// evaluated once per pair, and only for the pairs and terms that some node reads.
 void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRule& rule,
                           const CohesiveQuadrature& q, double* sums) {
   constexpr double kRhoMin = 4.0;
+  enum : char { kPlain = 0, kSplitNear = 1, kSplitBoth = 2 };
   const std::size_t m = rule.y.size();
   const std::size_t p = static_cast<std::size_t>(q.points_per_piece);
   const std::size_t pieces = rule.piece_s.size() - 1;
-  std::vector<double> u(m * (m + 1)), h(m * (m + 1));
-  std::size_t at = 0;
-  for (std::size_t k = 0; k < m; ++k) {
-    for (std::size_t l = 0; l <= k; ++l) {
-      u[at++] = rule.y[k] - rule.y[l];
-      u[at++] = rule.y[k] + rule.y[l];
-    }
-  }
-  kernel.evaluate(u.size(), u.data(), h.data());
-  std::vector<double> pair(m * m);  // k(y_k, y_l)
-  at = 0;
-  for (std::size_t k = 0; k < m; ++k) {
-    for (std::size_t l = 0; l <= k; ++l, at += 2) pair[k * m + l] = pair[l * m + k] = h[at] + h[at + 1];
-  }
   const double w = kernel.analytic_half_width();
-  AnnulusRule split;
+  // how[k * pieces + j]: how node k integrates piece j.
+  std::vector<char> how(m * pieces);
   for (std::size_t k = 0; k < m; ++k) {
     const std::complex<double> near = std::acos(std::complex<double>(rule.y[k], w) / c);
     const std::complex<double> mirror = std::acos(std::complex<double>(-rule.y[k], w) / c);
-    const double s_k = c - rule.y[k];
-    double sum = 0.0;
     for (std::size_t j = 0; j < pieces; ++j) {
       const double mid = 0.5 * (rule.piece_phi[j] + rule.piece_phi[j + 1]);
       const double half = 0.5 * (rule.piece_phi[j + 1] - rule.piece_phi[j]);
-      if (outside_ellipse((near - mid) / half, kRhoMin) && outside_ellipse((mirror - mid) / half, kRhoMin)) {
-        for (std::size_t l = j * p; l < (j + 1) * p; ++l) sum += rule.weight_sin2[l] * pair[k * m + l];
+      const bool near_out = outside_ellipse((near - mid) / half, kRhoMin);
+      const bool mirror_out = outside_ellipse((mirror - mid) / half, kRhoMin);
+      how[k * pieces + j] = !mirror_out ? kSplitBoth : near_out ? kPlain : kSplitNear;
+    }
+  }
+  auto minus_read = [&](std::size_t k, std::size_t l) {
+    return how[k * pieces + l / p] == kPlain || how[l * pieces + k / p] == kPlain;
+  };
+  auto plus_read = [&](std::size_t k, std::size_t l) {
+    return how[k * pieces + l / p] != kSplitBoth || how[l * pieces + k / p] != kSplitBoth;
+  };
+  std::vector<double> u, h;
+  u.reserve(m * (m + 1));
+  for (std::size_t k = 0; k < m; ++k) {
+    for (std::size_t l = 0; l <= k; ++l) {
+      if (minus_read(k, l)) u.push_back(rule.y[k] - rule.y[l]);
+      if (plus_read(k, l)) u.push_back(rule.y[k] + rule.y[l]);
+    }
+  }
+  h.resize(u.size());
+  kernel.evaluate(u.size(), u.data(), h.data());
+  std::vector<double> minus(m * m), plus(m * m);  // H(y_k - y_l), H(y_k + y_l)
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    for (std::size_t l = 0; l <= k; ++l) {
+      if (minus_read(k, l)) minus[k * m + l] = minus[l * m + k] = h[at++];
+      if (plus_read(k, l)) plus[k * m + l] = plus[l * m + k] = h[at++];
+    }
+  }
+  AnnulusRule sub;
+  for (std::size_t k = 0; k < m; ++k) {
+    const double s_k = c - rule.y[k];
+    double sum = 0.0;
+    for (std::size_t j = 0; j < pieces; ++j) {
+      const char rule_j = how[k * pieces + j];
+      if (rule_j == kPlain) {
+        for (std::size_t l = j * p; l < (j + 1) * p; ++l) {
+          sum += rule.weight_sin2[l] * (minus[k * m + l] + plus[k * m + l]);
+        }
         continue;
       }
-      split.clear();
-      append_pieces(c, rule.piece_s[j], rule.piece_phi[j], rule.piece_s[j + 1], rule.piece_phi[j + 1], s_k, q,
-                    split);
+      sub.clear();
+      append_pieces(c, rule.piece_s[j], rule.piece_phi[j], rule.piece_s[j + 1], rule.piece_phi[j + 1], s_k, q, sub);
+      if (rule_j == kSplitBoth) {
+        double part = 0.0;
+        kernel_sums(kernel, sub, &rule.y[k], 1, &part, u, h);
+        sum += part;
+        continue;
+      }
+      // The mirror term on the piece's own nodes, the near term on the split rule.
       double part = 0.0;
-      kernel_sums(kernel, split, &rule.y[k], 1, &part);
+      for (std::size_t l = j * p; l < (j + 1) * p; ++l) part += rule.weight_sin2[l] * plus[k * m + l];
+      const std::size_t n = sub.y.size();
+      u.resize(n);
+      h.resize(n);
+      for (std::size_t i = 0; i < n; ++i) u[i] = rule.y[k] - sub.y[i];
+      kernel.evaluate(n, u.data(), h.data());
+      for (std::size_t i = 0; i < n; ++i) part += sub.weight_sin2[i] * h[i];
       sum += part;
     }
     sums[k] = sum;
@@ -295,20 +342,40 @@ void CohesiveZone::pass(double excess, Pass& p) const {
   const std::size_t m = p.outer.y.size();
   const std::size_t n = system_ ? system_->size() : 0;
   if (system_) {
+    // H(x_i ∓ y_k) at the contact nodes x_i (and x = a) serve twice: the cohesive right-hand
+    // side b(x_i) (kernel_sums' values, summed in the same order) and, H being even, the
+    // Nyström part of the kernel rows at y_k. Per k: n + 1 values of H(x_i - y_k), then n + 1
+    // of H(x_i + y_k).
     const Layout& layout = system_->layout();
-    std::vector<double> points(layout.x);
-    points.push_back(a);
-    std::vector<double> b(n + 1);
-    kernel_sums(kernel_, p.outer, points.data(), n + 1, b.data());
+    const std::size_t stride = 2 * (n + 1);
+    std::vector<double> u(m * stride), h(m * stride);
+    for (std::size_t k = 0; k < m; ++k) {
+      double* minus = &u[k * stride];
+      const double y = p.outer.y[k];
+      for (std::size_t i = 0; i < n; ++i) {
+        minus[i] = layout.x[i] - y;
+        minus[n + 1 + i] = layout.x[i] + y;
+      }
+      minus[n] = a - y;
+      minus[2 * n + 1] = a + y;
+    }
+    kernel_.evaluate(u.size(), u.data(), h.data());
+    std::vector<double> b(n + 1, 0.0);
+    for (std::size_t k = 0; k < m; ++k) {
+      const double* minus = &h[k * stride];
+      const double w = p.outer.weight_sin2[k];
+      for (std::size_t i = 0; i <= n; ++i) b[i] += w * (minus[i] + minus[n + 1 + i]);
+    }
     for (double& value : b) value *= c * c / kPi;
     p.gamma_c.assign(b.begin(), b.begin() + static_cast<long>(n));
     system_->solve(p.gamma_c.data(), 1);
     p.edge_c = system_->edge_value(p.gamma_c.data(), b[n]);
     p.rows.resize(m * n);
-    system_->kernel_rows(p.outer.y.data(), m, p.rows.data());
+    system_->kernel_rows(p.outer.y.data(), m, p.rows.data(), h.data(), h.data() + n + 1, stride);
   } else {
     const double zero = 0.0;
-    kernel_sums(kernel_, p.outer, &zero, 1, &p.b0);
+    std::vector<double> u, h;
+    kernel_sums(kernel_, p.outer, &zero, 1, &p.b0, u, h);
     p.b0 *= c * c / kPi;
   }
   p.sums.resize(m);

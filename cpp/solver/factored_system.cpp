@@ -412,6 +412,14 @@ void FactoredSystem::kernel_rows(const double* x, std::size_t count, double* row
   for (std::size_t k = 0; k < count; ++k) builder.build(x[k], rows + k * size());
 }
 
+void FactoredSystem::kernel_rows(const double* x, std::size_t count, double* rows, const double* h_minus,
+                                 const double* h_plus, std::size_t stride) const {
+  RowBuilder builder(*kernel_, layout_, disc_);
+  for (std::size_t k = 0; k < count; ++k) {
+    builder.build(x[k], rows + k * size(), h_minus + k * stride, h_plus + k * stride);
+  }
+}
+
 double FactoredSystem::edge_value(const double* gamma, double theta_at_edge) const {
   double edge = theta_at_edge;
   for (std::size_t j = 0; j < size(); ++j) edge -= edge_row_[j] * gamma[j];

@@ -49,6 +49,11 @@ class FactoredSystem {
   // rows[k*size() + j] = (1/π) ∫ ℓ_j(y) [H(x_k - y) + H(x_k + y)] dy at any points x_k, also
   // outside [0, ã]: θ_K(x_k) = row_k · γ (the cohesive zone, THEORY.md section 13).
   void kernel_rows(const double* x, std::size_t count, double* rows) const;
+  // The same with H(x_k - x_j) and H(x_k + x_j) already known for every node j, at
+  // h_minus[k * stride + j] and h_plus[k * stride + j] (the Nyström values: no kernel
+  // evaluation for the panels they serve; the rows are the same to the last bit).
+  void kernel_rows(const double* x, std::size_t count, double* rows, const double* h_minus, const double* h_plus,
+                   std::size_t stride) const;
   double inverse_norm() const { return 1.0 / (rcond_ * norm_inf_); }
   double reciprocal_condition() const { return rcond_; }
   int panels() const { return static_cast<int>(layout_.panels.size()); }
