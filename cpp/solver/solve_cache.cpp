@@ -493,7 +493,8 @@ CacheRecords::~CacheRecords() {
 bool CacheRecords::read_entry(const std::string& path, std::vector<std::string>& out, bool& foreign) const {
   foreign = false;
   std::error_code ec;
-  if (!real_file(path) || fs::file_size(path, ec) > g_size_cap || ec) {
+  const std::uintmax_t size = real_file(path) ? fs::file_size(path, ec) : 0;
+  if (!real_file(path) || size > g_size_cap || ec) {
     foreign = true;  // a folder, a link, a device or a file above the cap under an entry's name: left alone
     return false;
   }
@@ -502,7 +503,11 @@ bool CacheRecords::read_entry(const std::string& path, std::vector<std::string>&
     foreign = true;
     return false;
   }
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // One read of the size found (an entry is never changed once in place; a file shorter than
+  // that fails the parse as a truncated one would). Byte by byte cost ~5 ms for a 2 MB table.
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
   return parse(text, magic_, key_, record_bytes_, foreign, out);
 }
 
