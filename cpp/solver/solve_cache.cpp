@@ -5,7 +5,8 @@
 // <build id, 16 hex>/<kind>-<FNV-1a of the key>/; in each, files written by the processes that
 // solved something new, each complete or absent (written under a temporary name starting with
 // '.', then renamed). File: the line "coatcontact <kind> cache 1", the key line, a count, the
-// fixed-size records, then an FNV-1a checksum of all that precedes. A record's first id_bytes
+// fixed-size records (kind "table": the length of its one record, then the record), then an
+// FNV-1a checksum of all that precedes. A record's first id_bytes
 // identify it (a "solve" record: the tolerance and a/t, then the six values, the error estimate
 // and the unknowns): a record read twice is kept once. Only a file whose name and first line
 // are the cache's own is ever removed, and only inside a tagged DIR, never behind a symbolic
@@ -503,8 +504,8 @@ bool CacheRecords::read_entry(const std::string& path, std::vector<std::string>&
     foreign = true;
     return false;
   }
-  // One read of the size found (an entry is never changed once in place; a file shorter than
-  // that fails the parse as a truncated one would). Byte by byte cost ~5 ms for a 2 MB table.
+  // One read of the size found: an entry is never changed once in place, and a file shorter
+  // than that fails the parse as a truncated one would.
   std::string text(static_cast<std::size_t>(size), '\0');
   in.read(text.data(), static_cast<std::streamsize>(size));
   text.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
