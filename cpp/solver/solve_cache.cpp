@@ -257,6 +257,9 @@ Root root_state(const fs::path& root, std::string& why) {
     return Root::refused;
   }
   if (only_cache_content(root)) return Root::adoptable;
+  // Processes started at once on an empty DIR: another may have written the tag (and entries)
+  // after own_tag() above looked, and only_cache_content() then saw them.
+  if (own_tag(root)) return Root::own;
   why = real_file(root / kTagName) ? "is another program's cache folder (its CACHEDIR.TAG is not coatcontact's)"
                                    : "is a folder with other files in it and no coatcontact CACHEDIR.TAG";
   return Root::refused;

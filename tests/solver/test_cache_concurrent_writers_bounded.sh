@@ -12,6 +12,9 @@
 #    the folder holds at most 8 + 10 + 1 files;
 #  - each kernel table the stack needs is on disk once (the writers that need it while one
 #    builds it wait for it: no copies);
+#  - no writer refuses the folder: one that examined the fresh DIR while another wrote the
+#    cache's tag and first entries took it for another program's cache (exit 2) about once in
+#    ten rounds once the table entries were made early (fixed in root_state).
 # and at the end a warm run asking every radius solves nothing (writes no file). The runs take
 # `--direct`: a row is then a function of its radius alone, the cache's unit (a sweep of many
 # radii otherwise reads an interpolant whose nodes depend on the sweep's range).
