@@ -5,7 +5,8 @@
 // <build id, 16 hex>/<kind>-<FNV-1a of the key>/; in each, files written by the processes that
 // solved something new, each complete or absent (written under a temporary name starting with
 // '.', then renamed). File: the line "coatcontact <kind> cache 1", the key line, a count, the
-// fixed-size records, then an FNV-1a checksum of all that precedes. A record's first id_bytes
+// fixed-size records (kind "table": the length of its one record, then the record), then an
+// FNV-1a checksum of all that precedes. A record's first id_bytes
 // identify it (a "solve" record: the tolerance and a/t, then the six values, the error estimate
 // and the unknowns): a record read twice is kept once. Only a file whose name and first line
 // are the cache's own is ever removed, and only inside a tagged DIR, never behind a symbolic
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -27,6 +29,7 @@
 #include <iterator>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 #include "coatcontact/detail/build_id.hpp"
 #include "coatcontact/errors.hpp"
@@ -254,6 +257,9 @@ Root root_state(const fs::path& root, std::string& why) {
     return Root::refused;
   }
   if (only_cache_content(root)) return Root::adoptable;
+  // Processes started at once on an empty DIR: another may have written the tag (and entries)
+  // after own_tag() above looked, and only_cache_content() then saw them.
+  if (own_tag(root)) return Root::own;
   why = real_file(root / kTagName) ? "is another program's cache folder (its CACHEDIR.TAG is not coatcontact's)"
                                    : "is a folder with other files in it and no coatcontact CACHEDIR.TAG";
   return Root::refused;
@@ -367,7 +373,10 @@ bool parse(const std::string& text, const std::string& magic, const std::string&
   std::size_t at = key_end + 1;
   if (text.size() < at + 2 * sizeof(std::uint64_t)) return false;
   const auto count = get<std::uint64_t>(text, at);
-  if (count > (text.size() - at) / record_bytes || text.size() != at + count * record_bytes + sizeof(std::uint64_t)) {
+  // record_bytes 0: one record, `count` its length in bytes.
+  const std::uint64_t bytes = record_bytes == 0 ? count : count * record_bytes;
+  if ((record_bytes != 0 && count > (text.size() - at) / record_bytes) ||
+      text.size() != at + bytes + sizeof(std::uint64_t)) {
     return false;
   }
   std::size_t sum_at = text.size() - sizeof(std::uint64_t);
@@ -376,6 +385,10 @@ bool parse(const std::string& text, const std::string& magic, const std::string&
   if (text.compare(magic.size(), key_end - magic.size(), key) != 0) {
     foreign = true;  // another key with the same hash: leave it alone
     return false;
+  }
+  if (record_bytes == 0) {
+    out.push_back(text.substr(at, count));
+    return true;
   }
   for (std::uint64_t i = 0; i < count; ++i, at += record_bytes) out.push_back(text.substr(at, record_bytes));
   return true;
@@ -409,7 +422,11 @@ CacheRecords::CacheRecords(const std::string& directory, const std::string& kind
   folder_ = (fs::path(build_folder_) / (kind + "-" + hash)).string();
   std::error_code exists;
   const bool own = own_tag(root_) || (fs::exists(root_, exists) && ensure_own_root(root_));  // adopted if it may be
-  if (!own || !real_directory(build_folder_) || !real_directory(folder_)) return;
+  if (own) read_folder();
+}
+
+void CacheRecords::read_folder() {
+  if (!real_directory(build_folder_) || !real_directory(folder_)) return;
   // A merger renames its file into place before it removes the files it merged: a file that
   // vanished while this one read the folder means a merged file to find by looking again.
   std::unordered_set<std::string> seen;
@@ -441,12 +458,47 @@ CacheRecords::CacheRecords(const std::string& directory, const std::string& kind
   if (!loaded_.empty()) fs::last_write_time(folder_, fs::file_time_type::clock::now(), ec);  // used: evicted last
 }
 
-CacheRecords::~CacheRecords() { flush(); }
+// The folder as flush() makes it: DIR the cache's, the key's folder there, other builds gone.
+bool CacheRecords::make_folder() {
+  if (!ensure_own_root(root_)) return false;  // not the cache's folder (any more): nothing written
+  std::error_code ec;
+  const bool new_build = !fs::exists(fs::symlink_status(build_folder_, ec));
+  fs::create_directories(folder_, ec);
+  if (ec || !real_directory(build_folder_) || !real_directory(folder_)) return false;  // a link or a file in the way
+  if (new_build) remove_other_builds(root_, build_folder_);
+  return true;
+}
+
+bool CacheRecords::wait_for_key(std::chrono::milliseconds patience) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (key_lock_ >= 0) return true;
+  if (!make_folder()) return false;
+  const fs::path path = fs::path(folder_) / kLockName;
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd < 0) return false;
+  const auto give_up = std::chrono::steady_clock::now() + patience;
+  while (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    if ((errno != EWOULDBLOCK && errno != EINTR) || std::chrono::steady_clock::now() > give_up) {
+      ::close(fd);
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  key_lock_ = fd;
+  read_folder();
+  return true;
+}
+
+CacheRecords::~CacheRecords() {
+  flush();
+  if (key_lock_ >= 0) ::close(key_lock_);  // after the entry is in place
+}
 
 bool CacheRecords::read_entry(const std::string& path, std::vector<std::string>& out, bool& foreign) const {
   foreign = false;
   std::error_code ec;
-  if (!real_file(path) || fs::file_size(path, ec) > g_size_cap || ec) {
+  const std::uintmax_t size = real_file(path) ? fs::file_size(path, ec) : 0;
+  if (!real_file(path) || size > g_size_cap || ec) {
     foreign = true;  // a folder, a link, a device or a file above the cap under an entry's name: left alone
     return false;
   }
@@ -455,7 +507,11 @@ bool CacheRecords::read_entry(const std::string& path, std::vector<std::string>&
     foreign = true;
     return false;
   }
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // One read of the size found: an entry is never changed once in place, and a file shorter
+  // than that fails the parse as a truncated one would.
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
   return parse(text, magic_, key_, record_bytes_, foreign, out);
 }
 
@@ -467,15 +523,21 @@ void CacheRecords::keep_new(std::vector<std::string>& records, std::vector<std::
 
 void CacheRecords::add(std::string record) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (record.size() != record_bytes_) return;
+  if (record_bytes_ != 0 && record.size() != record_bytes_) return;
   std::vector<std::string> one(1, std::move(record));
   keep_new(one, added_);
 }
 
 std::uintmax_t CacheRecords::write_entry(const std::vector<std::string>& records) const {
   std::string text = magic_ + key_ + "\n";
-  text.reserve(text.size() + (records.size() + 2) * record_bytes_);
-  put<std::uint64_t>(text, records.size());
+  if (record_bytes_ == 0) {  // one record of any length: the count is its length
+    if (records.size() != 1) return 0;
+    text.reserve(text.size() + records.front().size() + 2 * sizeof(std::uint64_t));
+    put<std::uint64_t>(text, records.front().size());
+  } else {
+    text.reserve(text.size() + (records.size() + 2) * record_bytes_);
+    put<std::uint64_t>(text, records.size());
+  }
   for (const std::string& r : records) text += r;
   put<std::uint64_t>(text, fnv1a(text.data(), text.size()));
   const std::string name = unique_name();
@@ -529,12 +591,7 @@ void CacheRecords::flush() {
   if (added_.empty()) return;
   std::vector<std::string> records;
   records.swap(added_);
-  if (!ensure_own_root(root_)) return;  // not the cache's folder (any more): nothing written
-  std::error_code ec;
-  const bool new_build = !fs::exists(fs::symlink_status(build_folder_, ec));
-  fs::create_directories(folder_, ec);
-  if (ec || !real_directory(build_folder_) || !real_directory(folder_)) return;  // a link or a file in the way
-  if (new_build) remove_other_builds(root_, build_folder_);
+  if (!make_folder()) return;
   std::uintmax_t written = 0;
   if (files_ >= kMergeAbove) {
     const FileLock merging(fs::path(folder_) / kLockName);

@@ -1,6 +1,7 @@
 // The solve cache's stores (internal to the solver floor and the floors above it; public
 // switch: coatcontact/solve_cache.hpp; design: docs/solver.md). Thread-safe.
 #pragma once
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -26,9 +27,11 @@ std::uintmax_t cache_size_cap();
 bool solve_cache_root_refused(const std::string& directory, std::string& why);
 
 // The files of one kind of entry ("solve": reduced variables; "zone": the cohesive zone
-// table's nodes) under one key, in <directory>/<build id>/<kind>-<hash of the key>/: fixed-size
-// binary records, the first id_bytes of which identify one (a record is kept once), each file
-// complete or absent. Several processes may add files at once; one at a time merges them.
+// table's nodes; "table": kernel tables) under one key, in
+// <directory>/<build id>/<kind>-<hash of the key>/: fixed-size binary records, the first
+// id_bytes of which identify one (a record is kept once), or with record_bytes 0 one record of
+// any length per file (id_bytes 0: one record per key); each file complete or absent.
+// Several processes may add files at once; one at a time merges them.
 // Nothing is read or removed unless <directory> holds the cache's CACHEDIR.TAG, and only files
 // whose name and first line are the cache's are ever removed.
 class CacheRecords {
@@ -50,8 +53,15 @@ class CacheRecords {
   // saves time). The folder's files are merged when they are many (under its lock file), and
   // the cache is trimmed when it exceeds the size cap.
   void flush();
+  // Waits up to `patience` for the key's lock (its folder's .lock, made the cache's if needed),
+  // then reads the folder again: of several processes about to compute the same entry, one
+  // does while the others wait and read it. Held until destruction, released after the flush.
+  // False (no lock, nothing read) if the folder cannot be made or the wait runs out.
+  bool wait_for_key(std::chrono::milliseconds patience);
 
  private:
+  void read_folder();
+  bool make_folder();
   bool read_entry(const std::string& path, std::vector<std::string>& out, bool& foreign) const;
   void keep_new(std::vector<std::string>& records, std::vector<std::string>& out);
   std::uintmax_t write_entry(const std::vector<std::string>& records) const;
@@ -67,6 +77,7 @@ class CacheRecords {
   std::vector<std::string> loaded_, added_;
   std::unordered_set<std::string> ids_;  // of loaded_ and of every record added
   std::size_t files_ = 0;                // complete files of this key in the folder, as far as known
+  int key_lock_ = -1;                    // descriptor holding the key's lock (wait_for_key), or -1
 };
 
 // Exact text of a double (hexadecimal floating point), for keys.

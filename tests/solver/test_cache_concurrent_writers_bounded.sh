@@ -10,6 +10,11 @@
 #  - the records on disk are at most the distinct radii asked so far plus 9 extra copies of
 #    the shared ones (the first round's writers all solve them before any file exists), and
 #    the folder holds at most 8 + 10 + 1 files;
+#  - each kernel table the stack needs is on disk once (the writers that need it while one
+#    builds it wait for it: no copies);
+#  - no writer refuses the folder: one that examined the fresh DIR while another wrote the
+#    cache's tag and first entries took it for another program's cache (exit 2) about once in
+#    ten rounds once the table entries were made early (fixed in root_state).
 # and at the end a warm run asking every radius solves nothing (writes no file). The runs take
 # `--direct`: a row is then a function of its radius alone, the cache's unit (a sweep of many
 # radii otherwise reads an interpolant whose nodes depend on the sweep's range).
@@ -67,9 +72,13 @@ for r in $(seq 1 "$rounds"); do
   while IFS= read -r f; do
     files=$((files + 1))
     records=$((records + $(records_in "$f")))
-  done < <(find "$cache" -name '*.bin')
-  bytes=$(find "$cache" -type f -printf '%s\n' | awk '{s += $1} END {print s + 0}')
-  echo "round $r: $files files, $records records ($distinct distinct radii), $bytes bytes"
+  done < <(find "$cache" -path '*/solve-*' -name '*.bin')
+  table_folders=$(find "$cache" -mindepth 2 -maxdepth 2 -type d -name 'table-*' | wc -l)
+  table_files=$(find "$cache" -path '*/table-*' -name '*.bin' | wc -l)
+  [ "$table_folders" -ge 1 ] && [ "$table_files" -eq "$table_folders" ] ||
+    fail "round $r: $table_files kernel-table entries for $table_folders tables (one each expected)"
+  bytes=$(find "$cache" -path '*/solve-*' -type f -printf '%s\n' | awk '{s += $1} END {print s + 0}')
+  echo "round $r: $files files, $records records ($distinct distinct radii), $bytes bytes; $table_files kernel tables"
   allowed=$((distinct + (writers - 1) * shared_count))
   [ "$records" -le "$allowed" ] || fail "round $r: $records records on disk for $distinct distinct radii (allowed $allowed)"
   [ "$files" -le $((8 + writers + 1)) ] || fail "round $r: $files files in the cache"

@@ -89,7 +89,7 @@ cache="$tmp/empty"
 build=$(cd "$cache" && find . -mindepth 1 -maxdepth 1 -type d -name '????????????????' | head -n 1)
 build=${build#./}
 [ -n "$build" ] || fail "no build folder in $cache"
-own_entry=$(find "$cache/$build" -name '*.bin' | head -n 1)
+own_entry=$(find "$cache/$build" -path '*/solve-*' -name '*.bin' | head -n 1)
 # Another build's entries (its own format: removed), the user's look-alikes (kept), a link to
 # the user's folder under a build folder's name (not followed).
 mkdir -p "$cache/0000000000000000/solve-00000000000000aa"

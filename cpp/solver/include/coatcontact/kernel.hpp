@@ -140,6 +140,22 @@ inline void check_stack_table_supported(const Stack& stack) {
 
 }  // namespace kernel_detail
 
+namespace detail {
+// Which table of a stack: cc_kernel_table_create_stack (with H1 unless h_only) or _stack_h on
+// grid `variant`, or (compact) _stack_range covering [0, u_range], H only.
+struct TableGrid {
+  int variant = 0;
+  bool compact = false;
+  double u_range = 0.0;
+  bool h_only = false;
+};
+// That table, loaded from the solve cache when it holds it, else built and stored there
+// (cpp/solver/table_cache.cpp; docs/solver.md "Solve cache"). A cc_status code.
+int create_stack_table(const kernel_detail::StackArrays& arrays, const TableGrid& grid, cc_kernel_table** table);
+// The text a table's cache entry is keyed by: the exact arrays, the grid and the build id.
+std::string kernel_table_key(const kernel_detail::StackArrays& arrays, const TableGrid& grid);
+}  // namespace detail
+
 // C(q) at each q >= 0 (InputError for negative or non-finite q or bad constants).
 inline std::vector<double> compliance(const Stack& stack, const std::vector<double>& q) {
   std::vector<double> c(q.size());
@@ -217,9 +233,7 @@ class KernelTable {
     kernel_detail::check_stack_table_supported(stack);
     cc_kernel_table* raw = nullptr;
     const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
-    const int status = cc_kernel_table_create_stack_range(a.n(), a.thickness.data(), a.youngs.data(),
-                                                          a.poisson.data(), a.slip.data(), a.rigid,
-                                                          a.e_base, a.nu_base, u_range, &raw);
+    const int status = detail::create_stack_table(a, {0, true, u_range, true}, &raw);
     kernel_detail::check_status(status, stack, "kernel table");
     table_.reset(raw);
   }
@@ -288,9 +302,7 @@ class KernelTable {
     // THEORY.md section 12: q and u in units of T (the film thickness for one layer, whose
     // table the kernel library builds as cc_kernel_table_create_ex's, bit for bit).
     const kernel_detail::StackArrays a = kernel_detail::stack_arrays(stack);
-    const int status = (h_only ? cc_kernel_table_create_stack_h : cc_kernel_table_create_stack)(
-        a.n(), a.thickness.data(), a.youngs.data(), a.poisson.data(), a.slip.data(), a.rigid, a.e_base,
-        a.nu_base, grid_variant, &raw);
+    const int status = detail::create_stack_table(a, {grid_variant, false, 0.0, h_only}, &raw);
     kernel_detail::check_status(status, stack, "kernel table");
     table_.reset(raw);
   }
