@@ -44,6 +44,12 @@ namespace {
 // nu1 = 0.5 films to the full grid from a/t ~ 1.5 on (9-12 ms a table; THEORY.md section 15,
 // the JKR search on a coating, builds four).
 constexpr double kCoherentBoundShare = 0.1;
+// A compact grid is refused where the far-field series still falls slowly at its end (ratio of
+// its last two terms > 0.1, cc_kernel_tables.f90): a singularity of C - 1 near q = 0, as for
+// nu1 = 0.5 films at E1*/E0* ~ 0.3 (ratio 0.12 at u = 80). The ratio falls like 1/u_max², so
+// twice or four times the range (2-4x the compact grid's cost, 1/16-1/8 of the full grid's)
+// is tried before the full grid.
+constexpr double kCompactRangeGrowth = 4.0;
 constexpr double kSolverTableRange[kSolverTableLevels - 1] = {80.0};
 }  // namespace
 
@@ -56,10 +62,12 @@ int solver_table_level(double a_over_t) {
 
 std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level) {
   for (int k = level; k + 1 < kSolverTableLevels; ++k) {
-    try {
-      return std::make_unique<TableKernel>(stack, kSolverTableRange[k]);
-    } catch (const NumericalError&) {
-      // too short for this stack's accuracy target: next level
+    for (double range = kSolverTableRange[k]; range <= kCompactRangeGrowth * kSolverTableRange[k]; range *= 2.0) {
+      try {
+        return std::make_unique<TableKernel>(stack, range);
+      } catch (const NumericalError&) {
+        // too short for this stack's accuracy target: a longer compact grid, then the next level
+      }
     }
   }
   return std::make_unique<TableKernel>(stack);

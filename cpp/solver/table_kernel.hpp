@@ -28,6 +28,8 @@ class TableKernel : public KernelSource {
   // C - 1 ~ exp(-2 q h_top/T): |Im u| < 2 h_top/T (section 12).
   double analytic_half_width() const override { return half_width_; }
   double absolute_accuracy() const override { return info_.abs_accuracy; }
+  // End of the tabulated range (the far-field series beyond).
+  double u_max() const { return info_.u_max; }
 
  private:
   KernelTable table_;
