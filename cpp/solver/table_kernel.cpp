@@ -34,7 +34,7 @@ void TableKernel::evaluate(std::size_t n, const double* u, double* h) const {
 }
 
 namespace {
-// A compact table's H carries its own accuracy estimate (~1e-13 max|H|; measured against the
+// A compact table's H carries its own accuracy estimate (~1e-13; measured against the
 // full grid: <= 0.11 of the two stated accuracies, test solver_compact_table_within_estimate),
 // and the coherent kernel bound is that accuracy carried through the solve. A compact solve is
 // kept by the rule the full grid's coherent bound follows (<= tolerance / 10): its results lie

@@ -67,8 +67,8 @@ class IndependentTables {
 // 200-radius sweep 10% slower than the full grid alone.
 constexpr int kSolverTableLevels = 2;
 int solver_table_level(double a_over_t);
-// The table of `level`: a compact grid that misses its accuracy target falls back to the
-// next level's grid.
+// The table of `level`: a compact grid that misses its accuracy target is tried at twice and
+// four times its range, then falls back to the next level's grid.
 std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level);
 // The reduced variables (solve_adaptive) on the table of a/t's level, `table(level)`; where that is not decided by the
 // cheap coherent kernel bound <= tolerance / 10 (the attempt then stops after its first level),
