@@ -435,10 +435,11 @@ Result fit_kinetics(const AdhesiveModel& model, const std::vector<KineticsCurve>
                     const KineticsFitProblem& problem) {
   validate(measured_curves, problem);
   const bool law_free = problem.free[kKinSpeed] || problem.free[kKinExponent];
-  if (!problem.free[kKinFilmModulus] || !law_free) return fit_from_start(model, measured_curves, problem);
-  // E1 free with the law: first E1 (and w, t if free) with the law held at its start, then all
-  // (THEORY.md section 14, fitting: from a start off in E1 the first full step tends to leave into
-  // the valley w, v* -> 0 where w (v/v*)^n mimics the data).
+  const bool scale_free = problem.free[kKinFilmModulus] || problem.free[kKinWork];
+  if (!scale_free || !law_free) return fit_from_start(model, measured_curves, problem);
+  // E1 or w free with the law: first those (and t if free) with the law held at its start, then
+  // all (THEORY.md section 14, fitting: from a start off in E1, or in w and the law, the first
+  // full steps tend to leave into the valley w, v* -> 0 where w (v/v*)^n mimics the data).
   KineticsFitProblem first = problem;
   first.free[kKinSpeed] = first.free[kKinExponent] = false;
   const Result stage = fit_from_start(model, measured_curves, first);

@@ -28,6 +28,8 @@ class TableKernel : public KernelSource {
   // C - 1 ~ exp(-2 q h_top/T): |Im u| < 2 h_top/T (section 12).
   double analytic_half_width() const override { return half_width_; }
   double absolute_accuracy() const override { return info_.abs_accuracy; }
+  // End of the tabulated range (the far-field series beyond).
+  double u_max() const { return info_.u_max; }
 
  private:
   KernelTable table_;
@@ -59,19 +61,18 @@ class IndependentTables {
 // kSolverTableRange[k] / 2 use a compact table of that range (a fraction of the full grid's
 // FFT work, which dominated a one-radius call); the last level is the full default grid. The
 // level depends on a/t alone, so a radius gets the same values whatever else is solved.
-// One compact level (u <= 80, a/t <= 40): beyond it the coherent bound nearly always exceeds
-// the compact tables' acceptance limit (table_kernel.cpp), and the first-level solves spent
-// finding that out made the 200-radius sweep 10% slower than the full grid alone (with
-// compact levels 320 and 1280 as well).
+// One compact level (u <= 80, a/t <= 40): compact levels 320 and 1280, measured with an
+// acceptance limit of 1e-12 on the coherent bound (not with tolerance / 10, table_kernel.cpp),
+// were nearly always refused, and the first-level solves spent finding that out made the
+// 200-radius sweep 10% slower than the full grid alone.
 constexpr int kSolverTableLevels = 2;
 int solver_table_level(double a_over_t);
-// The table of `level`: a compact grid that misses its accuracy target falls back to the
-// next level's grid.
+// The table of `level`: a compact grid that misses its accuracy target is tried at twice and
+// four times its range, then falls back to the next level's grid.
 std::unique_ptr<TableKernel> make_solver_table(const Stack& stack, int level);
 // The reduced variables (solve_adaptive) on the table of a/t's level, `table(level)`; where that is not decided by the
-// cheap coherent kernel bound, or the bound exceeds the acceptance limit (ill-conditioned
-// systems, which amplify the compact grid's different errors; the attempt then stops after its
-// first level), again on the full grid, the reference the compact tables are checked against.
+// cheap coherent kernel bound <= tolerance / 10 (the attempt then stops after its first level),
+// again on the full grid, whose independent tables give the two-table estimate.
 AdaptiveSolve solve_on_solver_tables(const std::function<const KernelSource&(int level)>& table,
                                      double a_over_t, double tolerance,
                                      const IndependentKernel& independent);
