@@ -64,7 +64,9 @@ class IndependentTables {
 // One compact level (u <= 80, a/t <= 40): compact levels 320 and 1280, measured with an
 // acceptance limit of 1e-12 on the coherent bound (not with tolerance / 10, table_kernel.cpp),
 // were nearly always refused, and the first-level solves spent finding that out made the
-// 200-radius sweep 10% slower than the full grid alone.
+// 200-radius sweep 10% slower than the full grid alone. Under tolerance / 10 they are kept, within
+// their estimates, but a sweep to a/t 1e4 still needs the full grid: 1.25x its CPU (docs/speed.md,
+// "200 radii, second round").
 constexpr int kSolverTableLevels = 2;
 int solver_table_level(double a_over_t);
 // The table of `level`: a compact grid that misses its accuracy target is tried at twice and
