@@ -865,10 +865,10 @@ AfmFitResult estimates_of(const Trial& estimate, const State& state, const Branc
 
 // A warning for each ln-parameter that ended more than 2.5 decades from its start.
 void warn_far_from_start(AfmFitResult& r, const std::vector<int>& axes, const std::vector<double>& u, const std::vector<double>& u0,
-                         bool coated) {
+                         const std::string& modulus_name) {
   for (std::size_t k = 0; k < axes.size(); ++k) {
     if (std::abs(u[k] - u0[k]) > std::log(10.0) * 2.5) {
-      r.warnings.push_back(std::string(axes[k] == 0 ? (coated ? "E1" : "E") : axes[k] == 1 ? "w" : "t") +
+      r.warnings.push_back((axes[k] == 0 ? modulus_name : axes[k] == 1 ? "w" : "t") +
                            " ended more than 2.5 decades from its start (" + short_text(std::exp(u0[k])) +
                            "); check the given value");
     }
@@ -1026,7 +1026,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   fill_errors(r, z_data, f_data, *branch, state, axes, branch_at, problem, free_count, name);
   if (model) model->report(estimate, r);
   else law.report(p, r);
-  warn_far_from_start(r, axes, state.u, u0, coated);
+  warn_far_from_start(r, axes, state.u, u0, coated ? problem.coating->free_modulus_name() : "E");
   if (iterations >= kSimplexIterations) r.warnings.push_back("the simplex search stopped at its iteration bound");
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

@@ -28,8 +28,7 @@ namespace coatcontact::fit {
 
 std::string afm_result_parameter_name(const AfmParameterInfo& parameter, const AfmFitProblem& problem) {
   const bool coated = problem.coating.has_value();
-  // A stack's free modulus is layer K's: E<K>, as --free names it (one film: E1).
-  if (coated && parameter.value == &AfmFitResult::modulus) return "E" + std::to_string(problem.coating->free_layer + 1);
+  if (coated && parameter.value == &AfmFitResult::modulus) return problem.coating->free_modulus_name();
   return afm_parameter_name(parameter, coated);
 }
 

@@ -965,7 +965,7 @@ std::optional<ProfiledModulus> profiled_film_modulus(CoatingForces& forces, cons
     if (slope < -1e-3 && std::isfinite(slope)) next = u - psi / slope;  // secant on psi(ln E1) = 0
     next = std::clamp(next, u - ln10, u + ln10);
     if (std::abs(next - start) > 3.0 * ln10) {
-      throw NumericalError("afm fit: E1 runs out of its search range (best at " + short_text(std::exp(next)) +
+      throw NumericalError("afm fit: " + problem.coating->free_modulus_name() + " runs out of its search range (best at " + short_text(std::exp(next)) +
                            "); the data do not determine it, or its given value is far off");
     }
     u_prev = u, psi_prev = psi, u = next;
@@ -1169,7 +1169,7 @@ AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& 
         profiled = profiled_film_modulus(forces, z, force, problem, z_lo, c_hi, coating.thickness, evaluations);
       }
       e1 = profiled ? profiled->modulus
-                    : minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, "E1");
+                    : minimize_log([&](double e) { return fit_at(e, best_t(e, false), false).linear.rss; }, e1, coating.free_modulus_name());
     }
     const double t = best_t(e1, true);
     ContactSearch found = fit_at(e1, t, true);
@@ -1177,12 +1177,12 @@ AfmFitResult fit_hertz(const std::vector<double>& z, const std::vector<double>& 
     // the nested search (global in both) decides.
     if (profiled && problem.free.contact_point &&
         !(std::abs(found.contact_point - profiled->contact_point) <= 1e-2 * profiled->contact_point_error)) {
-      e1 = minimize_log([&](double e) { return fit_at(e, t, false).linear.rss; }, coating.film.youngs_modulus, "E1");
+      e1 = minimize_log([&](double e) { return fit_at(e, t, false).linear.rss; }, coating.film.youngs_modulus, coating.free_modulus_name());
       found = fit_at(e1, t, true);
     }
     if (linear_e1) {
       if (!(found.linear.reduced_modulus > 0.0)) {
-        throw NumericalError("afm fit: the data show no contact in the fitted range (the best E1 is 0); "
+        throw NumericalError("afm fit: the data show no contact in the fitted range (the best " + coating.free_modulus_name() + " is 0); "
                              "widen the range or check the segment");
       }
       e1 = e_ref * found.linear.reduced_modulus;

@@ -91,6 +91,9 @@ expect_error 2 "t is free on one film only" "E1..E2" -- afm fit "$spot" "${stack
 expect_error 2 "--model md takes one bonded film" "--model hertz, jkr or dmt" -- afm fit "$spot" "${stack[@]}" --model md --work 1mJ/m2
 expect_error 2 "--model md takes one bonded film" "a sliding film" -- afm fit "$spot" --radius 10um --layer 2um,5kPa,0.5,slip --substrate rigid --model md --work 1mJ/m2
 expect_error 2 "--depth-profile" "takes a half-space or one film" -- afm fit "$spot" "${stack[@]}" --depth-profile
+# A free layer started far from what the curve holds: the failure names that layer's modulus.
+expect_error 3 "E2 runs out of its search range" -- afm fit "$spot" --radius 10um --layer 1um,5kPa,0.5 \
+  --layer 4um,1Pa,0.5 --substrate 1MPa,0.3 --free E2,contact_point,baseline
 
 [ "$failures" -eq 0 ] && echo "all afm stack CLI checks passed"
 exit $((failures > 0))

@@ -109,6 +109,8 @@ struct AfmCoating {
   std::vector<Layer> layers;
   std::size_t free_layer = 0;
   bool multilayer() const { return layers.size() > 1; }
+  // The free modulus as --free, the columns and the messages name it: E<free_layer + 1> (one film: E1).
+  std::string free_modulus_name() const { return "E" + std::to_string(free_layer + 1); }
   // The sample with the free layer's modulus E and thickness t (one film: Stack::film_on).
   Stack stack_with(double modulus, double t) const;
   Stack stack() const { return stack_with(film.youngs_modulus, thickness); }
