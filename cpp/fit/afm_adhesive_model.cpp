@@ -875,6 +875,26 @@ void warn_far_from_start(AfmFitResult& r, const std::vector<int>& axes, const st
   }
 }
 
+// The adhesive search's axes: 0 (ln E or ln E1), 1 (ln w), 2 (ln t), those free, in that order.
+std::vector<int> adhesive_search_axes(const AfmFitProblem& problem) {
+  std::vector<int> axes;
+  if (problem.free.modulus) axes.push_back(0);
+  if (problem.free.work) axes.push_back(1);
+  if (problem.coating && problem.free.thickness) axes.push_back(2);
+  return axes;
+}
+
+// The trial at the search point u: `base` with the free parameters exp(u) on their axes.
+Trial trial_at(const std::vector<int>& axes, Trial base, const std::vector<double>& u) {
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    const double v = std::exp(u[k]);
+    if (axes[k] == 0) base.modulus = v;
+    else if (axes[k] == 1) base.work = v;
+    else base.thickness = v;
+  }
+  return base;
+}
+
 }  // namespace
 
 AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
@@ -898,20 +918,9 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   // The search's parameters: ln E (or ln E1), ln w, ln t, those free, in that order.
   const auto [e_hint, w_hint] = adhesive_hints(z_data, f_data, problem, all, law);
   const double t_hint = coated ? problem.coating->thickness : 0.0;
-  std::vector<int> axes;  // 0: E, 1: w, 2: t
-  if (problem.free.modulus) axes.push_back(0);
-  if (problem.free.work) axes.push_back(1);
-  if (coated && problem.free.thickness) axes.push_back(2);
-  const auto trial_of = [&](const std::vector<double>& u) {
-    Trial t{e_hint, problem.free.work ? w_hint : problem.work, t_hint};
-    for (std::size_t k = 0; k < axes.size(); ++k) {
-      const double v = std::exp(u[k]);
-      if (axes[k] == 0) t.modulus = v;
-      else if (axes[k] == 1) t.work = v;
-      else t.thickness = v;
-    }
-    return t;
-  };
+  const std::vector<int> axes = adhesive_search_axes(problem);
+  const Trial base{e_hint, problem.free.work ? w_hint : problem.work, t_hint};
+  const auto trial_of = [&](const std::vector<double>& u) { return trial_at(axes, base, u); };
   std::vector<double> u0;
   for (int a : axes) u0.push_back(std::log(a == 0 ? e_hint : a == 1 ? w_hint : t_hint));
 
