@@ -192,24 +192,17 @@ bool is_half_space(const Stack& s) {
          base.poisson_ratio == top.poisson_ratio;
 }
 
-// The stack's kernel table, built on first use: a table whose nodes all come from the solve
-// cache, or a half-space's closed forms, never evaluates H, and the table costs 20-50 ms a stack
-// (an AFM fit with E1 free on an elastic base holds one model per E1 node).
-class LazyKernel : public detail::KernelSource {
+// The stack's kernel tables, built on first use: a table whose nodes all come from the solve
+// cache, or a half-space's closed forms, never evaluates H, and the full grid costs 20-50 ms a
+// stack (an AFM fit with E1 free on an elastic base holds one model per E1 node). A node at
+// (a, c) evaluates H up to |u| ~ 2c/t: the AFM fit's (a/t <= 100, its roots c/t <~ 130) all lie
+// within the compact grid of u_max = 320 (1/8 of the full grid's panels, 1/6-1/4 of its build),
+// the table's larger c/t (up to 1e4) on the full grid (THEORY.md section 13, "Kernel tables by
+// reach").
+constexpr double kCompactKernelRange = 320.0;
+class LazyKernel : public detail::ReachKernel {
  public:
-  explicit LazyKernel(const Stack& stack) : stack_(stack) {}
-  void evaluate(std::size_t n, const double* u, double* h) const override { kernel().evaluate(n, u, h); }
-  double analytic_half_width() const override { return kernel().analytic_half_width(); }
-  double absolute_accuracy() const override { return kernel().absolute_accuracy(); }
-
- private:
-  const detail::TableKernel& kernel() const {
-    std::call_once(once_, [this] { kernel_ = std::make_unique<detail::TableKernel>(stack_); });
-    return *kernel_;
-  }
-  Stack stack_;
-  mutable std::once_flag once_;
-  mutable std::unique_ptr<detail::TableKernel> kernel_;
+  explicit LazyKernel(const Stack& stack) : detail::ReachKernel(stack, kCompactKernelRange) {}
 };
 
 }  // namespace

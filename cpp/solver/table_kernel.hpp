@@ -57,6 +57,31 @@ class IndependentTables {
   std::array<std::unique_ptr<TableKernel>, kIndependentTables> tables_;
 };
 
+// H for solves whose reach varies call by call (the Maugis-Dugdale nodes, THEORY.md section 13,
+// "Kernel tables by reach"): a call whose every |u| lies in the compact grid's tabulated range
+// [0, u_max] is served by that grid (variant 0 on at least [0, compact_range], 1/8 of the full
+// grid's panels for 320), any other call by the full default grid; each built on first need. The
+// table a call uses depends on its u alone, so a value is the same whatever was evaluated before.
+// A stack whose compact grid misses its accuracy target uses the full grid for every call.
+// Thread-safe; `stack` is copied.
+class ReachKernel : public KernelSource {
+ public:
+  ReachKernel(const Stack& stack, double compact_range);
+  void evaluate(std::size_t n, const double* u, double* h) const override;
+  double analytic_half_width() const override { return half_width_; }
+  // The larger of the two grids' (both built).
+  double absolute_accuracy() const override;
+
+ private:
+  const TableKernel* compact() const;  // nullptr when refused
+  const TableKernel& full() const;
+  Stack stack_;
+  double compact_range_;
+  double half_width_;
+  mutable std::once_flag compact_once_, full_once_;
+  mutable std::unique_ptr<TableKernel> compact_, full_;
+};
+
 // Tables sized to the work: the solver needs H at |x +- y| <= 2 a/t only, so radii up to
 // kSolverTableRange[k] / 2 use a compact table of that range (a fraction of the full grid's
 // FFT work, which dominated a one-radius call); the last level is the full default grid. The
