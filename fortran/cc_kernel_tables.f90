@@ -76,6 +76,21 @@ module cc_kernel_tables
   ! Target of the issue: |H - H_exact| <= 1e-10 max|H|.
   real(dp), parameter :: relative_target = 1.0e-10_dp
 
+  ! FFTW plans kept for the next table of the same transform (aligned_r2r): planning the full
+  ! grid's REDFT00 of 2^17 + 1 points costs ~1.6 ms each time (its DST-I as much), a tenth of a
+  ! one-film table. An FFTW_ESTIMATE plan depends only on the length, the kind and the arrays'
+  ! alignment (always FFTW's own), so a kept plan is the plan a new planning would make: no
+  ! digit changes. Read and written under the planner lock; executed (fftw_execute_r2r on new
+  ! arrays) without it, which FFTW allows from any number of threads. Lengths above
+  ! max_kept_length (stacks refined 4x and more) are planned each time, their plans' memory
+  ! not kept for the process's life.
+  integer, parameter :: max_kept_plans = 16
+  integer, parameter :: max_kept_length = 2**18 + 1
+  integer :: kept_plans = 0
+  integer :: kept_length(max_kept_plans) = 0
+  integer(C_FFTW_R2R_KIND) :: kept_kind(max_kept_plans) = 0
+  type(c_ptr) :: kept_plan(max_kept_plans) = c_null_ptr
+
   type, public :: kernel_table
     real(dp) :: du = 0.0_dp
     real(dp) :: u_max = 0.0_dp            ! tabulated range [0, u_max]; asymptotics beyond
@@ -392,6 +407,7 @@ contains
     integer, intent(out) :: status
     type(c_ptr) :: p_in, p_out, plan
     real(c_double), pointer :: a_in(:), a_out(:)
+    logical :: kept
     status = CC_ERR_ALLOCATION
     p_in = fftw_alloc_real(int(n, c_size_t))
     p_out = fftw_alloc_real(int(n, c_size_t))
@@ -399,22 +415,53 @@ contains
       call c_f_pointer(p_in, a_in, [n])
       call c_f_pointer(p_out, a_out, [n])
       call cc_planner_lock()
-      plan = fftw_plan_r2r_1d(int(n, c_int), a_in, a_out, kind, FFTW_ESTIMATE)
+      call kept_or_new_plan(n, kind, p_in, p_out, plan, kept)
       call cc_planner_unlock()
       status = CC_ERR_FFT
       if (c_associated(plan)) then
         a_in = x(0:n - 1)
         call fftw_execute_r2r(plan, a_in, a_out)
         y(0:n - 1) = a_out
-        call cc_planner_lock()
-        call fftw_destroy_plan(plan)
-        call cc_planner_unlock()
+        if (.not. kept) then
+          call cc_planner_lock()
+          call fftw_destroy_plan(plan)
+          call cc_planner_unlock()
+        end if
         status = CC_OK
       end if
     end if
     if (c_associated(p_in)) call fftw_free(p_in)
     if (c_associated(p_out)) call fftw_free(p_out)
   end subroutine aligned_r2r
+
+  ! The kept plan of (n, kind), else a new one, kept while there is room (kept = .true.: not
+  ! to be destroyed). Caller holds the planner lock.
+  subroutine kept_or_new_plan(n, kind, p_in, p_out, plan, kept)
+    integer, intent(in) :: n
+    integer(C_FFTW_R2R_KIND), intent(in) :: kind
+    type(c_ptr), intent(in) :: p_in, p_out     ! FFTW-allocated, n values each
+    type(c_ptr), intent(out) :: plan
+    logical, intent(out) :: kept
+    real(c_double), pointer :: a_in(:), a_out(:)
+    integer :: k
+    do k = 1, kept_plans
+      if (kept_length(k) == n .and. kept_kind(k) == kind) then
+        plan = kept_plan(k)
+        kept = .true.
+        return
+      end if
+    end do
+    call c_f_pointer(p_in, a_in, [n])
+    call c_f_pointer(p_out, a_out, [n])
+    plan = fftw_plan_r2r_1d(int(n, c_int), a_in, a_out, kind, FFTW_ESTIMATE)
+    kept = c_associated(plan) .and. n <= max_kept_length .and. kept_plans < max_kept_plans
+    if (kept) then
+      kept_plans = kept_plans + 1
+      kept_length(kept_plans) = n
+      kept_kind(kept_plans) = kind
+      kept_plan(kept_plans) = plan
+    end if
+  end subroutine kept_or_new_plan
 
   subroutine build_table(src, variant, table, status, u_range, h_only)
     type(kernel_source), intent(in) :: src
