@@ -193,16 +193,13 @@ bool is_half_space(const Stack& s) {
 }
 
 // The stack's kernel tables, built on first use: a table whose nodes all come from the solve
-// cache, or a half-space's closed forms, never evaluates H, and the full grid costs 20-50 ms a
+// cache, or a half-space's closed forms, never evaluates H, and the full grid costs 7-35 ms a
 // stack (an AFM fit with E1 free on an elastic base holds one model per E1 node). A node at
-// (a, c) evaluates H up to |u| ~ 2c/t: the AFM fit's (a/t <= 100, its roots c/t <~ 130) all lie
-// within the compact grid of u_max = 320 (1/8 of the full grid's panels, 1/12-1/5 of its build),
-// the table's larger c/t (up to 1e4) on the full grid (THEORY.md section 13, "Kernel tables by
-// reach").
-constexpr double kCompactKernelRange = 320.0;
+// (a, c) evaluates H up to |u| ~ 2c/t: the AFM fit's all within the compact grid, the table's
+// larger c/t (up to 1e4) on the full grid (THEORY.md section 13, "Kernel tables by reach").
 class LazyKernel : public detail::ReachKernel {
  public:
-  explicit LazyKernel(const Stack& stack) : detail::ReachKernel(stack, kCompactKernelRange) {}
+  explicit LazyKernel(const Stack& stack) : detail::ReachKernel(stack, detail::kCohesiveZoneCompactRange) {}
 };
 
 }  // namespace

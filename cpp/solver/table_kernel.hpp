@@ -58,9 +58,9 @@ class IndependentTables {
 };
 
 // H for solves whose reach varies call by call (the Maugis-Dugdale nodes, THEORY.md section 13,
-// "Kernel tables by reach"): a call whose every |u| lies in the compact grid's tabulated range
-// [0, u_max] is served by that grid (variant 0 on at least [0, compact_range], 1/8 of the full
-// grid's panels for 320), any other call by the full default grid; each built on first need. The
+// "Kernel tables by reach"): a call whose every |u| <= compact_range is served by the compact grid
+// tabulating at least [0, compact_range] (variant 0; 1/8 of the full grid's panels for 320), any
+// other call by the full default grid; each built on first need. The
 // table a call uses depends on its u alone, so a value is the same whatever was evaluated before.
 // A stack whose compact grid misses its accuracy target uses the full grid for every call.
 // Thread-safe; `stack` is copied.
@@ -81,6 +81,11 @@ class ReachKernel : public KernelSource {
   mutable std::once_flag compact_once_, full_once_;
   mutable std::unique_ptr<TableKernel> compact_, full_;
 };
+
+// The cohesive-zone solves' compact range (THEORY.md section 13, "Kernel tables by reach"): the
+// AFM fit's nodes (a/t <= 100, roots c/t <~ 130) all reach u <= 256; 1/8 of the full grid's panels,
+// 1/12-1/5 of its build.
+inline constexpr double kCohesiveZoneCompactRange = 320.0;
 
 // Tables sized to the work: the solver needs H at |x +- y| <= 2 a/t only, so radii up to
 // kSolverTableRange[k] / 2 use a compact table of that range (a fraction of the full grid's

@@ -33,8 +33,8 @@ Stack film_on(double e1, double nu1, double e0, double nu0, bool rigid = false) 
   return Stack::film_on({e1, nu1}, s);
 }
 
-// The Maugis-Dugdale model's compact range (cpp/adhesion/maugis_dugdale.cpp).
-constexpr double kCompactRange = 320.0;
+// The Maugis-Dugdale models' compact range.
+constexpr double kCompactRange = detail::kCohesiveZoneCompactRange;
 // The nodes' noise relative to their values (MdTableOptions::source_noise).
 const double kSourceNoise = detail::MdTableOptions{}.source_noise;
 
