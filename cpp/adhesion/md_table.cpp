@@ -7,6 +7,7 @@
 #include <gsl/gsl_spline2d.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include <atomic>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -43,9 +45,10 @@ constexpr double kOneDRefinement = 4.0;
 // Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
 constexpr int kSamples = 5;
 
-// T - atan T without cancellation (series below T = 0.1: T^17/17 is 1e-14 of T^3/3).
-double tan_minus_angle(double t) {
-  if (t >= 0.1) return t - std::atan(t);
+// T - atan T without cancellation (series below T = 0.1: T^17/17 is 1e-14 of T^3/3); angle =
+// atan T, computed once by the caller.
+double tan_minus_angle(double t, double angle) {
+  if (t >= 0.1) return t - angle;
   double sum = 0.0, power = t * t * t, t2 = t * t;
   for (int k = 1; k <= 7; ++k, power *= t2) sum += (k % 2 == 1 ? 1.0 : -1.0) * power / (2 * k + 1);
   return sum;
@@ -111,6 +114,22 @@ std::vector<double> grid(double lo, double hi, double step) {
   return g;
 }
 
+// f remembering its last two values: GSL's Brent starts by evaluating the bracket's two ends,
+// which bracket_outward (or the caller) has just evaluated; f must be a pure function.
+template <class F>
+std::function<double(double)> remembering_last_two(F f) {
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  return [f, u = std::array<double, 2>{kNone, kNone}, v = std::array<double, 2>{}, next = 0](double x) mutable {
+    if (x == u[0]) return v[0];
+    if (x == u[1]) return v[1];
+    const double y = f(x);
+    u[next] = x;
+    v[next] = y;
+    next ^= 1;
+    return y;
+  };
+}
+
 }  // namespace
 
 CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess) { return zone.functions(excess); }
@@ -124,9 +143,16 @@ CohesiveFunctions homogeneous_functions(double a, double excess) {
   h.force_h = 4.0 * a * a * a / 3.0;
   h.d = -a * t;
   h.f = -a * a * (t + (1.0 + e) * (1.0 + e) * phi);
-  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t));
+  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi));
   h.g_s = 2.0 * a / kPi * (t * phi - e);
   return h;
+}
+
+std::pair<double, double> homogeneous_gap_functions(double a, double excess) {
+  const double e = excess;
+  const double t = std::sqrt(e * (2.0 + e));
+  const double phi = std::atan(t);
+  return {a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), 2.0 * a / kPi * (t * phi - e)};
 }
 
 CohesiveFunctions homogeneous_end_functions(double c) {
@@ -155,10 +181,10 @@ std::optional<std::pair<double, double>> bracket_outward(const std::function<dou
 }
 
 double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi) {
-  auto f = [&](double s) {
-    const CohesiveFunctions h = homogeneous_functions(a, std::exp(s));
-    return h.g_r + sigma_hat * h.g_s - h0;
-  };
+  const std::function<double(double)> f = remembering_last_two([&](double s) {
+    const auto [g_r, g_s] = homogeneous_gap_functions(a, std::exp(s));
+    return g_r + sigma_hat * g_s - h0;
+  });
   if (f(lo) >= 0.0) return lo;
   if (f(hi) <= 0.0) return hi;
   const auto root = brent_root(f, lo, hi, {1e-6, 0.0, 200});
@@ -813,33 +839,72 @@ double largest_shift(const MdTableState& st, int i) {
 
 }  // namespace
 
+// The radius's part of at()'s coordinates and of covers(), for the root's iterations at one a.
+struct MaugisDugdaleTable::GapRadius {
+  double a = 0.0, x = 0.0, s_min = 0.0, s_max = 0.0, excess_lo = 0.0, excess_hi = 0.0;
+  std::size_t tile_x = 0;
+};
+
+MaugisDugdaleTable::GapRadius MaugisDugdaleTable::gap_radius(double a) const {
+  constexpr double kRounding = 1e-12;  // as covers()
+  GapRadius r;
+  r.a = a;
+  r.excess_lo = std::min(options_.excess_floor, options_.excess_min) * (1.0 - kRounding);
+  r.excess_hi = excess_max(a) * (1.0 + kRounding);
+  if (options_.closed_form) return r;
+  const Grids& g = *grids_;
+  r.s_min = std::log(options_.excess_min);
+  r.s_max = std::log(excess_max(a));
+  r.x = std::clamp(std::log(a), g.x.front(), g.x.back());
+  r.tile_x = cell_of(g.x_coarse, r.x) / static_cast<std::size_t>(options_.tile_cells);
+  return r;
+}
+
 // g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
-std::pair<double, double> MaugisDugdaleTable::gap_functions(double a, double excess) const {
-  const CohesiveFunctions hom = homogeneous_functions(a, excess);
-  if (options_.closed_form) return {hom.g_r, hom.g_s};
+std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& radius, double excess) const {
+  const auto hom = homogeneous_gap_functions(radius.a, excess);
+  if (options_.closed_form) return hom;
+  if (!(excess >= radius.excess_lo && excess <= radius.excess_hi)) {
+    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
+                     ") outside the table");
+  }
+  const Grids& g = *grids_;
+  const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
+  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
+  return {gsl_spline2d_eval(tile.fine[2].spline, radius.x, tau, nullptr, nullptr) * hom.first,
+          gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, nullptr, nullptr) * hom.second};
+}
+
+CohesiveFunctions MaugisDugdaleTable::load_functions(double a, double excess) const {
   if (!covers(a, excess)) {
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
                      ") outside the table");
   }
+  CohesiveFunctions out = homogeneous_functions(a, excess);
+  if (options_.closed_form) return out;
   const Grids& g = *grids_;
-  const double s_min = std::log(options_.excess_min), s_max = std::log(excess_max(a));
-  const double x = std::clamp(std::log(a), g.x.front(), g.x.back());
-  const double tau = std::clamp((std::log(excess) - s_min) / (s_max - s_min), 0.0, 1.0);
-  const std::size_t cell_x = cell_of(g.x_coarse, x), cell_s = cell_of(g.tau_coarse, tau);
+  const GapRadius radius = gap_radius(a);
+  const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
   const auto b = static_cast<std::size_t>(options_.tile_cells);
-  const Tile2d& tile = tile_2d(cell_x / b, cell_s / b);
-  return {gsl_spline2d_eval(tile.fine[2].spline, x, tau, nullptr, nullptr) * hom.g_r,
-          gsl_spline2d_eval(tile.fine[3].spline, x, tau, nullptr, nullptr) * hom.g_s};
+  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / b);
+  const Tile1d& radius_tile = tile_radius(radius.tile_x);
+  out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, nullptr, nullptr);
+  out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, nullptr, nullptr);
+  out.delta_h *= gsl_spline_eval(radius_tile.fine[0].spline, radius.x, nullptr);
+  out.force_h *= gsl_spline_eval(radius_tile.fine[1].spline, radius.x, nullptr);
+  out.g_r = out.g_s = 0.0;  // not computed
+  return out;
 }
 
 std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a, bool with_errors) const {
   const MdTableOptions& o = options_;
   if (!covers_radius(a)) return std::nullopt;
   // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
-  std::function<double(double)> residual = [&](double s) {
-    const auto [g_r, g_s] = gap_functions(a, std::exp(s));
+  const GapRadius radius = gap_radius(a);
+  const std::function<double(double)> residual = remembering_last_two([&](double s) {
+    const auto [g_r, g_s] = gap_functions(radius, std::exp(s));
     return g_r + sigma_hat * g_s - h0;
-  };
+  });
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_outward(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;
@@ -850,14 +915,15 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
     s = root->x;
   }
   const double e = std::exp(s);
-  const MdTableValue v = at(a, e);
   if (!with_errors) {
+    const CohesiveFunctions v = load_functions(a, e);
     MdTableState st;
     st.excess = e;
-    st.delta = v.value.delta_h + sigma_hat * v.value.d;
-    st.force = v.value.force_h + sigma_hat * v.value.f;
+    st.delta = v.delta_h + sigma_hat * v.d;
+    st.force = v.force_h + sigma_hat * v.f;
     return st;
   }
+  const MdTableValue v = at(a, e);
   // Slope of the gap in s by central differences of the interpolant: the check interpolant's
   // root is one Newton step from the splines' (their difference is the table's error, ~1e-5:
   // the step's own error is its square).
