@@ -181,14 +181,48 @@ std::optional<std::pair<double, double>> bracket_outward(const std::function<dou
 }
 
 double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi) {
-  const std::function<double(double)> f = remembering_last_two([&](double s) {
-    const auto [g_r, g_s] = homogeneous_gap_functions(a, std::exp(s));
-    return g_r + sigma_hat * g_s - h0;
-  });
-  if (f(lo) >= 0.0) return lo;
-  if (f(hi) <= 0.0) return hi;
-  const auto root = brent_root(f, lo, hi, {1e-6, 0.0, 200});
-  return root ? root->x : 0.0;
+  // Safeguarded Newton on L(s) = ln(g_R + σ̂ g_σ) - ln h0, e = e^s (THEORY.md section 13, "The
+  // homogeneous root by Newton"): L grows with slope between 1 and 2 and is nearly straight.
+  const double log_h0 = std::log(h0);
+  auto log_gap = [&](double s) {
+    const double e = std::exp(s), t = std::sqrt(e * (2.0 + e)), phi = std::atan(t);
+    const double g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), g_s = 2.0 * a / kPi * (t * phi - e);
+    const double dg_r = 2.0 * a * a / kPi * (t / (1.0 + e) + (1.0 + e) * phi);  // d/de
+    const double dg_s = 2.0 * a / kPi * ((1.0 + e) * phi / t - e / (1.0 + e));
+    const double gap = g_r + sigma_hat * g_s;
+    return std::pair{std::log(gap) - log_h0, e * (dg_r + sigma_hat * dg_s) / gap};
+  };
+  constexpr double kTolerance = 1e-9;  // in s; Newton's last step leaves ~its square
+  double l = lo, h = hi;               // L(l) < 0 < L(h) where known
+  bool l_known = false, h_known = false;
+  double s = std::clamp(0.0, lo, hi);
+  for (int k = 0; k < 200; ++k) {
+    const auto [value, slope] = log_gap(s);
+    if (value == 0.0) return s;
+    if (value > 0.0) {
+      if (s == lo) return lo;
+      h = s;
+      h_known = true;
+    } else {
+      if (s == hi) return hi;
+      l = s;
+      l_known = true;
+    }
+    double next = s - value / slope;
+    if (next >= l && next <= h && std::abs(next - s) <= kTolerance) return next;
+    if (!(next > l && next < h)) {  // NaN included
+      if (next <= l && !l_known) {
+        next = l;  // the root may lie below the range: its end decides
+      } else if (next >= h && !h_known) {
+        next = h;
+      } else {
+        next = 0.5 * (l + h);
+      }
+    }
+    if (h - l <= kTolerance) return next;
+    s = next;
+  }
+  return s;
 }
 
 double homogeneous_end_root(double sigma_hat, double h0) {
