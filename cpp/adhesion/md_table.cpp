@@ -894,8 +894,16 @@ MaugisDugdaleTable::GapRadius MaugisDugdaleTable::gap_radius(double a) const {
   return r;
 }
 
+// Successive reads of one root mostly fall in one cell of one tile: GSL's accelerators find it
+// without a binary search (the same cell, so the same value).
+struct MaugisDugdaleTable::GapCursor {
+  const Tile2d* tile = nullptr;
+  gsl_interp_accel x{0, 0, 0}, tau{0, 0, 0};
+};
+
 // g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
-std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& radius, double excess) const {
+std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& radius, double excess,
+                                                            GapCursor& cursor) const {
   const auto hom = homogeneous_gap_functions(radius.a, excess);
   if (options_.closed_form) return hom;
   if (!(excess >= radius.excess_lo && excess <= radius.excess_hi)) {
@@ -905,8 +913,9 @@ std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& rad
   const Grids& g = *grids_;
   const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
   const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
-  return {gsl_spline2d_eval(tile.fine[2].spline, radius.x, tau, nullptr, nullptr) * hom.first,
-          gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, nullptr, nullptr) * hom.second};
+  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
+  return {gsl_spline2d_eval(tile.fine[2].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.first,
+          gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.second};
 }
 
 CohesiveFunctions MaugisDugdaleTable::load_functions(double a, double excess) const {
@@ -935,8 +944,9 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   if (!covers_radius(a)) return std::nullopt;
   // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
   const GapRadius radius = gap_radius(a);
+  GapCursor cursor;
   const std::function<double(double)> residual = remembering_last_two([&](double s) {
-    const auto [g_r, g_s] = gap_functions(radius, std::exp(s));
+    const auto [g_r, g_s] = gap_functions(radius, std::exp(s), cursor);
     return g_r + sigma_hat * g_s - h0;
   });
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));

@@ -182,8 +182,9 @@ class MaugisDugdaleTable {
   MdTableValue closed_form_value(double a, double excess) const;
   // g_r and g_s along one radius (the root's iterations): its logarithms and tile column once.
   struct GapRadius;
+  struct GapCursor;  // the last tile read and GSL's accelerators into its grid (one root's)
   GapRadius gap_radius(double a) const;
-  std::pair<double, double> gap_functions(const GapRadius& radius, double excess) const;
+  std::pair<double, double> gap_functions(const GapRadius& radius, double excess, GapCursor& cursor) const;
   // d, f, δ_H and F_H alone (the state without its estimates): at() without g_r and g_s.
   CohesiveFunctions load_functions(double a, double excess) const;
   void load_cached_nodes() const;
