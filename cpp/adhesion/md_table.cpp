@@ -918,21 +918,21 @@ std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& rad
           gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.second};
 }
 
-CohesiveFunctions MaugisDugdaleTable::load_functions(double a, double excess) const {
-  if (!covers(a, excess)) {
-    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
+CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, double excess,
+                                                     GapCursor& cursor) const {
+  if (!(excess >= radius.excess_lo && excess <= radius.excess_hi)) {
+    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
                      ") outside the table");
   }
-  CohesiveFunctions out = homogeneous_functions(a, excess);
+  CohesiveFunctions out = homogeneous_functions(radius.a, excess);
   if (options_.closed_form) return out;
   const Grids& g = *grids_;
-  const GapRadius radius = gap_radius(a);
   const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
-  const auto b = static_cast<std::size_t>(options_.tile_cells);
-  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / b);
+  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
+  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
   const Tile1d& radius_tile = tile_radius(radius.tile_x);
-  out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, nullptr, nullptr);
-  out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, nullptr, nullptr);
+  out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, &cursor.x, &cursor.tau);
+  out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, &cursor.x, &cursor.tau);
   out.delta_h *= gsl_spline_eval(radius_tile.fine[0].spline, radius.x, nullptr);
   out.force_h *= gsl_spline_eval(radius_tile.fine[1].spline, radius.x, nullptr);
   out.g_r = out.g_s = 0.0;  // not computed
@@ -960,7 +960,7 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   }
   const double e = std::exp(s);
   if (!with_errors) {
-    const CohesiveFunctions v = load_functions(a, e);
+    const CohesiveFunctions v = load_functions(radius, e, cursor);
     MdTableState st;
     st.excess = e;
     st.delta = v.delta_h + sigma_hat * v.d;

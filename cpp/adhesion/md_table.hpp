@@ -186,7 +186,7 @@ class MaugisDugdaleTable {
   GapRadius gap_radius(double a) const;
   std::pair<double, double> gap_functions(const GapRadius& radius, double excess, GapCursor& cursor) const;
   // d, f, δ_H and F_H alone (the state without its estimates): at() without g_r and g_s.
-  CohesiveFunctions load_functions(double a, double excess) const;
+  CohesiveFunctions load_functions(const GapRadius& radius, double excess, GapCursor& cursor) const;
   void load_cached_nodes() const;
   std::vector<std::size_t> use_nodes(std::vector<char>& used, const std::vector<char>& solved, std::size_t first,
                                      std::size_t last) const;
