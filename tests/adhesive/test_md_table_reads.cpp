@@ -1,5 +1,5 @@
-// The cheap reads of the Maugis-Dugdale table (THEORY.md section 13, "Reading the table
-// cheaply"), each against an independent computation:
+// The cheap reads of the Maugis-Dugdale table (THEORY.md section 13, "The homogeneous root by
+// Newton"; docs/speed.md, "Maugis-Dugdale table reads"), each against an independent computation:
 //  1. homogeneous_gap_functions equals homogeneous_functions' g_R and g_σ bit for bit;
 //  2. homogeneous_root (Newton on ln h) is the root of the closed forms' gap found by GSL's
 //     Brent to 1e-13 on homogeneous_functions, to 1e-9 in ln(c/a - 1) (the table's bracket
