@@ -114,6 +114,14 @@ std::vector<double> grid(double lo, double hi, double step) {
   return g;
 }
 
+// ln(h/h0) from h - h0 = difference (its sign exact: the bracket's decisions are those on h - h0),
+// continued linearly below h/h0 = 1e-3 (h may reach zero or below on a layered stack).
+double log_gap_ratio(double difference, double h0) {
+  constexpr double kFloor = 1e-3;
+  const double x = difference / h0;
+  return x > kFloor - 1.0 ? std::log1p(x) : std::log(kFloor) + (x - (kFloor - 1.0)) / kFloor;
+}
+
 // f remembering its last two values: GSL's Brent starts by evaluating the bracket's two ends,
 // which bracket_outward (or the caller) has just evaluated; f must be a pure function.
 template <class F>
@@ -942,12 +950,13 @@ CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, do
 std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a, bool with_errors) const {
   const MdTableOptions& o = options_;
   if (!covers_radius(a)) return std::nullopt;
-  // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
+  // ln(h(c)/h0) (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13, "The root in
+  // ln h"): the sign of h - h0, nearly straight in s.
   const GapRadius radius = gap_radius(a);
   GapCursor cursor;
   const std::function<double(double)> residual = remembering_last_two([&](double s) {
     const auto [g_r, g_s] = gap_functions(radius, std::exp(s), cursor);
-    return g_r + sigma_hat * g_s - h0;
+    return log_gap_ratio(g_r + sigma_hat * g_s - h0, h0);
   });
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_outward(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
