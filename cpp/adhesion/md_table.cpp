@@ -117,6 +117,7 @@ std::vector<double> grid(double lo, double hi, double step) {
 // ln(h/h0) from h - h0 = difference (its sign exact: the bracket's decisions are those on h - h0),
 // continued linearly below h/h0 = 1e-3 (h may reach zero or below on a layered stack).
 double log_gap_ratio(double difference, double h0) {
+  if (!(h0 > 0.0)) return difference;  // (no ratio: the difference itself keeps the signs)
   constexpr double kFloor = 1e-3;
   const double x = difference / h0;
   return x > kFloor - 1.0 ? std::log1p(x) : std::log(kFloor) + (x - (kFloor - 1.0)) / kFloor;
@@ -191,6 +192,7 @@ std::optional<std::pair<double, double>> bracket_outward(const std::function<dou
 double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi) {
   // Safeguarded Newton on L(s) = ln(g_R + σ̂ g_σ) - ln h0, e = e^s (THEORY.md section 13, "The
   // homogeneous root by Newton"): L grows with slope between 1 and 2 and is nearly straight.
+  if (!(h0 > 0.0)) return lo;  // h >= 0 >= h0 on the whole range: its low end, as before
   const double log_h0 = std::log(h0);
   auto log_gap = [&](double s) {
     const double e = std::exp(s), t = std::sqrt(e * (2.0 + e)), phi = std::atan(t);
