@@ -68,6 +68,8 @@ int main() {
     }
   }
   std::printf("homogeneous root: worst |Newton - Brent(1e-13)| in ln(c/a - 1) %.2e\n", worst);
+  // h0 <= 0: h > h0 on the whole range, so the low end (as Brent's end test gave).
+  check::that(detail::homogeneous_root(1.0, 0.0, 1.0, -30.0, 5.0) == -30.0, "homogeneous root at h0 = 0: the low end");
 
   // 3. The state without estimates is the state with them, on a layered stack.
   Substrate base;
