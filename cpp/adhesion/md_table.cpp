@@ -7,6 +7,7 @@
 #include <gsl/gsl_spline2d.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include <atomic>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -43,9 +45,10 @@ constexpr double kOneDRefinement = 4.0;
 // Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
 constexpr int kSamples = 5;
 
-// T - atan T without cancellation (series below T = 0.1: T^17/17 is 1e-14 of T^3/3).
-double tan_minus_angle(double t) {
-  if (t >= 0.1) return t - std::atan(t);
+// T - atan T without cancellation (series below T = 0.1: T^17/17 is 1e-14 of T^3/3); angle =
+// atan T, computed once by the caller.
+double tan_minus_angle(double t, double angle) {
+  if (t >= 0.1) return t - angle;
   double sum = 0.0, power = t * t * t, t2 = t * t;
   for (int k = 1; k <= 7; ++k, power *= t2) sum += (k % 2 == 1 ? 1.0 : -1.0) * power / (2 * k + 1);
   return sum;
@@ -111,6 +114,31 @@ std::vector<double> grid(double lo, double hi, double step) {
   return g;
 }
 
+// ln(h/h0) from h - h0 = difference (its sign exact: the bracket's decisions are those on h - h0),
+// continued linearly below h/h0 = 1e-3 (h may reach zero or below on a layered stack).
+double log_gap_ratio(double difference, double h0) {
+  if (!(h0 > 0.0)) return difference;  // (no ratio: the difference itself keeps the signs)
+  constexpr double kFloor = 1e-3;
+  const double x = difference / h0;
+  return x > kFloor - 1.0 ? std::log1p(x) : std::log(kFloor) + (x - (kFloor - 1.0)) / kFloor;
+}
+
+// f remembering its last two values: GSL's Brent starts by evaluating the bracket's two ends,
+// which bracket_outward (or the caller) has just evaluated; f must be a pure function.
+template <class F>
+std::function<double(double)> remembering_last_two(F f) {
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  return [f, u = std::array<double, 2>{kNone, kNone}, v = std::array<double, 2>{}, next = 0](double x) mutable {
+    if (x == u[0]) return v[0];
+    if (x == u[1]) return v[1];
+    const double y = f(x);
+    u[next] = x;
+    v[next] = y;
+    next ^= 1;
+    return y;
+  };
+}
+
 }  // namespace
 
 CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess) { return zone.functions(excess); }
@@ -124,9 +152,16 @@ CohesiveFunctions homogeneous_functions(double a, double excess) {
   h.force_h = 4.0 * a * a * a / 3.0;
   h.d = -a * t;
   h.f = -a * a * (t + (1.0 + e) * (1.0 + e) * phi);
-  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t));
+  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi));
   h.g_s = 2.0 * a / kPi * (t * phi - e);
   return h;
+}
+
+std::pair<double, double> homogeneous_gap_functions(double a, double excess) {
+  const double e = excess;
+  const double t = std::sqrt(e * (2.0 + e));
+  const double phi = std::atan(t);
+  return {a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), 2.0 * a / kPi * (t * phi - e)};
 }
 
 CohesiveFunctions homogeneous_end_functions(double c) {
@@ -155,14 +190,49 @@ std::optional<std::pair<double, double>> bracket_outward(const std::function<dou
 }
 
 double homogeneous_root(double sigma_hat, double h0, double a, double lo, double hi) {
-  auto f = [&](double s) {
-    const CohesiveFunctions h = homogeneous_functions(a, std::exp(s));
-    return h.g_r + sigma_hat * h.g_s - h0;
+  // Safeguarded Newton on L(s) = ln(g_R + σ̂ g_σ) - ln h0, e = e^s (THEORY.md section 13, "The
+  // homogeneous root by Newton"): L grows with slope between 1 and 2 and is nearly straight.
+  if (!(h0 > 0.0)) return lo;  // h >= 0 >= h0 on the whole range: its low end, as before
+  const double log_h0 = std::log(h0);
+  auto log_gap = [&](double s) {
+    const double e = std::exp(s), t = std::sqrt(e * (2.0 + e)), phi = std::atan(t);
+    const double g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), g_s = 2.0 * a / kPi * (t * phi - e);
+    const double dg_r = 2.0 * a * a / kPi * (t / (1.0 + e) + (1.0 + e) * phi);  // d/de
+    const double dg_s = 2.0 * a / kPi * ((1.0 + e) * phi / t - e / (1.0 + e));
+    const double gap = g_r + sigma_hat * g_s;
+    return std::pair{std::log(gap) - log_h0, e * (dg_r + sigma_hat * dg_s) / gap};
   };
-  if (f(lo) >= 0.0) return lo;
-  if (f(hi) <= 0.0) return hi;
-  const auto root = brent_root(f, lo, hi, {1e-6, 0.0, 200});
-  return root ? root->x : 0.0;
+  constexpr double kTolerance = 1e-9;  // in s; Newton's last step leaves ~its square
+  double l = lo, h = hi;               // L(l) < 0 < L(h) where known
+  bool l_known = false, h_known = false;
+  double s = std::clamp(0.0, lo, hi);
+  for (int k = 0; k < 200; ++k) {
+    const auto [value, slope] = log_gap(s);
+    if (value == 0.0) return s;
+    if (value > 0.0) {
+      if (s == lo) return lo;
+      h = s;
+      h_known = true;
+    } else {
+      if (s == hi) return hi;
+      l = s;
+      l_known = true;
+    }
+    double next = s - value / slope;
+    if (next >= l && next <= h && std::abs(next - s) <= kTolerance) return next;
+    if (!(next > l && next < h)) {  // NaN included
+      if (next <= l && !l_known) {
+        next = l;  // the root may lie below the range: its end decides
+      } else if (next >= h && !h_known) {
+        next = h;
+      } else {
+        next = 0.5 * (l + h);
+      }
+    }
+    if (h - l <= kTolerance) return next;
+    s = next;
+  }
+  return s;
 }
 
 double homogeneous_end_root(double sigma_hat, double h0) {
@@ -813,33 +883,83 @@ double largest_shift(const MdTableState& st, int i) {
 
 }  // namespace
 
+// The radius's part of at()'s coordinates and of covers(), for the root's iterations at one a.
+struct MaugisDugdaleTable::GapRadius {
+  double a = 0.0, x = 0.0, s_min = 0.0, s_max = 0.0, excess_lo = 0.0, excess_hi = 0.0;
+  std::size_t tile_x = 0;
+};
+
+MaugisDugdaleTable::GapRadius MaugisDugdaleTable::gap_radius(double a) const {
+  constexpr double kRounding = 1e-12;  // as covers()
+  GapRadius r;
+  r.a = a;
+  r.excess_lo = std::min(options_.excess_floor, options_.excess_min) * (1.0 - kRounding);
+  r.excess_hi = excess_max(a) * (1.0 + kRounding);
+  if (options_.closed_form) return r;
+  const Grids& g = *grids_;
+  r.s_min = std::log(options_.excess_min);
+  r.s_max = std::log(excess_max(a));
+  r.x = std::clamp(std::log(a), g.x.front(), g.x.back());
+  r.tile_x = cell_of(g.x_coarse, r.x) / static_cast<std::size_t>(options_.tile_cells);
+  return r;
+}
+
+// Successive reads of one root mostly fall in one cell of one tile: GSL's accelerators find it
+// without a binary search (the same cell, so the same value).
+struct MaugisDugdaleTable::GapCursor {
+  const Tile2d* tile = nullptr;
+  gsl_interp_accel x{0, 0, 0}, tau{0, 0, 0};
+};
+
 // g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
-std::pair<double, double> MaugisDugdaleTable::gap_functions(double a, double excess) const {
-  const CohesiveFunctions hom = homogeneous_functions(a, excess);
-  if (options_.closed_form) return {hom.g_r, hom.g_s};
-  if (!covers(a, excess)) {
-    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(a) + ", " + short_text(excess) +
+std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& radius, double excess,
+                                                            GapCursor& cursor) const {
+  const auto hom = homogeneous_gap_functions(radius.a, excess);
+  if (options_.closed_form) return hom;
+  if (!(excess >= radius.excess_lo && excess <= radius.excess_hi)) {
+    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
                      ") outside the table");
   }
   const Grids& g = *grids_;
-  const double s_min = std::log(options_.excess_min), s_max = std::log(excess_max(a));
-  const double x = std::clamp(std::log(a), g.x.front(), g.x.back());
-  const double tau = std::clamp((std::log(excess) - s_min) / (s_max - s_min), 0.0, 1.0);
-  const std::size_t cell_x = cell_of(g.x_coarse, x), cell_s = cell_of(g.tau_coarse, tau);
-  const auto b = static_cast<std::size_t>(options_.tile_cells);
-  const Tile2d& tile = tile_2d(cell_x / b, cell_s / b);
-  return {gsl_spline2d_eval(tile.fine[2].spline, x, tau, nullptr, nullptr) * hom.g_r,
-          gsl_spline2d_eval(tile.fine[3].spline, x, tau, nullptr, nullptr) * hom.g_s};
+  const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
+  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
+  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
+  return {gsl_spline2d_eval(tile.fine[2].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.first,
+          gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.second};
+}
+
+CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, double excess,
+                                                     GapCursor& cursor) const {
+  if (!(excess >= radius.excess_lo && excess <= radius.excess_hi)) {
+    throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
+                     ") outside the table");
+  }
+  CohesiveFunctions out = homogeneous_functions(radius.a, excess);
+  if (options_.closed_form) return out;
+  const Grids& g = *grids_;
+  const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
+  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
+  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
+  const Tile1d& radius_tile = tile_radius(radius.tile_x);
+  out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, &cursor.x, &cursor.tau);
+  out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, &cursor.x, &cursor.tau);
+  out.delta_h *= gsl_spline_eval(radius_tile.fine[0].spline, radius.x, nullptr);
+  out.force_h *= gsl_spline_eval(radius_tile.fine[1].spline, radius.x, nullptr);
+  out.g_r = out.g_s = 0.0;  // not computed
+  return out;
 }
 
 std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h0, double a, bool with_errors) const {
   const MdTableOptions& o = options_;
   if (!covers_radius(a)) return std::nullopt;
-  // h(c) - h0 (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13).
-  std::function<double(double)> residual = [&](double s) {
-    const auto [g_r, g_s] = gap_functions(a, std::exp(s));
-    return g_r + sigma_hat * g_s - h0;
-  };
+  // ln(h(c)/h0) (R = 1) in s = ln(c/a - 1); h grows with c (THEORY.md section 13, "The root in
+  // ln h"): the sign of h - h0, nearly straight in s.
+  const GapRadius radius = gap_radius(a);
+  GapCursor cursor;
+  const std::function<double(double)> residual = remembering_last_two([&](double s) {
+    const auto [g_r, g_s] = gap_functions(radius, std::exp(s), cursor);
+    return log_gap_ratio(g_r + sigma_hat * g_s - h0, h0);
+  });
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_outward(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;
@@ -850,14 +970,15 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
     s = root->x;
   }
   const double e = std::exp(s);
-  const MdTableValue v = at(a, e);
   if (!with_errors) {
+    const CohesiveFunctions v = load_functions(radius, e, cursor);
     MdTableState st;
     st.excess = e;
-    st.delta = v.value.delta_h + sigma_hat * v.value.d;
-    st.force = v.value.force_h + sigma_hat * v.value.f;
+    st.delta = v.delta_h + sigma_hat * v.d;
+    st.force = v.force_h + sigma_hat * v.f;
     return st;
   }
+  const MdTableValue v = at(a, e);
   // Slope of the gap in s by central differences of the interpolant: the check interpolant's
   // root is one Newton step from the splines' (their difference is the table's error, ~1e-5:
   // the step's own error is its square).

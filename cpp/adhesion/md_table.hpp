@@ -48,6 +48,8 @@ double homogeneous_end_root(double sigma_hat, double h0);
 
 // The homogeneous closed forms (Maugis), free of cancellation as excess -> 0.
 CohesiveFunctions homogeneous_functions(double a, double excess);
+// Their g_r and g_s alone (the same values, bit for bit): what a root of the gap needs.
+std::pair<double, double> homogeneous_gap_functions(double a, double excess);
 // The same at the end of the curve, a = 0, zone radius c (d, f, g_r, g_s only).
 CohesiveFunctions homogeneous_end_functions(double c);
 
@@ -178,7 +180,13 @@ class MaugisDugdaleTable {
   void solve_radius_nodes(std::size_t first, std::size_t last) const;
   void end_values(double u, double* value, double* error, int check = 0) const;
   MdTableValue closed_form_value(double a, double excess) const;
-  std::pair<double, double> gap_functions(double a, double excess) const;
+  // g_r and g_s along one radius (the root's iterations): its logarithms and tile column once.
+  struct GapRadius;
+  struct GapCursor;  // the last tile read and GSL's accelerators into its grid (one root's)
+  GapRadius gap_radius(double a) const;
+  std::pair<double, double> gap_functions(const GapRadius& radius, double excess, GapCursor& cursor) const;
+  // d, f, δ_H and F_H alone (the state without its estimates): at() without g_r and g_s.
+  CohesiveFunctions load_functions(const GapRadius& radius, double excess, GapCursor& cursor) const;
   void load_cached_nodes() const;
   std::vector<std::size_t> use_nodes(std::vector<char>& used, const std::vector<char>& solved, std::size_t first,
                                      std::size_t last) const;

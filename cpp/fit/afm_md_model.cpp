@@ -139,8 +139,12 @@ class MdCurves {
       mix.push_back({&model(scale_free ? hint_ : trial.modulus, 0), 1.0});
       node_reduced.push_back(reduced);
     }
-    // (delta, F) at radius a (a = 0: the curve's end): the weighted nodes' SI values.
+    // (delta, F) at radius a (a = 0: the curve's end): the weighted nodes' SI values. The branch
+    // asks some radii twice (its jump-off a_s, its top, the scan's first point as the first
+    // node): each is computed once per trial (a pure function of a).
+    std::map<double, std::pair<double, double>> computed;
     const auto point = [&](double a) -> std::pair<double, double> {
+      if (const auto it = computed.find(a); it != computed.end()) return it->second;
       if (a > 0.0 && !(a / t >= kTableAOverT[0] && a / t <= kTableAOverT[1])) {
         // (the direct solve would take ~0.03 s a point)
         throw NumericalError("afm fit: the Maugis-Dugdale branch needs a contact radius " + short_text(a) +
@@ -161,6 +165,7 @@ class MdCurves {
         delta += mix[k].second * p.penetration * l * l / radius;
         force += mix[k].second * p.load * kPi * trial.work * radius;
       }
+      computed.emplace(a, std::pair{delta, force});
       return {delta, force};
     };
     // The scan inside the table's a/t (eta = t/L: a/t = a_bar/eta). A weak adhesion (L small
