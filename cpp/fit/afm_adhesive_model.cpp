@@ -930,7 +930,7 @@ std::vector<double> decade_start(const std::vector<double>& u, double rss, doubl
     return true;
   };
   const bool low = probe(k0), high = probe(k0 + 1);
-  for (double k = k0 + 2; high && k <= k0 + kDecadeProbes && probe(k); ++k) {
+  for (double k = k0 + 2; high && k <= k0 + 1 + kDecadeProbes && probe(k); ++k) {
   }
   for (double k = k0 - 1; low && !high && k >= k0 - kDecadeProbes && probe(k); --k) {
   }
