@@ -900,8 +900,6 @@ Trial trial_at(const std::vector<int>& axes, Trial base, const std::vector<doubl
   return base;
 }
 
-}  // namespace
-
 // Where the model's simplex starts after the coarse stage on one table a decade (THEORY.md
 // section 15, "The coarse nodes", stage 1b): the model at the decade nodes E0 10^k around the
 // coarse estimate u (its coarse residual sum `rss`), E1 held on each node (the model reads that
@@ -936,6 +934,8 @@ std::vector<double> decade_start(const std::vector<double>& u, double rss, doubl
   }
   return start;
 }
+
+}  // namespace
 
 AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vector<double>& f_data,
                               const AfmFitProblem& problem, int free_count, const SpringModel* model,
