@@ -295,7 +295,8 @@ void CohesiveZone::factor(const Discretization& disc) {
     throw InputError("cohesive zone: contact radius a/t = " + short_text(a) + " not allowed");
   }
   if (a == 0.0) return;
-  system_ = std::make_unique<FactoredSystem>(kernel_, a, disc);
+  // The zone uses the solutions alone: no condition estimate.
+  system_ = std::make_unique<FactoredSystem>(kernel_, a, disc, false);
   const std::size_t n = system_->size();
   const Layout& layout = system_->layout();
   // Flat punch θ = 1 and the shape θ = -δ0(x) (sphere: -x²/R; THEORY.md sections 5 and 11),
