@@ -384,11 +384,18 @@ FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discr
 
   std::vector<lapack_int> pivots(n);
   // LAPACKE's NaN scans of the matrix (before dgetrf and dgecon) are done here once, as the
-  // row sums above (LAPACKE_dgetrf reports a NaN as info -4).
-  lapack_int info = has_nan ? -4 : LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, nn, nn, lu_.data(), nn, pivots.data());
+  // row sums above (LAPACKE_dgetrf reports a NaN as info -4). The unblocked dgetf2: below
+  // LAPACK's block size dgetrf runs the recursive dgetrf2, whose small dtrsm and dgemm calls
+  // cost 1.2-2.5x dgetf2's rank-1 updates at these sizes (n = 14-170, reference BLAS; the same
+  // factors to the last bit there, the same updates in the same order). Large systems keep
+  // the blocked dgetrf.
+  constexpr std::size_t kUnblockedLimit = 256;
+  lapack_int info = has_nan          ? -4
+                    : n <= kUnblockedLimit ? LAPACKE_dgetf2_work(LAPACK_COL_MAJOR, nn, nn, lu_.data(), nn, pivots.data())
+                                           : LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, nn, nn, lu_.data(), nn, pivots.data());
   if (info != 0) {
     throw NumericalError("reduced solver: singular linear system at a/t = " + describe(a) +
-                         " (dgetrf info " + std::to_string(info) + ")");
+                         " (LU info " + std::to_string(info) + ")");
   }
   if (!estimate_condition) {
     rcond_ = std::numeric_limits<double>::quiet_NaN();

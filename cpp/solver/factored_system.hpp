@@ -30,7 +30,7 @@ struct Layout {
   std::vector<double> from_moments;
 };
 
-// I + K for one contact radius ã, factored once (LAPACK dgetrf).
+// I + K for one contact radius ã, factored once (LAPACK dgetf2, dgetrf for large systems).
 class FactoredSystem {
  public:
   // Throws NumericalError if the matrix is singular or its condition cannot be estimated.
