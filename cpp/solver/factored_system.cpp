@@ -312,6 +312,47 @@ class RowBuilder {
 
 }  // namespace
 
+// H(x_i - x_j) and H(x_i + x_j) into h_minus/h_plus[i n + j] for the pairs that a row reads:
+// row i takes panel P's Nyström values where P's own rule is accurate for c = x_i (resp. -x_i)
+// and evaluates product points elsewhere, so a pair is needed if row i reads it at j's panel
+// or row j at i's. H(x_i ∓ x_j) is symmetric in (i, j): each pair is evaluated once (the
+// pairs both rows integrate by product rules, within and next to the diagonal panels, not at
+// all).
+static void nystrom_values(const KernelSource& kernel, const Layout& layout, const RowBuilder& builder,
+                           double* h_minus, double* h_plus) {
+  const std::size_t n = layout.x.size(), p = static_cast<std::size_t>(layout.p), panels = layout.panels.size();
+  std::vector<char> minus_read(n * panels), plus_read(n * panels);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t q = 0; q < panels; ++q) {
+      minus_read[i * panels + q] = builder.nystrom_accurate(layout.x[i], layout.panels[q]);
+      plus_read[i * panels + q] = builder.nystrom_accurate(-layout.x[i], layout.panels[q]);
+    }
+  }
+  auto minus_needed = [&](std::size_t i, std::size_t j) {
+    return minus_read[i * panels + j / p] || minus_read[j * panels + i / p];
+  };
+  auto plus_needed = [&](std::size_t i, std::size_t j) {
+    return plus_read[i * panels + j / p] || plus_read[j * panels + i / p];
+  };
+  std::vector<double> u, h;
+  u.reserve(n * (n + 1));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      if (minus_needed(i, j)) u.push_back(layout.x[i] - layout.x[j]);
+      if (plus_needed(i, j)) u.push_back(layout.x[i] + layout.x[j]);
+    }
+  }
+  h.resize(u.size());
+  kernel.evaluate(u.size(), u.data(), h.data());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      if (minus_needed(i, j)) h_minus[i * n + j] = h_minus[j * n + i] = h[k++];
+      if (plus_needed(i, j)) h_plus[i * n + j] = h_plus[j * n + i] = h[k++];
+    }
+  }
+}
+
 // The panels' lengths are set for H analytic in |Im u| < 2 (one film); a stack's H is
 // analytic only in |Im u| < 2 h_top/T (THEORY.md section 12), so its edge singularities of
 // gamma are nearer the axis and the panels shrink with the strip (unchanged for one film).
@@ -332,28 +373,9 @@ FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discr
   RowBuilder builder(kernel, layout_, disc);
 
   // A = I + K (column-major), and the row of K at the edge x = ã for the edge values.
-  // H(x_i - x_j) and H(x_i + x_j) are symmetric in (i, j): evaluate each pair once.
-  // (Not zeroed: every entry is written below.)
+  // (Not zeroed: every entry a row reads is written.)
   std::unique_ptr<double[]> h_minus(new double[n * n]), h_plus(new double[n * n]);
-  {
-    const std::size_t pairs = n * (n + 1);
-    std::unique_ptr<double[]> u(new double[pairs]), h(new double[pairs]);
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i; j < n; ++j, k += 2) {
-        u[k] = layout_.x[i] - layout_.x[j];
-        u[k + 1] = layout_.x[i] + layout_.x[j];
-      }
-    }
-    kernel.evaluate(pairs, u.get(), h.get());
-    k = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i; j < n; ++j, k += 2) {
-        h_minus[i * n + j] = h_minus[j * n + i] = h[k];
-        h_plus[i * n + j] = h_plus[j * n + i] = h[k + 1];
-      }
-    }
-  }
+  nystrom_values(kernel, layout_, builder, h_minus.get(), h_plus.get());
   lu_.resize(n * n);
   std::vector<double> row(n);
   for (std::size_t i = 0; i < n; ++i) {
