@@ -433,7 +433,7 @@ contains
     real(c_double), pointer :: h1s(:)
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table) .or. n < 0) return
-    if (any(u /= u) .or. any(abs(u) > huge(1.0_dp))) return   ! NaN or infinite
+    if (.not. all(abs(u) <= huge(1.0_dp))) return   ! NaN or infinite (one pass: false for NaN)
     call c_f_pointer(table, t)
     if (c_associated(h1)) then
       if (.not. t%has_h1) return                  ! compact tables hold H only
