@@ -768,9 +768,10 @@ contains
 
   ! H at many points (the solver's batches): evaluate_kernel_h's values to the last bit. For the
   ! default 12-point stencil the Lagrange basis (lagrange_basis_12's operations in its order) is
-  ! computed for a chunk of points in one loop of scalars, which the compiler vectorizes across
-  ! points, then each sum (stencil_sum_12's order; near u = 0 the nodes at |k|, H being even, as
-  ! node_value), then the nodes themselves (t = 0) and the far field (v > u_max) put in.
+  ! computed for a chunk of tabulated points in one loop of scalars, which the compiler
+  ! vectorizes across points, then each sum (stencil_sum_12's order; near u = 0 the nodes at
+  ! |k|, H being even, as node_value; a node itself, t = 0, read). Far-field points (v > u_max)
+  ! are left out of the chunks and summed point by point, as look_up does.
   subroutine evaluate_kernel_h_many(table, u, h)
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u(:)
@@ -781,7 +782,7 @@ contains
     real(dp) :: q0, q1, q2, q3, q4, q5, r01, r23, r45, o0, o1, o2, o3, o4, o5
     real(dp) :: y0, y1, y2, y3, y4, y5, v, t, h1, u_max, du
     real(dp) :: ell(chunk, 0:11), offset(chunk), uu(chunk)
-    integer :: i(chunk), k, first, count
+    integer :: i(chunk), at(chunk), k, first, count
 
     if (table%stencil /= 12 .or. table%stencil_left /= 5) then
       h = evaluate_kernel_h(table, u)
@@ -801,13 +802,25 @@ contains
     w9 = table%lagrange_weight(9)
     w10 = table%lagrange_weight(10)
     w11 = table%lagrange_weight(11)
-    do first = 1, size(u), chunk
-      count = min(chunk, size(u) - first + 1)
-      uu(1:count) = u(first:first + count - 1)
+    first = 1
+    do while (first <= size(u))
+      ! The next chunk of points in the table (uu, at their indices `at`); the far field, past
+      ! u_max, directly.
+      count = 0
+      do while (first <= size(u) .and. count < chunk)
+        v = abs(u(first))
+        if (v <= u_max) then
+          count = count + 1
+          uu(count) = v
+          at(count) = first
+        else
+          call far_field(table, v, .false., h(first), h1)
+        end if
+        first = first + 1
+      end do
       uu(count + 1:chunk) = 0.0_dp
       do k = 1, chunk
-        ! Far-field points are interpolated at u_max (in the table) and replaced below.
-        t = min(abs(uu(k)), u_max) / du
+        t = uu(k) / du
         i(k) = int(t)
         t = t - real(i(k), dp)
         offset(k) = t
@@ -853,7 +866,7 @@ contains
       end do
       do k = 1, count
         if (offset(k) == 0.0_dp) then
-          h(first + k - 1) = table%h(i(k))
+          h(at(k)) = table%h(i(k))
           cycle
         end if
         y0 = ell(k, 5) * table%h(i(k)) + ell(k, 6) * table%h(i(k) + 1)
@@ -862,12 +875,8 @@ contains
         y3 = ell(k, 2) * table%h(abs(i(k) - 3)) + ell(k, 9) * table%h(i(k) + 4)
         y4 = ell(k, 1) * table%h(abs(i(k) - 4)) + ell(k, 10) * table%h(i(k) + 5)
         y5 = ell(k, 0) * table%h(abs(i(k) - 5)) + ell(k, 11) * table%h(i(k) + 6)
-        h(first + k - 1) = ((y0 + y1) + (y2 + y3)) + (y4 + y5)
+        h(at(k)) = ((y0 + y1) + (y2 + y3)) + (y4 + y5)
       end do
-    end do
-    do k = 1, size(u)
-      v = abs(u(k))
-      if (v > u_max) call far_field(table, v, .false., h(k), h1)
     end do
   end subroutine evaluate_kernel_h_many
 
