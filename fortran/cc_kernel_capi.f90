@@ -11,7 +11,7 @@ module cc_kernel_capi
                                   CC_ERR_ACCURACY, CC_ERR_THICKNESS, CC_INTERRUPTED
   use cc_compliance_models, only: compliance, compliance_minus_one, compliance_taylor, max_taylor_order
   use cc_kernel_tables, only: kernel_table, build_kernel_table_variant, evaluate_kernel_table, &
-                              evaluate_kernel_h, n_grid_variants, build_stack_kernel_table_variant, &
+                              evaluate_kernel_h_many, n_grid_variants, build_stack_kernel_table_variant, &
                               max_stack_refine
   use cc_multilayer_compliance, only: layer_stack, make_layer_stack, stack_compliance, &
                                       stack_compliance_minus_one, max_stack_layers
@@ -433,14 +433,14 @@ contains
     real(c_double), pointer :: h1s(:)
     status = CC_ERR_ARGUMENT
     if (.not. c_associated(table) .or. n < 0) return
-    if (any(u /= u) .or. any(abs(u) > huge(1.0_dp))) return   ! NaN or infinite
+    if (.not. all(abs(u) <= huge(1.0_dp))) return   ! NaN or infinite (one pass: false for NaN)
     call c_f_pointer(table, t)
     if (c_associated(h1)) then
       if (.not. t%has_h1) return                  ! compact tables hold H only
       call c_f_pointer(h1, h1s, [n])
       call evaluate_kernel_table(t, u, h, h1s)
     else
-      h = evaluate_kernel_h(t, u)                 ! H alone: the same values, half the work
+      call evaluate_kernel_h_many(t, u, h)        ! H alone: the same values, half the work
     end if
     status = CC_OK
   end function capi_kernel_table_eval

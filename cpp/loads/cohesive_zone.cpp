@@ -151,8 +151,12 @@ void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRul
   const std::size_t p = static_cast<std::size_t>(q.points_per_piece);
   const std::size_t pieces = rule.piece_s.size() - 1;
   const double w = kernel.analytic_half_width();
-  // how[k * pieces + j]: how node k integrates piece j.
-  std::vector<char> how(m * pieces);
+  // how[k * pieces + j]: how node k integrates piece j. Scratch per thread (a table node
+  // calls this once; the allocations were ~2 % of it).
+  thread_local std::vector<char> how;
+  thread_local std::vector<double> u, h, minus, plus;
+  thread_local AnnulusRule sub;
+  how.resize(m * pieces);
   for (std::size_t k = 0; k < m; ++k) {
     const std::complex<double> near = std::acos(std::complex<double>(rule.y[k], w) / c);
     const std::complex<double> mirror = std::acos(std::complex<double>(-rule.y[k], w) / c);
@@ -170,8 +174,7 @@ void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRul
   auto plus_read = [&](std::size_t k, std::size_t l) {
     return how[k * pieces + l / p] != kSplitBoth || how[l * pieces + k / p] != kSplitBoth;
   };
-  std::vector<double> u, h;
-  u.reserve(m * (m + 1));
+  u.clear();
   for (std::size_t k = 0; k < m; ++k) {
     for (std::size_t l = 0; l <= k; ++l) {
       if (minus_read(k, l)) u.push_back(rule.y[k] - rule.y[l]);
@@ -180,7 +183,8 @@ void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRul
   }
   h.resize(u.size());
   kernel.evaluate(u.size(), u.data(), h.data());
-  std::vector<double> minus(m * m), plus(m * m);  // H(y_k - y_l), H(y_k + y_l)
+  minus.resize(m * m);  // H(y_k - y_l), entries no node reads left unset
+  plus.resize(m * m);   // H(y_k + y_l)
   std::size_t at = 0;
   for (std::size_t k = 0; k < m; ++k) {
     for (std::size_t l = 0; l <= k; ++l) {
@@ -188,7 +192,6 @@ void kernel_sums_at_nodes(const KernelSource& kernel, double c, const AnnulusRul
       if (plus_read(k, l)) plus[k * m + l] = plus[l * m + k] = h[at++];
     }
   }
-  AnnulusRule sub;
   for (std::size_t k = 0; k < m; ++k) {
     const double s_k = c - rule.y[k];
     double sum = 0.0;
@@ -295,7 +298,8 @@ void CohesiveZone::factor(const Discretization& disc) {
     throw InputError("cohesive zone: contact radius a/t = " + short_text(a) + " not allowed");
   }
   if (a == 0.0) return;
-  system_ = std::make_unique<FactoredSystem>(kernel_, a, disc);
+  // The zone uses the solutions alone: no condition estimate.
+  system_ = std::make_unique<FactoredSystem>(kernel_, a, disc, false);
   const std::size_t n = system_->size();
   const Layout& layout = system_->layout();
   // Flat punch θ = 1 and the shape θ = -δ0(x) (sphere: -x²/R; THEORY.md sections 5 and 11),
@@ -348,7 +352,9 @@ void CohesiveZone::pass(double excess, Pass& p) const {
     // of H(x_i + y_k).
     const Layout& layout = system_->layout();
     const std::size_t stride = 2 * (n + 1);
-    std::vector<double> u(m * stride), h(m * stride);
+    thread_local std::vector<double> u, h;  // scratch per thread, as kernel_sums_at_nodes'
+    u.resize(m * stride);
+    h.resize(m * stride);
     for (std::size_t k = 0; k < m; ++k) {
       double* minus = &u[k * stride];
       const double y = p.outer.y[k];
@@ -438,7 +444,7 @@ CohesiveState CohesiveZone::evaluate(double sigma_hat, double excess) const {
 CohesiveFunctions CohesiveZone::functions(double excess) const {
   const double a = a_;
   const double R = radius_;
-  Pass p;
+  thread_local Pass p;  // its vectors kept per thread: pass() sets every field this reads
   pass(excess, p);
   const double c = p.c, root = p.root, phi_end = p.phi_end;
   const std::size_t m = p.outer.y.size();

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "coatcontact/detail/constants.hpp"
@@ -15,6 +17,8 @@
 #include "coatcontact/errors.hpp"
 
 namespace coatcontact::detail {
+
+static_assert(std::is_same_v<lapack_int, int>, "pivots_ (factored_system.hpp) are stored as int");
 
 namespace {
 
@@ -308,6 +312,47 @@ class RowBuilder {
 
 }  // namespace
 
+// H(x_i - x_j) and H(x_i + x_j) into h_minus/h_plus[i n + j] for the pairs that a row reads:
+// row i takes panel P's Nyström values where P's own rule is accurate for c = x_i (resp. -x_i)
+// and evaluates product points elsewhere, so a pair is needed if row i reads it at j's panel
+// or row j at i's. H(x_i ∓ x_j) is symmetric in (i, j): each pair is evaluated once (the
+// pairs both rows integrate by product rules, within and next to the diagonal panels, not at
+// all).
+static void nystrom_values(const KernelSource& kernel, const Layout& layout, const RowBuilder& builder,
+                           double* h_minus, double* h_plus) {
+  const std::size_t n = layout.x.size(), p = static_cast<std::size_t>(layout.p), panels = layout.panels.size();
+  std::vector<char> minus_read(n * panels), plus_read(n * panels);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t q = 0; q < panels; ++q) {
+      minus_read[i * panels + q] = builder.nystrom_accurate(layout.x[i], layout.panels[q]);
+      plus_read[i * panels + q] = builder.nystrom_accurate(-layout.x[i], layout.panels[q]);
+    }
+  }
+  auto minus_needed = [&](std::size_t i, std::size_t j) {
+    return minus_read[i * panels + j / p] || minus_read[j * panels + i / p];
+  };
+  auto plus_needed = [&](std::size_t i, std::size_t j) {
+    return plus_read[i * panels + j / p] || plus_read[j * panels + i / p];
+  };
+  std::vector<double> u, h;
+  u.reserve(n * (n + 1));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      if (minus_needed(i, j)) u.push_back(layout.x[i] - layout.x[j]);
+      if (plus_needed(i, j)) u.push_back(layout.x[i] + layout.x[j]);
+    }
+  }
+  h.resize(u.size());
+  kernel.evaluate(u.size(), u.data(), h.data());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      if (minus_needed(i, j)) h_minus[i * n + j] = h_minus[j * n + i] = h[k++];
+      if (plus_needed(i, j)) h_plus[i * n + j] = h_plus[j * n + i] = h[k++];
+    }
+  }
+}
+
 // The panels' lengths are set for H analytic in |Im u| < 2 (one film); a stack's H is
 // analytic only in |Im u| < 2 h_top/T (THEORY.md section 12), so its edge singularities of
 // gamma are nearer the axis and the panels shrink with the strip (unchanged for one film).
@@ -320,35 +365,17 @@ static Discretization scaled_to_strip(const KernelSource& kernel, const Discreti
   return scaled;
 }
 
-FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discretization& disc)
+FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discretization& disc,
+                               bool estimate_condition)
     : a_(a), kernel_(&kernel), disc_(disc), layout_(make_layout(a, scaled_to_strip(kernel, disc))) {
   const std::size_t n = layout_.x.size();
   const lapack_int nn = static_cast<lapack_int>(n);
   RowBuilder builder(kernel, layout_, disc);
 
   // A = I + K (column-major), and the row of K at the edge x = ã for the edge values.
-  // H(x_i - x_j) and H(x_i + x_j) are symmetric in (i, j): evaluate each pair once.
-  // (Not zeroed: every entry is written below.)
+  // (Not zeroed: every entry a row reads is written.)
   std::unique_ptr<double[]> h_minus(new double[n * n]), h_plus(new double[n * n]);
-  {
-    const std::size_t pairs = n * (n + 1);
-    std::unique_ptr<double[]> u(new double[pairs]), h(new double[pairs]);
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i; j < n; ++j, k += 2) {
-        u[k] = layout_.x[i] - layout_.x[j];
-        u[k + 1] = layout_.x[i] + layout_.x[j];
-      }
-    }
-    kernel.evaluate(pairs, u.get(), h.get());
-    k = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i; j < n; ++j, k += 2) {
-        h_minus[i * n + j] = h_minus[j * n + i] = h[k];
-        h_plus[i * n + j] = h_plus[j * n + i] = h[k + 1];
-      }
-    }
-  }
+  nystrom_values(kernel, layout_, builder, h_minus.get(), h_plus.get());
   lu_.resize(n * n);
   std::vector<double> row(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -379,19 +406,28 @@ FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discr
 
   std::vector<lapack_int> pivots(n);
   // LAPACKE's NaN scans of the matrix (before dgetrf and dgecon) are done here once, as the
-  // row sums above (LAPACKE_dgetrf reports a NaN as info -4).
-  lapack_int info = has_nan ? -4 : LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, nn, nn, lu_.data(), nn, pivots.data());
+  // row sums above (LAPACKE_dgetrf reports a NaN as info -4). The unblocked dgetf2: below
+  // LAPACK's block size dgetrf runs the recursive dgetrf2, whose small dtrsm and dgemm calls
+  // cost 1.2-2.5x dgetf2's rank-1 updates at these sizes (n = 14-170, reference BLAS; the same
+  // factors to the last bit there, the same updates in the same order). Large systems keep
+  // the blocked dgetrf.
+  constexpr std::size_t kUnblockedLimit = 256;
+  lapack_int info = has_nan          ? -4
+                    : n <= kUnblockedLimit ? LAPACKE_dgetf2_work(LAPACK_COL_MAJOR, nn, nn, lu_.data(), nn, pivots.data())
+                                           : LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, nn, nn, lu_.data(), nn, pivots.data());
   if (info != 0) {
     throw NumericalError("reduced solver: singular linear system at a/t = " + describe(a) +
-                         " (dgetrf info " + std::to_string(info) + ")");
+                         " (LU info " + std::to_string(info) + ")");
   }
-  {
+  if (!estimate_condition) {
+    rcond_ = std::numeric_limits<double>::quiet_NaN();
+  } else {
     std::vector<double> work(4 * n);
     std::vector<lapack_int> iwork(n);
     info = LAPACKE_dgecon_work(LAPACK_COL_MAJOR, 'I', nn, lu_.data(), nn, norm_inf_, &rcond_,
                                work.data(), iwork.data());
   }
-  if (info != 0 || !(rcond_ > 0.0)) {
+  if (estimate_condition && (info != 0 || !(rcond_ > 0.0))) {
     throw NumericalError("reduced solver: condition estimate failed at a/t = " + describe(a));
   }
   pivots_.assign(pivots.begin(), pivots.end());
@@ -399,9 +435,13 @@ FactoredSystem::FactoredSystem(const KernelSource& kernel, double a, const Discr
 
 void FactoredSystem::solve(double* columns, std::size_t count) const {
   const lapack_int nn = static_cast<lapack_int>(size());
-  std::vector<lapack_int> pivots(pivots_.begin(), pivots_.end());
-  const lapack_int info = LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', nn, static_cast<lapack_int>(count),
-                                         lu_.data(), nn, pivots.data(), columns, nn);
+  // The _work form: LAPACKE_dgetrs scans the factors and the right-hand sides for NaN at
+  // every call (~1.5 % of a Maugis-Dugdale fit, one call per table node); the factors were
+  // checked once before dgetrf, and a NaN right-hand side gives a NaN solution, which every
+  // caller rejects as a non-finite result.
+  const lapack_int info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nn, static_cast<lapack_int>(count),
+                                              lu_.data(), nn, reinterpret_cast<const lapack_int*>(pivots_.data()),
+                                              columns, nn);
   if (info != 0) {
     throw NumericalError("reduced solver: dgetrs failed at a/t = " + describe(a_));
   }

@@ -30,11 +30,14 @@ struct Layout {
   std::vector<double> from_moments;
 };
 
-// I + K for one contact radius ã, factored once (LAPACK dgetrf).
+// I + K for one contact radius ã, factored once (LAPACK dgetf2, dgetrf for large systems).
 class FactoredSystem {
  public:
   // Throws NumericalError if the matrix is singular or its condition cannot be estimated.
-  FactoredSystem(const KernelSource& kernel, double a, const Discretization& disc);
+  // estimate_condition = false: no dgecon (a user of the solutions alone, as the cohesive
+  // zone's table nodes: ~8 % of a factorization); inverse_norm() and reciprocal_condition()
+  // are then NaN.
+  FactoredSystem(const KernelSource& kernel, double a, const Discretization& disc, bool estimate_condition = true);
 
   std::size_t size() const { return layout_.x.size(); }
   const Layout& layout() const { return layout_; }

@@ -3,7 +3,8 @@
 // the sum rule equal those of the table with H1 bit for bit, on every grid variant the solver
 // uses, for a film on an elastic and on a rigid base and for a 3-layer stack; H1 is refused.
 // Bit for bit because the solver's printed values must not change (THEORY.md section 4: H and
-// H1 are separate transforms of the same samples).
+// H1 are separate transforms of the same samples). The H-only evaluation is also the batched
+// one, checked here against the point-by-point evaluation of the table with H1.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -31,13 +32,29 @@ void compare(const std::string& name, const Stack& stack, int variant) {
               what + ": the same grid, sum rule and accuracy");
   std::vector<double> u;
   for (double x = -30.0; x <= 1.5 * a.u_max; x += 0.0731) u.push_back(x);  // nodes between, series beyond
-  std::vector<double> ha, hb;
-  full.eval(u, ha);
+  // The H-only path evaluates in chunks (cc_kernel_tables.f90, evaluate_kernel_h_many): the
+  // nodes themselves (t = 0), the reflected stencil within 5 steps of u = 0, u_max on both
+  // sides, and table and far-field points interleaved (the far ones are kept out of a chunk).
+  for (int k = -8; k <= 8; ++k) {
+    u.push_back(k * a.du);
+    u.push_back((k + 0.37) * a.du);
+  }
+  for (double x : {a.u_max, std::nextafter(a.u_max, 0.0), std::nextafter(a.u_max, 2.0 * a.u_max)}) u.push_back(x);
+  for (int k = 0; k < 300; ++k) u.push_back(k % 3 == 0 ? (1.0 + 0.01 * k) * a.u_max : 0.013 * k - 2.0);
+  // ha: with H1, point by point (evaluate_kernel_table); hb, hc: H alone, batched, on either table.
+  std::vector<double> ha, ha1, hb, hc;
+  full.eval(u, ha, ha1);
   h_only.eval(u, hb);
-  std::size_t differing = 0;
-  for (std::size_t i = 0; i < u.size(); ++i) differing += ha[i] == hb[i] ? 0 : 1;
+  full.eval(u, hc);
+  std::size_t differing = 0, differing_batch = 0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    differing += ha[i] == hb[i] ? 0 : 1;
+    differing_batch += ha[i] == hc[i] ? 0 : 1;
+  }
   check::that(differing == 0, what + ": H equal at " + std::to_string(u.size()) + " points (" +
                                   std::to_string(differing) + " differ)");
+  check::that(differing_batch == 0, what + ": H alone (batched) equal to H with H1 at " + std::to_string(u.size()) +
+                                        " points (" + std::to_string(differing_batch) + " differ)");
   std::vector<double> h(1), h1(1);
   bool refused = false;
   try {
