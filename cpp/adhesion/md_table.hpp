@@ -83,9 +83,12 @@ struct MdTableOptions {
   // side (the splines' end conditions decay over a few nodes; the error estimate sees what is
   // left, since the coarse spline's end error is the larger). The 1-D functions, cheap, keep
   // a margin of at least 2 (with 1, the curve's end on a rigid base missed its estimate by
-  // 1e-10 relative where the function is flat).
+  // 1e-10 relative where the function is flat). The 2-D tiles keep 2 as well: with 1, the
+  // splines of neighbouring tiles disagree at their edges (within the estimate) by enough to
+  // move a real AFM fit by 0.19 SE from one spline through the same nodes; with 2, <= 0.018 SE
+  // (docs/speed.md, "2-D tile margins of 2 cells? (mdmargin37)").
   int tile_cells = 4;
-  int margin_cells = 1;
+  int margin_cells = 2;
   // Gauss points per annulus piece at the table's nodes (at most the model's): 8 bounds the
   // quadrature's error by ~4^-16 ~ 2e-10 (THEORY.md section 13), far below the interpolation's;
   // measured, pull-offs move by <= 2.4e-13 from the 10-point nodes, at 0.7 of their cost (6
