@@ -32,12 +32,6 @@ constexpr double kValueTier = tier::kMachine;
 // node values by ~order^2 = 576: 600 * 2.2e-16 ~ 1.3e-13 in d ln X/d ln(a/t).
 constexpr double kDerivativeTier = tier::kAmplified;
 
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
 double jkr_load(double a) { return 4.0 / 3.0 * a * a * a - 2.0 * std::sqrt(2.0) * std::pow(a, 1.5); }
 double jkr_pen(double a) { return a * a - std::sqrt(2.0 * a); }
 }  // namespace
@@ -60,7 +54,7 @@ int main() {
       worst_dd = std::max(worst_dd, rel(p.dpenetration, 2 * a - 1 / std::sqrt(2.0 * a)));
       check::close(p.a_over_t, a / eta, tier::kRounding, "a_over_t = a_bar/eta");
     }
-    const std::string at = " (eta=" + g(eta) + ")";
+    const std::string at = " (eta=" + check::text(eta) + ")";
     check::below(worst_p, tier::kMachine, "JKR P worst error" + at);
     check::below(worst_d, tier::kMachine, "JKR D worst error" + at);
     check::below(worst_dp, kDerivativeTier, "JKR dP/da worst error" + at);
@@ -73,7 +67,7 @@ int main() {
   const double a_load = std::cbrt(9.0 / 8.0);
   for (double eta : {0.01, 1.0, 100.0}) {
     const auto po = model.pulloff(eta);
-    const std::string at = " (eta=" + g(eta) + ")";
+    const std::string at = " (eta=" + check::text(eta) + ")";
     check::close(po.load_control.a_bar, a_load, kLocationTier, "load-control a_bar" + at);
     check::close(po.load_control.load, -1.5, kValueTier, "load-control P = -3/2" + at);
     check::close(po.load_control.penetration, jkr_pen(a_load), kValueTier, "load-control D" + at, 1.0);
@@ -118,9 +112,9 @@ int main() {
       const double f_jkr = 4 * e_star * a * a * a / (3 * radius) - std::sqrt(8 * M_PI * work * e_star) * std::pow(a, 1.5);
       const double d_jkr = a * a / radius - std::sqrt(2 * M_PI * work * a / e_star);
       check::close(sphere.force(a) / std::abs(f_jkr), f_jkr / std::abs(f_jkr), tier::kAmplified,
-                   "SI force / JKR at a=" + g(a));
+                   "SI force / JKR at a=" + check::text(a));
       check::close(sphere.penetration(a) / std::abs(d_jkr), d_jkr / std::abs(d_jkr), tier::kAmplified,
-                   "SI penetration / JKR at a=" + g(a));
+                   "SI penetration / JKR at a=" + check::text(a));
     }
     check::close(sphere.pulloff_force_load() / (M_PI * work * radius), -1.5, kValueTier,
                  "SI pull-off (load) / (pi w R)");

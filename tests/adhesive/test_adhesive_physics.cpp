@@ -22,11 +22,6 @@ using coatcontact::AdhesiveModel;
 namespace {
 using coatcontact::test::elastic;
 using coatcontact::test::material;
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 // Limits eta -> 0 and eta -> inf are approached with corrections in t/a resp. a/t at the
 // pull-off. Measured |P_load + 3/2| (nu = 0.25): soft film 0.1: 0.105 (eta=1e-2), 0.020
 // (1e-3), 7e-4 (10), 7e-7 (100); stiff film 10: 0.016 (1e-2), 0.0027 (1e-3), 0.002 (10).
@@ -46,14 +41,14 @@ int main() {
   for (double ratio : {0.1, 10.0}) {
     const coatcontact::ReducedSolver solver(coatcontact::Stack::film_on(material(1e9 * ratio, nu), elastic(1e9, nu)));
     AdhesiveModel model(solver);
-    const std::string at = " E1*/E0*=" + g(ratio);
+    const std::string at = " E1*/E0*=" + check::text(ratio);
     std::map<double, double> load_at;
     for (double eta : {1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1000.0}) {
       coatcontact::Pulloff po;
       try {
         po = model.pulloff(eta);
       } catch (const coatcontact::NumericalError& e) {
-        check::that(false, "pull-off" + at + " eta=" + g(eta) + ": " + e.what());
+        check::that(false, "pull-off" + at + " eta=" + check::text(eta) + ": " + e.what());
         continue;
       }
       std::printf("     %s eta=%-6g P_load %.10f (a_bar %.6f)  P_disp %.10f (a_bar %.6f) %s\n", at.c_str(), eta,
@@ -62,9 +57,9 @@ int main() {
       for (const auto& w : po.warnings) std::printf("       warning: %s\n", w.c_str());
       check::that(po.load_control.single_minimum && po.load_control.interior &&
                       po.displacement_control.single_minimum && po.displacement_control.interior,
-                  "single interior minima" + at + " eta=" + g(eta));
+                  "single interior minima" + at + " eta=" + check::text(eta));
       if (eta == 1e-3 || eta == 1000.0) {
-        check::close(po.load_control.load, -1.5, kLimitTier, "P_load -> -3/2" + at + " eta=" + g(eta));
+        check::close(po.load_control.load, -1.5, kLimitTier, "P_load -> -3/2" + at + " eta=" + check::text(eta));
       }
       if (eta == 1e-3) {
         check::close(po.load_control.a_bar, std::cbrt(9.0 / 8.0 * ratio), kLimitTier * 3,

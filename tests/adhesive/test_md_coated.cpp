@@ -23,11 +23,6 @@
 using namespace coatcontact;
 
 namespace {
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 Stack film_on(double e1, double e0) {
   Material film, base;
   film.youngs_modulus = e1;
@@ -55,7 +50,7 @@ int main() {
       const double d = p - p_jkr;
       std::printf("JKR limit: lambda=%g P_MD=%.12f P_JKR=%.12f difference %.4e (x lambda^2 = %.5f)\n", lambda, p,
                   p_jkr, d, d * lambda * lambda);
-      check::that(d < 0.0, "MD pull-off below JKR at lambda=" + g(lambda));
+      check::that(d < 0.0, "MD pull-off below JKR at lambda=" + check::text(lambda));
       x.push_back(std::log(lambda));
       y.push_back(std::log(std::abs(d)));
     }
@@ -78,7 +73,7 @@ int main() {
     for (const Case& c : cases) {
       const MaugisDugdaleModel best(*c.stack, fine);
       const MaugisDugdalePoint want = best.point(c.eta, c.lambda, c.a_bar);
-      const std::string at = " eta=" + g(c.eta) + " lambda=" + g(c.lambda) + " a_bar=" + g(c.a_bar);
+      const std::string at = " eta=" + check::text(c.eta) + " lambda=" + check::text(c.lambda) + " a_bar=" + check::text(c.a_bar);
       double previous = 1.0;
       for (int level : {8, 12, 20}) {
         MaugisDugdaleOptions o;
@@ -129,8 +124,8 @@ int main() {
         if (k > 0 && (f > 0.0) != (last > 0.0)) ++changes;
         last = f;
       }
-      check::that(changes == 1, "one sign change of h(c) - h0 (eta=" + g(c.eta) + " lambda=" + g(c.lambda) +
-                              " a_bar=" + g(c.a_bar) + "): " + std::to_string(changes));
+      check::that(changes == 1, "one sign change of h(c) - h0 (eta=" + check::text(c.eta) + " lambda=" + check::text(c.lambda) +
+                              " a_bar=" + check::text(c.a_bar) + "): " + std::to_string(changes));
     }
   }
 
@@ -140,9 +135,9 @@ int main() {
     for (double lambda : {0.1, 1.0, 5.0}) {
       const MaugisDugdalePoint end = md.point(0.5, lambda, 0.0);
       const MaugisDugdalePoint near = md.point(0.5, lambda, 1e-7);
-      check::that(std::isfinite(end.load) && std::isfinite(end.penetration) && end.c_bar > 0.0, "end of the curve finite, stiff film lambda=" + g(lambda));
-      check::close(near.load, end.load, kEndOfCurveTier, "P(a_bar=1e-7) -> P(a -> 0), stiff film lambda=" + g(lambda), 1.0);
-      check::close(near.penetration, end.penetration, kEndOfCurveTier, "D(a_bar=1e-7) -> D(a -> 0), stiff film lambda=" + g(lambda), 1.0);
+      check::that(std::isfinite(end.load) && std::isfinite(end.penetration) && end.c_bar > 0.0, "end of the curve finite, stiff film lambda=" + check::text(lambda));
+      check::close(near.load, end.load, kEndOfCurveTier, "P(a_bar=1e-7) -> P(a -> 0), stiff film lambda=" + check::text(lambda), 1.0);
+      check::close(near.penetration, end.penetration, kEndOfCurveTier, "D(a_bar=1e-7) -> D(a -> 0), stiff film lambda=" + check::text(lambda), 1.0);
     }
   }
   return check::exit_code();

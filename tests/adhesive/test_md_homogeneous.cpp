@@ -20,14 +20,6 @@
 
 using namespace coatcontact;
 
-namespace {
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-}  // namespace
-
 int main() {
   Material film;
   film.youngs_modulus = 1.0;
@@ -43,7 +35,7 @@ int main() {
     for (double a_m : {0.05, 0.1, 0.3, 0.6, 1.0, 1.5}) {
       const MaugisDugdalePoint p = model.point(eta, lambda, a_m / k13);
       const maugis::State want = maugis::solve(lambda, a_m);
-      const std::string at = "lambda=" + g(lambda) + " a_M=" + g(a_m);
+      const std::string at = "lambda=" + check::text(lambda) + " a_M=" + check::text(a_m);
       check::close(p.m, want.m, kClosedFormTier, "m " + at, 1.0);
       check::close(p.load, want.load, kClosedFormTier, "P " + at, 1.0);
       check::close(p.penetration * k23, want.penetration, kClosedFormTier, "Delta_M " + at, 1.0);
@@ -53,11 +45,11 @@ int main() {
     // The end of the curve, and its approach (c stays finite, m ~ c/a).
     const MaugisDugdalePoint end = model.point(eta, lambda, 0.0);
     const maugis::State want_end = maugis::end_of_curve(lambda);
-    check::that(std::isinf(end.m) && std::isfinite(end.load) && std::isfinite(end.penetration), "end of the curve lambda=" + g(lambda) + ": m infinite, P and D finite");
-    check::close(end.load, want_end.load, kClosedFormTier, "P(a -> 0) lambda=" + g(lambda), 1.0);
-    check::close(end.penetration * k23, want_end.penetration, kClosedFormTier, "Delta_M(a -> 0) lambda=" + g(lambda), 1.0);
+    check::that(std::isinf(end.m) && std::isfinite(end.load) && std::isfinite(end.penetration), "end of the curve lambda=" + check::text(lambda) + ": m infinite, P and D finite");
+    check::close(end.load, want_end.load, kClosedFormTier, "P(a -> 0) lambda=" + check::text(lambda), 1.0);
+    check::close(end.penetration * k23, want_end.penetration, kClosedFormTier, "Delta_M(a -> 0) lambda=" + check::text(lambda), 1.0);
     const MaugisDugdalePoint near = model.point(eta, lambda, 1e-7);
-    check::close(near.load, end.load, kEndOfCurveTier, "P(a_bar = 1e-7) -> P(a -> 0) lambda=" + g(lambda), 1.0);
+    check::close(near.load, end.load, kEndOfCurveTier, "P(a_bar = 1e-7) -> P(a -> 0) lambda=" + check::text(lambda), 1.0);
   }
   std::printf("worst homogeneous error over the grid: %.2e\n", worst);
 
@@ -67,12 +59,12 @@ int main() {
   for (const auto& row : published) {
     const MaugisDugdalePulloff r = model.pulloff(eta, row[0]);
     const double want = maugis::pulloff_load(row[0]);
-    check::close(r.load_control.point.load, row[1], kPublishedDigitsTier, "pull-off lambda=" + g(row[0]) + " vs Maugis", 1.0);
-    check::close(r.load_control.point.load, want, kClosedFormTier, "pull-off lambda=" + g(row[0]) + " vs closed form", 1.0);
-    check::that(r.load_control.interior, "pull-off lambda=" + g(row[0]) + " is a stationary point");
+    check::close(r.load_control.point.load, row[1], kPublishedDigitsTier, "pull-off lambda=" + check::text(row[0]) + " vs Maugis", 1.0);
+    check::close(r.load_control.point.load, want, kClosedFormTier, "pull-off lambda=" + check::text(row[0]) + " vs closed form", 1.0);
+    check::that(r.load_control.interior, "pull-off lambda=" + check::text(row[0]) + " is a stationary point");
     // Location: implicit derivative through c(a) (THEORY.md section 13), against the closed form.
     const double a_m = r.load_control.point.a_bar * k13;
-    check::close(a_m, maugis::pulloff_location(row[0], 0.9 * a_m, 1.1 * a_m), check::tier::kSolver, "pull-off location a_M lambda=" + g(row[0]) + " vs closed form", 1.0);
+    check::close(a_m, maugis::pulloff_location(row[0], 0.9 * a_m, 1.1 * a_m), check::tier::kSolver, "pull-off location a_M lambda=" + check::text(row[0]) + " vs closed form", 1.0);
     check::that(std::isfinite(r.displacement_control.point.load), "displacement-controlled pull-off finite");
   }
 
@@ -82,7 +74,7 @@ int main() {
     const MaugisDugdalePulloff r = model.pulloff(eta, lambda);
     const double deviation = std::abs(r.load_control.point.load + 2.0);
     std::printf("DMT limit: lambda=%g P=%.10f |P + 2| = %.3e\n", lambda, r.load_control.point.load, deviation);
-    check::that(deviation < previous, "DMT limit: |P + 2| decreases at lambda=" + g(lambda));
+    check::that(deviation < previous, "DMT limit: |P + 2| decreases at lambda=" + check::text(lambda));
     previous = deviation;
   }
   check::that(previous < 0.05, "DMT limit: |P + 2| < 0.05 at lambda = 0.01");

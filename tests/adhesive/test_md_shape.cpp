@@ -23,12 +23,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
 Stack film_on(double e1, double nu1, double e0, double nu0) {
   Substrate s;
   s.material = {e0, nu0};
@@ -52,7 +46,7 @@ int main() {
         const detail::CohesiveZone shaped(kernel, a, [radius](double x) { return x * x / radius; }, disc, quadrature);
         for (double excess : {1e-3, 0.3, 20.0}) {
           const double e = a > 0.0 ? excess : excess * 2.0;  // at a = 0: c itself
-          const std::string at = " R=" + g(radius) + " a/t=" + g(a) + " excess=" + g(e);
+          const std::string at = " R=" + check::text(radius) + " a/t=" + check::text(a) + " excess=" + check::text(e);
           const detail::CohesiveState s = sphere.evaluate(0.45, e), p = shaped.evaluate(0.45, e);
           check::close(p.delta, s.delta, check::tier::kAmplified, "paraboloid = sphere: delta" + at, 1e-3);
           check::close(p.force, s.force, check::tier::kAmplified, "paraboloid = sphere: force" + at, 1e-3);
@@ -81,7 +75,7 @@ int main() {
           const double force = 2.0 * (delta * a - 0.5 * k * a * a) - sigma_hat * (c * c * phi - a * root);
           const double gap = 2.0 / kPi * (k * root - delta * phi - sigma_hat * (c - a));
           const detail::CohesiveState st = cone.evaluate(sigma_hat, excess);
-          const std::string at = " k=" + g(k) + " a/t=" + g(a) + " excess=" + g(excess);
+          const std::string at = " k=" + check::text(k) + " a/t=" + check::text(a) + " excess=" + check::text(excess);
           check::close(st.delta, delta, check::tier::kReference, "homogeneous cone: delta" + at, c);
           check::close(st.force, force, check::tier::kReference, "homogeneous cone: force" + at, c * c);
           check::close(st.gap, gap, check::tier::kReference, "homogeneous cone: gap" + at, c);
@@ -98,7 +92,7 @@ int main() {
       const detail::CohesiveZone cone(kernel, a, [k](double x) { return k * x; }, disc, quadrature);
       const detail::CohesiveZone sphere(kernel, a, 1.0, disc, quadrature);
       for (double excess : {1e-3, 0.3, 20.0}) {
-        const std::string at = " a/t=" + g(a) + " excess=" + g(excess);
+        const std::string at = " a/t=" + check::text(a) + " excess=" + check::text(excess);
         const detail::CohesiveFunctions f = cone.functions(excess), fs = sphere.functions(excess);
         for (double sigma_hat : {0.05, 3.0}) {
           const detail::CohesiveState st = cone.evaluate(sigma_hat, excess);

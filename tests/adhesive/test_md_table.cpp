@@ -36,11 +36,6 @@ constexpr double kPi = 3.14159265358979323846;
 // values ~1e-13 relative) is added to the table's error estimate.
 constexpr double kDirectNoise = 1e-11;
 
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 Stack film_on(double e1, double nu1, double e0, double nu0, bool rigid = false) {
   Substrate s;
   s.material = {e0, nu0};
@@ -69,7 +64,7 @@ int main() {
         const double radius = 3.7, sigma_hat = 0.45;
         const detail::CohesiveZone zone(kernel, a, radius, disc, quadrature);
         const detail::CohesiveState st = zone.evaluate(sigma_hat, excess);
-        const std::string at = " a/t=" + g(a) + " c/a-1=" + g(excess);
+        const std::string at = " a/t=" + check::text(a) + " c/a-1=" + check::text(excess);
         const double delta = f.delta_h / radius + sigma_hat * f.d;
         const double force = f.force_h / radius + sigma_hat * f.f;
         const double gap = f.g_r / radius + sigma_hat * f.g_s;
@@ -91,8 +86,8 @@ int main() {
       const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
       const CohesiveFunctions f = detail::cohesive_functions(zone, 0.5);
       const ReducedVariables r = solver.solve(a, 1e-11);
-      check::close(f.delta_h, a * a * r.delta_s, 1e-9, "delta_H = a^2 Delta_s at a/t=" + g(a));
-      check::close(f.force_h, a * a * a * r.pi_s / 2.0, 1e-9, "F_H = a^3 Pi_s/2 at a/t=" + g(a));
+      check::close(f.delta_h, a * a * r.delta_s, 1e-9, "delta_H = a^2 Delta_s at a/t=" + check::text(a));
+      check::close(f.force_h, a * a * a * r.pi_s / 2.0, 1e-9, "F_H = a^3 Pi_s/2 at a/t=" + check::text(a));
     }
   }
 
@@ -105,7 +100,7 @@ int main() {
       for (double excess : {1e-6, 1e-2, 1.0, 1e4}) {
         const CohesiveFunctions f = detail::cohesive_functions(zone, excess);
         const CohesiveFunctions h = detail::homogeneous_functions(a, excess);
-        const std::string at = " a/t=" + g(a) + " c/a-1=" + g(excess);
+        const std::string at = " a/t=" + check::text(a) + " c/a-1=" + check::text(excess);
         for (auto [got, want, name] : {std::tuple{f.d, h.d, "d"}, std::tuple{f.f, h.f, "f"},
                                        std::tuple{f.g_r, h.g_r, "g_R"}, std::tuple{f.g_s, h.g_s, "g_sigma"},
                                        std::tuple{f.delta_h, h.delta_h, "delta_H"},
@@ -130,7 +125,7 @@ int main() {
         const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
         const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
         const auto st = table.solve(sigma_hat, h0, a_bar / eta);
-        const std::string at = " lambda=" + g(lambda) + " a_bar=" + g(a_bar);
+        const std::string at = " lambda=" + check::text(lambda) + " a_bar=" + check::text(a_bar);
         if (!check::that(st.has_value(), "homogeneous table state exists" + at)) continue;
         const maugis::State want = maugis::solve(lambda, k13 * a_bar);
         const double p = eta * eta * eta * st->force, d = eta * eta * st->delta;
@@ -147,7 +142,7 @@ int main() {
       const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
       const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
       const auto st = table.solve_end(sigma_hat, h0);
-      const std::string at = " lambda=" + g(lambda);
+      const std::string at = " lambda=" + check::text(lambda);
       if (!check::that(st.has_value(), "homogeneous end of the curve from the table" + at)) continue;
       const maugis::State want = maugis::end_of_curve(lambda);
       check::close(eta * eta * eta * st->force, want.load, check::tier::kInterpolation,
@@ -187,7 +182,7 @@ int main() {
           const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
           {  // the end of the curve, a = 0
             const auto st = table.solve_end(sigma_hat, h0);
-            const std::string at = std::string(" ") + s.name + " eta=" + g(eta) + " lambda=" + g(lambda) + " a=0";
+            const std::string at = std::string(" ") + s.name + " eta=" + check::text(eta) + " lambda=" + check::text(lambda) + " a=0";
             if (st) {
               const detail::CohesiveZone zone(kernel, 0.0, 1.0, disc, quadrature);
               const detail::CohesiveState want = zone.solve(sigma_hat, h0, st->excess, 0.05);
@@ -211,8 +206,8 @@ int main() {
             }
             const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
             const detail::CohesiveState want = zone.solve(sigma_hat, h0, st->excess, 0.05);
-            const std::string at = std::string(" ") + s.name + " eta=" + g(eta) + " lambda=" + g(lambda) +
-                                   " a_bar=" + g(a_bar);
+            const std::string at = std::string(" ") + s.name + " eta=" + check::text(eta) + " lambda=" + check::text(lambda) +
+                                   " a_bar=" + check::text(a_bar);
             const double e_m = std::abs(st->excess - want.excess);
             const double e_d = std::abs(st->delta - want.delta), e_f = std::abs(st->force - want.force);
             const double b_m = st->excess_error + kDirectNoise * want.excess;
@@ -250,7 +245,7 @@ int main() {
     const MaugisDugdaleModel direct(soft), tabled(soft, with_table);
     for (auto [eta, lambda] : {std::pair{1.0, 1.0}, std::pair{0.3, 0.1}, std::pair{3.0, 10.0}}) {
       const MaugisDugdalePulloff want = direct.pulloff(eta, lambda), got = tabled.pulloff(eta, lambda);
-      const std::string at = " soft film eta=" + g(eta) + " lambda=" + g(lambda);
+      const std::string at = " soft film eta=" + check::text(eta) + " lambda=" + check::text(lambda);
       std::printf("pull-off%s: P (load) table %.10f direct %.10f; D (displacement) table %.10f direct %.10f\n",
                   at.c_str(), got.load_control.point.load, want.load_control.point.load,
                   got.displacement_control.point.penetration, want.displacement_control.point.penetration);
@@ -274,7 +269,7 @@ int main() {
       const MaugisDugdaleModel stiff_direct(stiff), stiff_tabled(stiff, stiff_table);
       for (auto [eta, lambda] : {std::pair{1.0, 0.01}, std::pair{1.0, 0.31622776601683794}, std::pair{10.0, 0.01}}) {
         const MaugisDugdalePulloff want = stiff_direct.pulloff(eta, lambda), got = stiff_tabled.pulloff(eta, lambda);
-        const std::string at = " stiff film eta=" + g(eta) + " lambda=" + g(lambda);
+        const std::string at = " stiff film eta=" + check::text(eta) + " lambda=" + check::text(lambda);
         check::below(std::abs(got.load_control.point.load - want.load_control.point.load),
                      got.load_control.point.load_error + want.load_control.point.load_error,
                      "pull-off P (load) within its estimate" + at);
@@ -290,7 +285,7 @@ int main() {
       const std::vector<double> a_bar = {0.0, 0.02, 0.2, 0.7, 1.5, 4.0};
       const auto got = tabled.curve(1.0, lambda, a_bar), want = direct.curve(1.0, lambda, a_bar);
       for (std::size_t k = 0; k < a_bar.size(); ++k) {
-        const std::string at = " soft film eta=1 lambda=" + g(lambda) + " a_bar=" + g(a_bar[k]);
+        const std::string at = " soft film eta=1 lambda=" + check::text(lambda) + " a_bar=" + check::text(a_bar[k]);
         check::that(got[k].from_table, "curve point from the table" + at);
         check::below(std::abs(got[k].load - want[k].load), got[k].load_error + want[k].load_error,
                      "curve P within its estimate" + at);
@@ -307,7 +302,7 @@ int main() {
       const double eta = 1.0, lambda = 1.0;
       const MaugisDugdalePulloff want = direct.pulloff_spring(eta, lambda, k_bar),
                                  got = tabled.pulloff_spring(eta, lambda, k_bar);
-      const std::string at = " soft film eta=1 lambda=1 k_bar=" + g(k_bar);
+      const std::string at = " soft film eta=1 lambda=1 k_bar=" + check::text(k_bar);
       std::printf("spring pull-off%s: P table %.10f direct %.10f\n", at.c_str(), got.spring_control.point.load,
                   want.spring_control.point.load);
       check::that(want.load_control.point.load <= want.spring_control.point.load &&
@@ -352,7 +347,7 @@ int main() {
     for (double lambda : {0.1, 1.0, 10.0}) {
       for (double a_bar : {0.2, 1.0, 3.0}) {
         const maugis::State want = maugis::solve(lambda, k13 * a_bar);
-        const std::string at = " elastic tip lambda=" + g(lambda) + " a_bar=" + g(a_bar);
+        const std::string at = " elastic tip lambda=" + check::text(lambda) + " a_bar=" + check::text(a_bar);
         const MaugisDugdalePoint d = direct.point(1.0, lambda, a_bar), t = tabled.point(1.0, lambda, a_bar);
         check::close(d.m, want.m, check::tier::kInterpolation, "elastic tip: direct m vs Maugis" + at);
         check::close(d.load, want.load, check::tier::kInterpolation, "elastic tip: direct P vs Maugis" + at, 1.0);

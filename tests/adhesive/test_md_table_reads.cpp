@@ -19,14 +19,6 @@
 
 using namespace coatcontact;
 
-namespace {
-std::string g(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-}  // namespace
-
 int main() {
   // 1. Bit for bit, across the table's range of a and c/a - 1 (the series branch of T - atan T
   //    below T = 0.1 included).
@@ -53,7 +45,7 @@ int main() {
           return h.g_r + sigma_hat * h.g_s - h0;
         };
         const double got = detail::homogeneous_root(sigma_hat, h0, a, lo, hi);
-        const std::string at = " a=" + g(a) + " sigma_hat=" + g(sigma_hat) + " h0=" + g(h0);
+        const std::string at = " a=" + check::text(a) + " sigma_hat=" + check::text(sigma_hat) + " h0=" + check::text(h0);
         if (gap(lo) >= 0.0) {
           check::that(got == lo, "homogeneous root clamps to the range's low end" + at);
         } else if (gap(hi) <= 0.0) {
@@ -86,7 +78,7 @@ int main() {
     for (double lambda : {0.3, 3.0}) {
       const double sigma_hat = lambda * std::cbrt(16.0 / 9.0), h0 = 2.0 / (M_PI * sigma_hat);
       const auto full = table.solve(sigma_hat, h0, a, true), bare = table.solve(sigma_hat, h0, a, false);
-      const std::string at = " a=" + g(a) + " lambda=" + g(lambda);
+      const std::string at = " a=" + check::text(a) + " lambda=" + check::text(lambda);
       if (!check::that(full.has_value() && bare.has_value(), "table states exist" + at)) continue;
       check::that(full->excess == bare->excess && full->delta == bare->delta && full->force == bare->force,
                   "state without estimates equals the state with them, bit for bit" + at);

@@ -21,6 +21,13 @@ namespace check {
 
 // Tolerance tiers, relative unless a check says otherwise. A test uses the tier that matches
 // where its error comes from; a bound that is a measurement of one test stays in that test.
+// A value in messages, %g.
+inline std::string text(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
 namespace tier {
 // One correctly rounded operation: 1 ulp (2.2e-16) plus the rounding of the decimal literal.
 inline constexpr double kRounding = 1e-15;
