@@ -51,7 +51,8 @@ using detail::kPi;
 // First bracket step in ln(c/a - 1) from a guess interpolated between neighbouring a_bar.
 constexpr double kNearStep = 0.05;
 constexpr double kMinNearStep = 1e-7;
-// The refinement's points lie within 100 location tolerances (1e-5) of the guess's a_bar.
+// First root step from the minimiser's c/a - 1: the refinement's points lie mostly within 100
+// location tolerances (1e-5) of its a_bar (at most a grid cell, where P is flat).
 constexpr double kSlopeStep = 1e-4;
 // Relative error of a direct solve's values (tests/adhesive/test_md_table.cpp: root to 1e-13 in
 // ln(c/a - 1), values ~1e-13 relative, with a margin).
@@ -441,8 +442,9 @@ std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lam
 }
 
 // The minimiser's location (~location_tolerance) refined as the root of the implicit
-// derivative (Impl::slope) by regula falsi (Illinois) in ln a_bar on a bracket 100 times
-// wider than its tolerance; kept as it is when the bracket shows no sign change.
+// derivative (Impl::slope; a half-space's: half_space_slope) by regula falsi (Illinois) in
+// ln a_bar on a bracket 100 times wider than its tolerance, widened tenfold up to a grid cell
+// until the slope changes sign; kept as it is when it never does.
 double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, double guess_excess,
                                   int& evaluations) const {
   const bool closed_form = table_in_closed_form();
