@@ -1,5 +1,5 @@
 // Homogeneous pull-offs and their error estimates (THEORY.md section 13, "Normalization and
-// homogeneous check" and "Error estimates of the state"): on a half-space (film = substrate) the
+// homogeneous check", "Error estimates of the state" and "Flat minima"): on a half-space (film = substrate) the
 // load- and displacement-controlled pull-offs of the closed-form path (use_table, Maugis's closed
 // forms) and of the direct solve are compared over lambda = 1e-3..1e2 (the `make figures`
 // dataset mdlambda_homogeneous's 17 values and the ends) with Maugis's closed form solved here
@@ -102,6 +102,17 @@ Exact pulloff(double lambda, bool load_control) {
     (f.slope(mid, load_control) > 0 ? r : l) = mid;
   }
   const real a = (l + r) / 2, e = f.excess(a);
+  // The analytic slope against central differences of the long-double values away from the
+  // root (to 1e-6 of its leading term 3ā² or 2ā; ~1e-7 seen, the differences' truncation and
+  // the root e's last bits over the step), and the root a minimum of the values themselves.
+  const real probe = 1.5L * a, step = 1e-4L * probe;
+  const real difference = (value(std::log(probe + step)) - value(std::log(probe - step))) / (2 * step);
+  check::below(static_cast<double>(std::abs(f.slope(probe, load_control) - difference)),
+               static_cast<double>(1e-6L * (load_control ? 3 * probe * probe : 2 * probe)),
+               "closed form's analytic slope equals its differences");
+  const real at = value(std::log(a));
+  check::that(at <= value(std::log(a * (1 + 1e-4L))) && at <= value(std::log(a * (1 - 1e-4L))),
+              "closed form's slope root is a minimum of its values");
   out.interior = true;
   out.a_bar = static_cast<double>(a / k13);
   out.load = static_cast<double>(f.load(a, e));
