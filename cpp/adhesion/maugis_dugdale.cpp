@@ -11,7 +11,11 @@
 // refined by Brent's minimiser in ln a_bar. Values near a minimum are flat, so that locates
 // a_bar only to ~location_tolerance (the minimum value itself to ~its square plus the noise
 // of the root c(a), ~1e-13); the location is then refined as the root of dP/da_bar (dD/da_bar)
-// differentiated implicitly through c(a) (THEORY.md section 13), to ~1e-10.
+// differentiated implicitly through c(a) (THEORY.md section 13), to ~1e-10 (the direct solve; a
+// half-space's closed form, exactly; a tiled table's ~1e-5 values leave the minimiser's). Near
+// DMT's end P is so flat that the minimiser is off by up to ~1e-3 there, and the root's own
+// error, its slope's noise over the slope's derivative, enters the estimates ("Error estimates
+// of the state", "Flat minima").
 #include "coatcontact/detail/constants.hpp"
 #include "coatcontact/maugis_dugdale.hpp"
 #include "coatcontact/solve_cache.hpp"
@@ -47,7 +51,8 @@ using detail::kPi;
 // First bracket step in ln(c/a - 1) from a guess interpolated between neighbouring a_bar.
 constexpr double kNearStep = 0.05;
 constexpr double kMinNearStep = 1e-7;
-// The refinement's points lie within 100 location tolerances (1e-5) of the guess's a_bar.
+// First root step from the minimiser's c/a - 1: the refinement's points lie mostly within 100
+// location tolerances (1e-5) of its a_bar (at most a grid cell, where P is flat).
 constexpr double kSlopeStep = 1e-4;
 // Relative error of a direct solve's values (tests/adhesive/test_md_table.cpp: root to 1e-13 in
 // ln(c/a - 1), values ~1e-13 relative, with a margin).
@@ -109,12 +114,12 @@ double shift_of(const PointShift& s, Control c) {
 using PointAt = std::function<const MaugisDugdalePoint&(double)>;
 using Shifts = std::map<double, std::array<PointShift, detail::kStateChecks>>;
 void locate_errors(MaugisDugdalePoint& q, double x, Control control, const PointAt& point_at, const Shifts& shifts,
-                   double tol) {
+                   double tol, bool checks = true) {
   const double h = kErrorStep;
   const MaugisDugdalePoint pp = point_at(x + h), pm = point_at(x - h), p0 = point_at(x);
   const double v2 = (value_of(pp, control) - 2.0 * value_of(p0, control) + value_of(pm, control)) / (h * h);
   double change[4] = {0.0, 0.0, 0.0, 0.0};  // P, D, m, ln a_bar: the largest of the checks'
-  for (int c = 0; c < detail::kStateChecks; ++c) {
+  for (int c = 0; checks && c < detail::kStateChecks; ++c) {
     const PointShift sp = shifts.at(x + h)[c], sm = shifts.at(x - h)[c], s0 = shifts.at(x)[c];
     const double e1 = (shift_of(sp, control) - shift_of(sm, control)) / (2.0 * h);
     const double dx = v2 > 0.0 ? -e1 / v2 : 0.0;
@@ -183,6 +188,42 @@ double minimise(const std::function<double(double)>& f, double lo, double mid, d
   return minimum ? minimum->x : mid;
 }
 
+// d/dā_M of P (load) or of Δ_M along Maugis's homogeneous curve (THEORY.md section 13,
+// "Normalization and homogeneous check"), e = m - 1 at ā_M = a: X_a - X_e R_a/R_e, with R the
+// residual of the curve's equation, s = sqrt(m² - 1), φ = arccos(1/m), ds/de = m/s,
+// dφ/de = 1/(m s). Exact up to rounding, so a flat minimum is located as this slope's root.
+// *scale receives the sum of its terms' magnitudes (they cancel at the root: its rounding).
+double half_space_slope(double lambda, double a, double e, bool load, double* scale = nullptr) {
+  const double m = 1.0 + e, s = std::sqrt(e * (2.0 + e)), phi = std::atan(s);
+  const double s1 = s + (m * m - 2.0) * phi, s2 = s * phi - e;
+  const double s1_e = 2.0 * s / m + 2.0 * m * phi, s2_e = m * phi / s + 1.0 / m - 1.0;
+  const double r_a = lambda * a * s1 + 4.0 * lambda * lambda * s2 / 3.0;
+  const double r_e = 0.5 * lambda * a * a * s1_e + 4.0 * lambda * lambda * a * s2_e / 3.0;
+  const double de = -r_a / r_e;
+  const double terms[3] = {load ? 3.0 * a * a : 2.0 * a, load ? -2.0 * lambda * a * (s + m * m * phi) : -4.0 * lambda * s / 3.0,
+                           load ? -lambda * a * a * (2.0 * m / s + 2.0 * m * phi) * de : -4.0 * lambda * a * (m / s) * de / 3.0};
+  if (scale != nullptr) *scale = std::abs(terms[0]) + std::abs(terms[1]) + std::abs(terms[2]);
+  return terms[0] + terms[1] + terms[2];
+}
+
+// Relative error of a half-space pull-off located as the root of half_space_slope at ln ā = x:
+// the slope's rounding (an ulp of its terms' sum: near DMT's end terms ~1e5 times the
+// slope's scale cancel) and the root c(a)'s ~1e-13 in ln(c/a - 1) (MaugisDugdaleTable::solve's
+// Brent tolerance), over the slope's derivative in x, times the state's error factor.
+// excess_at(x) is the curve's c/a - 1.
+double half_space_location_error(double lambda, double x, bool load, const std::function<double(double)>& excess_at) {
+  constexpr double kRootNoise = 1e-13, kStep = 1e-4, kUlps = 1.0;
+  const double k13 = std::cbrt(4.0 / 3.0);
+  auto slope_at = [&](double v) { return half_space_slope(lambda, k13 * std::exp(v), excess_at(v), load); };
+  const double a = k13 * std::exp(x), e = excess_at(x);
+  double scale = 0.0;
+  const double g = half_space_slope(lambda, a, e, load, &scale);
+  const double noise = std::abs(half_space_slope(lambda, a, e * (1.0 + kRootNoise), load) - g) +
+                       kUlps * std::numeric_limits<double>::epsilon() * scale;
+  const double change = std::abs(slope_at(x + kStep) - slope_at(x - kStep)) / (2.0 * kStep);
+  return change > 0.0 ? detail::kStateErrorFactor * noise / change : 0.0;
+}
+
 // A film on a substrate of its own material is one half-space: C = 1 and H = 0 (an elastic
 // indenter keeps C' = 1), so the zone's functions are Maugis's closed forms.
 bool is_half_space(const Stack& s) {
@@ -230,10 +271,11 @@ struct MaugisDugdaleModel::Impl {
   // (THEORY.md section 13): dX/da = X_a - X_c h_a/h_c, the partial derivatives at fixed c
   // (resp. a) by fourth-order central differences of the smooth map (a, c) -> (F, δ, h), which
   // involves no root finder; steps 1e-3 (c - a) give ~1e-12 relative.
-  double slope(double eta, double sigma_hat, double h0, double a, bool load, double guess_excess) const {
+  double slope(double eta, double sigma_hat, double h0, double a, bool load, double guess_excess,
+               double step_factor = 1.0) const {
     const detail::CohesiveZone zone(kernel, a, 1.0, disc, quadrature);
     const detail::CohesiveState st = zone.solve(sigma_hat, h0, guess_excess, kSlopeStep);
-    const double c = st.c, step = 1e-3 * std::min(c - a, a);
+    const double c = st.c, step = step_factor * 1e-3 * std::min(c - a, a);
     auto value = [&](const detail::CohesiveState& x) { return load ? x.force : x.delta; };
     const double w[2] = {8.0 / 12.0, -1.0 / 12.0};  // f'(0) ~ Σ w_k (f(k s) - f(-k s)) / s
     double x_c = 0.0, h_c = 0.0, x_a = 0.0, h_a = 0.0;
@@ -252,6 +294,26 @@ struct MaugisDugdaleModel::Impl {
     }
     const double total = x_a - x_c * h_a / h_c;  // d/da in units of t
     return load ? eta * eta * total : eta * total;  // P = η³F, D = η²δ, ā = η a
+  }
+
+  // Relative error of a pull-off at ln ā = x located as the root of its slope (refine): the
+  // slope's noise over the slope's derivative in x, times the state's error factor. The closed
+  // form's noise is its rounding (half_space_location_error); the direct slope's, the change of
+  // its differences from step s to 2s and s/2 (the values' ~1e-13 over steps ~1e-3 a: near DMT's
+  // end, where P is flat, up to ~1e-4 in ln ā). excess_at(x): the curve's c/a - 1.
+  double root_location_error(double eta, double lambda, double x, bool load,
+                             const std::function<double(double)>& excess_at) const {
+    if (table) return half_space_location_error(lambda, x, load, excess_at);
+    const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
+    const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
+    auto g = [&](double v, double step_factor) {
+      return slope(eta, sigma_hat, h0, std::exp(v) / eta, load, excess_at(v), step_factor);
+    };
+    constexpr double kStep = 1e-4;
+    const double g1 = g(x, 1.0);  // two comparisons: one may agree by chance
+    const double noise = std::max(std::abs(g1 - g(x, 2.0)), std::abs(g1 - g(x, 0.5)));
+    const double change = std::abs(g(x + kStep, 1.0) - g(x - kStep, 1.0)) / (2.0 * kStep);
+    return std::max(kDirectLocation, change > 0.0 ? detail::kStateErrorFactor * noise / change : 0.0);
   }
 
   // The curve at a_bar; the root c(a) is searched from guess_excess (c/a - 1, or c at a = 0)
@@ -380,19 +442,35 @@ std::vector<MaugisDugdalePoint> MaugisDugdaleModel::curve(double eta, double lam
 }
 
 // The minimiser's location (~location_tolerance) refined as the root of the implicit
-// derivative (Impl::slope) by regula falsi (Illinois) in ln a_bar on a bracket 100 times
-// wider than its tolerance; kept as it is when the bracket shows no sign change.
+// derivative (Impl::slope; a half-space's: half_space_slope) by regula falsi (Illinois) in
+// ln a_bar on a bracket 100 times wider than its tolerance, widened tenfold up to a grid cell
+// until the slope changes sign; kept as it is when it never does.
 double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load, double guess_excess,
                                   int& evaluations) const {
-  if (impl_->table) return x;  // the table's values carry ~1e-5: the minimiser's location suffices
+  const bool closed_form = table_in_closed_form();
+  if (impl_->table && !closed_form) return x;  // the table's values carry ~1e-5: the minimiser's location suffices
   const double sigma_hat = lambda * std::cbrt(16.0 / 9.0) / eta;
   const double h0 = 2.0 / (kPi * eta * eta * eta * sigma_hat);
-  auto g = [&](double v) {
+  std::function<double(double)> g = [&](double v) {
     ++evaluations;
     return impl_->slope(eta, sigma_hat, h0, std::exp(v) / eta, load, guess_excess);
   };
-  const double half = 100.0 * impl_->options.location_tolerance;
+  if (closed_form) {
+    g = [&](double v) {
+      ++evaluations;
+      double excess = guess_excess;
+      impl_->point(eta, lambda, std::exp(v), guess_excess, 1.5, &excess);
+      return half_space_slope(lambda, std::cbrt(4.0 / 3.0) * std::exp(v), excess, load);
+    };
+  }
+  double half = 100.0 * impl_->options.location_tolerance;
   double l = x - half, r = x + half, gl = g(l), gr = g(r);
+  // The minimiser stops ~sqrt(noise |P| / P'') away, beyond 1e-3 in ln a_bar where P is flat
+  // (DMT's end, lambda < 0.03): the bracket widens to a grid cell.
+  while (!(gl < 0.0 && gr > 0.0) && half < 0.3) {
+    half *= 10.0;
+    l = x - half, r = x + half, gl = g(l), gr = g(r);
+  }
   if (!(gl < 0.0 && gr > 0.0)) return x;
   int side = 0;
   for (int iter = 0; iter < 30 && r - l > 1e-13; ++iter) {
@@ -410,7 +488,7 @@ double MaugisDugdaleModel::refine(double eta, double lambda, double x, bool load
       if (side == 1) gl *= 0.5;
       side = 1;
     }
-    if (std::abs(gm) < 1e-13) break;
+    if (!closed_form && std::abs(gm) < 1e-13) break;  // the closed form's slope is tiny where P is flat
   }
   return gl == gr ? 0.5 * (l + r) : r - gr * (r - l) / (gr - gl);
 }
@@ -462,6 +540,7 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
   result.curve_end = point(eta, lambda, 0.0);
   ++evaluations;
 
+  const bool closed_form = table_in_closed_form();
   std::vector<Control> controls = {{Control::kLoad, 0.0}, {Control::kDisplacement, 0.0}};
   // k_bar = inf is displacement control; 0 (none) leaves spring_control empty.
   if (k_bar > 0.0) controls.push_back(std::isinf(k_bar) ? Control{Control::kDisplacement, 0.0} : Control{Control::kSpring, k_bar});
@@ -484,19 +563,32 @@ MaugisDugdalePulloff MaugisDugdaleModel::pulloff_spring(double eta, double lambd
         std::function<double(double)> f = [&](double x) { return value_of(point_at(x), control); };
         double x = minimise(f, v[k - 1], v[k], v[k + 1], f0, f1, f2, o.location_tolerance);
         // The implicit-derivative refinement is written for P and D; Z is left at the minimiser's.
+        double location = o.location_tolerance;
+        bool slope_root = false;  // a half-space's location: the closed form's slope root
         if (control.kind != Control::kSpring) {
+          const double minimiser = x;
           x = refine(eta, lambda, x, control.kind == Control::kLoad, std::exp(roots.at(x)), evaluations);
+          if (x != minimiser && (closed_form || !impl_->table)) {
+            const std::function<double(double)> excess_at = [&](double u) {
+              point_at(u);
+              return std::exp(roots.at(u));
+            };
+            location = impl_->root_location_error(eta, lambda, x, control.kind == Control::kLoad, excess_at);
+            slope_root = true;
+          }
         }
         at = point_at(x);
         if (value_of(at, control) > f1) {
           at = points[k];
           x = v[k];
+          location = o.location_tolerance;
+          slope_root = false;
         }
-        if (at.from_table) locate_errors(at, x, control, point_at, shifts, o.location_tolerance);
+        if (at.from_table || slope_root) locate_errors(at, x, control, point_at, shifts, location, !slope_root);
       } else if (at.from_table) {
         locate_errors(at, v[k], control, point_at, shifts, o.location_tolerance);
       }
-      if (!at.from_table) at.a_bar_error = kDirectLocation * at.a_bar;
+      if (!at.from_table && !(at.a_bar_error > 0.0)) at.a_bar_error = kDirectLocation * at.a_bar;
       minima.push_back(at);
       if (!found || value_of(at, control) < value_of(best.point, control)) best.point = at;
       found = true;

@@ -353,10 +353,16 @@ void write_md_pulloff(std::ostream& os, const Stack& stack, const std::vector<do
                                  " points per decade of a_bar and the end a -> 0; each grid minimum refined by "
                                  "Brent's minimiser in ln a_bar" +
                                  (direct ? ", then as the root of dP/da_bar (dD/da_bar) differentiated implicitly "
-                                           "through c(a) (a_bar to ~1e-10, P and D to ~1e-12)"
-                                         : " to 1e-7 (*_err: the error estimates of the pull-off's quantities, "
-                                           "the minimum's location included; JKR rows: the tolerance times the "
-                                           "value; m = inf at the curve's end: m_*_err 0)"));
+                                           "through c(a) (a_bar to ~1e-9, less where P is flat near DMT's end: "
+                                           "*_err, the location's error included)"
+                                 : md.table_in_closed_form()
+                                     ? ", then as the root of the closed form's dP/da_bar (dD/da_bar) "
+                                       "differentiated through m(a) (*_err: the error estimates of the pull-off's "
+                                       "quantities, the location's rounding included; JKR rows: the tolerance "
+                                       "times the value; m = inf at the curve's end: m_*_err 0)"
+                                     : " to 1e-7 (*_err: the error estimates of the pull-off's quantities, "
+                                       "the minimum's location included; JKR rows: the tolerance times the "
+                                       "value; m = inf at the curve's end: m_*_err 0)"));
   if (!k_bars.empty()) {
     h.emplace_back("k_bar", join(k_bars));
     h.emplace_back("spring control",
