@@ -11,6 +11,7 @@
 
 #include "check.hpp"
 #include "coatcontact/kernel.hpp"
+#include "kernel_values.hpp"
 
 using namespace coatcontact;
 
@@ -28,15 +29,9 @@ struct Build {
 
 // H (and H1 where the table has it) on a grid of u through the tabulated range and beyond.
 std::vector<double> values_of(const KernelTable& table, bool with_h1) {
-  std::vector<double> u, h, h1;
+  std::vector<double> u;
   for (int i = 0; i <= 4000; ++i) u.push_back(0.173 * i);
-  if (with_h1) {
-    table.eval(u, h, h1);
-    h.insert(h.end(), h1.begin(), h1.end());
-  } else {
-    table.eval(u, h);
-  }
-  return h;
+  return check::kernel_values(table, u, with_h1);
 }
 }  // namespace
 

@@ -17,6 +17,7 @@
 #include "check.hpp"
 #include "coatcontact/cc_kernel_image.h"
 #include "coatcontact/kernel.hpp"
+#include "kernel_values.hpp"
 #include "coatcontact/reduced.hpp"
 #include "coatcontact/solve_cache.hpp"
 #include "materials.hpp"
@@ -68,15 +69,7 @@ bool same_info(const KernelTableInfo& a, const KernelTableInfo& b) {
 
 // H (and H1 when the table has it) at the probes.
 std::vector<double> values_of(const KernelTable& table, bool with_h1) {
-  const std::vector<double> u = probes(table.info());
-  std::vector<double> h, h1;
-  if (with_h1) {
-    table.eval(u, h, h1);
-    h.insert(h.end(), h1.begin(), h1.end());
-  } else {
-    table.eval(u, h);
-  }
-  return h;
+  return check::kernel_values(table, probes(table.info()), with_h1);
 }
 
 std::vector<double> values_of(const detail::TableKernel& table, const KernelTableInfo& info) {
