@@ -13,6 +13,11 @@
 //   (so the tip axis has its gap), w in {8, 10, 12, 14} mJ/m2 by (i + j) % 4; the approach is the
 //   adhesionless model of the same coating. The truth file gains a column w; the jump-in curves
 //   (n % 16 == 7) expect no flag, since a retract fit does not look at the approach's jump-in.
+//   --md: the same coating, cantilever and w pattern with the library's Maugis-Dugdale spring
+//   model (fit::afm_model_force, model md, surface-force range z0 = 0.5 um: Maugis's lambda
+//   ~0.5-1.2, between DMT and JKR) and a film modulus E1 that varies smoothly over the map
+//   (100 kPa +- 20 %); the approach is the adhesionless model of each curve's coating. E1 is
+//   read (as the fit reads it with E1 free) between the nodes E0 10^(j/8) of the model's tables.
 //   --back-and-forth: the meander scan of the instrument's maps (every real JPK map in
 //   data/afm/): curve n runs row j = n / NX backwards when j is odd, so its grid x is
 //   NX - 1 - n % NX (header key position-pattern.back-and-forth=true; false without the option).
@@ -20,7 +25,7 @@
 //   (no_contact), n % 16 == 7 has a jump-in dip of -60 sigma before contact (jump_in),
 //   n % 16 == 11 has an empty retract segment (empty_segment), n % 16 == 13 has no force
 //   calibration slot (calibration).
-// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr] [--back-and-forth]
+// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr|--md] [--back-and-forth]
 #include <zip.h>
 
 #include <algorithm>
@@ -50,23 +55,26 @@ constexpr double kPitch = 2e-6;          // grid pitch [m]
 // --jkr: the coating, cantilever and noise of the adhesive maps.
 constexpr double kJkrSpring = 1.0, kJkrNoise = 5e-9, kFilm = 100e3, kSubstrate = 1e6, kThickness = 4e-6;
 constexpr double kJkrWork[4] = {8e-3, 10e-3, 12e-3, 14e-3};
+// --md: the surface-force range z0 [m] (fit with --range 0.5um).
+constexpr double kMdRange = 0.5e-6;
 
-fit::AfmFitProblem coating_problem(fit::AfmModel model, double work) {
+fit::AfmFitProblem coating_problem(fit::AfmModel model, double work, double film = kFilm) {
   fit::AfmFitProblem p;
   p.model = model;
   p.tip = fit::afm_paraboloid(kRadius);
   fit::AfmCoating c;
-  c.film = {kFilm, 0.5};
+  c.film = {film, 0.5};
   c.substrate.material = {kSubstrate, 0.3};
   c.thickness = kThickness;
   p.coating = c;
   p.poisson = 0.5;
   p.work = work;
   p.spring_constant = kJkrSpring;
+  if (model == fit::AfmModel::kMd) p.surface_force_range = kMdRange;
   return p;
 }
 
-// The spring-stable JKR branch at z_c = 0: indentation, force and base coordinate
+// The spring-stable JKR (or Maugis-Dugdale) branch at z_c = 0: indentation, force and base coordinate
 // Z = delta + F/k (increasing along the branch), from its jump-off to 2 um.
 struct JkrBranch {
   std::vector<double> delta, force, base;
@@ -84,10 +92,10 @@ struct JkrBranch {
   }
 };
 
-JkrBranch jkr_branch(double work) {
+JkrBranch jkr_branch(double work, fit::AfmModel model = fit::AfmModel::kJkr, double film = kFilm) {
   std::vector<double> z;
   for (int k = 0; k < 6000; ++k) z.push_back(1e-6 - 3e-6 * k / 5999.0);
-  const std::vector<double> f = fit::afm_model_force(coating_problem(fit::AfmModel::kJkr, work), z);
+  const std::vector<double> f = fit::afm_model_force(coating_problem(model, work, film), z);
   JkrBranch b;
   for (std::size_t k = 0; k < z.size(); ++k) {
     if (f[k] == 0.0) continue;  // off the sample
@@ -101,6 +109,18 @@ JkrBranch jkr_branch(double work) {
 // Truth of curve (i, j) of an nx x ny map.
 double modulus_at(long i, long j, long nx, long ny) {
   return 5e3 * (1.0 + 0.4 * std::sin(2.0 * kPi * (i + 0.5) / nx) * std::cos(kPi * (j + 0.5) / ny));
+}
+// The adhesionless approach of the coating with film modulus `film` on the tip grid relative to
+// the contact point (z_c + 3 um down to z_c - 1 um).
+std::vector<double> coated_approach_force(double film, std::size_t points) {
+  std::vector<double> z(points);
+  for (std::size_t p = 0; p < points; ++p) z[p] = 3e-6 - 4e-6 * static_cast<double>(p) / static_cast<double>(points - 1);
+  return fit::afm_model_force(coating_problem(fit::AfmModel::kHertz, 0.0, film), z);
+}
+
+// --md: E1 over the map.
+double md_film_at(long i, long j, long nx, long ny) {
+  return kFilm * (1.0 + 0.2 * std::sin(2.0 * kPi * (i + 0.5) / nx) * std::cos(kPi * (j + 0.5) / ny));
 }
 double contact_at(long i, long j) { return 3e-6 + 0.02e-6 * i - 0.01e-6 * j; }  // a tilted sample
 
@@ -215,7 +235,7 @@ std::string segment_header(std::size_t points, const char* style, int deflection
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr, "usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr] [--back-and-forth]\n");
+    std::fprintf(stderr, "usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr|--md] [--back-and-forth]\n");
     return 2;
   }
   const std::string out = argv[1];
@@ -223,7 +243,7 @@ int main(int argc, char** argv) {
   std::size_t points = 400;
   unsigned long seed = 1;
   std::string truth_path;
-  bool clean = false, jkr = false, meander = false;
+  bool clean = false, jkr = false, md = false, meander = false;
   for (int a = 4; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--points" && a + 1 < argc) points = static_cast<std::size_t>(std::atol(argv[++a]));
@@ -231,6 +251,7 @@ int main(int argc, char** argv) {
     else if (arg == "--truth" && a + 1 < argc) truth_path = argv[++a];
     else if (arg == "--clean") clean = true;
     else if (arg == "--jkr") jkr = true;
+    else if (arg == "--md") jkr = md = true;  // the --jkr map with the Maugis-Dugdale model
     else if (arg == "--back-and-forth") meander = true;
     else {
       std::fprintf(stderr, "make_afm_map: unknown argument %s\n", arg.c_str());
@@ -248,10 +269,15 @@ int main(int argc, char** argv) {
     truth << "# synthetic JPK force map written by tests/afm/make_afm_map (truth of each curve)\n"
           << "# sphere R = " << number(kRadius) << " m, nu = 0.5, k = " << number(spring) << " N/m, sensitivity = "
           << number(kSensitivity) << " m/V, noise sigma = " << number(noise_sigma) << " N, points per segment = " << points << "\n";
-    if (jkr) {
+    if (md) {
+      truth << "# Maugis-Dugdale retract on a coating (z0 = " << number(kMdRange) << " m): film E1 (column E), nu1 = 0.5, t = "
+            << number(kThickness) << " m, substrate E0 = " << number(kSubstrate) << " Pa, nu0 = 0.3\n";
+    } else if (jkr) {
       truth << "# JKR retract on a coating: film E1 (column E), nu1 = 0.5, t = " << number(kThickness) << " m, substrate E0 = "
-            << number(kSubstrate) << " Pa, nu0 = 0.3\n"
-            << "# columns: curve\tgrid_x\tgrid_y\tE\tcontact_point\tbaseline_at_contact\tbaseline_slope\texpected_flag\tw\n"
+            << number(kSubstrate) << " Pa, nu0 = 0.3\n";
+    }
+    if (jkr) {
+      truth << "# columns: curve\tgrid_x\tgrid_y\tE\tcontact_point\tbaseline_at_contact\tbaseline_slope\texpected_flag\tw\n"
             << "# units: -\t-\t-\tPa\tm\tN\tN/m\t-\tJ/m2\n";
     } else {
       truth << "# columns: curve\tgrid_x\tgrid_y\tE\tcontact_point\tbaseline_at_contact\tbaseline_slope\texpected_flag\n"
@@ -262,11 +288,9 @@ int main(int argc, char** argv) {
   // tip grid relative to the contact point (the same for every curve).
   std::vector<JkrBranch> branches;
   std::vector<double> coated_approach;
-  if (jkr) {
+  if (jkr && !md) {
     for (double w : kJkrWork) branches.push_back(jkr_branch(w));
-    std::vector<double> z(points);
-    for (std::size_t p = 0; p < points; ++p) z[p] = 3e-6 - 4e-6 * static_cast<double>(p) / static_cast<double>(points - 1);
-    coated_approach = fit::afm_model_force(coating_problem(fit::AfmModel::kHertz, 0.0), z);
+    coated_approach = coated_approach_force(kFilm, points);
   }
   Archive archive(out);
   archive.add("header.properties",
@@ -282,7 +306,11 @@ int main(int argc, char** argv) {
   for (long n = 0; n < nx * ny; ++n) {
     const long j = n / nx, i = meander && j % 2 == 1 ? nx - 1 - n % nx : n % nx;
     const int kind = clean ? -1 : static_cast<int>(n % 16);
-    const double modulus = jkr ? kFilm : modulus_at(i, j, nx, ny);
+    const double modulus = md ? md_film_at(i, j, nx, ny) : jkr ? kFilm : modulus_at(i, j, nx, ny);
+    const double work = kJkrWork[(i + j) % 4];
+    // --md: each curve's own E1 (its branch and approach); --jkr: one E1, four branches.
+    const JkrBranch own_branch = md && kind != 3 ? jkr_branch(work, fit::AfmModel::kMd, modulus) : JkrBranch{};
+    if (md) coated_approach = coated_approach_force(modulus, points);
     double contact = contact_at(i, j);
     const double slope = 2e-4 * (1.0 + 0.1 * std::sin(0.7 * n));  // [N/m] tilt of the baseline
     const double offset = 1e-9 * std::cos(0.3 * n);
@@ -306,11 +334,10 @@ int main(int argc, char** argv) {
       f_approach[p] = model[p] + offset + slope * z[p] + noise_sigma * gauss(rng);
       if (kind == 7 && z[p] > contact && z[p] < contact + 0.1e-6) f_approach[p] -= 60.0 * noise_sigma;
     }
-    const double work = kJkrWork[(i + j) % 4];
     if (jkr) {
       // A uniform piezo grid h from the approach's deepest point up: on the branch while
       // Z = z_c - h is above its jump-off, else off the sample at z = h.
-      const JkrBranch& branch = branches[static_cast<std::size_t>((i + j) % 4)];
+      const JkrBranch& branch = md ? own_branch : branches[static_cast<std::size_t>((i + j) % 4)];
       double d = 0.0, f = 0.0;
       const double deepest = contact - bottom;
       std::size_t top_index = 0;
