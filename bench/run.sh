@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `make bench`: every bench_* executable in BUILD_DIR/bench (configure with
 # -DCOATCONTACT_BUILD_BENCH=ON), then whole-process timings of the CLI (bench/cli_timings.sh),
-# the batch AFM fits of synthetic force maps (bench/afm_maps.sh), the explorer's slider
+# the batch AFM fits of synthetic force maps (bench/afm_maps.sh; the Maugis-Dugdale maps:
+# bench/md_map.sh), the explorer's slider
 # updates (bench/explore_sliders.py) and afm.fit_map threaded and on a Dask LocalCluster
 # (bench/dask_map.py).
 # Results: BUILD_DIR/bench/results.tsv (one row per task: median, min, max over the runs, with
@@ -68,6 +69,11 @@ scratch_maps=$(mktemp -d)
 bash "$(dirname "$0")/afm_maps.sh" "$build/bin/coatcontact" "$build/tests/afm/make_afm_map" "$scratch_maps" \
   "$build/bench/zip_open_rss" >> "$tmp"
 rm -rf "$scratch_maps"
+
+echo "== afm fit --model md over synthetic force maps (first curve, further curves, --jobs 1 and 2)"
+scratch_md=$(mktemp -d)
+bash "$(dirname "$0")/md_map.sh" "$build/bin/coatcontact" "$build/tests/afm/make_afm_map" "$scratch_md" >> "$tmp"
+rm -rf "$scratch_md"
 
 # The interpreter the Python module was built for.
 python=$(sed -n 's/^Python3_EXECUTABLE:FILEPATH=//p' "$build/CMakeCache.txt" 2>/dev/null)

@@ -18,6 +18,7 @@
 //   ~0.5-1.2, between DMT and JKR) and a film modulus E1 that varies smoothly over the map
 //   (100 kPa +- 20 %); the approach is the adhesionless model of each curve's coating. E1 is
 //   read (as the fit reads it with E1 free) between the nodes E0 10^(j/8) of the model's tables.
+//   --rigid (with --md): the same film on a rigid base (one table, E1 a pure scale).
 //   --back-and-forth: the meander scan of the instrument's maps (every real JPK map in
 //   data/afm/): curve n runs row j = n / NX backwards when j is odd, so its grid x is
 //   NX - 1 - n % NX (header key position-pattern.back-and-forth=true; false without the option).
@@ -25,7 +26,7 @@
 //   (no_contact), n % 16 == 7 has a jump-in dip of -60 sigma before contact (jump_in),
 //   n % 16 == 11 has an empty retract segment (empty_segment), n % 16 == 13 has no force
 //   calibration slot (calibration).
-// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr|--md] [--back-and-forth]
+// Usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr|--md [--rigid]] [--back-and-forth]
 #include <zip.h>
 
 #include <algorithm>
@@ -58,13 +59,14 @@ constexpr double kJkrWork[4] = {8e-3, 10e-3, 12e-3, 14e-3};
 // --md: the surface-force range z0 [m] (fit with --range 0.5um).
 constexpr double kMdRange = 0.5e-6;
 
-fit::AfmFitProblem coating_problem(fit::AfmModel model, double work, double film = kFilm) {
+fit::AfmFitProblem coating_problem(fit::AfmModel model, double work, double film = kFilm, bool rigid = false) {
   fit::AfmFitProblem p;
   p.model = model;
   p.tip = fit::afm_paraboloid(kRadius);
   fit::AfmCoating c;
   c.film = {film, 0.5};
   c.substrate.material = {kSubstrate, 0.3};
+  c.substrate.rigid = rigid;
   c.thickness = kThickness;
   p.coating = c;
   p.poisson = 0.5;
@@ -92,10 +94,10 @@ struct JkrBranch {
   }
 };
 
-JkrBranch jkr_branch(double work, fit::AfmModel model = fit::AfmModel::kJkr, double film = kFilm) {
+JkrBranch jkr_branch(double work, fit::AfmModel model = fit::AfmModel::kJkr, double film = kFilm, bool rigid = false) {
   std::vector<double> z;
   for (int k = 0; k < 6000; ++k) z.push_back(1e-6 - 3e-6 * k / 5999.0);
-  const std::vector<double> f = fit::afm_model_force(coating_problem(model, work, film), z);
+  const std::vector<double> f = fit::afm_model_force(coating_problem(model, work, film, rigid), z);
   JkrBranch b;
   for (std::size_t k = 0; k < z.size(); ++k) {
     if (f[k] == 0.0) continue;  // off the sample
@@ -112,10 +114,10 @@ double modulus_at(long i, long j, long nx, long ny) {
 }
 // The adhesionless approach of the coating with film modulus `film` on the tip grid relative to
 // the contact point (z_c + 3 um down to z_c - 1 um).
-std::vector<double> coated_approach_force(double film, std::size_t points) {
+std::vector<double> coated_approach_force(double film, std::size_t points, bool rigid = false) {
   std::vector<double> z(points);
   for (std::size_t p = 0; p < points; ++p) z[p] = 3e-6 - 4e-6 * static_cast<double>(p) / static_cast<double>(points - 1);
-  return fit::afm_model_force(coating_problem(fit::AfmModel::kHertz, 0.0, film), z);
+  return fit::afm_model_force(coating_problem(fit::AfmModel::kHertz, 0.0, film, rigid), z);
 }
 
 // --md: E1 over the map.
@@ -235,7 +237,7 @@ std::string segment_header(std::size_t points, const char* style, int deflection
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr, "usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr|--md] [--back-and-forth]\n");
+    std::fprintf(stderr, "usage: make_afm_map OUT.jpk-force-map NX NY [--points N] [--seed S] [--truth FILE] [--clean] [--jkr|--md [--rigid]] [--back-and-forth]\n");
     return 2;
   }
   const std::string out = argv[1];
@@ -243,7 +245,7 @@ int main(int argc, char** argv) {
   std::size_t points = 400;
   unsigned long seed = 1;
   std::string truth_path;
-  bool clean = false, jkr = false, md = false, meander = false;
+  bool clean = false, jkr = false, md = false, rigid = false, meander = false;
   for (int a = 4; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--points" && a + 1 < argc) points = static_cast<std::size_t>(std::atol(argv[++a]));
@@ -252,11 +254,16 @@ int main(int argc, char** argv) {
     else if (arg == "--clean") clean = true;
     else if (arg == "--jkr") jkr = true;
     else if (arg == "--md") jkr = md = true;  // the --jkr map with the Maugis-Dugdale model
+    else if (arg == "--rigid") rigid = true;
     else if (arg == "--back-and-forth") meander = true;
     else {
       std::fprintf(stderr, "make_afm_map: unknown argument %s\n", arg.c_str());
       return 2;
     }
+  }
+  if (rigid && !md) {
+    std::fprintf(stderr, "make_afm_map: --rigid goes with --md\n");
+    return 2;
   }
   if (nx < 1 || ny < 1 || points < 20) {
     std::fprintf(stderr, "make_afm_map: need NX, NY >= 1 and --points >= 20\n");
@@ -271,7 +278,8 @@ int main(int argc, char** argv) {
           << number(kSensitivity) << " m/V, noise sigma = " << number(noise_sigma) << " N, points per segment = " << points << "\n";
     if (md) {
       truth << "# Maugis-Dugdale retract on a coating (z0 = " << number(kMdRange) << " m): film E1 (column E), nu1 = 0.5, t = "
-            << number(kThickness) << " m, substrate E0 = " << number(kSubstrate) << " Pa, nu0 = 0.3\n";
+            << number(kThickness) << " m, substrate "
+            << (rigid ? std::string("rigid") : "E0 = " + number(kSubstrate) + " Pa, nu0 = 0.3") << "\n";
     } else if (jkr) {
       truth << "# JKR retract on a coating: film E1 (column E), nu1 = 0.5, t = " << number(kThickness) << " m, substrate E0 = "
             << number(kSubstrate) << " Pa, nu0 = 0.3\n";
@@ -309,8 +317,8 @@ int main(int argc, char** argv) {
     const double modulus = md ? md_film_at(i, j, nx, ny) : jkr ? kFilm : modulus_at(i, j, nx, ny);
     const double work = kJkrWork[(i + j) % 4];
     // --md: each curve's own E1 (its branch and approach); --jkr: one E1, four branches.
-    const JkrBranch own_branch = md && kind != 3 ? jkr_branch(work, fit::AfmModel::kMd, modulus) : JkrBranch{};
-    if (md) coated_approach = coated_approach_force(modulus, points);
+    const JkrBranch own_branch = md && kind != 3 ? jkr_branch(work, fit::AfmModel::kMd, modulus, rigid) : JkrBranch{};
+    if (md) coated_approach = coated_approach_force(modulus, points, rigid);
     double contact = contact_at(i, j);
     const double slope = 2e-4 * (1.0 + 0.1 * std::sin(0.7 * n));  // [N/m] tilt of the baseline
     const double offset = 1e-9 * std::cos(0.3 * n);
