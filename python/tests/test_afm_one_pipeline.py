@@ -166,3 +166,33 @@ def test_missing_calibration_is_one_flag_for_every_reader(cli, tmp_path):
     out = tmp_path / "rows.tsv"
     cli("afm", "fit", *files, "--radius", "10um", "--halfspace", "1kPa,0.5", "--output", str(out))
     assert [r["flag"] for r in table_rows(out)] == ["6", "6", "0"]
+
+
+def test_md_map_on_an_elastic_base_gives_the_single_curve_fits(cli, tmp_path):
+    """The Maugis-Dugdale fit over a map (issue 37; THEORY.md section 15, "A map of
+    Maugis-Dugdale retracts"): a synthetic 2 x 2 map of a film on an elastic base (make_afm_map
+    --md, the library's own MD model), E1 and w free; the CLI's rows (--jobs 2), fit_map's
+    (jobs=2) and fit() of each curve in this process are the same doubles, bit for bit: the
+    cohesive-zone tables the curves share are pure functions of the stack and the grid index."""
+    make_map = os.path.join(os.environ.get("COATCONTACT_BUILD_DIR", os.path.join(SOURCE_DIR, "build")), "tests", "afm",
+                            "make_afm_map")
+    if not os.access(make_map, os.X_OK):
+        pytest.fail(f"make_afm_map not found at {make_map} (set COATCONTACT_BUILD_DIR)")
+    path = str(tmp_path / "md.jpk-force-map")
+    subprocess.run([make_map, path, "2", "2", "--seed", "7", "--md", "--clean"], check=True)
+    out = tmp_path / "md.tsv"
+    cli("afm", "fit", path, "--model", "md", "--radius", "10um", "--film", "250kPa,0.5", "--substrate", "1MPa,0.3",
+        "--thickness", "4um", "--range", "0.5um", "--jobs", "2", "--output", str(out))
+    table = table_rows(out)
+    keywords = dict(model="md", radius=10e-6, film=(250e3, 0.5), substrate=(1e6, 0.3), thickness=4e-6,
+                    surface_force_range=0.5e-6, free=("E1", "w", "contact_point", "baseline", "tilt"))
+    curves = cc.afm.read(path)
+    rows = cc.afm.fit_map(curves, jobs=2, **keywords)
+    names = ["E1", "w", "contact_point", "baseline", "tilt"]
+    for i in reversed(range(len(curves))):  # fit() in another order than the map's
+        python = cc.afm.fit(curves[i], **keywords)
+        assert table[i]["flag"] == "0" and int(rows["flag"][i]) == 0
+        for p in names:
+            assert float(table[i][p]) == python["estimates"][p], (i, p, "CLI row")
+            assert float(table[i][p + "_error"]) == python["errors"][p], (i, p, "CLI row's error")
+            assert float(rows[p][i]) == python["estimates"][p], (i, p, "fit_map")
