@@ -15,7 +15,7 @@
 //   (n % 16 == 7) expect no flag, since a retract fit does not look at the approach's jump-in.
 //   --md: the same coating, cantilever and w pattern with the library's Maugis-Dugdale spring
 //   model (fit::afm_model_force, model md, surface-force range z0 = 0.5 um: Maugis's lambda
-//   ~0.5-1.2, between DMT and JKR) and a film modulus E1 that varies smoothly over the map
+//   ~0.7-1.2, between DMT and JKR) and a film modulus E1 that varies smoothly over the map
 //   (100 kPa +- 20 %); the approach is the adhesionless model of each curve's coating. E1 is
 //   read (as the fit reads it with E1 free) between the nodes E0 10^(j/8) of the model's tables.
 //   --rigid (with --md): the same film on a rigid base (one table, E1 a pure scale).
