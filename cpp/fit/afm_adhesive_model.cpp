@@ -968,10 +968,11 @@ std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cos
 }
 
 // Where the model's simplex starts after the coarse stage on one table a decade (THEORY.md
-// section 15, "The coarse nodes", stages 1b and 1c): the model at the two decade nodes E0 10^k
-// bracketing the coarse estimate u (its coarse residual sum `rss`), probed; the walk over the
-// nodes from the better of them if it beats u, else from u.
-std::vector<double> model_start(const std::vector<double>& u, double rss, double e0, const Cost& cost) {
+// section 15, "The coarse nodes", stages 1b and 1c), and its first step in ln E1 (0: the other
+// axes'): the model at the two decade nodes E0 10^k bracketing the coarse estimate u (its coarse
+// residual sum `rss`), probed; from the better of them if it beats u, else from u, the walk over
+// the nodes, whose vertex is kept if the model there beats the model at that start.
+std::pair<std::vector<double>, double> model_start(const std::vector<double>& u, double rss, double e0, const Cost& cost) {
   const double k0 = std::floor((u[0] - std::log(e0)) / std::log(10.0));
   std::vector<double> start = u;
   double best = rss;
@@ -979,7 +980,15 @@ std::vector<double> model_start(const std::vector<double>& u, double rss, double
     const auto [r, at] = probe_node(std::log(e0) + k * std::log(10.0), {u.begin() + 1, u.end()}, cost);
     if (r < best) best = r, start = at;
   }
-  return node_walk(start, e0, cost);
+  // On precise data the probes at nodes a fraction of a node from the answer can end in another
+  // basin of the other axes (w -> 0 on a synthetic curve): the vertex's E1 with the start's other
+  // axes is a candidate too, and the start itself.
+  const std::vector<double> vertex = node_walk(start, e0, cost);
+  std::vector<double> mixed = start;
+  mixed[0] = vertex[0];
+  const double at_vertex = cost(vertex), at_mixed = cost(mixed);
+  if (!(std::min(at_vertex, at_mixed) < cost(start))) return {start, 0.0};
+  return {at_vertex <= at_mixed ? vertex : mixed, kModelFirstStep};
 }
 
 }  // namespace
@@ -1073,9 +1082,10 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     // The model at the decade nodes around the coarse estimate and a walk over its nodes, then every node.
     const ContactFit at_coarse = trial_cost(estimate, nullptr);
     model->coarse(false);
-    u_best = model_start(u_best, at_coarse.linear.rss, problem.coating->substrate.material.youngs_modulus,
-                         [&](const std::vector<double>& u) { return trial_cost(trial_of(u), &at_coarse.contact).linear.rss; });
-    run_simplex(trial_cost(trial_of(u_best), nullptr).contact, 1e-6, kModelFirstStep);
+    const auto [start, first_step] = model_start(u_best, at_coarse.linear.rss, problem.coating->substrate.material.youngs_modulus,
+                                                 [&](const std::vector<double>& u) { return trial_cost(trial_of(u), &at_coarse.contact).linear.rss; });
+    u_best = start;
+    run_simplex(trial_cost(trial_of(u_best), nullptr).contact, 1e-6, first_step);
     estimate = trial_of(u_best);
   } else if (coarse_stage) {
     // Again on the whole reach (on the three nodes around the coarse E1): the coarse model,
