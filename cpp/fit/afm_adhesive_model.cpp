@@ -59,8 +59,9 @@ constexpr double kProbeSimplexSize = 1e-2;
 // 26 MPa), at most kWalkReach nodes (4 decades) from where it starts.
 constexpr long kWalkStep = 4;
 constexpr long kWalkReach = 32;
-// Stage 2's first simplex step in ln E1 when it starts from the walk's vertex: a quarter node
-// (the other axes 0.15), so that its first trials stay on the vertex's nodes.
+// Stage 2's first simplex step in ln E1 (after the walk): a quarter node (the other axes 0.15),
+// so that its first trials stay on the four nodes around its start (0.15, half a node, had them
+// read a fifth node's table on pr14 and spot3).
 constexpr double kModelFirstStep = 0.25 * 2.302585092994046 / kModulusNodesPerDecade;
 // The anchored model of a free E1 on a coating: re-anchored while the polish moves E1 by more
 // than this in ln E1 (the fitted E1 then misses the anchor-exact one by ~6e-3 of the move: ~2e-6; THEORY.md section 15), at most
@@ -968,11 +969,11 @@ std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cos
 }
 
 // Where the model's simplex starts after the coarse stage on one table a decade (THEORY.md
-// section 15, "The coarse nodes", stages 1b and 1c), and its first step in ln E1 (0: the other
-// axes'): the model at the two decade nodes E0 10^k bracketing the coarse estimate u (its coarse
-// residual sum `rss`), probed; from the better of them if it beats u, else from u, the walk over
-// the nodes, whose vertex is kept if the model there beats the model at that start.
-std::pair<std::vector<double>, double> model_start(const std::vector<double>& u, double rss, double e0, const Cost& cost) {
+// section 15, "The coarse nodes", stages 1b and 1c): the model at the two decade nodes E0 10^k
+// bracketing the coarse estimate u (its coarse residual sum `rss`), probed; from the better of
+// them if it beats u, else from u, the walk over the nodes, whose vertex is kept if the model
+// there beats the model at that start.
+std::vector<double> model_start(const std::vector<double>& u, double rss, double e0, const Cost& cost) {
   const double k0 = std::floor((u[0] - std::log(e0)) / std::log(10.0));
   std::vector<double> start = u;
   double best = rss;
@@ -987,8 +988,8 @@ std::pair<std::vector<double>, double> model_start(const std::vector<double>& u,
   std::vector<double> mixed = start;
   mixed[0] = vertex[0];
   const double at_vertex = cost(vertex), at_mixed = cost(mixed);
-  if (!(std::min(at_vertex, at_mixed) < cost(start))) return {start, 0.0};
-  return {at_vertex <= at_mixed ? vertex : mixed, kModelFirstStep};
+  if (!(std::min(at_vertex, at_mixed) < cost(start))) return start;
+  return at_vertex <= at_mixed ? vertex : mixed;
 }
 
 }  // namespace
@@ -1082,10 +1083,9 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
     // The model at the decade nodes around the coarse estimate and a walk over its nodes, then every node.
     const ContactFit at_coarse = trial_cost(estimate, nullptr);
     model->coarse(false);
-    const auto [start, first_step] = model_start(u_best, at_coarse.linear.rss, problem.coating->substrate.material.youngs_modulus,
-                                                 [&](const std::vector<double>& u) { return trial_cost(trial_of(u), &at_coarse.contact).linear.rss; });
-    u_best = start;
-    run_simplex(trial_cost(trial_of(u_best), nullptr).contact, 1e-6, first_step);
+    u_best = model_start(u_best, at_coarse.linear.rss, problem.coating->substrate.material.youngs_modulus,
+                         [&](const std::vector<double>& u) { return trial_cost(trial_of(u), &at_coarse.contact).linear.rss; });
+    run_simplex(trial_cost(trial_of(u_best), nullptr).contact, 1e-6, kModelFirstStep);
     estimate = trial_of(u_best);
   } else if (coarse_stage) {
     // Again on the whole reach (on the three nodes around the coarse E1): the coarse model,
