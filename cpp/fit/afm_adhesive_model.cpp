@@ -926,9 +926,9 @@ std::pair<double, std::vector<double>> probe_node(double ln_e, std::vector<doubl
 
 // Stage 1c (THEORY.md section 15, "The coarse nodes"): the walk over the model's nodes
 // E0 10^(j/8) from u, each node probed. A pattern search on j: one node first, the step doubled
-// after each gain (at most kWalkStep), halved after a loss and tried on both sides, until both
-// neighbours of the best node lose; then the vertex of the parabola through the three (within
-// half a node), the other axes interpolated toward the better neighbour: stage 2's start.
+// after each gain (at most kWalkStep), halved after a loss and tried ahead, then behind, until
+// both neighbours of the best node lose; then the vertex of the parabola through the three
+// (within half a node), the other axes interpolated toward the better neighbour.
 std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cost& cost) {
   const double spacing = std::log(10.0) / kModulusNodesPerDecade;
   const long first = std::lround((u[0] - std::log(e0)) / spacing);
@@ -952,9 +952,8 @@ std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cos
     }
     if (step == 1) break;
     step /= 2;
-    const double ahead = profile(best + dir * step), behind = profile(best - dir * step);
-    if (ahead < value && ahead <= behind) best += dir * step, value = ahead;
-    else if (behind < value) best -= dir * step, value = behind, dir = -dir;
+    if (const double ahead = profile(best + dir * step); ahead < value) best += dir * step, value = ahead;
+    else if (const double behind = profile(best - dir * step); behind < value) best -= dir * step, value = behind, dir = -dir;
     else if (step == 1) break;
   }
   const double up = profile(best + 1), down = profile(best - 1), curvature = up - 2.0 * value + down;
