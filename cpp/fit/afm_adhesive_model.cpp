@@ -62,7 +62,7 @@ constexpr long kWalkReach = 32;
 // Stage 2's first simplex step in ln E1 (after the walk): a quarter node (the other axes 0.15),
 // so that its first trials stay on the four nodes around its start (0.15, half a node, had them
 // read a fifth node's table on pr14 and spot3).
-constexpr double kModelFirstStep = 0.25 * 2.302585092994046 / kModulusNodesPerDecade;
+constexpr double kModelFirstStep = 0.25 * 2.302585092994046 / kModulusNodesPerDecade;  // (ln 10)
 // The anchored model of a free E1 on a coating: re-anchored while the polish moves E1 by more
 // than this in ln E1 (the fitted E1 then misses the anchor-exact one by ~6e-3 of the move: ~2e-6; THEORY.md section 15), at most
 // kAnchorMoves times.
