@@ -50,11 +50,19 @@ constexpr double kCoarseAOverT = 1.0;
 // The coarse stage's simplex stops at this size in the ln-parameters: the whole reach's simplex
 // starts from it.
 constexpr double kCoarseSimplexSize = 1e-3;
-// Stage 1b: at most this many decades beyond the coarse estimate's bracket are probed, each
-// node's other axes by a simplex to this size (it only picks stage 2's start: on the four real
-// curves 1e-3 cost 1.6-1.9 times the probes' profile evaluations, for answers within 0.005 SE).
-constexpr double kDecadeProbes = 4.0;
+// Stages 1b and 1c: each node probed (E1 on the node, its table alone) has its other axes
+// searched by a simplex to this size (it only picks stage 2's start: on the four real curves
+// 1e-3 cost 1.6-1.9 times the probes' profile evaluations, for answers within 0.005 SE).
 constexpr double kProbeSimplexSize = 1e-2;
+// Stage 1c, the walk over the model's nodes: its step at most this many nodes (half a decade: a
+// step of a decade took igor U3_3 past the every-node search's minimum at 135 kPa to a basin at
+// 26 MPa), at most kWalkReach nodes (4 decades) from where it starts.
+constexpr long kWalkStep = 4;
+constexpr long kWalkReach = 32;
+// Stage 2's first simplex step in ln E1 (after the walk): a quarter node (the other axes 0.15),
+// so that its first trials stay on the four nodes around its start (0.15, half a node, had them
+// read a fifth node's table on pr14 and spot3).
+constexpr double kModelFirstStep = 0.25 * 2.302585092994046 / kModulusNodesPerDecade;  // (ln 10)
 // The anchored model of a free E1 on a coating: re-anchored while the polish moves E1 by more
 // than this in ln E1 (the fitted E1 then misses the anchor-exact one by ~6e-3 of the move: ~2e-6; THEORY.md section 15), at most
 // kAnchorMoves times.
@@ -336,7 +344,7 @@ ContactFit search_contact(const Objective& objective, const Branch& branch, cons
 
 // Minimum of f over ln-parameters by GSL's Nelder-Mead simplex (bounded iterations).
 std::vector<double> simplex(const std::function<double(const std::vector<double>&)>& f, std::vector<double> start,
-                            double step, double size, int* iterations) {
+                            double step, double size, int* iterations, double first_step = 0.0) {
   coatcontact::detail::GslHandlerOff handler_off;
   const std::size_t dim = start.size();
   struct Params {
@@ -357,6 +365,7 @@ std::vector<double> simplex(const std::function<double(const std::vector<double>
       steps(gsl_vector_alloc(dim), gsl_vector_free);
   for (std::size_t k = 0; k < dim; ++k) gsl_vector_set(x.get(), k, start[k]);
   gsl_vector_set_all(steps.get(), step);
+  if (first_step > 0.0) gsl_vector_set(steps.get(), 0, first_step);  // (the first axis's own, if given)
   std::unique_ptr<gsl_multimin_fminimizer, void (*)(gsl_multimin_fminimizer*)> minimizer(
       gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, dim), gsl_multimin_fminimizer_free);
   gsl_multimin_fminimizer_set(minimizer.get(), &fn, x.get(), steps.get());
@@ -900,39 +909,86 @@ Trial trial_at(const std::vector<int>& axes, Trial base, const std::vector<doubl
   return base;
 }
 
+using Cost = std::function<double(const std::vector<double>&)>;
+
+// A probe of the model at E1 = exp(ln_e) on a node (the model reads that node's table alone
+// there): the other axes searched from `rest`; its residual sum and point.
+std::pair<double, std::vector<double>> probe_node(double ln_e, std::vector<double> rest, const Cost& cost) {
+  const auto at = [&](const std::vector<double>& r) {
+    std::vector<double> p{ln_e};
+    p.insert(p.end(), r.begin(), r.end());
+    return p;
+  };
+  int iterations = 0;
+  if (!rest.empty()) rest = simplex([&](const std::vector<double>& r) { return cost(at(r)); }, rest, 0.15, kProbeSimplexSize, &iterations);
+  return {cost(at(rest)), at(rest)};
+}
+
+// Stage 1c (THEORY.md section 15, "The coarse nodes"): the walk over the model's nodes
+// E0 10^(j/8) from u, each node probed. A pattern search on j: one node first, the step doubled
+// after each gain (at most kWalkStep), halved after a loss and tried ahead, then behind, until
+// both neighbours of the best node lose; then the vertex of the parabola through the three
+// (within half a node), the other axes interpolated toward the better neighbour.
+std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cost& cost) {
+  const double spacing = std::log(10.0) / kModulusNodesPerDecade;
+  const long first = std::lround((u[0] - std::log(e0)) / spacing);
+  std::map<long, std::pair<double, std::vector<double>>> seen;
+  long best = first;
+  const auto profile = [&](long j) {
+    auto it = seen.find(j);
+    if (it == seen.end()) {
+      const std::vector<double>& from = seen.empty() ? u : seen.at(best).second;  // the best node's other axes
+      it = seen.emplace(j, probe_node(std::log(e0) + static_cast<double>(j) * spacing, {from.begin() + 1, from.end()}, cost)).first;
+    }
+    return it->second.first;
+  };
+  double value = profile(best);
+  long dir = profile(best + 1) < value ? 1 : profile(best - 1) < value ? -1 : 0;
+  for (long step = 1; dir != 0 && std::abs(best + dir * step - first) <= kWalkReach;) {
+    // (a node seen before lost to a best at least as high as today's: it never wins again)
+    if (const long next = best + dir * step; profile(next) < value) {
+      best = next, value = profile(next), step = std::min(2 * step, kWalkStep);
+      continue;
+    }
+    if (step == 1) break;
+    step /= 2;
+    if (const double ahead = profile(best + dir * step); ahead < value) best += dir * step, value = ahead;
+    else if (const double behind = profile(best - dir * step); behind < value) best -= dir * step, value = behind, dir = -dir;
+    else if (step == 1) break;
+  }
+  const double up = profile(best + 1), down = profile(best - 1), curvature = up - 2.0 * value + down;
+  std::vector<double> out = seen.at(best).second;
+  if (std::isfinite(curvature) && curvature > 0.0) {
+    const double offset = std::clamp(0.5 * (down - up) / curvature, -0.5, 0.5);
+    const std::vector<double>& side = seen.at(offset > 0.0 ? best + 1 : best - 1).second;
+    for (std::size_t k = 1; k < out.size(); ++k) out[k] += std::abs(offset) * (side[k] - out[k]);
+    out[0] += offset * spacing;
+  }
+  return out;
+}
+
 // Where the model's simplex starts after the coarse stage on one table a decade (THEORY.md
-// section 15, "The coarse nodes", stage 1b): the model at the decade nodes E0 10^k around the
-// coarse estimate u (its coarse residual sum `rss`), E1 held on each node (the model reads that
-// node's table alone there) and the other axes searched; the better of the two bracketing nodes
-// is followed outward a decade at a time while each beats the best so far. The best node's point
-// if one beats u, else u.
-std::vector<double> decade_start(const std::vector<double>& u, double rss, double e0,
-                                 const std::function<double(const std::vector<double>&)>& cost) {
+// section 15, "The coarse nodes", stages 1b and 1c): the model at the two decade nodes E0 10^k
+// bracketing the coarse estimate u (its coarse residual sum `rss`), probed; from the better of
+// them if it beats u, else from u, the walk over the nodes, whose vertex is kept if the model
+// there beats the model at that start.
+std::vector<double> model_start(const std::vector<double>& u, double rss, double e0, const Cost& cost) {
   const double k0 = std::floor((u[0] - std::log(e0)) / std::log(10.0));
   std::vector<double> start = u;
   double best = rss;
-  const auto probe = [&](double k) {
-    const double ln_e = std::log(e0) + k * std::log(10.0);
-    const auto at = [&](const std::vector<double>& rest) {
-      std::vector<double> p{ln_e};
-      p.insert(p.end(), rest.begin(), rest.end());
-      return p;
-    };
-    std::vector<double> rest(u.begin() + 1, u.end());
-    int iterations = 0;
-    if (!rest.empty()) rest = simplex([&](const std::vector<double>& r) { return cost(at(r)); }, rest, 0.15, kProbeSimplexSize, &iterations);
-    const double r = cost(at(rest));
-    if (!(r < best)) return false;
-    best = r;
-    start = at(rest);
-    return true;
-  };
-  const bool low = probe(k0), high = probe(k0 + 1);
-  for (double k = k0 + 2; high && k <= k0 + 1 + kDecadeProbes && probe(k); ++k) {
+  for (double k : {k0, k0 + 1}) {
+    const auto [r, at] = probe_node(std::log(e0) + k * std::log(10.0), {u.begin() + 1, u.end()}, cost);
+    if (r < best) best = r, start = at;
   }
-  for (double k = k0 - 1; low && !high && k >= k0 - kDecadeProbes && probe(k); --k) {
-  }
-  return start;
+  // On precise data the probes at nodes a fraction of a node from the answer can end in another
+  // basin of the other axes (w -> 0 on a synthetic curve): the vertex's E1 with the start's other
+  // axes is a candidate too, and the start itself.
+  const std::vector<double> vertex = node_walk(start, e0, cost);
+  std::vector<double> mixed = start;
+  mixed[0] = vertex[0];
+  const double at_vertex = cost(vertex), at_mixed = cost(mixed);
+  if (!(std::min(at_vertex, at_mixed) < cost(start))) return start;
+  return at_vertex <= at_mixed ? vertex : mixed;
 }
 
 }  // namespace
@@ -1015,20 +1071,20 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   }
   // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near `centre`.
   int iterations = 0;
-  const auto run_simplex = [&](double centre, double size) {
+  const auto run_simplex = [&](double centre, double size, double first_step = 0.0) {
     int k = 0;
-    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best, 0.15, size, &k);
+    u_best = simplex([&](const std::vector<double>& u) { return trial_cost(trial_of(u), &centre).linear.rss; }, u_best, 0.15, size, &k, first_step);
     iterations = std::max(iterations, k);
   };
   if (!axes.empty()) run_simplex(best_fit.contact, coarse_stage || coarse_nodes ? kCoarseSimplexSize : 1e-6);
   Trial estimate = trial_of(u_best);
   if (coarse_nodes) {
-    // The model at the decade nodes around the coarse estimate, then on every node from the best.
+    // The model at the decade nodes around the coarse estimate and a walk over its nodes, then every node.
     const ContactFit at_coarse = trial_cost(estimate, nullptr);
     model->coarse(false);
-    u_best = decade_start(u_best, at_coarse.linear.rss, problem.coating->substrate.material.youngs_modulus,
-                          [&](const std::vector<double>& u) { return trial_cost(trial_of(u), &at_coarse.contact).linear.rss; });
-    run_simplex(trial_cost(trial_of(u_best), nullptr).contact, 1e-6);
+    u_best = model_start(u_best, at_coarse.linear.rss, problem.coating->substrate.material.youngs_modulus,
+                         [&](const std::vector<double>& u) { return trial_cost(trial_of(u), &at_coarse.contact).linear.rss; });
+    run_simplex(trial_cost(trial_of(u_best), nullptr).contact, 1e-6, kModelFirstStep);
     estimate = trial_of(u_best);
   } else if (coarse_stage) {
     // Again on the whole reach (on the three nodes around the coarse E1): the coarse model,

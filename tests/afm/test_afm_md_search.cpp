@@ -1,7 +1,7 @@
 // The Maugis-Dugdale fit's search for a free E1 on an elastic base (THEORY.md section 15, "The
 // coarse nodes"; check "coarse-node search = every-node search"): the search that first runs on
-// one node table a decade, then probes the model at the decade nodes (stage 1b; afm_fit_md's),
-// against the search on every node throughout
+// one node table a decade, then probes the model at the decade nodes and walks over its nodes
+// (stages 1b and 1c; afm_fit_md's), against the search on every node throughout
 // (MdE1Search::kEveryNode, the search before), on the retract segments of the four real curves of
 // data/afm as a film (1 kPa start, nu1 0.5, t 1 um) on a 10 kPa base, E1, w, z_c, b and the tilt
 // free. Per curve: every estimate within 1/100 of its standard error (the issue's rule for a
