@@ -40,8 +40,12 @@ constexpr int kOneD = 2;  // delta_h, force_h
 // vary with a/t as fast as the 2-D ones (on a rigid base with nu = 0.5 F_H/a³ spans decades):
 // a grid 4 times finer than x. Their cubic splines' error is then 1/256 of x's step (h^4) and
 // stays below the 2-D functions'; 8 times finer moved AFM fits by <= 1e-3 of their standard
-// errors at 1.15-1.2 times the cost (THEORY.md section 15, "Its cost").
-constexpr double kOneDRefinement = 4.0;
+// errors at 1.15-1.2 times the cost (THEORY.md section 15, "Its cost"). The grid x1 refines x
+// (x1[kOneDRefinement i] = x[i], even so that x1's coarse grid holds every x node too): a
+// radius node there reads the column's factorization (THEORY.md section 13, "Radius nodes on
+// the columns").
+constexpr std::size_t kOneDRefinement = 4;
+static_assert(kOneDRefinement % 2 == 0, "x1's coarse nodes must hold x's nodes");
 // Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
 constexpr int kSamples = 5;
 
@@ -112,6 +116,19 @@ std::vector<double> grid(double lo, double hi, double step) {
   std::vector<double> g(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) g[static_cast<std::size_t>(k)] = lo + (hi - lo) * k / (n - 1);
   return g;
+}
+
+// grid with `factor` - 1 equally spaced nodes inserted in each interval; its node factor i is
+// grid[i] itself (bit for bit: a radius node there is the column's).
+std::vector<double> refined_grid(const std::vector<double>& grid, std::size_t factor) {
+  std::vector<double> fine((grid.size() - 1) * factor + 1);
+  for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+    for (std::size_t k = 0; k < factor; ++k) {
+      fine[i * factor + k] = k == 0 ? grid[i] : grid[i] + (grid[i + 1] - grid[i]) * static_cast<double>(k) / factor;
+    }
+  }
+  fine.back() = grid.back();
+  return fine;
 }
 
 // ln(h/h0) from h - h0 = difference (its sign exact: the bracket's decisions are those on h - h0),
@@ -377,7 +394,7 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
   for (std::size_t i = 0; i < g->x.size(); i += 2) g->x_coarse.push_back(g->x[i]);
   for (std::size_t j = 0; j < g->tau.size(); j += 2) g->tau_coarse.push_back(g->tau[j]);
   for (std::size_t i = 0; i < g->xe.size(); i += 2) g->xe_coarse.push_back(g->xe[i]);
-  g->x1 = grid(g->x.front(), g->x.back(), options_.step / kOneDRefinement);
+  g->x1 = refined_grid(g->x, kOneDRefinement);
   for (std::size_t i = 0; i < g->x1.size(); i += 2) g->x1_coarse.push_back(g->x1[i]);
   g->radius_solved.assign(g->x1.size(), 0);
   const std::size_t nx = g->x.size(), ns = g->tau.size(), ne = g->xe.size();
@@ -407,7 +424,7 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
     // Everything a node's value depends on besides its grid index.
     const MdTableOptions& o = options_;
     const std::string key = cache_key + "; zone table " + exact_text(o.a_over_t_min) + " " +
-                            exact_text(kOneDRefinement) + " " +
+                            std::to_string(kOneDRefinement) + " refines x " +
                             exact_text(o.a_over_t_max) + " " + exact_text(o.excess_min) + " " +
                             exact_text(o.c_over_t_max) + " " + exact_text(o.end_c_over_t_min) + " " +
                             exact_text(o.step) + "; panels " + std::to_string(disc_.nodes_per_panel) + " " +
@@ -581,15 +598,33 @@ void MaugisDugdaleTable::solve_radius_nodes(std::size_t first, std::size_t last)
   const std::vector<std::size_t> missing = use_nodes(g.radius_used, g.radius_solved, first, last);
   if (missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
-  // One factorization per radius; the adhesionless solution gives δ_H, F_H.
+  // One factorization per radius; the adhesionless solution gives δ_H, F_H. A node on an x
+  // node reads its column's factorization, built here if missing and kept for the column's
+  // 2-D nodes: the same zone either way, so the same values whichever is solved first.
+  std::vector<char> column_built(missing.size(), 0);
   for_each_node(missing.size(), [&](std::size_t n) {
-    const std::size_t i = missing[n];
+    const std::size_t i = missing[n], column = i / kOneDRefinement;
     const double a = std::exp(g.x1[i]);
-    const CohesiveFunctions v = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).adhesionless();
+    CohesiveFunctions v;
+    if (i % kOneDRefinement != 0) {
+      v = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).adhesionless();
+    } else {
+      if (!g.column_solved[column]) {
+        g.columns[column] = std::make_unique<CohesiveZone>(kernel_, a, 1.0, disc_, quadrature_);
+        column_built[n] = 1;
+      }
+      v = g.columns[column]->adhesionless();
+    }
     const CohesiveFunctions h = homogeneous_functions(a, 1.0);
     g.y[0][i] = v.delta_h / h.delta_h;
     g.y[1][i] = v.force_h / h.force_h;
   });
+  for (std::size_t n = 0; n < missing.size(); ++n) {
+    if (column_built[n]) {
+      g.column_solved[missing[n] / kOneDRefinement] = 1;
+      ++g.nodes;
+    }
+  }
   for (std::size_t i : missing) {
     g.radius_solved[i] = 1;
     if (g.cache) {
@@ -631,13 +666,11 @@ const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_radius(std::size_t ti
     std::size_t own0, own, first, last;
     tile_range(ti, g.x_coarse.size() - 1, options_.tile_cells, std::max(2, options_.margin_cells), own0, own, first,
                last);
-    // The x1 nodes around [x_first, x_last], from and to a coarse x1 node.
-    const std::size_t lo_cell = cell_of(g.x1_coarse, g.x[first]);
-    const std::size_t hi_cell = std::min(cell_of(g.x1_coarse, g.x[last]) + 1, g.x1_coarse.size() - 1);
-    const std::size_t first1 = 2 * lo_cell, last1 = 2 * hi_cell;
+    // The x1 nodes of [x_first, x_last] (x1 refines x).
+    const std::size_t first1 = kOneDRefinement * first, last1 = kOneDRefinement * last;
     solve_radius_nodes(first1, last1);
     auto tile = std::make_unique<Tile1d>();
-    tile->interval0 = lo_cell;
+    tile->interval0 = first1 / 2;
     tile->node0 = first1;
     tile->node1 = last1;
     GslHandlerOff guard;
