@@ -37,14 +37,14 @@ using detail::kPi;
 constexpr int kTwoD = 4;  // d, f, g_r, g_s
 constexpr int kOneD = 2;  // delta_h, force_h
 // The radius functions cost one factorization per node (~100 µs, more than a 2-D node) and
-// vary with a/t as fast as the 2-D ones (on a rigid base with nu = 0.5 F_H/a³ spans decades):
-// a grid 4 times finer than x. Their cubic splines' error is then 1/256 of x's step (h^4) and
-// stays below the 2-D functions'; 8 times finer moved AFM fits by <= 1e-3 of their standard
-// errors at 1.15-1.2 times the cost (THEORY.md section 15, "Its cost"). The grid x1 refines x
-// (x1[kOneDRefinement i] = x[i], even so that x1's coarse grid holds every x node too): a
-// radius node there reads the column's factorization (THEORY.md section 13, "Radius nodes on
-// the columns").
-constexpr std::size_t kOneDRefinement = 4;
+// vary with a/t as fast as the 2-D ones (on a rigid base with nu = 0.5 F_H/a³ spans decades).
+// Tabled as ln(ratio) (nearly straight where the ratio is a power of a/t), on a grid x1 twice
+// finer than x that refines it (x1[2 i] = x[i]): a radius node on an x node reads its column's
+// factorization, so a tile's radius nodes cost half a factorization per column more. The
+// error matched the ratios on a 4 times finer grid, and AFM fits moved by <= 2e-3 of their
+// standard errors (THEORY.md section 13, "The radius functions on the columns"). Even, so that
+// x1's coarse grid (every other node) holds every x node too.
+constexpr std::size_t kOneDRefinement = 2;
 static_assert(kOneDRefinement % 2 == 0, "x1's coarse nodes must hold x's nodes");
 // Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
 constexpr int kSamples = 5;
@@ -313,9 +313,10 @@ struct MaugisDugdaleTable::Grids {
   // x = ln(a/t); τ in [0, 1] maps to s = ln(c/a - 1) = s_min + τ (s_max(x) - s_min).
   std::vector<double> x, tau, x_coarse, tau_coarse;
   std::vector<double> xe, xe_coarse;  // the end of the curve a = 0: ln(c/t)
-  std::vector<double> x1, x1_coarse;  // the radius functions δ_H, F_H, kOneDRefinement times finer
+  std::vector<double> x1, x1_coarse;  // the radius functions δ_H, F_H: x refined kOneDRefinement times
   std::size_t tiles_x = 0, tiles_s = 0, tiles_e = 0;
-  // Node values (ratios to the homogeneous forms) and whether they are solved; 2-D index j nx + i.
+  // Node values (ratios to the homogeneous forms; y: their logarithms) and whether they are
+  // solved; 2-D index j nx + i.
   std::vector<double> z[kTwoD], y[kOneD], ye[kTwoD];
   std::vector<char> solved, column_solved, end_solved, radius_solved;
   // Nodes the built tiles rest on (solved here or read from the cache).
@@ -424,7 +425,7 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
     // Everything a node's value depends on besides its grid index.
     const MdTableOptions& o = options_;
     const std::string key = cache_key + "; zone table " + exact_text(o.a_over_t_min) + " " +
-                            std::to_string(kOneDRefinement) + " refines x " +
+                            std::to_string(kOneDRefinement) + " refines x, ln ratios " +
                             exact_text(o.a_over_t_max) + " " + exact_text(o.excess_min) + " " +
                             exact_text(o.c_over_t_max) + " " + exact_text(o.end_c_over_t_min) + " " +
                             exact_text(o.step) + "; panels " + std::to_string(disc_.nodes_per_panel) + " " +
@@ -616,8 +617,14 @@ void MaugisDugdaleTable::solve_radius_nodes(std::size_t first, std::size_t last)
       v = g.columns[column]->adhesionless();
     }
     const CohesiveFunctions h = homogeneous_functions(a, 1.0);
-    g.y[0][i] = v.delta_h / h.delta_h;
-    g.y[1][i] = v.force_h / h.force_h;
+    const double ratio[kOneD] = {v.delta_h / h.delta_h, v.force_h / h.force_h};
+    for (int k = 0; k < kOneD; ++k) {
+      if (!(ratio[k] > 0.0) || !std::isfinite(ratio[k])) {
+        throw NumericalError("Maugis-Dugdale table: adhesionless " + std::string(k == 0 ? "penetration" : "load") +
+                             " not positive at a/t = " + short_text(a));
+      }
+      g.y[k][i] = std::log(ratio[k]);
+    }
   });
   for (std::size_t n = 0; n < missing.size(); ++n) {
     if (column_built[n]) {
@@ -892,8 +899,10 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess, int check) const {
     } else {
       r = gsl_spline_eval((check < 0 ? radius.coarse : radius.fine)[kk].spline, x, nullptr);
     }
-    v1[k] = r * hom1[k];
-    e1[k] = (options_.error_factor * radius.interval_error[kk][interval] + options_.source_noise * std::abs(r)) *
+    // r is ln(ratio): its error Δ is the ratio's relative error e^Δ - 1.
+    const double ratio = std::exp(r);
+    v1[k] = ratio * hom1[k];
+    e1[k] = (std::expm1(options_.error_factor * radius.interval_error[kk][interval]) + options_.source_noise) * ratio *
             std::abs(hom1[k]);
   }
   out.value.delta_h = v1[0];
@@ -976,8 +985,8 @@ CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, do
   const Tile1d& radius_tile = tile_radius(radius.tile_x);
   out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, &cursor.x, &cursor.tau);
   out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, &cursor.x, &cursor.tau);
-  out.delta_h *= gsl_spline_eval(radius_tile.fine[0].spline, radius.x, nullptr);
-  out.force_h *= gsl_spline_eval(radius_tile.fine[1].spline, radius.x, nullptr);
+  out.delta_h *= std::exp(gsl_spline_eval(radius_tile.fine[0].spline, radius.x, nullptr));
+  out.force_h *= std::exp(gsl_spline_eval(radius_tile.fine[1].spline, radius.x, nullptr));
   out.g_r = out.g_s = 0.0;  // not computed
   return out;
 }
