@@ -37,11 +37,15 @@ using detail::kPi;
 constexpr int kTwoD = 4;  // d, f, g_r, g_s
 constexpr int kOneD = 2;  // delta_h, force_h
 // The radius functions cost one factorization per node (~100 µs, more than a 2-D node) and
-// vary with a/t as fast as the 2-D ones (on a rigid base with nu = 0.5 F_H/a³ spans decades):
-// a grid 4 times finer than x. Their cubic splines' error is then 1/256 of x's step (h^4) and
-// stays below the 2-D functions'; 8 times finer moved AFM fits by <= 1e-3 of their standard
-// errors at 1.15-1.2 times the cost (THEORY.md section 15, "Its cost").
-constexpr double kOneDRefinement = 4.0;
+// vary with a/t as fast as the 2-D ones (on a rigid base with nu = 0.5 F_H/a³ spans decades).
+// Tabled as ln(ratio) (nearly straight where the ratio is a power of a/t), on a grid x1 twice
+// finer than x that refines it (x1[2 i] = x[i]): a radius node on an x node reads its column's
+// factorization, so a tile's radius nodes cost half a factorization per column more. The
+// error matched the ratios on a 4 times finer grid, and AFM fits moved by <= 2e-3 of their
+// standard errors (THEORY.md section 13, "The radius functions on the columns"). Even, so that
+// x1's coarse grid (every other node) holds every x node too.
+constexpr std::size_t kOneDRefinement = 2;
+static_assert(kOneDRefinement % 2 == 0, "x1's coarse nodes must hold x's nodes");
 // Points per coarse interval (2-D: per direction) at which fine and coarse are compared.
 constexpr int kSamples = 5;
 
@@ -112,6 +116,19 @@ std::vector<double> grid(double lo, double hi, double step) {
   std::vector<double> g(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) g[static_cast<std::size_t>(k)] = lo + (hi - lo) * k / (n - 1);
   return g;
+}
+
+// grid with `factor` - 1 equally spaced nodes inserted in each interval; its node factor i is
+// grid[i] itself (bit for bit: a radius node there is the column's).
+std::vector<double> refined_grid(const std::vector<double>& grid, std::size_t factor) {
+  std::vector<double> fine((grid.size() - 1) * factor + 1);
+  for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+    for (std::size_t k = 0; k < factor; ++k) {
+      fine[i * factor + k] = k == 0 ? grid[i] : grid[i] + (grid[i + 1] - grid[i]) * static_cast<double>(k) / factor;
+    }
+  }
+  fine.back() = grid.back();
+  return fine;
 }
 
 // ln(h/h0) from h - h0 = difference (its sign exact: the bracket's decisions are those on h - h0),
@@ -296,9 +313,10 @@ struct MaugisDugdaleTable::Grids {
   // x = ln(a/t); τ in [0, 1] maps to s = ln(c/a - 1) = s_min + τ (s_max(x) - s_min).
   std::vector<double> x, tau, x_coarse, tau_coarse;
   std::vector<double> xe, xe_coarse;  // the end of the curve a = 0: ln(c/t)
-  std::vector<double> x1, x1_coarse;  // the radius functions δ_H, F_H, kOneDRefinement times finer
+  std::vector<double> x1, x1_coarse;  // the radius functions δ_H, F_H: x refined kOneDRefinement times
   std::size_t tiles_x = 0, tiles_s = 0, tiles_e = 0;
-  // Node values (ratios to the homogeneous forms) and whether they are solved; 2-D index j nx + i.
+  // Node values (ratios to the homogeneous forms; y: their logarithms) and whether they are
+  // solved; 2-D index j nx + i.
   std::vector<double> z[kTwoD], y[kOneD], ye[kTwoD];
   std::vector<char> solved, column_solved, end_solved, radius_solved;
   // Nodes the built tiles rest on (solved here or read from the cache).
@@ -377,7 +395,7 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
   for (std::size_t i = 0; i < g->x.size(); i += 2) g->x_coarse.push_back(g->x[i]);
   for (std::size_t j = 0; j < g->tau.size(); j += 2) g->tau_coarse.push_back(g->tau[j]);
   for (std::size_t i = 0; i < g->xe.size(); i += 2) g->xe_coarse.push_back(g->xe[i]);
-  g->x1 = grid(g->x.front(), g->x.back(), options_.step / kOneDRefinement);
+  g->x1 = refined_grid(g->x, kOneDRefinement);
   for (std::size_t i = 0; i < g->x1.size(); i += 2) g->x1_coarse.push_back(g->x1[i]);
   g->radius_solved.assign(g->x1.size(), 0);
   const std::size_t nx = g->x.size(), ns = g->tau.size(), ne = g->xe.size();
@@ -407,7 +425,7 @@ MaugisDugdaleTable::MaugisDugdaleTable(const KernelSource& kernel, const Discret
     // Everything a node's value depends on besides its grid index.
     const MdTableOptions& o = options_;
     const std::string key = cache_key + "; zone table " + exact_text(o.a_over_t_min) + " " +
-                            exact_text(kOneDRefinement) + " " +
+                            std::to_string(kOneDRefinement) + " refines x, ln ratios " +
                             exact_text(o.a_over_t_max) + " " + exact_text(o.excess_min) + " " +
                             exact_text(o.c_over_t_max) + " " + exact_text(o.end_c_over_t_min) + " " +
                             exact_text(o.step) + "; panels " + std::to_string(disc_.nodes_per_panel) + " " +
@@ -581,15 +599,39 @@ void MaugisDugdaleTable::solve_radius_nodes(std::size_t first, std::size_t last)
   const std::vector<std::size_t> missing = use_nodes(g.radius_used, g.radius_solved, first, last);
   if (missing.empty()) return;
   const Stopwatch watch(g.nanoseconds);
-  // One factorization per radius; the adhesionless solution gives δ_H, F_H.
+  // One factorization per radius; the adhesionless solution gives δ_H, F_H. A node on an x
+  // node reads its column's factorization, built here if missing and kept for the column's
+  // 2-D nodes: the same zone either way, so the same values whichever is solved first.
+  std::vector<char> column_built(missing.size(), 0);
   for_each_node(missing.size(), [&](std::size_t n) {
-    const std::size_t i = missing[n];
+    const std::size_t i = missing[n], column = i / kOneDRefinement;
     const double a = std::exp(g.x1[i]);
-    const CohesiveFunctions v = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).adhesionless();
+    CohesiveFunctions v;
+    if (i % kOneDRefinement != 0) {
+      v = CohesiveZone(kernel_, a, 1.0, disc_, quadrature_).adhesionless();
+    } else {
+      if (!g.column_solved[column]) {
+        g.columns[column] = std::make_unique<CohesiveZone>(kernel_, a, 1.0, disc_, quadrature_);
+        column_built[n] = 1;
+      }
+      v = g.columns[column]->adhesionless();
+    }
     const CohesiveFunctions h = homogeneous_functions(a, 1.0);
-    g.y[0][i] = v.delta_h / h.delta_h;
-    g.y[1][i] = v.force_h / h.force_h;
+    const double ratio[kOneD] = {v.delta_h / h.delta_h, v.force_h / h.force_h};
+    for (int k = 0; k < kOneD; ++k) {
+      if (!(ratio[k] > 0.0) || !std::isfinite(ratio[k])) {
+        throw NumericalError("Maugis-Dugdale table: adhesionless " + std::string(k == 0 ? "penetration" : "load") +
+                             " not positive at a/t = " + short_text(a));
+      }
+      g.y[k][i] = std::log(ratio[k]);
+    }
   });
+  for (std::size_t n = 0; n < missing.size(); ++n) {
+    if (column_built[n]) {
+      g.column_solved[missing[n] / kOneDRefinement] = 1;
+      ++g.nodes;
+    }
+  }
   for (std::size_t i : missing) {
     g.radius_solved[i] = 1;
     if (g.cache) {
@@ -631,13 +673,11 @@ const MaugisDugdaleTable::Tile1d& MaugisDugdaleTable::tile_radius(std::size_t ti
     std::size_t own0, own, first, last;
     tile_range(ti, g.x_coarse.size() - 1, options_.tile_cells, std::max(2, options_.margin_cells), own0, own, first,
                last);
-    // The x1 nodes around [x_first, x_last], from and to a coarse x1 node.
-    const std::size_t lo_cell = cell_of(g.x1_coarse, g.x[first]);
-    const std::size_t hi_cell = std::min(cell_of(g.x1_coarse, g.x[last]) + 1, g.x1_coarse.size() - 1);
-    const std::size_t first1 = 2 * lo_cell, last1 = 2 * hi_cell;
+    // The x1 nodes of [x_first, x_last] (x1 refines x).
+    const std::size_t first1 = kOneDRefinement * first, last1 = kOneDRefinement * last;
     solve_radius_nodes(first1, last1);
     auto tile = std::make_unique<Tile1d>();
-    tile->interval0 = lo_cell;
+    tile->interval0 = first1 / 2;
     tile->node0 = first1;
     tile->node1 = last1;
     GslHandlerOff guard;
@@ -859,8 +899,10 @@ MdTableValue MaugisDugdaleTable::at(double a, double excess, int check) const {
     } else {
       r = gsl_spline_eval((check < 0 ? radius.coarse : radius.fine)[kk].spline, x, nullptr);
     }
-    v1[k] = r * hom1[k];
-    e1[k] = (options_.error_factor * radius.interval_error[kk][interval] + options_.source_noise * std::abs(r)) *
+    // r is ln(ratio): its error Δ is the ratio's relative error e^Δ - 1.
+    const double ratio = std::exp(r);
+    v1[k] = ratio * hom1[k];
+    e1[k] = (std::expm1(options_.error_factor * radius.interval_error[kk][interval]) + options_.source_noise) * ratio *
             std::abs(hom1[k]);
   }
   out.value.delta_h = v1[0];
@@ -943,8 +985,8 @@ CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, do
   const Tile1d& radius_tile = tile_radius(radius.tile_x);
   out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, &cursor.x, &cursor.tau);
   out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, &cursor.x, &cursor.tau);
-  out.delta_h *= gsl_spline_eval(radius_tile.fine[0].spline, radius.x, nullptr);
-  out.force_h *= gsl_spline_eval(radius_tile.fine[1].spline, radius.x, nullptr);
+  out.delta_h *= std::exp(gsl_spline_eval(radius_tile.fine[0].spline, radius.x, nullptr));
+  out.force_h *= std::exp(gsl_spline_eval(radius_tile.fine[1].spline, radius.x, nullptr));
   out.g_r = out.g_s = 0.0;  // not computed
   return out;
 }

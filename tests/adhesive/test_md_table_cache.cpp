@@ -5,6 +5,7 @@
 // file is removed and its nodes solved again.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -129,5 +130,28 @@ int main() {
   }
   set_solve_cache_directory("");
   fs::remove_all(root);
+  {
+    // A radius node on an x node reads its column's factorization, built by whichever of the
+    // radius tile (margin 2) and the 2-D tile (margin 1 here) comes first: the same values in
+    // either order (radii forward and backward, tiles built on demand).
+    detail::MdTableOptions narrow = options;
+    narrow.margin_cells = 1;
+    std::vector<double> radii;
+    for (int k = 0; k <= 12; ++k) radii.push_back(0.012 * std::pow(700.0, k / 12.0));
+    auto values = [&](bool backward) {
+      const detail::MaugisDugdaleTable table(kernel, disc, quadrature, narrow);
+      std::vector<double> out(2 * 4 * radii.size());
+      for (std::size_t n = 0; n < radii.size(); ++n) {
+        const std::size_t k = backward ? radii.size() - 1 - n : n;
+        const detail::MdTableValue v = table.at(radii[k], 0.5);
+        const double row[8] = {v.value.delta_h, v.value.force_h, v.value.d,     v.value.f,
+                               v.error.delta_h, v.error.force_h, v.error.d, v.error.f};
+        std::memcpy(&out[8 * k], row, sizeof row);
+      }
+      return out;
+    };
+    check::that(identical(values(false), values(true)),
+                "radius nodes on the columns: the same values whichever tile factors the column");
+  }
   return check::exit_code();
 }
