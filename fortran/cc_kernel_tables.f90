@@ -818,7 +818,9 @@ contains
   ! computed for a chunk of tabulated points in one loop of scalars, which the compiler
   ! vectorizes across points, then each sum (stencil_sum_12's order; near u = 0 the nodes at
   ! |k|, H being even, as node_value; a node itself, t = 0, read). Far-field points (v > u_max)
-  ! are left out of the chunks and summed point by point, as look_up does.
+  ! are left out of the chunks and summed point by point, as look_up does. A chunk's basis is
+  ! computed for its points only: the solver's small batches (a table node's ~150 node-to-node
+  ! values) no longer pay for a whole chunk of padding.
   subroutine evaluate_kernel_h_many(table, u, h)
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u(:)
@@ -865,8 +867,7 @@ contains
         end if
         first = first + 1
       end do
-      uu(count + 1:chunk) = 0.0_dp
-      do k = 1, chunk
+      do k = 1, count
         t = uu(k) / du
         i(k) = int(t)
         t = t - real(i(k), dp)
