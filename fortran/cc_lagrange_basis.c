@@ -2,9 +2,9 @@
  * tabulated points: that loop's operations in its order (lagrange_basis_12's), built for SSE2
  * and for AVX2 and chosen when the library is loaded. Neither build contracts a multiply and
  * an add (FMA), so both give the elemental path's bits on every x86-64 host; AVX2 computes four
- * points per instruction instead of two (docs/speed.md, mdnode2d38). ell is the Fortran array
- * ell(chunk, 0:11), chunk = 64 there: ell[j * 64 + k] (a constant stride, so that the twelve
- * columns are known apart and the loop vectorizes). */
+ * points per instruction instead of two (docs/speed.md, "Maugis-Dugdale 2-D table nodes").
+ * ell is the Fortran array ell(chunk, 0:11), chunk = 64 there: ell[j * 64 + k] (a constant
+ * stride, so that the twelve columns are known apart and the loop vectorizes). */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define CC_BASIS_CLONES __attribute__((target_clones("avx2", "default")))
 #else
