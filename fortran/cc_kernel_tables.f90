@@ -815,21 +815,33 @@ contains
 
   ! H at many points (the solver's batches): evaluate_kernel_h's values to the last bit. For the
   ! default 12-point stencil the Lagrange basis (lagrange_basis_12's operations in its order) is
-  ! computed for a chunk of tabulated points in one loop of scalars, which the compiler
-  ! vectorizes across points, then each sum (stencil_sum_12's order; near u = 0 the nodes at
+  ! computed for a chunk of tabulated points in one loop vectorized across points
+  ! (cc_lagrange_basis.c: SSE2 or AVX2, chosen at load time, no FMA), then each sum (stencil_sum_12's order; near u = 0 the nodes at
   ! |k|, H being even, as node_value; a node itself, t = 0, read). Far-field points (v > u_max)
-  ! are left out of the chunks and summed point by point, as look_up does.
+  ! are left out of the chunks and summed point by point, as look_up does. A chunk's basis is
+  ! computed for its points only: the solver's small batches (a table node's ~150 node-to-node
+  ! values) no longer pay for a whole chunk of padding.
   subroutine evaluate_kernel_h_many(table, u, h)
     type(kernel_table), intent(in) :: table
     real(dp), intent(in) :: u(:)
     real(dp), intent(out) :: h(:)
     integer, parameter :: chunk = 64
-    real(dp) :: w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11
-    real(dp) :: d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11
-    real(dp) :: q0, q1, q2, q3, q4, q5, r01, r23, r45, o0, o1, o2, o3, o4, o5
-    real(dp) :: y0, y1, y2, y3, y4, y5, v, t, h1, u_max, du
+    real(dp) :: weights(0:11), y0, y1, y2, y3, y4, y5, v, h1, u_max, du
     real(dp) :: ell(chunk, 0:11), offset(chunk), uu(chunk)
-    integer :: i(chunk), at(chunk), k, first, count
+    integer(c_int) :: i(chunk)
+    integer :: at(chunk), k, first, count
+    interface
+      ! cc_lagrange_basis.c: the basis loop, built for SSE2 and AVX2 (no FMA), the same bits;
+      ! ell's first extent (chunk = 64) is a constant there.
+      subroutine cc_lagrange_basis_12(count, uu, du, w, index, offset, ell) bind(C, name="cc_lagrange_basis_12")
+        import :: c_int, c_double
+        integer(c_int), value :: count
+        real(c_double), intent(in) :: uu(*), w(*)
+        real(c_double), value :: du
+        integer(c_int), intent(out) :: index(*)
+        real(c_double), intent(out) :: offset(*), ell(*)
+      end subroutine cc_lagrange_basis_12
+    end interface
 
     if (table%stencil /= 12 .or. table%stencil_left /= 5) then
       h = evaluate_kernel_h(table, u)
@@ -837,18 +849,7 @@ contains
     end if
     u_max = table%u_max
     du = table%du
-    w0 = table%lagrange_weight(0)
-    w1 = table%lagrange_weight(1)
-    w2 = table%lagrange_weight(2)
-    w3 = table%lagrange_weight(3)
-    w4 = table%lagrange_weight(4)
-    w5 = table%lagrange_weight(5)
-    w6 = table%lagrange_weight(6)
-    w7 = table%lagrange_weight(7)
-    w8 = table%lagrange_weight(8)
-    w9 = table%lagrange_weight(9)
-    w10 = table%lagrange_weight(10)
-    w11 = table%lagrange_weight(11)
+    weights = table%lagrange_weight(0:11)
     first = 1
     do while (first <= size(u))
       ! The next chunk of points in the table (uu, at their indices `at`); the far field, past
@@ -865,52 +866,7 @@ contains
         end if
         first = first + 1
       end do
-      uu(count + 1:chunk) = 0.0_dp
-      do k = 1, chunk
-        t = uu(k) / du
-        i(k) = int(t)
-        t = t - real(i(k), dp)
-        offset(k) = t
-        d0 = t + 5.0_dp
-        d1 = t + 4.0_dp
-        d2 = t + 3.0_dp
-        d3 = t + 2.0_dp
-        d4 = t + 1.0_dp
-        d5 = t
-        d6 = t - 1.0_dp
-        d7 = t - 2.0_dp
-        d8 = t - 3.0_dp
-        d9 = t - 4.0_dp
-        d10 = t - 5.0_dp
-        d11 = t - 6.0_dp
-        q0 = d5 * d6
-        q1 = d4 * d7
-        q2 = d3 * d8
-        q3 = d2 * d9
-        q4 = d1 * d10
-        q5 = d0 * d11
-        r01 = q0 * q1
-        r23 = q2 * q3
-        r45 = q4 * q5
-        o0 = q1 * (r23 * r45)
-        o1 = q0 * (r23 * r45)
-        o2 = q3 * (r01 * r45)
-        o3 = q2 * (r01 * r45)
-        o4 = q5 * (r01 * r23)
-        o5 = q4 * (r01 * r23)
-        ell(k, 5) = (w5 * d6) * o0
-        ell(k, 6) = (w6 * d5) * o0
-        ell(k, 4) = (w4 * d7) * o1
-        ell(k, 7) = (w7 * d4) * o1
-        ell(k, 3) = (w3 * d8) * o2
-        ell(k, 8) = (w8 * d3) * o2
-        ell(k, 2) = (w2 * d9) * o3
-        ell(k, 9) = (w9 * d2) * o3
-        ell(k, 1) = (w1 * d10) * o4
-        ell(k, 10) = (w10 * d1) * o4
-        ell(k, 0) = (w0 * d11) * o5
-        ell(k, 11) = (w11 * d0) * o5
-      end do
+      call cc_lagrange_basis_12(count, uu, du, weights, i, offset, ell)
       do k = 1, count
         if (offset(k) == 0.0_dp) then
           h(at(k)) = table%h(i(k))

@@ -4,7 +4,8 @@
 // uses, for a film on an elastic and on a rigid base and for a 3-layer stack; H1 is refused.
 // Bit for bit because the solver's printed values must not change (THEORY.md section 4: H and
 // H1 are separate transforms of the same samples). The H-only evaluation is also the batched
-// one, checked here against the point-by-point evaluation of the table with H1.
+// one, checked here against the point-by-point evaluation of the table with H1, in one long
+// batch and in batches of every length up to two chunks.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -55,6 +56,18 @@ void compare(const std::string& name, const Stack& stack, int variant) {
                                   std::to_string(differing) + " differ)");
   check::that(differing_batch == 0, what + ": H alone (batched) equal to H with H1 at " + std::to_string(u.size()) +
                                         " points (" + std::to_string(differing_batch) + " differ)");
+  // Batches of every length up to two chunks (the basis is computed for a chunk's own points:
+  // odd lengths end in the loop's scalar remainder), each from a different start, point by
+  // point equal to the elemental values.
+  std::size_t differing_lengths = 0;
+  std::vector<double> part(130);
+  for (std::size_t count = 1; count <= 130; ++count) {
+    const std::size_t start = (7 * count) % (u.size() - count);
+    h_only.eval(u.data() + start, count, part.data());
+    for (std::size_t i = 0; i < count; ++i) differing_lengths += part[i] == ha[start + i] ? 0 : 1;
+  }
+  check::that(differing_lengths == 0, what + ": batches of 1..130 points equal point by point (" +
+                                          std::to_string(differing_lengths) + " values differ)");
   std::vector<double> h(1), h1(1);
   bool refused = false;
   try {
