@@ -103,16 +103,21 @@ def test_same_estimates_alone_in_a_map_and_from_python(cli, tmp_path, model, nam
                 close(plain["estimates"][p], offset["estimates"][p], (name, i, p, "plain arrays, offset"))
 
 
-def test_curve_without_contact_raises_the_cli_message(cli, tmp_path):
-    """Curve 3 of a synthetic map (make_afm_map) never reaches the sample: `afm fit --index 3`
-    exits 2, Python raises ValueError with the same words (it used to return a fit of the
-    baseline, E ~ 0 with R^2 ~ 0)."""
+def synthetic_map(path, *arguments):
+    """A map written by the test tool make_afm_map (its arguments after the path); its path."""
     make_map = os.path.join(os.environ.get("COATCONTACT_BUILD_DIR", os.path.join(SOURCE_DIR, "build")), "tests", "afm",
                             "make_afm_map")
     if not os.access(make_map, os.X_OK):
         pytest.fail(f"make_afm_map not found at {make_map} (set COATCONTACT_BUILD_DIR)")
-    path = str(tmp_path / "syn.jpk-force-map")
-    subprocess.run([make_map, path, "2", "2", "--points", "200", "--seed", "3"], check=True)
+    subprocess.run([make_map, str(path), *arguments], check=True)
+    return str(path)
+
+
+def test_curve_without_contact_raises_the_cli_message(cli, tmp_path):
+    """Curve 3 of a synthetic map (make_afm_map) never reaches the sample: `afm fit --index 3`
+    exits 2, Python raises ValueError with the same words (it used to return a fit of the
+    baseline, E ~ 0 with R^2 ~ 0)."""
+    path = synthetic_map(tmp_path / "syn.jpk-force-map", "2", "2", "--points", "200", "--seed", "3")
     _, _, message = cli("afm", "fit", path, "--index", "3", "--radius", "10um", "--halfspace", "5kPa,0.5", expect=2)
     curve = cc.afm.read(path)[3]
     with pytest.raises(ValueError) as error:
@@ -174,12 +179,7 @@ def test_md_map_on_an_elastic_base_gives_the_single_curve_fits(cli, tmp_path):
     --md, the library's own MD model), E1 and w free; the CLI's rows (--jobs 2), fit_map's
     (jobs=2) and fit() of each curve in this process are the same doubles, bit for bit: the
     cohesive-zone tables the curves share are pure functions of the stack and the grid index."""
-    make_map = os.path.join(os.environ.get("COATCONTACT_BUILD_DIR", os.path.join(SOURCE_DIR, "build")), "tests", "afm",
-                            "make_afm_map")
-    if not os.access(make_map, os.X_OK):
-        pytest.fail(f"make_afm_map not found at {make_map} (set COATCONTACT_BUILD_DIR)")
-    path = str(tmp_path / "md.jpk-force-map")
-    subprocess.run([make_map, path, "2", "2", "--seed", "7", "--md", "--clean"], check=True)
+    path = synthetic_map(tmp_path / "md.jpk-force-map", "2", "2", "--seed", "7", "--md", "--clean")
     out = tmp_path / "md.tsv"
     cli("afm", "fit", path, "--model", "md", "--radius", "10um", "--film", "250kPa,0.5", "--substrate", "1MPa,0.3",
         "--thickness", "4um", "--range", "0.5um", "--jobs", "2", "--output", str(out))
