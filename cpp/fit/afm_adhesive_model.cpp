@@ -1018,7 +1018,8 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   ContactFit best_fit;
   std::vector<double> u_best =
       start_grid(axes, u0, coated, [&](const std::vector<double>& u, const double* c) { return trial_cost(trial_of(u), c); }, best_fit);
-  if (!std::isfinite(best_fit.linear.rss) && coarse.contact_evaluations() == 0) {
+  // (a trial whose branch failed is never profiled: that case keeps the message below)
+  if (!std::isfinite(best_fit.linear.rss) && coarse.evaluations() > 0 && coarse.contact_evaluations() == 0) {
     throw NumericalError("afm fit: the " + name + " fit leaves no point in contact; check the segment (retract) and the range");
   }
   if (!std::isfinite(best_fit.linear.rss)) {
