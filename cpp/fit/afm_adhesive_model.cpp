@@ -1018,13 +1018,12 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   ContactFit best_fit;
   std::vector<double> u_best =
       start_grid(axes, u0, coated, [&](const std::vector<double>& u, const double* c) { return trial_cost(trial_of(u), c); }, best_fit);
-  // (a trial whose branch failed is never profiled: that case keeps the message below)
-  if (!std::isfinite(best_fit.linear.rss) && coarse.evaluations() > 0 && coarse.contact_evaluations() == 0) {
-    throw NumericalError("afm fit: the " + name + " fit leaves no point in contact; check the segment (retract) and the range");
-  }
   if (!std::isfinite(best_fit.linear.rss)) {
-    throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
-                         "the spring constant and the segment)");
+    // Profiled trials, none holding a point in contact (a trial whose branch failed is not profiled).
+    const bool no_contact = coarse.evaluations() > 0 && coarse.contact_evaluations() == 0;
+    throw NumericalError(no_contact ? "afm fit: the " + name + " fit leaves no point in contact; check the segment (retract) and the range"
+                                    : "afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
+                                      "the spring constant and the segment)");
   }
   // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near `centre`.
   int iterations = 0;
