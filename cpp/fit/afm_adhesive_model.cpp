@@ -247,6 +247,7 @@ Points binned(const Points& all, std::size_t target) {
 
 struct Linear {
   double baseline = 0.0, tilt = 0.0, rss = kInfinity;
+  std::size_t in_contact = 0;  // points (bins) the model holds in contact
 };
 
 // At one contact point: F_i = b + m (z_i - z_c) + g(z_c - z_i), (b, m) free or fixed in closed
@@ -267,6 +268,10 @@ class Objective {
     double sg = 0.0, szg = 0.0, sfg = 0.0, sgg = 0.0;
     const double limit = contact - branch.jump_delta();  // in contact: z < limit
     const std::size_t count = static_cast<std::size_t>(std::lower_bound(p_.z.begin(), p_.z.end(), limit) - p_.z.begin());
+    // No point in contact costs +inf: the model is the bare line, its w (and E, t) undetermined,
+    // and the final fit would refuse it (THEORY.md section 15, "Search and errors").
+    if (count == 0) return Linear{};
+    ++contact_evaluations_;
     thread_local std::vector<double> g;
     g.resize(count);
     branch.values(contact, p_.z.data(), count, g.data());
@@ -296,15 +301,18 @@ class Objective {
     out.baseline = b;
     out.tilt = m;
     out.rss = std::isfinite(rss) ? std::max(0.0, rss) : kInfinity;  // (a NaN would read as a perfect fit)
+    out.in_contact = count;
     return out;
   }
   int evaluations() const { return evaluations_; }
+  // Evaluations that held at least one point in contact.
+  int contact_evaluations() const { return contact_evaluations_; }
 
  private:
   const Points& p_;
   const AfmFitProblem& problem_;
   double sw_ = 0.0, sz_ = 0.0, szz_ = 0.0, sf_ = 0.0, szf_ = 0.0, sff_ = 0.0;
-  mutable int evaluations_ = 0;
+  mutable int evaluations_ = 0, contact_evaluations_ = 0;
 };
 
 struct ContactFit {
@@ -762,6 +770,7 @@ State polish(State state, const std::vector<int>& axes, const AfmFitProblem& pro
         continue;
       }
       next.c.linear = fine.at(*b, next.c.contact);
+      if (next.c.linear.in_contact == 0) continue;  // (the bare line: refused, as by the search)
       // The sums' closed form loses the residual to cancellation when a wild trial's force
       // dwarfs the data: the candidate's sum point by point.
       const std::vector<double> model = model_all(*b, next.c, nullptr);
@@ -1066,8 +1075,11 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   std::vector<double> u_best =
       start_grid(axes, u0, coated, [&](const std::vector<double>& u, const double* c) { return trial_cost(trial_of(u), c); }, best_fit);
   if (!std::isfinite(best_fit.linear.rss)) {
-    throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
-                         "the spring constant and the segment)");
+    // Profiled trials, none holding a point in contact (a trial whose branch failed is not profiled).
+    const bool no_contact = coarse.evaluations() > 0 && coarse.contact_evaluations() == 0;
+    throw NumericalError(no_contact ? "afm fit: the " + name + " fit leaves no point in contact; check the segment (retract) and the range"
+                                    : "afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
+                                      "the spring constant and the segment)");
   }
   // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near `centre`.
   int iterations = 0;
