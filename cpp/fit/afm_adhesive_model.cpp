@@ -975,9 +975,9 @@ std::pair<double, std::vector<double>> probe_node(double ln_e, std::vector<doubl
 }
 
 // Stage 1c (THEORY.md section 15, "The coarse nodes"): the walk over the model's nodes
-// E0 10^(j/8) from u, each node probed. A pattern search on j: one node first, the step doubled
-// after each gain (at most kWalkStep), halved after a loss and tried ahead, then behind, until
-// both neighbours of the best node lose; then the vertex of the parabola through the three
+// E0 10^(j/8) from u, each node probed. A pattern search on j: one node first (toward the lower
+// neighbour, both probed), the step doubled after each gain (at most kWalkStep), halved after a
+// loss and tried ahead, then behind, until both neighbours of the best node lose; then the vertex of the parabola through the three
 // (within half a node), the other axes interpolated toward the better neighbour.
 std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cost& cost) {
   const double spacing = std::log(10.0) / kModulusNodesPerDecade;
@@ -993,7 +993,8 @@ std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cos
     return it->second.first;
   };
   double value = profile(best);
-  long dir = profile(best + 1) < value ? 1 : profile(best - 1) < value ? -1 : 0;
+  const double up1 = profile(best + 1), down1 = profile(best - 1);
+  long dir = std::min(up1, down1) < value ? (up1 <= down1 ? 1 : -1) : 0;
   for (long step = 1; dir != 0 && std::abs(best + dir * step - first) <= kWalkReach;) {
     // (a node seen before lost to a best at least as high as today's: it never wins again)
     if (const long next = best + dir * step; profile(next) < value) {
