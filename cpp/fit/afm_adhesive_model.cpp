@@ -43,6 +43,11 @@ constexpr int kScanPerDecade = 24;
 // Bounded searches: Nelder-Mead iterations (binned data), Gauss-Newton steps (all points).
 constexpr int kSimplexIterations = 300;
 constexpr int kPolishSteps = 8;
+// A short contact (THEORY.md section 15, "Search and errors"): the points up to the data's jump
+// would fill fewer than kContactBins search bins; the contact-point grid then holds at least
+// kContactGridPoints points where a contact point can hold data in contact.
+constexpr std::size_t kContactBins = 12;
+constexpr int kContactGridPoints = 12;
 // The coarse stage of a free E1 on a coating sweeps its nodes up to this a/t: below ~1 the
 // solver needs no kernel table (~0.02 ms a radius; the first radius past it builds one, ~10 ms,
 // for a soft film of nu1 = 0.5 on a stiffer base; measured at E1/E0 0.005-2.5).
@@ -215,17 +220,38 @@ Points sorted_points(const std::vector<double>& z, const std::vector<double>& f)
   return p;
 }
 
-// Equal-count bins (means of z and F, weight = count) of at most `target` bins; a bin closes
-// early at a gap in z wider than 5 median spacings (the jump-off leaves one on the tip axis),
-// so that no bin straddles the jump.
-Points binned(const Points& all, std::size_t target) {
+// The deepest points up to the data's deepest force (the jump-off): every point a fit near the
+// data's jump holds in contact lies there. Their count (sorted points from the front).
+std::size_t points_to_jump(const Points& p) {
+  return static_cast<std::size_t>(std::min_element(p.f.begin(), p.f.end()) - p.f.begin()) + 1;
+}
+
+std::size_t points_per_bin(std::size_t n) { return (n + kAdhesiveSearchPoints - 1) / kAdhesiveSearchPoints; }
+
+// A contact too short for the search's bins (THEORY.md section 15, "Search and errors"): the
+// points up to the jump would fill fewer than kContactBins bins.
+bool short_contact(const Points& all) { return points_to_jump(all) < kContactBins * points_per_bin(all.z.size()); }
+
+// The top of the contact points at which data can be in contact near the data's jump: the
+// deepest point plus twice the depth of the jump (-inf unless the contact is short).
+double contact_top(const Points& all) {
+  return short_contact(all) ? 2.0 * all.z[points_to_jump(all) - 1] - all.z.front() : -kInfinity;
+}
+
+// Equal-count bins (means of z and F, weight = count) of at most kAdhesiveSearchPoints bins; a
+// bin closes early at a gap in z wider than 5 median spacings (the jump-off leaves one on the
+// tip axis), so that no bin straddles the jump. A short contact's points below its contact top
+// stay single (a few more bins).
+Points binned(const Points& all) {
   const std::size_t n = all.z.size();
-  if (n <= target) return all;
+  if (n <= kAdhesiveSearchPoints) return all;
   std::vector<double> gaps(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i) gaps[i] = all.z[i + 1] - all.z[i];
   std::nth_element(gaps.begin(), gaps.begin() + static_cast<long>(gaps.size() / 2), gaps.end());
   const double wide = 5.0 * gaps[gaps.size() / 2];
-  const std::size_t per_bin = (n + target - 1) / target;
+  const std::size_t per_bin = points_per_bin(n);
+  // Points kept single: those below the contact top.
+  const auto single = static_cast<std::size_t>(std::lower_bound(all.z.begin(), all.z.end(), contact_top(all)) - all.z.begin());
   Points out;
   double sz = 0.0, sf = 0.0;
   std::size_t count = 0;
@@ -234,7 +260,7 @@ Points binned(const Points& all, std::size_t target) {
     sf += all.f[i];
     ++count;
     const bool gap = i + 1 < n && all.z[i + 1] - all.z[i] > wide;
-    if (count == per_bin || gap || i + 1 == n) {
+    if (count == per_bin || i < single || gap || i + 1 == n) {
       out.z.push_back(sz / count);
       out.f.push_back(sf / count);
       out.weight.push_back(static_cast<double>(count));
@@ -247,13 +273,14 @@ Points binned(const Points& all, std::size_t target) {
 
 struct Linear {
   double baseline = 0.0, tilt = 0.0, rss = kInfinity;
+  std::size_t in_contact = 0;  // points (bins) the model holds in contact
 };
 
 // At one contact point: F_i = b + m (z_i - z_c) + g(z_c - z_i), (b, m) free or fixed in closed
 // form (weighted normal equations), and the weighted residual sum.
 class Objective {
  public:
-  Objective(const Points& p, const AfmFitProblem& problem) : p_(p), problem_(problem) {
+  Objective(const Points& p, const AfmFitProblem& problem, double contact_top) : p_(p), problem_(problem), contact_top_(contact_top) {
     for (std::size_t i = 0; i < p.z.size(); ++i) {
       const double w = p.weight[i], z = p.z[i] - origin(), f = p.f[i];
       sw_ += w, sz_ += w * z, szz_ += w * z * z, sf_ += w * f, szf_ += w * z * f, sff_ += w * f * f;
@@ -267,6 +294,10 @@ class Objective {
     double sg = 0.0, szg = 0.0, sfg = 0.0, sgg = 0.0;
     const double limit = contact - branch.jump_delta();  // in contact: z < limit
     const std::size_t count = static_cast<std::size_t>(std::lower_bound(p_.z.begin(), p_.z.end(), limit) - p_.z.begin());
+    // No point in contact costs +inf: the model is the bare line, its w (and E, t) undetermined,
+    // and the final fit would refuse it (THEORY.md section 15, "Search and errors").
+    if (count == 0) return Linear{};
+    ++contact_evaluations_;
     thread_local std::vector<double> g;
     g.resize(count);
     branch.values(contact, p_.z.data(), count, g.data());
@@ -296,15 +327,21 @@ class Objective {
     out.baseline = b;
     out.tilt = m;
     out.rss = std::isfinite(rss) ? std::max(0.0, rss) : kInfinity;  // (a NaN would read as a perfect fit)
+    out.in_contact = count;
     return out;
   }
   int evaluations() const { return evaluations_; }
+  // contact_top(all points) (the profile's grid is refined below it).
+  double contact_top() const { return contact_top_; }
+  // Evaluations that held at least one point in contact.
+  int contact_evaluations() const { return contact_evaluations_; }
 
  private:
   const Points& p_;
   const AfmFitProblem& problem_;
+  const double contact_top_;
   double sw_ = 0.0, sz_ = 0.0, szz_ = 0.0, sf_ = 0.0, szf_ = 0.0, sff_ = 0.0;
-  mutable int evaluations_ = 0;
+  mutable int evaluations_ = 0, contact_evaluations_ = 0;
 };
 
 struct ContactFit {
@@ -312,17 +349,29 @@ struct ContactFit {
   Linear linear;
 };
 
-// The contact point on [lo, hi]: a grid of `count` points, then Brent on the brackets of the
+// The profile's grid: `count` points on [lo, hi], and kContactGridPoints more on its part below
+// the objective's contact top when fewer than that lie there (a contact shorter than the step).
+std::vector<double> contact_grid(const Objective& objective, double lo, double hi, int count) {
+  std::vector<double> grid(count);
+  for (int k = 0; k < count; ++k) grid[k] = lo + (hi - lo) * k / (count - 1.0);
+  const double top = std::min(hi, objective.contact_top());
+  if (!(top > lo) || std::upper_bound(grid.begin(), grid.end(), top) - grid.begin() >= kContactGridPoints) return grid;
+  for (int k = 1; k <= kContactGridPoints; ++k) grid.push_back(lo + (top - lo) * k / (kContactGridPoints + 1.0));
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  return grid;
+}
+
+// The contact point on [lo, hi]: a grid (contact_grid), then Brent on the brackets of the
 // three lowest grid minima (the profile has kinks where points enter contact, and a jump
 // where the jump-off passes a point); fixed: the problem's value.
 ContactFit search_contact(const Objective& objective, const Branch& branch, const AfmFitProblem& problem, double lo,
-                          double hi, int count) {
+                          double hi, int grid_points) {
   if (!problem.free.contact_point) return {problem.contact_point, objective.at(branch, problem.contact_point)};
-  std::vector<double> grid(count), cost(count);
-  for (int k = 0; k < count; ++k) {
-    grid[k] = lo + (hi - lo) * k / (count - 1.0);
-    cost[k] = objective.at(branch, grid[k]).rss;
-  }
+  const std::vector<double> grid = contact_grid(objective, lo, hi, grid_points);
+  const int count = static_cast<int>(grid.size());
+  std::vector<double> cost(count);
+  for (int k = 0; k < count; ++k) cost[k] = objective.at(branch, grid[k]).rss;
   std::vector<int> minima;
   for (int k = 0; k < count; ++k) {
     if ((k == 0 || cost[k] <= cost[k - 1]) && (k + 1 == count || cost[k] <= cost[k + 1])) minima.push_back(k);
@@ -762,6 +811,7 @@ State polish(State state, const std::vector<int>& axes, const AfmFitProblem& pro
         continue;
       }
       next.c.linear = fine.at(*b, next.c.contact);
+      if (next.c.linear.in_contact == 0) continue;  // (the bare line: refused, as by the search)
       // The sums' closed form loses the residual to cancellation when a wild trial's force
       // dwarfs the data: the candidate's sum point by point.
       const std::vector<double> model = model_all(*b, next.c, nullptr);
@@ -925,9 +975,9 @@ std::pair<double, std::vector<double>> probe_node(double ln_e, std::vector<doubl
 }
 
 // Stage 1c (THEORY.md section 15, "The coarse nodes"): the walk over the model's nodes
-// E0 10^(j/8) from u, each node probed. A pattern search on j: one node first, the step doubled
-// after each gain (at most kWalkStep), halved after a loss and tried ahead, then behind, until
-// both neighbours of the best node lose; then the vertex of the parabola through the three
+// E0 10^(j/8) from u, each node probed. A pattern search on j: one node first (toward the lower
+// neighbour, both probed), the step doubled after each gain (at most kWalkStep), halved after a
+// loss and tried ahead, then behind, until both neighbours of the best node lose; then the vertex of the parabola through the three
 // (within half a node), the other axes interpolated toward the better neighbour.
 std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cost& cost) {
   const double spacing = std::log(10.0) / kModulusNodesPerDecade;
@@ -943,7 +993,8 @@ std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cos
     return it->second.first;
   };
   double value = profile(best);
-  long dir = profile(best + 1) < value ? 1 : profile(best - 1) < value ? -1 : 0;
+  const double up1 = profile(best + 1), down1 = profile(best - 1);
+  long dir = std::min(up1, down1) < value ? (up1 <= down1 ? 1 : -1) : 0;
   for (long step = 1; dir != 0 && std::abs(best + dir * step - first) <= kWalkReach;) {
     // (a node seen before lost to a best at least as high as today's: it never wins again)
     if (const long next = best + dir * step; profile(next) < value) {
@@ -1005,7 +1056,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   if (coated) p.poisson = problem.coating->film.poisson_ratio;
   const std::size_t n = z_data.size();
   const Points all = sorted_points(z_data, f_data);
-  const Points search = binned(all, kAdhesiveSearchPoints);
+  const Points search = binned(all);
   const double z_lo = all.z.front(), z_hi = all.z.back(), span = z_hi - z_lo;
   if (problem.free.contact_point && !(span > 0.0)) throw InputError("afm fit: the fitted points have one tip position only");
   const double c_hi = problem.free.contact_point ? z_hi + kContactBeyond * span : problem.contact_point;
@@ -1045,7 +1096,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   };
   const BranchAt branch_at = [&](const std::vector<double>& u) { return branch_of(trial_of(u)); };
 
-  const Objective coarse(search, problem);
+  const Objective coarse(search, problem, contact_top(all));
   // A trial's cost: the contact point on the whole range (global) or within a window around
   // `centre` (the simplex's trials; the window is widened to the whole range at its edge).
   const int grid_points = static_cast<int>(std::clamp<std::size_t>(problem.profile_points / 4, 24, 200));
@@ -1066,8 +1117,11 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   std::vector<double> u_best =
       start_grid(axes, u0, coated, [&](const std::vector<double>& u, const double* c) { return trial_cost(trial_of(u), c); }, best_fit);
   if (!std::isfinite(best_fit.linear.rss)) {
-    throw NumericalError("afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
-                         "the spring constant and the segment)");
+    // Profiled trials, none holding a point in contact (a trial whose branch failed is not profiled).
+    const bool no_contact = coarse.evaluations() > 0 && coarse.contact_evaluations() == 0;
+    throw NumericalError(no_contact ? "afm fit: the " + name + " fit leaves no point in contact; check the segment (retract) and the range"
+                                    : "afm fit: no " + name + " trial near the given E/E1 and w fits the data (check the tip radius, "
+                                      "the spring constant and the segment)");
   }
   // 2. Nelder-Mead in the ln-parameters on the binned points, z_c near `centre`.
   int iterations = 0;
@@ -1101,7 +1155,7 @@ AfmFitResult afm_fit_adhesive(const std::vector<double>& z_data, const std::vect
   if (!std::isfinite(fit.linear.rss)) throw NumericalError("afm fit: the " + name + " search ended on a trial without a jump-off");
 
   // 3. Every point: the contact point re-profiled in a window, then polished.
-  const Objective fine(all, problem);
+  const Objective fine(all, problem, contact_top(all));
   State state{u_best, {}};
   {
     const auto branch = branch_of(estimate);
