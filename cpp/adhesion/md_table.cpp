@@ -947,11 +947,20 @@ MaugisDugdaleTable::GapRadius MaugisDugdaleTable::gap_radius(double a) const {
 }
 
 // Successive reads of one root mostly fall in one cell of one tile: GSL's accelerators find it
-// without a binary search (the same cell, so the same value).
+// without a binary search (the same cell, so the same value), and the tile is taken again
+// without tile_2d()'s std::call_once (the radius fixes the tile's column; tile_tau its row).
 struct MaugisDugdaleTable::GapCursor {
   const Tile2d* tile = nullptr;
+  std::size_t tile_tau = 0;
   gsl_interp_accel x{0, 0, 0}, tau{0, 0, 0};
 };
+
+const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::cursor_tile(const GapRadius& radius, double tau,
+                                                                  GapCursor& cursor) const {
+  const std::size_t tj = cell_of(grids_->tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells);
+  if (cursor.tile == nullptr || cursor.tile_tau != tj) cursor = {&tile_2d(radius.tile_x, tj), tj, {0, 0, 0}, {0, 0, 0}};
+  return *cursor.tile;
+}
 
 // g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
 std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& radius, double excess,
@@ -962,10 +971,8 @@ std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& rad
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
                      ") outside the table");
   }
-  const Grids& g = *grids_;
   const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
-  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
-  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
+  const Tile2d& tile = cursor_tile(radius, tau, cursor);
   return {gsl_spline2d_eval(tile.fine[2].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.first,
           gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.second};
 }
@@ -978,10 +985,8 @@ CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, do
   }
   CohesiveFunctions out = homogeneous_functions(radius.a, excess);
   if (options_.closed_form) return out;
-  const Grids& g = *grids_;
   const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
-  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
-  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
+  const Tile2d& tile = cursor_tile(radius, tau, cursor);
   const Tile1d& radius_tile = tile_radius(radius.tile_x);
   out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, &cursor.x, &cursor.tau);
   out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, &cursor.x, &cursor.tau);
