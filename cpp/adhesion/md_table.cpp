@@ -141,9 +141,10 @@ double log_gap_ratio(double difference, double h0) {
 }
 
 // f remembering its last two values: GSL's Brent starts by evaluating the bracket's two ends,
-// which bracket_outward (or the caller) has just evaluated; f must be a pure function.
+// which bracket_outward (or the caller) has just evaluated; f must be a pure function. (The
+// object itself: a std::function holding it would be allocated on the heap once per root.)
 template <class F>
-std::function<double(double)> remembering_last_two(F f) {
+auto remembering_last_two(F f) {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   return [f, u = std::array<double, 2>{kNone, kNone}, v = std::array<double, 2>{}, next = 0](double x) mutable {
     if (x == u[0]) return v[0];
@@ -211,8 +212,17 @@ double homogeneous_root(double sigma_hat, double h0, double a, double lo, double
   // homogeneous root by Newton"): L grows with slope between 1 and 2 and is nearly straight.
   if (!(h0 > 0.0)) return lo;  // h >= 0 >= h0 on the whole range: its low end, as before
   const double log_h0 = std::log(h0);
+  // The first iterate is s = 0 (unless the range excludes it): its e, tan and angle are the
+  // same numbers for every root, computed once (by the same calls: the same bits).
+  static const std::array<double, 3> at_zero = [] {
+    volatile double zero = 0.0;
+    const double e = std::exp(zero), t = std::sqrt(e * (2.0 + e));
+    return std::array<double, 3>{e, t, std::atan(t)};
+  }();
   auto log_gap = [&](double s) {
-    const double e = std::exp(s), t = std::sqrt(e * (2.0 + e)), phi = std::atan(t);
+    const bool zero = s == 0.0;
+    const double e = zero ? at_zero[0] : std::exp(s), t = zero ? at_zero[1] : std::sqrt(e * (2.0 + e)),
+                 phi = zero ? at_zero[2] : std::atan(t);
     const double g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), g_s = 2.0 * a / kPi * (t * phi - e);
     const double dg_r = 2.0 * a * a / kPi * (t / (1.0 + e) + (1.0 + e) * phi);  // d/de
     const double dg_s = 2.0 * a / kPi * ((1.0 + e) * phi / t - e / (1.0 + e));
@@ -951,14 +961,21 @@ MaugisDugdaleTable::GapRadius MaugisDugdaleTable::gap_radius(double a) const {
 // without tile_2d()'s std::call_once (the radius fixes the tile's column; tile_tau its row).
 struct MaugisDugdaleTable::GapCursor {
   const Tile2d* tile = nullptr;
-  std::size_t tile_tau = 0;
+  double tau_lo = 0.0, tau_hi = -1.0;  // the tile's own τ: [tau_lo, tau_hi), open at the grid's ends
   gsl_interp_accel x{0, 0, 0}, tau{0, 0, 0};
 };
 
+// The tile of cell_of(tau_coarse, tau) / tile_cells: cell k holds tau_coarse[k] <= τ <
+// tau_coarse[k + 1], its first and last cells extended to the grid's ends.
 const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::cursor_tile(const GapRadius& radius, double tau,
                                                                   GapCursor& cursor) const {
-  const std::size_t tj = cell_of(grids_->tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells);
-  if (cursor.tile == nullptr || cursor.tile_tau != tj) cursor = {&tile_2d(radius.tile_x, tj), tj, {0, 0, 0}, {0, 0, 0}};
+  if (cursor.tile != nullptr && tau >= cursor.tau_lo && tau < cursor.tau_hi) return *cursor.tile;
+  const std::vector<double>& g = grids_->tau_coarse;
+  const std::size_t cells = static_cast<std::size_t>(options_.tile_cells), tj = cell_of(g, tau) / cells;
+  const std::size_t first = tj * cells, next = first + cells;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  cursor = {&tile_2d(radius.tile_x, tj), first == 0 ? -kInf : g[first], next + 1 >= g.size() ? kInf : g[next],
+            {0, 0, 0}, {0, 0, 0}};
   return *cursor.tile;
 }
 
@@ -1003,10 +1020,11 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   // ln h"): the sign of h - h0, nearly straight in s.
   const GapRadius radius = gap_radius(a);
   GapCursor cursor;
-  const std::function<double(double)> residual = remembering_last_two([&](double s) {
+  auto remembered = remembering_last_two([&](double s) {
     const auto [g_r, g_s] = gap_functions(radius, std::exp(s), cursor);
     return log_gap_ratio(g_r + sigma_hat * g_s - h0, h0);
   });
+  const std::function<double(double)> residual = [&remembered](double s) { return remembered(s); };
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_outward(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;
