@@ -58,6 +58,31 @@ double tan_minus_angle(double t, double angle) {
   return sum;
 }
 
+// tan φa = sqrt(c² - a²)/a and φa = arccos(a/c) at c/a - 1 = excess: what the homogeneous
+// forms below spend their square root and arctangent on (a root's last read and its state share them).
+struct ZoneAngle {
+  double tan = 0.0, angle = 0.0;
+};
+ZoneAngle zone_angle(double excess) {
+  const double t = std::sqrt(excess * (2.0 + excess));
+  return {t, std::atan(t)};
+}
+std::pair<double, double> homogeneous_gap_at(double a, double e, ZoneAngle z) {
+  const double t = z.tan, phi = z.angle;
+  return {a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), 2.0 * a / kPi * (t * phi - e)};
+}
+CohesiveFunctions homogeneous_functions_at(double a, double e, ZoneAngle z) {
+  const double t = z.tan, phi = z.angle;
+  CohesiveFunctions h;
+  h.delta_h = a * a;
+  h.force_h = 4.0 * a * a * a / 3.0;
+  h.d = -a * t;
+  h.f = -a * a * (t + (1.0 + e) * (1.0 + e) * phi);
+  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi));
+  h.g_s = 2.0 * a / kPi * (t * phi - e);
+  return h;
+}
+
 // The ratio stored for each function: value / homogeneous value (THEORY.md section 13).
 void to_array_2d(const CohesiveFunctions& v, double* out) {
   out[0] = v.d;
@@ -162,24 +187,11 @@ auto remembering_last_two(F f) {
 CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess) { return zone.functions(excess); }
 
 CohesiveFunctions homogeneous_functions(double a, double excess) {
-  const double e = excess;
-  const double t = std::sqrt(e * (2.0 + e));  // tan φa = sqrt(c² - a²)/a
-  const double phi = std::atan(t);             // φa = arccos(a/c)
-  CohesiveFunctions h;
-  h.delta_h = a * a;
-  h.force_h = 4.0 * a * a * a / 3.0;
-  h.d = -a * t;
-  h.f = -a * a * (t + (1.0 + e) * (1.0 + e) * phi);
-  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi));
-  h.g_s = 2.0 * a / kPi * (t * phi - e);
-  return h;
+  return homogeneous_functions_at(a, excess, zone_angle(excess));
 }
 
 std::pair<double, double> homogeneous_gap_functions(double a, double excess) {
-  const double e = excess;
-  const double t = std::sqrt(e * (2.0 + e));
-  const double phi = std::atan(t);
-  return {a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), 2.0 * a / kPi * (t * phi - e)};
+  return homogeneous_gap_at(a, excess, zone_angle(excess));
 }
 
 CohesiveFunctions homogeneous_end_functions(double c) {
@@ -963,6 +975,10 @@ struct MaugisDugdaleTable::GapCursor {
   const Tile2d* tile = nullptr;
   double tau_lo = 0.0, tau_hi = -1.0;  // the tile's own τ: [tau_lo, tau_hi), open at the grid's ends
   gsl_interp_accel x{0, 0, 0}, tau{0, 0, 0};
+  // The last read's c/a - 1, its angle and τ: Brent's root is its last read, which the state
+  // (load_functions) reads again.
+  double last_excess = std::numeric_limits<double>::quiet_NaN(), last_tau = 0.0;
+  ZoneAngle last_angle;
 };
 
 // The tile of cell_of(tau_coarse, tau) / tile_cells: cell k holds tau_coarse[k] <= τ <
@@ -974,15 +990,19 @@ const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::cursor_tile(const GapRadiu
   const std::size_t cells = static_cast<std::size_t>(options_.tile_cells), tj = cell_of(g, tau) / cells;
   const std::size_t first = tj * cells, next = first + cells;
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  cursor = {&tile_2d(radius.tile_x, tj), first == 0 ? -kInf : g[first], next + 1 >= g.size() ? kInf : g[next],
-            {0, 0, 0}, {0, 0, 0}};
+  cursor.tile = &tile_2d(radius.tile_x, tj);
+  cursor.tau_lo = first == 0 ? -kInf : g[first];
+  cursor.tau_hi = next + 1 >= g.size() ? kInf : g[next];
+  cursor.x = {0, 0, 0};
+  cursor.tau = {0, 0, 0};
   return *cursor.tile;
 }
 
 // g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
 std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& radius, double excess,
                                                             GapCursor& cursor) const {
-  const auto hom = homogeneous_gap_functions(radius.a, excess);
+  const ZoneAngle angle = zone_angle(excess);
+  const auto hom = homogeneous_gap_at(radius.a, excess, angle);
   if (options_.closed_form) return hom;
   if (!(excess >= radius.excess_lo && excess <= radius.excess_hi)) {
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
@@ -990,6 +1010,9 @@ std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& rad
   }
   const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
   const Tile2d& tile = cursor_tile(radius, tau, cursor);
+  cursor.last_excess = excess;
+  cursor.last_angle = angle;
+  cursor.last_tau = tau;
   return {gsl_spline2d_eval(tile.fine[2].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.first,
           gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.second};
 }
@@ -1000,9 +1023,11 @@ CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, do
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
                      ") outside the table");
   }
-  CohesiveFunctions out = homogeneous_functions(radius.a, excess);
+  const bool again = excess == cursor.last_excess;  // (the same number: the same angle and τ)
+  CohesiveFunctions out = homogeneous_functions_at(radius.a, excess, again ? cursor.last_angle : zone_angle(excess));
   if (options_.closed_form) return out;
-  const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
+  const double tau = again ? cursor.last_tau
+                           : std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
   const Tile2d& tile = cursor_tile(radius, tau, cursor);
   const Tile1d& radius_tile = tile_radius(radius.tile_x);
   out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, &cursor.x, &cursor.tau);
