@@ -58,6 +58,31 @@ double tan_minus_angle(double t, double angle) {
   return sum;
 }
 
+// tan φa = sqrt(c² - a²)/a and φa = arccos(a/c) at c/a - 1 = excess: what the homogeneous
+// forms below spend their square root and arctangent on (a root's last read and its state share them).
+struct ZoneAngle {
+  double tan = 0.0, angle = 0.0;
+};
+ZoneAngle zone_angle(double excess) {
+  const double t = std::sqrt(excess * (2.0 + excess));
+  return {t, std::atan(t)};
+}
+std::pair<double, double> homogeneous_gap_at(double a, double e, ZoneAngle z) {
+  const double t = z.tan, phi = z.angle;
+  return {a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), 2.0 * a / kPi * (t * phi - e)};
+}
+CohesiveFunctions homogeneous_functions_at(double a, double e, ZoneAngle z) {
+  const double t = z.tan, phi = z.angle;
+  CohesiveFunctions h;
+  h.delta_h = a * a;
+  h.force_h = 4.0 * a * a * a / 3.0;
+  h.d = -a * t;
+  h.f = -a * a * (t + (1.0 + e) * (1.0 + e) * phi);
+  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi));
+  h.g_s = 2.0 * a / kPi * (t * phi - e);
+  return h;
+}
+
 // The ratio stored for each function: value / homogeneous value (THEORY.md section 13).
 void to_array_2d(const CohesiveFunctions& v, double* out) {
   out[0] = v.d;
@@ -141,9 +166,10 @@ double log_gap_ratio(double difference, double h0) {
 }
 
 // f remembering its last two values: GSL's Brent starts by evaluating the bracket's two ends,
-// which bracket_outward (or the caller) has just evaluated; f must be a pure function.
+// which bracket_outward (or the caller) has just evaluated; f must be a pure function. (The
+// object itself: a std::function holding it would be allocated on the heap once per root.)
 template <class F>
-std::function<double(double)> remembering_last_two(F f) {
+auto remembering_last_two(F f) {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   return [f, u = std::array<double, 2>{kNone, kNone}, v = std::array<double, 2>{}, next = 0](double x) mutable {
     if (x == u[0]) return v[0];
@@ -161,24 +187,11 @@ std::function<double(double)> remembering_last_two(F f) {
 CohesiveFunctions cohesive_functions(const CohesiveZone& zone, double excess) { return zone.functions(excess); }
 
 CohesiveFunctions homogeneous_functions(double a, double excess) {
-  const double e = excess;
-  const double t = std::sqrt(e * (2.0 + e));  // tan φa = sqrt(c² - a²)/a
-  const double phi = std::atan(t);             // φa = arccos(a/c)
-  CohesiveFunctions h;
-  h.delta_h = a * a;
-  h.force_h = 4.0 * a * a * a / 3.0;
-  h.d = -a * t;
-  h.f = -a * a * (t + (1.0 + e) * (1.0 + e) * phi);
-  h.g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi));
-  h.g_s = 2.0 * a / kPi * (t * phi - e);
-  return h;
+  return homogeneous_functions_at(a, excess, zone_angle(excess));
 }
 
 std::pair<double, double> homogeneous_gap_functions(double a, double excess) {
-  const double e = excess;
-  const double t = std::sqrt(e * (2.0 + e));
-  const double phi = std::atan(t);
-  return {a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), 2.0 * a / kPi * (t * phi - e)};
+  return homogeneous_gap_at(a, excess, zone_angle(excess));
 }
 
 CohesiveFunctions homogeneous_end_functions(double c) {
@@ -211,8 +224,17 @@ double homogeneous_root(double sigma_hat, double h0, double a, double lo, double
   // homogeneous root by Newton"): L grows with slope between 1 and 2 and is nearly straight.
   if (!(h0 > 0.0)) return lo;  // h >= 0 >= h0 on the whole range: its low end, as before
   const double log_h0 = std::log(h0);
+  // The first iterate is s = 0 (unless the range excludes it): its e, tan and angle are the
+  // same numbers for every root, computed once (by the same calls: the same bits).
+  static const std::array<double, 3> at_zero = [] {
+    volatile double zero = 0.0;
+    const double e = std::exp(zero), t = std::sqrt(e * (2.0 + e));
+    return std::array<double, 3>{e, t, std::atan(t)};
+  }();
   auto log_gap = [&](double s) {
-    const double e = std::exp(s), t = std::sqrt(e * (2.0 + e)), phi = std::atan(t);
+    const bool zero = s == 0.0;
+    const double e = zero ? at_zero[0] : std::exp(s), t = zero ? at_zero[1] : std::sqrt(e * (2.0 + e)),
+                 phi = zero ? at_zero[2] : std::atan(t);
     const double g_r = a * a / kPi * (phi * t * t + tan_minus_angle(t, phi)), g_s = 2.0 * a / kPi * (t * phi - e);
     const double dg_r = 2.0 * a * a / kPi * (t / (1.0 + e) + (1.0 + e) * phi);  // d/de
     const double dg_s = 2.0 * a / kPi * ((1.0 + e) * phi / t - e / (1.0 + e));
@@ -947,25 +969,50 @@ MaugisDugdaleTable::GapRadius MaugisDugdaleTable::gap_radius(double a) const {
 }
 
 // Successive reads of one root mostly fall in one cell of one tile: GSL's accelerators find it
-// without a binary search (the same cell, so the same value).
+// without a binary search (the same cell, so the same value), and the tile is taken again
+// without tile_2d()'s std::call_once (the radius fixes the tile's column; tile_tau its row).
 struct MaugisDugdaleTable::GapCursor {
   const Tile2d* tile = nullptr;
+  double tau_lo = 0.0, tau_hi = -1.0;  // the tile's own τ: [tau_lo, tau_hi), open at the grid's ends
   gsl_interp_accel x{0, 0, 0}, tau{0, 0, 0};
+  // The last read's c/a - 1, its angle and τ: Brent's root is its last read, which the state
+  // (load_functions) reads again.
+  double last_excess = std::numeric_limits<double>::quiet_NaN(), last_tau = 0.0;
+  ZoneAngle last_angle;
 };
+
+// The tile of cell_of(tau_coarse, tau) / tile_cells: cell k holds tau_coarse[k] <= τ <
+// tau_coarse[k + 1], its first and last cells extended to the grid's ends.
+const MaugisDugdaleTable::Tile2d& MaugisDugdaleTable::cursor_tile(const GapRadius& radius, double tau,
+                                                                  GapCursor& cursor) const {
+  if (cursor.tile != nullptr && tau >= cursor.tau_lo && tau < cursor.tau_hi) return *cursor.tile;
+  const std::vector<double>& g = grids_->tau_coarse;
+  const std::size_t cells = static_cast<std::size_t>(options_.tile_cells), tj = cell_of(g, tau) / cells;
+  const std::size_t first = tj * cells, next = first + cells;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  cursor.tile = &tile_2d(radius.tile_x, tj);
+  cursor.tau_lo = first == 0 ? -kInf : g[first];
+  cursor.tau_hi = next + 1 >= g.size() ? kInf : g[next];
+  cursor.x = {0, 0, 0};
+  cursor.tau = {0, 0, 0};
+  return *cursor.tile;
+}
 
 // g_r and g_s alone (the root's iterations need nothing else): as at(), two of its six splines.
 std::pair<double, double> MaugisDugdaleTable::gap_functions(const GapRadius& radius, double excess,
                                                             GapCursor& cursor) const {
-  const auto hom = homogeneous_gap_functions(radius.a, excess);
+  const ZoneAngle angle = zone_angle(excess);
+  const auto hom = homogeneous_gap_at(radius.a, excess, angle);
   if (options_.closed_form) return hom;
   if (!(excess >= radius.excess_lo && excess <= radius.excess_hi)) {
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
                      ") outside the table");
   }
-  const Grids& g = *grids_;
   const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
-  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
-  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
+  const Tile2d& tile = cursor_tile(radius, tau, cursor);
+  cursor.last_excess = excess;
+  cursor.last_angle = angle;
+  cursor.last_tau = tau;
   return {gsl_spline2d_eval(tile.fine[2].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.first,
           gsl_spline2d_eval(tile.fine[3].spline, radius.x, tau, &cursor.x, &cursor.tau) * hom.second};
 }
@@ -976,12 +1023,12 @@ CohesiveFunctions MaugisDugdaleTable::load_functions(const GapRadius& radius, do
     throw InputError("Maugis-Dugdale table: (a/t, c/a - 1) = (" + short_text(radius.a) + ", " + short_text(excess) +
                      ") outside the table");
   }
-  CohesiveFunctions out = homogeneous_functions(radius.a, excess);
+  const bool again = excess == cursor.last_excess;  // (the same number: the same angle and τ)
+  CohesiveFunctions out = homogeneous_functions_at(radius.a, excess, again ? cursor.last_angle : zone_angle(excess));
   if (options_.closed_form) return out;
-  const Grids& g = *grids_;
-  const double tau = std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
-  const Tile2d& tile = tile_2d(radius.tile_x, cell_of(g.tau_coarse, tau) / static_cast<std::size_t>(options_.tile_cells));
-  if (cursor.tile != &tile) cursor = {&tile, {0, 0, 0}, {0, 0, 0}};
+  const double tau = again ? cursor.last_tau
+                           : std::clamp((std::log(excess) - radius.s_min) / (radius.s_max - radius.s_min), 0.0, 1.0);
+  const Tile2d& tile = cursor_tile(radius, tau, cursor);
   const Tile1d& radius_tile = tile_radius(radius.tile_x);
   out.d *= gsl_spline2d_eval(tile.fine[0].spline, radius.x, tau, &cursor.x, &cursor.tau);
   out.f *= gsl_spline2d_eval(tile.fine[1].spline, radius.x, tau, &cursor.x, &cursor.tau);
@@ -998,10 +1045,11 @@ std::optional<MdTableState> MaugisDugdaleTable::solve(double sigma_hat, double h
   // ln h"): the sign of h - h0, nearly straight in s.
   const GapRadius radius = gap_radius(a);
   GapCursor cursor;
-  const std::function<double(double)> residual = remembering_last_two([&](double s) {
+  auto remembered = remembering_last_two([&](double s) {
     const auto [g_r, g_s] = gap_functions(radius, std::exp(s), cursor);
     return log_gap_ratio(g_r + sigma_hat * g_s - h0, h0);
   });
+  const std::function<double(double)> residual = [&remembered](double s) { return remembered(s); };
   const double lo = std::log(std::min(o.excess_floor, o.excess_min)), hi = std::log(excess_max(a));
   const auto bracket = bracket_outward(residual, homogeneous_root(sigma_hat, h0, a, lo, hi), lo, hi, kBracketStep);
   if (!bracket) return std::nullopt;

@@ -187,6 +187,7 @@ class MaugisDugdaleTable {
   struct GapRadius;
   struct GapCursor;  // the last tile read and GSL's accelerators into its grid (one root's)
   GapRadius gap_radius(double a) const;
+  const Tile2d& cursor_tile(const GapRadius& radius, double tau, GapCursor& cursor) const;
   std::pair<double, double> gap_functions(const GapRadius& radius, double excess, GapCursor& cursor) const;
   // d, f, δ_H and F_H alone (the state without its estimates): at() without g_r and g_s.
   CohesiveFunctions load_functions(const GapRadius& radius, double excess, GapCursor& cursor) const;

@@ -139,10 +139,18 @@ class MdCurves {
       mix.push_back({&model(scale_free ? hint_ : trial.modulus, 0), 1.0});
       node_reduced.push_back(reduced);
     }
-    // (delta, F) at radius a (a = 0: the curve's end): the weighted nodes' SI values. The branch
-    // asks some radii twice (its jump-off a_s, its top, the scan's first point as the first
-    // node): each is computed once per trial (a pure function of a).
-    std::map<double, std::pair<double, double>> computed;
+    // Each node's L and lambda at the trial's w (a radius's reads need nothing else of the trial).
+    std::vector<double> node_length(mix.size()), node_lambda(mix.size());
+    for (std::size_t k = 0; k < mix.size(); ++k) {
+      node_length[k] = std::cbrt(kPi * trial.work * radius * radius / node_reduced[k]);
+      node_lambda[k] = std::clamp(lambda(trial.work, node_reduced[k]), kMinimumLambda, kMaximumLambda);
+    }
+    // (delta, F) at radius a (a = 0: the curve's end): the weighted nodes' SI values, a pure
+    // function of the trial and a. The branch asks some radii twice (its jump-off a_s, its top,
+    // the scan's first point as the first node), and the search asks some trials again (~12 % of
+    // an elastic-base fit's: a simplex's repeated vertices, the estimate's reports): each point
+    // is computed once per fit.
+    std::map<double, std::pair<double, double>>& computed = trial_points(trial);
     const auto point = [&](double a) -> std::pair<double, double> {
       if (const auto it = computed.find(a); it != computed.end()) return it->second;
       if (a > 0.0 && !(a / t >= kTableAOverT[0] && a / t <= kTableAOverT[1])) {
@@ -154,8 +162,7 @@ class MdCurves {
       }
       double delta = 0.0, force = 0.0;
       for (std::size_t k = 0; k < mix.size(); ++k) {
-        const double l = std::cbrt(kPi * trial.work * radius * radius / node_reduced[k]);
-        const double lam = std::clamp(lambda(trial.work, node_reduced[k]), kMinimumLambda, kMaximumLambda);
+        const double l = node_length[k], lam = node_lambda[k];
         MaugisDugdalePoint p;
         try {
           p = mix[k].first->point(t / l, lam, a / l);
@@ -222,7 +229,24 @@ class MdCurves {
     return *models_.emplace(j, shared_model(film, substrate)).first->second;
   }
 
+  // The points computed for a trial (modulus, w, t and the stage's reading of E1) this fit;
+  // the oldest trial's forgotten past kRememberedTrials (a fit reads ~250 trials of ~200 points).
+  using TrialKey = std::tuple<double, double, double, bool>;
+  static constexpr std::size_t kRememberedTrials = 512;
+  std::map<double, std::pair<double, double>>& trial_points(const AdhesiveTrial& trial) {
+    const TrialKey key{trial.modulus, trial.work, trial.thickness, coarse_};
+    if (const auto it = trial_points_.find(key); it != trial_points_.end()) return it->second;
+    if (trial_order_.size() >= kRememberedTrials) {
+      trial_points_.erase(trial_order_.front());
+      trial_order_.erase(trial_order_.begin());
+    }
+    trial_order_.push_back(key);
+    return trial_points_[key];
+  }
+
   const AfmFitProblem& problem_;
+  std::map<TrialKey, std::map<double, std::pair<double, double>>> trial_points_;
+  std::vector<TrialKey> trial_order_;
   bool coated_, coarse_ = false;
   double poisson_, hint_, anchor_, h0_, force_limit_ = 0.0;
   std::map<long, std::shared_ptr<const MaugisDugdaleModel>> models_;
