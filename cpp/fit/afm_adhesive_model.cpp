@@ -977,8 +977,9 @@ std::pair<double, std::vector<double>> probe_node(double ln_e, std::vector<doubl
 // Stage 1c (THEORY.md section 15, "The coarse nodes"): the walk over the model's nodes
 // E0 10^(j/8) from u, each node probed. A pattern search on j: one node first (toward the lower
 // neighbour, both probed), the step doubled after each gain (at most kWalkStep), halved after a
-// loss and tried ahead, then behind, until both neighbours of the best node lose; then the vertex of the parabola through the three
-// (within half a node), the other axes interpolated toward the better neighbour.
+// loss and tried ahead, then behind, until both neighbours of the best node lose; then the
+// vertex of the parabola through the three (within half a node), the other axes interpolated
+// toward the better neighbour.
 std::vector<double> node_walk(const std::vector<double>& u, double e0, const Cost& cost) {
   const double spacing = std::log(10.0) / kModulusNodesPerDecade;
   const long first = std::lround((u[0] - std::log(e0)) / spacing);
